@@ -1,0 +1,83 @@
+!> The seam between the contact loop and every convolution method.
+!>
+!> A convolver computes the causal discrete convolution of eq. (20),
+!>
+!>     u(t_n) = u_h(n) + w0*q(t_n),   u_h(n) = sum_{m < n} w(n - m)*q(t_m),   t_n = n*dt,
+!>
+!> one step at a time. The contact loop asks `history()` for u_h(n), the displacement
+!> from the forces pushed so far, decides this step's force q(t_n), and hands it over
+!> with `push(q)`, which advances to step n + 1. `instant_weight()` is w0, the
+!> displacement per newton of the current step's own force (zero for the paper's scheme).
+!> The loop never knows whether a direct sum, an FFT or modes answer.
+module convolver_mod
+    use kinds_mod, only: dp
+    implicit none
+    private
+
+    public :: convolver
+
+    !> A causal convolver stepped once per time step.
+    type, abstract :: convolver
+        !> Short name of the method, as written in a scene's `methods` list.
+        character(len=:), allocatable :: name
+        !> Time step dt [s].
+        real(dp) :: dt = 0.0_dp
+        !> Number of forces pushed so far (the index n of the next step).
+        integer :: step = 0
+        !> Displacement per newton [m/N] of the current step's own force, w0.
+        real(dp) :: weight0 = 0.0_dp
+    contains
+        !> Displacement u_h(n) [m] at t_n from the forces pushed so far.
+        procedure(history_interface), deferred :: history
+        !> Record the force q(t_n) [N] of the current step and advance to the next.
+        procedure(push_interface), deferred :: push
+        !> Forget all forces pushed and return to step 0.
+        procedure(reset_interface), deferred :: reset
+        !> Size of the model: N_g kernel samples or N_m modes, with its label.
+        procedure(size_interface), deferred :: model_size
+        !> Displacement per newton [m/N] of the current step's own force.
+        procedure :: instant_weight
+    end type convolver
+
+    abstract interface
+        !> Displacement u_h(n) [m] at t_n from the forces pushed so far.
+        function history_interface(self) result(u)
+            import :: convolver, dp
+            class(convolver), intent(in) :: self
+            real(dp) :: u
+        end function history_interface
+
+        !> Record the force of the current step and advance.
+        subroutine push_interface(self, force)
+            import :: convolver, dp
+            class(convolver), intent(inout) :: self
+            real(dp), intent(in) :: force
+        end subroutine push_interface
+
+        !> Return to step 0 with no force history.
+        subroutine reset_interface(self)
+            import :: convolver
+            class(convolver), intent(inout) :: self
+        end subroutine reset_interface
+
+        !> Size of the model and its label (`N_g` or `N_m`).
+        subroutine size_interface(self, n, label)
+            import :: convolver
+            class(convolver), intent(in) :: self
+            integer, intent(out) :: n
+            character(len=:), allocatable, intent(out) :: label
+        end subroutine size_interface
+    end interface
+
+contains
+
+    !> Displacement per newton [m/N] of the current step's own force, w0.
+    pure function instant_weight(self) result(w0)
+        !> The convolver.
+        class(convolver), intent(in) :: self
+        real(dp) :: w0
+
+        w0 = self%weight0
+    end function instant_weight
+
+end module convolver_mod

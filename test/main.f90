@@ -1,0 +1,20 @@
+!> Runs every test suite of greenconv and ends with the line `N passed, N failed`;
+!> exits with status 1 when a test failed.
+program greenconv_tests
+    use, intrinsic :: iso_fortran_env, only: output_unit
+    use testsuite_mod, only: run_testsuite
+    use test_sdof_mod, only: collect_sdof
+    use test_convolution_mod, only: collect_convolution
+    use test_contact_mod, only: collect_contact
+    implicit none
+
+    integer :: n_passed, n_failed
+
+    n_passed = 0
+    n_failed = 0
+    call run_testsuite('sdof', collect_sdof, output_unit, n_passed, n_failed)
+    call run_testsuite('convolution', collect_convolution, output_unit, n_passed, n_failed)
+    call run_testsuite('contact', collect_contact, output_unit, n_passed, n_failed)
+    write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
+    if (n_failed > 0) stop 1, quiet=.true.
+end program greenconv_tests

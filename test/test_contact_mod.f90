@@ -1,0 +1,198 @@
+!> The contact scene of section 3.1 (Tab. 1, with A0 = 1 mm and the preload M*g) run by
+!> both convolutions and checked against each other, against the unilateral law, and
+!> against an independent reference: the state-space ODE of the oscillator with the same
+!> contact spring, integrated by an adaptive Dormand-Prince 5(4) method at tolerance 1e-12.
+module test_contact_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use reference_ode_mod, only: integrate
+    use greenconv, only: convolver, contact_law, contact_response, run_contact, sdof_modes, &
+                         make_convolver, error_type, sine_road
+    implicit none
+    private
+
+    public :: collect_contact
+
+    real(dp), parameter :: mass = 1.0_dp, stiffness = 1.0e6_dp, xi = 0.02_dp
+    real(dp), parameter :: amplitude = 1.0e-3_dp, omega_road = 100.0_dp
+    real(dp), parameter :: k_contact = 1.0e6_dp, exponent = 1.5_dp, preload = 9.81_dp
+    real(dp), parameter :: dt = 1.0e-4_dp
+    integer, parameter :: n_steps = 2000
+
+contains
+
+    !> Tests of contact_mod on the SDOF scene.
+    subroutine collect_contact(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('contact law: power law, zero in tension, inverse', test_law), &
+                     new_unittest('reference integrator: oscillator step response', test_reference_integrator), &
+                     new_unittest('direct and modal agree to round-off in the scene', test_methods_agree), &
+                     new_unittest('F >= 0, and F = 0 exactly when delta <= 0', test_unilateral), &
+                     new_unittest('direct within 1e-3 (relative L2) of the ODE reference', test_direct_reference), &
+                     new_unittest('modal within 1e-3 (relative L2) of the ODE reference', test_modal_reference)]
+    end subroutine collect_contact
+
+    !> Run the scene with `method` (through the driver's factory, as a user scene would).
+    subroutine run_method(method, response)
+        character(len=*), intent(in) :: method
+        type(contact_response), intent(out) :: response
+
+        class(convolver), allocatable :: conv
+        character(len=:), allocatable :: accuracy
+        type(error_type), allocatable :: error
+        type(sine_road) :: road
+
+        call make_convolver(method, sdof_modes(mass, stiffness, xi), dt, 0.01_dp, n_steps, conv, accuracy, error)
+        if (allocated(error)) error stop 'test_contact_mod: cannot build a convolver'
+        road%amplitude = amplitude
+        road%omega = omega_road
+        call run_contact(conv, contact_law(k_contact, exponent), road%sample(dt, n_steps), preload, response)
+    end subroutine run_method
+
+    subroutine test_law(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(contact_law) :: law
+
+        law = contact_law(k_contact, exponent)
+        call check(error, law%force(4.0e-4_dp), k_contact*4.0e-4_dp*sqrt(4.0e-4_dp), 'k_c*delta^1.5', &
+                   thr=1.0e-14_dp, rel=.true.)
+        if (allocated(error)) return
+        call check(error, law%force(-1.0e-9_dp) == 0.0_dp .and. law%force(0.0_dp) == 0.0_dp, 'no force in tension')
+        if (allocated(error)) return
+        call check(error, law%force(law%compression(preload)), preload, 'force(compression(F0))', &
+                   thr=1.0e-14_dp, rel=.true.)
+    end subroutine test_law
+
+    !> The integrator on M u'' + C u' + K u = F from rest, against the closed form.
+    subroutine test_reference_integrator(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp) :: y(2), h, t, w0, wd, a, exact
+        integer :: n
+
+        w0 = sqrt(stiffness/mass)
+        wd = w0*sqrt(1.0_dp - xi**2)
+        a = xi*w0
+        y = 0.0_dp
+        h = 1.0e-6_dp
+        do n = 1, 200
+            call integrate(oscillator, (n - 1)*1.0e-3_dp, n*1.0e-3_dp, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
+        end do
+        t = 0.2_dp
+        exact = 1.0_dp/stiffness*(1.0_dp - exp(-a*t)*(cos(wd*t) + a/wd*sin(wd*t)))
+        call check(error, y(1), exact, 'u(0.2 s) under a unit step', thr=1.0e-10_dp/stiffness)
+    contains
+        subroutine oscillator(time, state, rate)
+            real(dp), intent(in) :: time
+            real(dp), intent(in) :: state(:)
+            real(dp), intent(out) :: rate(:)
+
+            rate(1) = state(2)
+            rate(2) = (1.0_dp - 2.0_dp*xi*w0*mass*state(2) - stiffness*state(1))/mass + 0.0_dp*time
+        end subroutine oscillator
+    end subroutine test_reference_integrator
+
+    subroutine test_methods_agree(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(contact_response) :: direct, modal
+
+        call run_method('direct', direct)
+        call run_method('modal', modal)
+        call note('max du/max|u|', maxval(abs(direct%displacement - modal%displacement))/maxval(abs(direct%displacement)))
+        call check(error, maxval(abs(direct%displacement - modal%displacement)), 0.0_dp, 'max |u_direct - u_modal|', &
+                   thr=1.0e-10_dp*maxval(abs(direct%displacement)))
+        if (allocated(error)) return
+        call check(error, maxval(abs(direct%force - modal%force)), 0.0_dp, 'max |F_direct - F_modal|', &
+                   thr=1.0e-10_dp*maxval(direct%force))
+    end subroutine test_methods_agree
+
+    subroutine test_unilateral(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(contact_response) :: response
+        character(len=6), parameter :: methods(2) = ['direct', 'modal ']
+        integer :: i
+
+        do i = 1, 2
+            call run_method(trim(methods(i)), response)
+            call check(error, all(response%force >= 0.0_dp), trim(methods(i))//': F >= 0')
+            if (allocated(error)) return
+            call check(error, all((response%force == 0.0_dp) .eqv. (response%compression <= 0.0_dp)), &
+                       trim(methods(i))//': F = 0 exactly where delta <= 0')
+            if (allocated(error)) return
+            ! The scene must exercise both states, or the two checks above prove nothing.
+            call check(error, count(response%force == 0.0_dp) > 100 .and. count(response%force > 0.0_dp) > 100, &
+                       trim(methods(i))//': the body both loses and regains contact')
+            if (allocated(error)) return
+        end do
+    end subroutine test_unilateral
+
+    subroutine test_direct_reference(error)
+        type(test_error), allocatable, intent(out) :: error
+        call check_reference(error, 'direct')
+    end subroutine test_direct_reference
+
+    subroutine test_modal_reference(error)
+        type(test_error), allocatable, intent(out) :: error
+        call check_reference(error, 'modal')
+    end subroutine test_modal_reference
+
+    !> Relative L2 errors of u and F against the ODE reference, each below 1e-3.
+    subroutine check_reference(error, method)
+        type(test_error), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: method
+
+        type(contact_response) :: response
+        real(dp) :: u_ref(0:n_steps - 1), f_ref(0:n_steps - 1)
+
+        call reference_solution(u_ref, f_ref)
+        call run_method(method, response)
+        call note('u', norm2(response%displacement - u_ref)/norm2(u_ref))
+        call note('F', norm2(response%force - f_ref)/norm2(f_ref))
+        call check(error, norm2(response%displacement - u_ref)/norm2(u_ref), 0.0_dp, &
+                   method//': relative L2 error of u', thr=1.0e-3_dp)
+        if (allocated(error)) return
+        call check(error, norm2(response%force - f_ref)/norm2(f_ref), 0.0_dp, &
+                   method//': relative L2 error of F', thr=1.0e-3_dp)
+    end subroutine check_reference
+
+    !> M u'' + C u' + K u = F(delta0 + u_r(t) - u) - F0 from rest, sampled at t_n.
+    subroutine reference_solution(u_ref, f_ref)
+        real(dp), intent(out) :: u_ref(0:), f_ref(0:)
+
+        real(dp) :: y(2), h, delta0, damping
+        integer :: n
+
+        delta0 = (preload/k_contact)**(1.0_dp/exponent)
+        damping = 2.0_dp*xi*sqrt(stiffness*mass)
+        y = 0.0_dp
+        h = dt/10.0_dp
+        do n = 0, n_steps - 1
+            if (n > 0) call integrate(contact_ode, (n - 1)*dt, n*dt, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
+            u_ref(n) = y(1)
+            f_ref(n) = spring(delta0 + amplitude*sin(omega_road*n*dt) - y(1))
+        end do
+    contains
+        subroutine contact_ode(t, state, rate)
+            real(dp), intent(in) :: t
+            real(dp), intent(in) :: state(:)
+            real(dp), intent(out) :: rate(:)
+
+            rate(1) = state(2)
+            rate(2) = (spring(delta0 + amplitude*sin(omega_road*t) - state(1)) - preload &
+                       - damping*state(2) - stiffness*state(1))/mass
+        end subroutine contact_ode
+    end subroutine reference_solution
+
+    !> The contact spring written out again: k_c*delta^p in compression, zero otherwise.
+    elemental real(dp) function spring(delta)
+        real(dp), intent(in) :: delta
+
+        spring = 0.0_dp
+        if (delta > 0.0_dp) spring = k_contact*delta**exponent
+    end function spring
+
+end module test_contact_mod
