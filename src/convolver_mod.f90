@@ -43,6 +43,7 @@ module convolver_mod
         !> Displacement u_h(n) [m] at t_n from the forces pushed so far.
         function history_interface(self) result(u)
             import :: convolver, dp
+            implicit none
             class(convolver), intent(in) :: self
             real(dp) :: u
         end function history_interface
@@ -50,6 +51,7 @@ module convolver_mod
         !> Record the force of the current step and advance.
         subroutine push_interface(self, force)
             import :: convolver, dp
+            implicit none
             class(convolver), intent(inout) :: self
             real(dp), intent(in) :: force
         end subroutine push_interface
@@ -57,12 +59,14 @@ module convolver_mod
         !> Return to step 0 with no force history.
         subroutine reset_interface(self)
             import :: convolver
+            implicit none
             class(convolver), intent(inout) :: self
         end subroutine reset_interface
 
         !> Size of the model and its label (`N_g` or `N_m`).
         subroutine size_interface(self, n, label)
             import :: convolver
+            implicit none
             class(convolver), intent(in) :: self
             integer, intent(out) :: n
             character(len=:), allocatable, intent(out) :: label

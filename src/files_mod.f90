@@ -13,6 +13,7 @@ module files_mod
         !> C library rename(2): atomic within one file system.
         function c_rename(old_path, new_path) bind(c, name='rename') result(stat)
             import :: c_char, c_int
+            implicit none
             character(kind=c_char), intent(in) :: old_path(*)
             character(kind=c_char), intent(in) :: new_path(*)
             integer(c_int) :: stat
@@ -21,6 +22,7 @@ module files_mod
         !> C library mkdir(2).
         function c_mkdir(path, mode) bind(c, name='mkdir') result(stat)
             import :: c_char, c_int
+            implicit none
             character(kind=c_char), intent(in) :: path(*)
             integer(c_int), value :: mode
             integer(c_int) :: stat

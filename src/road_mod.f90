@@ -19,6 +19,7 @@ module road_mod
         !> Road height [m] at time t [s].
         elemental real(dp) function height_interface(self, t)
             import :: road_profile, dp
+            implicit none
             class(road_profile), intent(in) :: self
             real(dp), intent(in) :: t
         end function height_interface

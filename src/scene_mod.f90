@@ -110,7 +110,7 @@ contains
         call require(len_trim(name) > 0, expected(this%file, 'scene', 'name', 'a file base name'), error)
         call require(len_trim(output_dir) > 0, expected(this%file, 'scene', 'output_dir', 'a directory path'), error)
         call require(dt > 0.0_dp, expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
-        call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', real(n_steps, dp)), error)
+        call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
         this%dt = dt
@@ -258,7 +258,7 @@ contains
         call fatal_error(error, file//': &'//group//': '//trim(message))
     end subroutine group_status
 
-    !> "file: &group variable: expected what[, found value]"; value is a real or a text.
+    !> "file: &group variable: expected what[, found value]"; value is a real, an integer or a text.
     function expected(file, group, variable, what, found) result(line)
         character(len=*), intent(in) :: file, group, variable, what
         class(*), intent(in), optional :: found
@@ -270,7 +270,10 @@ contains
         if (.not. present(found)) return
         select type (found)
         type is (real(dp))
-            write (value, '(g0)') found
+            write (value, '(g0.6)') found
+            line = line//', found '//trim(value)
+        type is (integer)
+            write (value, '(i0)') found
             line = line//', found '//trim(value)
         type is (character(len=*))
             line = line//", found '"//trim(found)//"'"

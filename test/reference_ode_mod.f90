@@ -13,6 +13,7 @@ module reference_ode_mod
         !> Right-hand side f(t, y).
         subroutine rhs_interface(t, y, dydt)
             import :: dp
+            implicit none
             real(dp), intent(in) :: t
             real(dp), intent(in) :: y(:)
             real(dp), intent(out) :: dydt(:)

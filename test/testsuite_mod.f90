@@ -18,6 +18,7 @@ module testsuite_mod
         !> One test: leaves `error` unallocated when it passes.
         subroutine test_interface(error)
             import :: test_error
+            implicit none
             type(test_error), allocatable, intent(out) :: error
         end subroutine test_interface
     end interface
@@ -34,6 +35,7 @@ module testsuite_mod
         !> Collect the tests of one module.
         subroutine collect_interface(testsuite)
             import :: unittest_type
+            implicit none
             type(unittest_type), allocatable, intent(out) :: testsuite(:)
         end subroutine collect_interface
     end interface
