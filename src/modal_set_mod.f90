@@ -11,10 +11,11 @@
 !> for which g(t) is eq. (8): (A_k/omega_k^d)*exp(-xi_k*omega_k*t)*sin(omega_k^d*t).
 module modal_set_mod
     use kinds_mod, only: dp
+    use random_mod, only: random_stream
     implicit none
     private
 
-    public :: modal_set, modes_from_paper
+    public :: modal_set, modes_from_paper, random_modes
 
     !> A set of modes in pole-residue form (see the module description for the convention).
     type :: modal_set
@@ -49,9 +50,61 @@ contains
         real(dp) :: omega_d(size(omega))
 
         omega_d = omega*sqrt(1.0_dp - damping_ratio**2)
+        allocate (modes%pole(size(omega)), modes%residue(size(omega)))
         modes%pole = cmplx(-damping_ratio*omega, omega_d, kind=dp)
         modes%residue = cmplx(0.0_dp, -amplitude/(2.0_dp*omega_d), kind=dp)
     end function modes_from_paper
+
+    !> A random modal system in the paper's form (section 3.2): for each mode, drawn in this
+    !> order from `seed` (SplitMix64, the same on every compiler), a natural frequency
+    !> uniform in [f_low, f_high) Hz, a damping ratio uniform in [xi_low, xi_high) and an
+    !> amplitude A_k uniform in [a_low, a_high) 1/kg; modes sorted by frequency.
+    function random_modes(seed, n_modes, f_low, f_high, xi_low, xi_high, a_low, a_high) result(modes)
+        !> Seed of the draws.
+        integer, intent(in) :: seed
+        !> Number of modes.
+        integer, intent(in) :: n_modes
+        !> Range of natural frequencies [Hz].
+        real(dp), intent(in) :: f_low, f_high
+        !> Range of damping ratios, within [0, 1).
+        real(dp), intent(in) :: xi_low, xi_high
+        !> Range of amplitudes A_k [1/kg].
+        real(dp), intent(in) :: a_low, a_high
+        type(modal_set) :: modes
+
+        type(random_stream) :: stream
+        real(dp) :: frequency(n_modes), ratio(n_modes), amplitude(n_modes)
+        integer :: k, order(n_modes)
+
+        stream = random_stream(seed)
+        do k = 1, n_modes
+            frequency(k) = stream%between(f_low, f_high)
+            ratio(k) = stream%between(xi_low, xi_high)
+            amplitude(k) = stream%between(a_low, a_high)
+        end do
+        order = sorted_order(frequency)
+        modes = modes_from_paper(amplitude(order), 2.0_dp*acos(-1.0_dp)*frequency(order), ratio(order))
+    end function random_modes
+
+    !> Indices that sort `values` ascending (insertion sort: the sets are small).
+    pure function sorted_order(values) result(order)
+        real(dp), intent(in) :: values(:)
+        integer :: order(size(values))
+
+        integer :: i, j, item
+
+        order = [(i, i=1, size(values))]
+        do i = 2, size(values)
+            item = order(i)
+            j = i - 1
+            do while (j >= 1)
+                if (values(order(j)) <= values(item)) exit
+                order(j + 1) = order(j)
+                j = j - 1
+            end do
+            order(j + 1) = item
+        end do
+    end function sorted_order
 
     !> Number of modes (conjugate pairs) in the set.
     elemental integer function n_modes(self)

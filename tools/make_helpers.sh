@@ -1,0 +1,264 @@
+#!/usr/bin/env bash
+# Helpers for the top-level Makefile, kept here so the Makefile stays short.
+#
+#   tools/make_helpers.sh deps
+#       Install what the build needs and is missing (gfortran, LAPACK, BLAS, FFTW3,
+#       gnuplot through apt-get; fpm through pip). Silent when everything is there.
+#
+#   tools/make_helpers.sh f90deps OBJDIR SOURCE...
+#       Print make rules "OBJDIR/a.o: OBJDIR/b.o" from the `use` statements of the
+#       sources (a.f90 uses a module that b.f90 defines), plus DEPS_SRCS := SOURCE...
+#
+#   tools/make_helpers.sh same-output DRIVER SCENE...
+#       Run each scene with the fpm-built driver (`fpm run`, fpm's default debug
+#       profile) and with DRIVER (the Makefile build), each with its output_dir
+#       redirected into a temporary directory, and check that both wrote the same
+#       files with the same header and row count and numbers that agree to a
+#       relative 1e-9 (see compare_columns below).
+#
+#   tools/make_helpers.sh fpm-test [ARGS...]
+#       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
+#       after fpm's own error lines, so that it stays the last line of the test output.
+set -euo pipefail
+
+# The fpm command (the Makefile exports its FPM variable).
+FPM=${FPM:-fpm}
+# The fpm release the build and tests are checked with (pip installs exactly this one).
+FPM_VERSION=0.12.0
+
+say() { printf 'greenconv: %s\n' "$*"; }
+die() { printf 'greenconv: error: %s\n' "$*" >&2; exit 1; }
+
+# ---------------------------------------------------------------------------------
+# deps
+# ---------------------------------------------------------------------------------
+
+# Is the shared library lib$1.so (the unversioned link-time name) findable?
+have_lib() {
+    local name="lib$1.so" ldconfig_bin
+    ldconfig_bin=$(command -v ldconfig || echo /sbin/ldconfig)
+    if [ -x "$ldconfig_bin" ] && "$ldconfig_bin" -p 2>/dev/null | grep -q "[[:space:]]$name[[:space:]]"; then
+        return 0
+    fi
+    compgen -G "/usr/lib/*/$name" >/dev/null || compgen -G "/usr/lib/$name" >/dev/null \
+        || compgen -G "/usr/lib64/$name" >/dev/null || compgen -G "/usr/local/lib/$name" >/dev/null
+}
+
+# Does fpm run? (Under pyenv a shim can exist for a version that lacks fpm.)
+have_fpm() { $FPM --version >/dev/null 2>&1; }
+
+have_pip() { python3 -m pip --version >/dev/null 2>&1; }
+
+# Run a command as root: directly, through sudo, or fail with a hint.
+as_root() {
+    if [ "$(id -u)" -eq 0 ]; then
+        "$@"
+    elif command -v sudo >/dev/null 2>&1; then
+        sudo "$@"
+    else
+        die "need root (or sudo) to run: $*"
+    fi
+}
+
+cmd_deps() {
+    local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox)
+    command -v gfortran >/dev/null 2>&1 || missing+=(gfortran)
+    have_lib lapack || missing+=(LAPACK)
+    have_lib blas || missing+=(BLAS)
+    have_lib fftw3 || missing+=(FFTW3)
+    command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot)
+    # fpm comes from pip; without python3/pip, apt brings them along.
+    if ! have_fpm && ! have_pip; then
+        missing+=(pip)
+        packages+=(python3-pip)
+    fi
+
+    if [ "${#missing[@]}" -gt 0 ]; then
+        say "installing ${packages[*]} (missing: ${missing[*]})"
+        export DEBIAN_FRONTEND=noninteractive
+        as_root apt-get update -qq
+        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${packages[@]}" >/dev/null
+    fi
+
+    if ! have_fpm; then
+        say "installing fpm with pip (fpm not found on PATH; the build and the tests use it)"
+        local log
+        log=$(mktemp)
+        export PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
+        if ! python3 -m pip install -q "fpm==$FPM_VERSION" >"$log" 2>&1; then
+            if grep -q externally-managed-environment "$log"; then
+                say "pip refused (externally managed Python); retrying with --break-system-packages"
+                python3 -m pip install -q --break-system-packages "fpm==$FPM_VERSION" >"$log" 2>&1 \
+                    || { cat "$log" >&2; rm -f "$log"; die "pip install fpm failed"; }
+            else
+                cat "$log" >&2; rm -f "$log"; die "pip install fpm failed"
+            fi
+        fi
+        rm -f "$log"
+        if command -v pyenv >/dev/null 2>&1; then pyenv rehash >/dev/null 2>&1 || true; fi
+        hash -r
+        # The Makefile appends ~/.local/bin (pip's user scheme) to PATH; anything else
+        # has to be put on PATH by the user.
+        have_fpm || die "fpm was installed but is not on PATH ($PATH); add pip's script directory to PATH"
+    fi
+}
+
+# ---------------------------------------------------------------------------------
+# f90deps
+# ---------------------------------------------------------------------------------
+
+cmd_f90deps() {
+    [ $# -ge 1 ] || die "usage: $0 f90deps OBJDIR SOURCE..."
+    local objdir=$1
+    shift
+    printf '# Generated by tools/make_helpers.sh f90deps from the use statements; do not edit.\n'
+    printf 'DEPS_SRCS := %s\n' "$*"
+    [ $# -gt 0 ] || return 0
+    awk -v objdir="$objdir" '
+        function object(src) { sub(/\.[fF]90$/, ".o", src); return objdir "/" src }
+        {
+            line = tolower($0)
+            sub(/!.*/, "", line)                      # strip comments
+        }
+        # module NAME (not "module procedure", "module function", ...)
+        match(line, /^[ \t]*module[ \t]+[a-z][a-z0-9_]*[ \t]*$/) {
+            name = line; sub(/^[ \t]*module[ \t]+/, "", name); sub(/[ \t]*$/, "", name)
+            if (name != "procedure" && name != "function" && name != "subroutine")
+                defines[name] = FILENAME
+            next
+        }
+        # submodule (ancestor[:parent]) NAME: depends on the ancestor module
+        match(line, /^[ \t]*submodule[ \t]*\([ \t]*[a-z][a-z0-9_]*/) {
+            name = substr(line, RSTART, RLENGTH); sub(/.*\([ \t]*/, "", name)
+            uses[FILENAME, name] = 1; files[FILENAME] = 1
+            next
+        }
+        # use NAME | use :: NAME | use, non_intrinsic :: NAME  (intrinsic modules skipped)
+        match(line, /^[ \t]*use[ \t,:]/) {
+            if (line ~ /^[ \t]*use[ \t]*,[ \t]*intrinsic/) next
+            name = line
+            if (name ~ /::/) sub(/^.*::[ \t]*/, "", name)
+            else sub(/^[ \t]*use[ \t]+/, "", name)
+            if (match(name, /^[a-z][a-z0-9_]*/)) {
+                uses[FILENAME, substr(name, 1, RLENGTH)] = 1; files[FILENAME] = 1
+            }
+        }
+        END {
+            for (key in uses) {
+                split(key, part, SUBSEP)
+                src = part[1]; mod = part[2]
+                if ((mod in defines) && defines[mod] != src)
+                    print object(src) ": " object(defines[mod])
+            }
+        }
+    ' "$@" | sort
+}
+
+# ---------------------------------------------------------------------------------
+# same-output
+# ---------------------------------------------------------------------------------
+
+# compare_columns A B: same '#' line count, same last '#' line (the column names), same
+# number of data rows and columns, and every number within
+#     |a - b| <= rtol*max(|a|, |b|) + rtol*scale(column)
+# with rtol = 1e-9 and scale = the largest |value| of that column in A. The column scale
+# keeps values that are round-off around zero (u ~ 1e-23 m at t = 0) from failing a purely
+# relative test. Prints the largest |a - b|/scale(column) seen.
+compare_columns() {
+    awk -v rtol=1e-9 -v A="$1" -v B="$2" '
+        function abs(x) { return x < 0 ? -x : x }
+        function max(x, y) { return x > y ? x : y }
+        { file = (FILENAME == A) ? 1 : 2 }
+        /^#/ { ncom[file]++; head[file] = $0; next }
+        file == 1 { n1++; nc1[n1] = NF; for (i = 1; i <= NF; i++) { a[n1, i] = $i + 0; scale[i] = max(scale[i], abs($i + 0)) } }
+        file == 2 { n2++; nc2[n2] = NF; for (i = 1; i <= NF; i++) b[n2, i] = $i + 0 }
+        END {
+            if (ncom[1] != ncom[2] || head[1] != head[2]) { printf "headers differ: %s | %s\n", head[1], head[2]; exit 1 }
+            if (n1 != n2 || n1 == 0) { printf "row counts differ (or are zero): %d vs %d\n", n1, n2; exit 1 }
+            worst = 0
+            for (r = 1; r <= n1; r++) {
+                if (nc1[r] != nc2[r]) { printf "row %d: %d vs %d columns\n", r, nc1[r], nc2[r]; exit 1 }
+                for (i = 1; i <= nc1[r]; i++) {
+                    d = abs(a[r, i] - b[r, i])
+                    if (d > rtol * max(abs(a[r, i]), abs(b[r, i])) + rtol * scale[i]) {
+                        printf "row %d column %d: %.17g vs %.17g\n", r, i, a[r, i], b[r, i]; exit 1
+                    }
+                    if (scale[i] > 0) worst = max(worst, d / scale[i])
+                }
+            }
+            printf "%d rows, max deviation %.1e of column scale\n", n1, worst
+        }
+    ' "$1" "$2"
+}
+
+cmd_same_output() {
+    [ $# -ge 2 ] || die "usage: $0 same-output DRIVER SCENE..."
+    local driver=$1 scene tmp failed=0 summary
+    shift
+    [ -x "$driver" ] || die "$driver not built (run make lib)"
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-check.XXXXXX")
+    CHECK_TMP=$tmp
+    trap 'rm -rf "$CHECK_TMP"' EXIT
+
+    say "building the fpm driver for the comparison"
+    $FPM build >"$tmp/fpm-build.log" 2>&1 || { cat "$tmp/fpm-build.log" >&2; die "fpm build failed"; }
+
+    for scene in "$@"; do
+        local base=${scene##*/}
+        base=${base%.nml}
+        grep -Eiq "^[[:space:]]*output_dir[[:space:]]*=" "$scene" \
+            || die "$scene sets no output_dir; cannot redirect its output for the check"
+        for kind in fpm make; do
+            mkdir -p "$tmp/$kind/$base/out"
+            sed -E "s|^([[:space:]]*output_dir[[:space:]]*=[[:space:]]*)['\"][^'\"]*['\"]|\1'$tmp/$kind/$base/out'|I" \
+                "$scene" >"$tmp/$kind/$base/scene.nml"
+        done
+        if ! $FPM run -- "$tmp/fpm/$base/scene.nml" >"$tmp/fpm/$base/log" 2>&1; then
+            cat "$tmp/fpm/$base/log" >&2; say "FAIL: fpm-built driver on $scene"; failed=1; continue
+        fi
+        if ! "$driver" "$tmp/make/$base/scene.nml" >"$tmp/make/$base/log" 2>&1; then
+            cat "$tmp/make/$base/log" >&2; say "FAIL: $driver on $scene"; failed=1; continue
+        fi
+        local files_fpm files_make
+        files_fpm=$(cd "$tmp/fpm/$base/out" && find . -type f | sort)
+        files_make=$(cd "$tmp/make/$base/out" && find . -type f | sort)
+        if [ -z "$files_fpm" ] || [ "$files_fpm" != "$files_make" ]; then
+            say "FAIL: $scene: output files differ: fpm [${files_fpm//$'\n'/ }] make [${files_make//$'\n'/ }]"
+            failed=1; continue
+        fi
+        local f
+        for f in $files_fpm; do
+            if summary=$(compare_columns "$tmp/fpm/$base/out/$f" "$tmp/make/$base/out/$f"); then
+                say "ok: $driver matches the fpm build on $scene: ${f#./} ($summary)"
+            else
+                say "FAIL: $scene: ${f#./}: $summary"; failed=1
+            fi
+        done
+    done
+    return "$failed"
+}
+
+# ---------------------------------------------------------------------------------
+# fpm-test
+# ---------------------------------------------------------------------------------
+
+cmd_fpm_test() {
+    local log rc=0 summary
+    log=$(mktemp)
+    $FPM test "$@" 2>&1 | tee "$log" || rc=$?
+    summary=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1 || true)
+    rm -f "$log"
+    if [ "$rc" -ne 0 ]; then
+        say "fpm test failed (exit status $rc)"
+        if [ -n "$summary" ]; then printf '%s\n' "$summary"; fi
+    fi
+    return "$rc"
+}
+
+case "${1:-}" in
+    deps) shift; cmd_deps "$@" ;;
+    f90deps) shift; cmd_f90deps "$@" ;;
+    same-output) shift; cmd_same_output "$@" ;;
+    fpm-test) shift; cmd_fpm_test "$@" ;;
+    *) die "usage: $0 deps | f90deps OBJDIR SOURCE... | same-output DRIVER SCENE... | fpm-test [ARGS...]" ;;
+esac
