@@ -6,13 +6,13 @@
 module greenconv
     use kinds_mod, only: dp
     use error_mod, only: error_type, stat_input, stat_numerical
-    use modal_set_mod, only: modal_set, modes_from_paper
+    use modal_set_mod, only: modal_set, modes_from_paper, random_modes
     use sdof_mod, only: sdof_receptance, sdof_impulse, sdof_modes
     use convolver_mod, only: convolver
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
     use conv_modal_mod, only: modal_convolver, new_modal_convolver
     use contact_mod, only: contact_law, contact_response, run_contact
-    use road_mod, only: road_profile, sine_road
+    use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use scene_mod, only: scene_type, read_scene
     use scene_run_mod, only: run_scene, make_convolver, output_path
     implicit none
@@ -20,13 +20,13 @@ module greenconv
 
     public :: dp
     public :: error_type, stat_input, stat_numerical
-    public :: modal_set, modes_from_paper
+    public :: modal_set, modes_from_paper, random_modes
     public :: sdof_receptance, sdof_impulse, sdof_modes
     public :: convolver
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
     public :: modal_convolver, new_modal_convolver
     public :: contact_law, contact_response, run_contact
-    public :: road_profile, sine_road
+    public :: road_profile, sine_road, random_road, new_random_road
     public :: scene_type, read_scene
     public :: run_scene, make_convolver, output_path
 

@@ -1,10 +1,14 @@
 !> Road profiles seen by a body travelling at constant speed, as heights over time.
 module road_mod
     use kinds_mod, only: dp
+    use random_mod, only: random_stream
     implicit none
     private
 
-    public :: road_profile, sine_road
+    public :: road_profile, sine_road, random_road, new_random_road
+
+    !> pi
+    real(dp), parameter :: pi = acos(-1.0_dp)
 
     !> A road height u_r(t) [m] under the contact point at time t [s].
     type, abstract :: road_profile
@@ -35,7 +39,57 @@ module road_mod
         procedure :: height => sine_height
     end type sine_road
 
+    !> The pseudo-random road of eq. (35), travelled at constant speed V:
+    !> u_r(x) = A0*sum_k phi_k*sin(psi_k*2*pi*x/lambda_r), x = V*t, with phi_k, psi_k in (0, 1).
+    !>
+    !> The paper prints phi_k twice (as weight and as wavenumber factor) and calls them two
+    !> random parameters; greenconv reads them as two draws, phi_k weighting the amplitude and
+    !> psi_k scaling the wavenumber, so every wavelength is at least lambda_r.
+    type, extends(road_profile) :: random_road
+        !> Amplitude A0 [m].
+        real(dp) :: amplitude = 5.0e-3_dp
+        !> Base wavelength lambda_r [m].
+        real(dp) :: wavelength = 50.0e-3_dp
+        !> Travel speed V [m/s].
+        real(dp) :: speed = 1.0_dp
+        !> Amplitude weights phi_k in (0, 1).
+        real(dp), allocatable :: weight(:)
+        !> Wavenumber factors psi_k in (0, 1).
+        real(dp), allocatable :: wavenumber_factor(:)
+    contains
+        procedure :: height => random_height
+    end type random_road
+
 contains
+
+    !> The road of eq. (35) with n_terms pairs (phi_k, psi_k) drawn from `seed`
+    !> (SplitMix64, the same on every compiler): phi_1, psi_1, phi_2, psi_2, ...
+    function new_random_road(seed, n_terms, amplitude, wavelength, speed) result(road)
+        !> Seed of the draws.
+        integer, intent(in) :: seed
+        !> Number of terms (10 in the paper).
+        integer, intent(in) :: n_terms
+        !> Amplitude A0 [m].
+        real(dp), intent(in) :: amplitude
+        !> Base wavelength lambda_r [m].
+        real(dp), intent(in) :: wavelength
+        !> Travel speed V [m/s].
+        real(dp), intent(in) :: speed
+        type(random_road) :: road
+
+        type(random_stream) :: stream
+        integer :: k
+
+        stream = random_stream(seed)
+        allocate (road%weight(n_terms), road%wavenumber_factor(n_terms))
+        do k = 1, n_terms
+            road%weight(k) = stream%uniform()
+            road%wavenumber_factor(k) = stream%uniform()
+        end do
+        road%amplitude = amplitude
+        road%wavelength = wavelength
+        road%speed = speed
+    end function new_random_road
 
     !> Road heights [m] at t_n = n*dt, n = 0..n_steps-1.
     function sample(self, dt, n_steps) result(heights)
@@ -59,5 +113,14 @@ contains
 
         sine_height = self%amplitude*sin(self%omega*t)
     end function sine_height
+
+    !> A0*sum_k phi_k*sin(psi_k*2*pi*V*t/lambda_r).
+    elemental real(dp) function random_height(self, t)
+        class(random_road), intent(in) :: self
+        real(dp), intent(in) :: t
+
+        random_height = self%amplitude*sum(self%weight*sin(self%wavenumber_factor*2.0_dp*pi*self%speed*t &
+                                                            /self%wavelength))
+    end function random_height
 
 end module road_mod

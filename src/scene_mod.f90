@@ -1,18 +1,22 @@
-!> A contact scene read from a namelist file: time grid, structure, road, contact law and
-!> convolution methods. Every variable has a default (the paper's Tab. 1 and section 3.1),
-!> so a scene file states only what differs, and every group is optional:
+!> A scene read from a namelist file: task, time grid, structure, road, contact law,
+!> identification and convolution methods. Every variable has a default (the paper's
+!> Tab. 1 and section 3.1, section 3.2 for the random road and random modes), so a scene
+!> file states only what differs, and every group is optional. README.md lists them all:
 !>
-!>     &scene       name = 'sdof_sine', output_dir = 'out', dt = 1.0e-4 [s], n_steps = 2000 /
-!>     &structure   model = 'sdof', mass = 1.0 [kg], stiffness = 1.0e6 [N/m], damping_ratio = 0.02 /
-!>     &road        profile = 'sine', amplitude = 1.0e-3 [m], omega = 100.0 [rad/s] /
-!>     &contact     stiffness = 1.0e6 [N/m^p], exponent = 1.5, gravity = 9.81 [m/s^2],
-!>                  preload = mass*gravity [N] (any negative value selects this default) /
-!>     &convolution methods = 'direct', 'modal', truncation_tol = 0.01 /
+!>     &scene          task, name, output_dir, dt [s], n_steps
+!>     &structure      model = 'sdof' | 'random_modes' | 'frf_file', mass [kg], stiffness [N/m],
+!>                     damping_ratio, n_modes, seed, f_low, f_high [Hz], xi_low, xi_high,
+!>                     a_low, a_high [1/kg], frf_file
+!>     &identification f_max [Hz], n_freq, tol_e, max_order, order
+!>     &road           profile = 'sine' | 'random', amplitude [m], omega [rad/s],
+!>                     wavelength [m], speed [m/s], n_terms, seed
+!>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N]
+!>     &convolution    methods, truncation_tol
 module scene_mod
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
-    use road_mod, only: road_profile, sine_road
+    use road_mod, only: road_profile, sine_road, new_random_road
     use contact_mod, only: contact_law
     implicit none
     private
@@ -30,6 +34,8 @@ module scene_mod
     type :: scene_type
         !> The namelist file the scene came from.
         character(len=:), allocatable :: file
+        !> What to do: `contact` (simulate) or `identify` (fit modes to the structure's G only).
+        character(len=:), allocatable :: task
         !> Base name of the output files.
         character(len=:), allocatable :: name
         !> Directory the column files are written to.
@@ -38,7 +44,7 @@ module scene_mod
         real(dp) :: dt = 1.0e-4_dp
         !> Number of time steps N_t.
         integer :: n_steps = 2000
-        !> Structure model (`sdof`).
+        !> Structure model: `sdof`, `random_modes` or `frf_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
         real(dp) :: mass = 1.0_dp
@@ -46,6 +52,28 @@ module scene_mod
         real(dp) :: stiffness = 1.0e6_dp
         !> Damping ratio xi of the sdof model.
         real(dp) :: damping_ratio = 0.02_dp
+        !> Number of modes of the random_modes model.
+        integer :: n_modes = 10
+        !> Seed of the random_modes model.
+        integer :: modes_seed = 2011
+        !> Range of natural frequencies [Hz] of the random_modes model.
+        real(dp) :: f_low = 100.0_dp, f_high = 1000.0_dp
+        !> Range of damping ratios of the random_modes model.
+        real(dp) :: xi_low = 0.025_dp, xi_high = 0.05_dp
+        !> Range of modal amplitudes A_k [1/kg] of the random_modes model.
+        real(dp) :: a_low = 0.5_dp, a_high = 2.0_dp
+        !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N]).
+        character(len=:), allocatable :: frf_file
+        !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
+        real(dp) :: f_max = 0.0_dp
+        !> Number of frequency lines, 0 Hz to f_max, of the sampled G (random_modes).
+        integer :: n_freq = 20001
+        !> Target of the identification error E of eq. (7).
+        real(dp) :: tol_e = 1.0e-6_dp
+        !> Largest number of modes the order scan tries.
+        integer :: max_order = 30
+        !> Fixed number of modes (0: the smallest order that meets tol_e).
+        integer :: order = 0
         !> Road profile.
         class(road_profile), allocatable :: road
         !> Contact law.
@@ -80,25 +108,27 @@ contains
         end if
         call read_scene_group(unit, scene, error)
         if (.not. allocated(error)) call read_structure_group(unit, scene, error)
+        if (.not. allocated(error)) call read_identification_group(unit, scene, error)
         if (.not. allocated(error)) call read_road_group(unit, scene, error)
         if (.not. allocated(error)) call read_contact_group(unit, scene, error)
         if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
         close (unit)
     end subroutine read_scene
 
-    !> &scene: name, output_dir, dt [s], n_steps.
+    !> &scene: task, name, output_dir, dt [s], n_steps.
     subroutine read_scene_group(unit, this, error)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=name_length) :: name
+        character(len=name_length) :: task, name
         character(len=path_length) :: output_dir
         real(dp) :: dt
         integer :: n_steps, stat
         character(len=512) :: message
-        namelist /scene/ name, output_dir, dt, n_steps
+        namelist /scene/ task, name, output_dir, dt, n_steps
 
+        task = 'contact'
         name = 'sdof_sine'
         output_dir = 'out'
         dt = this%dt
@@ -107,51 +137,119 @@ contains
         read (unit, nml=scene, iostat=stat, iomsg=message)
         call group_status(this%file, 'scene', stat, message, error)
         if (allocated(error)) return
+        call require(any(trim(task) == [character(len=8) :: 'contact', 'identify']), &
+                     expected(this%file, 'scene', 'task', "'contact' or 'identify'", task), error)
         call require(len_trim(name) > 0, expected(this%file, 'scene', 'name', 'a file base name'), error)
         call require(len_trim(output_dir) > 0, expected(this%file, 'scene', 'output_dir', 'a directory path'), error)
-        call require(dt > 0.0_dp, expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
+        call require(dt > 0.0_dp .and. dt < huge(dt), expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
         call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
+        this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
         this%dt = dt
         this%n_steps = n_steps
     end subroutine read_scene_group
 
-    !> &structure: model, mass [kg], stiffness [N/m], damping_ratio.
+    !> &structure: the model and its parameters.
     subroutine read_structure_group(unit, this, error)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
         character(len=name_length) :: model
-        real(dp) :: mass, stiffness, damping_ratio
-        integer :: stat
+        character(len=path_length) :: frf_file
+        real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
+        integer :: n_modes, seed, stat
         character(len=512) :: message
-        namelist /structure/ model, mass, stiffness, damping_ratio
+        namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
+            xi_low, xi_high, a_low, a_high, frf_file
 
         model = 'sdof'
         mass = this%mass
         stiffness = this%stiffness
         damping_ratio = this%damping_ratio
+        n_modes = this%n_modes
+        seed = this%modes_seed
+        f_low = this%f_low
+        f_high = this%f_high
+        xi_low = this%xi_low
+        xi_high = this%xi_high
+        a_low = this%a_low
+        a_high = this%a_high
+        frf_file = ''
         rewind (unit)
         read (unit, nml=structure, iostat=stat, iomsg=message)
         call group_status(this%file, 'structure', stat, message, error)
         if (allocated(error)) return
-        call require(trim(model) == 'sdof', expected(this%file, 'structure', 'model', "'sdof'", model), error)
-        call require(mass > 0.0_dp, &
-            expected(this%file, 'structure', 'mass', 'a mass > 0 kg', mass), error)
-        call require(stiffness > 0.0_dp, &
-            expected(this%file, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
+        call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file']), &
+                     expected(this%file, 'structure', 'model', "'sdof', 'random_modes' or 'frf_file'", model), error)
+        call require(mass > 0.0_dp .and. mass < huge(mass), &
+                     expected(this%file, 'structure', 'mass', 'a mass > 0 kg', mass), error)
+        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
+                     expected(this%file, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
         call require(damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp, &
-            expected(this%file, 'structure', 'damping_ratio', 'a ratio in [0, 1)', &
-                                             damping_ratio), error)
+                     expected(this%file, 'structure', 'damping_ratio', 'a ratio in [0, 1)', damping_ratio), error)
+        call require(n_modes > 0, expected(this%file, 'structure', 'n_modes', 'a number of modes > 0', n_modes), error)
+        call require(f_low > 0.0_dp .and. f_high > f_low .and. f_high < huge(f_high), &
+                     expected(this%file, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
+        call require(xi_low > 0.0_dp .and. xi_high >= xi_low .and. xi_high < 1.0_dp, &
+                     expected(this%file, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
+        call require(a_low > 0.0_dp .and. a_high >= a_low .and. a_high < huge(a_high), &
+                     expected(this%file, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
+        call require(trim(model) /= 'frf_file' .or. len_trim(frf_file) > 0, &
+                     expected(this%file, 'structure', 'frf_file', "a receptance file for model 'frf_file'"), error)
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
         this%damping_ratio = damping_ratio
+        this%n_modes = n_modes
+        this%modes_seed = seed
+        this%f_low = f_low
+        this%f_high = f_high
+        this%xi_low = xi_low
+        this%xi_high = xi_high
+        this%a_low = a_low
+        this%a_high = a_high
+        this%frf_file = trim(frf_file)
     end subroutine read_structure_group
 
-    !> &road: profile, amplitude [m], omega [rad/s].
+    !> &identification: frequency grid of the sampled G and LSCE options.
+    subroutine read_identification_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: f_max, tol_e
+        integer :: n_freq, max_order, order, stat
+        character(len=512) :: message
+        namelist /identification/ f_max, n_freq, tol_e, max_order, order
+
+        f_max = 0.5_dp/this%dt
+        n_freq = this%n_freq
+        tol_e = this%tol_e
+        max_order = this%max_order
+        order = this%order
+        rewind (unit)
+        read (unit, nml=identification, iostat=stat, iomsg=message)
+        call group_status(this%file, 'identification', stat, message, error)
+        if (allocated(error)) return
+        call require(f_max > 0.0_dp .and. f_max < huge(f_max), &
+                     expected(this%file, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
+        call require(n_freq >= 16, expected(this%file, 'identification', 'n_freq', 'at least 16 lines', n_freq), error)
+        call require(tol_e > 0.0_dp .and. tol_e < 1.0_dp, &
+                     expected(this%file, 'identification', 'tol_e', 'an error target in (0, 1)', tol_e), error)
+        call require(max_order > 0, &
+                     expected(this%file, 'identification', 'max_order', 'a number of modes > 0', max_order), error)
+        call require(order >= 0, expected(this%file, 'identification', 'order', &
+                                          'a number of modes >= 0 (0: chosen by tol_e)', order), error)
+        this%f_max = f_max
+        this%n_freq = n_freq
+        this%tol_e = tol_e
+        this%max_order = max_order
+        this%order = order
+    end subroutine read_identification_group
+
+    !> &road: profile and its parameters.
     subroutine read_road_group(unit, this, error)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
@@ -159,26 +257,40 @@ contains
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
-        real(dp) :: amplitude, omega
-        integer :: stat
+        real(dp) :: amplitude, omega, wavelength, speed
+        integer :: n_terms, seed, stat
         character(len=512) :: message
-        namelist /road/ profile, amplitude, omega
+        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed
 
         profile = 'sine'
         amplitude = sine%amplitude
         omega = sine%omega
+        wavelength = 50.0e-3_dp
+        speed = 1.0_dp
+        n_terms = 10
+        seed = 35
         rewind (unit)
         read (unit, nml=road, iostat=stat, iomsg=message)
         call group_status(this%file, 'road', stat, message, error)
         if (allocated(error)) return
-        call require(trim(profile) == 'sine', expected(this%file, 'road', 'profile', "'sine'", profile), error)
+        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random']), &
+                     expected(this%file, 'road', 'profile', "'sine' or 'random'", profile), error)
         call require(abs(amplitude) < huge(amplitude), &
-            expected(this%file, 'road', 'amplitude', 'a finite height in m', amplitude), error)
+                     expected(this%file, 'road', 'amplitude', 'a finite height in m', amplitude), error)
         call require(abs(omega) < huge(omega), &
-            expected(this%file, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
-        sine%amplitude = amplitude
-        sine%omega = omega
-        this%road = sine
+                     expected(this%file, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
+        call require(wavelength > 0.0_dp .and. wavelength < huge(wavelength), &
+                     expected(this%file, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
+        call require(abs(speed) < huge(speed), expected(this%file, 'road', 'speed', 'a finite speed in m/s', speed), error)
+        call require(n_terms > 0, expected(this%file, 'road', 'n_terms', 'a number of terms > 0', n_terms), error)
+        if (allocated(error)) return
+        if (trim(profile) == 'sine') then
+            sine%amplitude = amplitude
+            sine%omega = omega
+            this%road = sine
+        else
+            this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
+        end if
     end subroutine read_road_group
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
@@ -200,14 +312,16 @@ contains
         read (unit, nml=contact, iostat=stat, iomsg=message)
         call group_status(this%file, 'contact', stat, message, error)
         if (allocated(error)) return
-        call require(stiffness > 0.0_dp, &
-            expected(this%file, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
-        call require(exponent > 0.0_dp, &
-            expected(this%file, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
-        call require(gravity >= 0.0_dp, &
-            expected(this%file, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
-        call require(abs(preload) < huge(preload), expected(this%file, 'contact', 'preload', 'a finite force in N', preload), &
-                     error)
+        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
+                     expected(this%file, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
+        call require(exponent > 0.0_dp .and. exponent < huge(exponent), &
+                     expected(this%file, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
+        call require(gravity >= 0.0_dp .and. gravity < huge(gravity), &
+                     expected(this%file, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
+        call require(abs(preload) < huge(preload), &
+                     expected(this%file, 'contact', 'preload', 'a finite force in N', preload), error)
+        call require(preload >= 0.0_dp .or. this%model == 'sdof', expected(this%file, 'contact', 'preload', &
+                     "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
         this%preload = preload
         if (preload < 0.0_dp) this%preload = this%mass*gravity
