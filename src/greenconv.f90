@@ -13,6 +13,8 @@ module greenconv
     use conv_modal_mod, only: modal_convolver, new_modal_convolver
     use contact_mod, only: contact_law, contact_response, run_contact
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
+    use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
+    use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     use scene_mod, only: scene_type, read_scene
     use scene_run_mod, only: run_scene, make_convolver, output_path
     implicit none
@@ -27,6 +29,8 @@ module greenconv
     public :: modal_convolver, new_modal_convolver
     public :: contact_law, contact_response, run_contact
     public :: road_profile, sine_road, random_road, new_random_road
+    public :: frf_type, frf_from_modes, read_frf, write_frf
+    public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     public :: scene_type, read_scene
     public :: run_scene, make_convolver, output_path
 

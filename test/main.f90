@@ -6,6 +6,8 @@ program greenconv_tests
     use test_sdof_mod, only: collect_sdof
     use test_convolution_mod, only: collect_convolution
     use test_contact_mod, only: collect_contact
+    use test_lsce_mod, only: collect_lsce
+    use test_random_mod, only: collect_random
     implicit none
 
     integer :: n_passed, n_failed
@@ -15,6 +17,8 @@ program greenconv_tests
     call run_testsuite('sdof', collect_sdof, output_unit, n_passed, n_failed)
     call run_testsuite('convolution', collect_convolution, output_unit, n_passed, n_failed)
     call run_testsuite('contact', collect_contact, output_unit, n_passed, n_failed)
+    call run_testsuite('random', collect_random, output_unit, n_passed, n_failed)
+    call run_testsuite('lsce', collect_lsce, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

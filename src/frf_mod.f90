@@ -1,0 +1,440 @@
+!> A receptance G(omega) sampled on a uniform frequency grid from 0 Hz, as a user
+!> with a measured or computed frequency response function (FRF) has it.
+!>
+!> File format (read_frf, write_frf): any number of lines starting with `#` (comments)
+!> and blank lines, and data lines of exactly three numbers
+!>
+!>     f [Hz]   Re G [m/N]   Im G [m/N]
+!>
+!> with f_j = j*df, j = 0..n-1, n >= `min_frf_lines`, df > 0. A spacing is accepted when
+!> every f_j is within 1e-6*df of j*df (df = f_{n-1}/(n - 1)); the grid is then stored
+!> exactly as j*df. G must be finite. Each kind of bad file gets one message naming the
+!> file, the line and what was expected and found.
+module frf_mod
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use kinds_mod, only: dp
+    use error_mod, only: error_type, fatal_error
+    use modal_set_mod, only: modal_set
+    use files_mod, only: write_columns
+    implicit none
+    private
+
+    public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines
+
+    !> Fewest data lines read_frf accepts: n lines give 2*(n - 1) impulse samples, and 8
+    !> lines (14 samples) is the least for an overdetermined order-2 linear prediction
+    !> (one mode) with a few spare equations, and a residue fit with redundancy.
+    integer, parameter :: min_frf_lines = 8
+
+    !> Relative tolerance on the uniformity of the grid and on its start at 0 Hz (fraction of df).
+    real(dp), parameter :: grid_tolerance = 1.0e-6_dp
+
+    real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+
+    !> Receptance samples G(2*pi*f_j) [m/N] on the uniform grid f_j = j*df, j = 0..n-1 [Hz].
+    type :: frf_type
+        !> Frequencies f_j = j*df [Hz], f_0 = 0.
+        real(dp), allocatable :: frequency(:)
+        !> Receptance G [m/N] at each frequency.
+        complex(dp), allocatable :: receptance(:)
+    contains
+        !> Number of frequency lines n.
+        procedure :: n_freq => frf_n_freq
+        !> Frequency step df [Hz].
+        procedure :: df => frf_df
+        !> Highest frequency f_max = (n - 1)*df [Hz].
+        procedure :: f_max => frf_f_max
+    end type frf_type
+
+contains
+
+    !> Number of frequency lines.
+    elemental integer function frf_n_freq(self)
+        !> The FRF.
+        class(frf_type), intent(in) :: self
+
+        frf_n_freq = 0
+        if (allocated(self%frequency)) frf_n_freq = size(self%frequency)
+    end function frf_n_freq
+
+    !> Frequency step df [Hz].
+    elemental real(dp) function frf_df(self)
+        !> The FRF (at least two lines).
+        class(frf_type), intent(in) :: self
+
+        frf_df = self%frequency(2) - self%frequency(1)
+    end function frf_df
+
+    !> Highest frequency f_max [Hz].
+    elemental real(dp) function frf_f_max(self)
+        !> The FRF (at least one line).
+        class(frf_type), intent(in) :: self
+
+        frf_f_max = self%frequency(size(self%frequency))
+    end function frf_f_max
+
+    !> Receptance of a modal set on n_freq lines from 0 to f_max [Hz] (eq. 6 for paper modes).
+    pure function frf_from_modes(modes, f_max, n_freq) result(frf)
+        !> The modes (pole-residue form of modal_set_mod).
+        type(modal_set), intent(in) :: modes
+        !> Highest frequency [Hz], > 0.
+        real(dp), intent(in) :: f_max
+        !> Number of lines, >= 2.
+        integer, intent(in) :: n_freq
+        type(frf_type) :: frf
+
+        integer :: j
+
+        allocate (frf%frequency(n_freq), frf%receptance(n_freq))
+        frf%frequency(:) = [(j*(f_max/(n_freq - 1)), j=0, n_freq - 1)]
+        frf%frequency(n_freq) = f_max
+        frf%receptance(:) = modes%receptance(two_pi*frf%frequency)
+    end function frf_from_modes
+
+    !> Write an FRF in the format read_frf reads (atomically, through files_mod).
+    subroutine write_frf(path, frf, error, comments)
+        !> Target file.
+        character(len=*), intent(in) :: path
+        !> The FRF.
+        type(frf_type), intent(in) :: frf
+        !> Set when the file cannot be written.
+        type(error_type), allocatable, intent(out) :: error
+        !> Extra header lines (written after `# `) before the column names.
+        character(len=*), intent(in), optional :: comments(:)
+
+        character(len=*), parameter :: columns = 'f [Hz]  Re G [m/N]  Im G [m/N]'
+        character(len=80), allocatable :: header(:)
+        real(dp), allocatable :: table(:, :)
+        integer :: n
+
+        if (present(comments)) then
+            n = size(comments)
+            allocate (header(n + 1))
+            header(1:n) = comments
+        else
+            n = 1
+            allocate (header(2))
+            header(1) = 'receptance G (m/N) on a uniform grid from 0 Hz'
+        end if
+        header(n + 1) = columns
+        allocate (table(frf%n_freq(), 3))
+        table(:, 1) = frf%frequency
+        table(:, 2) = real(frf%receptance, dp)
+        table(:, 3) = aimag(frf%receptance)
+        call write_columns(path, header, table, error)
+    end subroutine write_frf
+
+    !> Read an FRF file (format in the module description) and check its grid.
+    subroutine read_frf(path, frf, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> The FRF read, with the grid stored exactly as j*df.
+        type(frf_type), intent(out) :: frf
+        !> Set, with one message naming the file and line, when the file does not fit.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: table(:, :)
+        integer, allocatable :: line_of(:)
+        integer :: n
+
+        call read_table(path, table, line_of, error)
+        if (allocated(error)) return
+        n = size(table, 1)
+        if (n == 0) then
+            call fatal_error(error, path//': no data lines (only comments or blank lines); expected columns '// &
+                             'f [Hz], Re G [m/N], Im G [m/N]')
+            return
+        end if
+        if (n < min_frf_lines) then
+            call fatal_error(error, path//': '//str(n)//' data lines; at least '//str(min_frf_lines)// &
+                             ' are needed (uniform grid from 0 Hz)')
+            return
+        end if
+        call check_grid(path, table(:, 1), line_of, error)
+        if (allocated(error)) return
+        allocate (frf%frequency(n), frf%receptance(n))
+        frf%frequency(:) = grid(table(n, 1), n)
+        frf%receptance(:) = cmplx(table(:, 2), table(:, 3), kind=dp)
+    end subroutine read_frf
+
+    !> The uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max.
+    pure function grid(f_max, n) result(f)
+        real(dp), intent(in) :: f_max
+        integer, intent(in) :: n
+        real(dp) :: f(n)
+
+        integer :: j
+
+        f = [(j*(f_max/(n - 1)), j=0, n - 1)]
+        f(n) = f_max
+    end function grid
+
+    !> Check that the frequencies start at 0 and are uniformly spaced.
+    subroutine check_grid(path, f, line_of, error)
+        character(len=*), intent(in) :: path
+        real(dp), intent(in) :: f(:)
+        integer, intent(in) :: line_of(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: df
+        integer :: j, n
+
+        n = size(f)
+        df = f(n)/(n - 1)
+        if (.not. (df > 0.0_dp) .or. f(2) <= f(1)) then
+            call fatal_error(error, path//':'//str(line_of(2))//': frequencies must increase from 0 Hz; found '// &
+                             real_str(f(1))//' Hz then '//real_str(f(2))//' Hz')
+            return
+        end if
+        if (abs(f(1)) > grid_tolerance*df) then
+            call fatal_error(error, path//':'//str(line_of(1))//': the grid must start at 0 Hz; first frequency is '// &
+                             real_str(f(1))//' Hz')
+            return
+        end if
+        do j = 2, n
+            if (abs(f(j) - (j - 1)*df) > grid_tolerance*df) then
+                call fatal_error(error, path//':'//str(line_of(j))//': non-uniform spacing: expected f = '// &
+                                 real_str((j - 1)*df)//' Hz (step '//real_str(df)//' Hz, relative tolerance 1e-6),'// &
+                                 ' found '//real_str(f(j))//' Hz')
+                return
+            end if
+        end do
+    end subroutine check_grid
+
+    !> Read all data lines of a file into table(:, 1:3), with the file line of each row.
+    subroutine read_table(path, table, line_of, error)
+        character(len=*), intent(in) :: path
+        real(dp), allocatable, intent(out) :: table(:, :)
+        integer, allocatable, intent(out) :: line_of(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+        character(len=512) :: message
+        real(dp) :: row(3)
+        integer :: unit, stat, line_number, n
+
+        allocate (table(64, 3), line_of(64))
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call fatal_error(error, path//': cannot open: '//trim(message))
+            return
+        end if
+        n = 0
+        line_number = 0
+        do
+            call read_line(unit, line, stat)
+            if (stat /= 0) exit
+            line_number = line_number + 1
+            if (len_trim(line) == 0) cycle
+            if (index(adjustl(line), '#') == 1) cycle
+            call parse_row(path, line_number, line, row, error)
+            if (allocated(error)) exit
+            n = n + 1
+            if (n > size(table, 1)) call grow(table, line_of)
+            table(n, :) = row
+            line_of(n) = line_number
+        end do
+        close (unit)
+        if (allocated(error)) return
+        call shrink(table, line_of, n)
+    end subroutine read_table
+
+    !> Keep the first n rows of the row storage.
+    pure subroutine shrink(table, line_of, n)
+        real(dp), allocatable, intent(inout) :: table(:, :)
+        integer, allocatable, intent(inout) :: line_of(:)
+        integer, intent(in) :: n
+
+        real(dp), allocatable :: rows(:, :)
+        integer, allocatable :: lines(:)
+
+        allocate (rows(n, 3), lines(n))
+        rows(:, :) = table(1:n, :)
+        lines(:) = line_of(1:n)
+        call move_alloc(rows, table)
+        call move_alloc(lines, line_of)
+    end subroutine shrink
+
+    !> Double the capacity of the row storage.
+    pure subroutine grow(table, line_of)
+        real(dp), allocatable, intent(inout) :: table(:, :)
+        integer, allocatable, intent(inout) :: line_of(:)
+
+        real(dp), allocatable :: bigger(:, :)
+        integer, allocatable :: longer(:)
+
+        allocate (bigger(2*size(table, 1), 3), longer(2*size(table, 1)))
+        bigger(1:size(table, 1), :) = table
+        longer(1:size(line_of)) = line_of
+        call move_alloc(bigger, table)
+        call move_alloc(longer, line_of)
+    end subroutine grow
+
+    !> Parse one data line: exactly three finite numbers.
+    subroutine parse_row(path, line_number, line, row, error)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: line_number
+        character(len=*), intent(in) :: line
+        real(dp), intent(out) :: row(3)
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: names(3) = ['f     ', 'Re G  ', 'Im G  ']
+        integer :: first(3), last(3), n_tokens, i, stat
+        character(len=:), allocatable :: prefix
+
+        prefix = path//':'//str(line_number)//': '
+        call split(line, first, last, n_tokens)
+        if (n_tokens /= 3) then
+            call fatal_error(error, prefix//'expected 3 columns (f [Hz], Re G [m/N], Im G [m/N]), found '// &
+                             str(n_tokens)//': "'//trim(adjustl(line))//'"')
+            return
+        end if
+        do i = 1, 3
+            associate (token => line(first(i):last(i)))
+                if (.not. is_number(token)) then
+                    if (is_nan_or_inf(token)) then
+                        call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                                         '"; expected a finite number')
+                    else
+                        call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                                         '"; expected a number')
+                    end if
+                    return
+                end if
+                read (token, *, iostat=stat) row(i)
+                if (stat /= 0 .or. .not. ieee_is_finite(row(i))) then
+                    call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                                     '"; expected a finite number')
+                    return
+                end if
+            end associate
+        end do
+    end subroutine parse_row
+
+    !> Positions of the blank- or tab-separated tokens of a line (at most 3 recorded, all counted).
+    pure subroutine split(line, first, last, n_tokens)
+        character(len=*), intent(in) :: line
+        integer, intent(out) :: first(3), last(3), n_tokens
+
+        logical :: inside, blank
+        integer :: i
+
+        n_tokens = 0
+        first = 0
+        last = 0
+        inside = .false.
+        do i = 1, len(line)
+            blank = line(i:i) == ' ' .or. line(i:i) == achar(9) .or. line(i:i) == achar(13)
+            if (.not. blank .and. .not. inside) then
+                n_tokens = n_tokens + 1
+                if (n_tokens <= 3) first(n_tokens) = i
+                inside = .true.
+            else if (blank .and. inside) then
+                if (n_tokens <= 3) last(n_tokens) = i - 1
+                inside = .false.
+            end if
+        end do
+        if (inside .and. n_tokens <= 3) last(n_tokens) = len(line)
+    end subroutine split
+
+    !> A decimal number: sign, digits, one point, exponent (e, E, d, D) with sign and digits.
+    pure logical function is_number(token)
+        character(len=*), intent(in) :: token
+
+        integer :: i, n_digits, n_points, exponent_at
+
+        is_number = .false.
+        n_digits = 0
+        n_points = 0
+        exponent_at = 0
+        do i = 1, len(token)
+            select case (token(i:i))
+            case ('0':'9')
+                n_digits = n_digits + 1
+            case ('.')
+                if (exponent_at > 0) return
+                n_points = n_points + 1
+            case ('+', '-')
+                if (i /= 1 .and. i /= exponent_at + 1) return
+            case ('e', 'E', 'd', 'D')
+                if (exponent_at > 0 .or. n_digits == 0) return
+                exponent_at = i
+            case default
+                return
+            end select
+        end do
+        if (n_points > 1 .or. n_digits == 0) return
+        if (exponent_at > 0) then
+            if (verify(token(exponent_at + 1:), '+-') == 0) return
+            if (scan(token(exponent_at + 1:), '0123456789') == 0) return
+        end if
+        is_number = .true.
+    end function is_number
+
+    !> A spelling of NaN or infinity (with optional sign), case-insensitive.
+    pure logical function is_nan_or_inf(token)
+        character(len=*), intent(in) :: token
+
+        character(len=len(token)) :: lower
+        integer :: i, start
+
+        do i = 1, len(token)
+            lower(i:i) = token(i:i)
+            if (token(i:i) >= 'A' .and. token(i:i) <= 'Z') lower(i:i) = achar(iachar(token(i:i)) + 32)
+        end do
+        start = 1
+        if (len(lower) > 0) then
+            if (lower(1:1) == '+' .or. lower(1:1) == '-') start = 2
+        end if
+        is_nan_or_inf = lower(start:) == 'nan' .or. lower(start:) == 'inf' .or. lower(start:) == 'infinity' &
+                        .or. index(lower(start:), 'nan(') == 1
+    end function is_nan_or_inf
+
+    !> Read one whole line of any length.
+    subroutine read_line(unit, line, stat)
+        integer, intent(in) :: unit
+        character(len=:), allocatable, intent(out) :: line
+        integer, intent(out) :: stat
+
+        character(len=256) :: buffer
+        integer :: n_read
+
+        line = ''
+        do
+            read (unit, '(a)', advance='no', iostat=stat, size=n_read) buffer
+            line = line//buffer(1:n_read)
+            if (is_iostat_eor(stat)) then
+                stat = 0
+                return
+            end if
+            if (is_iostat_end(stat) .and. len(line) > 0) then
+                stat = 0
+                return
+            end if
+            if (stat /= 0) return
+        end do
+    end subroutine read_line
+
+    !> An integer as text.
+    pure function str(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+
+        character(len=16) :: buffer
+
+        write (buffer, '(i0)') i
+        text = trim(buffer)
+    end function str
+
+    !> A real as short text.
+    pure function real_str(x) result(text)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=32) :: buffer
+
+        write (buffer, '(g0.10)') x
+        text = trim(adjustl(buffer))
+    end function real_str
+
+end module frf_mod

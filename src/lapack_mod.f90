@@ -1,0 +1,153 @@
+!> Explicit interfaces to the LAPACK routines greenconv uses, and assumed-shape
+!> front ends that copy their inputs, query the workspace and report failures
+!> through an `error_type` (never `stop`).
+!>
+!> - dgelsd: minimum-norm least squares by the SVD (divide and conquer), so that a
+!>   rank-deficient or ill-conditioned system gives a bounded answer; no normal equations.
+!> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
+module lapack_mod
+    use kinds_mod, only: dp
+    use error_mod, only: error_type, fatal_error, stat_numerical
+    implicit none
+    private
+
+    public :: least_squares, eigenvalues
+
+    interface
+        !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
+        subroutine dgelsd(m, n, nrhs, a, lda, b, ldb, s, rcond, rank, work, lwork, iwork, info)
+            import :: dp
+            implicit none
+            integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            real(dp), intent(out) :: s(*)
+            real(dp), intent(in) :: rcond
+            integer, intent(out) :: rank, info
+            real(dp), intent(inout) :: work(*)
+            integer, intent(inout) :: iwork(*)
+        end subroutine dgelsd
+
+        !> Eigenvalues (and optionally eigenvectors) of a general real matrix (LAPACK).
+        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(dp), intent(inout) :: a(lda, *)
+            real(dp), intent(out) :: wr(*), wi(*)
+            real(dp), intent(inout) :: vl(ldvl, *), vr(ldvr, *)
+            real(dp), intent(inout) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
+    end interface
+
+contains
+
+    !> Least-squares solution x of min ||b - A x||_2 (m >= 1 rows, n >= 1 unknowns) by dgelsd.
+    !> Singular values below rcond*s_max are treated as zero (minimum-norm solution).
+    subroutine least_squares(a, b, x, error, rcond, rank, singular_values)
+        !> Matrix A (m x n); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Right-hand side b (m).
+        real(dp), intent(in) :: b(:)
+        !> Solution x (n).
+        real(dp), intent(out) :: x(:)
+        !> Set on a size mismatch or when the SVD does not converge.
+        type(error_type), allocatable, intent(out) :: error
+        !> Relative threshold on the singular values; machine precision when absent.
+        real(dp), intent(in), optional :: rcond
+        !> Effective rank of A.
+        integer, intent(out), optional :: rank
+        !> Singular values of A, largest first (size min(m, n)).
+        real(dp), intent(out), optional :: singular_values(:)
+
+        real(dp), allocatable :: a_work(:, :), b_work(:, :), s(:), work(:)
+        integer, allocatable :: iwork(:)
+        real(dp) :: threshold, query(1)
+        integer :: m, n, ldb, lwork, info, effective_rank, iquery(1)
+
+        m = size(a, 1)
+        n = size(a, 2)
+        if (m < 1 .or. n < 1 .or. size(b) /= m .or. size(x) /= n) then
+            call fatal_error(error, 'least_squares: inconsistent sizes of A, b and x', stat_numerical)
+            return
+        end if
+        threshold = -1.0_dp
+        if (present(rcond)) threshold = rcond
+        ldb = max(m, n)
+        allocate (a_work(m, n), b_work(ldb, 1), s(min(m, n)))
+        a_work(:, :) = a
+        b_work(:, 1) = 0.0_dp
+        b_work(1:m, 1) = b
+        call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, query, -1, iquery, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgelsd (workspace query)', info)
+            return
+        end if
+        lwork = max(1, int(query(1)))
+        allocate (work(lwork), iwork(max(1, iquery(1))))
+        call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgelsd', info)
+            return
+        end if
+        x(:) = b_work(1:n, 1)
+        if (present(rank)) rank = effective_rank
+        if (present(singular_values)) then
+            singular_values(:) = 0.0_dp
+            singular_values(1:min(size(singular_values), size(s))) = s(1:min(size(singular_values), size(s)))
+        end if
+    end subroutine least_squares
+
+    !> Eigenvalues of a general real square matrix by dgeev (no eigenvectors).
+    subroutine eigenvalues(a, w, error)
+        !> Square matrix (n x n, n >= 1); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Eigenvalues (n); complex pairs come as conjugates with exactly opposite imaginary parts.
+        complex(dp), intent(out) :: w(:)
+        !> Set on a size mismatch or when the QR algorithm does not converge.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a_work(:, :), wr(:), wi(:), work(:)
+        real(dp) :: query(1), dummy(1, 1)
+        integer :: n, lwork, info
+
+        n = size(a, 1)
+        if (n < 1 .or. size(a, 2) /= n .or. size(w) /= n) then
+            call fatal_error(error, 'eigenvalues: expected a square matrix and n eigenvalues', stat_numerical)
+            return
+        end if
+        allocate (a_work(n, n), wr(n), wi(n))
+        a_work(:, :) = a
+        call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, query, -1, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgeev (workspace query)', info)
+            return
+        end if
+        lwork = max(1, int(query(1)))
+        allocate (work(lwork))
+        call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgeev', info)
+            return
+        end if
+        w(:) = cmplx(wr, wi, kind=dp)
+    end subroutine eigenvalues
+
+    !> An error naming the routine and its info code.
+    pure subroutine lapack_error(error, routine, info)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: routine
+        integer, intent(in) :: info
+
+        character(len=16) :: text
+
+        write (text, '(i0)') info
+        if (info < 0) then
+            call fatal_error(error, routine//': illegal value of argument '//trim(text(2:)), stat_numerical)
+        else
+            call fatal_error(error, routine//': failed to converge (info = '//trim(text)//')', stat_numerical)
+        end if
+    end subroutine lapack_error
+
+end module lapack_mod
