@@ -11,10 +11,14 @@
 if (!exists("datadir")) datadir = 'out'
 if (!exists("figdir")) figdir = 'out/figures'
 if (!exists("scene")) scene = 'sdof_sine'
+# Another scene's figure (Figs. 5 and 6) sets these three and loads this script.
+if (!exists("figname")) figname = 'fig3_sdof_contact_force'
+if (!exists("figtitle")) figtitle = "Contact force of an SDOF system on a sinusoidal road\n(Meftah et al. 2011, Fig. 3)"
+if (!exists("thin")) thin = 40
 
 direct = sprintf('%s/%s_direct.dat', datadir, scene)
 modal = sprintf('%s/%s_modal.dat', datadir, scene)
-output = sprintf('%s/fig3_sdof_contact_force.png', figdir)
+output = sprintf('%s/%s.png', figdir, figname)
 
 # Column number of NAME in FILE, from the last '#' line (the column names).
 header(file) = system(sprintf("grep '^#' '%s' | tail -n 1", file))
@@ -37,11 +41,11 @@ system(sprintf("mkdir -p '%s'", figdir))
 set terminal pngcairo size 1000,600 enhanced font 'sans,11'
 set output output
 
-thin = 40           # one marker every 40 samples; the modal markers sit half way between
+# one marker every `thin` samples; the modal markers sit half way between
 set style line 2 lc rgb '#d62728' lw 1.5 pt 1 ps 1.6          # direct: -+-
 set style line 3 lc rgb '#1f77b4' lw 1.0 dt 2 pt 4 ps 1.2     # modal: -□- (dashed, on top)
 
-set title "Contact force of an SDOF system on a sinusoidal road\n(Meftah et al. 2011, Fig. 3)" font ',13'
+set title figtitle font ',13'
 set grid
 set key top right box opaque
 set offsets graph 0, graph 0, graph 0.3, graph 0   # head room for the key; F >= 0
@@ -58,4 +62,4 @@ plot direct using t:f with lines ls 2 notitle, \
 
 set output
 set print '-'
-print sprintf('fig3: wrote %s', output)
+print sprintf('%s: wrote %s', figname, output)

@@ -16,6 +16,7 @@ module greenconv
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     use scene_mod, only: scene_type, read_scene
+    use structure_mod, only: structure_model, structure_from_modes, build_structure
     use scene_run_mod, only: run_scene, make_convolver, output_path
     implicit none
     private
@@ -32,6 +33,7 @@ module greenconv
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     public :: scene_type, read_scene
+    public :: structure_model, structure_from_modes, build_structure
     public :: run_scene, make_convolver, output_path
 
 end module greenconv

@@ -15,7 +15,7 @@ module modal_set_mod
     implicit none
     private
 
-    public :: modal_set, modes_from_paper, random_modes
+    public :: modal_set, modes_from_paper, random_modes, sorted_by_frequency
 
     !> A set of modes in pole-residue form (see the module description for the convention).
     type :: modal_set
@@ -85,6 +85,21 @@ contains
         order = sorted_order(frequency)
         modes = modes_from_paper(amplitude(order), 2.0_dp*acos(-1.0_dp)*frequency(order), ratio(order))
     end function random_modes
+
+    !> The same modes ordered by natural frequency |lambda_k|, lowest first.
+    function sorted_by_frequency(modes) result(sorted)
+        !> The modes.
+        type(modal_set), intent(in) :: modes
+        type(modal_set) :: sorted
+
+        integer :: order(modes%n_modes())
+
+        allocate (sorted%pole(size(order)), sorted%residue(size(order)))
+        if (size(order) == 0) return
+        order = sorted_order(abs(modes%pole))
+        sorted%pole = modes%pole(order)
+        sorted%residue = modes%residue(order)
+    end function sorted_by_frequency
 
     !> Indices that sort `values` ascending (insertion sort: the sets are small).
     pure function sorted_order(values) result(order)

@@ -320,7 +320,8 @@ contains
                      expected(this%file, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
         call require(abs(preload) < huge(preload), &
                      expected(this%file, 'contact', 'preload', 'a finite force in N', preload), error)
-        call require(preload >= 0.0_dp .or. this%model == 'sdof', expected(this%file, 'contact', 'preload', &
+        call require(preload >= 0.0_dp .or. this%model == 'sdof' .or. this%task /= 'contact', &
+                     expected(this%file, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
         this%preload = preload

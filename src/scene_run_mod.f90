@@ -1,38 +1,59 @@
-!> Run a scene: build the Green's function, one convolver per method, the contact loop,
-!> the column files and a one-line summary per method.
+!> Run a scene: build the structure (identifying it when only G is known), then either
+!> write the identification (task `identify`) or run the contact loop with one convolver
+!> per method (task `contact`), writing column files and a summary line per method.
 module scene_run_mod
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
-    use modal_set_mod, only: modal_set
-    use sdof_mod, only: sdof_modes
     use convolver_mod, only: convolver
-    use conv_direct_mod, only: new_direct_convolver, sample_kernel
+    use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
     use conv_modal_mod, only: new_modal_convolver
     use contact_mod, only: contact_response, run_contact
     use files_mod, only: write_columns, make_directory
     use scene_mod, only: scene_type
+    use structure_mod, only: structure_model, build_structure
+    use identification_output_mod, only: write_identification, identification_summary
     implicit none
     private
 
     public :: run_scene, make_convolver, output_path
 
-    !> Width of the text columns of the summary.
+    !> Layout of the summary line of a method.
     character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
 
 contains
 
-    !> Run every method of a scene, write `<output_dir>/<name>_<method>.dat` for each and
-    !> print a summary line per method on `unit` (method, model size, steps, CPU seconds,
-    !> what the model neglects).
+    !> Run a scene and print its summary on `unit`. Contact: for each method, the file
+    !> `<output_dir>/<name>_<method>.dat` and a line (method, model size, steps, CPU seconds,
+    !> what the model neglects). Identified structures also get their modes and G files.
     subroutine run_scene(scene, unit, error)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Unit the summary is printed on.
         integer, intent(in) :: unit
-        !> Set when a convolver cannot be built or a file cannot be written.
+        !> Set when the structure cannot be built or a file cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        type(modal_set) :: modes
+        type(structure_model) :: structure
+
+        call build_structure(scene, structure, error)
+        if (allocated(error)) return
+        call make_directory(scene%output_dir, error)
+        if (allocated(error)) return
+        if (structure%identified) then
+            call identification_summary(structure, unit)
+            call write_identification(scene, structure, error)
+            if (allocated(error)) return
+        end if
+        if (scene%task == 'contact') call run_methods(scene, structure, unit, error)
+    end subroutine run_scene
+
+    !> The contact loop once per method of the scene.
+    subroutine run_methods(scene, structure, unit, error)
+        type(scene_type), intent(in) :: scene
+        type(structure_model), intent(in) :: structure
+        integer, intent(in) :: unit
+        type(error_type), allocatable, intent(out) :: error
+
         class(convolver), allocatable :: conv
         type(contact_response) :: response
         character(len=:), allocatable :: accuracy, label
@@ -40,14 +61,12 @@ contains
         real(dp) :: start, finish
         integer :: i, n
 
-        modes = sdof_modes(scene%mass, scene%stiffness, scene%damping_ratio)
-        road = scene%road%sample(scene%dt, scene%n_steps)
-        call make_directory(scene%output_dir, error)
-        if (allocated(error)) return
+        allocate (road(scene%n_steps))
+        road(:) = scene%road%sample(scene%dt, scene%n_steps)
         write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         write (unit, '(a,t12,a,t24,a,t36,a,t48,a)') '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
-            call make_convolver(trim(scene%methods(i)), modes, scene%dt, scene%truncation_tol, scene%n_steps, &
+            call make_convolver(trim(scene%methods(i)), structure, scene%dt, scene%truncation_tol, scene%n_steps, &
                                 conv, accuracy, error)
             if (allocated(error)) return
             call cpu_time(start)
@@ -58,17 +77,18 @@ contains
             if (allocated(error)) return
             write (unit, summary_format) conv%name, label//'='//itoa(n), scene%n_steps, finish - start, accuracy
         end do
-    end subroutine run_scene
+    end subroutine run_methods
 
-    !> Build the convolver called `method` for a modal Green's function.
+    !> Build the convolver called `method` for a structure.
     !>
-    !> `accuracy` says in words how far the model is from the exact g: the neglected tail
-    !> of the truncated kernel (`direct`) or the fit of the modes (`modal`).
-    subroutine make_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error)
+    !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
+    !> its FRF), truncated by the paper's rule; `modal` recurs on the structure's model modes.
+    !> `accuracy` says in words how far the model is from the exact g.
+    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
         !> Method name: `direct` or `modal`.
         character(len=*), intent(in) :: method
-        !> The Green's function as modes.
-        type(modal_set), intent(in) :: modes
+        !> The structure.
+        type(structure_model), intent(in) :: structure
         !> Time step [s].
         real(dp), intent(in) :: dt
         !> Truncation fraction of max |g| for `direct`.
@@ -84,25 +104,47 @@ contains
 
         real(dp), allocatable :: kernel(:)
         real(dp) :: tail
-        character(len=16) :: text
+        integer :: j
 
         select case (method)
         case ('direct')
-            call sample_kernel(modes, dt, truncation_tol, n_steps, kernel, tail)
+            call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
             conv = new_direct_convolver(kernel, dt)
-            if (tail > 0.0_dp) then
-                write (text, '(es9.2)') tail
-                accuracy = 'neglected tail <= '//trim(adjustl(text))//' of max|g|'
-            else
-                accuracy = 'exact: the kernel covers the whole run'
-            end if
+            accuracy = 'exact: the kernel covers the whole run'
+            if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci(tail)//' of max|g|'
+            if (.not. structure%has_exact) accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE' &
+                //' modes'' g by '//sci(maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)]))) &
+                                     /maxval(abs(kernel)))//' of max|g|'
         case ('modal')
-            conv = new_modal_convolver(modes, dt)
+            conv = new_modal_convolver(structure%model, dt)
             accuracy = 'exact: the modes are the structure''s own'
+            if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci(structure%fit%e)//' (eq. 7)'
         case default
             call fatal_error(error, "unknown convolution method '"//method//"': expected 'direct' or 'modal'")
         end select
     end subroutine make_convolver
+
+    !> The truncated kernel of the structure's own g and the largest neglected sample.
+    subroutine direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
+        real(dp), allocatable, intent(out) :: kernel(:)
+        real(dp), intent(out) :: tail
+
+        integer :: last, n_g
+
+        if (structure%has_exact) then
+            call sample_kernel(structure%exact, dt, truncation_tol, n_steps, kernel, tail)
+            return
+        end if
+        last = min(n_steps, size(structure%sampled_g)) - 1
+        n_g = truncation_length(structure%sampled_g(1:last + 1), truncation_tol)
+        allocate (kernel(0:n_g))
+        kernel(:) = structure%sampled_g(1:n_g + 1)
+        tail = 0.0_dp
+        if (n_g < last) tail = maxval(abs(structure%sampled_g(n_g + 2:last + 1)))/maxval(abs(kernel))
+    end subroutine direct_kernel
 
     !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`.
     function output_path(scene, method) result(path)
@@ -147,5 +189,16 @@ contains
         write (buffer, '(i0)') i
         text = trim(buffer)
     end function itoa
+
+    !> A real in short scientific notation.
+    pure function sci(x) result(text)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=16) :: buffer
+
+        write (buffer, '(es9.2)') x
+        text = trim(adjustl(buffer))
+    end function sci
 
 end module scene_run_mod

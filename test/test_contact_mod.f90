@@ -7,7 +7,7 @@ module test_contact_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use reference_ode_mod, only: integrate
     use greenconv, only: convolver, contact_law, contact_response, run_contact, sdof_modes, &
-                         make_convolver, error_type, sine_road
+                         make_convolver, error_type, sine_road, structure_from_modes
     implicit none
     private
 
@@ -43,7 +43,8 @@ contains
         type(error_type), allocatable :: error
         type(sine_road) :: road
 
-        call make_convolver(method, sdof_modes(mass, stiffness, xi), dt, 0.01_dp, n_steps, conv, accuracy, error)
+        call make_convolver(method, structure_from_modes(sdof_modes(mass, stiffness, xi)), dt, 0.01_dp, n_steps, &
+                            conv, accuracy, error)
         if (allocated(error)) error stop 'test_contact_mod: cannot build a convolver'
         road%amplitude = amplitude
         road%omega = omega_road
