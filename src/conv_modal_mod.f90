@@ -16,8 +16,18 @@
 !> here, and it makes u_h(n) equal to the direct sum of eq. (20) with the untruncated kernel,
 !> up to round-off. Cost per step is proportional to the number of modes.
 !>
-!> The factors exp(+a_k*t_n) grow without bound, as in the paper: they overflow once
-!> a_k*t_n exceeds about 709 (for a 2 kHz mode with xi = 0.05, after about 1.13 s).
+!> The factors exp(+a_k*t_n) grow without bound, as in the paper. Kept as written, as the
+!> reference the other recursions are checked against, it fails for long runs:
+!> - exp(+a_k*t_n) overflows to +Inf once a_k*t_n > log(huge) = 709.78, and u_h becomes
+!>   Inf or NaN from then on; a_k = xi_k*omega_k, so a 2 kHz mode with xi = 0.05
+!>   (a_k = 628 1/s) fails after 1.13 s of simulated time, whatever dt. The integrals
+!>   alpha_k, beta_k, of the order of exp(a_k*t_n)*max|q|/a_k [N*s], overflow a little
+!>   earlier when max|q|/a_k exceeds 1 N*s;
+!> - a little before, exp(-a_k*t_n) in the history is subnormal (a_k*t_n > 708.4) and the
+!>   history loses digits;
+!> - short of that, the argument omega_k^d*t_n of cos and sin grows with t_n, so the
+!>   rounding of the phase (about 1e-16*omega_k^d*t_n) is the limit of its accuracy.
+!> conv_recursive_mod gives the same numbers with factors of modulus below 1 (`recursive`).
 module conv_modal_mod
     use kinds_mod, only: dp
     use convolver_mod, only: convolver
@@ -25,7 +35,7 @@ module conv_modal_mod
     implicit none
     private
 
-    public :: modal_convolver, new_modal_convolver
+    public :: modal_convolver, new_modal_convolver, new_paper_convolver
 
     !> The paper's modal recursion, eqs. (15)-(17).
     type, extends(convolver) :: modal_convolver
@@ -48,7 +58,8 @@ module conv_modal_mod
 
 contains
 
-    !> A modal convolver for the modes of `modes` at time step dt [s].
+    !> The paper's recursion, eqs. (15)-(17), for the modes of `modes` at time step dt [s],
+    !> named `modal` (see `new_paper_convolver` for the same under the name `paper`).
     function new_modal_convolver(modes, dt) result(conv)
         !> The Green's function as modes.
         type(modal_set), intent(in) :: modes
@@ -64,6 +75,18 @@ contains
         allocate (conv%alpha(modes%n_modes()), conv%beta(modes%n_modes()))
         call conv%reset()
     end function new_modal_convolver
+
+    !> The same recursion as `new_modal_convolver` under the name `paper`.
+    function new_paper_convolver(modes, dt) result(conv)
+        !> The Green's function as modes.
+        type(modal_set), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        type(modal_convolver) :: conv
+
+        conv = new_modal_convolver(modes, dt)
+        conv%name = 'paper'
+    end function new_paper_convolver
 
     !> History displacement of eq. (15) at t_n from alpha_k(n), beta_k(n).
     function modal_history(self) result(u)
@@ -88,7 +111,7 @@ contains
         real(dp) :: growth(size(self%decay))
 
         t = self%step*self%dt
-        growth = exp(self%decay*t)*force*self%dt
+        growth = exp(self%decay*t)*(force*self%dt)
         self%alpha = self%alpha + growth*cos(self%omega_d*t)
         self%beta = self%beta + growth*sin(self%omega_d*t)
         self%step = self%step + 1

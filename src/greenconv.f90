@@ -10,7 +10,8 @@ module greenconv
     use sdof_mod, only: sdof_receptance, sdof_impulse, sdof_modes
     use convolver_mod, only: convolver
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
-    use conv_modal_mod, only: modal_convolver, new_modal_convolver
+    use conv_modal_mod, only: modal_convolver, new_modal_convolver, new_paper_convolver
+    use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
     use contact_mod, only: contact_law, contact_response, run_contact
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
@@ -27,7 +28,8 @@ module greenconv
     public :: sdof_receptance, sdof_impulse, sdof_modes
     public :: convolver
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
-    public :: modal_convolver, new_modal_convolver
+    public :: modal_convolver, new_modal_convolver, new_paper_convolver
+    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
     public :: contact_law, contact_response, run_contact
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf

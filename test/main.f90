@@ -9,6 +9,7 @@ program greenconv_tests
     use test_lsce_mod, only: collect_lsce
     use test_random_mod, only: collect_random
     use test_scene_mod, only: collect_scene
+    use test_engines_mod, only: collect_engines
     implicit none
 
     integer :: n_passed, n_failed
@@ -21,6 +22,7 @@ program greenconv_tests
     call run_testsuite('random', collect_random, output_unit, n_passed, n_failed)
     call run_testsuite('lsce', collect_lsce, output_unit, n_passed, n_failed)
     call run_testsuite('scene', collect_scene, output_unit, n_passed, n_failed)
+    call run_testsuite('engines', collect_engines, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

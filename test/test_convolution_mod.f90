@@ -10,6 +10,7 @@
 module test_convolution_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use duhamel_mod, only: step_response, sine_response
     use greenconv, only: convolver, modal_set, sdof_modes, sdof_impulse, new_direct_convolver, &
                          new_modal_convolver, truncation_length, sample_kernel
     implicit none
@@ -38,36 +39,6 @@ contains
                      new_unittest('truncated sdof kernel: length and neglected tail', test_sdof_truncation)]
     end subroutine collect_convolution
 
-    !> Step response of the oscillator, (F/K)*(1 - exp(-a t)*(cos wd t + (a/wd) sin wd t)).
-    elemental real(dp) function step_response(t)
-        real(dp), intent(in) :: t
-
-        real(dp) :: w0, wd, a
-
-        w0 = sqrt(stiffness/mass)
-        wd = w0*sqrt(1.0_dp - xi**2)
-        a = xi*w0
-        step_response = force/stiffness*(1.0_dp - exp(-a*t)*(cos(wd*t) + a/wd*sin(wd*t)))
-    end function step_response
-
-    !> Response to F*sin(W t) from rest: steady state F*Im(H e^{iWt}) plus the free
-    !> vibration that cancels its displacement and velocity at t = 0.
-    elemental real(dp) function sine_response(t)
-        real(dp), intent(in) :: t
-
-        real(dp) :: w0, wd, a, c1, c2
-        complex(dp) :: h
-
-        w0 = sqrt(stiffness/mass)
-        wd = w0*sqrt(1.0_dp - xi**2)
-        a = xi*w0
-        h = 1.0_dp/cmplx(stiffness - mass*omega_load**2, 2.0_dp*xi*sqrt(stiffness*mass)*omega_load, dp)
-        c1 = -force*aimag(h)
-        c2 = (-force*omega_load*real(h, dp) + a*c1)/wd
-        sine_response = force*aimag(h*exp(cmplx(0.0_dp, omega_load*t, dp))) &
-                        + exp(-a*t)*(c1*cos(wd*t) + c2*sin(wd*t))
-    end function sine_response
-
     !> Largest |u_n - u(t_n)| over n steps of a convolver driven by a step or a sine load.
     function max_error(conv, load, n_steps) result(worst)
         class(convolver), intent(inout) :: conv
@@ -84,10 +55,10 @@ contains
             t = n*conv%dt
             if (load == 'step') then
                 q = merge(0.5_dp*force, force, n == 0)
-                exact = step_response(t)
+                exact = step_response(t, mass, stiffness, xi, force)
             else
                 q = force*sin(omega_load*t)
-                exact = sine_response(t)
+                exact = sine_response(t, mass, stiffness, xi, force, omega_load)
             end if
             worst = max(worst, abs(conv%history() + conv%instant_weight()*q - exact))
             call conv%push(q)
