@@ -79,10 +79,11 @@
 !> candidate with E <= tol_e: the smallest order that meets it, and with it the smallest
 !> model. If no order does, it returns the first candidate within 10 % of the smallest E
 !> seen, with a warning (on 1 % noise and tol_e = 1e-6 the smallest E came at 15 modes that
-!> fit the noise; the rule keeps the 10 true ones). The order that yields N_m modes is larger than N_m on purpose: the extra roots
-!> absorb what the prediction cannot fit and are dropped as unstable across orders (the
-!> tests' 10 clean modes come at N = 12). This is also why fixed_modes stops at the first
-!> candidate with that many stable modes rather than forcing the order 2*fixed_modes: forced
+!> fit the noise; the rule keeps the 10 true ones). The order that yields N_m modes is
+!> larger than N_m on purpose: the extra roots absorb what the prediction cannot fit and
+!> are dropped as unstable across orders (the tests' 10 clean modes come at N = 12). This is
+!> also why fixed_modes stops at the first candidate with that many stable modes rather than
+!> forcing the order 2*fixed_modes: forced
 !> exact orders fail on band-limited data (measured without polish: 10 modes at order 10 gave
 !> 9 modes, E = 0.1; two modes 1 % apart at order 2 gave xi 6 % off).
 !>
@@ -612,7 +613,8 @@ contains
 
         first = merge(2, 1, options%lower_residual)
         n_lines = frf%n_freq() - first + 1
-        n_unknowns = 4*result%modes%n_modes() + merge(1, 0, options%upper_residual) + merge(1, 0, options%lower_residual)
+        n_unknowns = 4*result%modes%n_modes() + merge(1, 0, options%upper_residual) &
+                     + merge(1, 0, options%lower_residual)
         allocate (omega(n_lines), measured(n_lines), misfit_vector(2*n_lines), step(n_unknowns), norms(n_unknowns))
         omega(:) = two_pi*frf%frequency(first:)
         measured(:) = frf%receptance(first:)
@@ -718,7 +720,8 @@ contains
         g(:) = g_raw
         result%n_refinements = 0
         do pass = 0, options%max_refinements
-            call lsce_poles(g, result%dt, 2*n_modes, options%max_samples, poles, result%n_unstable, result%n_real, error)
+            call lsce_poles(g, result%dt, 2*n_modes, options%max_samples, poles, result%n_unstable, result%n_real, &
+                            error)
             if (allocated(error)) return
             if (pass == options%max_refinements) exit
             call fit_residues(frf, poles, options, result%modes, result%upper_residual, result%lower_residual, error)

@@ -141,7 +141,8 @@ contains
                      expected(this%file, 'scene', 'task', "'contact' or 'identify'", task), error)
         call require(len_trim(name) > 0, expected(this%file, 'scene', 'name', 'a file base name'), error)
         call require(len_trim(output_dir) > 0, expected(this%file, 'scene', 'output_dir', 'a directory path'), error)
-        call require(dt > 0.0_dp .and. dt < huge(dt), expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
+        call require(dt > 0.0_dp .and. dt < huge(dt), &
+                     expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
         call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
         this%task = trim(task)
         this%name = trim(name)
@@ -281,7 +282,8 @@ contains
                      expected(this%file, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
         call require(wavelength > 0.0_dp .and. wavelength < huge(wavelength), &
                      expected(this%file, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
-        call require(abs(speed) < huge(speed), expected(this%file, 'road', 'speed', 'a finite speed in m/s', speed), error)
+        call require(abs(speed) < huge(speed), &
+                     expected(this%file, 'road', 'speed', 'a finite speed in m/s', speed), error)
         call require(n_terms > 0, expected(this%file, 'road', 'n_terms', 'a number of terms > 0', n_terms), error)
         if (allocated(error)) return
         if (trim(profile) == 'sine') then
@@ -351,7 +353,8 @@ contains
             select case (trim(methods(i)))
             case ('', 'direct', 'modal')
             case default
-                call fatal_error(error, expected(this%file, 'convolution', 'methods', "'direct' or 'modal'", methods(i)))
+                call fatal_error(error, &
+                                 expected(this%file, 'convolution', 'methods', "'direct' or 'modal'", methods(i)))
                 return
             end select
         end do
@@ -359,7 +362,8 @@ contains
             expected(this%file, 'convolution', 'truncation_tol', &
                                              'a fraction of max |g| in (0, 1)', truncation_tol), error)
         this%methods = pack(methods, methods /= '')
-        call require(size(this%methods) > 0, expected(this%file, 'convolution', 'methods', 'at least one method'), error)
+        call require(size(this%methods) > 0, &
+                     expected(this%file, 'convolution', 'methods', 'at least one method'), error)
         this%truncation_tol = truncation_tol
     end subroutine read_convolution_group
 

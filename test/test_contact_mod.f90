@@ -102,7 +102,8 @@ contains
 
         call run_method('direct', direct)
         call run_method('modal', modal)
-        call note('max du/max|u|', maxval(abs(direct%displacement - modal%displacement))/maxval(abs(direct%displacement)))
+        call note('max du/max|u|', &
+                  maxval(abs(direct%displacement - modal%displacement))/maxval(abs(direct%displacement)))
         call check(error, maxval(abs(direct%displacement - modal%displacement)), 0.0_dp, 'max |u_direct - u_modal|', &
                    thr=1.0e-10_dp*maxval(abs(direct%displacement)))
         if (allocated(error)) return

@@ -184,7 +184,8 @@ contains
         call impulse_from_frf(frf, g, dt, failure)
         call check(error, .not. allocated(failure), 'impulse_from_frf failed')
         if (allocated(error)) return
-        call check(error, size(g) == 2*(lines - 1) .and. abs(dt - 2.0e-4_dp) < 1.0e-18_dp, 'N_t = 2(n - 1), dt = 1/(2 f_max)')
+        call check(error, size(g) == 2*(lines - 1) .and. abs(dt - 2.0e-4_dp) < 1.0e-18_dp, &
+            'N_t = 2(n - 1), dt = 1/(2 f_max)')
         if (allocated(error)) return
         allocate (expected(size(g)))
         expected(:) = sdof_impulse(mass, stiffness, xi, [(n*dt, n=0, size(g) - 1)])
@@ -196,7 +197,8 @@ contains
         call forward_real_fft(expected, spectrum, failure)
         call check(error, .not. allocated(failure), 'forward_real_fft failed')
         if (allocated(error)) return
-        call note('max|dt*r2c(g) - G_d|/max|G_d|', maxval(abs(dt*spectrum - frf%receptance))/maxval(abs(frf%receptance)))
+        call note('max|dt*r2c(g) - G_d|/max|G_d|', &
+            maxval(abs(dt*spectrum - frf%receptance))/maxval(abs(frf%receptance)))
         call check(error, maxval(abs(dt*spectrum - frf%receptance))/maxval(abs(frf%receptance)), 0.0_dp, &
                    'dt*r2c(g) against G_d', thr=1.0e-12_dp)
     end subroutine test_fft_exact
@@ -345,7 +347,8 @@ contains
                                                 2080.0_dp, 2600.0_dp, 3150.0_dp, 3720.0_dp, 4400.0_dp]
         real(dp), parameter :: damping(10) = [0.01_dp, 0.03_dp, 0.02_dp, 0.05_dp, 0.015_dp, &
                                               0.04_dp, 0.025_dp, 0.035_dp, 0.02_dp, 0.045_dp]
-        real(dp), parameter :: weight(10) = [1.0_dp, 0.8_dp, 1.2_dp, 0.6_dp, 1.0_dp, 0.9_dp, 1.1_dp, 0.7_dp, 1.3_dp, 0.5_dp]
+        real(dp), parameter :: weight(10) = [1.0_dp, 0.8_dp, 1.2_dp, 0.6_dp, 1.0_dp, 0.9_dp, 1.1_dp, 0.7_dp, &
+            1.3_dp, 0.5_dp]
         type(modal_set) :: truth
         type(frf_type) :: frf
         type(lsce_options) :: options
@@ -408,7 +411,8 @@ contains
         call check(error, .not. allocated(failure), 'identify failed on the fine grid')
         if (allocated(error)) return
         call note('fine tail', result%tail_level)
-        call check(error, .not. result%wrap_around .and. len(result%warning) == 0, 'wrap-around reported on the fine grid')
+        call check(error, .not. result%wrap_around .and. len(result%warning) == 0, &
+            'wrap-around reported on the fine grid')
         if (allocated(error)) return
         options%max_refinements = 0
         options%polish = .false.
@@ -542,7 +546,8 @@ contains
         worst = 0.0_dp
         do k = 1, 3
             j = minloc(abs(w - omega(k)), 1)
-            worst = max(worst, abs(a(j)/amplitude(k) - 1.0_dp), abs(w(j)/omega(k) - 1.0_dp), abs(xi(j)/damping(k) - 1.0_dp))
+            worst = max(worst, abs(a(j)/amplitude(k) - 1.0_dp), abs(w(j)/omega(k) - 1.0_dp), &
+                abs(xi(j)/damping(k) - 1.0_dp))
         end do
         call note('after identification', worst)
         call note('max lost', maxval(lost))
@@ -552,7 +557,8 @@ contains
         call paper_form(modes, a, w, xi, lost)
         call check(error, lost(1), 1.0_dp/sqrt(2.0_dp), 'lost part of r = 1 - i', thr=1.0e-15_dp)
         if (allocated(error)) return
-        call check(error, a(1), 2.0_dp*aimag(modes%pole(1)), 'A = -2 omega_d Im r for r = 1 - i', thr=1.0e-12_dp, rel=.true.)
+        call check(error, a(1), 2.0_dp*aimag(modes%pole(1)), 'A = -2 omega_d Im r for r = 1 - i', &
+            thr=1.0e-12_dp, rel=.true.)
     end subroutine test_paper_form
 
     ! ---- frf files -----------------------------------------------------------------------
@@ -580,7 +586,8 @@ contains
         call note('G err', worst)
         call check(error, worst, 0.0_dp, 'G read back', thr=1.0e-14_dp)
         if (allocated(error)) return
-        call check(error, maxval(abs(read_back%frequency - written%frequency)), 0.0_dp, 'grid read back', thr=1.0e-12_dp)
+        call check(error, maxval(abs(read_back%frequency - written%frequency)), 0.0_dp, 'grid read back', &
+            thr=1.0e-12_dp)
     end subroutine test_frf_round_trip
 
     !> Each bad file gives an error whose message names the file and, where there is one,
@@ -666,7 +673,8 @@ contains
         call read_frf(path, frf, failure)
         call check(error, allocated(failure), 'no error for a missing file')
         if (allocated(error)) return
-        call check(error, index(failure%message, path//': cannot open') == 1, 'message for a missing file: '//failure%message)
+        call check(error, index(failure%message, path//': cannot open') == 1, &
+            'message for a missing file: '//failure%message)
     end subroutine expect_missing
 
 end module test_lsce_mod

@@ -25,7 +25,8 @@ contains
         testsuite = [new_unittest('an empty scene file gives the paper''s Tab. 1', test_defaults), &
                      new_unittest('bad values: one message naming file, group and variable', test_bad_values), &
                      new_unittest('random modes: LSCE recovers the modes of the sampled G', test_random_identified), &
-                     new_unittest('random modes: modal on LSCE modes equals direct on the true g', test_random_contact), &
+                     new_unittest('random modes: modal on LSCE modes equals direct on the true g', &
+                                  test_random_contact), &
                      new_unittest('FRF file: identified and FFT kernels against the sdof', test_frf_file)]
     end subroutine collect_scene
 
@@ -187,7 +188,8 @@ contains
         call run_method(structure, 'modal', modal)
         call run_method(structure, 'direct', direct)
         modal_difference = maxval(abs(modal%displacement - reference%displacement))/maxval(abs(reference%displacement))
-        direct_difference = maxval(abs(direct%displacement - reference%displacement))/maxval(abs(reference%displacement))
+        direct_difference = maxval(abs(direct%displacement - reference%displacement)) &
+                            /maxval(abs(reference%displacement))
         call note('modal: max |du|/max|u|', modal_difference)
         call note('direct on FFT g: max |du|/max|u|', direct_difference)
         call check(error, modal_difference, 0.0_dp, 'modal from the FRF file', thr=1.0e-8_dp)
