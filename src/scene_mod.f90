@@ -27,6 +27,8 @@ module scene_mod
     integer, parameter :: name_length = 64
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
+    !> The convolution methods a scene may list, for messages.
+    character(len=*), parameter :: known_methods = "'direct', 'modal', 'paper', 'recursive' or 'exact'"
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
 
@@ -351,10 +353,10 @@ contains
         if (allocated(error)) return
         do i = 1, max_methods
             select case (trim(methods(i)))
-            case ('', 'direct', 'modal')
+            case ('', 'direct', 'modal', 'paper', 'recursive', 'exact')
             case default
                 call fatal_error(error, &
-                                 expected(this%file, 'convolution', 'methods', "'direct' or 'modal'", methods(i)))
+                                 expected(this%file, 'convolution', 'methods', known_methods, methods(i)))
                 return
             end select
         end do

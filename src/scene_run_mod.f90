@@ -6,7 +6,8 @@ module scene_run_mod
     use error_mod, only: error_type, fatal_error
     use convolver_mod, only: convolver
     use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
-    use conv_modal_mod, only: new_modal_convolver
+    use conv_modal_mod, only: new_paper_convolver
+    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver
     use contact_mod, only: contact_response, run_contact
     use files_mod, only: write_columns, make_directory
     use scene_mod, only: scene_type
@@ -73,19 +74,22 @@ contains
             call run_contact(conv, scene%law, road, scene%preload, response)
             call cpu_time(finish)
             call conv%model_size(n, label)
-            call write_response(output_path(scene, conv%name), scene, conv, response, error)
+            call write_response(output_path(scene, trim(scene%methods(i))), scene, conv, response, error)
             if (allocated(error)) return
-            write (unit, summary_format) conv%name, label//'='//itoa(n), scene%n_steps, finish - start, accuracy
+            write (unit, summary_format) trim(scene%methods(i)), label//'='//itoa(n), scene%n_steps, finish - start, &
+                accuracy
         end do
     end subroutine run_methods
 
     !> Build the convolver called `method` for a structure.
     !>
     !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
-    !> its FRF), truncated by the paper's rule; `modal` recurs on the structure's model modes.
+    !> its FRF), truncated by the paper's rule. The modal methods recur on the structure's
+    !> model modes: `paper` (eqs. 15-17 as written), `recursive` (the same sum with decaying
+    !> factors) and `exact` (force linear within a step); `modal` is `recursive`.
     !> `accuracy` says in words how far the model is from the exact g.
     subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
-        !> Method name: `direct` or `modal`.
+        !> Method name: `direct`, `modal`, `paper`, `recursive` or `exact`.
         character(len=*), intent(in) :: method
         !> The structure.
         type(structure_model), intent(in) :: structure
@@ -115,13 +119,21 @@ contains
             if (.not. structure%has_exact) accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE' &
                 //' modes'' g by '//sci(maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)]))) &
                                      /maxval(abs(kernel)))//' of max|g|'
-        case ('modal')
-            conv = new_modal_convolver(structure%model, dt)
+        case ('paper')
+            conv = new_paper_convolver(structure%model, dt)
+        case ('modal', 'recursive')
+            conv = new_recursive_convolver(structure%model, dt)
+        case ('exact')
+            conv = new_exact_convolver(structure%model, dt)
+        case default
+            call fatal_error(error, "unknown convolution method '"//method// &
+                             "': expected 'direct', 'modal', 'paper', 'recursive' or 'exact'")
+            return
+        end select
+        if (method /= 'direct') then
             accuracy = 'exact: the modes are the structure''s own'
             if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci(structure%fit%e)//' (eq. 7)'
-        case default
-            call fatal_error(error, "unknown convolution method '"//method//"': expected 'direct' or 'modal'")
-        end select
+        end if
     end subroutine make_convolver
 
     !> The truncated kernel of the structure's own g and the largest neglected sample.
