@@ -13,23 +13,73 @@
 !>
 !> so inverse(forward(y)) = n*y. Scaling to physical units is the caller's business.
 !>
-!> Each call creates its plan with FFTW_ESTIMATE (which never overwrites the arrays
-!> while planning), executes it on private contiguous copies and destroys it. This is
-!> simple and correct for serial code. Thread safety is NOT provided yet: FFTW's
-!> planner (plan creation and destruction) is not re-entrant, so a threaded caller
-!> must serialize these calls (or call fftw_make_planner_thread_safe once, FFTW >= 3.3.5),
-!> and a caller doing many transforms of one size should keep its plan instead.
+!> One-shot transforms (`forward_real_fft`, `inverse_real_fft`): each call creates its
+!> plan with FFTW_ESTIMATE (which never overwrites the arrays while planning), executes it
+!> on private contiguous copies and destroys it. Simple and correct for occasional use.
+!>
+!> Repeated transforms (`cached_forward_fft`, `cached_inverse_fft`, used by the partitioned
+!> FFT convolver): plans kept in a process-wide cache and applied to the caller's arrays
+!> with FFTW's new-array execute functions, which require the new arrays to have the
+!> alignment of the arrays the plan was made on (or the plan to be made with
+!> FFTW_UNALIGNED, which forbids FFTW's SIMD codelets and costs about a factor 2 here).
+!> Fortran's `allocate` guarantees no particular alignment, so a cache entry is keyed by
+!> the transform size n and by the byte offsets, modulo 64, of the real and the complex
+!> array it is executed on; its r2c and c2r plans are made with FFTW_ESTIMATE (which never
+!> touches the arrays) on scratch arrays placed at exactly those offsets. The new arrays
+!> then have the planned alignment by construction, whatever FFTW's SIMD alignment is
+!> (16, 32 or 64 bytes), and SIMD is kept. (Should no scratch position match, the plans
+!> are made with FFTW_UNALIGNED instead.) The plans are always out-of-place.
+!>
+!> A pair of plans is made the first time its size and offsets are met and lives until
+!> `destroy_fft_plans`, after which the next transform simply plans again. Callers keep
+!> arrays, never plans: copying an object that uses the cache (intrinsic assignment,
+!> function results) copies no FFTW pointer, and no finalizer is involved. Results are
+!> reproducible to the bit for the same arrays; arrays at other offsets may get another
+!> plan and differ in the last bits.
+!>
+!> Threads: FFTW's planner (plan creation and destruction, hence any cached transform that
+!> meets a new size or offset, `destroy_fft_plans`, and the one-shot routines) is not
+!> re-entrant, and the cache itself is unsynchronized: use these routines from one thread
+!> at a time (FFTW >= 3.3.5's fftw_make_planner_thread_safe makes only the planner safe,
+!> not this cache). greenconv itself is serial.
 module fftw_mod
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_double_complex, c_ptr, c_associated
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_double_complex, c_ptr, c_associated, &
+                                           c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_numerical
     implicit none
     private
 
     public :: forward_real_fft, inverse_real_fft
+    public :: cached_forward_fft, cached_inverse_fft, destroy_fft_plans, fft_plan_count
 
     !> Planner flag FFTW_ESTIMATE (1U << 6 in fftw3.h): cheap heuristic plan, arrays untouched.
     integer(c_int), parameter :: fftw_estimate = 64_c_int
+    !> Planner flag FFTW_UNALIGNED (1U << 1 in fftw3.h): no alignment assumed (no SIMD).
+    integer(c_int), parameter :: fftw_unaligned = 2_c_int
+
+    !> Alignment period [bytes] of the cache keys: the largest SIMD alignment FFTW uses.
+    integer, parameter :: period = 64
+
+    !> The r2c and c2r plans of one transform size and one placement of the arrays.
+    type :: plan_pair
+        !> Transform size n (real samples).
+        integer :: n = 0
+        !> Byte offset modulo `period` of the real array (samples).
+        integer :: real_offset = 0
+        !> Byte offset modulo `period` of the complex array (spectrum).
+        integer :: complex_offset = 0
+        !> Plan of the forward (r2c) transform.
+        type(c_ptr) :: forward = c_null_ptr
+        !> Plan of the inverse (c2r) transform.
+        type(c_ptr) :: inverse = c_null_ptr
+    end type plan_pair
+
+    !> The process-wide plan cache: entries 1..n_cached of `cache` are in use.
+    type(plan_pair), allocatable :: cache(:)
+    !> Number of cached sizes.
+    integer :: n_cached = 0
 
     interface
         !> fftw_plan fftw_plan_dft_r2c_1d(int n, double *in, fftw_complex *out, unsigned flags)
@@ -55,11 +105,13 @@ module fftw_mod
         end function fftw_plan_dft_c2r_1d
 
         !> void fftw_execute_dft_r2c(const fftw_plan p, double *in, fftw_complex *out)
+        !> (`in` is declared intent(in): every plan here is out-of-place and made without
+        !> FFTW_DESTROY_INPUT, and FFTW then preserves the input of an r2c transform).
         subroutine fftw_execute_dft_r2c(plan, in, out) bind(c, name='fftw_execute_dft_r2c')
             import :: c_double, c_double_complex, c_ptr
             implicit none
             type(c_ptr), value :: plan
-            real(c_double), intent(inout) :: in(*)
+            real(c_double), intent(in) :: in(*)
             complex(c_double_complex), intent(inout) :: out(*)
         end subroutine fftw_execute_dft_r2c
 
@@ -146,5 +198,170 @@ contains
         call fftw_destroy_plan(plan)
         samples(:) = output
     end subroutine inverse_real_fft
+
+    !> Forward real DFT by a cached plan, out-of-place, n = size(samples):
+    !> spectrum(k+1) = sum_j samples(j+1)*exp(-2*pi*i*j*k/n), k = 0..n/2.
+    !>
+    !> Plans on first use of this size and placement (see the module notes on threads). On a
+    !> size mismatch, or if FFTW cannot plan, the spectrum is set to NaN.
+    subroutine cached_forward_fft(samples, spectrum)
+        !> Real samples y_j, j = 0..n-1, n >= 1 (any unit u); unchanged.
+        real(dp), contiguous, target, intent(in) :: samples(:)
+        !> Lines Y_k, k = 0..n/2 [u]: size(spectrum) must be n/2 + 1, distinct from samples.
+        complex(dp), contiguous, target, intent(out) :: spectrum(:)
+
+        integer :: i
+
+        i = 0
+        if (size(samples) >= 1 .and. size(spectrum) == size(samples)/2 + 1) then
+            i = plan_index(size(samples), offset_of(c_loc(samples)), offset_of(c_loc(spectrum)))
+        end if
+        if (i == 0) then
+            spectrum(:) = cmplx(ieee_value(0.0_dp, ieee_quiet_nan), ieee_value(0.0_dp, ieee_quiet_nan), dp)
+            return
+        end if
+        call fftw_execute_dft_r2c(cache(i)%forward, samples, spectrum)
+    end subroutine cached_forward_fft
+
+    !> Inverse real DFT by a cached plan, out-of-place, n = size(samples):
+    !> samples(j+1) = sum_k Y_k*exp(+2*pi*i*j*k/n) over the Hermitian-completed spectrum,
+    !> so that the inverse of the forward is n times the samples.
+    !>
+    !> The spectrum is overwritten (FFTW's c2r default). Plans on first use of this size and
+    !> placement. On a size mismatch, or if FFTW cannot plan, the samples are set to NaN.
+    subroutine cached_inverse_fft(spectrum, samples)
+        !> Lines Y_k, k = 0..n/2 (any unit u); destroyed on return.
+        complex(dp), contiguous, target, intent(inout) :: spectrum(:)
+        !> Real samples y_j, j = 0..n-1 [u]; n >= 1, size(spectrum) = n/2 + 1.
+        real(dp), contiguous, target, intent(out) :: samples(:)
+
+        integer :: i
+
+        i = 0
+        if (size(samples) >= 1 .and. size(spectrum) == size(samples)/2 + 1) then
+            i = plan_index(size(samples), offset_of(c_loc(samples)), offset_of(c_loc(spectrum)))
+        end if
+        if (i == 0) then
+            samples(:) = ieee_value(0.0_dp, ieee_quiet_nan)
+            return
+        end if
+        call fftw_execute_dft_c2r(cache(i)%inverse, spectrum, samples)
+    end subroutine cached_inverse_fft
+
+    !> Destroy every cached plan and empty the cache. Safe at any time no transform is
+    !> running; later transforms plan again. Does not call fftw_cleanup.
+    subroutine destroy_fft_plans()
+        integer :: i
+
+        do i = 1, n_cached
+            call fftw_destroy_plan(cache(i)%forward)
+            call fftw_destroy_plan(cache(i)%inverse)
+        end do
+        if (allocated(cache)) deallocate (cache)
+        n_cached = 0
+    end subroutine destroy_fft_plans
+
+    !> Number of entries in the plan cache (one r2c and one c2r plan for one transform size
+    !> and one placement of the arrays each).
+    function fft_plan_count() result(count)
+        integer :: count
+
+        count = n_cached
+    end function fft_plan_count
+
+    !> Index in the cache of the plans of size n for arrays at these byte offsets, planned
+    !> and appended if missing; 0 when FFTW cannot plan.
+    function plan_index(n, real_offset, complex_offset) result(i)
+        integer, intent(in) :: n, real_offset, complex_offset
+        integer :: i
+
+        type(plan_pair) :: entry
+
+        do i = 1, n_cached
+            if (cache(i)%n == n .and. cache(i)%real_offset == real_offset &
+                .and. cache(i)%complex_offset == complex_offset) return
+        end do
+        i = 0
+        call make_plans(n, real_offset, complex_offset, entry)
+        if (.not. (c_associated(entry%forward) .and. c_associated(entry%inverse))) then
+            if (c_associated(entry%forward)) call fftw_destroy_plan(entry%forward)
+            if (c_associated(entry%inverse)) call fftw_destroy_plan(entry%inverse)
+            return
+        end if
+        call append(entry)
+        i = n_cached
+    end function plan_index
+
+    !> Byte offset of an address modulo `period`.
+    function offset_of(address) result(offset)
+        type(c_ptr), intent(in) :: address
+        integer :: offset
+
+        offset = int(modulo(transfer(address, 0_c_intptr_t), int(period, c_intptr_t)))
+    end function offset_of
+
+    !> Plan both transforms of size n on scratch arrays placed at the given byte offsets
+    !> (modulo `period`), with FFTW_UNALIGNED if no placement matches; FFTW_ESTIMATE leaves
+    !> the scratch untouched. The scratch is freed on return: the plans keep its address
+    !> but are only ever run by the new-array execute functions, never by fftw_execute.
+    subroutine make_plans(n, real_offset, complex_offset, entry)
+        integer, intent(in) :: n, real_offset, complex_offset
+        type(plan_pair), intent(out) :: entry
+
+        integer, parameter :: slack = period/8
+        real(c_double), allocatable, target :: real_scratch(:), complex_scratch(:)
+        real(c_double), pointer, contiguous :: samples(:)
+        complex(c_double_complex), pointer, contiguous :: spectrum(:)
+        integer(c_int) :: flags
+        integer :: i_real, i_complex
+
+        allocate (real_scratch(n + slack), complex_scratch(2*(n/2 + 1) + slack))
+        real_scratch(:) = 0.0_c_double
+        complex_scratch(:) = 0.0_c_double
+        i_real = placed_at(real_scratch, real_offset)
+        i_complex = placed_at(complex_scratch, complex_offset)
+        flags = fftw_estimate
+        if (i_real == 0 .or. i_complex == 0) then
+            flags = ior(fftw_estimate, fftw_unaligned)
+            i_real = 1
+            i_complex = 1
+        end if
+        samples(1:n) => real_scratch(i_real:i_real + n - 1)
+        call c_f_pointer(c_loc(complex_scratch(i_complex)), spectrum, [n/2 + 1])
+        entry%n = n
+        entry%real_offset = real_offset
+        entry%complex_offset = complex_offset
+        entry%forward = fftw_plan_dft_r2c_1d(int(n, c_int), samples, spectrum, flags)
+        entry%inverse = fftw_plan_dft_c2r_1d(int(n, c_int), spectrum, samples, flags)
+    end subroutine make_plans
+
+    !> The index i <= period/8 at which buffer(i) sits at the byte offset `offset` modulo
+    !> `period`; 0 if there is none.
+    function placed_at(buffer, offset) result(i)
+        real(c_double), target, intent(in) :: buffer(:)
+        integer, intent(in) :: offset
+        integer :: i
+
+        do i = 1, period/8
+            if (offset_of(c_loc(buffer(i))) == offset) return
+        end do
+        i = 0
+    end function placed_at
+
+    !> Append an entry to the cache, growing it by doubling.
+    subroutine append(entry)
+        type(plan_pair), intent(in) :: entry
+
+        type(plan_pair), allocatable :: grown(:)
+
+        if (.not. allocated(cache)) allocate (cache(8))
+        if (n_cached == size(cache)) then
+            allocate (grown(2*size(cache)))
+            grown(1:n_cached) = cache(1:n_cached)
+            call move_alloc(grown, cache)
+        end if
+        n_cached = n_cached + 1
+        cache(n_cached) = entry
+    end subroutine append
 
 end module fftw_mod

@@ -12,6 +12,8 @@ module greenconv
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
     use conv_modal_mod, only: modal_convolver, new_modal_convolver, new_paper_convolver
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
+    use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, run_contact
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
@@ -30,6 +32,7 @@ module greenconv
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
     public :: modal_convolver, new_modal_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
     public :: contact_law, contact_response, run_contact
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf

@@ -6,6 +6,7 @@ module scene_run_mod
     use error_mod, only: error_type, fatal_error
     use convolver_mod, only: convolver
     use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
+    use conv_fft_mod, only: new_fft_convolver
     use conv_modal_mod, only: new_paper_convolver
     use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver
     use contact_mod, only: contact_response, run_contact
@@ -84,12 +85,13 @@ contains
     !> Build the convolver called `method` for a structure.
     !>
     !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
-    !> its FRF), truncated by the paper's rule. The modal methods recur on the structure's
+    !> its FRF), truncated by the paper's rule; `fft` computes the same sum by partitioned FFT.
+    !> The modal methods recur on the structure's
     !> model modes: `paper` (eqs. 15-17 as written), `recursive` (the same sum with decaying
     !> factors) and `exact` (force linear within a step); `modal` is `recursive`.
     !> `accuracy` says in words how far the model is from the exact g.
     subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
-        !> Method name: `direct`, `modal`, `paper`, `recursive` or `exact`.
+        !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive` or `exact`.
         character(len=*), intent(in) :: method
         !> The structure.
         type(structure_model), intent(in) :: structure
@@ -111,9 +113,13 @@ contains
         integer :: j
 
         select case (method)
-        case ('direct')
+        case ('direct', 'fft')
             call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
-            conv = new_direct_convolver(kernel, dt)
+            if (method == 'direct') then
+                conv = new_direct_convolver(kernel, dt)
+            else
+                conv = new_fft_convolver(kernel, dt)
+            end if
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci(tail)//' of max|g|'
             if (.not. structure%has_exact) accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE' &
@@ -127,10 +133,10 @@ contains
             conv = new_exact_convolver(structure%model, dt)
         case default
             call fatal_error(error, "unknown convolution method '"//method// &
-                             "': expected 'direct', 'modal', 'paper', 'recursive' or 'exact'")
+                             "': expected 'direct', 'fft', 'modal', 'paper', 'recursive' or 'exact'")
             return
         end select
-        if (method /= 'direct') then
+        if (method /= 'direct' .and. method /= 'fft') then
             accuracy = 'exact: the modes are the structure''s own'
             if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci(structure%fit%e)//' (eq. 7)'
         end if
