@@ -84,7 +84,7 @@ contains
         !> Histories of the run.
         type(contact_response), intent(out) :: response
 
-        real(dp) :: delta0, u_h, load
+        real(dp) :: delta0, u_h, load, w0
         integer :: n, n_t
 
         n_t = size(road)
@@ -92,13 +92,14 @@ contains
                   response%force(0:n_t - 1), response%compression(0:n_t - 1))
         call conv%reset()
         delta0 = law%compression(preload)
+        w0 = conv%instant_weight()
         do n = 0, n_t - 1
             u_h = conv%history()
             response%compression(n) = delta0 + road(n) - u_h
             response%force(n) = law%force(response%compression(n))
             load = response%force(n) - preload
             call conv%push(load)
-            response%displacement(n) = u_h + conv%instant_weight()*load
+            response%displacement(n) = u_h + w0*load
         end do
         response%time = [(n*conv%dt, n=0, n_t - 1)]
         response%road = road

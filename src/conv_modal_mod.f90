@@ -35,10 +35,10 @@ module conv_modal_mod
     implicit none
     private
 
-    public :: modal_convolver, new_modal_convolver, new_paper_convolver
+    public :: paper_convolver, new_paper_convolver
 
     !> The paper's modal recursion, eqs. (15)-(17).
-    type, extends(convolver) :: modal_convolver
+    type, extends(convolver) :: paper_convolver
         !> Decay rates a_k = xi_k*omega_k [1/s].
         real(dp), allocatable :: decay(:)
         !> Damped angular frequencies omega_k^d [rad/s].
@@ -54,43 +54,30 @@ module conv_modal_mod
         procedure :: push => modal_push
         procedure :: reset => modal_reset
         procedure :: model_size => modal_size
-    end type modal_convolver
+    end type paper_convolver
 
 contains
 
-    !> The paper's recursion, eqs. (15)-(17), for the modes of `modes` at time step dt [s],
-    !> named `modal` (see `new_paper_convolver` for the same under the name `paper`).
-    function new_modal_convolver(modes, dt) result(conv)
+    !> The paper's recursion, eqs. (15)-(17), for the modes of `modes` at time step dt [s].
+    function new_paper_convolver(modes, dt) result(conv)
         !> The Green's function as modes.
         type(modal_set), intent(in) :: modes
         !> Time step [s].
         real(dp), intent(in) :: dt
-        type(modal_convolver) :: conv
+        type(paper_convolver) :: conv
 
-        conv%name = 'modal'
+        conv%name = 'paper'
         conv%dt = dt
         conv%decay = -real(modes%pole, kind=dp)
         conv%omega_d = aimag(modes%pole)
         conv%residue = modes%residue
         allocate (conv%alpha(modes%n_modes()), conv%beta(modes%n_modes()))
         call conv%reset()
-    end function new_modal_convolver
-
-    !> The same recursion as `new_modal_convolver` under the name `paper`.
-    function new_paper_convolver(modes, dt) result(conv)
-        !> The Green's function as modes.
-        type(modal_set), intent(in) :: modes
-        !> Time step [s].
-        real(dp), intent(in) :: dt
-        type(modal_convolver) :: conv
-
-        conv = new_modal_convolver(modes, dt)
-        conv%name = 'paper'
     end function new_paper_convolver
 
     !> History displacement of eq. (15) at t_n from alpha_k(n), beta_k(n).
     function modal_history(self) result(u)
-        class(modal_convolver), intent(in) :: self
+        class(paper_convolver), intent(in) :: self
         real(dp) :: u
 
         real(dp) :: t
@@ -104,7 +91,7 @@ contains
 
     !> Accumulate the force of step n by eqs. (16)-(17) and advance.
     subroutine modal_push(self, force)
-        class(modal_convolver), intent(inout) :: self
+        class(paper_convolver), intent(inout) :: self
         real(dp), intent(in) :: force
 
         real(dp) :: t
@@ -119,7 +106,7 @@ contains
 
     !> Clear the accumulated integrals.
     subroutine modal_reset(self)
-        class(modal_convolver), intent(inout) :: self
+        class(paper_convolver), intent(inout) :: self
 
         self%alpha = 0.0_dp
         self%beta = 0.0_dp
@@ -128,7 +115,7 @@ contains
 
     !> Number of modes N_m.
     subroutine modal_size(self, n, label)
-        class(modal_convolver), intent(in) :: self
+        class(paper_convolver), intent(in) :: self
         integer, intent(out) :: n
         character(len=:), allocatable, intent(out) :: label
 

@@ -81,7 +81,7 @@ module conv_recursive_mod
 contains
 
     !> The paper's convolution, eqs. (15)-(17), as a decaying recursion named `recursive`:
-    !> the same numbers as `new_modal_convolver` without its overflow.
+    !> the same numbers as `new_paper_convolver` without its overflow.
     function new_recursive_convolver(modes, dt) result(conv)
         !> The Green's function as modes (Re lambda_k <= 0).
         type(modal_set), intent(in) :: modes

@@ -24,7 +24,8 @@ module convolver_mod
         real(dp) :: dt = 0.0_dp
         !> Number of forces pushed so far (the index n of the next step).
         integer :: step = 0
-        !> Displacement per newton [m/N] of the current step's own force, w0.
+        !> Displacement per newton [m/N] of the current step's own force, w0; fixed when the
+        !> convolver is built, the same at every step.
         real(dp) :: weight0 = 0.0_dp
     contains
         !> Displacement u_h(n) [m] at t_n from the forces pushed so far.

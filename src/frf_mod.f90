@@ -13,6 +13,7 @@
 module frf_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
+    use text_mod, only: int_text, real_text
     use error_mod, only: error_type, fatal_error
     use modal_set_mod, only: modal_set
     use files_mod, only: write_columns
@@ -146,7 +147,7 @@ contains
             return
         end if
         if (n < min_frf_lines) then
-            call fatal_error(error, path//': '//str(n)//' data lines; at least '//str(min_frf_lines)// &
+            call fatal_error(error, path//': '//int_text(n)//' data lines; at least '//int_text(min_frf_lines)// &
                              ' are needed (uniform grid from 0 Hz)')
             return
         end if
@@ -182,20 +183,22 @@ contains
         n = size(f)
         df = f(n)/(n - 1)
         if (.not. (df > 0.0_dp) .or. f(2) <= f(1)) then
-            call fatal_error(error, path//':'//str(line_of(2))//': frequencies must increase from 0 Hz; found '// &
-                             real_str(f(1))//' Hz then '//real_str(f(2))//' Hz')
+            call fatal_error(error, path//':'//int_text(line_of(2))//': frequencies must increase from 0 Hz; found '// &
+                             real_text(f(1))//' Hz then '//real_text(f(2))//' Hz')
             return
         end if
         if (abs(f(1)) > grid_tolerance*df) then
-            call fatal_error(error, path//':'//str(line_of(1))//': the grid must start at 0 Hz; first frequency is '// &
-                             real_str(f(1))//' Hz')
+            call fatal_error(error, path//':'//int_text(line_of(1)) &
+                //': the grid must start at 0 Hz; first frequency is '// &
+                             real_text(f(1))//' Hz')
             return
         end if
         do j = 2, n
             if (abs(f(j) - (j - 1)*df) > grid_tolerance*df) then
-                call fatal_error(error, path//':'//str(line_of(j))//': non-uniform spacing: expected f = '// &
-                                 real_str((j - 1)*df)//' Hz (step '//real_str(df)//' Hz, relative tolerance 1e-6),'// &
-                                 ' found '//real_str(f(j))//' Hz')
+                call fatal_error(error, path//':'//int_text(line_of(j))//': non-uniform spacing: expected f = '// &
+                                 real_text((j - 1)*df)//' Hz (step '//real_text(df) &
+                                     //' Hz, relative tolerance 1e-6),'// &
+                                 ' found '//real_text(f(j))//' Hz')
                 return
             end if
         end do
@@ -282,28 +285,30 @@ contains
         integer :: first(3), last(3), n_tokens, i, stat
         character(len=:), allocatable :: prefix
 
-        prefix = path//':'//str(line_number)//': '
+        prefix = path//':'//int_text(line_number)//': '
         call split(line, first, last, n_tokens)
         if (n_tokens /= 3) then
             call fatal_error(error, prefix//'expected 3 columns (f [Hz], Re G [m/N], Im G [m/N]), found '// &
-                             str(n_tokens)//': "'//trim(adjustl(line))//'"')
+                             int_text(n_tokens)//': "'//trim(adjustl(line))//'"')
             return
         end if
         do i = 1, 3
             associate (token => line(first(i):last(i)))
                 if (.not. is_number(token)) then
                     if (is_nan_or_inf(token)) then
-                        call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                        call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i)) &
+                            //') is "'//token// &
                                          '"; expected a finite number')
                     else
-                        call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                        call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i)) &
+                            //') is "'//token// &
                                          '"; expected a number')
                     end if
                     return
                 end if
                 read (token, *, iostat=stat) row(i)
                 if (stat /= 0 .or. .not. ieee_is_finite(row(i))) then
-                    call fatal_error(error, prefix//'column '//str(i)//' ('//trim(names(i))//') is "'//token// &
+                    call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i))//') is "'//token// &
                                      '"; expected a finite number')
                     return
                 end if
@@ -414,27 +419,5 @@ contains
             if (stat /= 0) return
         end do
     end subroutine read_line
-
-    !> An integer as text.
-    pure function str(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-
-        character(len=16) :: buffer
-
-        write (buffer, '(i0)') i
-        text = trim(buffer)
-    end function str
-
-    !> A real as short text.
-    pure function real_str(x) result(text)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
-
-        character(len=32) :: buffer
-
-        write (buffer, '(g0.10)') x
-        text = trim(adjustl(buffer))
-    end function real_str
 
 end module frf_mod

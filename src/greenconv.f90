@@ -10,7 +10,7 @@ module greenconv
     use sdof_mod, only: sdof_receptance, sdof_impulse, sdof_modes
     use convolver_mod, only: convolver
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
-    use conv_modal_mod, only: modal_convolver, new_modal_convolver, new_paper_convolver
+    use conv_modal_mod, only: paper_convolver, new_paper_convolver
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
     use fftw_mod, only: destroy_fft_plans, fft_plan_count
@@ -30,7 +30,7 @@ module greenconv
     public :: sdof_receptance, sdof_impulse, sdof_modes
     public :: convolver
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
-    public :: modal_convolver, new_modal_convolver, new_paper_convolver
+    public :: paper_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
     public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
     public :: contact_law, contact_response, run_contact

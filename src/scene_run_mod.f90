@@ -3,6 +3,7 @@
 !> per method (task `contact`), writing column files and a summary line per method.
 module scene_run_mod
     use kinds_mod, only: dp
+    use text_mod, only: int_text, sci_text
     use error_mod, only: error_type, fatal_error
     use convolver_mod, only: convolver
     use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
@@ -77,8 +78,8 @@ contains
             call conv%model_size(n, label)
             call write_response(output_path(scene, trim(scene%methods(i))), scene, conv, response, error)
             if (allocated(error)) return
-            write (unit, summary_format) trim(scene%methods(i)), label//'='//itoa(n), scene%n_steps, finish - start, &
-                accuracy
+            write (unit, summary_format) trim(scene%methods(i)), label//'='//int_text(n), scene%n_steps, &
+                finish - start, accuracy
         end do
     end subroutine run_methods
 
@@ -109,7 +110,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: kernel(:)
-        real(dp) :: tail
+        real(dp) :: tail, misfit
         integer :: j
 
         select case (method)
@@ -121,10 +122,12 @@ contains
                 conv = new_fft_convolver(kernel, dt)
             end if
             accuracy = 'exact: the kernel covers the whole run'
-            if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci(tail)//' of max|g|'
-            if (.not. structure%has_exact) accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE' &
-                //' modes'' g by '//sci(maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)]))) &
-                                     /maxval(abs(kernel)))//' of max|g|'
+            if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
+            if (.not. structure%has_exact) then
+                misfit = maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)])))
+                accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE modes'' g by ' &
+                           //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
+            end if
         case ('paper')
             conv = new_paper_convolver(structure%model, dt)
         case ('modal', 'recursive')
@@ -138,7 +141,7 @@ contains
         end select
         if (method /= 'direct' .and. method /= 'fft') then
             accuracy = 'exact: the modes are the structure''s own'
-            if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci(structure%fit%e)//' (eq. 7)'
+            if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci_text(structure%fit%e)//' (eq. 7)'
         end if
     end subroutine make_convolver
 
@@ -189,34 +192,12 @@ contains
 
         call conv%model_size(n, label)
         write (comments(1), '(a,i0,a,es10.3,a)') 'greenconv scene '//scene%name//', method '//conv%name//' (' &
-            //label//' = '//itoa(n)//'), ', scene%n_steps, ' steps of ', scene%dt, ' s'
+            //label//' = '//int_text(n)//'), ', scene%n_steps, ' steps of ', scene%dt, ' s'
         comments(2) = 'units: s m m N m'
         comments(3) = 't u_road u f_contact delta'
         call write_columns(path, comments, reshape([response%time, response%road, response%displacement, &
                                                     response%force, response%compression], &
                                                    [scene%n_steps, 5]), error)
     end subroutine write_response
-
-    !> An integer as text.
-    pure function itoa(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-
-        character(len=16) :: buffer
-
-        write (buffer, '(i0)') i
-        text = trim(buffer)
-    end function itoa
-
-    !> A real in short scientific notation.
-    pure function sci(x) result(text)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
-
-        character(len=16) :: buffer
-
-        write (buffer, '(es9.2)') x
-        text = trim(adjustl(buffer))
-    end function sci
 
 end module scene_run_mod

@@ -12,7 +12,7 @@ module test_convolution_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use duhamel_mod, only: step_response, sine_response
     use greenconv, only: convolver, modal_set, sdof_modes, sdof_impulse, new_direct_convolver, &
-                         new_modal_convolver, truncation_length, sample_kernel
+                         new_paper_convolver, truncation_length, sample_kernel
     implicit none
     private
 
@@ -80,7 +80,7 @@ contains
             kernel(:) = sdof_impulse(mass, stiffness, xi, [(j*dt, j=0, n_steps)])
             conv = new_direct_convolver(kernel, dt)
         else
-            conv = new_modal_convolver(sdof_modes(mass, stiffness, xi), dt)
+            conv = new_paper_convolver(sdof_modes(mass, stiffness, xi), dt)
         end if
     end subroutine build
 
