@@ -55,7 +55,16 @@ contains
         real(dp), intent(in) :: delta
 
         law_force = 0.0_dp
-        if (delta > 0.0_dp) law_force = self%stiffness*delta**self%exponent
+        if (delta <= 0.0_dp) return
+        ! Hertz and linear springs without the general power (a pow call costs more than a
+        ! whole step of the modal recursion); the same value to the last bit or two.
+        if (abs(self%exponent - 1.5_dp) < epsilon(1.0_dp)) then
+            law_force = self%stiffness*delta*sqrt(delta)
+        else if (abs(self%exponent - 1.0_dp) < epsilon(1.0_dp)) then
+            law_force = self%stiffness*delta
+        else
+            law_force = self%stiffness*delta**self%exponent
+        end if
     end function law_force
 
     !> Compression [m] at which the spring carries a force F >= 0 [N]: (F/k_c)^(1/p).

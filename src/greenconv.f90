@@ -9,12 +9,14 @@ module greenconv
     use modal_set_mod, only: modal_set, modes_from_paper, random_modes
     use sdof_mod, only: sdof_receptance, sdof_impulse, sdof_modes
     use convolver_mod, only: convolver
-    use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
+    use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     use conv_modal_mod, only: paper_convolver, new_paper_convolver
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
     use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, run_contact
+    use ode_reference_mod, only: ode_system, integrate
+    use contact_reference_mod, only: contact_reference
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
@@ -29,11 +31,12 @@ module greenconv
     public :: modal_set, modes_from_paper, random_modes
     public :: sdof_receptance, sdof_impulse, sdof_modes
     public :: convolver
-    public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel
+    public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     public :: paper_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
     public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
     public :: contact_law, contact_response, run_contact
+    public :: ode_system, integrate, contact_reference
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form

@@ -5,9 +5,10 @@
 module test_contact_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use reference_ode_mod, only: integrate
+    use ode_reference_mod, only: ode_system, integrate
     use greenconv, only: convolver, contact_law, contact_response, run_contact, sdof_modes, &
-                         make_convolver, error_type, sine_road, structure_from_modes
+                         make_convolver, error_type, sine_road, structure_from_modes, &
+                         contact_reference
     implicit none
     private
 
@@ -19,6 +20,18 @@ module test_contact_mod
     real(dp), parameter :: dt = 1.0e-4_dp
     integer, parameter :: n_steps = 2000
 
+    !> M u'' + C u' + K u = 1 N (a unit step), from rest.
+    type, extends(ode_system) :: step_oscillator
+    contains
+        procedure :: rhs => oscillator
+    end type step_oscillator
+
+    !> M u'' + C u' + K u = F(delta0 + u_r(t) - u) - F0: the scene's contact, written again.
+    type, extends(ode_system) :: contact_oscillator
+    contains
+        procedure :: rhs => contact_ode
+    end type contact_oscillator
+
 contains
 
     !> Tests of contact_mod on the SDOF scene.
@@ -27,6 +40,7 @@ contains
 
         testsuite = [new_unittest('contact law: power law, zero in tension, inverse', test_law), &
                      new_unittest('reference integrator: oscillator step response', test_reference_integrator), &
+                     new_unittest('library contact reference equals this test''s ODE', test_library_reference), &
                      new_unittest('direct and modal agree to round-off in the scene', test_methods_agree), &
                      new_unittest('F >= 0, and F = 0 exactly when delta <= 0', test_unilateral), &
                      new_unittest('direct within 1e-3 (relative L2) of the ODE reference', test_direct_reference), &
@@ -72,6 +86,7 @@ contains
     subroutine test_reference_integrator(error)
         type(test_error), allocatable, intent(out) :: error
 
+        type(step_oscillator) :: system
         real(dp) :: y(2), h, t, w0, wd, a, exact
         integer :: n
 
@@ -81,21 +96,23 @@ contains
         y = 0.0_dp
         h = 1.0e-6_dp
         do n = 1, 200
-            call integrate(oscillator, (n - 1)*1.0e-3_dp, n*1.0e-3_dp, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
+            call integrate(system, (n - 1)*1.0e-3_dp, n*1.0e-3_dp, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
         end do
         t = 0.2_dp
         exact = 1.0_dp/stiffness*(1.0_dp - exp(-a*t)*(cos(wd*t) + a/wd*sin(wd*t)))
         call check(error, y(1), exact, 'u(0.2 s) under a unit step', thr=1.0e-10_dp/stiffness)
-    contains
-        subroutine oscillator(time, state, rate)
-            real(dp), intent(in) :: time
-            real(dp), intent(in) :: state(:)
-            real(dp), intent(out) :: rate(:)
-
-            rate(1) = state(2)
-            rate(2) = (1.0_dp - 2.0_dp*xi*w0*mass*state(2) - stiffness*state(1))/mass + 0.0_dp*time
-        end subroutine oscillator
     end subroutine test_reference_integrator
+
+    !> The step-loaded oscillator (self carries no data).
+    subroutine oscillator(self, t, y, dydt)
+        class(step_oscillator), intent(in) :: self
+        real(dp), intent(in) :: t
+        real(dp), intent(in) :: y(:)
+        real(dp), intent(out) :: dydt(:)
+
+        dydt(1) = y(2)
+        dydt(2) = (1.0_dp - 2.0_dp*xi*sqrt(stiffness*mass)*y(2) - stiffness*y(1))/mass + 0.0_dp*t
+    end subroutine oscillator
 
     subroutine test_methods_agree(error)
         type(test_error), allocatable, intent(out) :: error
@@ -112,6 +129,28 @@ contains
         call check(error, maxval(abs(direct%force - modal%force)), 0.0_dp, 'max |F_direct - F_modal|', &
                    thr=1.0e-10_dp*maxval(direct%force))
     end subroutine test_methods_agree
+
+    !> contact_reference (modal state space, used by the benchmark) against the oscillator
+    !> written out here: both integrate the same ODE at 1e-12 and 1e-10, so they agree to
+    !> well within 1e-7 of max|u|.
+    subroutine test_library_reference(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp) :: u_ref(0:n_steps - 1), f_ref(0:n_steps - 1)
+        real(dp), allocatable :: u_lib(:), f_lib(:)
+        type(sine_road) :: road
+
+        road%amplitude = amplitude
+        road%omega = omega_road
+        call reference_solution(u_ref, f_ref)
+        call contact_reference(sdof_modes(mass, stiffness, xi), contact_law(k_contact, exponent), road, preload, &
+                               dt, n_steps, u_lib, f_lib)
+        call note('max du/max|u|', maxval(abs(u_lib - u_ref))/maxval(abs(u_ref)))
+        call note('max dF/max F', maxval(abs(f_lib - f_ref))/maxval(f_ref))
+        call check(error, maxval(abs(u_lib - u_ref)), 0.0_dp, 'contact_reference u', thr=1.0e-7_dp*maxval(abs(u_ref)))
+        if (allocated(error)) return
+        call check(error, maxval(abs(f_lib - f_ref)), 0.0_dp, 'contact_reference F', thr=1.0e-7_dp*maxval(f_ref))
+    end subroutine test_library_reference
 
     subroutine test_unilateral(error)
         type(test_error), allocatable, intent(out) :: error
@@ -183,29 +222,34 @@ contains
     subroutine reference_solution(u_ref, f_ref)
         real(dp), intent(out) :: u_ref(0:), f_ref(0:)
 
-        real(dp) :: y(2), h, delta0, damping
+        type(contact_oscillator) :: system
+        real(dp) :: y(2), h
         integer :: n
 
-        delta0 = (preload/k_contact)**(1.0_dp/exponent)
-        damping = 2.0_dp*xi*sqrt(stiffness*mass)
         y = 0.0_dp
         h = dt/10.0_dp
         do n = 0, n_steps - 1
-            if (n > 0) call integrate(contact_ode, (n - 1)*dt, n*dt, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
+            if (n > 0) call integrate(system, (n - 1)*dt, n*dt, y, 1.0e-12_dp, [1.0e-18_dp, 1.0e-15_dp], h)
             u_ref(n) = y(1)
-            f_ref(n) = spring(delta0 + amplitude*sin(omega_road*n*dt) - y(1))
+            f_ref(n) = spring(static_compression() + amplitude*sin(omega_road*n*dt) - y(1))
         end do
-    contains
-        subroutine contact_ode(t, state, rate)
-            real(dp), intent(in) :: t
-            real(dp), intent(in) :: state(:)
-            real(dp), intent(out) :: rate(:)
-
-            rate(1) = state(2)
-            rate(2) = (spring(delta0 + amplitude*sin(omega_road*t) - state(1)) - preload &
-                       - damping*state(2) - stiffness*state(1))/mass
-        end subroutine contact_ode
     end subroutine reference_solution
+
+    subroutine contact_ode(self, t, y, dydt)
+        class(contact_oscillator), intent(in) :: self
+        real(dp), intent(in) :: t
+        real(dp), intent(in) :: y(:)
+        real(dp), intent(out) :: dydt(:)
+
+        dydt(1) = y(2)
+        dydt(2) = (spring(static_compression() + amplitude*sin(omega_road*t) - y(1)) - preload &
+                   - 2.0_dp*xi*sqrt(stiffness*mass)*y(2) - stiffness*y(1))/mass
+    end subroutine contact_ode
+
+    !> delta0 = (F0/k_c)^(1/p) [m].
+    pure real(dp) function static_compression()
+        static_compression = (preload/k_contact)**(1.0_dp/exponent)
+    end function static_compression
 
     !> The contact spring written out again: k_c*delta^p in compression, zero otherwise.
     elemental real(dp) function spring(delta)

@@ -1,21 +1,34 @@
-!> An independent reference integrator for the tests: the embedded Runge-Kutta pair of
-!> Dormand and Prince, order 5(4) (J. Comput. Appl. Math. 6, 1980), with adaptive steps,
-!> for small systems y' = f(t, y). Written here so that it shares nothing with the
-!> convolution code it checks.
-module reference_ode_mod
-    use, intrinsic :: iso_fortran_env, only: dp => real64
+!> An independent reference integrator: the embedded Runge-Kutta pair of Dormand and
+!> Prince, order 5(4) (J. Comput. Appl. Math. 6, 1980), with adaptive steps, for small
+!> systems y' = f(t, y). It shares nothing with the convolution code it checks: the tests
+!> and the benchmark measure every convolution method against the structure's state-space
+!> equations solved by it at tight tolerance (contact_reference_mod).
+module ode_reference_mod
+    use kinds_mod, only: dp
     implicit none
     private
 
-    public :: rhs_interface, integrate
+    public :: ode_system, integrate
+
+    !> A system y' = f(t, y): extend it with the data the right-hand side needs.
+    type, abstract :: ode_system
+    contains
+        !> Right-hand side f(t, y).
+        procedure(rhs_interface), deferred :: rhs
+    end type ode_system
 
     abstract interface
         !> Right-hand side f(t, y).
-        subroutine rhs_interface(t, y, dydt)
-            import :: dp
+        subroutine rhs_interface(self, t, y, dydt)
+            import :: ode_system, dp
             implicit none
+            !> The system.
+            class(ode_system), intent(in) :: self
+            !> Time [s].
             real(dp), intent(in) :: t
+            !> State.
             real(dp), intent(in) :: y(:)
+            !> Its time derivative.
             real(dp), intent(out) :: dydt(:)
         end subroutine rhs_interface
     end interface
@@ -40,11 +53,17 @@ contains
     !> Advance y from t0 to t1 with adaptive steps, each component's local error kept
     !> below atol(i) + rtol*|y(i)|. `h` is the first trial step and returns the last one.
     subroutine integrate(f, t0, t1, y, rtol, atol, h)
-        procedure(rhs_interface) :: f
+        !> The system y' = f(t, y).
+        class(ode_system), intent(in) :: f
+        !> Start and end of the interval [s].
         real(dp), intent(in) :: t0, t1
+        !> State at t0 on entry, at t1 on return.
         real(dp), intent(inout) :: y(:)
+        !> Relative tolerance of the local error.
         real(dp), intent(in) :: rtol
+        !> Absolute tolerance of the local error, per component.
         real(dp), intent(in) :: atol(:)
+        !> First trial step [s] on entry, the last accepted step on return.
         real(dp), intent(inout) :: h
 
         real(dp), dimension(size(y)) :: k1, k2, k3, k4, k5, k6, k7, y_new, scale
@@ -55,14 +74,14 @@ contains
         do
             last = t + h >= t1
             step = merge(t1 - t, h, last)
-            call f(t, y, k1)
-            call f(t + c2*step, y + step*a21*k1, k2)
-            call f(t + c3*step, y + step*(a31*k1 + a32*k2), k3)
-            call f(t + c4*step, y + step*(a41*k1 + a42*k2 + a43*k3), k4)
-            call f(t + c5*step, y + step*(a51*k1 + a52*k2 + a53*k3 + a54*k4), k5)
-            call f(t + step, y + step*(a61*k1 + a62*k2 + a63*k3 + a64*k4 + a65*k5), k6)
+            call f%rhs(t, y, k1)
+            call f%rhs(t + c2*step, y + step*a21*k1, k2)
+            call f%rhs(t + c3*step, y + step*(a31*k1 + a32*k2), k3)
+            call f%rhs(t + c4*step, y + step*(a41*k1 + a42*k2 + a43*k3), k4)
+            call f%rhs(t + c5*step, y + step*(a51*k1 + a52*k2 + a53*k3 + a54*k4), k5)
+            call f%rhs(t + step, y + step*(a61*k1 + a62*k2 + a63*k3 + a64*k4 + a65*k5), k6)
             y_new = y + step*(b1*k1 + b3*k3 + b4*k4 + b5*k5 + b6*k6)
-            call f(t + step, y_new, k7)
+            call f%rhs(t + step, y_new, k7)
             scale = atol + rtol*max(abs(y), abs(y_new))
             err = sqrt(sum((step*(e1*k1 + e3*k3 + e4*k4 + e5*k5 + e6*k6 + e7*k7)/scale)**2)/size(y))
             if (err <= 1.0_dp) then
@@ -77,4 +96,4 @@ contains
         end do
     end subroutine integrate
 
-end module reference_ode_mod
+end module ode_reference_mod
