@@ -1,0 +1,44 @@
+!> greenconv-bench: the paper's timing tables (Tabs. 2 and 3) and the targets, measured in one
+!> run, printed on standard output with `#` headers.
+!>
+!>     greenconv-bench [SDOF_SCENE [MDOF_SCENE]]
+!>
+!> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
+!> directory: `make bench`).
+program greenconv_bench
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use error_mod, only: error_type
+    use bench_tables_mod, only: print_tables
+    implicit none
+
+    type(error_type), allocatable :: error
+    character(len=:), allocatable :: sdof_file, mdof_file
+
+    sdof_file = argument(1, 'data/sdof_sine.nml')
+    mdof_file = argument(2, 'data/mdof_random.nml')
+    call print_tables(output_unit, sdof_file, mdof_file, error)
+    if (allocated(error)) then
+        write (error_unit, '(a)') 'greenconv-bench: '//error%message
+        stop 2, quiet=.true.
+    end if
+
+contains
+
+    !> Command-line argument i, or `default` when absent.
+    function argument(i, default) result(value)
+        integer, intent(in) :: i
+        character(len=*), intent(in) :: default
+        character(len=:), allocatable :: value
+
+        integer :: length
+
+        call get_command_argument(i, length=length)
+        if (length == 0) then
+            value = default
+            return
+        end if
+        allocate (character(len=length) :: value)
+        call get_command_argument(i, value)
+    end function argument
+
+end program greenconv_bench
