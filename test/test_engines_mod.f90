@@ -37,6 +37,8 @@ contains
         testsuite = [new_unittest('recursive equals paper to round-off: sdof', test_recursive_sdof), &
                      new_unittest('recursive equals paper to round-off: 10 modes', test_recursive_modes), &
                      new_unittest('paper overflows past xi*omega*t = 709; recursive, exact do not', test_overflow), &
+                     new_unittest('recursive and exact over 1e8 steps: finite, steady state to round-off', &
+                                  test_long_run), &
                      new_unittest('hold functions phi1, phi2 against quadruple precision', test_hold_functions), &
                      new_unittest('exact: instant weight w0 against quadrature', test_instant_weight), &
                      new_unittest('exact: ramp load reproduced to round-off (u = history + w0*q)', test_ramp), &
@@ -196,6 +198,61 @@ contains
         if (allocated(error)) return
         call check(error, err_exact, 0.0_dp, 'exact against Duhamel', thr=bound_exact)
     end subroutine test_overflow
+
+    !> The 2 kHz, xi = 0.05 mode at dt = 10 us for 1e8 steps (1000 s; `paper` overflows
+    !> after 1.13 s). `recursive` under a sine load of exactly 64 samples per period
+    !> (1562.5 Hz, from a table, so the load carries no phase drift) must end on the
+    !> steady state of its own discrete sum, which a geometric series gives in closed form:
+    !> with w_j = dt*2*Re(r*z^j), z = exp(lambda*dt), s = exp(-i*W*dt), and q_m = Im(e^{iWt_m}),
+    !>     u_h(n) = Im( e^{iWt_n} * dt*( r*z*s/(1 - z*s) + conj(r)*conj(z)*s/(1 - conj(z)*s) ) ).
+    !> `exact` under a constant force must end on the static F/K exactly (the hold integrates
+    !> a constant force without error). Both to 1e-12 of the amplitude: the states are
+    !> multiplied by |z| = 0.9937 each step, so round-off does not accumulate.
+    subroutine test_long_run(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: dt = 1.0e-5_dp, zeta = 0.05_dp
+        integer, parameter :: n_steps = 100000000, period = 64
+        class(convolver), allocatable :: recursive, exact
+        type(modal_set) :: modes
+        complex(dp) :: z, s, r, gain
+        real(dp) :: table(0:period - 1), stiff, u, expected, worst_rec, worst_exact, amplitude
+        integer :: n
+
+        stiff = mass*(2.0_dp*pi*2000.0_dp)**2
+        modes = sdof_modes(mass, stiff, zeta)
+        recursive = new_recursive_convolver(modes, dt)
+        exact = new_exact_convolver(modes, dt)
+        table = sin(2.0_dp*pi*[(n, n=0, period - 1)]/period)
+        do n = 0, n_steps - 1
+            call recursive%push(table(mod(n, period)))
+            call exact%push(1.0_dp)
+        end do
+        ! Closed form of the discrete steady state, at the last steps n_steps .. n_steps + period - 1.
+        r = modes%residue(1)
+        z = exp(modes%pole(1)*dt)
+        s = exp(cmplx(0.0_dp, -2.0_dp*pi/period, kind=dp))
+        gain = dt*(r*z*s/(1.0_dp - z*s) + conjg(r)*conjg(z)*s/(1.0_dp - conjg(z)*s))
+        amplitude = abs(gain)
+        worst_rec = 0.0_dp
+        worst_exact = 0.0_dp
+        do n = n_steps, n_steps + period - 1
+            u = recursive%history()
+            expected = aimag(exp(cmplx(0.0_dp, 2.0_dp*pi*mod(n, period)/period, kind=dp))*gain)
+            worst_rec = max(worst_rec, abs(u - expected))
+            worst_exact = max(worst_exact, abs(exact%history() + exact%instant_weight() - 1.0_dp/stiff))
+            call recursive%push(table(mod(n, period)))
+            call exact%push(1.0_dp)
+        end do
+        call note('recursive: max error/amplitude', worst_rec/amplitude)
+        call note('exact: max error/(F/K)', worst_exact*stiff)
+        call check(error, ieee_is_finite(recursive%history()) .and. ieee_is_finite(exact%history()), &
+                   'finite after 1e8 steps')
+        if (allocated(error)) return
+        call check(error, worst_rec, 0.0_dp, 'recursive: discrete steady state', thr=1.0e-12_dp*amplitude)
+        if (allocated(error)) return
+        call check(error, worst_exact, 0.0_dp, 'exact: static F/K', thr=1.0e-12_dp/stiff)
+    end subroutine test_long_run
 
     !> phi1(x) = (exp(x) - 1)/x and phi2(x) = (exp(x) - 1 - x)/x^2 against the closed form
     !> in quadruple precision, on both sides of |x| = 1 where the series gives way to the
