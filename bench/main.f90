@@ -1,5 +1,6 @@
 !> greenconv-bench: the paper's timing tables (Tabs. 2 and 3) and the targets, measured in one
-!> run, printed on standard output with `#` headers.
+!> run, printed on standard output with `#` headers; the stability map of the paper's
+!> recursion (and the charts' data) written to out/bench/.
 !>
 !>     greenconv-bench [SDOF_SCENE [MDOF_SCENE]]
 !>
@@ -9,14 +10,20 @@ program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use error_mod, only: error_type
     use bench_tables_mod, only: print_tables
+    use bench_stability_mod, only: overflow_map
+    use files_mod, only: make_directory
     implicit none
 
     type(error_type), allocatable :: error
     character(len=:), allocatable :: sdof_file, mdof_file
+    !> Where the benchmark's column files go (plot/bench_*.gp read them there).
+    character(len=*), parameter :: output_dir = 'out/bench'
 
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
-    call print_tables(output_unit, sdof_file, mdof_file, error)
+    call make_directory(output_dir, error)
+    if (.not. allocated(error)) call print_tables(output_unit, sdof_file, mdof_file, error)
+    if (.not. allocated(error)) call overflow_map(output_unit, output_dir//'/overflow_map.dat', error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
         stop 2, quiet=.true.
