@@ -58,7 +58,8 @@ contains
         if (allocated(error)) return
         failures = count(table(:, 3) > 0.0_dp)
         predicted = count(table(:, 4) < duration)
-        write (unit, '(a)') '# Stability: where paper overflows (one mode, unit step load, dt 20 us, 2 s of simulated time)'
+        write (unit, '(a)') '# Stability: where paper overflows (one mode, unit step load, dt 20 us, ' &
+            //'2 s of simulated time)'
         write (unit, '(a,i0,a,i0,a,i0,a)') '#   paper failed in ', failures, ' of ', size(table, 1), &
             ' cells (', predicted, ' predicted by xi*omega*t > 709.78)'
         write (unit, '(a,es9.2)') '#   largest |t_fail/t_predicted - 1| where it failed: ', &
