@@ -5,8 +5,11 @@
 #   make build      deps, then `fpm build --profile release`
 #   make lib        plain build with the compiler alone, no fpm: build/make/libgreenconv.a,
 #                   module files in build/make/include/, the driver build/make/greenconv
-#   make run        deps, build, run every data/*.nml scene, then draw every plot/*.gp
-#                   into out/figures/
+#   make run        deps, build, run every data/*.nml scene, then the benchmark (`make bench`),
+#                   then draw every plot/*.gp into out/figures/
+#   make bench      deps, build, run the benchmark example greenconv-bench: Tabs. 2-3 and the
+#                   targets measured in one run, printed and saved in out/bench/tables.txt, the
+#                   data of the speed/accuracy and stability charts in out/bench/, then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
 #   make test       deps, `make lib`, check that the Makefile-built driver writes the same
 #                   output as the fpm-built one, then `fpm test` (its "N passed, N failed"
@@ -61,7 +64,7 @@ FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run figures test clean
+.PHONY: all lib deps build run bench bench-data figures test clean
 
 all: lib
 
@@ -116,9 +119,22 @@ FORCE:
 run: build
 	@for scene in $(SCENES); do \
 	    echo "greenconv: running $$scene"; \
-	    $(FPM) run --profile $(FPM_PROFILE) -- "$$scene"; \
+	    $(FPM) run greenconv --profile $(FPM_PROFILE) -- "$$scene"; \
 	done
+	@$(MAKE) bench-data
 	@$(MAKE) figures
+
+bench: build
+	@$(MAKE) bench-data
+	@$(MAKE) figures
+
+# The tables go to a temporary file renamed when complete, like every other output.
+bench-data:
+	@mkdir -p out/bench
+	@echo "greenconv: running the benchmark (about a minute)"
+	@$(FPM) run --example greenconv-bench --profile $(FPM_PROFILE) | tee out/bench/tables.txt.part
+	@mv out/bench/tables.txt.part out/bench/tables.txt
+	@echo "greenconv: tables saved in out/bench/tables.txt"
 
 figures:
 	@mkdir -p $(FIGDIR)

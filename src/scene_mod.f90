@@ -11,7 +11,7 @@
 !>     &road           profile = 'sine' | 'random', amplitude [m], omega [rad/s],
 !>                     wavelength [m], speed [m/s], n_terms, seed
 !>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N]
-!>     &convolution    methods, truncation_tol
+!>     &convolution    methods, truncation_tol, accuracy
 module scene_mod
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use kinds_mod, only: dp
@@ -28,7 +28,7 @@ module scene_mod
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
     !> The convolution methods a scene may list, for messages.
-    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive' or 'exact'"
+    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact' or 'auto'"
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
 
@@ -86,6 +86,9 @@ module scene_mod
         character(len=name_length), allocatable :: methods(:)
         !> Truncation fraction of max |g| for the direct method.
         real(dp) :: truncation_tol = 0.01_dp
+        !> Relative accuracy the `auto` method must meet: the largest E (eq. 7) of a modal model
+        !> it accepts; a scene that lists `auto` identifies modes with tol_e = accuracy.
+        real(dp) :: accuracy = 1.0e-3_dp
     end type scene_type
 
 contains
@@ -332,28 +335,29 @@ contains
         if (preload < 0.0_dp) this%preload = this%mass*gravity
     end subroutine read_contact_group
 
-    !> &convolution: methods (list of names), truncation_tol.
+    !> &convolution: methods (list of names), truncation_tol, accuracy.
     subroutine read_convolution_group(unit, this, error)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
         character(len=name_length) :: methods(max_methods)
-        real(dp) :: truncation_tol
+        real(dp) :: truncation_tol, accuracy
         integer :: stat, i
         character(len=512) :: message
-        namelist /convolution/ methods, truncation_tol
+        namelist /convolution/ methods, truncation_tol, accuracy
 
         methods = ''
         methods(1:2) = [character(len=name_length) :: 'direct', 'modal']
         truncation_tol = this%truncation_tol
+        accuracy = this%accuracy
         rewind (unit)
         read (unit, nml=convolution, iostat=stat, iomsg=message)
         call group_status(this%file, 'convolution', stat, message, error)
         if (allocated(error)) return
         do i = 1, max_methods
             select case (trim(methods(i)))
-            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact')
+            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'auto')
             case default
                 call fatal_error(error, &
                                  expected(this%file, 'convolution', 'methods', known_methods, methods(i)))
@@ -366,7 +370,10 @@ contains
         this%methods = pack(methods, methods /= '')
         call require(size(this%methods) > 0, &
                      expected(this%file, 'convolution', 'methods', 'at least one method'), error)
+        call require(accuracy > 0.0_dp .and. accuracy < 1.0_dp, &
+                     expected(this%file, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
         this%truncation_tol = truncation_tol
+        this%accuracy = accuracy
     end subroutine read_convolution_group
 
     !> Turn the status of a namelist read into an error; a missing group is no error.

@@ -20,6 +20,10 @@ module scene_run_mod
 
     public :: run_scene, make_convolver, output_path
 
+    !> `auto` runs the direct sum when N_t*N_g is at most this many multiply-adds (about
+    !> 2 ms at the measured 6-7 GMAC/s): then no model is worth building.
+    real(dp), parameter :: direct_work_limit = 1.0e7_dp
+
     !> Layout of the summary line of a method.
     character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
 
@@ -70,7 +74,7 @@ contains
         write (unit, '(a,t12,a,t24,a,t36,a,t48,a)') '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             call make_convolver(trim(scene%methods(i)), structure, scene%dt, scene%truncation_tol, scene%n_steps, &
-                                conv, accuracy, error)
+                                conv, accuracy, error, scene%accuracy)
             if (allocated(error)) return
             call cpu_time(start)
             call run_contact(conv, scene%law, road, scene%preload, response)
@@ -87,12 +91,13 @@ contains
     !>
     !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
     !> its FRF), truncated by the paper's rule; `fft` computes the same sum by partitioned FFT.
-    !> The modal methods recur on the structure's
-    !> model modes: `paper` (eqs. 15-17 as written), `recursive` (the same sum with decaying
-    !> factors) and `exact` (force linear within a step); `modal` is `recursive`.
-    !> `accuracy` says in words how far the model is from the exact g.
-    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
-        !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive` or `exact`.
+    !> The modal methods recur on the structure's model modes: `paper` (eqs. 15-17 as
+    !> written), `recursive` (the same sum with decaying factors) and `exact` (force linear
+    !> within a step); `modal` is `recursive`. `auto` picks the cheapest of these that meets
+    !> `requested` (see `choose_method`). `accuracy` says in words how far the model is from
+    !> the exact g (and, for `auto`, what it chose and why).
+    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested)
+        !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive`, `exact` or `auto`.
         character(len=*), intent(in) :: method
         !> The structure.
         type(structure_model), intent(in) :: structure
@@ -107,6 +112,72 @@ contains
         !> What the model neglects, in words.
         character(len=:), allocatable, intent(out) :: accuracy
         !> Set for an unknown method.
+        type(error_type), allocatable, intent(out) :: error
+        !> Relative accuracy `auto` must meet (default 1e-3): the largest E (eq. 7) it accepts.
+        real(dp), intent(in), optional :: requested
+
+        character(len=:), allocatable :: chosen, reason
+        real(dp) :: target
+
+        if (method /= 'auto') then
+            call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
+            return
+        end if
+        target = 1.0e-3_dp
+        if (present(requested)) target = requested
+        call choose_method(structure, dt, truncation_tol, n_steps, target, chosen, reason)
+        call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
+        if (allocated(error)) return
+        conv%name = 'auto'
+        accuracy = 'chose '//chosen//': '//reason//'; '//accuracy
+    end subroutine make_convolver
+
+    !> The cheapest method whose model meets a requested accuracy, and why, in words:
+    !> - `direct` when N_t*N_g is at most `direct_work_limit` (the run costs a few ms and
+    !>   its only approximation is the truncation of g);
+    !> - otherwise `exact` (the first-order hold: a modal recursion's cost, second order in
+    !>   dt, the static gain exact) on the structure's modes when they are its own, or on the
+    !>   identified model when its E (eq. 7) meets the accuracy; the identification scan
+    !>   stops at the smallest such order;
+    !> - otherwise `fft` on the sampled g: no modal model up to the scan's largest order does.
+    subroutine choose_method(structure, dt, truncation_tol, n_steps, requested, chosen, reason)
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt, truncation_tol, requested
+        integer, intent(in) :: n_steps
+        character(len=:), allocatable, intent(out) :: chosen, reason
+
+        real(dp), allocatable :: kernel(:)
+        real(dp) :: tail, work
+
+        call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
+        work = real(n_steps, dp)*(size(kernel) - 1)
+        if (work <= direct_work_limit) then
+            chosen = 'direct'
+            reason = 'N_t*N_g = '//sci_text(work)//' <= '//sci_text(direct_work_limit)//' multiply-adds'
+        else if (.not. structure%identified) then
+            chosen = 'exact'
+            reason = 'N_t*N_g = '//sci_text(work)//' and the '//int_text(structure%model%n_modes()) &
+                     //' modes are the structure''s own'
+        else if (structure%fit%e <= requested) then
+            chosen = 'exact'
+            reason = int_text(structure%model%n_modes())//' modes, the smallest LSCE model with E <= ' &
+                     //sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
+        else
+            chosen = 'fft'
+            reason = 'no LSCE model meets E <= '//sci_text(requested)//' (best E = '//sci_text(structure%fit%e) &
+                     //'), N_t*N_g = '//sci_text(work)
+        end if
+    end subroutine choose_method
+
+    !> Build one named method (not `auto`).
+    subroutine build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error)
+        character(len=*), intent(in) :: method
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        real(dp), intent(in) :: truncation_tol
+        integer, intent(in) :: n_steps
+        class(convolver), allocatable, intent(out) :: conv
+        character(len=:), allocatable, intent(out) :: accuracy
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: kernel(:)
@@ -136,14 +207,14 @@ contains
             conv = new_exact_convolver(structure%model, dt)
         case default
             call fatal_error(error, "unknown convolution method '"//method// &
-                             "': expected 'direct', 'fft', 'modal', 'paper', 'recursive' or 'exact'")
+                             "': expected 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact' or 'auto'")
             return
         end select
         if (method /= 'direct' .and. method /= 'fft') then
             accuracy = 'exact: the modes are the structure''s own'
             if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci_text(structure%fit%e)//' (eq. 7)'
         end if
-    end subroutine make_convolver
+    end subroutine build_method
 
     !> The truncated kernel of the structure's own g and the largest neglected sample.
     subroutine direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)

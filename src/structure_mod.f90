@@ -84,6 +84,10 @@ contains
         type(lsce_options) :: options
 
         options%tol_e = scene%tol_e
+        ! `auto` wants the smallest model that meets the scene's accuracy, not more.
+        if (allocated(scene%methods)) then
+            if (any(scene%methods == 'auto')) options%tol_e = scene%accuracy
+        end if
         options%max_modes = scene%max_order
         options%fixed_modes = scene%order
         call identify(structure%frf, options, structure%fit, error)

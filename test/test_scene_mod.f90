@@ -7,7 +7,7 @@ module test_scene_mod
     use files_mod, only: make_directory
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
                          convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
-                         write_frf, structure_from_modes, modal_set
+                         write_frf, structure_from_modes, modal_set, error_e
     implicit none
     private
 
@@ -27,7 +27,9 @@ contains
                      new_unittest('random modes: LSCE recovers the modes of the sampled G', test_random_identified), &
                      new_unittest('random modes: modal on LSCE modes equals direct on the true g', &
                                   test_random_contact), &
-                     new_unittest('FRF file: identified and FFT kernels against the sdof', test_frf_file)]
+                     new_unittest('FRF file: identified and FFT kernels against the sdof', test_frf_file), &
+                     new_unittest('auto: direct for a small N_t*N_g, exact modes for a long run', test_auto_sdof), &
+                     new_unittest('auto: the smallest LSCE model meeting the accuracy, else fft', test_auto_modes)]
     end subroutine collect_scene
 
     !> Write `text` as a scene file and read it.
@@ -227,5 +229,91 @@ contains
         modes = sdof_modes(1.0_dp, 1.0e6_dp, 0.02_dp)
         sdof_pole = modes%pole(1)
     end function sdof_pole
+
+    !> Build the `auto` convolver of a scene given as text; its summary text and model size.
+    subroutine auto_choice(name, text, accuracy, label, n, structure, error)
+        character(len=*), intent(in) :: name, text
+        character(len=:), allocatable, intent(out) :: accuracy, label
+        integer, intent(out) :: n
+        type(structure_model), intent(out) :: structure
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: run_error
+        class(convolver), allocatable :: conv
+
+        call scene_from_text(name, text, scene, run_error)
+        if (.not. allocated(run_error)) call build_structure(scene, structure, run_error)
+        if (.not. allocated(run_error)) call make_convolver('auto', structure, scene%dt, scene%truncation_tol, &
+                                                            scene%n_steps, conv, accuracy, run_error, scene%accuracy)
+        if (allocated(run_error)) then
+            call check(error, .false., name//': '//run_error%message)
+            return
+        end if
+        call conv%model_size(n, label)
+        call check(error, conv%name == 'auto', name//': the convolver is named auto')
+    end subroutine auto_choice
+
+    !> Tab. 1: 2000 steps with N_g = 1999 is 4e6 multiply-adds, under the 1e7 limit: direct.
+    !> At dt = 10 us for 200000 steps (N_g = 23112): 4.6e9, and the sdof's own mode: exact.
+    subroutine test_auto_sdof(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: accuracy, label
+        type(structure_model) :: structure
+        integer :: n
+
+        call auto_choice('auto_short.nml', "&convolution methods = 'auto' /", accuracy, label, n, structure, error)
+        if (allocated(error)) return
+        call check(error, index(accuracy, 'chose direct: N_t*N_g = ') == 1 .and. label == 'N_g' .and. n == 1999, &
+                   'short run: direct with N_g = 1999, said so ('//accuracy//')')
+        if (allocated(error)) return
+        call auto_choice('auto_long.nml', "&scene dt = 1.0e-5, n_steps = 200000 / &convolution methods = 'auto' /", &
+                         accuracy, label, n, structure, error)
+        if (allocated(error)) return
+        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. n == 1, &
+                   'long run: exact on the one mode, said so ('//accuracy//')')
+    end subroutine test_auto_sdof
+
+    !> The section 3.2 structure (10 modes) seen through its sampled G, 10000 steps: with
+    !> accuracy 1e-3 auto must recur on an LSCE model with E <= 1e-3 that needs all its
+    !> modes (without any one of them E, recomputed here against G, exceeds 1e-3); allowed
+    !> at most 3 modes, no model can, and auto falls back to fft on the true g.
+    subroutine test_auto_modes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: two_pi = 2.0_dp*acos(-1.0_dp)
+        character(len=*), parameter :: common = "&scene n_steps = 10000 / &structure model = 'random_modes' / " &
+                                        //"&contact preload = 100.0 / "
+        character(len=:), allocatable :: accuracy, label
+        type(structure_model) :: structure
+        type(modal_set) :: fewer
+        real(dp) :: e_fewer
+        integer :: n, k, j
+
+        call auto_choice('auto_modes.nml', common//"&identification f_max = 2000.0, n_freq = 8001 / " &
+                         //"&convolution methods = 'auto', accuracy = 1.0e-3 /", accuracy, label, n, structure, error)
+        if (allocated(error)) return
+        call note('modes chosen', real(n, dp))
+        call note('E', structure%fit%e)
+        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. structure%fit%e <= 1.0e-3_dp, &
+                   'an LSCE model meeting E <= 1e-3, said so ('//accuracy//')')
+        if (allocated(error)) return
+        e_fewer = huge(1.0_dp)
+        do k = 1, n
+            fewer%pole = pack(structure%model%pole, [(k /= j, j=1, size(structure%model%pole))])
+            fewer%residue = pack(structure%model%residue, [(k /= j, j=1, size(structure%model%pole))])
+            e_fewer = min(e_fewer, error_e(structure%frf%receptance, &
+                                           fewer%receptance(two_pi*structure%frf%frequency)))
+        end do
+        call note('smallest E with one mode left out', e_fewer)
+        call check(error, e_fewer > 1.0e-3_dp, 'every mode of the choice is needed for E <= 1e-3')
+        if (allocated(error)) return
+        call auto_choice('auto_fft.nml', common//"&identification f_max = 2000.0, n_freq = 8001, max_order = 3 / " &
+                         //"&convolution methods = 'auto', accuracy = 1.0e-3 /", accuracy, label, n, structure, error)
+        if (allocated(error)) return
+        call check(error, index(accuracy, 'chose fft: no LSCE model meets') == 1 .and. label == 'N_g', &
+                   'no model within 3 modes: fft, said so ('//accuracy//')')
+    end subroutine test_auto_modes
 
 end module test_scene_mod
