@@ -1,5 +1,5 @@
 !> Many contact points (issue 5): the Green's matrix in modal and sampled form, the
-!> multi-point contact loop and the tyre model.
+!> multi-point contact loop, the tyre model and road files.
 !>
 !> Tolerances, each against something computed another way:
 !> - one point: the same arithmetic as contact_mod's loop, so equal to 1e-15 of the peak
@@ -37,6 +37,7 @@ module test_multicontact_mod
     use green_sampled_mod, only: sampled_green_matrix, new_sampled_green_matrix
     use multi_contact_mod, only: newton_options, multi_contact_response, run_multi_contact, write_multi_contact
     use tyre_model_mod, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
+    use road_file_mod, only: road_file, read_road_file, sample_road_file
     implicit none
     private
 
@@ -70,6 +71,8 @@ contains
                      new_unittest('unilateral per point, contact lost at some points', test_unilateral), &
                      new_unittest('Newton failure and divergence: errors name the step, rows kept', test_failures), &
                      new_unittest('tyre: frequencies, shapes, unit modal mass, defaults', test_tyre), &
+                     new_unittest('road file: sample profile follows its header, interpolation', test_road_sample), &
+                     new_unittest('road file: bad files and ranges give one clear message', test_road_errors), &
                      new_unittest('write_multi_contact: one row per step and point', test_write)]
     end subroutine collect_multicontact
 
@@ -675,6 +678,112 @@ contains
         end do
         compliance = compliance/pi
     end function infinite_beam_compliance
+
+    ! ---- road files ------------------------------------------------------------------------
+
+    !> data/road_sample.dat against the recipe of its header, and the interpolation.
+    subroutine test_road_sample(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(road_file) :: road
+        type(error_type), allocatable :: failure
+        type(random_stream) :: stream
+        real(dp), allocatable :: heights(:, :)
+        real(dp) :: frequency(490), amplitude(490), phase(490), worst, expected
+        integer :: j, i
+
+        call read_road_file('data/road_sample.dat', road, failure)
+        call check(error, .not. allocated(failure), 'the sample road file reads')
+        if (allocated(error)) return
+        call note('points', real(size(road%x), dp))
+        call note('rms height [m]', sqrt(sum(road%height**2)/size(road%height)))
+        call check(error, size(road%x) == 5001 .and. road%x(5001) == 10.0_dp, '5001 points over 10 m')
+        if (allocated(error)) return
+        stream = random_stream(8608)
+        do j = 1, 490
+            frequency(j) = 2.0_dp + (j - 0.5_dp)*0.2_dp
+            amplitude(j) = sqrt(2.0_dp*16.0e-6_dp*(frequency(j)/0.1_dp)**(-2)*0.2_dp)
+            phase(j) = 2.0_dp*pi*stream%uniform()
+        end do
+        worst = 0.0_dp
+        do i = 1, 5001, 500
+            expected = sum(amplitude*cos(2.0_dp*pi*frequency*road%x(i) + phase))
+            worst = max(worst, abs(road%height(i) - expected))
+        end do
+        call note('max|h_file - h_header| [m]', worst)
+        ! Eight significant digits of heights below 1.5 mm.
+        call check(error, worst, 0.0_dp, 'heights follow the header''s formula', thr=1.0e-10_dp)
+        if (allocated(error)) return
+        call check(error, road%height_at(0.5_dp*(road%x(10) + road%x(11))), &
+                   0.5_dp*(road%height(10) + road%height(11)), 'midpoint interpolation', thr=1.0e-18_dp)
+        if (allocated(error)) return
+        call sample_road_file(road, [0.1_dp, 0.2_dp], 20.0_dp, 1.0e-4_dp, 4001, heights, failure)
+        call check(error, .not. allocated(failure), 'a run within the file samples')
+        if (allocated(error)) return
+        call check(error, heights(4000, 2), road%height_at(8.2_dp), 'x_i + V*t_n', thr=1.0e-18_dp)
+    end subroutine test_road_sample
+
+    subroutine test_road_errors(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = scratch//'/test_road.dat'
+        type(road_file) :: road
+        type(error_type), allocatable :: failure
+        real(dp), allocatable :: heights(:, :)
+
+        call expect(error, path, [character(len=30) :: '# x height', '0.0 1e-4', '0.2 2e-4', '0.1 3e-4'], &
+                    path//':4: x must increase; found 0.1')
+        if (allocated(error)) return
+        call expect(error, path, [character(len=30) :: '0.0 1e-4', '0.1 abc'], &
+                    path//':2: column 2 (height) is "abc"; expected a number')
+        if (allocated(error)) return
+        call expect(error, path, [character(len=30) :: '0.0 1e-4', 'garbage'], &
+                    path//':2: expected 2 columns (x [m], height [m]), found 1: "garbage"')
+        if (allocated(error)) return
+        call expect(error, path, [character(len=30) :: '0.0 1e-4 5', '0.1 0'], &
+                    path//':1: expected 2 columns (x [m], height [m]), found 3')
+        if (allocated(error)) return
+        call expect(error, path, [character(len=30) :: '# one line', '0.0 NaN'], &
+                    path//':2: column 2 (height) is "NaN"; expected a finite number')
+        if (allocated(error)) return
+        call expect(error, path, [character(len=30) :: '# one line', '0.0 1e-4'], &
+                    path//': 1 data lines; a road profile needs at least 2')
+        if (allocated(error)) return
+        call read_road_file(scratch//'/no_such_road.dat', road, failure)
+        call check(error, allocated(failure), 'no error for a missing file')
+        if (allocated(error)) return
+        call check(error, index(failure%message, scratch//'/no_such_road.dat: cannot open') == 1, &
+                   'missing file: '//failure%message)
+        if (allocated(error)) return
+        call read_road_file('data/road_sample.dat', road, failure)
+        call sample_road_file(road, [0.0_dp], 20.0_dp, 1.0e-4_dp, 10000, heights, failure)
+        call check(error, allocated(failure), 'no error for a run beyond the file')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'data/road_sample.dat: the run needs the road from x = 0') == 1 &
+                   .and. index(failure%message, 'the file covers 0') > 0, 'range message: '//failure%message)
+    end subroutine test_road_errors
+
+    !> Write `lines` to `path`, read it as a road, and require an error containing `expected`.
+    subroutine expect(error, path, lines, expected)
+        type(test_error), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: path, lines(:), expected
+
+        type(road_file) :: road
+        type(error_type), allocatable :: failure, ignored
+        integer :: unit, j
+
+        call make_directory(scratch, ignored)
+        open (newunit=unit, file=path, status='replace', action='write')
+        do j = 1, size(lines)
+            write (unit, '(a)') trim(lines(j))
+        end do
+        close (unit)
+        call read_road_file(path, road, failure)
+        call check(error, allocated(failure), 'no error for a file expected to give "'//expected//'"')
+        if (allocated(error)) return
+        call check(error, index(failure%message, expected) == 1 .and. failure%stat == stat_input, &
+                   'message "'//failure%message//'" does not start with "'//expected//'"')
+    end subroutine expect
 
     ! ---- output -----------------------------------------------------------------------
 
