@@ -11,12 +11,12 @@
 !> exactly as j*df. G must be finite. Each kind of bad file gets one message naming the
 !> file, the line and what was expected and found.
 module frf_mod
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
     use text_mod, only: int_text, real_text
     use error_mod, only: error_type, fatal_error
     use modal_set_mod, only: modal_set
     use files_mod, only: write_columns
+    use column_file_mod, only: read_columns
     implicit none
     private
 
@@ -138,7 +138,7 @@ contains
         integer, allocatable :: line_of(:)
         integer :: n
 
-        call read_table(path, table, line_of, error)
+        call read_columns(path, ['f   ', 'Re G', 'Im G'], ['Hz ', 'm/N', 'm/N'], table, line_of, error)
         if (allocated(error)) return
         n = size(table, 1)
         if (n == 0) then
@@ -203,221 +203,5 @@ contains
             end if
         end do
     end subroutine check_grid
-
-    !> Read all data lines of a file into table(:, 1:3), with the file line of each row.
-    subroutine read_table(path, table, line_of, error)
-        character(len=*), intent(in) :: path
-        real(dp), allocatable, intent(out) :: table(:, :)
-        integer, allocatable, intent(out) :: line_of(:)
-        type(error_type), allocatable, intent(out) :: error
-
-        character(len=:), allocatable :: line
-        character(len=512) :: message
-        real(dp) :: row(3)
-        integer :: unit, stat, line_number, n
-
-        allocate (table(64, 3), line_of(64))
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open: '//trim(message))
-            return
-        end if
-        n = 0
-        line_number = 0
-        do
-            call read_line(unit, line, stat)
-            if (stat /= 0) exit
-            line_number = line_number + 1
-            if (len_trim(line) == 0) cycle
-            if (index(adjustl(line), '#') == 1) cycle
-            call parse_row(path, line_number, line, row, error)
-            if (allocated(error)) exit
-            n = n + 1
-            if (n > size(table, 1)) call grow(table, line_of)
-            table(n, :) = row
-            line_of(n) = line_number
-        end do
-        close (unit)
-        if (allocated(error)) return
-        call shrink(table, line_of, n)
-    end subroutine read_table
-
-    !> Keep the first n rows of the row storage.
-    pure subroutine shrink(table, line_of, n)
-        real(dp), allocatable, intent(inout) :: table(:, :)
-        integer, allocatable, intent(inout) :: line_of(:)
-        integer, intent(in) :: n
-
-        real(dp), allocatable :: rows(:, :)
-        integer, allocatable :: lines(:)
-
-        allocate (rows(n, 3), lines(n))
-        rows(:, :) = table(1:n, :)
-        lines(:) = line_of(1:n)
-        call move_alloc(rows, table)
-        call move_alloc(lines, line_of)
-    end subroutine shrink
-
-    !> Double the capacity of the row storage.
-    pure subroutine grow(table, line_of)
-        real(dp), allocatable, intent(inout) :: table(:, :)
-        integer, allocatable, intent(inout) :: line_of(:)
-
-        real(dp), allocatable :: bigger(:, :)
-        integer, allocatable :: longer(:)
-
-        allocate (bigger(2*size(table, 1), 3), longer(2*size(table, 1)))
-        bigger(1:size(table, 1), :) = table
-        longer(1:size(line_of)) = line_of
-        call move_alloc(bigger, table)
-        call move_alloc(longer, line_of)
-    end subroutine grow
-
-    !> Parse one data line: exactly three finite numbers.
-    subroutine parse_row(path, line_number, line, row, error)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: line_number
-        character(len=*), intent(in) :: line
-        real(dp), intent(out) :: row(3)
-        type(error_type), allocatable, intent(out) :: error
-
-        character(len=*), parameter :: names(3) = ['f     ', 'Re G  ', 'Im G  ']
-        integer :: first(3), last(3), n_tokens, i, stat
-        character(len=:), allocatable :: prefix
-
-        prefix = path//':'//int_text(line_number)//': '
-        call split(line, first, last, n_tokens)
-        if (n_tokens /= 3) then
-            call fatal_error(error, prefix//'expected 3 columns (f [Hz], Re G [m/N], Im G [m/N]), found '// &
-                             int_text(n_tokens)//': "'//trim(adjustl(line))//'"')
-            return
-        end if
-        do i = 1, 3
-            associate (token => line(first(i):last(i)))
-                if (.not. is_number(token)) then
-                    if (is_nan_or_inf(token)) then
-                        call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i)) &
-                            //') is "'//token// &
-                                         '"; expected a finite number')
-                    else
-                        call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i)) &
-                            //') is "'//token// &
-                                         '"; expected a number')
-                    end if
-                    return
-                end if
-                read (token, *, iostat=stat) row(i)
-                if (stat /= 0 .or. .not. ieee_is_finite(row(i))) then
-                    call fatal_error(error, prefix//'column '//int_text(i)//' ('//trim(names(i))//') is "'//token// &
-                                     '"; expected a finite number')
-                    return
-                end if
-            end associate
-        end do
-    end subroutine parse_row
-
-    !> Positions of the blank- or tab-separated tokens of a line (at most 3 recorded, all counted).
-    pure subroutine split(line, first, last, n_tokens)
-        character(len=*), intent(in) :: line
-        integer, intent(out) :: first(3), last(3), n_tokens
-
-        logical :: inside, blank
-        integer :: i
-
-        n_tokens = 0
-        first = 0
-        last = 0
-        inside = .false.
-        do i = 1, len(line)
-            blank = line(i:i) == ' ' .or. line(i:i) == achar(9) .or. line(i:i) == achar(13)
-            if (.not. blank .and. .not. inside) then
-                n_tokens = n_tokens + 1
-                if (n_tokens <= 3) first(n_tokens) = i
-                inside = .true.
-            else if (blank .and. inside) then
-                if (n_tokens <= 3) last(n_tokens) = i - 1
-                inside = .false.
-            end if
-        end do
-        if (inside .and. n_tokens <= 3) last(n_tokens) = len(line)
-    end subroutine split
-
-    !> A decimal number: sign, digits, one point, exponent (e, E, d, D) with sign and digits.
-    pure logical function is_number(token)
-        character(len=*), intent(in) :: token
-
-        integer :: i, n_digits, n_points, exponent_at
-
-        is_number = .false.
-        n_digits = 0
-        n_points = 0
-        exponent_at = 0
-        do i = 1, len(token)
-            select case (token(i:i))
-            case ('0':'9')
-                n_digits = n_digits + 1
-            case ('.')
-                if (exponent_at > 0) return
-                n_points = n_points + 1
-            case ('+', '-')
-                if (i /= 1 .and. i /= exponent_at + 1) return
-            case ('e', 'E', 'd', 'D')
-                if (exponent_at > 0 .or. n_digits == 0) return
-                exponent_at = i
-            case default
-                return
-            end select
-        end do
-        if (n_points > 1 .or. n_digits == 0) return
-        if (exponent_at > 0) then
-            if (verify(token(exponent_at + 1:), '+-') == 0) return
-            if (scan(token(exponent_at + 1:), '0123456789') == 0) return
-        end if
-        is_number = .true.
-    end function is_number
-
-    !> A spelling of NaN or infinity (with optional sign), case-insensitive.
-    pure logical function is_nan_or_inf(token)
-        character(len=*), intent(in) :: token
-
-        character(len=len(token)) :: lower
-        integer :: i, start
-
-        do i = 1, len(token)
-            lower(i:i) = token(i:i)
-            if (token(i:i) >= 'A' .and. token(i:i) <= 'Z') lower(i:i) = achar(iachar(token(i:i)) + 32)
-        end do
-        start = 1
-        if (len(lower) > 0) then
-            if (lower(1:1) == '+' .or. lower(1:1) == '-') start = 2
-        end if
-        is_nan_or_inf = lower(start:) == 'nan' .or. lower(start:) == 'inf' .or. lower(start:) == 'infinity' &
-                        .or. index(lower(start:), 'nan(') == 1
-    end function is_nan_or_inf
-
-    !> Read one whole line of any length.
-    subroutine read_line(unit, line, stat)
-        integer, intent(in) :: unit
-        character(len=:), allocatable, intent(out) :: line
-        integer, intent(out) :: stat
-
-        character(len=256) :: buffer
-        integer :: n_read
-
-        line = ''
-        do
-            read (unit, '(a)', advance='no', iostat=stat, size=n_read) buffer
-            line = line//buffer(1:n_read)
-            if (is_iostat_eor(stat)) then
-                stat = 0
-                return
-            end if
-            if (is_iostat_end(stat) .and. len(line) > 0) then
-                stat = 0
-                return
-            end if
-            if (stat /= 0) return
-        end do
-    end subroutine read_line
 
 end module frf_mod

@@ -5,13 +5,15 @@
 !> - dgelsd: minimum-norm least squares by the SVD (divide and conquer), so that a
 !>   rank-deficient or ill-conditioned system gives a bounded answer; no normal equations.
 !> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
+!> - dgesv: a square linear system by LU factorisation with partial pivoting.
 module lapack_mod
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_numerical
+    use text_mod, only: int_text
     implicit none
     private
 
-    public :: least_squares, eigenvalues
+    public :: least_squares, eigenvalues, solve_linear
 
     interface
         !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
@@ -39,6 +41,16 @@ module lapack_mod
             real(dp), intent(inout) :: work(*)
             integer, intent(out) :: info
         end subroutine dgeev
+
+        !> Solution of A X = B for a square A by LU factorisation with partial pivoting (LAPACK).
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            implicit none
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*)
+            integer, intent(out) :: info
+        end subroutine dgesv
     end interface
 
 contains
@@ -133,6 +145,41 @@ contains
         end if
         w(:) = cmplx(wr, wi, kind=dp)
     end subroutine eigenvalues
+
+    !> Solution x of the square system A x = b by dgesv (LU with partial pivoting).
+    subroutine solve_linear(a, b, x, error)
+        !> Square matrix A (n x n, n >= 1); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Right-hand side b (n).
+        real(dp), intent(in) :: b(:)
+        !> Solution x (n).
+        real(dp), intent(out) :: x(:)
+        !> Set on a size mismatch or when A is exactly singular (a zero pivot).
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a_work(:, :), b_work(:, :)
+        integer, allocatable :: pivot(:)
+        integer :: n, info
+
+        n = size(a, 1)
+        if (n < 1 .or. size(a, 2) /= n .or. size(b) /= n .or. size(x) /= n) then
+            call fatal_error(error, 'solve_linear: expected a square matrix and n-vectors b and x', stat_numerical)
+            return
+        end if
+        allocate (a_work(n, n), b_work(n, 1), pivot(n))
+        a_work(:, :) = a
+        b_work(:, 1) = b
+        call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
+        if (info > 0) then
+            call fatal_error(error, 'dgesv: singular matrix (zero pivot in column '//int_text(info)//')', &
+                             stat_numerical)
+            return
+        else if (info < 0) then
+            call lapack_error(error, 'dgesv', info)
+            return
+        end if
+        x(:) = b_work(:, 1)
+    end subroutine solve_linear
 
     !> An error naming the routine and its info code.
     pure subroutine lapack_error(error, routine, info)

@@ -1,0 +1,348 @@
+!> Unilateral contact of a linear structure with a road at N_c points, all forces of a step
+!> solved together.
+!>
+!> Conventions of contact_mod, per point i (SI units): displacement u_i and road height
+!> u_r,i point up, u_i from the static equilibrium under the preloads F0_i; compression
+!> delta_i = delta0_i + u_r,i - u_i with delta0_i = law_i%compression(F0_i); force
+!> F_i = law_i%force(delta_i), k_c,i*delta_i^p_i in compression and exactly zero otherwise;
+!> the structure is loaded by F - F0.
+!>
+!> Each step n, the multi-point convolver (green_matrix_mod) gives the history
+!> displacements u_h(n); with the free compression a_i = delta0_i + u_r,i(t_n) - u_h,i(n)
+!> the step's compressions solve
+!>
+!>     R_i(delta) = delta_i - a_i + sum_j W0_ij*(F_j(delta_j) - F0_j) = 0,   i = 1..N_c,
+!>
+!> then F - F0 is pushed and u_i(t_n) = u_h,i(n) + sum_j W0_ij*(F_j - F0_j). With W0 = 0 (the
+!> paper's explicit scheme, eqs. 20-23 at every point) the solution is delta = a, evaluated
+!> directly. Otherwise a semismooth Newton method on the compressions: the Jacobian
+!> I + W0*D, D = diag(dF_j/ddelta_j), has D_jj = 0 off the active set {delta_j > 0}, which is
+!> updated at every iterate; the step is solved by LAPACK (dgesv) and damped by halving
+!> until the Euclidean norm of R decreases (Armijo). Writing the unknowns as compressions
+!> makes the unilateral condition exact: F_j = 0 wherever delta_j <= 0. For a compliance
+!> matrix W0 that is symmetric positive semi-definite and monotone laws, I + W0*D has
+!> eigenvalues >= 1, so every Newton system is solvable.
+module multi_contact_mod
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use kinds_mod, only: dp
+    use text_mod, only: int_text, sci_text
+    use error_mod, only: error_type, fatal_error, stat_input, stat_numerical
+    use lapack_mod, only: solve_linear
+    use contact_mod, only: contact_law
+    use green_matrix_mod, only: multipoint_convolver
+    use files_mod, only: write_columns
+    implicit none
+    private
+
+    public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step
+    public :: write_multi_contact
+
+    !> Settings of the per-step nonlinear solve and of the divergence guard.
+    type :: newton_options
+        !> Convergence: max_i |R_i| <= tolerance*scale, scale = the largest of |a_i|, |delta_i|,
+        !> delta0_i and |sum_j W0_ij*(F_j - F0_j)| (dimensionless).
+        real(dp) :: tolerance = 1.0e-12_dp
+        !> Largest number of Newton iterations per step.
+        integer :: max_iterations = 50
+        !> Divergence guard: |u_i| above this [m] (or a NaN) stops the run with an error.
+        real(dp) :: max_displacement = 1.0_dp
+    end type newton_options
+
+    !> Histories of a multi-point run at t_n = n*dt, n = 0..N-1 (N = N_t, or the steps done
+    !> before an error); per-point arrays are (0:N-1, N_c).
+    type :: multi_contact_response
+        !> Times t_n [s].
+        real(dp), allocatable :: time(:)
+        !> Road heights u_r,i(t_n) [m].
+        real(dp), allocatable :: road(:, :)
+        !> Displacements u_i(t_n) [m] from static equilibrium.
+        real(dp), allocatable :: displacement(:, :)
+        !> Contact forces F_i(t_n) [N], >= 0.
+        real(dp), allocatable :: force(:, :)
+        !> Compressions delta_i(t_n) [m] (negative: no contact at that point).
+        real(dp), allocatable :: compression(:, :)
+        !> Total contact force sum_i F_i(t_n) [N].
+        real(dp), allocatable :: total_force(:)
+        !> Newton iterations of each step (0 for the explicit scheme).
+        integer, allocatable :: iterations(:)
+    end type multi_contact_response
+
+    !> Most halvings of a Newton step in the line search.
+    integer, parameter :: max_halvings = 30
+
+contains
+
+    !> Run the multi-point contact loop over size(road, 1) steps.
+    !>
+    !> The convolver is reset first and starts from rest (static equilibrium under the
+    !> preloads). On a Newton failure or divergence, `error` names the step, and `response`
+    !> keeps the steps completed before it.
+    subroutine run_multi_contact(conv, laws, road, preload, response, error, options)
+        !> The Green's matrix of the N_c points.
+        class(multipoint_convolver), intent(inout) :: conv
+        !> Contact law of each point (N_c).
+        type(contact_law), intent(in) :: laws(:)
+        !> Road heights road(n, i) = u_r,i(t_n) [m], n = 0..N_t-1, i = 1..N_c.
+        real(dp), intent(in) :: road(0:, :)
+        !> Static preloads F0_i [N], >= 0 (N_c).
+        real(dp), intent(in) :: preload(:)
+        !> Histories of the run.
+        type(multi_contact_response), intent(out) :: response
+        !> Set on inconsistent sizes, a step whose forces do not converge, or divergence.
+        type(error_type), allocatable, intent(out) :: error
+        !> Newton and divergence settings; defaults when absent.
+        type(newton_options), intent(in), optional :: options
+
+        type(newton_options) :: settings
+        real(dp) :: delta0(size(laws)), delta(size(laws)), u(size(laws))
+        integer :: n, n_t, n_c
+
+        n_t = size(road, 1)
+        n_c = size(laws)
+        if (present(options)) settings = options
+        if (conv%n_points() /= n_c .or. size(road, 2) /= n_c .or. size(preload) /= n_c) then
+            call fatal_error(error, 'multi-point contact: the Green''s matrix has '//int_text(conv%n_points()) &
+                             //' points, the laws '//int_text(n_c)//', the road '//int_text(size(road, 2)) &
+                             //' columns and the preloads '//int_text(size(preload)), stat_input)
+            return
+        end if
+        call allocate_response(response, n_t, n_c)
+        response%time(:) = [(n*conv%dt, n=0, n_t - 1)]
+        response%road(:, :) = road
+        call conv%reset()
+        delta0(:) = laws%compression(preload)
+        delta(:) = delta0
+        do n = 0, n_t - 1
+            call multi_contact_step(conv, laws, delta0, preload, road(n, :), delta, response%force(n, :), u, &
+                                    response%iterations(n), error, settings)
+            if (.not. allocated(error)) call divergence_guard(u, response%force(n, :), settings, error)
+            if (allocated(error)) then
+                error%message = error%message//' at step '//int_text(n)//' (t = '//sci_text(n*conv%dt)//' s)'
+                call keep_rows(response, n)
+                return
+            end if
+            response%compression(n, :) = delta
+            response%displacement(n, :) = u
+            response%total_force(n) = sum(response%force(n, :))
+        end do
+    end subroutine run_multi_contact
+
+    !> One step of the loop: history, forces of all points, push of F - F0.
+    !>
+    !> `delta` holds on entry the compressions of the previous step (the Newton guess is the
+    !> free compression corrected by the previous forces) and on return this step's.
+    subroutine multi_contact_step(conv, laws, delta0, preload, road, delta, force, displacement, iterations, &
+                                  error, options)
+        !> The Green's matrix of the N_c points, at step n; advanced to n + 1.
+        class(multipoint_convolver), intent(inout) :: conv
+        !> Contact law of each point.
+        type(contact_law), intent(in) :: laws(:)
+        !> Static compressions delta0_i [m].
+        real(dp), intent(in) :: delta0(:)
+        !> Static preloads F0_i [N].
+        real(dp), intent(in) :: preload(:)
+        !> Road heights u_r,i(t_n) [m].
+        real(dp), intent(in) :: road(:)
+        !> Compressions delta_i [m]: previous step's on entry, this step's on return.
+        real(dp), intent(inout) :: delta(:)
+        !> Contact forces F_i(t_n) [N].
+        real(dp), intent(out) :: force(:)
+        !> Displacements u_i(t_n) [m].
+        real(dp), intent(out) :: displacement(:)
+        !> Newton iterations used (0 when W0 = 0).
+        integer, intent(out) :: iterations
+        !> Set when the forces do not converge.
+        type(error_type), allocatable, intent(out) :: error
+        !> Newton settings.
+        type(newton_options), intent(in) :: options
+
+        real(dp) :: u_h(size(laws)), free(size(laws))
+        logical :: explicit
+
+        explicit = conv%is_explicit()
+        call conv%history(u_h)
+        free(:) = delta0 + road - u_h
+        iterations = 0
+        if (explicit) then
+            delta(:) = free
+            force(:) = laws%force(delta)
+        else
+            force(:) = laws%force(delta)
+            delta(:) = free - matmul(conv%weight0, force - preload)
+            call solve_compressions(conv%weight0, laws, preload, delta0, free, options, delta, iterations, error)
+            if (allocated(error)) return
+            force(:) = laws%force(delta)
+        end if
+        call conv%push(force - preload)
+        displacement(:) = u_h
+        if (.not. explicit) displacement(:) = u_h + matmul(conv%weight0, force - preload)
+    end subroutine multi_contact_step
+
+    !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2.
+    subroutine solve_compressions(w0, laws, preload, delta0, free, options, delta, iterations, error)
+        real(dp), intent(in) :: w0(:, :)
+        type(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: preload(:), delta0(:), free(:)
+        type(newton_options), intent(in) :: options
+        real(dp), intent(inout) :: delta(:)
+        integer, intent(out) :: iterations
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: r(size(delta)), trial(size(delta)), r_trial(size(delta)), step(size(delta))
+        real(dp) :: jacobian(size(delta), size(delta)), alpha, scale
+        integer :: j, halvings
+
+        call residual(w0, laws, preload, free, delta, r, scale)
+        scale = max(scale, maxval(delta0))
+        do iterations = 0, options%max_iterations
+            if (maxval(abs(r)) <= options%tolerance*scale) return
+            if (iterations == options%max_iterations) exit
+            do j = 1, size(delta)
+                jacobian(:, j) = w0(:, j)*slope(laws(j), delta(j))
+                jacobian(j, j) = jacobian(j, j) + 1.0_dp
+            end do
+            call solve_linear(jacobian, -r, step, error)
+            if (allocated(error)) return
+            alpha = 1.0_dp
+            do halvings = 0, max_halvings
+                trial(:) = delta + alpha*step
+                call residual(w0, laws, preload, free, trial, r_trial, scale)
+                if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
+                alpha = alpha/2
+            end do
+            delta(:) = trial
+            r(:) = r_trial
+            scale = max(scale, maxval(delta0))
+        end do
+        call fatal_error(error, 'multi-point contact: Newton did not converge in '//int_text(options%max_iterations) &
+                         //' iterations, max |residual| = '//sci_text(maxval(abs(r)))//' m > ' &
+                         //sci_text(options%tolerance*scale)//' m', stat_numerical)
+    end subroutine solve_compressions
+
+    !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].
+    subroutine residual(w0, laws, preload, free, delta, r, scale)
+        real(dp), intent(in) :: w0(:, :)
+        type(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: preload(:), free(:), delta(:)
+        real(dp), intent(out) :: r(:), scale
+
+        real(dp) :: load(size(delta)), coupling(size(delta))
+
+        load(:) = laws%force(delta) - preload
+        coupling(:) = matmul(w0, load)
+        r(:) = delta - free + coupling
+        scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
+    end subroutine residual
+
+    !> dF/ddelta = p*k_c*delta^(p - 1) [N/m] in compression, zero otherwise.
+    elemental real(dp) function slope(law, delta)
+        type(contact_law), intent(in) :: law
+        real(dp), intent(in) :: delta
+
+        slope = 0.0_dp
+        if (delta > 0.0_dp) slope = law%exponent*law%stiffness*delta**(law%exponent - 1.0_dp)
+    end function slope
+
+    !> An error when a displacement exceeds the bound or a value is not finite.
+    subroutine divergence_guard(u, force, options, error)
+        real(dp), intent(in) :: u(:), force(:)
+        type(newton_options), intent(in) :: options
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i
+
+        do i = 1, size(u)
+            if (.not. (ieee_is_finite(u(i)) .and. ieee_is_finite(force(i)))) then
+                call fatal_error(error, 'multi-point contact: diverged: displacement or force at point ' &
+                                 //int_text(i)//' is not a finite number', stat_numerical)
+                return
+            end if
+            if (abs(u(i)) > options%max_displacement) then
+                call fatal_error(error, 'multi-point contact: diverged: |u| = '//sci_text(abs(u(i))) &
+                                 //' m at point '//int_text(i)//' exceeds the bound ' &
+                                 //sci_text(options%max_displacement)//' m', stat_numerical)
+                return
+            end if
+        end do
+    end subroutine divergence_guard
+
+    !> Allocate the histories of n_t steps at n_c points.
+    subroutine allocate_response(response, n_t, n_c)
+        type(multi_contact_response), intent(inout) :: response
+        integer, intent(in) :: n_t, n_c
+
+        allocate (response%time(0:n_t - 1), response%total_force(0:n_t - 1), response%iterations(0:n_t - 1))
+        allocate (response%road(0:n_t - 1, n_c), response%displacement(0:n_t - 1, n_c), &
+                  response%force(0:n_t - 1, n_c), response%compression(0:n_t - 1, n_c))
+    end subroutine allocate_response
+
+    !> Shrink the histories to their first n_done steps.
+    subroutine keep_rows(response, n_done)
+        type(multi_contact_response), intent(inout) :: response
+        integer, intent(in) :: n_done
+
+        type(multi_contact_response) :: done
+
+        call allocate_response(done, n_done, size(response%force, 2))
+        done%time(:) = response%time(0:n_done - 1)
+        done%total_force(:) = response%total_force(0:n_done - 1)
+        done%iterations(:) = response%iterations(0:n_done - 1)
+        done%road(:, :) = response%road(0:n_done - 1, :)
+        done%displacement(:, :) = response%displacement(0:n_done - 1, :)
+        done%force(:, :) = response%force(0:n_done - 1, :)
+        done%compression(:, :) = response%compression(0:n_done - 1, :)
+        call move_response(done, response)
+    end subroutine keep_rows
+
+    !> Move every history from `source` to `target`.
+    subroutine move_response(source, target)
+        type(multi_contact_response), intent(inout) :: source, target
+
+        call move_alloc(source%time, target%time)
+        call move_alloc(source%total_force, target%total_force)
+        call move_alloc(source%iterations, target%iterations)
+        call move_alloc(source%road, target%road)
+        call move_alloc(source%displacement, target%displacement)
+        call move_alloc(source%force, target%force)
+        call move_alloc(source%compression, target%compression)
+    end subroutine move_response
+
+    !> Write a run as one row per step and point, time-major, with a blank-free layout that
+    !> gnuplot maps directly (`plot FILE using 2:1:5 with image` gives F over x and t):
+    !> columns t [s], x [m], u_road [m], u [m], f_contact [N], delta [m], f_total [N].
+    subroutine write_multi_contact(path, title, positions, response, error)
+        !> Target file (written atomically).
+        character(len=*), intent(in) :: path
+        !> First header line, e.g. the scene and method.
+        character(len=*), intent(in) :: title
+        !> Position x_i [m] of each point, for the second column.
+        real(dp), intent(in) :: positions(:)
+        !> Histories of the run.
+        type(multi_contact_response), intent(in) :: response
+        !> Set when the file cannot be written.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: table(:, :)
+        character(len=200) :: comments(3)
+        integer :: n_t, n_c, n, row
+
+        n_t = size(response%time)
+        n_c = size(positions)
+        allocate (table(n_t*n_c, 7))
+        do n = 0, n_t - 1
+            row = n*n_c
+            table(row + 1:row + n_c, 1) = response%time(n)
+            table(row + 1:row + n_c, 2) = positions
+            table(row + 1:row + n_c, 3) = response%road(n, :)
+            table(row + 1:row + n_c, 4) = response%displacement(n, :)
+            table(row + 1:row + n_c, 5) = response%force(n, :)
+            table(row + 1:row + n_c, 6) = response%compression(n, :)
+            table(row + 1:row + n_c, 7) = response%total_force(n)
+        end do
+        comments(1) = title
+        comments(2) = 'units: s m m m N m N'
+        comments(3) = 't x u_road u f_contact delta f_total'
+        call write_columns(path, comments, table, error)
+    end subroutine write_multi_contact
+
+end module multi_contact_mod

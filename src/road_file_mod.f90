@@ -1,0 +1,154 @@
+!> A road profile read from a file: heights over distance, linearly interpolated.
+!>
+!> File format: any number of lines starting with `#` (comments) and blank lines, and data
+!> lines of exactly two finite numbers
+!>
+!>     x [m]   height [m]
+!>
+!> with x strictly increasing, at least two lines. A bad file gets one message naming the
+!> file and the line (column_file_mod). A body travelling at speed V [m/s] with contact
+!> points at x_i + V*t sees u_r,i(t) = height(x_i + V*t); `sample_road_file` gives those
+!> heights at t_n = n*dt and refuses a run that needs x beyond the file.
+module road_file_mod
+    use kinds_mod, only: dp
+    use text_mod, only: int_text, real_text
+    use error_mod, only: error_type, fatal_error
+    use column_file_mod, only: read_columns
+    implicit none
+    private
+
+    public :: road_file, read_road_file, sample_road_file
+
+    !> A road profile: heights at increasing positions, linear in between.
+    type :: road_file
+        !> File the profile was read from (for messages).
+        character(len=:), allocatable :: path
+        !> Positions x_j [m], strictly increasing.
+        real(dp), allocatable :: x(:)
+        !> Heights at x_j [m].
+        real(dp), allocatable :: height(:)
+    contains
+        !> Height [m] at position x [m], linear between samples; the end value beyond them.
+        procedure :: height_at
+        !> Whether [x_low, x_high] lies within the file.
+        procedure :: covers
+    end type road_file
+
+contains
+
+    !> Read and check a road profile file (format in the module description).
+    subroutine read_road_file(path, road, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> The profile.
+        type(road_file), intent(out) :: road
+        !> Set, with one line naming the file and line, when the file does not fit.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: table(:, :)
+        integer, allocatable :: line_of(:)
+        integer :: j, n
+
+        call read_columns(path, ['x     ', 'height'], ['m', 'm'], table, line_of, error)
+        if (allocated(error)) return
+        n = size(table, 1)
+        if (n < 2) then
+            call fatal_error(error, path//': '//int_text(n)//' data lines; a road profile needs at least 2 ' &
+                             //'(columns x [m], height [m])')
+            return
+        end if
+        do j = 2, n
+            if (table(j, 1) <= table(j - 1, 1)) then
+                call fatal_error(error, path//':'//int_text(line_of(j))//': x must increase; found ' &
+                                 //real_text(table(j, 1))//' m after '//real_text(table(j - 1, 1))//' m')
+                return
+            end if
+        end do
+        road%path = path
+        allocate (road%x(n), road%height(n))
+        road%x(:) = table(:, 1)
+        road%height(:) = table(:, 2)
+    end subroutine read_road_file
+
+    !> Height [m] at x [m] by linear interpolation; x outside the file gives the nearest end
+    !> value (check with `covers`, as `sample_road_file` does).
+    elemental real(dp) function height_at(self, x)
+        !> The profile.
+        class(road_file), intent(in) :: self
+        !> Position [m].
+        real(dp), intent(in) :: x
+
+        integer :: low, high, middle
+        real(dp) :: weight
+
+        low = 1
+        high = size(self%x)
+        if (x <= self%x(low)) then
+            height_at = self%height(low)
+            return
+        end if
+        if (x >= self%x(high)) then
+            height_at = self%height(high)
+            return
+        end if
+        do while (high - low > 1)
+            middle = (low + high)/2
+            if (self%x(middle) <= x) then
+                low = middle
+            else
+                high = middle
+            end if
+        end do
+        weight = (x - self%x(low))/(self%x(high) - self%x(low))
+        height_at = (1.0_dp - weight)*self%height(low) + weight*self%height(high)
+    end function height_at
+
+    !> Whether the file spans [x_low, x_high] [m].
+    elemental logical function covers(self, x_low, x_high)
+        !> The profile.
+        class(road_file), intent(in) :: self
+        !> Smallest position needed [m].
+        real(dp), intent(in) :: x_low
+        !> Largest position needed [m].
+        real(dp), intent(in) :: x_high
+
+        covers = x_low >= self%x(1) .and. x_high <= self%x(size(self%x))
+    end function covers
+
+    !> Heights under N_c points travelling at speed V: heights(n, i) = height(x_i + V*n*dt),
+    !> n = 0..n_steps-1; an error when the run needs x beyond the file.
+    subroutine sample_road_file(road, positions, speed, dt, n_steps, heights, error)
+        !> The profile.
+        type(road_file), intent(in) :: road
+        !> Positions x_i [m] of the points on the road at t = 0.
+        real(dp), intent(in) :: positions(:)
+        !> Travel speed V [m/s] (the points move towards increasing x when V > 0).
+        real(dp), intent(in) :: speed
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Road heights [m], (0:n_steps-1, N_c).
+        real(dp), allocatable, intent(out) :: heights(:, :)
+        !> Set when some x_i + V*t_n lies outside the file.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: x_first, x_last, travel
+        integer :: i, n
+
+        travel = speed*(n_steps - 1)*dt
+        x_first = min(minval(positions), minval(positions) + travel)
+        x_last = max(maxval(positions), maxval(positions) + travel)
+        if (.not. road%covers(x_first, x_last)) then
+            call fatal_error(error, road%path//': the run needs the road from x = '//real_text(x_first)//' m to ' &
+                             //real_text(x_last)//' m; the file covers '//real_text(road%x(1))//' m to ' &
+                             //real_text(road%x(size(road%x)))//' m')
+            return
+        end if
+        allocate (heights(0:n_steps - 1, size(positions)))
+        do i = 1, size(positions)
+            heights(:, i) = road%height_at([(positions(i) + speed*(n*dt), n=0, n_steps - 1)])
+        end do
+    end subroutine sample_road_file
+
+end module road_file_mod
