@@ -12,6 +12,7 @@ module green_sampled_mod
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
     use green_matrix_mod, only: multipoint_convolver
+    use conv_direct_mod, only: lane_dot
     implicit none
     private
 
@@ -77,7 +78,7 @@ contains
         u(:) = 0.0_dp
         do j = 1, size(self%past, 2)
             do i = 1, size(u)
-                u(i) = u(i) + dot_product(self%weight(1:m, i, j), self%past(first:last, j))
+                u(i) = u(i) + lane_dot(m, self%weight(1:m, i, j), self%past(first:last, j))
             end do
         end do
     end subroutine sampled_history
