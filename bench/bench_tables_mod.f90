@@ -193,7 +193,8 @@ contains
         write (unit, '(a,es9.2)') '#   recursive vs paper: max|u_rec - u_paper|/max|u_paper| = ', &
             maxval(abs(r_recursive%displacement - r_paper%displacement))/maxval(abs(r_paper%displacement))
         write (unit, '(a,2(f6.2,a))') '#   direct history: ', mac_direct*1.0e-9_dp, &
-            ' GMAC/s; plain vectorised dot product: ', mac_dot*1.0e-9_dp, ' GMAC/s (best of dot_product, BLAS ddot, 8-lane loop)'
+            ' GMAC/s; plain vectorised dot product: ', mac_dot*1.0e-9_dp, &
+            ' GMAC/s (best of dot_product, BLAS ddot, 8-lane loop)'
         call verdict(unit, 'direct MAC rate vs the plain dot product', mac_direct/mac_dot, 0.5_dp)
         write (unit, '(a,3(f9.1,a))') '#   mean CPU per step, convolution alone: direct ', s_direct*1.0e9_dp, &
             ' ns, recursive ', s_recursive*1.0e9_dp, ' ns, paper ', s_paper*1.0e9_dp, ' ns'

@@ -21,6 +21,13 @@ module greenconv
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     use scene_mod, only: scene_type, read_scene
+    use green_matrix_mod, only: point_modes, multipoint_convolver, sample_green_matrix
+    use green_modal_mod, only: modal_green_matrix, new_modal_green_matrix
+    use green_sampled_mod, only: sampled_green_matrix, new_sampled_green_matrix
+    use multi_contact_mod, only: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, &
+                                 write_multi_contact
+    use tyre_model_mod, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
+    use road_file_mod, only: road_file, read_road_file, sample_road_file, file_road
     use structure_mod, only: structure_model, structure_from_modes, build_structure
     use scene_run_mod, only: run_scene, make_convolver, output_path
     implicit none
@@ -41,6 +48,11 @@ module greenconv
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     public :: scene_type, read_scene
+    public :: point_modes, multipoint_convolver, sample_green_matrix
+    public :: modal_green_matrix, new_modal_green_matrix, sampled_green_matrix, new_sampled_green_matrix
+    public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, write_multi_contact
+    public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
+    public :: road_file, read_road_file, sample_road_file, file_road
     public :: structure_model, structure_from_modes, build_structure
     public :: run_scene, make_convolver, output_path
 

@@ -14,10 +14,11 @@ module road_file_mod
     use text_mod, only: int_text, real_text
     use error_mod, only: error_type, fatal_error
     use column_file_mod, only: read_columns
+    use road_mod, only: road_profile
     implicit none
     private
 
-    public :: road_file, read_road_file, sample_road_file
+    public :: road_file, read_road_file, sample_road_file, file_road
 
     !> A road profile: heights at increasing positions, linear in between.
     type :: road_file
@@ -34,7 +35,30 @@ module road_file_mod
         procedure :: covers
     end type road_file
 
+    !> A road file seen in time by one point travelling at constant speed:
+    !> u_r(t) = height(x_start + V*t), the end value beyond the file.
+    type, extends(road_profile) :: file_road
+        !> The profile.
+        type(road_file) :: profile
+        !> Position x [m] of the point at t = 0.
+        real(dp) :: x_start = 0.0_dp
+        !> Travel speed V [m/s].
+        real(dp) :: speed = 1.0_dp
+    contains
+        procedure :: height => file_road_height
+    end type file_road
+
 contains
+
+    !> Road height [m] under the point at time t [s].
+    elemental real(dp) function file_road_height(self, t)
+        !> The road.
+        class(file_road), intent(in) :: self
+        !> Time [s].
+        real(dp), intent(in) :: t
+
+        file_road_height = self%profile%height_at(self%x_start + self%speed*t)
+    end function file_road_height
 
     !> Read and check a road profile file (format in the module description).
     subroutine read_road_file(path, road, error)

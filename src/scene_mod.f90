@@ -4,20 +4,26 @@
 !> file states only what differs, and every group is optional. README.md lists them all:
 !>
 !>     &scene          task, name, output_dir, dt [s], n_steps
-!>     &structure      model = 'sdof' | 'random_modes' | 'frf_file', mass [kg], stiffness [N/m],
-!>                     damping_ratio, n_modes, seed, f_low, f_high [Hz], xi_low, xi_high,
-!>                     a_low, a_high [1/kg], frf_file
+!>     &structure      model = 'sdof' | 'random_modes' | 'frf_file' | 'tyre', mass [kg],
+!>                     stiffness [N/m], damping_ratio, n_modes, seed, f_low, f_high [Hz],
+!>                     xi_low, xi_high, a_low, a_high [1/kg], frf_file, belt_length [m],
+!>                     belt_mass [kg/m], belt_bending [N*m^2], belt_tension [N],
+!>                     belt_foundation [N/m^2], f_modes [Hz]
 !>     &identification f_max [Hz], n_freq, tol_e, max_order, order
-!>     &road           profile = 'sine' | 'random', amplitude [m], omega [rad/s],
-!>                     wavelength [m], speed [m/s], n_terms, seed
-!>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N]
+!>     &road           profile = 'sine' | 'random' | 'file', amplitude [m], omega [rad/s],
+!>                     wavelength [m], speed [m/s], n_terms, seed, road_file, x_start [m]
+!>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N],
+!>                     n_points, patch_length [m]
 !>     &convolution    methods, truncation_tol, accuracy
 module scene_mod
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
+    use text_mod, only: real_text
     use road_mod, only: road_profile, sine_road, new_random_road
     use contact_mod, only: contact_law
+    use tyre_model_mod, only: tyre_belt
+    use road_file_mod, only: road_file, read_road_file, file_road
     implicit none
     private
 
@@ -66,6 +72,10 @@ module scene_mod
         real(dp) :: a_low = 0.5_dp, a_high = 2.0_dp
         !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N]).
         character(len=:), allocatable :: frf_file
+        !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
+        type(tyre_belt) :: tyre
+        !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
+        real(dp) :: f_modes = 0.0_dp
         !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
         real(dp) :: f_max = 0.0_dp
         !> Number of frequency lines, 0 Hz to f_max, of the sampled G (random_modes).
@@ -78,6 +88,16 @@ module scene_mod
         integer :: order = 0
         !> Road profile.
         class(road_profile), allocatable :: road
+        !> The road file of profile 'file' (heights over x), for the multi-point scene.
+        type(road_file) :: road_data
+        !> Position [m] on the road file of the body (the patch centre) at t = 0.
+        real(dp) :: x_start = 0.0_dp
+        !> Travel speed V [m/s] over the road.
+        real(dp) :: speed = 1.0_dp
+        !> Number of contact points N_c (tyre model; 1 otherwise).
+        integer :: n_points = 1
+        !> Length [m] of the contact patch the N_c points share (tyre model).
+        real(dp) :: patch_length = 0.1_dp
         !> Contact law.
         type(contact_law) :: law
         !> Static preload F0 [N].
@@ -165,10 +185,12 @@ contains
         character(len=name_length) :: model
         character(len=path_length) :: frf_file
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
+        real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
         integer :: n_modes, seed, stat
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
-            xi_low, xi_high, a_low, a_high, frf_file
+            xi_low, xi_high, a_low, a_high, frf_file, belt_length, belt_mass, belt_bending, belt_tension, &
+            belt_foundation, f_modes
 
         model = 'sdof'
         mass = this%mass
@@ -183,12 +205,19 @@ contains
         a_low = this%a_low
         a_high = this%a_high
         frf_file = ''
+        belt_length = this%tyre%length
+        belt_mass = this%tyre%mass_per_length
+        belt_bending = this%tyre%bending_stiffness
+        belt_tension = this%tyre%tension
+        belt_foundation = this%tyre%foundation_stiffness
+        f_modes = this%f_modes
         rewind (unit)
         read (unit, nml=structure, iostat=stat, iomsg=message)
         call group_status(this%file, 'structure', stat, message, error)
         if (allocated(error)) return
-        call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file']), &
-                     expected(this%file, 'structure', 'model', "'sdof', 'random_modes' or 'frf_file'", model), error)
+        call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file', 'tyre']), &
+                     expected(this%file, 'structure', 'model', "'sdof', 'random_modes', 'frf_file' or 'tyre'", &
+                              model), error)
         call require(mass > 0.0_dp .and. mass < huge(mass), &
                      expected(this%file, 'structure', 'mass', 'a mass > 0 kg', mass), error)
         call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
@@ -216,7 +245,18 @@ contains
         this%xi_high = xi_high
         this%a_low = a_low
         this%a_high = a_high
+        call require(all([belt_length, belt_mass] > 0.0_dp) .and. &
+                     all([belt_bending, belt_tension, belt_foundation] >= 0.0_dp) .and. &
+                     all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
+                     expected(this%file, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
+                              //'belt_tension, belt_foundation >= 0, all finite'), error)
+        call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this%file, 'structure', 'f_modes', &
+                     'a frequency >= 0 Hz (0: the band rule)', f_modes), error)
         this%frf_file = trim(frf_file)
+        this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
+                              tension=belt_tension, foundation_stiffness=belt_foundation, &
+                              damping_ratio=damping_ratio)
+        this%f_modes = f_modes
     end subroutine read_structure_group
 
     !> &identification: frequency grid of the sampled G and LSCE options.
@@ -263,10 +303,11 @@ contains
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
-        real(dp) :: amplitude, omega, wavelength, speed
+        character(len=path_length) :: road_file
+        real(dp) :: amplitude, omega, wavelength, speed, x_start
         integer :: n_terms, seed, stat
         character(len=512) :: message
-        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed
+        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start
 
         profile = 'sine'
         amplitude = sine%amplitude
@@ -275,12 +316,19 @@ contains
         speed = 1.0_dp
         n_terms = 10
         seed = 35
+        road_file = ''
+        x_start = this%x_start
         rewind (unit)
         read (unit, nml=road, iostat=stat, iomsg=message)
         call group_status(this%file, 'road', stat, message, error)
         if (allocated(error)) return
-        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random']), &
-                     expected(this%file, 'road', 'profile', "'sine' or 'random'", profile), error)
+        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file']), &
+                     expected(this%file, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
+        call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
+                     expected(this%file, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
+                     error)
+        call require(abs(x_start) < huge(x_start), &
+                     expected(this%file, 'road', 'x_start', 'a finite position in m', x_start), error)
         call require(abs(amplitude) < huge(amplitude), &
                      expected(this%file, 'road', 'amplitude', 'a finite height in m', amplitude), error)
         call require(abs(omega) < huge(omega), &
@@ -291,14 +339,41 @@ contains
                      expected(this%file, 'road', 'speed', 'a finite speed in m/s', speed), error)
         call require(n_terms > 0, expected(this%file, 'road', 'n_terms', 'a number of terms > 0', n_terms), error)
         if (allocated(error)) return
-        if (trim(profile) == 'sine') then
+        this%speed = speed
+        this%x_start = x_start
+        select case (trim(profile))
+        case ('sine')
             sine%amplitude = amplitude
             sine%omega = omega
             this%road = sine
-        else
+        case ('random')
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
-        end if
+        case default
+            call read_file_road(this, trim(road_file), error)
+        end select
     end subroutine read_road_group
+
+    !> Profile 'file': read the road file; a single contact point must stay on it for the
+    !> whole run (the tyre scene checks its patch when it samples the road).
+    subroutine read_file_road(this, path, error)
+        type(scene_type), intent(inout) :: this
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: x_end
+
+        call read_road_file(path, this%road_data, error)
+        if (allocated(error)) then
+            error%message = this%file//': &road road_file: '//error%message
+            return
+        end if
+        this%road = file_road(this%road_data, this%x_start, this%speed)
+        x_end = this%x_start + this%speed*(this%n_steps - 1)*this%dt
+        call require(this%model == 'tyre' .or. &
+                     this%road_data%covers(min(this%x_start, x_end), max(this%x_start, x_end)), &
+                     expected(this%file, 'road', 'x_start, speed', 'a run within '//path//' (the run needs x from ' &
+                              //real_text(this%x_start)//' m to '//real_text(x_end)//' m)'), error)
+    end subroutine read_file_road
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, this, error)
@@ -306,15 +381,17 @@ contains
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: stiffness, exponent, gravity, preload
-        integer :: stat
+        real(dp) :: stiffness, exponent, gravity, preload, patch_length
+        integer :: stat, n_points
         character(len=512) :: message
-        namelist /contact/ stiffness, exponent, gravity, preload
+        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length
 
         stiffness = this%law%stiffness
         exponent = this%law%exponent
         gravity = 9.81_dp
         preload = -1.0_dp
+        n_points = this%n_points
+        patch_length = this%patch_length
         rewind (unit)
         read (unit, nml=contact, iostat=stat, iomsg=message)
         call group_status(this%file, 'contact', stat, message, error)
@@ -330,7 +407,14 @@ contains
         call require(preload >= 0.0_dp .or. this%model == 'sdof' .or. this%task /= 'contact', &
                      expected(this%file, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
+        call require(n_points >= 1 .and. (n_points == 1 .or. this%model == 'tyre'), &
+                     expected(this%file, 'contact', 'n_points', &
+                              "1, or a number of points >= 1 for model 'tyre'", n_points), error)
+        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this%file, 'contact', &
+                     'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
+        this%n_points = n_points
+        this%patch_length = patch_length
         this%preload = preload
         if (preload < 0.0_dp) this%preload = this%mass*gravity
     end subroutine read_contact_group

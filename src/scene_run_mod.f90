@@ -15,6 +15,7 @@ module scene_run_mod
     use scene_mod, only: scene_type
     use structure_mod, only: structure_model, build_structure
     use identification_output_mod, only: write_identification, identification_summary
+    use tyre_scene_mod, only: run_tyre_scene
     implicit none
     private
 
@@ -42,6 +43,11 @@ contains
 
         type(structure_model) :: structure
 
+        if (scene%model == 'tyre') then
+            call make_directory(scene%output_dir, error)
+            if (.not. allocated(error)) call run_tyre_scene(scene, unit, error)
+            return
+        end if
         call build_structure(scene, structure, error)
         if (allocated(error)) return
         call make_directory(scene%output_dir, error)

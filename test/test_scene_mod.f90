@@ -7,7 +7,7 @@ module test_scene_mod
     use files_mod, only: make_directory
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
                          convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
-                         write_frf, structure_from_modes, modal_set, error_e
+                         write_frf, structure_from_modes, modal_set, error_e, run_scene
     implicit none
     private
 
@@ -29,7 +29,9 @@ contains
                                   test_random_contact), &
                      new_unittest('FRF file: identified and FFT kernels against the sdof', test_frf_file), &
                      new_unittest('auto: direct for a small N_t*N_g, exact modes for a long run', test_auto_sdof), &
-                     new_unittest('auto: the smallest LSCE model meeting the accuracy, else fft', test_auto_modes)]
+                     new_unittest('auto: the smallest LSCE model meeting the accuracy, else fft', test_auto_modes), &
+                     new_unittest('tyre scene: files for each method; implicit near explicit', test_tyre_scene), &
+                     new_unittest('tyre scene: bad combinations get one message each', test_tyre_bad)]
     end subroutine collect_scene
 
     !> Write `text` as a scene file and read it.
@@ -296,7 +298,8 @@ contains
         if (allocated(error)) return
         call note('modes chosen', real(n, dp))
         call note('E', structure%fit%e)
-        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. structure%fit%e <= 1.0e-3_dp, &
+        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. &
+                   structure%fit%e <= 1.0e-3_dp, &
                    'an LSCE model meeting E <= 1e-3, said so ('//accuracy//')')
         if (allocated(error)) return
         e_fewer = huge(1.0_dp)
@@ -315,5 +318,104 @@ contains
         call check(error, index(accuracy, 'chose fft: no LSCE model meets') == 1 .and. label == 'N_g', &
                    'no model within 3 modes: fft, said so ('//accuracy//')')
     end subroutine test_auto_modes
+
+    !> A short tyre/road run (6 points, 400 steps of 20 us) through run_scene: one file per
+    !> method with N_t*N_c rows; the implicit (exact) and explicit (modal) total forces agree
+    !> to within 1 % of the preload (the hold's O(dt) shift of the force against the
+    !> rectangle rule's, measured 2e-3 here), and direct equals modal to 1e-9 (same modes,
+    !> sampled, the kernel not truncated within 400 steps).
+    subroutine test_tyre_scene(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: text = "&scene name = 'tyre', output_dir = '"//scratch//"', dt = 2.0e-5, " &
+            //"n_steps = 400 / &structure model = 'tyre', damping_ratio = 0.05 / &road profile = 'file', " &
+            //"road_file = 'data/road_sample.dat', x_start = 1.0, speed = 20.0 / &contact n_points = 6, " &
+            //"patch_length = 0.1, stiffness = 2.0e5, exponent = 1.0, preload = 1200.0 / " &
+            //"&convolution methods = 'exact', 'modal', 'direct', truncation_tol = 1.0e-6 /"
+        type(scene_type) :: scene
+        type(error_type), allocatable :: run_error
+        real(dp), allocatable :: exact(:, :), modal(:, :), direct(:, :)
+        integer :: unit
+
+        call scene_from_text('tyre.nml', text, scene, run_error)
+        if (.not. allocated(run_error)) then
+            open (newunit=unit, status='scratch', action='readwrite')
+            call run_scene(scene, unit, run_error)
+            close (unit)
+        end if
+        call check(error, .not. allocated(run_error), 'the tyre scene runs')
+        if (allocated(error)) return
+        call read_rows(scratch//'/tyre_exact.dat', exact)
+        call read_rows(scratch//'/tyre_modal.dat', modal)
+        call read_rows(scratch//'/tyre_direct.dat', direct)
+        call check(error, size(exact, 2) == 400*6 .and. size(modal, 2) == 400*6 .and. size(direct, 2) == 400*6, &
+                   'N_t*N_c rows in each file')
+        if (allocated(error)) return
+        call note('max |F_exact - F_modal| / F0 (total)', maxval(abs(exact(7, :) - modal(7, :)))/1200.0_dp)
+        call note('max |u_direct - u_modal| / max|u|', &
+                  maxval(abs(direct(4, :) - modal(4, :)))/maxval(abs(modal(4, :))))
+        call check(error, maxval(abs(exact(7, :) - modal(7, :))), 0.0_dp, 'total force, implicit vs explicit', &
+                   thr=0.01_dp*1200.0_dp)
+        if (allocated(error)) return
+        call check(error, maxval(abs(direct(4, :) - modal(4, :))), 0.0_dp, 'u, direct vs modal', &
+                   thr=1.0e-9_dp*maxval(abs(modal(4, :))))
+    end subroutine test_tyre_scene
+
+    !> The 7 columns of a multi-point output file, one column of `rows` per line.
+    subroutine read_rows(path, rows)
+        character(len=*), intent(in) :: path
+        real(dp), allocatable, intent(out) :: rows(:, :)
+
+        character(len=512) :: line
+        real(dp) :: values(7)
+        integer :: unit, stat, n
+
+        allocate (rows(7, 0))
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        n = 0
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (line(1:1) == '#' .or. len_trim(line) == 0) cycle
+            read (line, *) values
+            rows = reshape([rows, values], [7, n + 1])
+            n = n + 1
+        end do
+        close (unit)
+    end subroutine read_rows
+
+    !> A multi-point scene needs the tyre model and a road file, and the tyre a file road.
+    subroutine test_tyre_bad(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: run_error
+        integer :: unit
+
+        call scene_from_text('bad_points.nml', '&contact n_points = 5 /', scene, run_error)
+        call check(error, allocated(run_error), 'sdof with 5 points is refused')
+        if (allocated(error)) return
+        call check(error, index(run_error%message, "&contact n_points: expected 1, or a number of points >= 1 " &
+                                //"for model 'tyre', found 5") > 0, 'message: '//run_error%message)
+        if (allocated(error)) return
+        call scene_from_text('bad_tyre.nml', "&structure model = 'tyre' / &contact preload = 100.0 /", scene, run_error)
+        if (.not. allocated(run_error)) then
+            open (newunit=unit, status='scratch', action='readwrite')
+            call run_scene(scene, unit, run_error)
+            close (unit)
+        end if
+        call check(error, allocated(run_error), 'a tyre on the sine road is refused')
+        if (allocated(error)) return
+        call check(error, index(run_error%message, "&structure model: 'tyre' needs task = 'contact' and &road " &
+                                //"profile = 'file'") > 0, 'message: '//run_error%message)
+        if (allocated(error)) return
+        call scene_from_text('bad_road.nml', "&road profile = 'file', road_file = 'data/road_sample.dat', " &
+                             //"speed = 1.0e4 /", scene, run_error)
+        call check(error, allocated(run_error), 'a single point running off the road file is refused')
+        if (allocated(error)) return
+        call check(error, index(run_error%message, '&road x_start, speed: expected a run within ' &
+                                //'data/road_sample.dat') > 0, 'message: '//run_error%message)
+    end subroutine test_tyre_bad
 
 end module test_scene_mod
