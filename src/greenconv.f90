@@ -15,6 +15,7 @@ module greenconv
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
     use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, contact_options, run_contact
+    use contact_stability_mod, only: stability_cell, stability_map, contact_frequency
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
@@ -34,6 +35,7 @@ module greenconv
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
     public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
     public :: contact_law, contact_response, contact_options, run_contact
+    public :: stability_cell, stability_map, contact_frequency
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
