@@ -14,9 +14,10 @@ module greenconv
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
     use fftw_mod, only: destroy_fft_plans, fft_plan_count
-    use contact_mod, only: contact_law, contact_response, run_contact
+    use contact_mod, only: contact_law, contact_response, contact_options, run_contact
     use ode_reference_mod, only: ode_system, integrate
     use contact_reference_mod, only: contact_reference
+    use contact_stability_mod, only: stability_cell, stability_map, contact_frequency
     use road_mod, only: road_profile, sine_road, random_road, new_random_road
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
@@ -42,8 +43,9 @@ module greenconv
     public :: paper_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
     public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
-    public :: contact_law, contact_response, run_contact
+    public :: contact_law, contact_response, contact_options, run_contact
     public :: ode_system, integrate, contact_reference
+    public :: stability_cell, stability_map, contact_frequency
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form

@@ -12,6 +12,7 @@ program greenconv_tests
     use test_engines_mod, only: collect_engines
     use test_fft_mod, only: collect_fft
     use test_multicontact_mod, only: collect_multicontact
+    use test_implicit_mod, only: collect_implicit
     implicit none
 
     integer :: n_passed, n_failed
@@ -27,6 +28,7 @@ program greenconv_tests
     call run_testsuite('engines', collect_engines, output_unit, n_passed, n_failed)
     call run_testsuite('fft', collect_fft, output_unit, n_passed, n_failed)
     call run_testsuite('multicontact', collect_multicontact, output_unit, n_passed, n_failed)
+    call run_testsuite('implicit', collect_implicit, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests
