@@ -11,6 +11,8 @@ program greenconv_bench
     use error_mod, only: error_type
     use bench_tables_mod, only: print_tables
     use bench_stability_mod, only: overflow_map
+    use contact_stability_mod, only: stability_map
+    use multi_bench_mod, only: multipoint_cost_table
     use files_mod, only: make_directory
     implicit none
 
@@ -24,6 +26,10 @@ program greenconv_bench
     call make_directory(output_dir, error)
     if (.not. allocated(error)) call print_tables(output_unit, sdof_file, mdof_file, error)
     if (.not. allocated(error)) call overflow_map(output_unit, output_dir//'/overflow_map.dat', error)
+    if (.not. allocated(error)) call stability_map(output_dir//'/contact_stability_map.dat', error)
+    if (.not. allocated(error)) write (output_unit, '(a)') '# Contact stability map (explicit and implicit step over ' &
+        //'k_c and dt): '//output_dir//'/contact_stability_map.dat', ''
+    if (.not. allocated(error)) call multipoint_cost_table(output_unit, error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
         stop 2, quiet=.true.

@@ -13,7 +13,7 @@
 !>     &road           profile = 'sine' | 'random' | 'file', amplitude [m], omega [rad/s],
 !>                     wavelength [m], speed [m/s], n_terms, seed, road_file, x_start [m]
 !>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N],
-!>                     n_points, patch_length [m]
+!>                     n_points, patch_length [m], scheme, divergence_bound [m]
 !>     &convolution    methods, truncation_tol, accuracy
 module scene_mod
     use, intrinsic :: iso_fortran_env, only: iostat_end
@@ -21,7 +21,7 @@ module scene_mod
     use error_mod, only: error_type, fatal_error
     use text_mod, only: real_text
     use road_mod, only: road_profile, sine_road, new_random_road
-    use contact_mod, only: contact_law
+    use contact_mod, only: contact_law, contact_options
     use tyre_model_mod, only: tyre_belt
     use road_file_mod, only: road_file, read_road_file, file_road
     implicit none
@@ -98,6 +98,8 @@ module scene_mod
         integer :: n_points = 1
         !> Length [m] of the contact patch the N_c points share (tyre model).
         real(dp) :: patch_length = 0.1_dp
+        !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
+        type(contact_options) :: contact
         !> Contact law.
         type(contact_law) :: law
         !> Static preload F0 [N].
@@ -381,10 +383,11 @@ contains
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: stiffness, exponent, gravity, preload, patch_length
+        real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound
+        character(len=name_length) :: scheme
         integer :: stat, n_points
         character(len=512) :: message
-        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length
+        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, scheme, divergence_bound
 
         stiffness = this%law%stiffness
         exponent = this%law%exponent
@@ -392,6 +395,8 @@ contains
         preload = -1.0_dp
         n_points = this%n_points
         patch_length = this%patch_length
+        scheme = this%contact%scheme
+        divergence_bound = this%contact%divergence_bound
         rewind (unit)
         read (unit, nml=contact, iostat=stat, iomsg=message)
         call group_status(this%file, 'contact', stat, message, error)
@@ -412,7 +417,14 @@ contains
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
         call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this%file, 'contact', &
                      'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
+        call require(any(trim(scheme) == [character(len=8) :: 'explicit', 'implicit']), &
+                     expected(this%file, 'contact', 'scheme', "'explicit' or 'implicit'", scheme), error)
+        call require(divergence_bound > 0.0_dp .and. divergence_bound < huge(divergence_bound), &
+                     expected(this%file, 'contact', 'divergence_bound', 'a displacement > 0 m', divergence_bound), &
+                     error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
+        this%contact%scheme = trim(scheme)
+        this%contact%divergence_bound = divergence_bound
         this%n_points = n_points
         this%patch_length = patch_length
         this%preload = preload

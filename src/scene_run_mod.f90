@@ -69,6 +69,7 @@ contains
 
         class(convolver), allocatable :: conv
         type(contact_response) :: response
+        type(error_type), allocatable :: run_error
         character(len=:), allocatable :: accuracy, label
         real(dp), allocatable :: road(:)
         real(dp) :: start, finish
@@ -83,11 +84,19 @@ contains
                                 conv, accuracy, error, scene%accuracy)
             if (allocated(error)) return
             call cpu_time(start)
-            call run_contact(conv, scene%law, road, scene%preload, response)
+            call run_contact(conv, scene%law, road, scene%preload, response, scene%contact, run_error)
             call cpu_time(finish)
             call conv%model_size(n, label)
+            ! A fault keeps the rows computed before it: write them, then report.
             call write_response(output_path(scene, trim(scene%methods(i))), scene, conv, response, error)
             if (allocated(error)) return
+            if (allocated(run_error)) then
+                call move_alloc(run_error, error)
+                error%message = scene%file//': '//trim(scene%methods(i))//' ('//trim(scene%contact%scheme) &
+                                //' step): '//error%message//' (rows up to then in ' &
+                                //output_path(scene, trim(scene%methods(i)))//')'
+                return
+            end if
             write (unit, summary_format) trim(scene%methods(i)), label//'='//int_text(n), scene%n_steps, &
                 finish - start, accuracy
         end do
@@ -274,7 +283,7 @@ contains
         comments(3) = 't u_road u f_contact delta'
         call write_columns(path, comments, reshape([response%time, response%road, response%displacement, &
                                                     response%force, response%compression], &
-                                                   [scene%n_steps, 5]), error)
+                                                   [size(response%time), 5]), error)
     end subroutine write_response
 
 end module scene_run_mod
