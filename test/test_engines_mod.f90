@@ -49,7 +49,8 @@ contains
                      new_unittest('exact: ramp on 10 modes to round-off', test_ramp_modes), &
                      new_unittest('exact: second order against Duhamel (step, sine)', test_exact_order), &
                      new_unittest('exact: more accurate than paper for a slow sine', test_exact_sine), &
-                     new_unittest('backward: its definition by quadrature of g, random load', test_backward_definition), &
+                     new_unittest('backward: its definition by quadrature of g, random load', &
+                                  test_backward_definition), &
                      new_unittest('backward: static gain F/K exact', test_backward_static), &
                      new_unittest('backward: first order against Duhamel (sine)', test_backward_order)]
     end subroutine collect_engines
