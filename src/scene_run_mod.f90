@@ -101,8 +101,9 @@ contains
     !> written), `recursive` (the same sum with decaying factors), `exact` (force linear
     !> within a step) and `backward` (force constant over the step ending at its sample, first
     !> order, for the implicit step of stiff contacts); `modal` is `recursive`. `auto` picks
-    !> the cheapest of these that meets `requested` (see `choose_method`; never `backward`). `accuracy` says in words how far the model is from
-    !> the exact g (and, for `auto`, what it chose and why).
+    !> the cheapest of these that meets `requested` (see `choose_method`; never `backward`).
+    !> `accuracy` says in words how far the model is from the exact g (and, for `auto`, what it
+    !> chose and why).
     subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested)
         !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive`, `exact`, `backward` or `auto`.
         character(len=*), intent(in) :: method
