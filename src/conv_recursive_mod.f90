@@ -1,4 +1,5 @@
-!> Convolution by modal decomposition with decaying recursions: `recursive` and `exact`.
+!> Convolution by modal decomposition with decaying recursions: `recursive`, `exact` and
+!> `backward`.
 !>
 !> Both engines keep one complex state per mode (pole lambda_k, residue r_k, see
 !> modal_set_mod) and advance it by the factor z_k = exp(lambda_k*dt), of modulus below 1
@@ -42,6 +43,26 @@
 !> For |x| < 1, phi1 and phi2 are summed from their Taylor series, which avoids the
 !> cancellation of exp(x) - 1 - x at small dt.
 !>
+!> `backward` holds the force constant over the step that ends at its sample: q(t) = q_m
+!> for t_{m-1} < t <= t_m (a backward zero-order hold, q = 0 before step 0). Then (our own
+!> derivation)
+!>
+!>     u(t_n) = sum_{m<=n} q_m*a_{n-m},   a_j = int_{j*dt}^{(j+1)*dt} g(s) ds
+!>            = sum_k 2*Re(r_k*z_k^j*(z_k - 1)/lambda_k) = sum_k 2*Re(r_k*dt*phi1(x)*z_k^j).
+!>
+!> The instantaneous weight is a_0, and the rest of the sum is carried by the states: after
+!> the pushes of q_0..q_{n-1}, p_k(n) = sum_{m<n} z_k^(n-1-m)*c_k*q_m, which equals the
+!> share 2*r_k*dt*phi1*sum_{m<n} z_k^(n-m)*q_m of mode k when
+!>
+!>     c_k = 2*r_k*dt*phi1(x)*z_k,   w0 = a_0 = sum_k 2*Re(r_k*dt*phi1(x)),
+!>
+!> with (z_k - 1)/lambda_k = dt*phi1(x) taken from hold_functions (no cancellation at small
+!> dt). The kernel w_j = a_j is g averaged over the step [t_j, t_{j+1}]: first order in dt,
+!> but sum_j a_j = int_0^inf g = G(0) exactly (the static gain), and a_0 ~ dt^2/(2*M) > 0
+!> for a structure that starts like a mass. In the implicit contact step the spring sees
+!> u(t_n) = u_h + a_0*F(t_n) with the whole of the step's impulse on the current force,
+!> which is backward Euler on the contact: dissipative at any omega_c*dt.
+!>
 !> A state that decays with no force passes through subnormal numbers for a few hundred
 !> steps before it becomes zero; this is correct and only slow on some processors.
 module conv_recursive_mod
@@ -51,10 +72,11 @@ module conv_recursive_mod
     implicit none
     private
 
-    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
     public :: hold_functions
 
-    !> A decaying modal recursion: `recursive` (rectangle rule) or `exact` (first-order hold).
+    !> A decaying modal recursion: `recursive` (rectangle rule), `exact` (first-order hold)
+    !> or `backward` (backward zero-order hold).
     type, extends(convolver) :: recursive_convolver
         !> Real part of the decay factors z_k = exp(lambda_k*dt) (dimensionless).
         real(dp), allocatable :: decay_re(:)
@@ -110,6 +132,24 @@ contains
         call set_up(conv, 'exact', dt, exp(modes%pole*dt), 2.0_dp*modes%residue*dt*phi1**2, &
                     2.0_dp*sum(real(modes%residue*dt*phi2, kind=dp)))
     end function new_exact_convolver
+
+    !> The backward-zero-order-hold convolution named `backward`: the force constant over the
+    !> step that ends at its sample; w0 = a_0 = sum_k 2*Re(r_k*dt*phi1(lambda_k*dt)) [m/N],
+    !> c_k = 2*r_k*dt*phi1*z_k. First order in dt, static gain exact.
+    function new_backward_convolver(modes, dt) result(conv)
+        !> The Green's function as modes (Re lambda_k <= 0).
+        type(modal_set), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        type(recursive_convolver) :: conv
+
+        complex(dp) :: phi1(modes%n_modes()), phi2(modes%n_modes()), z(modes%n_modes())
+
+        call hold_functions(modes%pole*dt, phi1, phi2)
+        z = exp(modes%pole*dt)
+        call set_up(conv, 'backward', dt, z, 2.0_dp*modes%residue*dt*phi1*z, &
+                    2.0_dp*sum(real(modes%residue*dt*phi1, kind=dp)))
+    end function new_backward_convolver
 
     !> phi1(x) = (exp(x) - 1)/x and phi2(x) = (exp(x) - 1 - x)/x^2 (1 and 1/2 at x = 0),
     !> from their Taylor series when |x| < 1 and in closed form otherwise.

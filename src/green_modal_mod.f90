@@ -11,7 +11,9 @@
 !> conv_recursive_mod, which this type holds (one `recursive_convolver` over the N_m modes,
 !> whose states are the p_k): `recursive`, the paper's rectangle rule (c_k = 2*r_k*dt*z_k,
 !> w0_k = 0, explicit), or `exact`, the first-order hold (c_k = 2*r_k*dt*phi1^2,
-!> w0_k = 2*Re(r_k*dt*phi2(lambda_k*dt)), with phi1, phi2 from `hold_functions`). A step costs
+!> w0_k = 2*Re(r_k*dt*phi2(lambda_k*dt)), with phi1, phi2 from `hold_functions`), or
+!> `backward`, the backward zero-order hold (c_k = 2*r_k*dt*phi1*z_k, w0_k = 2*Re(r_k*dt*phi1)).
+!> A step costs
 !> N_c*N_m multiplications for the modal forces, 4*N_m for the states and N_c*N_m for the
 !> displacements: O(N_c*N_m) instead of the O(N_c^2*N_g) of the sampled table.
 module green_modal_mod
@@ -19,7 +21,7 @@ module green_modal_mod
     use error_mod, only: error_type, fatal_error
     use green_matrix_mod, only: multipoint_convolver, point_modes
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
-                                  hold_functions
+                                  new_backward_convolver, hold_functions
     implicit none
     private
 
@@ -42,14 +44,15 @@ module green_modal_mod
 
 contains
 
-    !> A modal multi-point convolver with the scheme `recursive` (explicit, W0 = 0) or `exact`
-    !> (first-order hold, W0 /= 0), at time step dt [s].
+    !> A modal multi-point convolver with the scheme `recursive` (explicit, W0 = 0), `exact`
+    !> (first-order hold, W0 /= 0) or `backward` (backward zero-order hold, W0 /= 0), at time
+    !> step dt [s].
     subroutine new_modal_green_matrix(description, dt, scheme, conv, error)
         !> Modes and mode shapes at the points.
         type(point_modes), intent(in) :: description
         !> Time step [s].
         real(dp), intent(in) :: dt
-        !> `recursive` or `exact`.
+        !> `recursive`, `exact` or `backward`.
         character(len=*), intent(in) :: scheme
         !> The convolver.
         type(modal_green_matrix), intent(out) :: conv
@@ -76,9 +79,13 @@ contains
             conv%engine = new_exact_convolver(description%modes, dt)
             call hold_functions(description%modes%pole*dt, phi1, phi2)
             w0(:) = 2.0_dp*real(description%modes%residue*dt*phi2, kind=dp)
+        case ('backward')
+            conv%engine = new_backward_convolver(description%modes, dt)
+            call hold_functions(description%modes%pole*dt, phi1, phi2)
+            w0(:) = 2.0_dp*real(description%modes%residue*dt*phi1, kind=dp)
         case default
             call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme// &
-                             ''': expected ''recursive'' or ''exact''')
+                             ''': expected ''recursive'', ''exact'' or ''backward''')
             return
         end select
         conv%name = scheme

@@ -11,7 +11,8 @@ module greenconv
     use convolver_mod, only: convolver
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     use conv_modal_mod, only: paper_convolver, new_paper_convolver
-    use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
+                                 new_backward_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
     use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, contact_options, run_contact
@@ -41,7 +42,7 @@ module greenconv
     public :: convolver
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     public :: paper_convolver, new_paper_convolver
-    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
     public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
     public :: contact_law, contact_response, contact_options, run_contact
     public :: ode_system, integrate, contact_reference

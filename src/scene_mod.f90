@@ -34,7 +34,8 @@ module scene_mod
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
     !> The convolution methods a scene may list, for messages.
-    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact' or 'auto'"
+    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', " &
+                                                   //"'backward' or 'auto'"
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
 
@@ -453,7 +454,7 @@ contains
         if (allocated(error)) return
         do i = 1, max_methods
             select case (trim(methods(i)))
-            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'auto')
+            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward', 'auto')
             case default
                 call fatal_error(error, &
                                  expected(this%file, 'convolution', 'methods', known_methods, methods(i)))

@@ -9,7 +9,7 @@ module scene_run_mod
     use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
     use conv_fft_mod, only: new_fft_convolver
     use conv_modal_mod, only: new_paper_convolver
-    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver
+    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver
     use contact_mod, only: contact_response, run_contact
     use files_mod, only: write_columns, make_directory
     use scene_mod, only: scene_type
@@ -107,12 +107,14 @@ contains
     !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
     !> its FRF), truncated by the paper's rule; `fft` computes the same sum by partitioned FFT.
     !> The modal methods recur on the structure's model modes: `paper` (eqs. 15-17 as
-    !> written), `recursive` (the same sum with decaying factors) and `exact` (force linear
-    !> within a step); `modal` is `recursive`. `auto` picks the cheapest of these that meets
-    !> `requested` (see `choose_method`). `accuracy` says in words how far the model is from
-    !> the exact g (and, for `auto`, what it chose and why).
+    !> written), `recursive` (the same sum with decaying factors), `exact` (force linear
+    !> within a step) and `backward` (force constant over the step ending at its sample, first
+    !> order, for the implicit step of stiff contacts); `modal` is `recursive`. `auto` picks
+    !> the cheapest of these that meets `requested` (see `choose_method`; never `backward`).
+    !> `accuracy` says in words how far the model is from the exact g (and, for `auto`, what it
+    !> chose and why).
     subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested)
-        !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive`, `exact` or `auto`.
+        !> Method name: `direct`, `fft`, `modal`, `paper`, `recursive`, `exact`, `backward` or `auto`.
         character(len=*), intent(in) :: method
         !> The structure.
         type(structure_model), intent(in) :: structure
@@ -220,9 +222,12 @@ contains
             conv = new_recursive_convolver(structure%model, dt)
         case ('exact')
             conv = new_exact_convolver(structure%model, dt)
+        case ('backward')
+            conv = new_backward_convolver(structure%model, dt)
         case default
             call fatal_error(error, "unknown convolution method '"//method// &
-                             "': expected 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact' or 'auto'")
+                             "': expected 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward' " &
+                             //"or 'auto'")
             return
         end select
         if (method /= 'direct' .and. method /= 'fft') then

@@ -1,5 +1,5 @@
 !> The convolution engines of issue 4 against each other and against closed forms:
-!> `paper` (conv_modal_mod, eqs. 15-17), `recursive` and `exact` (conv_recursive_mod).
+!> `paper` (conv_modal_mod, eqs. 15-17), `recursive`, `exact` and `backward` (conv_recursive_mod).
 !>
 !> Tolerances:
 !> - `recursive` is `paper` without its growth factors: equal to 1e-12 of max|u|, the
@@ -7,6 +7,9 @@
 !> - `exact` (first-order hold) integrates a piecewise-linear force exactly: a ramp gives
 !>   the closed form to 1e-12 of max|u|. For a smooth force its error is the hold's,
 !>   |q_hold - q| <= (dt^2/8)*max|q''|, times int|g| <= 1/(M*wd*a): second order in dt.
+!> - `backward` (backward zero-order hold) is its own definition, u(t_n) = sum q_m*a_{n-m}
+!>   with a_j the integral of g over [j*dt, (j+1)*dt], to 1e-12 of max|u| (the a_j by
+!>   Gauss-Legendre quadrature of g, independent of the modal form); first order in dt.
 module test_engines_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -17,7 +20,8 @@ module test_engines_mod
     use sdof_mod, only: sdof_modes, sdof_impulse
     use convolver_mod, only: convolver
     use conv_modal_mod, only: new_paper_convolver
-    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, hold_functions
+    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver, &
+                                  hold_functions
     implicit none
     private
 
@@ -44,7 +48,11 @@ contains
                      new_unittest('exact: ramp load reproduced to round-off (u = history + w0*q)', test_ramp), &
                      new_unittest('exact: ramp on 10 modes to round-off', test_ramp_modes), &
                      new_unittest('exact: second order against Duhamel (step, sine)', test_exact_order), &
-                     new_unittest('exact: more accurate than paper for a slow sine', test_exact_sine)]
+                     new_unittest('exact: more accurate than paper for a slow sine', test_exact_sine), &
+                     new_unittest('backward: its definition by quadrature of g, random load', &
+                                  test_backward_definition), &
+                     new_unittest('backward: static gain F/K exact', test_backward_static), &
+                     new_unittest('backward: first order against Duhamel (sine)', test_backward_order)]
     end subroutine collect_engines
 
     !> Largest |u_a - u_b| over n_steps of two convolvers driven by the same random load in
@@ -428,5 +436,100 @@ contains
         err_exact = max_error(exact, 'sine', 2000, stiffness, xi, 100.0_dp)
         call check(error, err_exact < 0.1_dp*err_paper, 'exact 10 times more accurate than paper at W = 100 rad/s')
     end subroutine test_exact_sine
+
+    !> `backward` against its definition u(t_n) = sum_{m<=n} q_m*a_{n-m} summed directly, with
+    !> a_j = int_{j*dt}^{(j+1)*dt} g(s) ds from the closed-form g of the oscillator by 5-point
+    !> Gauss-Legendre on 4 sub-intervals per step (omega*h <= 0.25: quadrature error below
+    !> 1e-16 relative), for a random load in [-F, F], dt = 0.1 ms and 1 ms, 2000 steps.
+    subroutine test_backward_definition(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_steps = 2000, sub = 4
+        real(dp), parameter :: nodes(5) = [-0.9061798459386640_dp, -0.5384693101056831_dp, 0.0_dp, &
+                                           0.5384693101056831_dp, 0.9061798459386640_dp]
+        real(dp), parameter :: weights(5) = [0.2369268850561891_dp, 0.4786286704993665_dp, &
+                                             0.5688888888888889_dp, 0.4786286704993665_dp, 0.2369268850561891_dp]
+        class(convolver), allocatable :: backward
+        type(random_stream) :: stream
+        real(dp) :: a(0:n_steps - 1), q(0:n_steps - 1), dt, h, centre, u, worst, peak
+        integer :: trial, j, i, n
+
+        do trial = 1, 2
+            dt = 10.0_dp**(-5 + trial)
+            h = dt/sub
+            do j = 0, n_steps - 1
+                a(j) = 0.0_dp
+                do i = 0, sub - 1
+                    centre = j*dt + (i + 0.5_dp)*h
+                    a(j) = a(j) + 0.5_dp*h*sum(weights*sdof_impulse(mass, stiffness, xi, centre + 0.5_dp*h*nodes))
+                end do
+            end do
+            backward = new_backward_convolver(sdof_modes(mass, stiffness, xi), dt)
+            call check(error, backward%instant_weight(), a(0), 'backward: w0 = a_0', thr=1.0e-12_dp, rel=.true.)
+            if (allocated(error)) return
+            stream = random_stream(11 + trial)
+            worst = 0.0_dp
+            peak = 0.0_dp
+            do n = 0, n_steps - 1
+                q(n) = stream%between(-force, force)
+                u = sum(q(0:n)*a(n:0:-1))
+                worst = max(worst, abs(backward%history() + backward%instant_weight()*q(n) - u))
+                peak = max(peak, abs(u))
+                call backward%push(q(n))
+            end do
+            call note('dt', dt)
+            call note('max error/max|u|', worst/peak)
+            call check(error, worst/peak, 0.0_dp, 'backward against its definition', thr=1.0e-12_dp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_backward_definition
+
+    !> A constant force F from step 0: u(t_n) = F*sum_{j<=n} a_j tends to F*int g = F/K
+    !> exactly; after 3 s (exp(-xi*omega*t) = e^-60) it is F/K to 1e-12, at dt = 0.1 ms and 1 ms.
+    subroutine test_backward_static(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        class(convolver), allocatable :: backward
+        real(dp) :: dt
+        integer :: trial, n
+
+        do trial = 1, 2
+            dt = 10.0_dp**(-5 + trial)
+            backward = new_backward_convolver(sdof_modes(mass, stiffness, xi), dt)
+            do n = 1, nint(3.0_dp/dt)
+                call backward%push(force)
+            end do
+            call note('|u - F/K|/(F/K)', abs(backward%history() + backward%instant_weight()*force &
+                                             - force/stiffness)*stiffness/force)
+            call check(error, backward%history() + backward%instant_weight()*force, force/stiffness, &
+                       'backward: static u = F/K', thr=1.0e-12_dp, rel=.true.)
+            if (allocated(error)) return
+        end do
+    end subroutine test_backward_static
+
+    !> Errors under F*sin(W t), W = 700 rad/s, at dt = 0.2, 0.1, 0.05 ms over 0.1 s: the hold
+    !> delays the force by dt/2 on average, an error of (dt/2)*|q'| times the gain, so each
+    !> halving of dt halves the error: order 1 +- 0.1.
+    subroutine test_backward_order(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: w = 700.0_dp
+        class(convolver), allocatable :: conv
+        real(dp) :: errors(3), dt, order
+        integer :: i
+
+        do i = 1, 3
+            dt = 2.0e-4_dp/2**(i - 1)
+            conv = new_backward_convolver(sdof_modes(mass, stiffness, xi), dt)
+            errors(i) = max_error(conv, 'sine', 500*2**(i - 1), stiffness, xi, w)
+        end do
+        call note('max error/(F/K), dt = 0.1 ms', errors(2)*stiffness/force)
+        do i = 1, 2
+            order = log(errors(i)/errors(i + 1))/log(2.0_dp)
+            call note('sine order', order)
+            call check(error, order, 1.0_dp, 'observed order of backward, sine', thr=0.1_dp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_backward_order
 
 end module test_engines_mod
