@@ -9,6 +9,7 @@ program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use error_mod, only: error_type
     use bench_tables_mod, only: print_tables
+    use bench_accuracy_mod, only: accuracy_charts
     implicit none
 
     type(error_type), allocatable :: error
@@ -17,6 +18,7 @@ program greenconv_bench
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
     call print_tables(output_unit, sdof_file, mdof_file, error)
+    if (.not. allocated(error)) call accuracy_charts(output_unit, 'out/bench', sdof_file, mdof_file, error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
         stop 2, quiet=.true.
