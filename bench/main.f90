@@ -14,6 +14,7 @@ program greenconv_bench
     use contact_stability_mod, only: stability_map
     use multi_bench_mod, only: multipoint_cost_table
     use files_mod, only: make_directory
+    use bench_accuracy_mod, only: accuracy_charts
     implicit none
 
     type(error_type), allocatable :: error
@@ -30,6 +31,7 @@ program greenconv_bench
     if (.not. allocated(error)) write (output_unit, '(a)') '# Contact stability map (explicit and implicit step over ' &
         //'k_c and dt): '//output_dir//'/contact_stability_map.dat', ''
     if (.not. allocated(error)) call multipoint_cost_table(output_unit, error)
+    if (.not. allocated(error)) call accuracy_charts(output_unit, output_dir, sdof_file, mdof_file, error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
         stop 2, quiet=.true.

@@ -13,6 +13,7 @@ program greenconv_tests
     use test_fft_mod, only: collect_fft
     use test_multicontact_mod, only: collect_multicontact
     use test_implicit_mod, only: collect_implicit
+    use test_accuracy_mod, only: collect_accuracy
     implicit none
 
     integer :: n_passed, n_failed
@@ -29,6 +30,7 @@ program greenconv_tests
     call run_testsuite('fft', collect_fft, output_unit, n_passed, n_failed)
     call run_testsuite('multicontact', collect_multicontact, output_unit, n_passed, n_failed)
     call run_testsuite('implicit', collect_implicit, output_unit, n_passed, n_failed)
+    call run_testsuite('accuracy', collect_accuracy, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests
