@@ -27,7 +27,7 @@ module scene_mod
     implicit none
     private
 
-    public :: scene_type, read_scene
+    public :: scene_type, read_scene, output_path
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -115,6 +115,17 @@ module scene_mod
     end type scene_type
 
 contains
+
+    !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`.
+    function output_path(scene, method) result(path)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Method name.
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: path
+
+        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
+    end function output_path
 
     !> Read and check a scene namelist file.
     subroutine read_scene(path, scene, error)

@@ -12,7 +12,7 @@ module scene_run_mod
     use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver
     use contact_mod, only: contact_response, run_contact
     use files_mod, only: write_columns, make_directory
-    use scene_mod, only: scene_type
+    use scene_mod, only: scene_type, output_path
     use structure_mod, only: structure_model, build_structure
     use identification_output_mod, only: write_identification, identification_summary
     use tyre_scene_mod, only: run_tyre_scene
@@ -257,17 +257,6 @@ contains
         tail = 0.0_dp
         if (n_g < last) tail = maxval(abs(structure%sampled_g(n_g + 2:last + 1)))/maxval(abs(kernel))
     end subroutine direct_kernel
-
-    !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`.
-    function output_path(scene, method) result(path)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Method name.
-        character(len=*), intent(in) :: method
-        character(len=:), allocatable :: path
-
-        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
-    end function output_path
 
     !> Write the histories of one run as columns t, u_road, u, f_contact, delta.
     subroutine write_response(path, scene, conv, response, error)

@@ -13,7 +13,7 @@ module tyre_scene_mod
     use text_mod, only: int_text, sci_text
     use error_mod, only: error_type, fatal_error
     use contact_mod, only: contact_law
-    use scene_mod, only: scene_type
+    use scene_mod, only: scene_type, output_path
     use tyre_model_mod, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
     use road_file_mod, only: sample_road_file
     use green_matrix_mod, only: point_modes, multipoint_convolver, sample_green_matrix
@@ -96,7 +96,7 @@ contains
                                [(scene%preload/scene%n_points, n=1, scene%n_points)], response, run_error)
         call cpu_time(finish)
         ! A failed step keeps the rows computed before it: write them, then report.
-        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
+        path = output_path(scene, method)
         call write_multi_contact(path, 'greenconv tyre/road scene '//scene%name//', method '//method, positions, &
                                  response, error)
         if (allocated(error)) return
