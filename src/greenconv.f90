@@ -13,7 +13,6 @@ module greenconv
     use conv_modal_mod, only: paper_convolver, new_paper_convolver
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
-    use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, run_contact
     use ode_reference_mod, only: ode_system, integrate
     use contact_reference_mod, only: contact_reference
@@ -34,7 +33,7 @@ module greenconv
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     public :: paper_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver
-    public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
+    public :: fft_convolver, new_fft_convolver, default_head
     public :: contact_law, contact_response, run_contact
     public :: ode_system, integrate, contact_reference
     public :: road_profile, sine_road, random_road, new_random_road
