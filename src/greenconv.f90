@@ -20,8 +20,11 @@ module greenconv
     use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     use scene_mod, only: scene_type, read_scene
-    use structure_mod, only: structure_model, structure_from_modes, build_structure
+    use structure_mod, only: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, &
+                             build_structure
     use scene_run_mod, only: run_scene, make_convolver, output_path
+    use library_mod, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file, &
+                           default_truncation_tol, default_accuracy
     implicit none
     private
 
@@ -40,7 +43,9 @@ module greenconv
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
     public :: scene_type, read_scene
-    public :: structure_model, structure_from_modes, build_structure
+    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
     public :: run_scene, make_convolver, output_path
+    public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
+    public :: default_truncation_tol, default_accuracy
 
 end module greenconv
