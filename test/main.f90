@@ -11,6 +11,7 @@ program greenconv_tests
     use test_scene_mod, only: collect_scene
     use test_engines_mod, only: collect_engines
     use test_fft_mod, only: collect_fft
+    use test_library_mod, only: collect_library
     implicit none
 
     integer :: n_passed, n_failed
@@ -25,6 +26,7 @@ program greenconv_tests
     call run_testsuite('scene', collect_scene, output_unit, n_passed, n_failed)
     call run_testsuite('engines', collect_engines, output_unit, n_passed, n_failed)
     call run_testsuite('fft', collect_fft, output_unit, n_passed, n_failed)
+    call run_testsuite('library', collect_library, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests
