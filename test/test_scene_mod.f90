@@ -296,8 +296,8 @@ contains
         if (allocated(error)) return
         call note('modes chosen', real(n, dp))
         call note('E', structure%fit%e)
-        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. structure%fit%e <= 1.0e-3_dp, &
-                   'an LSCE model meeting E <= 1e-3, said so ('//accuracy//')')
+        call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' &
+                   .and. structure%fit%e <= 1.0e-3_dp, 'an LSCE model meeting E <= 1e-3, said so ('//accuracy//')')
         if (allocated(error)) return
         e_fewer = huge(1.0_dp)
         do k = 1, n
