@@ -2,13 +2,15 @@
  * c_contact: the SDOF scene of data/sdof_sine.nml (the paper's section 3.1) run from C
  * through the greenconv C API, checked against the files the greenconv driver writes.
  *
- *     c_contact DIR
+ *     c_contact DIR [FRF]
  *
  * DIR holds sdof_sine_direct.dat and sdof_sine_modal.dat from `greenconv data/sdof_sine.nml`
  * (columns t [s], u_road [m], u [m], f_contact [N], delta [m]). The program
  *  1. runs "direct" and "modal" with gc_run_contact (whole run on arrays),
  *  2. steps an "fft" convolver itself with gc_contact_step (the same sum as "direct"),
- *  3. checks two failures: an unknown method and a NULL handle,
+ *  3. checks three failures: an unknown method, a NULL handle, a missing scene file,
+ *  4. given a receptance file FRF (data/sample_receptance.frf: 4 modes), identifies its
+ *     modes by LSCE (4 modes, E <= 1e-10 expected) and builds an "exact" convolver on them,
  * and compares u, F and delta with the driver's columns: every value within 1e-12 of the
  * column's largest magnitude (the driver prints 16 significant digits; both run the same
  * loop). It prints the largest differences and exits with status 1 on any mismatch.
@@ -89,6 +91,36 @@ static int compare(const char *dir, const char *method, const char *how, const d
     return failures;
 }
 
+/* LSCE on a receptance file of 4 modes: the modes, E, and an "exact" convolver on them. */
+static int identify(const char *frf)
+{
+    double pole_re[8], pole_im[8], residue_re[8], residue_im[8], e = 1.0;
+    char message[256], text[256];
+    int n_modes = 0, failures = 0;
+    gc_convolver *conv = NULL;
+
+    if (gc_identify_frf_file(frf, 1.0e-6, 20, 8, &n_modes, pole_re, pole_im, residue_re, residue_im, &e, message,
+                             sizeof message) != GC_OK) {
+        fprintf(stderr, "c_contact: %s\n", message);
+        return 1;
+    }
+    printf("c_contact: %s: %d modes, E = %.1e, at", frf, n_modes, e);
+    for (int k = 0; k < n_modes; k++) {
+        printf(" %.2f Hz", hypot(pole_re[k], pole_im[k]) / (2.0 * acos(-1.0)));
+        if (!(pole_re[k] < 0.0 && pole_im[k] > 0.0)) failures++;
+    }
+    printf("\n");
+    if (n_modes != 4 || !(e <= 1.0e-10)) failures++;
+    if (gc_convolver_new_frf_file(frf, dt, "exact", N_STEPS, 1.0e-6, 20, &conv, message, sizeof message) != GC_OK) {
+        fprintf(stderr, "c_contact: %s\n", message);
+        return failures + 1;
+    }
+    gc_convolver_describe(conv, text, sizeof text);
+    printf("c_contact: %s\n", text);
+    gc_convolver_free(conv);
+    return failures;
+}
+
 int main(int argc, char **argv)
 {
     static double road[N_STEPS], u[N_STEPS], f[N_STEPS], delta[N_STEPS];
@@ -97,8 +129,8 @@ int main(int argc, char **argv)
     gc_convolver *conv = NULL;
     int failures = 0;
 
-    if (argc != 2) {
-        fprintf(stderr, "usage: c_contact DIR   (DIR: the driver's output for data/sdof_sine.nml)\n");
+    if (argc != 2 && argc != 3) {
+        fprintf(stderr, "usage: c_contact DIR [FRF]   (DIR: the driver's output for data/sdof_sine.nml)\n");
         return 2;
     }
     for (int n = 0; n < N_STEPS; n++) road[n] = amplitude * sin(omega * (n * dt));
@@ -143,6 +175,12 @@ int main(int argc, char **argv)
     status = gc_convolver_history(NULL, &displacement);
     printf("c_contact: NULL handle -> status %d\n", status);
     if (status != GC_ERROR_INPUT) failures++;
+    status = gc_run_scene("no/such/scene.nml", message, sizeof message);
+    printf("c_contact: missing scene -> status %d, \"%s\"\n", status, message);
+    if (status != GC_ERROR_INPUT || strstr(message, "cannot open") == NULL) failures++;
+
+    /* 4. Modes identified from a receptance file. */
+    if (argc == 3) failures += identify(argv[2]);
 
     printf("c_contact: %s\n", failures ? "FAILED" : "all checks passed");
     return failures ? 1 : 0;

@@ -160,8 +160,9 @@ int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int
 
 /**
  * Identify modes from a receptance file (format as gc_convolver_new_frf_file) by LSCE: at
- * most `capacity` modes written to the four arrays, their number in *n_modes (status
- * GC_ERROR_INPUT if it exceeds capacity) and the fit's error E (eq. 7) in *error_e.
+ * most `capacity` modes written to the four arrays, lowest natural frequency first, their
+ * number in *n_modes (status GC_ERROR_INPUT if it exceeds capacity) and the fit's error E
+ * (eq. 7) in *error_e.
  */
 int gc_identify_frf_file(const char *path, double tol_e, int max_modes, int capacity,
                          int *n_modes, double *pole_re, double *pole_im, double *residue_re,

@@ -22,7 +22,7 @@ module greenconv_legacy
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_input
     use text_mod, only: lower_text
-    use modal_set_mod, only: modal_set
+    use modal_set_mod, only: modal_set, sorted_by_frequency
     use sdof_mod, only: sdof_modes
     use convolver_mod, only: convolver
     use contact_mod, only: contact_law, contact_response, run_contact
@@ -441,7 +441,7 @@ contains
     end subroutine gccont
 
     !> Identify modes from a receptance file by LSCE: poles and residues of the smallest model
-    !> whose E (eq. 7) meets tole, or the best up to maxmod modes, sorted as LSCE returns them.
+    !> whose E (eq. 7) meets tole, or the best up to maxmod modes, lowest frequency first.
     subroutine gcid(path, tole, maxmod, ncap, nmode, polre, polim, resre, resim, e, ierr, errmsg)
         !> Path of the receptance file (`#` comments, then f [Hz], Re G, Im G [m/N]).
         character(len=*), intent(in) :: path
@@ -472,6 +472,7 @@ contains
         type(frf_type) :: frf
         type(lsce_options) :: options
         type(lsce_result) :: fit
+        type(modal_set) :: modes
 
         nmode = 0
         e = 0.0_dp
@@ -490,10 +491,11 @@ contains
             call report(error, ierr, errmsg)
             return
         end if
-        polre(1:nmode) = real(fit%modes%pole, dp)
-        polim(1:nmode) = aimag(fit%modes%pole)
-        resre(1:nmode) = real(fit%modes%residue, dp)
-        resim(1:nmode) = aimag(fit%modes%residue)
+        modes = sorted_by_frequency(fit%modes)
+        polre(1:nmode) = real(modes%pole, dp)
+        polim(1:nmode) = aimag(modes%pole)
+        resre(1:nmode) = real(modes%residue, dp)
+        resim(1:nmode) = aimag(modes%residue)
         ierr = stat_ok
         errmsg = ' '
     end subroutine gcid

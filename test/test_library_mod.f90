@@ -7,7 +7,7 @@ module test_library_mod
     use greenconv, only: error_type, stat_input, convolver, contact_law, contact_response, run_contact, sdof_modes, &
                          sdof_impulse, structure_model, structure_from_modes, structure_from_samples, new_convolver, &
                          free_convolver, contact_step, read_frf, frf_type, lsce_options, structure_from_frf
-    use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcdesc
+    use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcdesc, gcscen
     implicit none
     private
 
@@ -171,7 +171,8 @@ contains
         call check(error, handle == 0_int64, 'gcfree sets the handle to 0')
     end subroutine test_legacy_contact
 
-    !> Bad values give status 2 with a message and a null handle; a null handle gives status 2.
+    !> Bad values give status 2 with a message and a null handle; a null handle, status 2; a
+    !> missing scene file, status 2 and a message naming it.
     subroutine test_legacy_errors(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -200,6 +201,9 @@ contains
         call gccont(handle, -k_c, exponent, preload, 3, [0.0_dp, 0.0_dp, 0.0_dp], u, f, delta, ierr, message)
         call gcfree(handle)
         call check(error, ierr == stat_input .and. index(message, 'stiffness') > 0, 'negative k_c: '//trim(message))
+        if (allocated(error)) return
+        call gcscen('no/such/scene.nml', ierr, message)
+        call check(error, ierr == stat_input .and. index(message, 'cannot open') > 0, 'missing scene: '//trim(message))
     end subroutine test_legacy_errors
 
     !> gcid finds the modes structure_from_frf finds; gcfrf builds a modal convolver on them.

@@ -20,8 +20,8 @@
 #   tools/make_helpers.sh examples DRIVER EXAMPLE...
 #       Run DRIVER (the Makefile build) on data/sdof_sine.nml into a temporary directory,
 #       then each built example: c_contact and legacy_f77 compare their results with
-#       those files (the directory is c_contact's argument and legacy_f77's standard
-#       input); cxx_header and omp_threads check themselves.
+#       those files (the directory is c_contact's argument, with data/sample_receptance.frf,
+#       and legacy_f77's standard input); cxx_header and omp_threads check themselves.
 #
 #   tools/make_helpers.sh install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE
 #       Install the driver, libgreenconv.a, libgreenconv.so.VERSION (with its soname and
@@ -292,7 +292,7 @@ driver_reference() {
 # run_example PROGRAM REFERENCE_DIR: run one example the way it takes its input.
 run_example() {
     case ${1##*/} in
-        c_contact) "$1" "$2" ;;
+        c_contact) "$1" "$2" data/sample_receptance.frf ;;
         legacy_f77) printf '%s\n' "$2" | "$1" ;;
         *) "$1" ;;
     esac
