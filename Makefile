@@ -3,8 +3,18 @@
 #   make            same as `make lib`
 #   make deps       install what is missing: gfortran, LAPACK, BLAS, FFTW3, gnuplot (apt), fpm (pip)
 #   make build      deps, then `fpm build --profile release`
-#   make lib        plain build with the compiler alone, no fpm: build/make/libgreenconv.a,
-#                   module files in build/make/include/, the driver build/make/greenconv
+#   make lib        plain build with the compiler alone, no fpm: build/make/libgreenconv.a and
+#                   libgreenconv.so, module files in build/make/include/, the driver
+#                   build/make/greenconv (compiled with OpenMP, which makes FFTW's planner
+#                   thread-safe; see src/fftw_mod.f90)
+#   make examples   the library examples against the plain build: example/c_contact.c (C),
+#                   example/cxx_header.cpp (C++, when $(CXX) exists), example/legacy_f77.f
+#                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads)
+#   make install    install the driver, both libraries, include/greenconv.h, the .mod files
+#                   and greenconv.pc (pkg-config) under PREFIX (default /usr/local; DESTDIR too)
+#   make doc        API documentation with FORD (installed with pip when missing) into
+#                   build/doc/index.html, after checking that every public entity has a
+#                   `!>` comment (make doc-check)
 #   make run        deps, build, run every data/*.nml scene, then the benchmark (`make bench`),
 #                   then draw every plot/*.gp into out/figures/
 #   make bench      deps, build, run the benchmark example greenconv-bench: Tabs. 2-3 and the
@@ -12,8 +22,11 @@
 #                   data of the speed/accuracy and stability charts in out/bench/, then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
 #   make test       deps, `make lib`, check that the Makefile-built driver writes the same
-#                   output as the fpm-built one, then `fpm test` (its "N passed, N failed"
-#                   line is the last line printed)
+#                   output as the fpm-built one, build and run the examples (each compares
+#                   its results with the driver's output for data/sdof_sine.nml), install
+#                   into a temporary prefix and build the C and Fortran 77 examples against
+#                   it with pkg-config, then `fpm test` (its "N passed, N failed" line is the
+#                   last line printed)
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -34,8 +47,21 @@ FC := gfortran
 endif
 FC ?= gfortran
 FFLAGS ?= -O2 -g -std=f2018 -Wall -Wextra -Wimplicit-interface -fimplicit-none
+# The library is compiled position-independent (for libgreenconv.so) and with OpenMP: its
+# only directives are the critical sections around FFTW's planner (src/fftw_mod.f90), and
+# OpenMP also keeps every local variable on the stack (re-entrant). OMPFLAGS= turns it off.
+PICFLAGS ?= -fPIC
+OMPFLAGS ?= -fopenmp
 LDLIBS ?= -llapack -lblas -lfftw3
+# What a C program needs besides LDLIBS to link the static library: the Fortran runtime.
+FORTRAN_RUNTIME ?= -lgfortran $(if $(OMPFLAGS),-lgomp) -lm
+CFLAGS ?= -O2 -g -std=c99 -Wall -Wextra -pedantic
+CXXFLAGS ?= -O2 -g -std=c++11 -Wall -Wextra -pedantic
+# Fixed-form Fortran 77 style code (INTEGER*8 handles, as FFTW's legacy interface uses).
+LEGACY_FFLAGS ?= -O2 -g -Wall -ffixed-form
 AR ?= ar
+PREFIX ?= /usr/local
+DESTDIR ?=
 FPM ?= fpm
 export FPM
 FPM_PROFILE ?= release
@@ -51,8 +77,16 @@ HELPER := bash tools/make_helpers.sh
 BUILD   := build/make
 MODDIR  := $(BUILD)/include
 LIB     := $(BUILD)/libgreenconv.a
+# The shared library: real name libgreenconv.so.VERSION (fpm.toml's version), soname
+# libgreenconv.so.MAJOR, and the link name libgreenconv.so.
+VERSION := $(shell sed -n 's/^version *= *"\(.*\)"/\1/p' fpm.toml)
+SOMAJOR := $(firstword $(subst ., ,$(VERSION)))
+SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
+EXDIR   := $(BUILD)/examples
+EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+            $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
 SRCS := $(sort $(shell find src -name '*.f90' -o -name '*.F90' 2>/dev/null))
@@ -64,7 +98,7 @@ FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run bench bench-data figures test clean
+.PHONY: all lib deps build run bench bench-data figures test clean examples install doc doc-check
 
 all: lib
 
@@ -80,22 +114,33 @@ build: deps
 
 # ---- plain build (no fpm) --------------------------------------------------------------
 
-lib: $(LIB) $(BIN)
+lib: $(LIB) $(SHLIB) $(BIN)
 
-$(BUILD)/%.o: %.f90 | $(MODDIR)
+# Objects are rebuilt when the compile command changes (the stamp is rewritten only then).
+COMPILE := $(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS)
+$(BUILD)/compile.cmd: FORCE
 	@mkdir -p $(@D)
-	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
+	@echo '$(COMPILE)' | cmp -s - $@ || echo '$(COMPILE)' > $@
 
-$(BUILD)/%.o: %.F90 | $(MODDIR)
+$(BUILD)/%.o: %.f90 $(BUILD)/compile.cmd | $(MODDIR)
 	@mkdir -p $(@D)
-	$(FC) $(FFLAGS) -J$(MODDIR) -c $< -o $@
+	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) -J$(MODDIR) -c $< -o $@
+
+$(BUILD)/%.o: %.F90 $(BUILD)/compile.cmd | $(MODDIR)
+	@mkdir -p $(@D)
+	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) -J$(MODDIR) -c $< -o $@
 
 $(LIB): $(OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
+$(SHLIB): $(OBJS)
+	$(FC) -shared $(OMPFLAGS) -Wl,-soname,libgreenconv.so.$(SOMAJOR) -o $@ $^ $(LDLIBS)
+	@ln -sf $(@F) $(BUILD)/libgreenconv.so.$(SOMAJOR)
+	@ln -sf libgreenconv.so.$(SOMAJOR) $(BUILD)/libgreenconv.so
+
 $(BIN): app/main.f90 $(LIB)
-	$(FC) $(FFLAGS) -I$(MODDIR) -o $@ $< $(LIB) $(LDLIBS)
+	$(FC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -o $@ $< $(LIB) $(LDLIBS)
 
 $(MODDIR):
 	@mkdir -p $@
@@ -103,7 +148,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -113,6 +158,43 @@ $(DEPFILE): $(SRCS) tools/make_helpers.sh $(if $(filter-out $(SRCS),$(DEPS_SRCS)
 
 .PHONY: FORCE
 FORCE:
+
+# ---- examples of the library (C, C++, Fortran 77 style, OpenMP) ---------------------------
+
+examples: $(EXAMPLES)
+
+$(EXDIR)/c_contact: example/c_contact.c include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/cxx_header: example/cxx_header.cpp include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/legacy_f77: example/legacy_f77.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+$(EXDIR)/omp_threads: example/omp_threads.f90 $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+# ---- install ---------------------------------------------------------------------------
+
+# PREFIX/bin/greenconv, PREFIX/lib/libgreenconv.{a,so*}, PREFIX/include/greenconv.h, the
+# module files in PREFIX/include/greenconv/ and PREFIX/lib/pkgconfig/greenconv.pc, whose
+# Cflags serve C (the header) and Fortran (-I for the .mod files) alike.
+install: $(LIB) $(SHLIB) $(BIN)
+	@$(HELPER) install "$(DESTDIR)" "$(PREFIX)" "$(VERSION)" "$(BUILD)" \
+	    "$(strip $(FORTRAN_RUNTIME) $(LDLIBS))"
+
+# ---- API documentation -----------------------------------------------------------------
+
+doc-check:
+	@$(HELPER) doc-check $(SRCS)
+
+doc: doc-check
+	@$(HELPER) doc
 
 # ---- run the scenes and draw the figures -----------------------------------------------
 
@@ -152,6 +234,9 @@ figures:
 test: deps
 	@$(MAKE) lib
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
+	@$(MAKE) examples
+	@$(HELPER) examples $(BIN) $(EXAMPLES)
+	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@echo "fpm test"
 	@$(HELPER) fpm-test
 

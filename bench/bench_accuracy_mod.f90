@@ -30,7 +30,7 @@ module bench_accuracy_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_numerical
-    use convolver_mod, only: convolver
+    use convolver_mod, only: convolver, free_convolver
     use conv_direct_mod, only: new_direct_convolver, sample_kernel
     use contact_mod, only: contact_response, run_contact
     use contact_reference_mod, only: contact_reference
@@ -260,6 +260,7 @@ contains
         if (label == 'N_g') point%n_g = size_of_model
         if (label == 'N_m') point%n_m = size_of_model
         if (label == 'N_m' .and. structure%identified) point%fit_e = structure%fit%e
+        call free_convolver(conv)
         point%err_u = relative_l2(response%displacement, reference%u(::stride))
         point%err_f = relative_l2(response%force, reference%f(::stride))
         if (.not. (ieee_is_finite(point%err_u) .and. ieee_is_finite(point%err_f))) then

@@ -7,7 +7,7 @@
 module bench_tables_mod
     use kinds_mod, only: dp
     use error_mod, only: error_type
-    use convolver_mod, only: convolver
+    use convolver_mod, only: convolver, free_convolver
     use conv_direct_mod, only: new_direct_convolver, lane_dot
     use conv_modal_mod, only: new_paper_convolver
     use conv_recursive_mod, only: new_recursive_convolver
@@ -139,13 +139,13 @@ contains
         n_g = 0
         n_m = 0
         do i = 1, size(methods)
-            if (allocated(conv)) deallocate (conv)
             call make_convolver(trim(methods(i)), structure, dt, scene%truncation_tol, n_steps, conv, accuracy, error)
             if (allocated(error)) return
             seconds(i) = contact_seconds(conv, scene%law, road, scene%preload, response)
             call conv%model_size(n, label)
             if (label == 'N_g') n_g = n
             if (label == 'N_m') n_m = n
+            call free_convolver(conv)
         end do
     end subroutine time_methods
 
@@ -201,6 +201,7 @@ contains
         write (unit, '(a,3(f9.1,a))') '#   mean CPU per step, whole contact run: direct ', t_direct/n_steps*1.0e9_dp, &
             ' ns, recursive ', t_recursive/n_steps*1.0e9_dp, ' ns, paper ', t_paper/n_steps*1.0e9_dp, ' ns'
         write (unit, '(a)') ''
+        call free_convolver(fft)
     end subroutine print_targets
 
     !> One line: what is compared, the measured ratio, the target and whether it is met.

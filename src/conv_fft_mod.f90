@@ -44,19 +44,22 @@
 !> Round-off: FFT convolution errs by about 1e-16*log2(N_g) relative to sum_j |w_j*q|,
 !> not to |u|; the tests measure it below 1e-13 of max|u| against `direct`.
 !>
-!> Transforms go through the process-wide plan cache of fftw_mod (FFTW_ESTIMATE plans made
-!> for the size and the alignment of this object's own work arrays, applied to them by
-!> FFTW's new-array execute functions, so SIMD codelets are kept). The object stores
-!> arrays, never plans, so it may be copied freely and `destroy_fft_plans` may be called
-!> between steps; it has no finalizer. The first push that runs a level after
-!> construction, a copy or `destroy_fft_plans` may plan (tens of microseconds); see
-!> fftw_mod on threads. A copy whose arrays sit at other addresses may get other plans
-!> and differ from the original in the last bits; one object rerun after `reset` repeats
-!> itself to the bit.
+!> Transforms use FFTW_ESTIMATE plans that the object owns (an `fft_plan_set` of fftw_mod),
+!> made for the size and the alignment of its own work arrays and applied to them by FFTW's
+!> new-array execute functions, so SIMD codelets are kept. A new object holds no plan: the
+!> first push that runs a level plans it (tens of microseconds). Plans are destroyed by
+!> `release` (the object plans again if stepped further): call it before dropping an
+!> object that has run, or its plans stay allocated in FFTW (there is no finalizer; see
+!> fftw_mod). A copy (intrinsic assignment, `source=`) plans for itself and never destroys
+!> its original's plans; its arrays may sit at other alignments and get other plans, so it
+!> may differ from the original in the last bits. One object rerun after `reset` repeats
+!> itself to the bit. Threads: independent objects may be stepped in parallel; plan creation
+!> and destruction are serialised as fftw_mod describes (OpenMP critical section
+!> `greenconv_fftw_planner`).
 module conv_fft_mod
     use kinds_mod, only: dp
     use convolver_mod, only: convolver
-    use fftw_mod, only: cached_forward_fft, cached_inverse_fft
+    use fftw_mod, only: fft_plan_set
     implicit none
     private
 
@@ -113,11 +116,17 @@ module conv_fft_mod
         real(dp), allocatable :: samples(:)
         !> Scratch: a product spectrum, (largest block) + 1 lines.
         complex(dp), allocatable :: spectrum(:)
+        !> The FFTW plans of this object's transforms, made on demand.
+        type(fft_plan_set) :: plans
     contains
         procedure :: history => fft_history
         procedure :: push => fft_push
         procedure :: reset => fft_reset
         procedure :: model_size => fft_size
+        !> Destroy this object's FFTW plans now (it plans again if stepped further).
+        procedure :: release => fft_release_plans
+        !> Number of FFTW plan pairs this object owns.
+        procedure :: plan_count => fft_plan_count
     end type fft_convolver
 
 contains
@@ -149,6 +158,8 @@ contains
         allocate (conv%head_weight(n_head), conv%head_past(2*n_head))
         conv%head_weight(:) = weight(1:n_head)
         call build_levels(conv, weight, n_head)
+        ! The kernel spectra are made: the new object holds no plan (see the module notes).
+        call conv%plans%release()
         call conv%reset()
     end function new_fft_convolver
 
@@ -172,7 +183,7 @@ contains
         allocate (conv%levels(n_levels), conv%recent(largest), conv%pending(span))
         allocate (conv%samples(2*largest), conv%spectrum(largest + 1))
         do l = 1, n_levels
-            call build_level(conv%levels(l), weight, blocks(l), parts(l), first(l), conv%samples)
+            call build_level(conv%levels(l), weight, blocks(l), parts(l), first(l), conv%samples, conv%plans)
         end do
     end subroutine build_levels
 
@@ -202,11 +213,12 @@ contains
     end subroutine partition_schedule
 
     !> One level: the scaled spectra of its zero-padded partitions, an empty delay line.
-    subroutine build_level(level, weight, block, parts, first, samples)
+    subroutine build_level(level, weight, block, parts, first, samples, plans)
         type(fft_level), intent(out) :: level
         real(dp), intent(in) :: weight(:)
         integer, intent(in) :: block, parts, first
         real(dp), contiguous, intent(inout) :: samples(:)
+        type(fft_plan_set), intent(inout) :: plans
 
         complex(dp) :: lines(block + 1)
         integer :: p, tap, last, lead
@@ -222,7 +234,7 @@ contains
             last = min(tap + block - 1, size(weight))
             samples(1:2*block) = 0.0_dp
             samples(1:last - tap + 1) = weight(tap:last)
-            call cached_forward_fft(samples(1:2*block), lines)
+            call plans%forward(samples(1:2*block), lines)
             level%kernel_spectra(1:block + 1, p) = lines/real(2*block, dp)
         end do
     end subroutine build_level
@@ -313,14 +325,14 @@ contains
             self%samples(b + 1:2*b) = 0.0_dp
             level%newest = level%newest - 1
             if (level%newest < 1) level%newest = level%parts
-            call cached_forward_fft(self%samples(1:2*b), level%input_spectra(1:b + 1, level%newest))
+            call self%plans%forward(self%samples(1:2*b), level%input_spectra(1:b + 1, level%newest))
             self%spectrum(1:b + 1) = level%kernel_spectra(1:b + 1, 1)*level%input_spectra(1:b + 1, level%newest)
             do p = 2, level%parts
                 column = mod(level%newest + p - 2, level%parts) + 1
                 self%spectrum(1:b + 1) = self%spectrum(1:b + 1) &
                                          + level%kernel_spectra(1:b + 1, p)*level%input_spectra(1:b + 1, column)
             end do
-            call cached_inverse_fft(self%spectrum(1:b + 1), self%samples(1:2*b))
+            call self%plans%inverse(self%spectrum(1:b + 1), self%samples(1:2*b))
             call add_to_ring(self%pending, self%step - b + level%first_tap, self%samples(1:2*b - 1))
         end associate
     end subroutine run_level
@@ -370,5 +382,22 @@ contains
         n = self%n_g
         label = 'N_g'
     end subroutine fft_size
+
+    !> Destroy the FFTW plans this object owns; stepping on plans again.
+    subroutine fft_release_plans(self)
+        !> The convolver.
+        class(fft_convolver), intent(inout) :: self
+
+        call self%plans%release()
+    end subroutine fft_release_plans
+
+    !> Number of FFTW plan pairs (r2c and c2r) this object owns.
+    function fft_plan_count(self) result(count)
+        !> The convolver.
+        class(fft_convolver), intent(in) :: self
+        integer :: count
+
+        count = self%plans%plan_count()
+    end function fft_plan_count
 
 end module conv_fft_mod

@@ -14,7 +14,7 @@ module convolver_mod
     implicit none
     private
 
-    public :: convolver
+    public :: convolver, free_convolver
 
     !> A causal convolver stepped once per time step.
     type, abstract :: convolver
@@ -38,6 +38,9 @@ module convolver_mod
         procedure(size_interface), deferred :: model_size
         !> Displacement per newton [m/N] of the current step's own force.
         procedure :: instant_weight
+        !> Give back what the convolver holds outside Fortran's memory (FFTW plans); it makes
+        !> them again if stepped further. Nothing to give back by default.
+        procedure :: release => release_nothing
     end type convolver
 
     abstract interface
@@ -84,5 +87,26 @@ contains
 
         w0 = self%weight0
     end function instant_weight
+
+    !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
+    subroutine release_nothing(self)
+        !> The convolver.
+        class(convolver), intent(inout) :: self
+
+        associate (unused => self%step)
+        end associate
+    end subroutine release_nothing
+
+    !> Release what a convolver holds outside Fortran's memory (an `fft` convolver's FFTW
+    !> plans) and deallocate it. Call it before dropping a convolver. Safe on an
+    !> unallocated convolver.
+    subroutine free_convolver(conv)
+        !> The convolver; unallocated on return.
+        class(convolver), allocatable, intent(inout) :: conv
+
+        if (.not. allocated(conv)) return
+        call conv%release()
+        deallocate (conv)
+    end subroutine free_convolver
 
 end module convolver_mod

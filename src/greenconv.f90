@@ -14,7 +14,6 @@ module greenconv
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
                                  new_backward_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
-    use fftw_mod, only: destroy_fft_plans, fft_plan_count
     use contact_mod, only: contact_law, contact_response, contact_options, run_contact
     use ode_reference_mod, only: ode_system, integrate
     use contact_reference_mod, only: contact_reference
@@ -30,8 +29,11 @@ module greenconv
                                  write_multi_contact
     use tyre_model_mod, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
     use road_file_mod, only: road_file, read_road_file, sample_road_file, file_road
-    use structure_mod, only: structure_model, structure_from_modes, build_structure
+    use structure_mod, only: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, &
+                             build_structure
     use scene_run_mod, only: run_scene, make_convolver, output_path
+    use library_mod, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file, &
+                           default_truncation_tol, default_accuracy
     implicit none
     private
 
@@ -43,7 +45,7 @@ module greenconv
     public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
     public :: paper_convolver, new_paper_convolver
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
-    public :: fft_convolver, new_fft_convolver, default_head, destroy_fft_plans, fft_plan_count
+    public :: fft_convolver, new_fft_convolver, default_head
     public :: contact_law, contact_response, contact_options, run_contact
     public :: ode_system, integrate, contact_reference
     public :: stability_cell, stability_map, contact_frequency
@@ -56,7 +58,9 @@ module greenconv
     public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, write_multi_contact
     public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
     public :: road_file, read_road_file, sample_road_file, file_road
-    public :: structure_model, structure_from_modes, build_structure
+    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
     public :: run_scene, make_convolver, output_path
+    public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
+    public :: default_truncation_tol, default_accuracy
 
 end module greenconv

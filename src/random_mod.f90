@@ -30,6 +30,7 @@ module random_mod
         procedure :: between
     end type random_stream
 
+    !> `random_stream(seed)`: a new stream started from an integer seed.
     interface random_stream
         module procedure new_stream
     end interface random_stream

@@ -5,7 +5,7 @@ module scene_run_mod
     use kinds_mod, only: dp
     use text_mod, only: int_text, sci_text
     use error_mod, only: error_type, fatal_error
-    use convolver_mod, only: convolver
+    use convolver_mod, only: convolver, free_convolver
     use conv_direct_mod, only: new_direct_convolver, sample_kernel, truncation_length
     use conv_fft_mod, only: new_fft_convolver
     use conv_modal_mod, only: new_paper_convolver
@@ -89,6 +89,7 @@ contains
             call conv%model_size(n, label)
             ! A fault keeps the rows computed before it: write them, then report.
             call write_response(output_path(scene, trim(scene%methods(i))), scene, conv, response, error)
+            call free_convolver(conv)
             if (allocated(error)) return
             if (allocated(run_error)) then
                 call move_alloc(run_error, error)

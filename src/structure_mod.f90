@@ -2,6 +2,10 @@
 !> are known (an sdof, the random modes of section 3.2), the impulse response sampled at the
 !> scene's time step when only G is known (an FRF file), and the modes the modal method
 !> uses, which are either the exact ones or an LSCE fit of G.
+!>
+!> Library callers build one without a scene: `structure_from_modes` (known modes),
+!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT) or
+!> `structure_from_samples` (g sampled at the time step: `direct` and `fft` only).
 module structure_mod
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
@@ -13,7 +17,7 @@ module structure_mod
     implicit none
     private
 
-    public :: structure_model, structure_from_modes, build_structure
+    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
 
     !> A structure ready for the convolvers.
     type :: structure_model
@@ -46,6 +50,41 @@ contains
         structure%model = modes
     end function structure_from_modes
 
+    !> A structure known only by its impulse response sampled at the time step of the run:
+    !> `direct` and `fft` convolve with it (truncated by the paper's rule); it has no modes.
+    pure function structure_from_samples(g) result(structure)
+        !> Samples g(n*dt), n = 0..N-1 [m/(N*s)], at the time step dt of the convolvers.
+        real(dp), intent(in) :: g(:)
+        type(structure_model) :: structure
+
+        allocate (structure%sampled_g(size(g)))
+        structure%sampled_g(:) = g
+        allocate (structure%model%pole(0), structure%model%residue(0))
+    end function structure_from_samples
+
+    !> A structure known by its sampled receptance G: modes fitted by LSCE (`identify`) for
+    !> the modal methods and, when dt > 0, g sampled at dt from the inverse FFT of G for
+    !> `direct` and `fft` (dt must then be a whole multiple of 1/(2*f_max)).
+    subroutine structure_from_frf(frf, options, dt, structure, error)
+        !> The receptance G [m/N] on a uniform grid from 0 Hz.
+        type(frf_type), intent(in) :: frf
+        !> Identification settings.
+        type(lsce_options), intent(in) :: options
+        !> Time step [s] of the convolvers; 0 for the modes alone.
+        real(dp), intent(in) :: dt
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the FRF grid.
+        type(error_type), allocatable, intent(out) :: error
+
+        structure%frf = frf
+        call identify(structure%frf, options, structure%fit, error)
+        if (allocated(error)) return
+        structure%model = sorted_by_frequency(structure%fit%modes)
+        structure%identified = .true.
+        if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
+    end subroutine structure_from_frf
+
     !> Build the structure of a scene: exact modes, or G sampled and identified by LSCE.
     subroutine build_structure(scene, structure, error)
         !> The scene.
@@ -55,32 +94,35 @@ contains
         !> Set when the FRF file is unusable or the identification fails.
         type(error_type), allocatable, intent(out) :: error
 
+        type(frf_type) :: frf
+        type(modal_set) :: exact
+        real(dp) :: dt
+
         select case (scene%model)
         case ('sdof')
             structure = structure_from_modes(sdof_modes(scene%mass, scene%stiffness, scene%damping_ratio))
         case ('random_modes')
+            exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
+                                 scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
+            call structure_from_frf(frf_from_modes(exact, scene%f_max, scene%n_freq), scene_options(scene), &
+                                    0.0_dp, structure, error)
             structure%has_exact = .true.
-            structure%exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
-                                           scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
-            structure%frf = frf_from_modes(structure%exact, scene%f_max, scene%n_freq)
-            call identify_structure(scene, structure, error)
+            structure%exact = exact
         case ('frf_file')
-            call read_frf(scene%frf_file, structure%frf, error)
+            call read_frf(scene%frf_file, frf, error)
             if (allocated(error)) return
-            call identify_structure(scene, structure, error)
-            if (allocated(error)) return
-            if (scene%task == 'contact') call sample_from_frf(scene, structure, error)
+            dt = 0.0_dp
+            if (scene%task == 'contact') dt = scene%dt
+            call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+            if (allocated(error)) error%message = scene%file//': '//scene%frf_file//': '//error%message
         case default
             call fatal_error(error, scene%file//": &structure model: unknown model '"//scene%model//"'")
         end select
     end subroutine build_structure
 
-    !> Fit modes to structure%frf with the scene's identification settings.
-    subroutine identify_structure(scene, structure, error)
+    !> The scene's identification settings.
+    function scene_options(scene) result(options)
         type(scene_type), intent(in) :: scene
-        type(structure_model), intent(inout) :: structure
-        type(error_type), allocatable, intent(out) :: error
-
         type(lsce_options) :: options
 
         options%tol_e = scene%tol_e
@@ -90,16 +132,12 @@ contains
         end if
         options%max_modes = scene%max_order
         options%fixed_modes = scene%order
-        call identify(structure%frf, options, structure%fit, error)
-        if (allocated(error)) return
-        structure%model = sorted_by_frequency(structure%fit%modes)
-        structure%identified = .true.
-    end subroutine identify_structure
+    end function scene_options
 
-    !> g at the scene's time step from the FRF: the inverse FFT gives it at 1/(2*f_max);
-    !> the scene's dt must be that step or a whole multiple of it.
-    subroutine sample_from_frf(scene, structure, error)
-        type(scene_type), intent(in) :: scene
+    !> g at the time step dt from the FRF: the inverse FFT gives it at 1/(2*f_max); dt must
+    !> be that step or a whole multiple of it.
+    subroutine sample_from_frf(dt, structure, error)
+        real(dp), intent(in) :: dt
         type(structure_model), intent(inout) :: structure
         type(error_type), allocatable, intent(out) :: error
 
@@ -110,11 +148,11 @@ contains
 
         call impulse_from_frf(structure%frf, g, dt_frf, error)
         if (allocated(error)) return
-        stride = nint(scene%dt/dt_frf)
-        if (stride < 1 .or. abs(stride*dt_frf - scene%dt) > 1.0e-9_dp*scene%dt) then
+        stride = nint(dt/dt_frf)
+        if (stride < 1 .or. abs(stride*dt_frf - dt) > 1.0e-9_dp*dt) then
             write (text, '(es12.5)') dt_frf
-            call fatal_error(error, scene%file//': &scene dt: expected a whole multiple of 1/(2*f_max) = ' &
-                             //trim(adjustl(text))//' s, the step of g from '//scene%frf_file)
+            call fatal_error(error, 'time step dt: expected a whole multiple of 1/(2*f_max) = ' &
+                             //trim(adjustl(text))//' s, the step of g from the FRF')
             return
         end if
         ! Only the first half of the period 1/df: the second half holds the wrapped end of g.

@@ -1,10 +1,10 @@
-!> Numbers as text for messages and summaries.
+!> Numbers as text for messages and summaries, and names in one case.
 module text_mod
     use kinds_mod, only: dp
     implicit none
     private
 
-    public :: int_text, real_text, sci_text
+    public :: int_text, real_text, sci_text, lower_text
 
 contains
 
@@ -43,5 +43,20 @@ contains
         write (buffer, '(es9.2)') x
         text = trim(adjustl(buffer))
     end function sci_text
+
+    !> Text with the letters A-Z in lower case and trailing blanks removed.
+    pure function lower_text(text) result(lower)
+        !> The text.
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: lower
+
+        integer :: i, code
+
+        lower = trim(text)
+        do i = 1, len(lower)
+            code = iachar(lower(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
+        end do
+    end function lower_text
 
 end module text_mod

@@ -14,6 +14,7 @@ program greenconv_tests
     use test_multicontact_mod, only: collect_multicontact
     use test_implicit_mod, only: collect_implicit
     use test_accuracy_mod, only: collect_accuracy
+    use test_library_mod, only: collect_library
     implicit none
 
     integer :: n_passed, n_failed
@@ -31,6 +32,7 @@ program greenconv_tests
     call run_testsuite('multicontact', collect_multicontact, output_unit, n_passed, n_failed)
     call run_testsuite('implicit', collect_implicit, output_unit, n_passed, n_failed)
     call run_testsuite('accuracy', collect_accuracy, output_unit, n_passed, n_failed)
+    call run_testsuite('library', collect_library, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

@@ -18,7 +18,7 @@ module test_fft_mod
     use sdof_mod, only: sdof_modes
     use conv_direct_mod, only: direct_convolver, new_direct_convolver, sample_kernel
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
-    use fftw_mod, only: destroy_fft_plans, fft_plan_count, cached_forward_fft, cached_inverse_fft, forward_real_fft
+    use fftw_mod, only: fft_plan_set, forward_real_fft
     use error_mod, only: error_type
     implicit none
     private
@@ -43,9 +43,10 @@ contains
                      new_unittest('fft equals direct: sdof kernel, dt = 10 us, 1 % rule', test_sdof), &
                      new_unittest('fft: partitions tile taps H+1..N_g, each due after its block', test_schedule), &
                      new_unittest('fft: reset then rerun gives identical results', test_reset), &
-                     new_unittest('fft: destroy_fft_plans mid-run changes nothing', test_destroy_plans), &
+                     new_unittest('fft: release mid-run changes nothing', test_release_plans), &
                      new_unittest('fft: a copy made mid-run continues like the original', test_copy), &
-                     new_unittest('plan cache: arrays at every 8-byte offset, against one-shot FFTs', test_plan_cache)]
+                     new_unittest('plan set: arrays at every 8-byte offset, against one-shot FFTs', test_plan_set), &
+                     new_unittest('fft: two convolvers interleaved equal each run alone', test_interleaved)]
     end subroutine collect_fft
 
     !> Kernel samples g_j in [-1, 1) [m/(N*s)], j = 0..n_g, from a seed.
@@ -251,34 +252,74 @@ contains
         call check(error, maxval(abs(first - second)), 0.0_dp, 'identical results after reset', thr=0.0_dp)
     end subroutine test_reset
 
-    !> The plan cache destroyed at step 3000, then the run continued: the same numbers to the
-    !> bit as the same object run straight through after a reset, and the cache plans
-    !> again on demand.
-    subroutine test_destroy_plans(error)
+    !> The object's plans destroyed at step 3000, then the run continued: the same numbers to
+    !> the bit as the same object run straight through after a reset, and the object plans
+    !> again on demand. A new object holds no plan.
+    subroutine test_release_plans(error)
         type(test_error), allocatable, intent(out) :: error
 
         integer, parameter :: n_first = 3000, n_more = 4000
         type(fft_convolver) :: fft
         real(dp) :: reference(n_first + n_more), before(n_first), after(n_more)
-        integer :: count_after_destroy
+        integer :: count_new, count_after_release
 
         fft = new_fft_convolver(random_kernel(2500, 9), dt_random, 16)
+        count_new = fft%plan_count()
         call run(fft, n_first + n_more, 33, reference)
         call fft%reset()
         call run(fft, n_first, 33, before)
-        call destroy_fft_plans()
-        count_after_destroy = fft_plan_count()
+        call fft%release()
+        count_after_release = fft%plan_count()
         call continue_run(fft, n_first, n_more, 33, after)
-        call note('plans after destroy', real(count_after_destroy, dp))
-        call note('plans after the run', real(fft_plan_count(), dp))
-        call check(error, count_after_destroy == 0 .and. fft_plan_count() > 0, 'cache emptied, then planned again')
+        call note('plans of a new object', real(count_new, dp))
+        call note('plans after the run', real(fft%plan_count(), dp))
+        call check(error, count_new == 0 .and. count_after_release == 0 .and. fft%plan_count() > 0, &
+                   'none when new, none after release, then planned again')
         if (allocated(error)) return
         call check(error, maxval(abs([before, after] - reference)), 0.0_dp, &
-                   'identical results across destroy_fft_plans', thr=0.0_dp)
-    end subroutine test_destroy_plans
+                   'identical results across release', thr=0.0_dp)
+        call fft%release()
+    end subroutine test_release_plans
+
+    !> Two fft convolvers on different kernels, stepped in turn in one loop (each planning on
+    !> its own), give to the bit what each gives when run alone: no state is shared.
+    subroutine test_interleaved(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_steps = 6000
+        type(fft_convolver) :: first, second
+        type(random_stream) :: stream_first, stream_second
+        real(dp) :: alone_first(n_steps), alone_second(n_steps), both_first(n_steps), both_second(n_steps)
+        real(dp) :: q
+        integer :: n
+
+        first = new_fft_convolver(random_kernel(3000, 41), dt_random, 32)
+        second = new_fft_convolver(random_kernel(1700, 42), dt_random)
+        call run(first, n_steps, 51, alone_first)
+        call run(second, n_steps, 52, alone_second)
+        call first%reset()
+        call second%reset()
+        stream_first = random_stream(51)
+        stream_second = random_stream(52)
+        do n = 1, n_steps
+            q = stream_first%between(-force, force)
+            both_first(n) = first%history() + first%instant_weight()*q
+            call first%push(q)
+            q = stream_second%between(-force, force)
+            both_second(n) = second%history() + second%instant_weight()*q
+            call second%push(q)
+        end do
+        call note('max|interleaved - alone|, first', maxval(abs(both_first - alone_first)))
+        call note('max|interleaved - alone|, second', maxval(abs(both_second - alone_second)))
+        call check(error, maxval(abs(both_first - alone_first)) + maxval(abs(both_second - alone_second)), 0.0_dp, &
+                   'interleaved runs identical to single runs', thr=0.0_dp)
+        call first%release()
+        call second%release()
+    end subroutine test_interleaved
 
     !> A convolver copied by intrinsic assignment at step 3000, then both continued with
-    !> the same loads: the copy owns its state (the original is not disturbed) and agrees
+    !> the same loads, the copy first, its plans released before the original goes on: the
+    !> copy owns its state and plans (the original is not disturbed) and agrees
     !> with it to round-off, 1e-14 of max|u| (its arrays may sit at other alignments and
     !> get other FFTW plans, so the bits may differ).
     subroutine test_copy(error)
@@ -295,6 +336,8 @@ contains
         call run(fft, n_first, 34, before)
         copy = fft
         call continue_run(copy, n_first, n_more, 34, copied)
+        ! The copy made plans of its own; releasing them leaves the original's intact.
+        call copy%release()
         call continue_run(fft, n_first, n_more, 34, after)
         difference = maxval(abs(copied - after))/maxval(abs(after))
         call note('max|u_copy - u|/max|u|', difference)
@@ -302,13 +345,14 @@ contains
                    thr=0.0_dp)
         if (allocated(error)) return
         call check(error, difference, 0.0_dp, 'copy against original', thr=1.0e-14_dp)
+        call fft%release()
     end subroutine test_copy
 
-    !> The cached transforms on real and complex arrays starting at every 8-byte offset
-    !> modulo 64 (each placement gets its own plans): forward against the one-shot
+    !> A plan set's transforms on real and complex arrays starting at every 8-byte offset
+    !> modulo 64 (one set per placement, released after use; one plan pair each): forward against the one-shot
     !> forward_real_fft to 1e-14 of max|Y|, inverse(forward(y)) = n*y to 1e-14 of n*max|y|,
     !> for n = 6, 64 and 1000; a size mismatch gives NaN.
-    subroutine test_plan_cache(error)
+    subroutine test_plan_set(error)
         type(test_error), allocatable, intent(out) :: error
 
         integer, parameter :: sizes(3) = [6, 64, 1000]
@@ -317,12 +361,14 @@ contains
         complex(dp), allocatable :: reference(:)
         complex(dp), pointer, contiguous :: spectrum(:)
         type(error_type), allocatable :: fft_error
+        type(fft_plan_set) :: plans
         type(random_stream) :: stream
         real(dp) :: worst_forward, worst_inverse
-        integer :: i, j, k, n
+        integer :: i, j, k, n, most_plans
 
         worst_forward = 0.0_dp
         worst_inverse = 0.0_dp
+        most_plans = 0
         stream = random_stream(3)
         do i = 1, size(sizes)
             n = sizes(i)
@@ -338,28 +384,32 @@ contains
                     real_buffer(:) = 0.0_dp
                     real_buffer(j + 1:j + n) = reference_samples
                     call c_f_pointer(c_loc(complex_buffer(k + 1)), spectrum, [n/2 + 1])
-                    call cached_forward_fft(real_buffer(j + 1:j + n), spectrum)
+                    call plans%forward(real_buffer(j + 1:j + n), spectrum)
                     worst_forward = max(worst_forward, maxval(abs(spectrum - reference))/maxval(abs(reference)))
-                    call cached_inverse_fft(spectrum, real_buffer(j + 1:j + n))
+                    call plans%inverse(spectrum, real_buffer(j + 1:j + n))
                     worst_inverse = max(worst_inverse, maxval(abs(real_buffer(j + 1:j + n) - n*reference_samples)) &
                                         /(n*maxval(abs(reference_samples))))
+                    most_plans = max(most_plans, plans%plan_count())
+                    call plans%release()
                 end do
             end do
             deallocate (real_buffer, complex_buffer, reference_samples, reference)
         end do
         call note('forward', worst_forward)
         call note('inverse', worst_inverse)
-        call note('plans cached', real(fft_plan_count(), dp))
-        call check(error, worst_forward, 0.0_dp, 'cached forward against one-shot', thr=1.0e-14_dp)
+        call note('most plan pairs in one set', real(most_plans, dp))
+        call check(error, worst_forward, 0.0_dp, 'plan set forward against one-shot', thr=1.0e-14_dp)
         if (allocated(error)) return
-        call check(error, worst_inverse, 0.0_dp, 'cached inverse of forward', thr=1.0e-14_dp)
+        call check(error, worst_inverse, 0.0_dp, 'plan set inverse of forward', thr=1.0e-14_dp)
+        if (allocated(error)) return
+        call check(error, most_plans == 1, 'one plan pair per size and placement')
         if (allocated(error)) return
         allocate (reference_samples(8), reference(4))
         reference_samples(:) = 1.0_dp
-        call cached_forward_fft(reference_samples, reference)
+        call plans%forward(reference_samples, reference)
         call check(error, all(ieee_is_nan(real(reference, dp))), 'NaN on a size mismatch')
-        call destroy_fft_plans()
-    end subroutine test_plan_cache
+        call plans%release()
+    end subroutine test_plan_set
 
     !> u = history + w0*q for n_steps random loads from the start.
     subroutine run(conv, n_steps, seed, u)

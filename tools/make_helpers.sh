@@ -3,7 +3,8 @@
 #
 #   tools/make_helpers.sh deps
 #       Install what the build needs and is missing (gfortran, LAPACK, BLAS, FFTW3,
-#       gnuplot through apt-get; fpm through pip). Silent when everything is there.
+#       gnuplot, pkg-config through apt-get; fpm through pip). Silent when everything is
+#       there.
 #
 #   tools/make_helpers.sh f90deps OBJDIR SOURCE...
 #       Print make rules "OBJDIR/a.o: OBJDIR/b.o" from the `use` statements of the
@@ -15,6 +16,31 @@
 #       redirected into a temporary directory, and check that both wrote the same
 #       files with the same header and row count and numbers that agree to a
 #       relative 1e-9 (see compare_columns below).
+#
+#   tools/make_helpers.sh examples DRIVER EXAMPLE...
+#       Run DRIVER (the Makefile build) on data/sdof_sine.nml into a temporary directory,
+#       then each built example: c_contact and legacy_f77 compare their results with
+#       those files (the directory is c_contact's argument, with data/sample_receptance.frf,
+#       and legacy_f77's standard input); cxx_header and omp_threads check themselves.
+#
+#   tools/make_helpers.sh install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE
+#       Install the driver, libgreenconv.a, libgreenconv.so.VERSION (with its soname and
+#       link-name links), include/greenconv.h, the module files (PREFIX/include/greenconv)
+#       and PREFIX/lib/pkgconfig/greenconv.pc from the plain build in BUILD.
+#
+#   tools/make_helpers.sh install-test DRIVER
+#       `make install` into a temporary prefix, then build example/c_contact.c against the
+#       installed shared library and example/legacy_f77.f against the installed static
+#       library, both with the flags of `pkg-config greenconv`, and run them against
+#       DRIVER's output for data/sdof_sine.nml. Uses $MAKE, $CC and $FC.
+#
+#   tools/make_helpers.sh doc-check SOURCE...
+#       Check that every public entity of the sources (modules; types, procedures and
+#       constants named public; components and type-bound procedures of public types)
+#       has a `!>` comment on the line above.
+#
+#   tools/make_helpers.sh doc
+#       Install FORD with pip when missing and write the API documentation to build/doc.
 #
 #   tools/make_helpers.sh fpm-test [ARGS...]
 #       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
@@ -61,12 +87,13 @@ as_root() {
 }
 
 cmd_deps() {
-    local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox)
+    local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox pkg-config)
     command -v gfortran >/dev/null 2>&1 || missing+=(gfortran)
     have_lib lapack || missing+=(LAPACK)
     have_lib blas || missing+=(BLAS)
     have_lib fftw3 || missing+=(FFTW3)
     command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot)
+    command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
     # fpm comes from pip; without python3/pip, apt brings them along.
     if ! have_fpm && ! have_pip; then
         missing+=(pip)
@@ -82,25 +109,31 @@ cmd_deps() {
 
     if ! have_fpm; then
         say "installing fpm with pip (fpm not found on PATH; the build and the tests use it)"
-        local log
-        log=$(mktemp)
-        export PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
-        if ! python3 -m pip install -q "fpm==$FPM_VERSION" >"$log" 2>&1; then
-            if grep -q externally-managed-environment "$log"; then
-                say "pip refused (externally managed Python); retrying with --break-system-packages"
-                python3 -m pip install -q --break-system-packages "fpm==$FPM_VERSION" >"$log" 2>&1 \
-                    || { cat "$log" >&2; rm -f "$log"; die "pip install fpm failed"; }
-            else
-                cat "$log" >&2; rm -f "$log"; die "pip install fpm failed"
-            fi
-        fi
-        rm -f "$log"
-        if command -v pyenv >/dev/null 2>&1; then pyenv rehash >/dev/null 2>&1 || true; fi
-        hash -r
+        pip_install "fpm==$FPM_VERSION"
         # The Makefile appends ~/.local/bin (pip's user scheme) to PATH; anything else
         # has to be put on PATH by the user.
         have_fpm || die "fpm was installed but is not on PATH ($PATH); add pip's script directory to PATH"
     fi
+}
+
+# pip_install REQUIREMENT: quietly, retrying with --break-system-packages where the system
+# Python refuses (externally managed).
+pip_install() {
+    local log
+    log=$(mktemp)
+    export PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_ROOT_USER_ACTION=ignore
+    if ! python3 -m pip install -q "$1" >"$log" 2>&1; then
+        if grep -q externally-managed-environment "$log"; then
+            say "pip refused (externally managed Python); retrying with --break-system-packages"
+            python3 -m pip install -q --break-system-packages "$1" >"$log" 2>&1 \
+                || { cat "$log" >&2; rm -f "$log"; die "pip install $1 failed"; }
+        else
+            cat "$log" >&2; rm -f "$log"; die "pip install $1 failed"
+        fi
+    fi
+    rm -f "$log"
+    if command -v pyenv >/dev/null 2>&1; then pyenv rehash >/dev/null 2>&1 || true; fi
+    hash -r
 }
 
 # ---------------------------------------------------------------------------------
@@ -191,6 +224,11 @@ compare_columns() {
     ' "$1" "$2"
 }
 
+# redirected_scene SCENE DIR: the scene file with its output_dir set to DIR.
+redirected_scene() {
+    sed -E "s|^([[:space:]]*output_dir[[:space:]]*=[[:space:]]*)['\"][^'\"]*['\"]|\1'$2'|I" "$1"
+}
+
 cmd_same_output() {
     [ $# -ge 2 ] || die "usage: $0 same-output DRIVER SCENE..."
     local driver=$1 scene tmp failed=0 summary
@@ -210,8 +248,7 @@ cmd_same_output() {
             || die "$scene sets no output_dir; cannot redirect its output for the check"
         for kind in fpm make; do
             mkdir -p "$tmp/$kind/$base/out"
-            sed -E "s|^([[:space:]]*output_dir[[:space:]]*=[[:space:]]*)['\"][^'\"]*['\"]|\1'$tmp/$kind/$base/out'|I" \
-                "$scene" >"$tmp/$kind/$base/scene.nml"
+            redirected_scene "$scene" "$tmp/$kind/$base/out" >"$tmp/$kind/$base/scene.nml"
         done
         if ! $FPM run -- "$tmp/fpm/$base/scene.nml" >"$tmp/fpm/$base/log" 2>&1; then
             cat "$tmp/fpm/$base/log" >&2; say "FAIL: fpm-built driver on $scene"; failed=1; continue
@@ -239,6 +276,127 @@ cmd_same_output() {
 }
 
 # ---------------------------------------------------------------------------------
+# examples, install, install-test
+# ---------------------------------------------------------------------------------
+
+# The scene the examples reproduce.
+EXAMPLE_SCENE=data/sdof_sine.nml
+
+# driver_reference DRIVER DIR: DRIVER's output files for EXAMPLE_SCENE, written into DIR.
+driver_reference() {
+    mkdir -p "$2"
+    redirected_scene "$EXAMPLE_SCENE" "$2" >"$2/scene.nml"
+    "$1" "$2/scene.nml" >"$2/driver.log" 2>&1 || { cat "$2/driver.log" >&2; die "$1 failed on $EXAMPLE_SCENE"; }
+}
+
+# run_example PROGRAM REFERENCE_DIR: run one example the way it takes its input.
+run_example() {
+    case ${1##*/} in
+        c_contact) "$1" "$2" data/sample_receptance.frf ;;
+        legacy_f77) printf '%s\n' "$2" | "$1" ;;
+        *) "$1" ;;
+    esac
+}
+
+cmd_examples() {
+    [ $# -ge 1 ] || die "usage: $0 examples DRIVER EXAMPLE..."
+    local driver=$1 tmp example failed=0
+    shift
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-examples.XXXXXX")
+    CHECK_TMP=$tmp
+    trap 'rm -rf "$CHECK_TMP"' EXIT
+    driver_reference "$driver" "$tmp/reference"
+    say "examples, against $driver's output for $EXAMPLE_SCENE"
+    for example in "$@"; do
+        if ! run_example "$example" "$tmp/reference"; then
+            say "FAIL: $example"
+            failed=1
+        fi
+    done
+    return "$failed"
+}
+
+cmd_install() {
+    [ $# -eq 5 ] || die "usage: $0 install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE"
+    local destdir=$1 prefix=$2 version=$3 build=$4 private=$5
+    local root=$destdir$prefix major=${version%%.*}
+    install -d "$root/bin" "$root/lib/pkgconfig" "$root/include/greenconv"
+    install -m 755 "$build/greenconv" "$root/bin/"
+    install -m 644 "$build/libgreenconv.a" "$root/lib/"
+    install -m 755 "$build/libgreenconv.so.$version" "$root/lib/"
+    ln -sf "libgreenconv.so.$version" "$root/lib/libgreenconv.so.$major"
+    ln -sf "libgreenconv.so.$major" "$root/lib/libgreenconv.so"
+    install -m 644 include/greenconv.h "$root/include/"
+    install -m 644 "$build"/include/*.mod "$root/include/greenconv/"
+    {
+        printf 'prefix=%s\n' "$prefix"
+        printf '%s\n' 'exec_prefix=${prefix}' 'libdir=${exec_prefix}/lib' 'includedir=${prefix}/include' \
+            'moduledir=${includedir}/greenconv' ''
+        printf '%s\n' 'Name: greenconv' \
+            "Description: Fast convolution with Green's functions and dynamic contact (C, Fortran, Fortran 77 APIs)"
+        printf 'Version: %s\n' "$version"
+        printf '%s\n' 'Cflags: -I${includedir} -I${moduledir}' 'Libs: -L${libdir} -lgreenconv'
+        printf 'Libs.private: %s\n' "$private"
+    } >"$root/lib/pkgconfig/greenconv.pc"
+    say "installed greenconv $version into $root (bin, lib, include, lib/pkgconfig/greenconv.pc)"
+}
+
+cmd_install_test() {
+    [ $# -eq 1 ] || die "usage: $0 install-test DRIVER"
+    local driver=$1 tmp prefix cflags libs private
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-install.XXXXXX")
+    CHECK_TMP=$tmp
+    trap 'rm -rf "$CHECK_TMP"' EXIT
+    prefix=$tmp/prefix
+    ${MAKE:-make} --no-print-directory install PREFIX="$prefix" >"$tmp/install.log" 2>&1 \
+        || { cat "$tmp/install.log" >&2; die "make install PREFIX=$prefix failed"; }
+    driver_reference "$driver" "$tmp/reference"
+    export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+    cflags=$(pkg-config --cflags greenconv)
+    libs=$(pkg-config --libs greenconv)
+    private=$(pkg-config --static --libs-only-l greenconv | sed 's/-lgreenconv//')
+    say "install test: make install PREFIX=$prefix; pkg-config --cflags --libs greenconv: $cflags $libs"
+    # shellcheck disable=SC2086 # the flags are words
+    "${CC:-cc}" -O2 -o "$tmp/c_contact" example/c_contact.c $cflags $libs -lm \
+        || die "building example/c_contact.c against the installed library failed"
+    # Linked against the shared library (the link name picks it), found at run time here.
+    readelf -d "$tmp/c_contact" | grep -q 'NEEDED.*libgreenconv\.so' \
+        || die "c_contact is not linked against libgreenconv.so"
+    LD_LIBRARY_PATH=$prefix/lib run_example "$tmp/c_contact" "$tmp/reference" || die "the installed C example failed"
+    # shellcheck disable=SC2086
+    "${FC:-gfortran}" -O2 -ffixed-form -J"$tmp" -o "$tmp/legacy_f77" example/legacy_f77.f $cflags \
+        "$prefix/lib/libgreenconv.a" $private \
+        || die "building example/legacy_f77.f against the installed library failed"
+    run_example "$tmp/legacy_f77" "$tmp/reference" || die "the installed Fortran 77 example failed"
+    say "ok: C example (shared library) and Fortran 77 example (static library), built with" \
+        "pkg-config from the installed prefix, match the driver"
+}
+
+# ---------------------------------------------------------------------------------
+# doc-check, doc
+# ---------------------------------------------------------------------------------
+
+cmd_doc_check() {
+    local missing
+    missing=$(awk -f tools/doc_check.awk "$@")
+    if [ -n "$missing" ]; then
+        printf '%s\n' "$missing" >&2
+        die "public entities without a !> doc comment (listed above)"
+    fi
+    say "doc-check: every public entity of the $# sources has a !> comment"
+}
+
+cmd_doc() {
+    if ! command -v ford >/dev/null 2>&1; then
+        say "installing FORD with pip (ford not found on PATH; make doc uses it)"
+        pip_install ford
+        command -v ford >/dev/null 2>&1 || die "ford was installed but is not on PATH ($PATH)"
+    fi
+    ford --quiet doc/greenconv.md
+    say "API documentation: build/doc/index.html"
+}
+
+# ---------------------------------------------------------------------------------
 # fpm-test
 # ---------------------------------------------------------------------------------
 
@@ -259,6 +417,13 @@ case "${1:-}" in
     deps) shift; cmd_deps "$@" ;;
     f90deps) shift; cmd_f90deps "$@" ;;
     same-output) shift; cmd_same_output "$@" ;;
+    examples) shift; cmd_examples "$@" ;;
+    install) shift; cmd_install "$@" ;;
+    install-test) shift; cmd_install_test "$@" ;;
+    doc-check) shift; cmd_doc_check "$@" ;;
+    doc) shift; cmd_doc "$@" ;;
     fpm-test) shift; cmd_fpm_test "$@" ;;
-    *) die "usage: $0 deps | f90deps OBJDIR SOURCE... | same-output DRIVER SCENE... | fpm-test [ARGS...]" ;;
+    *) die "usage: $0 deps | f90deps OBJDIR SOURCE... | same-output DRIVER SCENE... | examples DRIVER EXAMPLE..." \
+           "| install DESTDIR PREFIX VERSION BUILD LIBS | install-test DRIVER | doc-check SOURCE... | doc" \
+           "| fpm-test [ARGS...]" ;;
 esac

@@ -1,0 +1,182 @@
+/*
+ * greenconv.h - C and C++ interface of greenconv: fast convolution with Green's functions
+ * and dynamic contact (after Meftah, Duhamel, Cesbron, Yin, CSMA 2011, hal-00668511).
+ *
+ * Link: `pkg-config --cflags --libs greenconv` after `make install`, or by hand
+ *     cc prog.c -Iinclude build/make/libgreenconv.a -lgfortran -lgomp -llapack -lblas -lfftw3 -lm
+ *
+ * Units are SI throughout: s, m, N, kg; stiffness N/m, contact stiffness N/m^p, poles rad/s,
+ * residues and impulse-response samples m/(N*s), receptances m/N, frequencies Hz.
+ *
+ * Conventions.
+ * - Functions return a status: GC_OK (0) on success, GC_ERROR_INPUT (2) for a bad value,
+ *   file or NULL handle, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit).
+ *   These are the status codes of the library's Fortran error type (error_mod).
+ * - Functions that take `char *errmsg, size_t errmsg_len` write a one-line message there on
+ *   failure (empty on success), truncated to errmsg_len - 1 bytes and NUL-terminated;
+ *   errmsg may be NULL. There is no global "last error": nothing is kept between calls.
+ * - Strings passed in are NUL-terminated. Arrays are plain C arrays of the stated length.
+ * - A gc_convolver is an opaque object made by a gc_convolver_new_* function and released by
+ *   gc_convolver_free. Objects are independent: two simulations in one program do not
+ *   interfere.
+ *
+ * Threads. Different convolvers may be used from different threads at the same time; one
+ * convolver must not be used by two threads at once. The library built by the Makefile is
+ * compiled with OpenMP, which serialises FFTW's planner (plan creation and destruction, done
+ * when an "fft" convolver first runs and when it is freed) from any thread. A build without
+ * OpenMP (e.g. fpm's default) leaves that to the caller: create, first run and free "fft"
+ * convolvers from one thread at a time, or call fftw_make_planner_thread_safe() first.
+ *
+ * The convolution (eq. 20 of the paper): a convolver holds the force history q(t_m) [N]
+ * pushed so far and gives the displacement
+ *     u(t_n) = u_h(n) + w0*q(t_n),   u_h(n) = sum_{m<n} w(n-m)*q(t_m),   t_n = n*dt,
+ * where u_h(n) is the history displacement (gc_convolver_history) and w0 the instantaneous
+ * weight (gc_convolver_instant_weight, 0 for the paper's scheme on a mass-spring).
+ *
+ * Methods (the `method` string): "direct" (the truncated sum, cost per step ~ N_g),
+ * "fft" (the same sum by partitioned FFT, ~ log N_g), "modal" = "recursive" (modal recursion
+ * with decaying factors, ~ N_m), "paper" (the paper's recursion, eqs. 15-17), "exact"
+ * (force linear within a step, integrated exactly), "auto" (the cheapest of these that meets
+ * a relative accuracy of 1e-3). "direct" and "fft" truncate g where it falls below 1 % of
+ * max|g| (the paper's rule), never beyond n_steps samples.
+ */
+#ifndef GREENCONV_H
+#define GREENCONV_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Version of the library this header describes. */
+#define GREENCONV_VERSION "0.1.0"
+
+/** Status codes returned by the functions below. */
+enum gc_status {
+    GC_OK = 0,              /**< success */
+    GC_ERROR_INPUT = 2,     /**< bad input: a value out of range, an unreadable file, a NULL handle */
+    GC_ERROR_NUMERICAL = 3  /**< numerical failure: overflow, divergence, failed fit */
+};
+
+/** Opaque convolver: one structure's Green's function and one force history. */
+typedef struct gc_convolver gc_convolver;
+
+/* ---- creating and freeing convolvers ------------------------------------------------ */
+
+/**
+ * Convolver of a damped mass-spring system (mass [kg], stiffness [N/m], damping ratio in
+ * [0, 1)), stepped every dt [s] for at most n_steps steps, by `method`. On success *conv is
+ * the new convolver, at step 0; on failure NULL.
+ */
+int gc_convolver_new_sdof(double mass, double stiffness, double damping_ratio, double dt,
+                          const char *method, int n_steps, gc_convolver **conv,
+                          char *errmsg, size_t errmsg_len);
+
+/**
+ * Convolver of a structure given by n_modes modes in pole-residue form,
+ *     g(t) = sum_k 2*Re(r_k*exp(lambda_k*t))  [m/(N*s)],
+ * poles lambda_k = pole_re[k] + i*pole_im[k] [rad/s] with pole_re < 0 and pole_im > 0,
+ * residues r_k = residue_re[k] + i*residue_im[k] [m/(N*s)]. (The paper's eq. (6) with real
+ * amplitude A_k [1/kg] is r_k = A_k/(2i*omega_dk), omega_dk = pole_im.)
+ */
+int gc_convolver_new_modes(int n_modes, const double *pole_re, const double *pole_im,
+                           const double *residue_re, const double *residue_im, double dt,
+                           const char *method, int n_steps, gc_convolver **conv,
+                           char *errmsg, size_t errmsg_len);
+
+/**
+ * Convolver of a structure known only by its impulse response sampled at the time step,
+ * g[n] = g(n*dt) [m/(N*s)], n = 0..n_samples-1 (n_samples >= 2). Methods "direct" and "fft".
+ */
+int gc_convolver_new_samples(int n_samples, const double *g, double dt, const char *method,
+                             int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len);
+
+/**
+ * Convolver of a structure known by a receptance file: lines starting with '#' are comments,
+ * then columns f [Hz], Re G, Im G [m/N] on a uniform grid from 0 Hz. The modal methods run on
+ * modes identified by LSCE (the smallest model with error E <= tol_e, eq. 7, trying up to
+ * max_modes modes; 1e-6 and 30 are usual); "direct" and "fft" on g from the inverse FFT of G
+ * (dt must then be a whole multiple of 1/(2*f_max)).
+ */
+int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps,
+                              double tol_e, int max_modes, gc_convolver **conv,
+                              char *errmsg, size_t errmsg_len);
+
+/** Free a convolver and everything it holds (FFTW plans included). NULL is allowed. */
+void gc_convolver_free(gc_convolver *conv);
+
+/* ---- stepping a convolver ------------------------------------------------------------- */
+
+/** History displacement u_h(n) [m] at t_n from the forces pushed so far. */
+int gc_convolver_history(const gc_convolver *conv, double *displacement);
+
+/** Record the force q(t_n) [N] of the current step and advance to step n + 1. */
+int gc_convolver_push(gc_convolver *conv, double force);
+
+/** Instantaneous weight w0 [m/N]: displacement per newton of the current step's own force. */
+int gc_convolver_instant_weight(const gc_convolver *conv, double *weight);
+
+/** Forget every force pushed: back to step 0, the structure at rest. */
+int gc_convolver_reset(gc_convolver *conv);
+
+/** Size of the model: N_g kernel samples ("direct", "fft") or N_m modes. */
+int gc_convolver_model_size(const gc_convolver *conv, int *size);
+
+/**
+ * "method: what the model neglects" (for "auto": what it chose and why), written to text
+ * (at most text_len bytes, NUL-terminated; text may be NULL).
+ */
+int gc_convolver_describe(const gc_convolver *conv, char *text, size_t text_len);
+
+/* ---- dynamic contact ----------------------------------------------------------------- */
+
+/*
+ * The contact (eqs. 21-24): the body displacement u [m] and the road height u_r [m] point
+ * up, u is measured from the static equilibrium under the preload F0 [N]; the compression is
+ * delta = delta0 + u_r - u with delta0 = (F0/k_c)^(1/p); the contact force is
+ * F = k_c*delta^p for delta > 0, else 0 (p = 1.5: Hertz, p = 1: linear spring); the structure
+ * is loaded by F - F0. Each step is explicit: delta from the history displacement u_h.
+ */
+
+/**
+ * One contact step: road height `road` [m] at this step in; displacement u [m], contact force
+ * F [N] and (unless compression is NULL) compression delta [m] out; the convolver advanced.
+ * Start from a new or reset convolver.
+ */
+int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road,
+                    double *displacement, double *force, double *compression);
+
+/**
+ * A whole contact run of n_steps steps (the convolver is reset first) on the road heights
+ * road[n] = u_r(n*dt) [m]: displacement[n] [m], force[n] [N] and, unless NULL,
+ * compression[n] [m]. The same loop as the greenconv driver.
+ */
+int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps,
+                   const double *road, double *displacement, double *force, double *compression,
+                   char *errmsg, size_t errmsg_len);
+
+/* ---- identification and scenes -------------------------------------------------------- */
+
+/**
+ * Identify modes from a receptance file (format as gc_convolver_new_frf_file) by LSCE: at
+ * most `capacity` modes written to the four arrays, lowest natural frequency first, their
+ * number in *n_modes (status GC_ERROR_INPUT if it exceeds capacity) and the fit's error E
+ * (eq. 7) in *error_e.
+ */
+int gc_identify_frf_file(const char *path, double tol_e, int max_modes, int capacity,
+                         int *n_modes, double *pole_re, double *pole_im, double *residue_re,
+                         double *residue_im, double *error_e, char *errmsg, size_t errmsg_len);
+
+/**
+ * Run a scene namelist file as the greenconv driver does: one column file per method in the
+ * scene's output_dir, a summary line per method on standard output (Fortran's unit, flushed
+ * on return: call fflush(stdout) before, to keep the order of lines).
+ */
+int gc_run_scene(const char *path, char *errmsg, size_t errmsg_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GREENCONV_H */
