@@ -1,31 +1,71 @@
 !> greenconv driver: run the contact scene of a namelist file.
 !>
-!>     greenconv SCENE.nml
+!>     greenconv [--check] [--quiet] SCENE.nml
 !>
 !> Writes one column file per method into the scene's output directory and a summary
-!> per method on standard output. Bad input: one line on standard error, exit status 2.
+!> per method on standard output. `--check` reads and checks the scene and the files it
+!> names, prints one line saying what a run would do, and writes nothing. `--quiet` turns
+!> the progress line off (it is shown on standard error only when that is a terminal).
+!> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
+!> variable); 3 a numerical fault (one line saying where; the rows before it are written).
 program greenconv_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-    use greenconv, only: scene_type, read_scene, run_scene, error_type
+    use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
     implicit none
 
+    character(len=*), parameter :: usage = 'usage: greenconv [--check] [--quiet] SCENE.nml   ' &
+                                           //'(for example: greenconv data/sdof_sine.nml)'
     type(scene_type) :: scene
     type(error_type), allocatable :: error
-    character(len=:), allocatable :: path
-    integer :: length
+    character(len=:), allocatable :: path, argument
+    logical :: check_only, quiet
+    integer :: i, length
 
-    if (command_argument_count() /= 1) then
-        write (error_unit, '(a)') 'usage: greenconv SCENE.nml   (for example: greenconv data/sdof_sine.nml)'
-        stop 2, quiet=.true.
-    end if
-    call get_command_argument(1, length=length)
-    allocate (character(len=length) :: path)
-    call get_command_argument(1, path)
+    check_only = .false.
+    quiet = .false.
+    path = ''
+    do i = 1, command_argument_count()
+        call get_command_argument(i, length=length)
+        allocate (character(len=length) :: argument)
+        call get_command_argument(i, argument)
+        select case (argument)
+        case ('--check')
+            check_only = .true.
+        case ('--quiet')
+            quiet = .true.
+        case ('-h', '--help')
+            write (output_unit, '(a)') usage
+            stop
+        case default
+            if (index(argument, '-') == 1 .or. len(path) > 0) call usage_error('unexpected argument '//argument)
+            path = argument
+        end select
+        deallocate (argument)
+    end do
+    if (len(path) == 0) call usage_error('no scene file given')
 
     call read_scene(path, scene, error)
-    if (.not. allocated(error)) call run_scene(scene, output_unit, error)
+    if (.not. allocated(error)) then
+        if (quiet) scene%progress = .false.
+        if (check_only) then
+            call check_scene(scene, output_unit, error)
+        else
+            call run_scene(scene, output_unit, error)
+        end if
+    end if
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv: '//error%message
         stop error%stat, quiet=.true.
     end if
+
+contains
+
+    !> One line on what is wrong with the command line and how to call the driver; exit 2.
+    subroutine usage_error(what)
+        character(len=*), intent(in) :: what
+
+        write (error_unit, '(a)') 'greenconv: '//what//'; '//usage
+        stop 2, quiet=.true.
+    end subroutine usage_error
+
 end program greenconv_driver

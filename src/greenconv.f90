@@ -31,7 +31,7 @@ module greenconv
     use road_file_mod, only: road_file, read_road_file, sample_road_file, file_road
     use structure_mod, only: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, &
                              build_structure
-    use scene_run_mod, only: run_scene, make_convolver, output_path
+    use scene_run_mod, only: run_scene, check_scene, make_convolver, output_path
     use library_mod, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file, &
                            default_truncation_tol, default_accuracy
     implicit none
@@ -59,7 +59,7 @@ module greenconv
     public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
     public :: road_file, read_road_file, sample_road_file, file_road
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
-    public :: run_scene, make_convolver, output_path
+    public :: run_scene, check_scene, make_convolver, output_path
     public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
     public :: default_truncation_tol, default_accuracy
 

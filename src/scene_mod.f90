@@ -3,7 +3,7 @@
 !> Tab. 1 and section 3.1, section 3.2 for the random road and random modes), so a scene
 !> file states only what differs, and every group is optional. README.md lists them all:
 !>
-!>     &scene          task, name, output_dir, dt [s], n_steps
+!>     &scene          task, name, output_dir, dt [s], n_steps, output_every, progress
 !>     &structure      model = 'sdof' | 'random_modes' | 'frf_file' | 'tyre', mass [kg],
 !>                     stiffness [N/m], damping_ratio, n_modes, seed, f_low, f_high [Hz],
 !>                     xi_low, xi_high, a_low, a_high [1/kg], frf_file, belt_length [m],
@@ -53,6 +53,10 @@ module scene_mod
         real(dp) :: dt = 1.0e-4_dp
         !> Number of time steps N_t.
         integer :: n_steps = 2000
+        !> Write every this many steps to the column files (1: every step), >= 1.
+        integer :: output_every = 1
+        !> Show a progress line on standard error for long runs (only when it is a terminal).
+        logical :: progress = .true.
         !> Structure model: `sdof`, `random_modes` or `frf_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
@@ -154,7 +158,7 @@ contains
         close (unit)
     end subroutine read_scene
 
-    !> &scene: task, name, output_dir, dt [s], n_steps.
+    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, progress.
     subroutine read_scene_group(unit, this, error)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
@@ -163,15 +167,18 @@ contains
         character(len=name_length) :: task, name
         character(len=path_length) :: output_dir
         real(dp) :: dt
-        integer :: n_steps, stat
+        integer :: n_steps, output_every, stat
+        logical :: progress
         character(len=512) :: message
-        namelist /scene/ task, name, output_dir, dt, n_steps
+        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, progress
 
         task = 'contact'
         name = 'sdof_sine'
         output_dir = 'out'
         dt = this%dt
         n_steps = this%n_steps
+        output_every = this%output_every
+        progress = this%progress
         rewind (unit)
         read (unit, nml=scene, iostat=stat, iomsg=message)
         call group_status(this%file, 'scene', stat, message, error)
@@ -183,11 +190,15 @@ contains
         call require(dt > 0.0_dp .and. dt < huge(dt), &
                      expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
         call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
+        call require(output_every > 0, expected(this%file, 'scene', 'output_every', &
+                     'a number of steps >= 1 between written rows', output_every), error)
         this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
         this%dt = dt
         this%n_steps = n_steps
+        this%output_every = output_every
+        this%progress = progress
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.

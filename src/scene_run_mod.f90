@@ -14,12 +14,13 @@ module scene_run_mod
     use files_mod, only: write_columns, make_directory
     use scene_mod, only: scene_type, output_path
     use structure_mod, only: structure_model, build_structure
+    use frf_mod, only: frf_type, read_frf
     use identification_output_mod, only: write_identification, identification_summary
     use tyre_scene_mod, only: run_tyre_scene
     implicit none
     private
 
-    public :: run_scene, make_convolver, output_path
+    public :: run_scene, check_scene, make_convolver, output_path
 
     !> `auto` runs the direct sum when N_t*N_g is at most this many multiply-adds (about
     !> 2 ms at the measured 6-7 GMAC/s): then no model is worth building.
@@ -59,6 +60,49 @@ contains
         end if
         if (scene%task == 'contact') call run_methods(scene, structure, unit, error)
     end subroutine run_scene
+
+    !> Check a scene without running it: the scene file was read and checked by `read_scene`
+    !> (with its road file); this also reads and checks a receptance file the structure
+    !> names, then prints one line on `unit` saying what a run would do. Nothing is written.
+    !>
+    !>     greenconv: data/sdof_sine.nml: ok: task contact, model sdof, N_t = 2000 steps of 1.000E-04 s, ...
+    subroutine check_scene(scene, unit, error)
+        !> The scene, as `read_scene` returned it.
+        type(scene_type), intent(in) :: scene
+        !> Unit the line is printed on.
+        integer, intent(in) :: unit
+        !> Set when a file the scene names is unusable.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        character(len=:), allocatable :: line
+        integer :: i
+
+        line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
+        if (scene%model == 'frf_file') then
+            call read_frf(scene%frf_file, frf, error)
+            if (allocated(error)) then
+                error%message = scene%file//': &structure frf_file: '//error%message
+                return
+            end if
+            line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
+                   //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
+        end if
+        if (scene%task == 'contact') then
+            line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &
+                   //int_text(scene%n_points)//' contact point(s), '
+            if (scene%model == 'tyre') then
+                line = line//'Newton on all points'
+            else
+                line = line//trim(scene%contact%scheme)//' step'
+            end if
+            line = line//', a row every '//int_text(scene%output_every)//' step(s), methods'
+            do i = 1, size(scene%methods)
+                line = line//' '//trim(scene%methods(i))
+            end do
+        end if
+        write (unit, '(a)') line
+    end subroutine check_scene
 
     !> The contact loop once per method of the scene.
     subroutine run_methods(scene, structure, unit, error)
