@@ -10,10 +10,11 @@ module column_file_mod
     use kinds_mod, only: dp
     use text_mod, only: int_text
     use error_mod, only: error_type, fatal_error
+    use number_text_mod, only: is_number, is_nan_or_inf
     implicit none
     private
 
-    public :: read_columns
+    public :: read_columns, read_line
 
 contains
 
@@ -175,63 +176,13 @@ contains
         if (inside .and. n_tokens <= n_max) last(n_tokens) = len(line)
     end subroutine split
 
-    !> A decimal number: sign, digits, one point, exponent (e, E, d, D) with sign and digits.
-    pure logical function is_number(token)
-        character(len=*), intent(in) :: token
-
-        integer :: i, n_digits, n_points, exponent_at
-
-        is_number = .false.
-        n_digits = 0
-        n_points = 0
-        exponent_at = 0
-        do i = 1, len(token)
-            select case (token(i:i))
-            case ('0':'9')
-                n_digits = n_digits + 1
-            case ('.')
-                if (exponent_at > 0) return
-                n_points = n_points + 1
-            case ('+', '-')
-                if (i /= 1 .and. i /= exponent_at + 1) return
-            case ('e', 'E', 'd', 'D')
-                if (exponent_at > 0 .or. n_digits == 0) return
-                exponent_at = i
-            case default
-                return
-            end select
-        end do
-        if (n_points > 1 .or. n_digits == 0) return
-        if (exponent_at > 0) then
-            if (verify(token(exponent_at + 1:), '+-') == 0) return
-            if (scan(token(exponent_at + 1:), '0123456789') == 0) return
-        end if
-        is_number = .true.
-    end function is_number
-
-    !> A spelling of NaN or infinity (with optional sign), case-insensitive.
-    pure logical function is_nan_or_inf(token)
-        character(len=*), intent(in) :: token
-
-        character(len=len(token)) :: lower
-        integer :: i, start
-
-        do i = 1, len(token)
-            lower(i:i) = token(i:i)
-            if (token(i:i) >= 'A' .and. token(i:i) <= 'Z') lower(i:i) = achar(iachar(token(i:i)) + 32)
-        end do
-        start = 1
-        if (len(lower) > 0) then
-            if (lower(1:1) == '+' .or. lower(1:1) == '-') start = 2
-        end if
-        is_nan_or_inf = lower(start:) == 'nan' .or. lower(start:) == 'inf' .or. lower(start:) == 'infinity' &
-                        .or. index(lower(start:), 'nan(') == 1
-    end function is_nan_or_inf
-
-    !> Read one whole line of any length.
+    !> Read one whole line of any length (stat: 0, or the iostat of the end of the file or a failure).
     subroutine read_line(unit, line, stat)
+        !> An open formatted sequential unit.
         integer, intent(in) :: unit
+        !> The line, without its end.
         character(len=:), allocatable, intent(out) :: line
+        !> 0 when a line was read.
         integer, intent(out) :: stat
 
         character(len=256) :: buffer

@@ -1,7 +1,11 @@
 !> A scene read from a namelist file: task, time grid, structure, road, contact law,
-!> identification and convolution methods. Every variable has a default (the paper's
-!> Tab. 1 and section 3.1, section 3.2 for the random road and random modes), so a scene
-!> file states only what differs, and every group is optional. README.md lists them all:
+!> identification and convolution methods. The file is first scanned (scene_schema_mod,
+!> namelist_scan_mod: unknown names, wrong kinds, NaN/Inf, required values, each with its
+!> line); then each group is read with a namelist read and its values checked, messages
+!> carrying the line of the variable. Apart from the required values (scene_schema_mod),
+!> every variable has a default (the paper's Tab. 1 and section 3.1, section 3.2 for the
+!> random road and random modes), so a scene file states only what differs. README.md lists
+!> them all:
 !>
 !>     &scene          task, name, output_dir, dt [s], n_steps, output_every, progress
 !>     &structure      model = 'sdof' | 'random_modes' | 'frf_file' | 'tyre', mass [kg],
@@ -19,11 +23,15 @@ module scene_mod
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error
-    use text_mod, only: real_text
+    use text_mod, only: real_text, int_text, sci_text
     use road_mod, only: road_profile, sine_road, new_random_road
     use contact_mod, only: contact_law, contact_options
-    use tyre_model_mod, only: tyre_belt
+    use tyre_model_mod, only: tyre_belt, tyre_frequency
     use road_file_mod, only: road_file, read_road_file, file_road
+    use namelist_scan_mod, only: namelist_scan
+    use scene_schema_mod, only: scan_scene, max_methods
+    use scene_limits_mod, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
+                                max_contact_points, max_kernel_values, kernel_values
     implicit none
     private
 
@@ -36,13 +44,12 @@ module scene_mod
     !> The convolution methods a scene may list, for messages.
     character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', " &
                                                    //"'backward' or 'auto'"
-    !> Largest number of methods one scene may list.
-    integer, parameter :: max_methods = 8
-
     !> Everything a contact run needs, in SI units.
     type :: scene_type
         !> The namelist file the scene came from.
         character(len=:), allocatable :: file
+        !> Where each group and variable of the file stands (its lines), from the pre-scan.
+        type(namelist_scan) :: input
         !> What to do: `contact` (simulate) or `identify` (fit modes to the structure's G only).
         character(len=:), allocatable :: task
         !> Base name of the output files.
@@ -144,6 +151,8 @@ contains
         character(len=512) :: message
 
         scene%file = path
+        call scan_scene(path, scene%input, error)
+        if (allocated(error)) return
         open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
         if (stat /= 0) then
             call fatal_error(error, path//': cannot open the scene file: '//trim(message))
@@ -181,16 +190,16 @@ contains
         progress = this%progress
         rewind (unit)
         read (unit, nml=scene, iostat=stat, iomsg=message)
-        call group_status(this%file, 'scene', stat, message, error)
+        call group_status(this, 'scene', stat, message, error)
         if (allocated(error)) return
         call require(any(trim(task) == [character(len=8) :: 'contact', 'identify']), &
-                     expected(this%file, 'scene', 'task', "'contact' or 'identify'", task), error)
-        call require(len_trim(name) > 0, expected(this%file, 'scene', 'name', 'a file base name'), error)
-        call require(len_trim(output_dir) > 0, expected(this%file, 'scene', 'output_dir', 'a directory path'), error)
+                     expected(this, 'scene', 'task', "'contact' or 'identify'", task), error)
+        call require(len_trim(name) > 0, expected(this, 'scene', 'name', 'a file base name'), error)
+        call require(len_trim(output_dir) > 0, expected(this, 'scene', 'output_dir', 'a directory path'), error)
         call require(dt > 0.0_dp .and. dt < huge(dt), &
-                     expected(this%file, 'scene', 'dt', 'a time step > 0 s', dt), error)
-        call require(n_steps > 0, expected(this%file, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
-        call require(output_every > 0, expected(this%file, 'scene', 'output_every', &
+                     expected(this, 'scene', 'dt', 'a time step > 0 s', dt), error)
+        call require(n_steps > 0, expected(this, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
+        call require(output_every > 0, expected(this, 'scene', 'output_every', &
                      'a number of steps >= 1 between written rows', output_every), error)
         this%task = trim(task)
         this%name = trim(name)
@@ -238,26 +247,27 @@ contains
         f_modes = this%f_modes
         rewind (unit)
         read (unit, nml=structure, iostat=stat, iomsg=message)
-        call group_status(this%file, 'structure', stat, message, error)
+        call group_status(this, 'structure', stat, message, error)
         if (allocated(error)) return
         call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file', 'tyre']), &
-                     expected(this%file, 'structure', 'model', "'sdof', 'random_modes', 'frf_file' or 'tyre'", &
+                     expected(this, 'structure', 'model', "'sdof', 'random_modes', 'frf_file' or 'tyre'", &
                               model), error)
         call require(mass > 0.0_dp .and. mass < huge(mass), &
-                     expected(this%file, 'structure', 'mass', 'a mass > 0 kg', mass), error)
+                     expected(this, 'structure', 'mass', 'a mass > 0 kg', mass), error)
         call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
-                     expected(this%file, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
+                     expected(this, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
         call require(damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp, &
-                     expected(this%file, 'structure', 'damping_ratio', 'a ratio in [0, 1)', damping_ratio), error)
-        call require(n_modes > 0, expected(this%file, 'structure', 'n_modes', 'a number of modes > 0', n_modes), error)
+                     expected(this, 'structure', 'damping_ratio', 'a ratio in [0, 1)', damping_ratio), error)
+        call require(n_modes > 0 .and. n_modes <= max_random_modes, expected(this, 'structure', 'n_modes', &
+                     'a number of modes from 1 to '//int_text(max_random_modes), n_modes), error)
         call require(f_low > 0.0_dp .and. f_high > f_low .and. f_high < huge(f_high), &
-                     expected(this%file, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
+                     expected(this, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
         call require(xi_low > 0.0_dp .and. xi_high >= xi_low .and. xi_high < 1.0_dp, &
-                     expected(this%file, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
+                     expected(this, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
         call require(a_low > 0.0_dp .and. a_high >= a_low .and. a_high < huge(a_high), &
-                     expected(this%file, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
+                     expected(this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
         call require(trim(model) /= 'frf_file' .or. len_trim(frf_file) > 0, &
-                     expected(this%file, 'structure', 'frf_file', "a receptance file for model 'frf_file'"), error)
+                     expected(this, 'structure', 'frf_file', "a receptance file for model 'frf_file'"), error)
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
@@ -273,9 +283,9 @@ contains
         call require(all([belt_length, belt_mass] > 0.0_dp) .and. &
                      all([belt_bending, belt_tension, belt_foundation] >= 0.0_dp) .and. &
                      all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
-                     expected(this%file, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
+                     expected(this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
                               //'belt_tension, belt_foundation >= 0, all finite'), error)
-        call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this%file, 'structure', 'f_modes', &
+        call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this, 'structure', 'f_modes', &
                      'a frequency >= 0 Hz (0: the band rule)', f_modes), error)
         this%frf_file = trim(frf_file)
         this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
@@ -302,17 +312,18 @@ contains
         order = this%order
         rewind (unit)
         read (unit, nml=identification, iostat=stat, iomsg=message)
-        call group_status(this%file, 'identification', stat, message, error)
+        call group_status(this, 'identification', stat, message, error)
         if (allocated(error)) return
         call require(f_max > 0.0_dp .and. f_max < huge(f_max), &
-                     expected(this%file, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
-        call require(n_freq >= 16, expected(this%file, 'identification', 'n_freq', 'at least 16 lines', n_freq), error)
+                     expected(this, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
+        call require(n_freq >= 16 .and. n_freq <= max_freq_lines, expected(this, 'identification', 'n_freq', &
+                     'from 16 to '//int_text(max_freq_lines)//' lines', n_freq), error)
         call require(tol_e > 0.0_dp .and. tol_e < 1.0_dp, &
-                     expected(this%file, 'identification', 'tol_e', 'an error target in (0, 1)', tol_e), error)
-        call require(max_order > 0, &
-                     expected(this%file, 'identification', 'max_order', 'a number of modes > 0', max_order), error)
-        call require(order >= 0, expected(this%file, 'identification', 'order', &
-                                          'a number of modes >= 0 (0: chosen by tol_e)', order), error)
+                     expected(this, 'identification', 'tol_e', 'an error target in (0, 1)', tol_e), error)
+        call require(max_order > 0 .and. max_order <= max_lsce_modes, expected(this, 'identification', &
+                     'max_order', 'a number of modes from 1 to '//int_text(max_lsce_modes), max_order), error)
+        call require(order >= 0 .and. order <= max_lsce_modes, expected(this, 'identification', 'order', &
+                     'a number of modes from 0 (chosen by tol_e) to '//int_text(max_lsce_modes), order), error)
         this%f_max = f_max
         this%n_freq = n_freq
         this%tol_e = tol_e
@@ -345,24 +356,25 @@ contains
         x_start = this%x_start
         rewind (unit)
         read (unit, nml=road, iostat=stat, iomsg=message)
-        call group_status(this%file, 'road', stat, message, error)
+        call group_status(this, 'road', stat, message, error)
         if (allocated(error)) return
         call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file']), &
-                     expected(this%file, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
+                     expected(this, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
         call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
-                     expected(this%file, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
+                     expected(this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
                      error)
         call require(abs(x_start) < huge(x_start), &
-                     expected(this%file, 'road', 'x_start', 'a finite position in m', x_start), error)
+                     expected(this, 'road', 'x_start', 'a finite position in m', x_start), error)
         call require(abs(amplitude) < huge(amplitude), &
-                     expected(this%file, 'road', 'amplitude', 'a finite height in m', amplitude), error)
+                     expected(this, 'road', 'amplitude', 'a finite height in m', amplitude), error)
         call require(abs(omega) < huge(omega), &
-                     expected(this%file, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
+                     expected(this, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
         call require(wavelength > 0.0_dp .and. wavelength < huge(wavelength), &
-                     expected(this%file, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
+                     expected(this, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
         call require(abs(speed) < huge(speed), &
-                     expected(this%file, 'road', 'speed', 'a finite speed in m/s', speed), error)
-        call require(n_terms > 0, expected(this%file, 'road', 'n_terms', 'a number of terms > 0', n_terms), error)
+                     expected(this, 'road', 'speed', 'a finite speed in m/s', speed), error)
+        call require(n_terms > 0 .and. n_terms <= max_road_terms, expected(this, 'road', 'n_terms', &
+                     'a number of terms from 1 to '//int_text(max_road_terms), n_terms), error)
         if (allocated(error)) return
         this%speed = speed
         this%x_start = x_start
@@ -389,14 +401,14 @@ contains
 
         call read_road_file(path, this%road_data, error)
         if (allocated(error)) then
-            error%message = this%file//': &road road_file: '//error%message
+            error%message = place(this, 'road', 'road_file')//' road_file: '//error%message
             return
         end if
         this%road = file_road(this%road_data, this%x_start, this%speed)
         x_end = this%x_start + this%speed*(this%n_steps - 1)*this%dt
         call require(this%model == 'tyre' .or. &
                      this%road_data%covers(min(this%x_start, x_end), max(this%x_start, x_end)), &
-                     expected(this%file, 'road', 'x_start, speed', 'a run within '//path//' (the run needs x from ' &
+                     expected(this, 'road', 'x_start, speed', 'a run within '//path//' (the run needs x from ' &
                               //real_text(this%x_start)//' m to '//real_text(x_end)//' m)'), error)
     end subroutine read_file_road
 
@@ -422,28 +434,30 @@ contains
         divergence_bound = this%contact%divergence_bound
         rewind (unit)
         read (unit, nml=contact, iostat=stat, iomsg=message)
-        call group_status(this%file, 'contact', stat, message, error)
+        call group_status(this, 'contact', stat, message, error)
         if (allocated(error)) return
         call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
-                     expected(this%file, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
+                     expected(this, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
         call require(exponent > 0.0_dp .and. exponent < huge(exponent), &
-                     expected(this%file, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
+                     expected(this, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
         call require(gravity >= 0.0_dp .and. gravity < huge(gravity), &
-                     expected(this%file, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
+                     expected(this, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
         call require(abs(preload) < huge(preload), &
-                     expected(this%file, 'contact', 'preload', 'a finite force in N', preload), error)
+                     expected(this, 'contact', 'preload', 'a finite force in N', preload), error)
         call require(preload >= 0.0_dp .or. this%model == 'sdof' .or. this%task /= 'contact', &
-                     expected(this%file, 'contact', 'preload', &
+                     expected(this, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
+        call require(n_points <= max_contact_points, expected(this, 'contact', 'n_points', &
+                     'at most '//int_text(max_contact_points)//' points', n_points), error)
         call require(n_points >= 1 .and. (n_points == 1 .or. this%model == 'tyre'), &
-                     expected(this%file, 'contact', 'n_points', &
+                     expected(this, 'contact', 'n_points', &
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
-        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this%file, 'contact', &
+        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
                      'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
         call require(any(trim(scheme) == [character(len=8) :: 'explicit', 'implicit']), &
-                     expected(this%file, 'contact', 'scheme', "'explicit' or 'implicit'", scheme), error)
+                     expected(this, 'contact', 'scheme', "'explicit' or 'implicit'", scheme), error)
         call require(divergence_bound > 0.0_dp .and. divergence_bound < huge(divergence_bound), &
-                     expected(this%file, 'contact', 'divergence_bound', 'a displacement > 0 m', divergence_bound), &
+                     expected(this, 'contact', 'divergence_bound', 'a displacement > 0 m', divergence_bound), &
                      error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
         this%contact%scheme = trim(scheme)
@@ -472,48 +486,80 @@ contains
         accuracy = this%accuracy
         rewind (unit)
         read (unit, nml=convolution, iostat=stat, iomsg=message)
-        call group_status(this%file, 'convolution', stat, message, error)
+        call group_status(this, 'convolution', stat, message, error)
         if (allocated(error)) return
         do i = 1, max_methods
             select case (trim(methods(i)))
             case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward', 'auto')
             case default
                 call fatal_error(error, &
-                                 expected(this%file, 'convolution', 'methods', known_methods, methods(i)))
+                                 expected(this, 'convolution', 'methods', known_methods, methods(i)))
                 return
             end select
         end do
         call require(truncation_tol > 0.0_dp .and. truncation_tol < 1.0_dp, &
-            expected(this%file, 'convolution', 'truncation_tol', &
+            expected(this, 'convolution', 'truncation_tol', &
                                              'a fraction of max |g| in (0, 1)', truncation_tol), error)
         this%methods = pack(methods, methods /= '')
         call require(size(this%methods) > 0, &
-                     expected(this%file, 'convolution', 'methods', 'at least one method'), error)
+                     expected(this, 'convolution', 'methods', 'at least one method'), error)
         call require(accuracy > 0.0_dp .and. accuracy < 1.0_dp, &
-                     expected(this%file, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
+                     expected(this, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
         this%truncation_tol = truncation_tol
         this%accuracy = accuracy
+        if (.not. allocated(error)) call check_kernel_size(this, error)
     end subroutine read_convolution_group
 
-    !> Turn the status of a namelist read into an error; a missing group is no error.
-    subroutine group_status(file, group, stat, message, error)
-        character(len=*), intent(in) :: file, group, message
+    !> A sampled kernel (`direct`, `fft`, and `auto`, which samples it to weigh its cost) must
+    !> fit in max_kernel_values; a receptance file's g is bounded by the file and not checked.
+    subroutine check_kernel_size(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: values, decay_rate
+
+        if (this%task /= 'contact' .or. this%model == 'frf_file') return
+        if (.not. any(this%methods == 'direct' .or. this%methods == 'fft' .or. this%methods == 'auto')) return
+        select case (this%model)
+        case ('sdof')
+            decay_rate = this%damping_ratio*sqrt(this%stiffness/this%mass)
+        case ('tyre')
+            decay_rate = this%damping_ratio*tyre_frequency(this%tyre, 1)
+        case default
+            decay_rate = this%xi_low*2.0_dp*acos(-1.0_dp)*this%f_low
+        end select
+        values = kernel_values(decay_rate, this%dt, this%truncation_tol, this%n_steps, this%n_points)
+        call require(values <= max_kernel_values, expected(this, 'convolution', 'methods', &
+                     'a sampled kernel (direct, fft, auto) of at most '//sci_text(real(max_kernel_values, dp)) &
+                     //' values (8 bytes each); use a larger dt or truncation_tol, or a modal method (modal, ' &
+                     //'exact), found '//sci_text(values)//' values'), error)
+    end subroutine check_kernel_size
+
+    !> Turn the status of a namelist read into an error ("file:line: &group: message"); a
+    !> missing group is no error here (scene_schema_mod checks the required ones).
+    subroutine group_status(scene, group, stat, message, error)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, message
         integer, intent(in) :: stat
         type(error_type), allocatable, intent(out) :: error
 
         if (stat == 0 .or. stat == iostat_end) return
-        call fatal_error(error, file//': &'//group//': '//trim(message))
+        call fatal_error(error, scene%file//':'//int_text(scene%input%line_of(group, ''))//': &'//group//': ' &
+                         //trim(message))
     end subroutine group_status
 
-    !> "file: &group variable: expected what[, found value]"; value is a real, an integer or a text.
-    function expected(file, group, variable, what, found) result(line)
-        character(len=*), intent(in) :: file, group, variable, what
+    !> "file:line: &group variable: expected what[, found value]", the line that of the variable
+    !> (the first of a list `a, b`) when the file sets it, else the group's; value is a real, an
+    !> integer or a text.
+    function expected(scene, group, variable, what, found) result(line)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variable, what
         class(*), intent(in), optional :: found
         character(len=:), allocatable :: line
 
         character(len=32) :: value
 
-        line = file//': &'//group//' '//variable//': expected '//what
+        line = place(scene, group, variable)//' '//variable//': expected '//what
         if (.not. present(found)) return
         select type (found)
         type is (real(dp))
@@ -526,6 +572,32 @@ contains
             line = line//", found '"//trim(found)//"'"
         end select
     end function expected
+
+    !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
+    !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
+    function place(scene, group, variables) result(text)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variables
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: rest
+        integer :: line, comma
+
+        line = 0
+        rest = variables
+        do while (line == 0 .and. len_trim(rest) > 0)
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            line = scene%input%line_of(group, trim(adjustl(rest(:comma - 1))))
+            rest = rest(min(comma + 1, len(rest) + 1):)
+        end do
+        if (line == 0) line = scene%input%line_of(group, '')
+        if (line > 0) then
+            text = scene%file//':'//int_text(line)//': &'//group
+        else
+            text = scene%file//': &'//group
+        end if
+    end function place
 
     !> Record `message` as the error unless `ok` holds or an earlier check already failed.
     subroutine require(ok, message, error)

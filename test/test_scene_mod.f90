@@ -5,6 +5,7 @@ module test_scene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use files_mod, only: make_directory
+    use scene_text_mod, only: tab1_scene
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
                          convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
                          write_frf, structure_from_modes, modal_set, error_e, run_scene
@@ -22,7 +23,7 @@ contains
     subroutine collect_scene(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
-        testsuite = [new_unittest('an empty scene file gives the paper''s Tab. 1', test_defaults), &
+        testsuite = [new_unittest('a scene of the required values gets the paper''s Tab. 1', test_defaults), &
                      new_unittest('bad values: one message naming file, group and variable', test_bad_values), &
                      new_unittest('random modes: LSCE recovers the modes of the sampled G', test_random_identified), &
                      new_unittest('random modes: modal on LSCE modes equals direct on the true g', &
@@ -56,8 +57,8 @@ contains
         type(scene_type) :: scene
         type(error_type), allocatable :: input_error
 
-        call scene_from_text('empty.nml', '! nothing', scene, input_error)
-        call check(error, .not. allocated(input_error), 'an empty file is a valid scene')
+        call scene_from_text('required.nml', tab1_scene(), scene, input_error)
+        call check(error, .not. allocated(input_error), 'the required values make a valid scene')
         if (allocated(error)) return
         call check(error, scene%dt == 1.0e-4_dp .and. scene%n_steps == 2000 .and. scene%mass == 1.0_dp .and. &
                    scene%stiffness == 1.0e6_dp .and. scene%damping_ratio == 0.02_dp .and. &
@@ -75,28 +76,35 @@ contains
     subroutine test_bad_values(error)
         type(test_error), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: bodies(5) = [character(len=60) :: &
-                                                    '&structure mass = -1.0 /', &
-                                                    '&structure damping_ratio = 1.5 /', &
-                                                    '&scene dt = 0.0 /', &
-                                                    '&road profile = ''bumpy'' /', &
-                                                    '&structure model = ''random_modes'' /']
         character(len=*), parameter :: expected(5) = [character(len=40) :: &
-                                                      'bad.nml: &structure mass: expected', &
-                                                      'bad.nml: &structure damping_ratio', &
-                                                      'bad.nml: &scene dt: expected', &
-                                                      'bad.nml: &road profile: expected', &
-                                                      'bad.nml: &contact preload: expected']
+                                                      'bad.nml:2: &structure mass: expected', &
+                                                      'bad.nml:2: &structure damping_ratio', &
+                                                      'bad.nml:1: &scene dt: expected', &
+                                                      'bad.nml:3: &road profile: expected', &
+                                                      'bad.nml:4: &contact preload: expected']
+        character(len=:), allocatable :: text
         type(scene_type) :: scene
         type(error_type), allocatable :: input_error
         integer :: i
 
-        do i = 1, size(bodies)
-            call scene_from_text('bad.nml', trim(bodies(i)), scene, input_error)
-            call check(error, allocated(input_error), 'rejected: '//trim(bodies(i)))
+        do i = 1, size(expected)
+            select case (i)
+            case (1)
+                text = tab1_scene(structure="model = 'sdof', mass = -1.0, stiffness = 1.0e6, damping_ratio = 0.02")
+            case (2)
+                text = tab1_scene(structure="model = 'sdof', mass = 1.0, stiffness = 1.0e6, damping_ratio = 1.5")
+            case (3)
+                text = tab1_scene(scene='dt = 0.0, n_steps = 2000')
+            case (4)
+                text = tab1_scene(road="profile = 'bumpy'")
+            case default
+                text = tab1_scene(structure="model = 'random_modes'", contact='stiffness = 1.0e6, exponent = 1.5')
+            end select
+            call scene_from_text('bad.nml', text, scene, input_error)
+            call check(error, allocated(input_error), 'rejected: '//trim(expected(i)))
             if (allocated(error)) return
             call check(error, index(input_error%message, trim(expected(i))) > 0 .and. input_error%stat == 2, &
-                       'message for '//trim(bodies(i))//': '//input_error%message)
+                       'message for '//trim(expected(i))//': '//input_error%message)
             if (allocated(error)) return
         end do
     end subroutine test_bad_values
@@ -173,8 +181,11 @@ contains
         type(contact_response) :: reference, modal, direct
         real(dp) :: modal_difference, direct_difference
 
-        call scene_from_text('sdof_frf.nml', "&structure model = 'frf_file', frf_file = '"//scratch// &
-                             "/sdof.frf' / &contact preload = 9.81 / &scene n_steps = 3000 /", scene, input_error)
+        call scene_from_text('sdof_frf.nml', tab1_scene(scene='dt = 1.0e-4, n_steps = 3000', &
+                                                        structure="model = 'frf_file', frf_file = '"//scratch &
+                                                                  //"/sdof.frf'", &
+                                                        contact='stiffness = 1.0e6, exponent = 1.5, preload = 9.81'), &
+                             scene, input_error)
         call check(error, .not. allocated(input_error), 'scene reads')
         if (allocated(error)) return
         ! G of the Tab. 1 oscillator from 0 to 5 kHz: g comes at 1/(2*5 kHz) = the scene's dt.
@@ -265,12 +276,14 @@ contains
         type(structure_model) :: structure
         integer :: n
 
-        call auto_choice('auto_short.nml', "&convolution methods = 'auto' /", accuracy, label, n, structure, error)
+        call auto_choice('auto_short.nml', tab1_scene(convolution="methods = 'auto'"), accuracy, label, n, &
+                         structure, error)
         if (allocated(error)) return
         call check(error, index(accuracy, 'chose direct: N_t*N_g = ') == 1 .and. label == 'N_g' .and. n == 1999, &
                    'short run: direct with N_g = 1999, said so ('//accuracy//')')
         if (allocated(error)) return
-        call auto_choice('auto_long.nml', "&scene dt = 1.0e-5, n_steps = 200000 / &convolution methods = 'auto' /", &
+        call auto_choice('auto_long.nml', tab1_scene(scene='dt = 1.0e-5, n_steps = 200000', &
+                                                     convolution="methods = 'auto'"), &
                          accuracy, label, n, structure, error)
         if (allocated(error)) return
         call check(error, index(accuracy, 'chose exact: ') == 1 .and. label == 'N_m' .and. n == 1, &
@@ -285,16 +298,19 @@ contains
         type(test_error), allocatable, intent(out) :: error
 
         real(dp), parameter :: two_pi = 2.0_dp*acos(-1.0_dp)
-        character(len=*), parameter :: common = "&scene n_steps = 10000 / &structure model = 'random_modes' / " &
-                                        //"&contact preload = 100.0 / "
+        character(len=*), parameter :: scene_body = 'dt = 1.0e-4, n_steps = 10000', &
+                                       structure_body = "model = 'random_modes'", &
+                                       contact_body = 'stiffness = 1.0e6, exponent = 1.5, preload = 100.0', &
+                                       convolution_body = "methods = 'auto', accuracy = 1.0e-3"
         character(len=:), allocatable :: accuracy, label
         type(structure_model) :: structure
         type(modal_set) :: fewer
         real(dp) :: e_fewer
         integer :: n, k, j
 
-        call auto_choice('auto_modes.nml', common//"&identification f_max = 2000.0, n_freq = 8001 / " &
-                         //"&convolution methods = 'auto', accuracy = 1.0e-3 /", accuracy, label, n, structure, error)
+        call auto_choice('auto_modes.nml', tab1_scene(scene_body, structure_body, 'f_max = 2000.0, n_freq = 8001', &
+                                                      contact=contact_body, convolution=convolution_body), &
+                         accuracy, label, n, structure, error)
         if (allocated(error)) return
         call note('modes chosen', real(n, dp))
         call note('E', structure%fit%e)
@@ -312,8 +328,10 @@ contains
         call note('smallest E with one mode left out', e_fewer)
         call check(error, e_fewer > 1.0e-3_dp, 'every mode of the choice is needed for E <= 1e-3')
         if (allocated(error)) return
-        call auto_choice('auto_fft.nml', common//"&identification f_max = 2000.0, n_freq = 8001, max_order = 3 / " &
-                         //"&convolution methods = 'auto', accuracy = 1.0e-3 /", accuracy, label, n, structure, error)
+        call auto_choice('auto_fft.nml', tab1_scene(scene_body, structure_body, &
+                                                    'f_max = 2000.0, n_freq = 8001, max_order = 3', &
+                                                    contact=contact_body, convolution=convolution_body), &
+                         accuracy, label, n, structure, error)
         if (allocated(error)) return
         call check(error, index(accuracy, 'chose fft: no LSCE model meets') == 1 .and. label == 'N_g', &
                    'no model within 3 modes: fft, said so ('//accuracy//')')
@@ -393,13 +411,16 @@ contains
         type(error_type), allocatable :: run_error
         integer :: unit
 
-        call scene_from_text('bad_points.nml', '&contact n_points = 5 /', scene, run_error)
+        call scene_from_text('bad_points.nml', tab1_scene(contact='stiffness = 1.0e6, exponent = 1.5, n_points = 5'), &
+                             scene, run_error)
         call check(error, allocated(run_error), 'sdof with 5 points is refused')
         if (allocated(error)) return
         call check(error, index(run_error%message, "&contact n_points: expected 1, or a number of points >= 1 " &
                                 //"for model 'tyre', found 5") > 0, 'message: '//run_error%message)
         if (allocated(error)) return
-        call scene_from_text('bad_tyre.nml', "&structure model = 'tyre' / &contact preload = 100.0 /", scene, run_error)
+        call scene_from_text('bad_tyre.nml', tab1_scene(structure="model = 'tyre'", &
+                                                        contact='stiffness = 1.0e6, exponent = 1.5, preload = 100.0'), &
+                             scene, run_error)
         if (.not. allocated(run_error)) then
             open (newunit=unit, status='scratch', action='readwrite')
             call run_scene(scene, unit, run_error)
@@ -410,8 +431,8 @@ contains
         call check(error, index(run_error%message, "&structure model: 'tyre' needs task = 'contact' and &road " &
                                 //"profile = 'file'") > 0, 'message: '//run_error%message)
         if (allocated(error)) return
-        call scene_from_text('bad_road.nml', "&road profile = 'file', road_file = 'data/road_sample.dat', " &
-                             //"speed = 1.0e4 /", scene, run_error)
+        call scene_from_text('bad_road.nml', tab1_scene(road="profile = 'file', road_file = 'data/road_sample.dat', " &
+                                                        //'speed = 1.0e4'), scene, run_error)
         call check(error, allocated(run_error), 'a single point running off the road file is refused')
         if (allocated(error)) return
         call check(error, index(run_error%message, '&road x_start, speed: expected a run within ' &

@@ -1,0 +1,70 @@
+!> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
+!> (scene_schema_mod), any group replaced or left out, and a writer of small text files.
+module scene_text_mod
+    implicit none
+    private
+
+    public :: tab1_scene, write_text, omit
+
+    !> Passed as a group's body: leave the group out.
+    character(len=*), parameter :: omit = '-'
+
+contains
+
+    !> The Tab. 1 scene with each group's required values; a group given replaces the
+    !> default body (`omit` leaves it out). &identification appears only when given.
+    !> Each group is on its own line, in the order scene, structure, identification, road,
+    !> contact, convolution.
+    function tab1_scene(scene, structure, identification, road, contact, convolution) result(text)
+        !> Body of &scene (default `dt = 1.0e-4, n_steps = 2000`).
+        character(len=*), intent(in), optional :: scene
+        !> Body of &structure (default the sdof M = 1 kg, K = 1e6 N/m, xi = 0.02).
+        character(len=*), intent(in), optional :: structure
+        !> Body of &identification (default: no group).
+        character(len=*), intent(in), optional :: identification
+        !> Body of &road (default the sine road).
+        character(len=*), intent(in), optional :: road
+        !> Body of &contact (default Hertz, k_c = 1e6 N/m^1.5).
+        character(len=*), intent(in), optional :: contact
+        !> Body of &convolution (default direct and modal).
+        character(len=*), intent(in), optional :: convolution
+        character(len=:), allocatable :: text
+
+        text = group('scene', 'dt = 1.0e-4, n_steps = 2000', scene) &
+               //group('structure', "model = 'sdof', mass = 1.0, stiffness = 1.0e6, damping_ratio = 0.02", &
+                       structure) &
+               //group('identification', omit, identification) &
+               //group('road', "profile = 'sine'", road) &
+               //group('contact', 'stiffness = 1.0e6, exponent = 1.5', contact) &
+               //group('convolution', "methods = 'direct', 'modal'", convolution)
+    end function tab1_scene
+
+    !> `&name body /` and a line end, with the given body or the default; '' when omitted.
+    function group(name, default, body) result(text)
+        character(len=*), intent(in) :: name, default
+        character(len=*), intent(in), optional :: body
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: chosen
+
+        chosen = default
+        if (present(body)) chosen = body
+        text = ''
+        if (chosen /= omit) text = '&'//name//' '//chosen//' /'//new_line('a')
+    end function group
+
+    !> Write text (lines separated by new_line) to a file, replacing it.
+    subroutine write_text(path, text)
+        !> The file.
+        character(len=*), intent(in) :: path
+        !> Its content.
+        character(len=*), intent(in) :: text
+
+        integer :: unit
+
+        open (newunit=unit, file=path, status='replace', action='write', form='formatted')
+        write (unit, '(a)') text
+        close (unit)
+    end subroutine write_text
+
+end module scene_text_mod
