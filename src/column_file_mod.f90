@@ -3,8 +3,8 @@
 !> message naming the file, the line, and what was expected and found:
 !>
 !>     road.dat:7: expected 2 columns (x [m], height [m]), found 3: "0.1 0.2 0.3"
-!>     road.dat:9: column 2 (height) is "abc"; expected a number
-!>     road.dat:9: column 1 (x) is "NaN"; expected a finite number
+!>     road.dat:9: column 2 (height): expected a number, found "abc"
+!>     road.dat:9: column 1 (x): expected a finite number, found "NaN"
 module column_file_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
@@ -56,7 +56,12 @@ contains
             call parse_row(path//':'//int_text(line_number)//': ', names, units, line, row, error)
             if (allocated(error)) exit
             n = n + 1
-            if (n > size(table, 1)) call grow(table, line_of)
+            if (n > size(table, 1)) call grow(table, line_of, stat)
+            if (stat /= 0) then
+                call fatal_error(error, path//':'//int_text(line_number)//': expected a file that fits in memory, ' &
+                                 //'found more than '//int_text(n - 1)//' data lines')
+                exit
+            end if
             table(n, :) = row
             line_of(n) = line_number
         end do
@@ -81,15 +86,21 @@ contains
         call move_alloc(lines, line_of)
     end subroutine shrink
 
-    !> Double the capacity of the row storage.
-    pure subroutine grow(table, line_of)
+    !> Double the capacity of the row storage; stat /= 0 (storage unchanged) when that fails.
+    pure subroutine grow(table, line_of, stat)
         real(dp), allocatable, intent(inout) :: table(:, :)
         integer, allocatable, intent(inout) :: line_of(:)
+        integer, intent(out) :: stat
 
         real(dp), allocatable :: bigger(:, :)
         integer, allocatable :: longer(:)
 
-        allocate (bigger(2*size(table, 1), size(table, 2)), longer(2*size(table, 1)))
+        stat = 1
+        if (size(table, 1) > huge(stat) - size(table, 1)) return
+        allocate (bigger(2*size(table, 1), size(table, 2)), stat=stat)
+        if (stat /= 0) return
+        allocate (longer(2*size(table, 1)), stat=stat)
+        if (stat /= 0) return
         bigger(1:size(table, 1), :) = table
         longer(1:size(line_of)) = line_of
         call move_alloc(bigger, table)
@@ -115,18 +126,18 @@ contains
         end if
         do i = 1, size(names)
             associate (token => line(first(i):last(i)), what => prefix//'column '//int_text(i)//' (' &
-                                                                   //trim(names(i))//') is "')
+                                                                   //trim(names(i))//'): expected a ')
                 if (.not. is_number(token)) then
                     if (is_nan_or_inf(token)) then
-                        call fatal_error(error, what//token//'"; expected a finite number')
+                        call fatal_error(error, what//'finite number, found "'//token//'"')
                     else
-                        call fatal_error(error, what//token//'"; expected a number')
+                        call fatal_error(error, what//'number, found "'//token//'"')
                     end if
                     return
                 end if
                 read (token, *, iostat=stat) row(i)
                 if (stat /= 0 .or. .not. ieee_is_finite(row(i))) then
-                    call fatal_error(error, what//token//'"; expected a finite number')
+                    call fatal_error(error, what//'finite number (|x| < 1.8e308), found "'//token//'"')
                     return
                 end if
             end associate

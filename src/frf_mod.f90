@@ -142,13 +142,13 @@ contains
         if (allocated(error)) return
         n = size(table, 1)
         if (n == 0) then
-            call fatal_error(error, path//': no data lines (only comments or blank lines); expected columns '// &
-                             'f [Hz], Re G [m/N], Im G [m/N]')
+            call fatal_error(error, path//': expected data lines f [Hz], Re G [m/N], Im G [m/N], found none ' &
+                             //'(only comments or blank lines)')
             return
         end if
         if (n < min_frf_lines) then
-            call fatal_error(error, path//': '//int_text(n)//' data lines; at least '//int_text(min_frf_lines)// &
-                             ' are needed (uniform grid from 0 Hz)')
+            call fatal_error(error, path//': expected at least '//int_text(min_frf_lines)//' data lines (a uniform ' &
+                             //'grid from 0 Hz), found '//int_text(n))
             return
         end if
         call check_grid(path, table(:, 1), line_of, error)
@@ -183,22 +183,25 @@ contains
         n = size(f)
         df = f(n)/(n - 1)
         if (.not. (df > 0.0_dp) .or. f(2) <= f(1)) then
-            call fatal_error(error, path//':'//int_text(line_of(2))//': frequencies must increase from 0 Hz; found '// &
-                             real_text(f(1))//' Hz then '//real_text(f(2))//' Hz')
+            call fatal_error(error, path//':'//int_text(line_of(2))//': expected frequencies increasing from 0 Hz, ' &
+                             //'found '//real_text(f(1))//' Hz then '//real_text(f(2))//' Hz')
             return
         end if
         if (abs(f(1)) > grid_tolerance*df) then
-            call fatal_error(error, path//':'//int_text(line_of(1)) &
-                //': the grid must start at 0 Hz; first frequency is '// &
-                             real_text(f(1))//' Hz')
+            call fatal_error(error, path//':'//int_text(line_of(1))//': expected the grid to start at 0 Hz, found ' &
+                             //real_text(f(1))//' Hz')
             return
         end if
         do j = 2, n
+            if (f(j) <= f(j - 1)) then
+                call fatal_error(error, path//':'//int_text(line_of(j))//': expected a frequency above ' &
+                                 //real_text(f(j - 1))//' Hz (increasing), found '//real_text(f(j))//' Hz')
+                return
+            end if
             if (abs(f(j) - (j - 1)*df) > grid_tolerance*df) then
-                call fatal_error(error, path//':'//int_text(line_of(j))//': non-uniform spacing: expected f = '// &
-                                 real_text((j - 1)*df)//' Hz (step '//real_text(df) &
-                                     //' Hz, relative tolerance 1e-6),'// &
-                                 ' found '//real_text(f(j))//' Hz')
+                call fatal_error(error, path//':'//int_text(line_of(j))//': expected a uniform grid, f = ' &
+                                 //real_text((j - 1)*df)//' Hz (step '//real_text(df)//' Hz, relative tolerance ' &
+                                 //'1e-6), found '//real_text(f(j))//' Hz')
                 return
             end if
         end do

@@ -13,6 +13,8 @@ module library_mod
     use convolver_mod, only: convolver, free_convolver
     use contact_mod, only: contact_law
     use structure_mod, only: structure_model
+    use modal_set_mod, only: modal_set
+    use text_mod, only: int_text, sci_text
     use scene_mod, only: scene_type, read_scene
     use scene_run_mod, only: make_convolver, run_scene
     implicit none
@@ -92,8 +94,37 @@ contains
         else if (method /= 'direct' .and. method /= 'fft' .and. structure%model%n_modes() == 0) then
             call fatal_error(error, "new_convolver: method '"//method//"' needs modes, and this structure has " &
                              //"none (only sampled g): use 'direct' or 'fft'")
+        else
+            call check_modes(structure%model, error)
+            if (.not. allocated(error) .and. structure%has_exact) call check_modes(structure%exact, error)
         end if
     end subroutine check_request
+
+    !> Modes a caller gives (structure_from_modes) must be those of a passive structure:
+    !> finite poles with Re lambda < 0 and Im lambda > 0, finite residues.
+    subroutine check_modes(modes, error)
+        type(modal_set), intent(in) :: modes
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: k
+
+        do k = 1, modes%n_modes()
+            associate (pole => modes%pole(k), residue => modes%residue(k))
+                if (.not. (ieee_is_finite(real(pole, dp)) .and. ieee_is_finite(aimag(pole)) .and. &
+                           ieee_is_finite(real(residue, dp)) .and. ieee_is_finite(aimag(residue)))) then
+                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a finite pole and ' &
+                                     //'residue, found lambda = ('//sci_text(real(pole, dp))//', ' &
+                                     //sci_text(aimag(pole))//') rad/s, r = ('//sci_text(real(residue, dp))//', ' &
+                                     //sci_text(aimag(residue))//')')
+                else if (.not. (real(pole, dp) < 0.0_dp .and. aimag(pole) > 0.0_dp)) then
+                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a pole with ' &
+                                     //'Re lambda < 0 and Im lambda > 0 rad/s (a damped mode), found lambda = (' &
+                                     //sci_text(real(pole, dp))//', '//sci_text(aimag(pole))//') rad/s')
+                end if
+            end associate
+            if (allocated(error)) return
+        end do
+    end subroutine check_modes
 
     !> One explicit step n of the contact loop, exactly as `run_contact` takes it (eqs. 20-24):
     !> u_h = history, delta = delta0 + u_r - u_h with delta0 = (F0/k_c)^(1/p), F = k_c*delta^p

@@ -29,7 +29,8 @@
 !> term of G (upper residual) puts all its weight on it. The roots z of the prediction
 !> polynomial are the eigenvalues of its companion matrix (dgeev, balanced); lambda = ln(z)/dt.
 !> Only roots with Im z > 0 and |z| < 1 become poles (Re lambda < 0, 0 < Im lambda < pi/dt);
-!> real roots (n_real) and roots with |z| >= 1 (n_unstable) are counted and never returned.
+!> real roots (n_real) and roots with |z| >= 1 (n_unstable) are counted and never returned;
+!> unstable ones dropped (Re lambda >= 0) are also named in the result's warning.
 !> Modes must lie below f_max: dt = 1/(2*f_max) cannot tell a higher mode from its alias.
 !>
 !> ## Out-of-band correction (why plain LSCE is not enough)
@@ -847,7 +848,8 @@ contains
     end function tail_level
 
     !> Wrap-around check on the impulse response of the final model (its periodized response
-    !> plus the band-limited FFT of what it does not explain), and the warnings.
+    !> plus the band-limited FFT of what it does not explain), and the warnings: wrap-around,
+    !> unstable poles dropped (Re lambda >= 0), tolerance not met.
     subroutine finish(frf, g_raw, options, result, error)
         type(frf_type), intent(in) :: frf
         real(dp), intent(in) :: g_raw(:)
@@ -874,6 +876,12 @@ contains
                 n_t*result%dt, ' s (end of period at', result%tail_level, ' of max|g|, limit', options%wrap_level, &
                 '); use a finer frequency step'
             result%warning = trim(text)
+        end if
+        if (result%n_unstable > 0) then
+            write (text, '(i0,a)') result%n_unstable, ' pole(s) with Re lambda >= 0 (unstable, not a passive ' &
+                //'structure) dropped from the model'
+            if (len(result%warning) > 0) result%warning = result%warning//'; '
+            result%warning = result%warning//trim(text)
         end if
         result%tolerance_met = result%e <= options%tol_e
         if (.not. result%accepted) then

@@ -77,14 +77,15 @@ contains
         if (allocated(error)) return
         n = size(table, 1)
         if (n < 2) then
-            call fatal_error(error, path//': '//int_text(n)//' data lines; a road profile needs at least 2 ' &
-                             //'(columns x [m], height [m])')
+            call fatal_error(error, path//': expected at least 2 data lines (x [m], height [m]), found ' &
+                             //int_text(n))
             return
         end if
         do j = 2, n
             if (table(j, 1) <= table(j - 1, 1)) then
-                call fatal_error(error, path//':'//int_text(line_of(j))//': x must increase; found ' &
-                                 //real_text(table(j, 1))//' m after '//real_text(table(j - 1, 1))//' m')
+                call fatal_error(error, path//':'//int_text(line_of(j))//': expected x above ' &
+                                 //real_text(table(j - 1, 1))//' m (x must increase), found '//real_text(table(j, 1)) &
+                                 //' m')
                 return
             end if
         end do
@@ -164,8 +165,8 @@ contains
         x_first = min(minval(positions), minval(positions) + travel)
         x_last = max(maxval(positions), maxval(positions) + travel)
         if (.not. road%covers(x_first, x_last)) then
-            call fatal_error(error, road%path//': the run needs the road from x = '//real_text(x_first)//' m to ' &
-                             //real_text(x_last)//' m; the file covers '//real_text(road%x(1))//' m to ' &
+            call fatal_error(error, road%path//': expected a road from x = '//real_text(x_first)//' m to ' &
+                             //real_text(x_last)//' m (the run), found '//real_text(road%x(1))//' m to ' &
                              //real_text(road%x(size(road%x)))//' m')
             return
         end if

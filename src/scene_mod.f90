@@ -35,7 +35,7 @@ module scene_mod
     implicit none
     private
 
-    public :: scene_type, read_scene, output_path
+    public :: scene_type, read_scene, output_path, input_place
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -137,6 +137,20 @@ contains
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
     end function output_path
+
+    !> "file:line: &group variable" for messages about a value of the scene (the line of the
+    !> variable when the file sets it, else of its group), e.g. before a file it names.
+    function input_place(scene, group, variable) result(text)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: variable
+        character(len=:), allocatable :: text
+
+        text = place(scene, group, variable)//' '//variable
+    end function input_place
 
     !> Read and check a scene namelist file.
     subroutine read_scene(path, scene, error)
@@ -401,7 +415,7 @@ contains
 
         call read_road_file(path, this%road_data, error)
         if (allocated(error)) then
-            error%message = place(this, 'road', 'road_file')//' road_file: '//error%message
+            error%message = input_place(this, 'road', 'road_file')//': '//error%message
             return
         end if
         this%road = file_road(this%road_data, this%x_start, this%speed)
@@ -409,7 +423,9 @@ contains
         call require(this%model == 'tyre' .or. &
                      this%road_data%covers(min(this%x_start, x_end), max(this%x_start, x_end)), &
                      expected(this, 'road', 'x_start, speed', 'a run within '//path//' (the run needs x from ' &
-                              //real_text(this%x_start)//' m to '//real_text(x_end)//' m)'), error)
+                              //real_text(this%x_start)//' m to '//real_text(x_end)//' m), found a road from ' &
+                              //real_text(this%road_data%x(1))//' m to ' &
+                              //real_text(this%road_data%x(size(this%road_data%x)))//' m'), error)
     end subroutine read_file_road
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].

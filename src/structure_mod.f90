@@ -13,7 +13,7 @@ module structure_mod
     use sdof_mod, only: sdof_modes
     use frf_mod, only: frf_type, frf_from_modes, read_frf
     use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf
-    use scene_mod, only: scene_type
+    use scene_mod, only: scene_type, input_place
     implicit none
     private
 
@@ -110,11 +110,13 @@ contains
             structure%exact = exact
         case ('frf_file')
             call read_frf(scene%frf_file, frf, error)
-            if (allocated(error)) return
-            dt = 0.0_dp
-            if (scene%task == 'contact') dt = scene%dt
-            call structure_from_frf(frf, scene_options(scene), dt, structure, error)
-            if (allocated(error)) error%message = scene%file//': '//scene%frf_file//': '//error%message
+            if (.not. allocated(error)) then
+                dt = 0.0_dp
+                if (scene%task == 'contact') dt = scene%dt
+                call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+                if (allocated(error)) error%message = scene%frf_file//': '//error%message
+            end if
+            if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
         case default
             call fatal_error(error, scene%file//": &structure model: unknown model '"//scene%model//"'")
         end select

@@ -602,21 +602,23 @@ contains
         do j = 1, 8
             write (good(j), '(f6.1,a)') 10.0_dp*(j - 1), '  1.0e-6  -2.0e-7'
         end do
-        call expect(error, path, [character(len=40) :: '# only comments', ''], path//': no data lines')
+        call expect(error, path, [character(len=40) :: '# only comments', ''], &
+                    path//': expected data lines f [Hz], Re G [m/N], Im G [m/N], found none')
         if (allocated(error)) return
-        call expect(error, path, [character(len=40) :: '# too short', good(1:5)], 'at least 8 are needed')
+        call expect(error, path, [character(len=40) :: '# too short', good(1:5)], &
+                    'expected at least 8 data lines (a uniform grid from 0 Hz), found 5')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: '# shifted', ' 5.0 1.0 0.0', good(2:8)], &
-                    path//':2: the grid must start at 0 Hz')
+                    path//':2: expected the grid to start at 0 Hz, found 5.0')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: '# gap', good(1:4), ' 41.0 1.0 0.0', good(6:8)], &
-                    path//':6: non-uniform spacing')
+                    path//':6: expected a uniform grid, f = 40.0')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:3), ' 30.0 NaN 0.0', good(5:8)], &
-                    path//':4: column 2 (Re G) is "NaN"; expected a finite number')
+                    path//':4: column 2 (Re G): expected a finite number, found "NaN"')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:3), ' 30.0 1.0 -Infinity', good(5:8)], &
-                    path//':4: column 3 (Im G) is "-Infinity"; expected a finite number')
+                    path//':4: column 3 (Im G): expected a finite number, found "-Infinity"')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:2), ' 20.0 1.0', good(4:8)], &
                     path//':3: expected 3 columns (f [Hz], Re G [m/N], Im G [m/N]), found 2')
@@ -625,16 +627,16 @@ contains
                     'found 4')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:6), ' 60.0 1.0 abc', good(8:8)], &
-                    path//':7: column 3 (Im G) is "abc"; expected a number')
+                    path//':7: column 3 (Im G): expected a number, found "abc"')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:6), ' 60.0 1,0 0.0', good(8:8)], &
-                    path//':7: column 2 (Re G) is "1,0"; expected a number')
+                    path//':7: column 2 (Re G): expected a number, found "1,0"')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:6), ' 60.0 1e999 0.0', good(8:8)], &
-                    path//':7: column 2 (Re G) is "1e999"; expected a finite number')
+                    path//':7: column 2 (Re G): expected a finite number (|x| < 1.8e308), found "1e999"')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(8:1:-1)], &
-                    path//':2: frequencies must increase from 0 Hz')
+                    path//':2: expected frequencies increasing from 0 Hz, found 70.0')
         if (allocated(error)) return
         call expect_missing(error, 'test_lsce_no_such_file.frf')
     end subroutine test_frf_errors

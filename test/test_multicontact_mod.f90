@@ -734,10 +734,10 @@ contains
         real(dp), allocatable :: heights(:, :)
 
         call expect(error, path, [character(len=30) :: '# x height', '0.0 1e-4', '0.2 2e-4', '0.1 3e-4'], &
-                    path//':4: x must increase; found 0.1')
+                    path//':4: expected x above 0.2000000000 m (x must increase), found 0.1')
         if (allocated(error)) return
         call expect(error, path, [character(len=30) :: '0.0 1e-4', '0.1 abc'], &
-                    path//':2: column 2 (height) is "abc"; expected a number')
+                    path//':2: column 2 (height): expected a number, found "abc"')
         if (allocated(error)) return
         call expect(error, path, [character(len=30) :: '0.0 1e-4', 'garbage'], &
                     path//':2: expected 2 columns (x [m], height [m]), found 1: "garbage"')
@@ -746,10 +746,10 @@ contains
                     path//':1: expected 2 columns (x [m], height [m]), found 3')
         if (allocated(error)) return
         call expect(error, path, [character(len=30) :: '# one line', '0.0 NaN'], &
-                    path//':2: column 2 (height) is "NaN"; expected a finite number')
+                    path//':2: column 2 (height): expected a finite number, found "NaN"')
         if (allocated(error)) return
         call expect(error, path, [character(len=30) :: '# one line', '0.0 1e-4'], &
-                    path//': 1 data lines; a road profile needs at least 2')
+                    path//': expected at least 2 data lines (x [m], height [m]), found 1')
         if (allocated(error)) return
         call read_road_file(scratch//'/no_such_road.dat', road, failure)
         call check(error, allocated(failure), 'no error for a missing file')
@@ -761,8 +761,8 @@ contains
         call sample_road_file(road, [0.0_dp], 20.0_dp, 1.0e-4_dp, 10000, heights, failure)
         call check(error, allocated(failure), 'no error for a run beyond the file')
         if (allocated(error)) return
-        call check(error, index(failure%message, 'data/road_sample.dat: the run needs the road from x = 0') == 1 &
-                   .and. index(failure%message, 'the file covers 0') > 0, 'range message: '//failure%message)
+        call check(error, index(failure%message, 'data/road_sample.dat: expected a road from x = 0') == 1 &
+                   .and. index(failure%message, '(the run), found 0') > 0, 'range message: '//failure%message)
     end subroutine test_road_errors
 
     !> Write `lines` to `path`, read it as a road, and require an error containing `expected`.
