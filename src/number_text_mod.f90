@@ -9,7 +9,7 @@ module number_text_mod
     implicit none
     private
 
-    public :: is_number, is_nan_or_inf, is_integer, read_real, read_integer
+    public :: is_number, is_nan_or_inf, is_integer, read_real, read_integer, compact_real
 
 contains
 
@@ -120,5 +120,39 @@ contains
         value = int(wide)
         ok = .true.
     end subroutine read_integer
+
+    !> A real as short text for messages: up to six significant digits, without trailing
+    !> zeros, in plain notation from 1e-3 to 1e6 (`0.02`, `-1.5`, `2000`) and scientific
+    !> notation otherwise (`-1.0E+06`, `1.0E-04`).
+    pure function compact_real(x) result(text)
+        !> The real.
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=32) :: buffer
+        integer :: mark, last
+
+        if (abs(x) < tiny(x) .or. (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp)) then
+            write (buffer, '(f0.6)') x
+            text = trim(buffer)
+            last = len(text)
+            do while (text(last:last) == '0')
+                last = last - 1
+            end do
+            if (text(last:last) == '.') last = last + 1
+            text = text(:last)
+            if (text(1:1) == '.') text = '0'//text
+            if (text(1:2) == '-.') text = '-0'//text(2:)
+        else
+            write (buffer, '(es13.5)') x
+            text = trim(adjustl(buffer))
+            mark = index(text, 'E')
+            last = mark - 1
+            do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
+                last = last - 1
+            end do
+            text = text(:last)//text(mark:)
+        end if
+    end function compact_real
 
 end module number_text_mod

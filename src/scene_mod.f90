@@ -30,6 +30,7 @@ module scene_mod
     use road_file_mod, only: road_file, read_road_file, file_road
     use namelist_scan_mod, only: namelist_scan
     use scene_schema_mod, only: scan_scene, max_methods
+    use number_text_mod, only: compact_real
     use scene_limits_mod, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
                                 max_contact_points, max_kernel_values, kernel_values
     implicit none
@@ -579,8 +580,7 @@ contains
         if (.not. present(found)) return
         select type (found)
         type is (real(dp))
-            write (value, '(g0.6)') found
-            line = line//', found '//trim(value)
+            line = line//', found '//compact_real(found)
         type is (integer)
             write (value, '(i0)') found
             line = line//', found '//trim(value)
