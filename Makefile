@@ -25,8 +25,11 @@
 #                   output as the fpm-built one, build and run the examples (each compares
 #                   its results with the driver's output for data/sdof_sine.nml), install
 #                   into a temporary prefix and build the C and Fortran 77 examples against
-#                   it with pkg-config, then `fpm test` (its "N passed, N failed" line is the
+#                   it with pkg-config, run the fuzz test (`make fuzz`), then `fpm test` (its "N passed, N failed" line is the
 #                   last line printed)
+#   make fuzz       damage the shipped scene, receptance and road files FUZZ_CASES ways (default
+#                   2000) and check that the driver always ends with status 0, 2 or 3 and one
+#                   clean message, never a signal or a half-written file (fuzz/fuzz_main.f90)
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -98,7 +101,7 @@ FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run bench bench-data figures test clean examples install doc doc-check
+.PHONY: all lib deps build run bench bench-data figures test clean examples install doc doc-check fuzz
 
 all: lib
 
@@ -179,6 +182,20 @@ $(EXDIR)/omp_threads: example/omp_threads.f90 $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
+# ---- fuzz test of the driver -------------------------------------------------------------
+
+FUZZ := $(BUILD)/greenconv-fuzz
+FUZZ_CASES ?= 2000
+FUZZ_SEED ?= 2011
+
+$(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
+	@mkdir -p $(BUILD)/fuzz
+	$(FC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(BUILD)/fuzz -o $@ fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 \
+	    $(LIB) $(LDLIBS)
+
+fuzz: $(BIN) $(FUZZ)
+	@$(HELPER) fuzz $(BIN) $(FUZZ) $(FUZZ_CASES) $(FUZZ_SEED)
+
 # ---- install ---------------------------------------------------------------------------
 
 # PREFIX/bin/greenconv, PREFIX/lib/libgreenconv.{a,so*}, PREFIX/include/greenconv.h, the
@@ -237,6 +254,7 @@ test: deps
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
+	@$(MAKE) fuzz
 	@echo "fpm test"
 	@$(HELPER) fpm-test
 

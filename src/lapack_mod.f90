@@ -6,7 +6,14 @@
 !>   rank-deficient or ill-conditioned system gives a bounded answer; no normal equations.
 !> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
 !> - dgesv: a square linear system by LU factorisation with partial pivoting.
+!>
+!> Inputs and results are checked to be finite: LAPACK is not asked to work on NaN or Inf,
+!> and a result that overflowed is reported rather than returned. LAPACK's argument-error
+!> handler XERBLA is replaced here (`xerbla_`, see `lapack_argument_error`): the reference one
+!> prints a line and stops the program, which a library must never do.
 module lapack_mod
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_numerical
     use text_mod, only: int_text
@@ -91,6 +98,8 @@ contains
         a_work(:, :) = a
         b_work(:, 1) = 0.0_dp
         b_work(1:m, 1) = b
+        call require_finite('dgelsd', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        if (allocated(error)) return
         call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, query, -1, iquery, info)
         if (info /= 0) then
             call lapack_error(error, 'dgelsd (workspace query)', info)
@@ -103,6 +112,8 @@ contains
             call lapack_error(error, 'dgelsd', info)
             return
         end if
+        call require_finite('dgelsd', 'result', [all(ieee_is_finite(b_work(1:n, 1)))], error)
+        if (allocated(error)) return
         x(:) = b_work(1:n, 1)
         if (present(rank)) rank = effective_rank
         if (present(singular_values)) then
@@ -131,6 +142,8 @@ contains
         end if
         allocate (a_work(n, n), wr(n), wi(n))
         a_work(:, :) = a
+        call require_finite('dgeev', 'input', [all(ieee_is_finite(a))], error)
+        if (allocated(error)) return
         call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, query, -1, info)
         if (info /= 0) then
             call lapack_error(error, 'dgeev (workspace query)', info)
@@ -143,6 +156,8 @@ contains
             call lapack_error(error, 'dgeev', info)
             return
         end if
+        call require_finite('dgeev', 'result', [all(ieee_is_finite(wr)), all(ieee_is_finite(wi))], error)
+        if (allocated(error)) return
         w(:) = cmplx(wr, wi, kind=dp)
     end subroutine eigenvalues
 
@@ -169,6 +184,8 @@ contains
         allocate (a_work(n, n), b_work(n, 1), pivot(n))
         a_work(:, :) = a
         b_work(:, 1) = b
+        call require_finite('dgesv', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        if (allocated(error)) return
         call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
         if (info > 0) then
             call fatal_error(error, 'dgesv: singular matrix (zero pivot in column '//int_text(info)//')', &
@@ -178,8 +195,37 @@ contains
             call lapack_error(error, 'dgesv', info)
             return
         end if
+        call require_finite('dgesv', 'result', [all(ieee_is_finite(b_work))], error)
+        if (allocated(error)) return
         x(:) = b_work(:, 1)
     end subroutine solve_linear
+
+    !> An error (status `stat_numerical`) unless every array checked is finite.
+    pure subroutine require_finite(routine, what, finite, error)
+        character(len=*), intent(in) :: routine, what
+        logical, intent(in) :: finite(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (all(finite)) return
+        call fatal_error(error, routine//': the '//what//' holds NaN or Inf (values beyond the double range, ' &
+                         //'about 1.8e308, or an overflow in the data given to it)', stat_numerical)
+    end subroutine require_finite
+
+    !> LAPACK's argument-error handler XERBLA(SRNAME, INFO), replacing the reference one
+    !> (which prints and stops): it returns, and the routine that detected the bad argument
+    !> returns with info < 0, reported by the front ends above; a routine called inside
+    !> another (DLASCL inside DGELSD) leaves its result to the finiteness checks.
+    subroutine lapack_argument_error(routine, info, routine_length) bind(c, name='xerbla_')
+        !> Name of the routine that found the bad argument (not NUL-terminated).
+        character(kind=c_char), intent(in) :: routine(*)
+        !> Position of the bad argument.
+        integer(c_int), intent(in) :: info
+        !> Length of `routine`, passed by gfortran-compiled LAPACK after the arguments.
+        integer(c_size_t), value, intent(in) :: routine_length
+
+        associate (unused => [routine(1), achar(info), achar(routine_length)])
+        end associate
+    end subroutine lapack_argument_error
 
     !> An error naming the routine and its info code.
     pure subroutine lapack_error(error, routine, info)

@@ -42,6 +42,11 @@
 #   tools/make_helpers.sh doc
 #       Install FORD with pip when missing and write the API documentation to build/doc.
 #
+#   tools/make_helpers.sh fuzz DRIVER FUZZ CASES SEED
+#       Copy data/ into a temporary directory and run the fuzz program FUZZ there on
+#       DRIVER (CASES damaged files from SEED). The directory is removed when every case
+#       passes, and kept (its path printed, with the damaged files in failures/) when not.
+#
 #   tools/make_helpers.sh fpm-test [ARGS...]
 #       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
 #       after fpm's own error lines, so that it stays the last line of the test output.
@@ -397,6 +402,37 @@ cmd_doc() {
 }
 
 # ---------------------------------------------------------------------------------
+# fuzz
+# ---------------------------------------------------------------------------------
+
+cmd_fuzz() {
+    local driver=$1 fuzz=$2 cases=$3 seed=$4 work rc=0 start workers w counts=()
+    driver="$(cd "$(dirname "$driver")" && pwd)/$(basename "$driver")"
+    workers=$(nproc 2>/dev/null || echo 1)
+    [ "$workers" -gt 4 ] && workers=4
+    work=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-fuzz.XXXXXX")
+    say "fuzz: $cases damaged copies of data/*.nml, data/sample_receptance.frf and data/road_sample.dat" \
+        "through $driver ($workers workers, in $work)"
+    start=$SECONDS
+    for ((w = 1; w <= workers; w++)); do
+        mkdir -p "$work/w$w"
+        cp -r data "$work/w$w/data"
+        counts+=("$work/w$w/counts.txt")
+        "$fuzz" "$driver" "$work/w$w" "$cases" "$seed" "$w" "$workers" > "$work/w$w/log.txt" 2>&1 &
+    done
+    wait || true
+    cat "$work"/w*/log.txt
+    "$fuzz" --report "${counts[@]}" || rc=$?
+    if [ "$rc" -eq 0 ]; then
+        rm -rf "$work"
+        say "fuzz: ok ($((SECONDS - start)) s)"
+    else
+        say "fuzz: FAILED; the failing cases are kept in $work/w*/failures"
+    fi
+    return "$rc"
+}
+
+# ---------------------------------------------------------------------------------
 # fpm-test
 # ---------------------------------------------------------------------------------
 
@@ -422,8 +458,9 @@ case "${1:-}" in
     install-test) shift; cmd_install_test "$@" ;;
     doc-check) shift; cmd_doc_check "$@" ;;
     doc) shift; cmd_doc "$@" ;;
+    fuzz) shift; cmd_fuzz "$@" ;;
     fpm-test) shift; cmd_fpm_test "$@" ;;
     *) die "usage: $0 deps | f90deps OBJDIR SOURCE... | same-output DRIVER SCENE... | examples DRIVER EXAMPLE..." \
            "| install DESTDIR PREFIX VERSION BUILD LIBS | install-test DRIVER | doc-check SOURCE... | doc" \
-           "| fpm-test [ARGS...]" ;;
+           "| fuzz DRIVER FUZZ CASES SEED | fpm-test [ARGS...]" ;;
 esac
