@@ -232,7 +232,10 @@ contains
         n_steps = 0
         stdout = file_text(work//'/stdout.txt')
         at = index(stdout, 'N_t = ')
-        if (at > 0) read (stdout(at + 6:), *, iostat=stat) n_steps
+        if (at > 0) then
+            read (stdout(at + 6:), *, iostat=stat) n_steps
+            if (stat /= 0) n_steps = huge(n_steps)
+        end if
     end subroutine run_driver
 
     !> Standard error holds only "greenconv: " lines: none but warnings on success, exactly
@@ -354,6 +357,7 @@ contains
             deallocate (text)
             allocate (character(len=length) :: text)
             read (unit, iostat=stat) text
+            if (stat /= 0) text = ''
         end if
         close (unit)
     end function file_text
