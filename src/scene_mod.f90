@@ -26,7 +26,7 @@ module scene_mod
     use text_mod, only: real_text, int_text, sci_text
     use road_mod, only: road_profile, sine_road, new_random_road
     use contact_mod, only: contact_law, contact_options
-    use tyre_model_mod, only: tyre_belt, tyre_frequency
+    use tyre_model_mod, only: tyre_belt, tyre_frequency, contact_positions
     use road_file_mod, only: road_file, read_road_file, file_road
     use namelist_scan_mod, only: namelist_scan
     use scene_schema_mod, only: scan_scene, max_methods
@@ -179,6 +179,7 @@ contains
         if (.not. allocated(error)) call read_road_group(unit, scene, error)
         if (.not. allocated(error)) call read_contact_group(unit, scene, error)
         if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
+        if (.not. allocated(error)) call check_road_coverage(scene, error)
         close (unit)
     end subroutine read_scene
 
@@ -412,22 +413,34 @@ contains
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: x_end
-
         call read_road_file(path, this%road_data, error)
         if (allocated(error)) then
             error%message = input_place(this, 'road', 'road_file')//': '//error%message
             return
         end if
         this%road = file_road(this%road_data, this%x_start, this%speed)
-        x_end = this%x_start + this%speed*(this%n_steps - 1)*this%dt
-        call require(this%model == 'tyre' .or. &
-                     this%road_data%covers(min(this%x_start, x_end), max(this%x_start, x_end)), &
-                     expected(this, 'road', 'x_start, speed', 'a run within '//path//' (the run needs x from ' &
-                              //real_text(this%x_start)//' m to '//real_text(x_end)//' m), found a road from ' &
-                              //real_text(this%road_data%x(1))//' m to ' &
-                              //real_text(this%road_data%x(size(this%road_data%x)))//' m'), error)
     end subroutine read_file_road
+
+    !> Profile 'file': every contact point stays on the road file for the whole run (a single
+    !> point at x_start + V*t; the tyre's points spread over the patch around it), so that
+    !> `--check` finds a road too short as a run would.
+    subroutine check_road_coverage(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(inout) :: error
+
+        real(dp) :: offsets(this%n_points), travel, x_first, x_last
+
+        if (.not. allocated(this%road_data%x) .or. this%task /= 'contact') return
+        offsets = contact_positions(0.0_dp, this%patch_length, this%n_points)
+        travel = this%speed*(this%n_steps - 1)*this%dt
+        x_first = this%x_start + minval(offsets) + min(0.0_dp, travel)
+        x_last = this%x_start + maxval(offsets) + max(0.0_dp, travel)
+        call require(this%road_data%covers(x_first, x_last), &
+                     expected(this, 'road', 'x_start, speed', 'a run within '//this%road_data%path &
+                              //' (the run needs x from '//real_text(x_first)//' m to '//real_text(x_last) &
+                              //' m), found a road from '//real_text(this%road_data%x(1))//' m to ' &
+                              //real_text(this%road_data%x(size(this%road_data%x)))//' m'), error)
+    end subroutine check_road_coverage
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, this, error)

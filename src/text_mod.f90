@@ -20,16 +20,26 @@ contains
         text = trim(buffer)
     end function int_text
 
-    !> A real with up to ten significant digits, without blanks.
+    !> A real with up to ten significant digits, without blanks and without the trailing
+    !> zeros of its digits (`0.443`, `10.0`, `0.1E-4`).
     pure function real_text(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
 
         character(len=32) :: buffer
+        integer :: mark, last
 
         write (buffer, '(g0.10)') x
         text = trim(adjustl(buffer))
+        mark = scan(text, 'EeDd')
+        if (mark == 0) mark = len(text) + 1
+        if (index(text(:mark - 1), '.') == 0) return
+        last = mark - 1
+        do while (last > 1 .and. text(last:last) == '0' .and. text(max(last - 1, 1):max(last - 1, 1)) /= '.')
+            last = last - 1
+        end do
+        text = text(:last)//text(mark:)
     end function real_text
 
     !> A real in short scientific notation (three significant digits), without blanks.

@@ -734,7 +734,7 @@ contains
         real(dp), allocatable :: heights(:, :)
 
         call expect(error, path, [character(len=30) :: '# x height', '0.0 1e-4', '0.2 2e-4', '0.1 3e-4'], &
-                    path//':4: expected x above 0.2000000000 m (x must increase), found 0.1')
+                    path//':4: expected x above 0.2 m (x must increase), found 0.1')
         if (allocated(error)) return
         call expect(error, path, [character(len=30) :: '0.0 1e-4', '0.1 abc'], &
                     path//':2: column 2 (height): expected a number, found "abc"')
