@@ -1,24 +1,40 @@
 !> Numbers as text for messages and summaries, and names in one case.
 module text_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     implicit none
     private
 
     public :: int_text, real_text, sci_text, lower_text
 
+    !> An integer (default or 64-bit) as text, without blanks.
+    interface int_text
+        module procedure default_int_text
+        module procedure long_int_text
+    end interface int_text
+
 contains
 
-    !> An integer as text, without blanks.
-    pure function int_text(i) result(text)
+    !> A default integer as text, without blanks.
+    pure function default_int_text(i) result(text)
         !> The integer.
         integer, intent(in) :: i
         character(len=:), allocatable :: text
 
-        character(len=16) :: buffer
+        text = long_int_text(int(i, int64))
+    end function default_int_text
+
+    !> A 64-bit integer (a step count of a long run) as text, without blanks.
+    pure function long_int_text(i) result(text)
+        !> The integer.
+        integer(int64), intent(in) :: i
+        character(len=:), allocatable :: text
+
+        character(len=24) :: buffer
 
         write (buffer, '(i0)') i
         text = trim(buffer)
-    end function int_text
+    end function long_int_text
 
     !> A real with up to ten significant digits, without blanks.
     pure function real_text(x) result(text)
