@@ -12,7 +12,7 @@ module files_mod
     private
 
     public :: write_columns, make_directory
-    public :: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
+    public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
     public :: block_rows
 
     !> Rows a run streamed in blocks computes and writes at a time (a block of this many steps
@@ -150,6 +150,27 @@ contains
             call fatal_error(error, writer%path//': cannot rename '//writer%path//'.part to it')
         end if
     end subroutine close_columns
+
+    !> End the file of a run streamed in blocks. After a failed write (`error` already set)
+    !> there is nothing left to do: the partial file is gone. Otherwise the file is closed
+    !> and renamed, and when a numerical `fault` stopped the run it becomes `error`: `prefix`,
+    !> its message, and the file that holds the rows before it.
+    subroutine close_run_file(writer, fault, prefix, error)
+        !> The file being written; closed on return.
+        type(column_writer), intent(inout) :: writer
+        !> The fault that stopped the run, if any; moved into `error`.
+        type(error_type), allocatable, intent(inout) :: fault
+        !> Text put before the fault's message (the scene file and method).
+        character(len=*), intent(in) :: prefix
+        !> A failed write on entry; on return also a failed rename or the fault.
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error)) return
+        call close_columns(writer, error)
+        if (allocated(error) .or. .not. allocated(fault)) return
+        call move_alloc(fault, error)
+        error%message = prefix//error%message//' (rows up to then in '//writer%path//')'
+    end subroutine close_run_file
 
     !> Abandon a column file: close and delete `path.part` (for a run stopped by bad input).
     subroutine discard_columns(writer)
