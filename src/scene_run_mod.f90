@@ -163,6 +163,7 @@ contains
         type(column_writer) :: writer
         type(progress_meter) :: meter
         type(error_type), allocatable :: fault
+        real(dp), allocatable :: road(:)
         integer(int64) :: first
         real(dp) :: start, finish
         integer :: m
@@ -179,8 +180,9 @@ contains
         do while (state%step < scene%n_steps)
             first = state%step
             m = int(min(int(block, int64), scene%n_steps - first))
+            road = scene%road%sample_steps(scene%dt, first, m)
             call cpu_time(start)
-            call contact_block(conv, state, scene%road%sample_steps(scene%dt, first, m), response, fault)
+            call contact_block(conv, state, road, response, fault)
             call cpu_time(finish)
             seconds = seconds + (finish - start)
             call append_rows(writer, response_rows(response, first, scene%output_every), error)
