@@ -48,7 +48,15 @@
 !>
 !> A run that diverges is stopped (`contact_options%divergence_bound`): the response keeps
 !> the steps computed before, and never holds a NaN or an infinity.
+!>
+!> Long runs. `run_contact` takes the whole road and returns the whole history. A run too long
+!> to hold is streamed instead: `start_contact` resets the convolver into a `contact_state`,
+!> and each `contact_block` continues it over the next block of road heights, returning that
+!> block's histories (times t_n with the run's own step index n). The state carries what one
+!> step hands the next (the step index and the implicit step's first guess), so the blocks of
+!> a run put together equal `run_contact` on the whole road bit for bit.
 module contact_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
     use error_mod, only: error_type, fatal_error, stat_input, stat_numerical
@@ -58,6 +66,7 @@ module contact_mod
     private
 
     public :: contact_law, contact_response, contact_options, run_contact
+    public :: contact_state, start_contact, contact_block
 
     !> Power-law contact spring F = k_c*delta^p, active in compression only.
     type :: contact_law
@@ -108,6 +117,25 @@ module contact_mod
         !> needs about 40 to reach the default tolerance; Newton typically 2 to 6.
         integer :: max_iterations = 100
     end type contact_options
+
+    !> A contact run between two blocks of a streamed run (`start_contact`, `contact_block`).
+    type :: contact_state
+        !> The contact law.
+        type(contact_law) :: law
+        !> Scheme, divergence bound and Newton settings.
+        type(contact_options) :: settings
+        !> Static preload F0 [N].
+        real(dp) :: preload = 0.0_dp
+        !> Static compression delta0 = law%compression(F0) [m].
+        real(dp) :: delta0 = 0.0_dp
+        !> The convolver's instant weight w0 [m/N].
+        real(dp) :: w0 = 0.0_dp
+        !> Compression of the last step done [m] (delta0 before step 0): the first guess of
+        !> the next implicit step.
+        real(dp) :: delta = 0.0_dp
+        !> Index n of the next step (the number of steps done), 64 bits for runs past 2^31 steps.
+        integer(int64) :: step = 0
+    end type contact_state
 
 contains
 
@@ -177,17 +205,70 @@ contains
         !> an implicit step that did not converge, with the step, time and values in the message.
         type(error_type), allocatable, intent(out), optional :: error
 
-        type(contact_options) :: settings
+        type(contact_state) :: state
         type(error_type), allocatable :: fault
-        integer :: n_done
 
-        if (present(options)) settings = options
-        n_done = 0
-        call check_options(settings, conv%instant_weight(), fault)
-        if (.not. allocated(fault)) call contact_loop(conv, law, road, preload, settings, response, n_done, fault)
-        call keep_rows(response, n_done)
+        call start_contact(conv, law, preload, state, fault, options)
+        if (allocated(fault)) then
+            call keep_rows(response, 0)
+        else
+            call contact_block(conv, state, road, response, fault)
+        end if
         if (present(error) .and. allocated(fault)) call move_alloc(fault, error)
     end subroutine run_contact
+
+    !> Start a streamed contact run: check the options, reset the convolver (rest, the static
+    !> equilibrium under the preload) and set `state` at step 0. Then call `contact_block`
+    !> once per block of road heights.
+    subroutine start_contact(conv, law, preload, state, error, options)
+        !> The convolution method; reset here.
+        class(convolver), intent(inout) :: conv
+        !> The contact law.
+        type(contact_law), intent(in) :: law
+        !> Static preload F0 [N] pressing the body onto the road, >= 0.
+        real(dp), intent(in) :: preload
+        !> The run at step 0.
+        type(contact_state), intent(out) :: state
+        !> Set (`stat_input`) when the options are unusable with this convolver.
+        type(error_type), allocatable, intent(out) :: error
+        !> Scheme, divergence bound and Newton settings; the defaults when absent.
+        type(contact_options), intent(in), optional :: options
+
+        if (present(options)) state%settings = options
+        call check_options(state%settings, conv%instant_weight(), error)
+        if (allocated(error)) return
+        call conv%reset()
+        state%law = law
+        state%preload = preload
+        state%delta0 = law%compression(preload)
+        state%w0 = conv%instant_weight()
+        state%delta = state%delta0
+        state%step = 0
+    end subroutine start_contact
+
+    !> Continue a contact run over the next size(road) steps, n = state%step onwards.
+    !>
+    !> `response` gets this block's histories, index j for step n = state%step + j (times
+    !> t_n = n*dt of the whole run), shortened to the steps done when a fault stops the run;
+    !> `error` then names the step (`stat_numerical`) and the run must not be continued.
+    subroutine contact_block(conv, state, road, response, error)
+        !> The convolver, as the previous block (or `start_contact`) left it.
+        class(convolver), intent(inout) :: conv
+        !> The run; advanced by the steps done.
+        type(contact_state), intent(inout) :: state
+        !> Road heights u_r(t_n) [m] of this block's steps.
+        real(dp), intent(in) :: road(0:)
+        !> Histories of this block's steps.
+        type(contact_response), intent(out) :: response
+        !> Set on a numerical fault (divergence, an implicit step that did not converge).
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: n_done
+
+        call contact_loop(conv, state, road, response, n_done, error)
+        state%step = state%step + n_done
+        call keep_rows(response, n_done)
+    end subroutine contact_block
 
     !> The options are usable with an instant weight w0 [m/N].
     subroutine check_options(settings, w0, error)
@@ -213,62 +294,74 @@ contains
         end if
     end subroutine check_options
 
-    !> Step the run; n_done is the number of steps completed (all of them unless a fault).
-    subroutine contact_loop(conv, law, road, preload, settings, response, n_done, fault)
+    !> Step the run over size(road) steps from state%step; n_done is the number of steps of
+    !> this block completed (all of them unless a fault).
+    subroutine contact_loop(conv, state, road, response, n_done, fault)
         class(convolver), intent(inout) :: conv
-        type(contact_law), intent(in) :: law
+        type(contact_state), intent(inout) :: state
         real(dp), intent(in) :: road(0:)
-        real(dp), intent(in) :: preload
-        type(contact_options), intent(in) :: settings
         type(contact_response), intent(inout) :: response
         integer, intent(out) :: n_done
         type(error_type), allocatable, intent(out) :: fault
 
-        real(dp) :: delta0, w0, u_h, delta, force, u, residual
+        real(dp) :: u_h, delta, force, u, residual
         logical :: implicit, converged
-        integer :: n, n_t
+        integer :: j, n_t
+        integer(int64) :: n
 
         n_t = size(road)
         allocate (response%time(0:n_t - 1), response%road(0:n_t - 1), response%displacement(0:n_t - 1), &
                   response%force(0:n_t - 1), response%compression(0:n_t - 1))
-        call conv%reset()
-        delta0 = law%compression(preload)
-        w0 = conv%instant_weight()
-        implicit = settings%scheme == 'implicit'
-        delta = delta0
-        do n = 0, n_t - 1
-            n_done = n
-            u_h = conv%history()
-            if (implicit) then
-                call implicit_compression(law, delta0 + road(n) - u_h + w0*preload, w0, delta0, settings, &
-                                          delta, residual, converged)
-                if (.not. converged) then
-                    call fatal_error(fault, 'implicit contact step did not converge at step '//int_text(n) &
-                                     //' (t = '//sci_text(n*conv%dt)//' s): residual |r| = '//sci_text(abs(residual)) &
-                                     //' m after '//int_text(settings%max_iterations)//' iterations (tolerance ' &
-                                     //sci_text(settings%tolerance)//' of the compression scale)', stat_numerical)
+        implicit = state%settings%scheme == 'implicit'
+        associate (law => state%law, settings => state%settings, delta0 => state%delta0, w0 => state%w0, &
+                   preload => state%preload)
+            delta = state%delta
+            do j = 0, n_t - 1
+                n_done = j
+                n = state%step + j
+                u_h = conv%history()
+                if (implicit) then
+                    call implicit_compression(law, delta0 + road(j) - u_h + w0*preload, w0, delta0, settings, &
+                                              delta, residual, converged)
+                    if (.not. converged) then
+                        call fatal_error(fault, convergence_message(n, conv%dt, residual, settings), stat_numerical)
+                        return
+                    end if
+                else
+                    delta = delta0 + road(j) - u_h
+                end if
+                force = law%force(delta)
+                u = u_h + w0*(force - preload)
+                if (.not. (abs(u) <= settings%divergence_bound .and. ieee_is_finite(force) &
+                           .and. ieee_is_finite(delta))) then
+                    call fatal_error(fault, divergence_message(n, conv%dt, u, settings, law%tangent(delta0), w0), &
+                                     stat_numerical)
                     return
                 end if
-            else
-                delta = delta0 + road(n) - u_h
-            end if
-            force = law%force(delta)
-            u = u_h + w0*(force - preload)
-            if (.not. (abs(u) <= settings%divergence_bound .and. ieee_is_finite(force) &
-                       .and. ieee_is_finite(delta))) then
-                call fatal_error(fault, divergence_message(n, conv%dt, u, settings, law%tangent(delta0), w0), &
-                                 stat_numerical)
-                return
-            end if
-            call conv%push(force - preload)
-            response%time(n) = n*conv%dt
-            response%road(n) = road(n)
-            response%displacement(n) = u
-            response%force(n) = force
-            response%compression(n) = delta
-        end do
+                call conv%push(force - preload)
+                state%delta = delta
+                response%time(j) = n*conv%dt
+                response%road(j) = road(j)
+                response%displacement(j) = u
+                response%force(j) = force
+                response%compression(j) = delta
+            end do
+        end associate
         n_done = n_t
     end subroutine contact_loop
+
+    !> One line on an implicit step n that did not converge: where, and the residual.
+    pure function convergence_message(n, dt, residual, settings) result(message)
+        integer(int64), intent(in) :: n
+        real(dp), intent(in) :: dt, residual
+        type(contact_options), intent(in) :: settings
+        character(len=:), allocatable :: message
+
+        message = 'implicit contact step did not converge at step '//int_text(n)//' (t = '//sci_text(n*dt) &
+                  //' s): residual |r| = '//sci_text(abs(residual))//' m after ' &
+                  //int_text(settings%max_iterations)//' iterations (tolerance '//sci_text(settings%tolerance) &
+                  //' of the compression scale)'
+    end function convergence_message
 
     !> The compression delta [m] solving delta + w0*law(delta) = b, by safeguarded Newton.
     !>
@@ -322,7 +415,7 @@ contains
 
     !> One line on a divergent run at step n: where, how large, and what to change.
     pure function divergence_message(n, dt, u, settings, stiffness, w0) result(message)
-        integer, intent(in) :: n
+        integer(int64), intent(in) :: n
         real(dp), intent(in) :: dt, u, stiffness, w0
         type(contact_options), intent(in) :: settings
         character(len=:), allocatable :: message

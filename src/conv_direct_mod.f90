@@ -11,7 +11,7 @@
 !> N_g = 19000; the benchmark prints both).
 module conv_direct_mod
     use kinds_mod, only: dp
-    use convolver_mod, only: convolver
+    use convolver_mod, only: convolver, capped_step
     use modal_set_mod, only: modal_set
     implicit none
     private
@@ -120,7 +120,7 @@ contains
 
         integer :: m
 
-        m = min(self%step, size(self%weight))
+        m = capped_step(self%step, size(self%weight))
         u = lane_dot(m, self%weight, self%past(self%head:))
     end function direct_history
 

@@ -57,6 +57,7 @@
 !> and destruction are serialised as fftw_mod describes (OpenMP critical section
 !> `greenconv_fftw_planner`).
 module conv_fft_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use convolver_mod, only: convolver
     use fftw_mod, only: fft_plan_set
@@ -284,10 +285,9 @@ contains
         class(fft_convolver), intent(inout) :: self
         real(dp), intent(in) :: force
 
-        integer :: h, n, l
+        integer :: h, l
 
         h = size(self%head_weight)
-        n = self%step
         if (h > 0) then
             self%head_position = self%head_position - 1
             if (self%head_position < 1) self%head_position = h
@@ -300,12 +300,12 @@ contains
         self%pending(self%pending_position) = 0.0_dp
         self%pending_position = self%pending_position + 1
         if (self%pending_position > size(self%pending)) self%pending_position = 1
-        self%step = n + 1
+        self%step = self%step + 1
         self%countdown = self%countdown - 1
         if (self%countdown > 0 .or. size(self%levels) == 0) return
         self%countdown = self%levels(1)%block
         do l = 1, size(self%levels)
-            if (mod(self%step, self%levels(l)%block) == 0) call run_level(self, l)
+            if (mod(self%step, int(self%levels(l)%block, int64)) == 0) call run_level(self, l)
         end do
     end subroutine fft_push
 
@@ -320,7 +320,7 @@ contains
 
         associate (level => self%levels(l))
             b = level%block
-            first = mod(self%step - b, size(self%recent)) + 1
+            first = int(mod(self%step - b, size(self%recent, kind=int64))) + 1
             self%samples(1:b) = self%recent(first:first + b - 1)
             self%samples(b + 1:2*b) = 0.0_dp
             level%newest = level%newest - 1
@@ -340,13 +340,13 @@ contains
     !> ring(n) += values(i) for n = start + i - 1, ring position mod(n, size(ring)) + 1.
     pure subroutine add_to_ring(ring, start, values)
         real(dp), intent(inout) :: ring(:)
-        integer, intent(in) :: start
+        integer(int64), intent(in) :: start
         real(dp), intent(in) :: values(:)
 
         integer :: i0, n1, m
 
         m = size(values)
-        i0 = mod(start, size(ring)) + 1
+        i0 = int(mod(start, size(ring, kind=int64))) + 1
         n1 = min(m, size(ring) - i0 + 1)
         ring(i0:i0 + n1 - 1) = ring(i0:i0 + n1 - 1) + values(1:n1)
         ring(1:m - n1) = ring(1:m - n1) + values(n1 + 1:m)

@@ -10,11 +10,12 @@
 !> displacement per newton of the current step's own force (zero for the paper's scheme).
 !> The loop never knows whether a direct sum, an FFT or modes answer.
 module convolver_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     implicit none
     private
 
-    public :: convolver, free_convolver
+    public :: convolver, free_convolver, capped_step
 
     !> A causal convolver stepped once per time step.
     type, abstract :: convolver
@@ -22,8 +23,9 @@ module convolver_mod
         character(len=:), allocatable :: name
         !> Time step dt [s].
         real(dp) :: dt = 0.0_dp
-        !> Number of forces pushed so far (the index n of the next step).
-        integer :: step = 0
+        !> Number of forces pushed so far (the index n of the next step); 64 bits, so that a
+        !> convolver may be stepped past 2^31 - 1 pushes.
+        integer(int64) :: step = 0
         !> Displacement per newton [m/N] of the current step's own force, w0; fixed when the
         !> convolver is built, the same at every step.
         real(dp) :: weight0 = 0.0_dp
@@ -87,6 +89,18 @@ contains
 
         w0 = self%weight0
     end function instant_weight
+
+    !> min(step, limit) as a default integer: how many of `limit` kernel taps or ring slots
+    !> the forces pushed so far fill (a step counter may exceed the default integer range).
+    elemental integer function capped_step(step, limit)
+        !> Number of forces pushed so far.
+        integer(int64), intent(in) :: step
+        !> The cap (a kernel length), >= 0.
+        integer, intent(in) :: limit
+
+        capped_step = limit
+        if (step < limit) capped_step = int(step)
+    end function capped_step
 
     !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
     subroutine release_nothing(self)

@@ -24,6 +24,7 @@
 !> unit modal mass, r_k = 1/(2i*omega_k^d) [1/(kg*s)] and phi_ik is in 1/sqrt(kg).
 !> `point_modes` holds that description; `sample_green_matrix` tabulates g_ij(t_m) from it.
 module green_matrix_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use modal_set_mod, only: modal_set
     use conv_direct_mod, only: truncation_length
@@ -38,8 +39,9 @@ module green_matrix_mod
         character(len=:), allocatable :: name
         !> Time step dt [s].
         real(dp) :: dt = 0.0_dp
-        !> Number of force vectors pushed so far (the index n of the next step).
-        integer :: step = 0
+        !> Number of force vectors pushed so far (the index n of the next step); 64 bits, so
+        !> that a convolver may be stepped past 2^31 - 1 pushes.
+        integer(int64) :: step = 0
         !> Instant compliance matrix W0 (N_c x N_c) [m/N]: displacement at i per newton of
         !> the current step's own force at j; fixed when the convolver is built.
         real(dp), allocatable :: weight0(:, :)

@@ -13,6 +13,7 @@ module green_sampled_mod
     use error_mod, only: error_type, fatal_error
     use green_matrix_mod, only: multipoint_convolver
     use conv_direct_mod, only: lane_dot
+    use convolver_mod, only: capped_step
     implicit none
     private
 
@@ -72,7 +73,7 @@ contains
 
         integer :: i, j, m, first, last
 
-        m = min(self%step, size(self%weight, 1))
+        m = capped_step(self%step, size(self%weight, 1))
         first = self%head
         last = self%head + m - 1
         u(:) = 0.0_dp

@@ -14,7 +14,8 @@ module greenconv
     use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
                                  new_backward_convolver
     use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
-    use contact_mod, only: contact_law, contact_response, contact_options, run_contact
+    use contact_mod, only: contact_law, contact_response, contact_options, run_contact, contact_state, &
+                           start_contact, contact_block
     use ode_reference_mod, only: ode_system, integrate
     use contact_reference_mod, only: contact_reference
     use contact_stability_mod, only: stability_cell, stability_map, contact_frequency
@@ -26,9 +27,10 @@ module greenconv
     use green_modal_mod, only: modal_green_matrix, new_modal_green_matrix
     use green_sampled_mod, only: sampled_green_matrix, new_sampled_green_matrix
     use multi_contact_mod, only: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, &
-                                 write_multi_contact
+                                 write_multi_contact, multi_contact_state, start_multi_contact, multi_contact_block
     use tyre_model_mod, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
-    use road_file_mod, only: road_file, read_road_file, sample_road_file, file_road
+    use road_file_mod, only: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, &
+                             file_road
     use structure_mod, only: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, &
                              build_structure
     use scene_run_mod, only: run_scene, check_scene, make_convolver, output_path
@@ -47,6 +49,7 @@ module greenconv
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
     public :: fft_convolver, new_fft_convolver, default_head
     public :: contact_law, contact_response, contact_options, run_contact
+    public :: contact_state, start_contact, contact_block
     public :: ode_system, integrate, contact_reference
     public :: stability_cell, stability_map, contact_frequency
     public :: road_profile, sine_road, random_road, new_random_road
@@ -56,8 +59,9 @@ module greenconv
     public :: point_modes, multipoint_convolver, sample_green_matrix
     public :: modal_green_matrix, new_modal_green_matrix, sampled_green_matrix, new_sampled_green_matrix
     public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, write_multi_contact
+    public :: multi_contact_state, start_multi_contact, multi_contact_block
     public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
-    public :: road_file, read_road_file, sample_road_file, file_road
+    public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
     public :: run_scene, check_scene, make_convolver, output_path
     public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file

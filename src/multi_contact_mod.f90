@@ -22,7 +22,13 @@
 !> makes the unilateral condition exact: F_j = 0 wherever delta_j <= 0. For a compliance
 !> matrix W0 that is symmetric positive semi-definite and monotone laws, I + W0*D has
 !> eigenvalues >= 1, so every Newton system is solvable.
+!>
+!> A run too long to hold is streamed like contact_mod's: `start_multi_contact`, then
+!> `multi_contact_block` per block of road heights; the state carries the step index and the
+!> compressions that start the next step's Newton iteration, so the blocks put together equal
+!> `run_multi_contact` on the whole road bit for bit.
 module multi_contact_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_mod, only: dp
     use text_mod, only: int_text, sci_text
@@ -35,7 +41,8 @@ module multi_contact_mod
     private
 
     public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step
-    public :: write_multi_contact
+    public :: write_multi_contact, multi_contact_header, multi_contact_table
+    public :: multi_contact_state, start_multi_contact, multi_contact_block
 
     !> Settings of the per-step nonlinear solve and of the divergence guard.
     type :: newton_options
@@ -67,6 +74,22 @@ module multi_contact_mod
         integer, allocatable :: iterations(:)
     end type multi_contact_response
 
+    !> A multi-point contact run between two blocks of a streamed run.
+    type :: multi_contact_state
+        !> Contact law of each point (N_c).
+        type(contact_law), allocatable :: laws(:)
+        !> Static preloads F0_i [N] (N_c).
+        real(dp), allocatable :: preload(:)
+        !> Static compressions delta0_i [m] (N_c).
+        real(dp), allocatable :: delta0(:)
+        !> Compressions of the last step done [m] (delta0 before step 0): the next step's guess.
+        real(dp), allocatable :: delta(:)
+        !> Newton and divergence settings.
+        type(newton_options) :: settings
+        !> Index n of the next step (the number of steps done), 64 bits.
+        integer(int64) :: step = 0
+    end type multi_contact_state
+
     !> Most halvings of a Newton step in the line search.
     integer, parameter :: max_halvings = 30
 
@@ -93,39 +116,92 @@ contains
         !> Newton and divergence settings; defaults when absent.
         type(newton_options), intent(in), optional :: options
 
-        type(newton_options) :: settings
-        real(dp) :: delta0(size(laws)), delta(size(laws)), u(size(laws))
-        integer :: n, n_t, n_c
+        type(multi_contact_state) :: state
 
-        n_t = size(road, 1)
-        n_c = size(laws)
-        if (present(options)) settings = options
-        if (conv%n_points() /= n_c .or. size(road, 2) /= n_c .or. size(preload) /= n_c) then
+        call start_multi_contact(conv, laws, preload, state, error, options)
+        if (.not. allocated(error)) call multi_contact_block(conv, state, road, response, error)
+    end subroutine run_multi_contact
+
+    !> Start a streamed multi-point run: check the sizes, reset the convolver (rest, the
+    !> static equilibrium under the preloads) and set `state` at step 0. Then call
+    !> `multi_contact_block` once per block of road heights.
+    subroutine start_multi_contact(conv, laws, preload, state, error, options)
+        !> The Green's matrix of the N_c points; reset here.
+        class(multipoint_convolver), intent(inout) :: conv
+        !> Contact law of each point (N_c).
+        type(contact_law), intent(in) :: laws(:)
+        !> Static preloads F0_i [N], >= 0 (N_c).
+        real(dp), intent(in) :: preload(:)
+        !> The run at step 0.
+        type(multi_contact_state), intent(out) :: state
+        !> Set (`stat_input`) when the laws, preloads and Green's matrix disagree in size.
+        type(error_type), allocatable, intent(out) :: error
+        !> Newton and divergence settings; defaults when absent.
+        type(newton_options), intent(in), optional :: options
+
+        if (conv%n_points() /= size(laws) .or. size(preload) /= size(laws)) then
             call fatal_error(error, 'multi-point contact: the Green''s matrix has '//int_text(conv%n_points()) &
-                             //' points, the laws '//int_text(n_c)//', the road '//int_text(size(road, 2)) &
-                             //' columns and the preloads '//int_text(size(preload)), stat_input)
+                             //' points, the laws '//int_text(size(laws))//' and the preloads ' &
+                             //int_text(size(preload)), stat_input)
             return
         end if
-        call allocate_response(response, n_t, n_c)
-        response%time(:) = [(n*conv%dt, n=0, n_t - 1)]
-        response%road(:, :) = road
+        if (present(options)) state%settings = options
+        state%laws = laws
+        state%preload = preload
+        state%delta0 = laws%compression(preload)
+        state%delta = state%delta0
+        state%step = 0
         call conv%reset()
-        delta0(:) = laws%compression(preload)
-        delta(:) = delta0
-        do n = 0, n_t - 1
-            call multi_contact_step(conv, laws, delta0, preload, road(n, :), delta, response%force(n, :), u, &
-                                    response%iterations(n), error, settings)
-            if (.not. allocated(error)) call divergence_guard(u, response%force(n, :), settings, error)
+    end subroutine start_multi_contact
+
+    !> Continue a multi-point run over the next size(road, 1) steps, n = state%step onwards.
+    !>
+    !> `response` gets this block's histories, index j for step n = state%step + j (times
+    !> t_n = n*dt of the whole run), shortened to the steps done when a fault stops the run;
+    !> `error` then names the step and the run must not be continued.
+    subroutine multi_contact_block(conv, state, road, response, error)
+        !> The Green's matrix, as the previous block (or `start_multi_contact`) left it.
+        class(multipoint_convolver), intent(inout) :: conv
+        !> The run; advanced by the steps done.
+        type(multi_contact_state), intent(inout) :: state
+        !> Road heights road(j, i) = u_r,i(t_n) [m] of this block's steps, n = state%step + j.
+        real(dp), intent(in) :: road(0:, :)
+        !> Histories of this block's steps.
+        type(multi_contact_response), intent(out) :: response
+        !> Set on a road of the wrong width, a step whose forces do not converge, or divergence.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: u(size(state%laws))
+        integer :: j, n_t
+        integer(int64) :: n
+
+        n_t = size(road, 1)
+        if (size(road, 2) /= size(state%laws)) then
+            call fatal_error(error, 'multi-point contact: the road has '//int_text(size(road, 2)) &
+                             //' columns for '//int_text(size(state%laws))//' points', stat_input)
+            call allocate_response(response, 0, size(state%laws))
+            return
+        end if
+        call allocate_response(response, n_t, size(state%laws))
+        response%time(:) = [((state%step + j)*conv%dt, j=0, n_t - 1)]
+        response%road(:, :) = road
+        do j = 0, n_t - 1
+            n = state%step + j
+            call multi_contact_step(conv, state%laws, state%delta0, state%preload, road(j, :), state%delta, &
+                                    response%force(j, :), u, response%iterations(j), error, state%settings)
+            if (.not. allocated(error)) call divergence_guard(u, response%force(j, :), state%settings, error)
             if (allocated(error)) then
                 error%message = error%message//' at step '//int_text(n)//' (t = '//sci_text(n*conv%dt)//' s)'
-                call keep_rows(response, n)
+                call keep_rows(response, j)
+                state%step = n
                 return
             end if
-            response%compression(n, :) = delta
-            response%displacement(n, :) = u
-            response%total_force(n) = sum(response%force(n, :))
+            response%compression(j, :) = state%delta
+            response%displacement(j, :) = u
+            response%total_force(j) = sum(response%force(j, :))
         end do
-    end subroutine run_multi_contact
+        state%step = state%step + n_t
+    end subroutine multi_contact_block
 
     !> One step of the loop: history, forces of all points, push of F - F0.
     !>
@@ -322,15 +398,39 @@ contains
         !> Set when the file cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: table(:, :)
-        character(len=200) :: comments(3)
-        integer :: n_t, n_c, n, row
+        call write_columns(path, multi_contact_header(title), multi_contact_table(positions, response, 0, 1), error)
+    end subroutine write_multi_contact
 
-        n_t = size(response%time)
+    !> The header lines of `write_multi_contact`'s files: the title, the units, the columns.
+    pure function multi_contact_header(title) result(comments)
+        !> First header line, e.g. the scene and method.
+        character(len=*), intent(in) :: title
+        character(len=200) :: comments(3)
+
+        comments(1) = title
+        comments(2) = 'units: s m m m N m N'
+        comments(3) = 't x u_road u f_contact delta f_total'
+    end function multi_contact_header
+
+    !> The rows of `write_multi_contact` for the steps j = first, first + stride, ... of
+    !> `response` (N_c rows per step: t, x, u_road, u, f_contact, delta, f_total).
+    pure function multi_contact_table(positions, response, first, stride) result(table)
+        !> Position x_i [m] of each point, for the second column.
+        real(dp), intent(in) :: positions(:)
+        !> Histories (of a run or of one block).
+        type(multi_contact_response), intent(in) :: response
+        !> Index (from 0) of the first step written.
+        integer, intent(in) :: first
+        !> Steps between two rows written, >= 1.
+        integer, intent(in) :: stride
+        real(dp), allocatable :: table(:, :)
+
+        integer :: n_c, n, row
+
         n_c = size(positions)
-        allocate (table(n_t*n_c, 7))
-        do n = 0, n_t - 1
-            row = n*n_c
+        allocate (table(n_c*size(response%time(first::stride)), 7))
+        row = 0
+        do n = first, size(response%time) - 1, stride
             table(row + 1:row + n_c, 1) = response%time(n)
             table(row + 1:row + n_c, 2) = positions
             table(row + 1:row + n_c, 3) = response%road(n, :)
@@ -338,11 +438,8 @@ contains
             table(row + 1:row + n_c, 5) = response%force(n, :)
             table(row + 1:row + n_c, 6) = response%compression(n, :)
             table(row + 1:row + n_c, 7) = response%total_force(n)
+            row = row + n_c
         end do
-        comments(1) = title
-        comments(2) = 'units: s m m m N m N'
-        comments(3) = 't x u_road u f_contact delta f_total'
-        call write_columns(path, comments, table, error)
-    end subroutine write_multi_contact
+    end function multi_contact_table
 
 end module multi_contact_mod

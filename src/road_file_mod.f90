@@ -10,6 +10,7 @@
 !> points at x_i + V*t sees u_r,i(t) = height(x_i + V*t); `sample_road_file` gives those
 !> heights at t_n = n*dt and refuses a run that needs x beyond the file.
 module road_file_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use text_mod, only: int_text, real_text
     use error_mod, only: error_type, fatal_error
@@ -18,7 +19,7 @@ module road_file_mod
     implicit none
     private
 
-    public :: road_file, read_road_file, sample_road_file, file_road
+    public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
 
     !> A road profile: heights at increasing positions, linear in between.
     type :: road_file
@@ -158,8 +159,27 @@ contains
         !> Set when some x_i + V*t_n lies outside the file.
         type(error_type), allocatable, intent(out) :: error
 
+        call check_road_coverage(road, positions, speed, dt, n_steps, error)
+        if (.not. allocated(error)) call sample_road_steps(road, positions, speed, dt, 0_int64, n_steps, heights)
+    end subroutine sample_road_file
+
+    !> An error when a run of n_steps steps needs x beyond the file: some x_i + V*t_n,
+    !> n = 0..n_steps-1, outside it.
+    subroutine check_road_coverage(road, positions, speed, dt, n_steps, error)
+        !> The profile.
+        type(road_file), intent(in) :: road
+        !> Positions x_i [m] of the points on the road at t = 0.
+        real(dp), intent(in) :: positions(:)
+        !> Travel speed V [m/s].
+        real(dp), intent(in) :: speed
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Set when some x_i + V*t_n lies outside the file.
+        type(error_type), allocatable, intent(out) :: error
+
         real(dp) :: x_first, x_last, travel
-        integer :: i, n
 
         travel = speed*(n_steps - 1)*dt
         x_first = min(minval(positions), minval(positions) + travel)
@@ -168,12 +188,34 @@ contains
             call fatal_error(error, road%path//': expected a road from x = '//real_text(x_first)//' m to ' &
                              //real_text(x_last)//' m (the run), found '//real_text(road%x(1))//' m to ' &
                              //real_text(road%x(size(road%x)))//' m')
-            return
         end if
-        allocate (heights(0:n_steps - 1, size(positions)))
+    end subroutine check_road_coverage
+
+    !> Heights under N_c points for the steps n = first..first+count-1 of a run (one block of
+    !> a streamed run): heights(j, i) = height(x_i + V*t_n), n = first + j; beyond the file
+    !> the end values (check the whole run once with `check_road_coverage`).
+    subroutine sample_road_steps(road, positions, speed, dt, first, count, heights)
+        !> The profile.
+        type(road_file), intent(in) :: road
+        !> Positions x_i [m] of the points on the road at t = 0.
+        real(dp), intent(in) :: positions(:)
+        !> Travel speed V [m/s].
+        real(dp), intent(in) :: speed
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Index of the first step.
+        integer(int64), intent(in) :: first
+        !> Number of steps.
+        integer, intent(in) :: count
+        !> Road heights [m], (0:count-1, N_c).
+        real(dp), allocatable, intent(out) :: heights(:, :)
+
+        integer :: i, j
+
+        allocate (heights(0:count - 1, size(positions)))
         do i = 1, size(positions)
-            heights(:, i) = road%height_at([(positions(i) + speed*(n*dt), n=0, n_steps - 1)])
+            heights(:, i) = road%height_at([(positions(i) + speed*((first + j)*dt), j=0, count - 1)])
         end do
-    end subroutine sample_road_file
+    end subroutine sample_road_steps
 
 end module road_file_mod

@@ -1,5 +1,6 @@
 !> Road profiles seen by a body travelling at constant speed, as heights over time.
 module road_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use random_mod, only: random_stream
     implicit none
@@ -17,6 +18,9 @@ module road_mod
         procedure(height_interface), deferred :: height
         !> Road heights [m] at t_n = n*dt, n = 0..n_steps-1.
         procedure :: sample
+        !> Road heights [m] at t_n = n*dt for the steps n = first..first+count-1 of a run, for
+        !> a run streamed in blocks (the whole run is never sampled).
+        procedure :: sample_steps
     end type road_profile
 
     abstract interface
@@ -101,10 +105,26 @@ contains
         integer, intent(in) :: n_steps
         real(dp), allocatable :: heights(:)
 
-        integer :: n
-
-        heights = self%height([(n*dt, n=0, n_steps - 1)])
+        heights = self%sample_steps(dt, 0_int64, n_steps)
     end function sample
+
+    !> Road heights [m] at t_n = n*dt, n = first..first+count-1; t_n is computed as in a
+    !> whole run's `sample`, so the blocks of a run put together equal it bit for bit.
+    function sample_steps(self, dt, first, count) result(heights)
+        !> The road.
+        class(road_profile), intent(in) :: self
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Index of the first step.
+        integer(int64), intent(in) :: first
+        !> Number of samples.
+        integer, intent(in) :: count
+        real(dp), allocatable :: heights(:)
+
+        integer :: j
+
+        heights = self%height([((first + j)*dt, j=0, count - 1)])
+    end function sample_steps
 
     !> A0*sin(omega_r*t).
     elemental real(dp) function sine_height(self, t)

@@ -27,7 +27,7 @@ module scene_mod
     use road_mod, only: road_profile, sine_road, new_random_road
     use contact_mod, only: contact_law, contact_options
     use tyre_model_mod, only: tyre_belt, tyre_frequency, contact_positions
-    use road_file_mod, only: road_file, read_road_file, file_road
+    use road_file_mod, only: road_file, read_road_file, file_road, check_road_coverage
     use namelist_scan_mod, only: namelist_scan
     use scene_schema_mod, only: scan_scene, max_methods
     use number_text_mod, only: compact_real
@@ -179,7 +179,7 @@ contains
         if (.not. allocated(error)) call read_road_group(unit, scene, error)
         if (.not. allocated(error)) call read_contact_group(unit, scene, error)
         if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
-        if (.not. allocated(error)) call check_road_coverage(scene, error)
+        if (.not. allocated(error)) call check_scene_road(scene, error)
         close (unit)
     end subroutine read_scene
 
@@ -424,23 +424,16 @@ contains
     !> Profile 'file': every contact point stays on the road file for the whole run (a single
     !> point at x_start + V*t; the tyre's points spread over the patch around it), so that
     !> `--check` finds a road too short as a run would.
-    subroutine check_road_coverage(this, error)
+    subroutine check_scene_road(this, error)
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(inout) :: error
 
-        real(dp) :: offsets(this%n_points), travel, x_first, x_last
-
+        if (allocated(error)) return
         if (.not. allocated(this%road_data%x) .or. this%task /= 'contact') return
-        offsets = contact_positions(0.0_dp, this%patch_length, this%n_points)
-        travel = this%speed*(this%n_steps - 1)*this%dt
-        x_first = this%x_start + minval(offsets) + min(0.0_dp, travel)
-        x_last = this%x_start + maxval(offsets) + max(0.0_dp, travel)
-        call require(this%road_data%covers(x_first, x_last), &
-                     expected(this, 'road', 'x_start, speed', 'a run within '//this%road_data%path &
-                              //' (the run needs x from '//real_text(x_first)//' m to '//real_text(x_last) &
-                              //' m), found a road from '//real_text(this%road_data%x(1))//' m to ' &
-                              //real_text(this%road_data%x(size(this%road_data%x)))//' m'), error)
-    end subroutine check_road_coverage
+        call check_road_coverage(this%road_data, this%x_start + contact_positions(0.0_dp, this%patch_length, &
+                                 this%n_points), this%speed, this%dt, this%n_steps, error)
+        if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
+    end subroutine check_scene_road
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, this, error)
@@ -510,8 +503,9 @@ contains
         character(len=512) :: message
         namelist /convolution/ methods, truncation_tol, accuracy
 
+        ! No default list: a contact scene must name its methods (the scan requires it), and
+        ! a list that started from defaults would keep the defaults the file does not overwrite.
         methods = ''
-        methods(1:2) = [character(len=name_length) :: 'direct', 'modal']
         truncation_tol = this%truncation_tol
         accuracy = this%accuracy
         rewind (unit)
@@ -531,8 +525,12 @@ contains
             expected(this, 'convolution', 'truncation_tol', &
                                              'a fraction of max |g| in (0, 1)', truncation_tol), error)
         this%methods = pack(methods, methods /= '')
-        call require(size(this%methods) > 0, &
+        call require(size(this%methods) > 0 .or. this%task /= 'contact', &
                      expected(this, 'convolution', 'methods', 'at least one method'), error)
+        do i = 2, size(this%methods)
+            call require(all(this%methods(:i - 1) /= this%methods(i)), expected(this, 'convolution', 'methods', &
+                         'each method once (its file would be written twice)', this%methods(i)), error)
+        end do
         call require(accuracy > 0.0_dp .and. accuracy < 1.0_dp, &
                      expected(this, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
         this%truncation_tol = truncation_tol

@@ -1,7 +1,15 @@
 !> Run a scene: build the structure (identifying it when only G is known), then either
 !> write the identification (task `identify`) or run the contact loop with one convolver
 !> per method (task `contact`), writing column files and a summary line per method.
+!>
+!> A contact run is streamed in blocks of files_mod's `block_rows` steps: the road is
+!> sampled per block, the contact loop continues from the convolver's state (contact_mod's
+!> `contact_block`), and the block's rows (every `output_every`-th step of the run) are
+!> appended to the column file, so the memory a run needs does not grow with N_t. A
+!> numerical fault closes the file with the rows before it; bad input or a failed write
+!> deletes it. A progress line (progress_mod) shows on standard error for long runs.
 module scene_run_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use text_mod, only: int_text, sci_text
     use error_mod, only: error_type, fatal_error
@@ -10,9 +18,11 @@ module scene_run_mod
     use conv_fft_mod, only: new_fft_convolver
     use conv_modal_mod, only: new_paper_convolver
     use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver
-    use contact_mod, only: contact_response, run_contact
-    use files_mod, only: write_columns, make_directory
-    use scene_mod, only: scene_type, output_path
+    use contact_mod, only: contact_response, contact_state, start_contact, contact_block
+    use files_mod, only: column_writer, open_columns, append_rows, close_run_file, first_kept, block_rows, &
+                         make_directory
+    use progress_mod, only: progress_meter, start_progress, update_progress, finish_progress
+    use scene_mod, only: scene_type, output_path, input_place
     use structure_mod, only: structure_model, build_structure
     use frf_mod, only: frf_type, read_frf
     use identification_output_mod, only: write_identification, identification_summary
@@ -34,21 +44,27 @@ contains
     !> Run a scene and print its summary on `unit`. Contact: for each method, the file
     !> `<output_dir>/<name>_<method>.dat` and a line (method, model size, steps, CPU seconds,
     !> what the model neglects). Identified structures also get their modes and G files.
-    subroutine run_scene(scene, unit, error)
+    subroutine run_scene(scene, unit, error, block)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Unit the summary is printed on.
         integer, intent(in) :: unit
         !> Set when the structure cannot be built or a file cannot be written.
         type(error_type), allocatable, intent(out) :: error
+        !> Steps per block of the streamed run (>= 1); by default files_mod's `block_rows`
+        !> (divided by N_c for the tyre scene). The files do not depend on it.
+        integer, intent(in), optional :: block
 
         type(structure_model) :: structure
+        integer :: block_size
 
         if (scene%model == 'tyre') then
             call make_directory(scene%output_dir, error)
-            if (.not. allocated(error)) call run_tyre_scene(scene, unit, error)
+            if (.not. allocated(error)) call run_tyre_scene(scene, unit, error, block)
             return
         end if
+        block_size = block_rows
+        if (present(block)) block_size = max(block, 1)
         call build_structure(scene, structure, error)
         if (allocated(error)) return
         call make_directory(scene%output_dir, error)
@@ -58,7 +74,7 @@ contains
             call write_identification(scene, structure, error)
             if (allocated(error)) return
         end if
-        if (scene%task == 'contact') call run_methods(scene, structure, unit, error)
+        if (scene%task == 'contact') call run_methods(scene, structure, unit, block_size, error)
     end subroutine run_scene
 
     !> Check a scene without running it: the scene file was read and checked by `read_scene`
@@ -82,7 +98,7 @@ contains
         if (scene%model == 'frf_file') then
             call read_frf(scene%frf_file, frf, error)
             if (allocated(error)) then
-                error%message = scene%file//': &structure frf_file: '//error%message
+                error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
                 return
             end if
             line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
@@ -105,47 +121,78 @@ contains
     end subroutine check_scene
 
     !> The contact loop once per method of the scene.
-    subroutine run_methods(scene, structure, unit, error)
+    subroutine run_methods(scene, structure, unit, block, error)
         type(scene_type), intent(in) :: scene
         type(structure_model), intent(in) :: structure
-        integer, intent(in) :: unit
+        integer, intent(in) :: unit, block
         type(error_type), allocatable, intent(out) :: error
 
         class(convolver), allocatable :: conv
-        type(contact_response) :: response
-        type(error_type), allocatable :: run_error
         character(len=:), allocatable :: accuracy, label
-        real(dp), allocatable :: road(:)
-        real(dp) :: start, finish
+        real(dp) :: seconds
         integer :: i, n
 
-        allocate (road(scene%n_steps))
-        road(:) = scene%road%sample(scene%dt, scene%n_steps)
         write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         write (unit, '(a,t12,a,t24,a,t36,a,t48,a)') '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             call make_convolver(trim(scene%methods(i)), structure, scene%dt, scene%truncation_tol, scene%n_steps, &
                                 conv, accuracy, error, scene%accuracy)
             if (allocated(error)) return
-            call cpu_time(start)
-            call run_contact(conv, scene%law, road, scene%preload, response, scene%contact, run_error)
-            call cpu_time(finish)
+            call stream_contact(scene, trim(scene%methods(i)), conv, block, seconds, error)
             call conv%model_size(n, label)
-            ! A fault keeps the rows computed before it: write them, then report.
-            call write_response(output_path(scene, trim(scene%methods(i))), scene, conv, response, error)
             call free_convolver(conv)
             if (allocated(error)) return
-            if (allocated(run_error)) then
-                call move_alloc(run_error, error)
-                error%message = scene%file//': '//trim(scene%methods(i))//' ('//trim(scene%contact%scheme) &
-                                //' step): '//error%message//' (rows up to then in ' &
-                                //output_path(scene, trim(scene%methods(i)))//')'
-                return
-            end if
             write (unit, summary_format) trim(scene%methods(i)), label//'='//int_text(n), scene%n_steps, &
-                finish - start, accuracy
+                seconds, accuracy
         end do
     end subroutine run_methods
+
+    !> One method's contact run, streamed in blocks of `block` steps into its column file.
+    !> `seconds` is the CPU time of the contact loop alone. A numerical fault keeps the rows
+    !> written before it: the file is completed and `error` names it.
+    subroutine stream_contact(scene, method, conv, block, seconds, error)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        class(convolver), intent(inout) :: conv
+        integer, intent(in) :: block
+        real(dp), intent(out) :: seconds
+        type(error_type), allocatable, intent(out) :: error
+
+        type(contact_state) :: state
+        type(contact_response) :: response
+        type(column_writer) :: writer
+        type(progress_meter) :: meter
+        type(error_type), allocatable :: fault
+        real(dp), allocatable :: road(:)
+        integer(int64) :: first
+        real(dp) :: start, finish
+        integer :: m
+
+        seconds = 0.0_dp
+        call start_contact(conv, scene%law, scene%preload, state, error, scene%contact)
+        if (allocated(error)) then
+            error%message = scene%file//': '//method//': '//error%message
+            return
+        end if
+        call open_columns(writer, output_path(scene, method), response_header(scene, conv), 5, error)
+        if (allocated(error)) return
+        call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
+        do while (state%step < scene%n_steps)
+            first = state%step
+            m = int(min(int(block, int64), scene%n_steps - first))
+            road = scene%road%sample_steps(scene%dt, first, m)
+            call cpu_time(start)
+            call contact_block(conv, state, road, response, fault)
+            call cpu_time(finish)
+            seconds = seconds + (finish - start)
+            call append_rows(writer, response_rows(response, first, scene%output_every), error)
+            if (allocated(error) .or. allocated(fault)) exit
+            call update_progress(meter, state%step)
+        end do
+        call finish_progress(meter, state%step)
+        call close_run_file(writer, fault, scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): ', &
+                            error)
+    end subroutine stream_contact
 
     !> Build the convolver called `method` for a structure.
     !>
@@ -303,26 +350,40 @@ contains
         if (n_g < last) tail = maxval(abs(structure%sampled_g(n_g + 2:last + 1)))/maxval(abs(kernel))
     end subroutine direct_kernel
 
-    !> Write the histories of one run as columns t, u_road, u, f_contact, delta.
-    subroutine write_response(path, scene, conv, response, error)
-        character(len=*), intent(in) :: path
+    !> The header of a method's column file: what ran, the units, the columns (t, u_road,
+    !> u, f_contact, delta); with `output_every` > 1, which steps the rows are.
+    function response_header(scene, conv) result(comments)
         type(scene_type), intent(in) :: scene
         class(convolver), intent(in) :: conv
-        type(contact_response), intent(in) :: response
-        type(error_type), allocatable, intent(out) :: error
+        character(len=400) :: comments(3)
 
-        character(len=200) :: comments(3)
         character(len=:), allocatable :: label
         integer :: n
 
         call conv%model_size(n, label)
         write (comments(1), '(a,i0,a,es10.3,a)') 'greenconv scene '//scene%name//', method '//conv%name//' (' &
             //label//' = '//int_text(n)//'), ', scene%n_steps, ' steps of ', scene%dt, ' s'
+        if (scene%output_every > 1) comments(1) = trim(comments(1))//', a row every '//int_text(scene%output_every) &
+                                                  //' steps (steps 0, '//int_text(scene%output_every)//', ' &
+                                                  //int_text(2*scene%output_every)//', ...)'
         comments(2) = 'units: s m m N m'
         comments(3) = 't u_road u f_contact delta'
-        call write_columns(path, comments, reshape([response%time, response%road, response%displacement, &
-                                                    response%force, response%compression], &
-                                                   [size(response%time), 5]), error)
-    end subroutine write_response
+    end function response_header
+
+    !> The rows of a block of steps first, first + 1, ... that are written: the steps that
+    !> are multiples of `every`.
+    function response_rows(response, first, every) result(table)
+        type(contact_response), intent(in) :: response
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: every
+        real(dp), allocatable :: table(:, :)
+
+        integer :: j
+
+        j = first_kept(first, every)
+        table = reshape([response%time(j::every), response%road(j::every), response%displacement(j::every), &
+                         response%force(j::every), response%compression(j::every)], &
+                        [size(response%time(j::every)), 5])
+    end function response_rows
 
 end module scene_run_mod

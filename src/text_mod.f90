@@ -1,27 +1,44 @@
 !> Numbers as text for messages and summaries, and names in one case.
 module text_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     implicit none
     private
 
     public :: int_text, real_text, sci_text, lower_text
 
+    !> An integer (default or 64-bit) as text, without blanks.
+    interface int_text
+        module procedure default_int_text
+        module procedure long_int_text
+    end interface int_text
+
 contains
 
-    !> An integer as text, without blanks.
-    pure function int_text(i) result(text)
+    !> A default integer as text, without blanks.
+    pure function default_int_text(i) result(text)
         !> The integer.
         integer, intent(in) :: i
         character(len=:), allocatable :: text
 
-        character(len=16) :: buffer
+        text = long_int_text(int(i, int64))
+    end function default_int_text
+
+    !> A 64-bit integer (a step count of a long run) as text, without blanks.
+    pure function long_int_text(i) result(text)
+        !> The integer.
+        integer(int64), intent(in) :: i
+        character(len=:), allocatable :: text
+
+        character(len=24) :: buffer
 
         write (buffer, '(i0)') i
         text = trim(buffer)
-    end function int_text
+    end function long_int_text
 
     !> A real with up to ten significant digits, without blanks and without the trailing
-    !> zeros of its digits (`0.443`, `10.0`, `0.1E-4`).
+    !> zeros of its digits: plain from 0.1 to 1e7 (`0.443`, `10.0`, `600.556`), scientific
+    !> otherwise (`-7.0E-03`, `1.5E+09`).
     pure function real_text(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
@@ -30,13 +47,18 @@ contains
         character(len=32) :: buffer
         integer :: mark, last
 
-        write (buffer, '(g0.10)') x
+        if (abs(x) < tiny(x) .or. (abs(x) >= 0.1_dp .and. abs(x) < 1.0e7_dp)) then
+            write (buffer, '(f0.9)') x
+        else
+            write (buffer, '(es16.9)') x
+        end if
         text = trim(adjustl(buffer))
-        mark = scan(text, 'EeDd')
+        if (text(1:1) == '.') text = '0'//text
+        if (text(1:2) == '-.') text = '-0'//text(2:)
+        mark = scan(text, 'E')
         if (mark == 0) mark = len(text) + 1
-        if (index(text(:mark - 1), '.') == 0) return
         last = mark - 1
-        do while (last > 1 .and. text(last:last) == '0' .and. text(max(last - 1, 1):max(last - 1, 1)) /= '.')
+        do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
             last = last - 1
         end do
         text = text(:last)//text(mark:)

@@ -8,18 +8,27 @@
 !> explicit, W0 = 0), `exact` (the same modes, first-order hold: W0 /= 0, so every step is
 !> solved by Newton on the active set) and `direct` (the sampled Green's matrix g_ij(t_n),
 !> truncated by the 1 % rule).
+!>
+!> The run is streamed in blocks as scene_run_mod's single-point runs are: road heights
+!> sampled per block, multi_contact_mod's `multi_contact_block` continuing the run, the
+!> block's rows (steps that are multiples of `output_every`) appended to the file. The
+!> scene's `divergence_bound` [m] stops a run whose |u_i| exceeds it at any point.
 module tyre_scene_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_mod, only: dp
     use text_mod, only: int_text, sci_text
     use error_mod, only: error_type, fatal_error
     use contact_mod, only: contact_law
     use scene_mod, only: scene_type, output_path
     use tyre_model_mod, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
-    use road_file_mod, only: sample_road_file
+    use road_file_mod, only: check_road_coverage, sample_road_steps
     use green_matrix_mod, only: point_modes, multipoint_convolver, sample_green_matrix
     use green_modal_mod, only: modal_green_matrix, new_modal_green_matrix
     use green_sampled_mod, only: sampled_green_matrix, new_sampled_green_matrix
-    use multi_contact_mod, only: multi_contact_response, run_multi_contact, write_multi_contact
+    use multi_contact_mod, only: multi_contact_response, multi_contact_state, start_multi_contact, &
+                                 multi_contact_block, multi_contact_header, multi_contact_table, newton_options
+    use files_mod, only: column_writer, open_columns, append_rows, close_run_file, first_kept, block_rows
+    use progress_mod, only: progress_meter, start_progress, update_progress, finish_progress
     implicit none
     private
 
@@ -30,32 +39,37 @@ module tyre_scene_mod
 contains
 
     !> Run the tyre/road scene with each of its methods, print a summary on `unit`.
-    subroutine run_tyre_scene(scene, unit, error)
+    subroutine run_tyre_scene(scene, unit, error, block)
         !> The scene (model 'tyre', road profile 'file').
         type(scene_type), intent(in) :: scene
         !> Unit of the summary.
         integer, intent(in) :: unit
         !> Set for an unusable scene, a failed step, or a file that cannot be written.
         type(error_type), allocatable, intent(out) :: error
+        !> Steps per block of the streamed run (>= 1); by default files_mod's `block_rows`/N_c.
+        !> The files do not depend on it.
+        integer, intent(in), optional :: block
 
         type(point_modes) :: description
-        real(dp), allocatable :: positions(:), heights(:, :)
+        real(dp), allocatable :: positions(:), road_positions(:)
         real(dp) :: f_max
-        integer :: i
+        integer :: i, block_steps
 
         if (scene%task /= 'contact' .or. .not. allocated(scene%road_data%x)) then
             call fatal_error(error, scene%file//": &structure model: 'tyre' needs task = 'contact' and " &
                              //"&road profile = 'file'")
             return
         end if
+        block_steps = max(block_rows/scene%n_points, 1)
+        if (present(block)) block_steps = max(block, 1)
         positions = contact_positions(0.5_dp*scene%tyre%length, scene%patch_length, scene%n_points)
         f_max = scene%f_modes
         if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*minval(scene%road_data%x(2:) &
                                                - scene%road_data%x(:size(scene%road_data%x) - 1)), scene%dt)
         call tyre_modes(scene%tyre, positions, f_max, description, error)
         if (allocated(error)) return
-        call sample_road_file(scene%road_data, scene%x_start + positions - 0.5_dp*scene%tyre%length, scene%speed, &
-                              scene%dt, scene%n_steps, heights, error)
+        road_positions = scene%x_start + positions - 0.5_dp*scene%tyre%length
+        call check_road_coverage(scene%road_data, road_positions, scene%speed, scene%dt, scene%n_steps, error)
         if (allocated(error)) return
         write (unit, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a,i0,a,es9.2,a,f0.1,a)') &
             '# scene '//scene%name//': tyre belt, ', scene%n_points, ' contact points over ', scene%patch_length, &
@@ -64,25 +78,24 @@ contains
             scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
         write (unit, '(a,t12,a,t24,a,t36,a,t48,a)') '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
-            call run_method(scene, trim(scene%methods(i)), description, positions, heights, unit, error)
+            call run_method(scene, trim(scene%methods(i)), description, positions, road_positions, block_steps, &
+                            unit, error)
             if (allocated(error)) return
         end do
     end subroutine run_tyre_scene
 
     !> One method: build its Green's matrix, run, write the file and the summary line.
-    subroutine run_method(scene, method, description, positions, heights, unit, error)
+    subroutine run_method(scene, method, description, positions, road_positions, block, unit, error)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
         type(point_modes), intent(in) :: description
-        real(dp), intent(in) :: positions(:), heights(0:, :)
-        integer, intent(in) :: unit
+        real(dp), intent(in) :: positions(:), road_positions(:)
+        integer, intent(in) :: block, unit
         type(error_type), allocatable, intent(out) :: error
 
         class(multipoint_convolver), allocatable :: conv
-        type(multi_contact_response) :: response
-        type(error_type), allocatable :: run_error
-        character(len=:), allocatable :: accuracy, label, path
-        real(dp) :: start, finish
+        character(len=:), allocatable :: accuracy, label
+        real(dp) :: seconds, peak
         integer :: n
 
         call make_green_matrix(method, description, scene%dt, scene%truncation_tol, scene%n_steps, conv, accuracy, &
@@ -91,24 +104,74 @@ contains
             error%message = scene%file//': &convolution methods: '//error%message
             return
         end if
-        call cpu_time(start)
-        call run_multi_contact(conv, [(scene%law, n=1, scene%n_points)], heights, &
-                               [(scene%preload/scene%n_points, n=1, scene%n_points)], response, run_error)
-        call cpu_time(finish)
-        ! A failed step keeps the rows computed before it: write them, then report.
-        path = output_path(scene, method)
-        call write_multi_contact(path, 'greenconv tyre/road scene '//scene%name//', method '//method, positions, &
-                                 response, error)
+        call stream_method(scene, method, conv, positions, road_positions, block, seconds, peak, error)
         if (allocated(error)) return
-        if (allocated(run_error)) then
-            call move_alloc(run_error, error)
-            error%message = scene%file//': '//method//': '//error%message//' (rows up to then in '//path//')'
-            return
-        end if
         call conv%model_size(n, label)
         write (unit, '(a,t12,a,t24,i10,t36,f10.4,t48,a)') method, label//'='//int_text(n), scene%n_steps, &
-            finish - start, accuracy//'; peak total force '//sci_text(maxval(response%total_force))//' N'
+            seconds, accuracy//'; peak total force '//sci_text(peak)//' N'
     end subroutine run_method
+
+    !> One method's run, streamed in blocks of `block` steps into its file; `seconds` is the
+    !> CPU time of the contact loop, `peak` the largest total force [N]. A failed step keeps
+    !> the rows written before it: the file is completed and `error` names it.
+    subroutine stream_method(scene, method, conv, positions, road_positions, block, seconds, peak, error)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        class(multipoint_convolver), intent(inout) :: conv
+        real(dp), intent(in) :: positions(:), road_positions(:)
+        integer, intent(in) :: block
+        real(dp), intent(out) :: seconds, peak
+        type(error_type), allocatable, intent(out) :: error
+
+        type(multi_contact_state) :: state
+        type(multi_contact_response) :: response
+        type(column_writer) :: writer
+        type(progress_meter) :: meter
+        type(error_type), allocatable :: fault
+        real(dp), allocatable :: heights(:, :)
+        integer(int64) :: first
+        real(dp) :: start, finish
+        integer :: m, n
+
+        seconds = 0.0_dp
+        peak = -huge(1.0_dp)
+        call start_multi_contact(conv, [(scene%law, n=1, scene%n_points)], &
+                                 [(scene%preload/scene%n_points, n=1, scene%n_points)], state, error, &
+                                 newton_options(max_displacement=scene%contact%divergence_bound))
+        if (allocated(error)) return
+        call open_columns(writer, output_path(scene, method), multi_contact_header(title(scene, method)), 7, &
+                          error)
+        if (allocated(error)) return
+        call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
+        do while (state%step < scene%n_steps)
+            first = state%step
+            m = int(min(int(block, int64), scene%n_steps - first))
+            call sample_road_steps(scene%road_data, road_positions, scene%speed, scene%dt, first, m, heights)
+            call cpu_time(start)
+            call multi_contact_block(conv, state, heights, response, fault)
+            call cpu_time(finish)
+            seconds = seconds + (finish - start)
+            if (size(response%total_force) > 0) peak = max(peak, maxval(response%total_force))
+            call append_rows(writer, multi_contact_table(positions, response, first_kept(first, scene%output_every), &
+                                                         scene%output_every), error)
+            if (allocated(error) .or. allocated(fault)) exit
+            call update_progress(meter, state%step)
+        end do
+        call finish_progress(meter, state%step)
+        call close_run_file(writer, fault, scene%file//': '//method//': ', error)
+    end subroutine stream_method
+
+    !> First header line of a method's file; with `output_every` > 1, which steps the rows are.
+    function title(scene, method) result(line)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: line
+
+        line = 'greenconv tyre/road scene '//scene%name//', method '//method
+        if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
+                                           //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
+                                           //', ...)'
+    end function title
 
     !> The Green's matrix of a method and what it neglects, in words.
     subroutine make_green_matrix(method, description, dt, tol, n_steps, conv, accuracy, error)

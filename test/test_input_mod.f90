@@ -328,7 +328,7 @@ contains
                         //"&structure model = ""sdof"", mass = 1., stiffness = 1e6,"//nl &
                         //'    damping_ratio = 0.02 /'//nl &
                         //"&road profile = 'sine' /"//nl//'&contact stiffness = 1.0e6 exponent = 1.5 /'//nl &
-                        //"&convolution methods = 2*'direct', methods(3) = 'modal',"//nl &
+                        //"&convolution methods = 'direct', methods(3) = 'modal',"//nl &
                         //"  truncation_tol = 0.01 /"//nl//'! the end')
         call read_scene(scratch//'/valid.nml', scene, input_error)
         if (allocated(input_error)) then
@@ -336,10 +336,18 @@ contains
             return
         end if
         call check(error, scene%dt == 1.0e-4_dp .and. scene%n_steps == 2000 .and. scene%model == 'sdof' .and. &
-                   size(scene%methods) == 3, 'values read')
+                   size(scene%methods) == 2, 'values read')
         if (allocated(error)) return
-        call check(error, scene%methods(2) == 'direct' .and. scene%methods(3) == 'modal', &
-                   'repeat count and element: direct, direct, modal')
+        call check(error, scene%methods(1) == 'direct' .and. scene%methods(2) == 'modal', &
+                   'element: direct, (blank), modal gives direct, modal')
+        if (allocated(error)) return
+        ! A repeat count is read as that many values: three times the same method is refused.
+        call write_text(scratch//'/repeat.nml', tab1_scene(convolution="methods = 3*'direct'"))
+        call read_scene(scratch//'/repeat.nml', scene, input_error)
+        call check(error, allocated(input_error), 'a method listed three times by a repeat count is refused')
+        if (allocated(error)) return
+        call check(error, index(input_error%message, "&convolution methods: expected each method once (its file " &
+                                //"would be written twice), found 'direct'") > 0, input_error%message)
     end subroutine test_valid_syntax
 
     !> A scene identifying the receptance file scratch/name.
@@ -426,7 +434,7 @@ contains
         call make_directory(scratch, ignored)
         call write_rows('decreasing.dat', '# x h;0 0;0.1 1e-4;0.05 0;0.2 0')
         call expect_error(error, 'decreasing.nml', road_scene('decreasing.dat'), [character(len=piece) :: &
-                          where//'/decreasing.dat:4: expected x above 0.1', '(x must increase), found 0.5'])
+                          where//'/decreasing.dat:4: expected x above 0.1', '(x must increase), found 5.0E-02'])
         if (allocated(error)) return
         call write_rows('garbage.dat', '0 0;0.1 high')
         call expect_error(error, 'garbage.nml', road_scene('garbage.dat'), [character(len=piece) :: &
@@ -434,8 +442,8 @@ contains
         if (allocated(error)) return
         call write_rows('short.dat', '0 0;0.1 1e-4')
         call expect_error(error, 'short.nml', road_scene('short.dat'), [character(len=piece) :: &
-                          ':3: &road x_start, speed: expected a run within '//scratch//'/short.dat (the run needs ' &
-                          //'x from 0', 'found a road from 0', ' m to 0.1'])
+                          ':3: &road x_start: '//scratch//'/short.dat: expected a road from x = 0.0 m to ' &
+                          //'0.1999 m (the run)', 'found 0.0 m to 0.1 m'])
     end subroutine test_road_files
 
     !> The Tab. 1 scene on a road file, 2000 steps at 1 m/s (0.2 m of road).

@@ -435,8 +435,9 @@ contains
                                                         //'speed = 1.0e4'), scene, run_error)
         call check(error, allocated(run_error), 'a single point running off the road file is refused')
         if (allocated(error)) return
-        call check(error, index(run_error%message, '&road x_start, speed: expected a run within ' &
-                                //'data/road_sample.dat') > 0, 'message: '//run_error%message)
+        call check(error, index(run_error%message, '&road x_start: data/road_sample.dat: expected a road from ' &
+                                //'x = 0.0 m to 1999.0 m (the run), found 0.0 m to 10.0 m') > 0, &
+                   'message: '//run_error%message)
     end subroutine test_tyre_bad
 
 end module test_scene_mod
