@@ -1,10 +1,12 @@
 !> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
 !> (scene_schema_mod), any group replaced or left out, and a writer of small text files.
 module scene_text_mod
+    use files_mod, only: make_directory
+    use greenconv, only: scene_type, read_scene, error_type
     implicit none
     private
 
-    public :: tab1_scene, write_text, omit
+    public :: tab1_scene, write_text, read_scene_text, omit
 
     !> Passed as a group's body: leave the group out.
     character(len=*), parameter :: omit = '-'
@@ -66,5 +68,24 @@ contains
         write (unit, '(a)') text
         close (unit)
     end subroutine write_text
+
+    !> Write `text` as the scene file directory/name (the directory made if missing) and read it.
+    subroutine read_scene_text(directory, name, text, scene, error)
+        !> Directory of the file.
+        character(len=*), intent(in) :: directory
+        !> File name.
+        character(len=*), intent(in) :: name
+        !> The scene's text.
+        character(len=*), intent(in) :: text
+        !> The scene read.
+        type(scene_type), intent(out) :: scene
+        !> Set when read_scene refuses it.
+        type(error_type), allocatable, intent(out) :: error
+
+        call make_directory(directory, error)
+        if (allocated(error)) return
+        call write_text(directory//'/'//name, text)
+        call read_scene(directory//'/'//name, scene, error)
+    end subroutine read_scene_text
 
 end module scene_text_mod

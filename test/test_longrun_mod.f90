@@ -6,7 +6,7 @@ module test_longrun_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use files_mod, only: make_directory
+    use scene_text_mod, only: tab1_scene, read_scene_text
     use progress_mod, only: progress_meter, start_progress, progress_line, progress_due
     use greenconv, only: scene_type, read_scene, run_scene, error_type, stat_numerical, convolver, &
                          contact_law, contact_options, contact_response, run_contact, contact_state, &
@@ -72,13 +72,8 @@ contains
         type(scene_type) :: scene
 
         type(error_type), allocatable :: failure
-        integer :: unit
 
-        call make_directory(scratch, failure)
-        open (newunit=unit, file=scratch//'/'//name, status='replace', action='write')
-        write (unit, '(a)') text
-        close (unit)
-        call read_scene(scratch//'/'//name, scene, failure)
+        call read_scene_text(scratch, name, text, scene, failure)
         if (allocated(failure)) error stop 'test_longrun_mod: '//failure%message
     end function scene_from_text
 
@@ -291,15 +286,15 @@ contains
     subroutine test_block_files(error)
         type(test_error), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: sdof_text = "&scene name = 'sdof', output_dir = '"//scratch//"', " &
-            //"dt = 1.0e-4, n_steps = 2000 / &structure model = 'sdof', mass = 1.0, stiffness = 1.0e6, " &
-            //"damping_ratio = 0.02 / &road profile = 'sine' / &contact stiffness = 1.0e6, exponent = 1.5, " &
-            //"scheme = 'implicit' / &convolution methods = 'direct', 'exact' /"
+        character(len=:), allocatable :: sdof_text
         character(len=*), parameter :: tyre_text = "&scene name = 'tyre', output_dir = '"//scratch//"', " &
             //"dt = 2.0e-5, n_steps = 300 / &structure model = 'tyre', f_modes = 1000.0 / &road profile = " &
             //"'file', road_file = 'data/road_sample.dat', x_start = 1.0, speed = 20.0 / &contact n_points = 5, " &
             //"stiffness = 2.0e5, exponent = 1.0, preload = 1000.0 / &convolution methods = 'exact', 'modal' /"
 
+        sdof_text = tab1_scene(scene="name = 'sdof', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 2000", &
+                               contact="stiffness = 1.0e6, exponent = 1.5, scheme = 'implicit'", &
+                               convolution="methods = 'direct', 'exact'")
         call check_files(scene_from_text('sdof.nml', sdof_text), ['direct', 'exact '], error)
         if (.not. allocated(error)) call check_files(scene_from_text('tyre.nml', tyre_text), ['exact', 'modal'], error)
     end subroutine test_block_files
@@ -357,15 +352,14 @@ contains
     subroutine test_output_every(error)
         type(test_error), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: text = "&scene name = 'every', output_dir = '"//scratch//"', " &
-            //"dt = 1.0e-4, n_steps = 100, output_every = OUT / &structure model = 'sdof', mass = 1.0, " &
-            //"stiffness = 1.0e6, damping_ratio = 0.02 / &road profile = 'sine' / &contact stiffness = 1.0e6, " &
-            //"exponent = 1.5 / &convolution methods = 'modal' /"
+        character(len=:), allocatable :: text
         character(len=*), parameter :: path = scratch//'/every_modal.dat'
         type(error_type), allocatable :: failure
         character(len=256), allocatable :: all_rows(:), some_rows(:)
         integer :: j
 
+        text = tab1_scene(scene="name = 'every', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 100, " &
+                          //'output_every = OUT', convolution="methods = 'modal'")
         call run_blocked(scene_from_text('every1.nml', replace_mark(text, '1')), 10, failure)
         call read_lines(path, all_rows)
         if (.not. allocated(failure)) call run_blocked(scene_from_text('every7.nml', replace_mark(text, '7')), 10, &
@@ -402,10 +396,7 @@ contains
     subroutine test_divergence(error)
         type(test_error), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: sdof_text = "&scene name = 'stiff', output_dir = '"//scratch//"', " &
-            //"dt = 1.0e-4, n_steps = 2000 / &structure model = 'sdof', mass = 1.0, stiffness = 1.0e6, " &
-            //"damping_ratio = 0.02 / &road profile = 'sine' / &contact stiffness = 1.0e9, exponent = 1.0 / " &
-            //"&convolution methods = 'modal' /"
+        character(len=:), allocatable :: sdof_text
         character(len=*), parameter :: tyre_text = "&scene name = 'bound', output_dir = '"//scratch//"', " &
             //"dt = 2.0e-5, n_steps = 300 / &structure model = 'tyre', f_modes = 1000.0 / &road profile = " &
             //"'file', road_file = 'data/road_sample.dat', x_start = 1.0, speed = 20.0 / &contact n_points = 4, " &
@@ -415,6 +406,8 @@ contains
         type(error_type), allocatable :: failure
         integer :: step
 
+        sdof_text = tab1_scene(scene="name = 'stiff', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 2000", &
+                               contact='stiffness = 1.0e9, exponent = 1.0', convolution="methods = 'modal'")
         call run_blocked(scene_from_text('stiff.nml', sdof_text), 10, failure)
         call check(error, allocated(failure), 'the stiff run is stopped')
         if (allocated(error)) return
@@ -551,10 +544,7 @@ contains
     subroutine test_hundred_million(error)
         type(test_error), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: text = "&scene name = 'long', output_dir = '"//scratch//"', " &
-            //"dt = 1.0e-4, n_steps = 100000000, output_every = 1000000 / &structure model = 'sdof', " &
-            //"mass = 1.0, stiffness = 1.0e6, damping_ratio = 0.02 / &road profile = 'sine' / " &
-            //"&contact stiffness = 1.0e6, exponent = 1.0, scheme = 'implicit' / &convolution methods = 'exact' /"
+        character(len=:), allocatable :: text
         real(dp), parameter :: h = 1.0e-4_dp, stiffness = 1.0e6_dp, k_c = 1.0e6_dp
         type(scene_type) :: scene
         type(error_type), allocatable :: failure
@@ -563,6 +553,9 @@ contains
         integer(int64) :: before_kb, peak_kb, clock_start, clock_end, clock_rate
         logical :: measured
 
+        text = tab1_scene(scene="name = 'long', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 100000000, " &
+                          //'output_every = 1000000', contact="stiffness = 1.0e6, exponent = 1.0, scheme = 'implicit'", &
+                          convolution="methods = 'exact'")
         scene = scene_from_text('long.nml', text)
         scene%progress = .false.
         deallocate (scene%road)

@@ -4,8 +4,7 @@
 module test_scene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use files_mod, only: make_directory
-    use scene_text_mod, only: tab1_scene
+    use scene_text_mod, only: tab1_scene, read_scene_text
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
                          convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
                          write_frf, structure_from_modes, modal_set, error_e, run_scene
@@ -35,20 +34,13 @@ contains
                      new_unittest('tyre scene: bad combinations get one message each', test_tyre_bad)]
     end subroutine collect_scene
 
-    !> Write `text` as a scene file and read it.
+    !> Write `text` as a scene file in the scratch directory and read it.
     subroutine scene_from_text(name, text, scene, error)
         character(len=*), intent(in) :: name, text
         type(scene_type), intent(out) :: scene
         type(error_type), allocatable, intent(out) :: error
 
-        type(error_type), allocatable :: ignored
-        integer :: unit
-
-        call make_directory(scratch, ignored)
-        open (newunit=unit, file=scratch//'/'//name, status='replace', action='write')
-        write (unit, '(a)') text
-        close (unit)
-        call read_scene(scratch//'/'//name, scene, error)
+        call read_scene_text(scratch, name, text, scene, error)
     end subroutine scene_from_text
 
     subroutine test_defaults(error)
