@@ -554,7 +554,8 @@ contains
         logical :: measured
 
         text = tab1_scene(scene="name = 'long', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 100000000, " &
-                          //'output_every = 1000000', contact="stiffness = 1.0e6, exponent = 1.0, scheme = 'implicit'", &
+                          //'output_every = 1000000', &
+                          contact="stiffness = 1.0e6, exponent = 1.0, scheme = 'implicit'", &
                           convolution="methods = 'exact'")
         scene = scene_from_text('long.nml', text)
         scene%progress = .false.
