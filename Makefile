@@ -6,7 +6,7 @@
 #   make lib        plain build with the compiler alone, no fpm: build/make/libgreenconv.a and
 #                   libgreenconv.so, module files in build/make/include/, the driver
 #                   build/make/greenconv (compiled with OpenMP, which makes FFTW's planner
-#                   thread-safe; see src/fftw_mod.f90)
+#                   thread-safe; see src/greenconv/ext/fftw.f90)
 #   make examples   the library examples against the plain build: example/c_contact.c (C),
 #                   example/cxx_header.cpp (C++, when $(CXX) exists), example/legacy_f77.f
 #                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads)
@@ -51,7 +51,7 @@ endif
 FC ?= gfortran
 FFLAGS ?= -O2 -g -std=f2018 -Wall -Wextra -Wimplicit-interface -fimplicit-none
 # The library is compiled position-independent (for libgreenconv.so) and with OpenMP: its
-# only directives are the critical sections around FFTW's planner (src/fftw_mod.f90), and
+# only directives are the critical sections around FFTW's planner (src/greenconv/ext/fftw.f90), and
 # OpenMP also keeps every local variable on the stack (re-entrant). OMPFLAGS= turns it off.
 PICFLAGS ?= -fPIC
 OMPFLAGS ?= -fopenmp

@@ -28,16 +28,18 @@
 !>   and against the ODE reference, one row per truncation tolerance.
 module bench_accuracy_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use kinds_mod, only: dp
-    use error_mod, only: error_type, fatal_error, stat_numerical
-    use convolver_mod, only: convolver, free_convolver
-    use conv_direct_mod, only: new_direct_convolver, sample_kernel
-    use contact_mod, only: contact_response, run_contact
-    use contact_reference_mod, only: contact_reference
-    use scene_mod, only: scene_type
-    use structure_mod, only: structure_model, build_structure
-    use scene_run_mod, only: make_convolver
-    use files_mod, only: write_columns, make_directory
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_numerical
+    use greenconv_conv_convolver, only: convolver, free_convolver
+    use greenconv_conv_direct, only: new_direct_convolver
+    use greenconv_conv_kernel, only: sample_kernel
+    use greenconv_contact_single, only: contact_response, run_contact
+    use greenconv_verify_contact, only: contact_reference
+    use greenconv_scene_input, only: scene_type
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_runner, only: make_convolver
+    use greenconv_io_files, only: write_columns, make_directory
     use bench_tables_mod, only: load_scene
     use bench_timing_mod, only: contact_seconds
     implicit none

@@ -4,15 +4,15 @@
 !> t = ln(huge)/(xi*omega) = 709.78/(xi*omega); and whether `recursive` and `exact` stay
 !> finite and on their step responses in closed form at the end of the same runs.
 module bench_stability_mod
-    use kinds_mod, only: dp
+    use greenconv_core_kinds, only: dp
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use error_mod, only: error_type
-    use convolver_mod, only: convolver
-    use modal_set_mod, only: modal_set
-    use sdof_mod, only: sdof_modes
-    use conv_modal_mod, only: new_paper_convolver
-    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver
-    use files_mod, only: write_columns
+    use greenconv_core_error, only: error_type
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_conv_paper, only: new_paper_convolver
+    use greenconv_conv_recursive, only: new_recursive_convolver, new_exact_convolver
+    use greenconv_io_files, only: write_columns
     implicit none
     private
 

@@ -5,17 +5,19 @@
 !> Every time is the CPU time of a whole contact run (`run_contact`: history, contact law,
 !> push, stored histories), as in the paper, averaged over repeats of at least 0.25 s.
 module bench_tables_mod
-    use kinds_mod, only: dp
-    use error_mod, only: error_type
-    use convolver_mod, only: convolver, free_convolver
-    use conv_direct_mod, only: new_direct_convolver, lane_dot
-    use conv_modal_mod, only: new_paper_convolver
-    use conv_recursive_mod, only: new_recursive_convolver
-    use conv_fft_mod, only: new_fft_convolver
-    use contact_mod, only: contact_response
-    use scene_mod, only: scene_type, read_scene
-    use structure_mod, only: structure_model, build_structure
-    use scene_run_mod, only: make_convolver
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_conv_convolver, only: convolver, free_convolver
+    use greenconv_conv_direct, only: new_direct_convolver
+    use greenconv_conv_kernel, only: lane_dot
+    use greenconv_conv_paper, only: new_paper_convolver
+    use greenconv_conv_recursive, only: new_recursive_convolver
+    use greenconv_conv_fft, only: new_fft_convolver
+    use greenconv_contact_single, only: contact_response
+    use greenconv_scene_input, only: scene_type, read_scene
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_runner, only: make_convolver
     use bench_timing_mod, only: contact_seconds, step_seconds
     implicit none
     private

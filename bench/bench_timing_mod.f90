@@ -1,9 +1,9 @@
 !> Timing helpers of the benchmark: CPU seconds of a contact run or of bare convolver steps,
 !> repeated until the total is long enough for cpu_time to resolve it.
 module bench_timing_mod
-    use kinds_mod, only: dp
-    use convolver_mod, only: convolver
-    use contact_mod, only: contact_law, contact_response, run_contact
+    use greenconv_core_kinds, only: dp
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_contact_single, only: contact_law, contact_response, run_contact
     implicit none
     private
 

@@ -8,12 +8,12 @@
 !> directory: `make bench`).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-    use error_mod, only: error_type
+    use greenconv_core_error, only: error_type
     use bench_tables_mod, only: print_tables
     use bench_stability_mod, only: overflow_map
-    use contact_stability_mod, only: stability_map
-    use multi_bench_mod, only: multipoint_cost_table
-    use files_mod, only: make_directory
+    use greenconv_bench_stability, only: stability_map
+    use greenconv_bench_multipoint, only: multipoint_cost_table
+    use greenconv_io_files, only: make_directory
     use bench_accuracy_mod, only: accuracy_charts
     implicit none
 

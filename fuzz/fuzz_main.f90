@@ -19,8 +19,8 @@
 !> of each outcome are printed; the exit status is 1 when a case failed.
 program greenconv_fuzz
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-    use random_mod, only: random_stream
-    use text_mod, only: int_text
+    use greenconv_core_random, only: random_stream
+    use greenconv_core_text, only: int_text
     use mutation_mod, only: mutate, mutation_names, n_mutations
     implicit none
 

@@ -4,8 +4,8 @@
 !> repeated, a file cut short, a number replaced by a word, by a huge or a tiny value, by
 !> NaN or Inf, its sign changed, a delimiter lost, a garbage line inserted.
 module mutation_mod
-    use kinds_mod, only: dp
-    use random_mod, only: random_stream
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_random, only: random_stream
     implicit none
     private
 

@@ -11,7 +11,7 @@
  * Conventions.
  * - Functions return a status: GC_OK (0) on success, GC_ERROR_INPUT (2) for a bad value,
  *   file or NULL handle, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit).
- *   These are the status codes of the library's Fortran error type (error_mod).
+ *   These are the status codes of the library's Fortran error type (greenconv_core_error).
  * - Functions that take `char *errmsg, size_t errmsg_len` write a one-line message there on
  *   failure (empty on success), truncated to errmsg_len - 1 bytes and NUL-terminated;
  *   errmsg may be NULL. There is no global "last error": nothing is kept between calls.

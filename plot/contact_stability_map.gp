@@ -1,6 +1,6 @@
 # Stability map of the contact step: where the explicit and the implicit step stay bounded,
 # and how far each is from a fine-dt reference, over the contact stiffness k_c and the time
-# step dt (SDOF scene of Tab. 1, `exact` engine; contact_stability_mod's stability_map).
+# step dt (SDOF scene of Tab. 1, `exact` engine; greenconv_bench_stability's stability_map).
 #
 #   gnuplot plot/contact_stability_map.gp
 #   gnuplot -e "benchdir='out/bench'; figdir='out/figures'" plot/contact_stability_map.gp
@@ -13,7 +13,7 @@
 # One panel per scheme; each cell is a tile coloured by log10 of the relative L2 error of u,
 # a black cross where the run was stopped as divergent. The lines mark omega_c*dt = 2 (edge
 # of the explicit step) and omega_c*dt = 2*sqrt(3) (edge of the implicit step with the
-# first-order hold), both from the linear analysis in contact_mod.
+# first-order hold), both from the linear analysis in greenconv_contact_single.
 
 if (!exists("benchdir")) benchdir = 'out/bench'
 if (!exists("figdir")) figdir = 'out/figures'

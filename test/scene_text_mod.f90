@@ -1,7 +1,7 @@
 !> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
-!> (scene_schema_mod), any group replaced or left out, and a writer of small text files.
+!> (greenconv_scene_schema), any group replaced or left out, and a writer of small text files.
 module scene_text_mod
-    use files_mod, only: make_directory
+    use greenconv_io_files, only: make_directory
     use greenconv, only: scene_type, read_scene, error_type
     implicit none
     private

@@ -5,7 +5,7 @@
 module test_contact_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use ode_reference_mod, only: ode_system, integrate
+    use greenconv_verify_ode, only: ode_system, integrate
     use greenconv, only: convolver, contact_law, contact_response, run_contact, sdof_modes, &
                          make_convolver, error_type, sine_road, structure_from_modes, &
                          contact_reference
@@ -34,7 +34,7 @@ module test_contact_mod
 
 contains
 
-    !> Tests of contact_mod on the SDOF scene.
+    !> Tests of greenconv_contact_single on the SDOF scene.
     subroutine collect_contact(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

@@ -25,7 +25,7 @@ module test_convolution_mod
 
 contains
 
-    !> Tests of conv_direct_mod and conv_modal_mod.
+    !> Tests of greenconv_conv_direct and greenconv_conv_paper.
     subroutine collect_convolution(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

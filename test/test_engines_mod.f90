@@ -1,5 +1,5 @@
 !> The convolution engines of issue 4 against each other and against closed forms:
-!> `paper` (conv_modal_mod, eqs. 15-17), `recursive`, `exact` and `backward` (conv_recursive_mod).
+!> `paper` (greenconv_conv_paper, eqs. 15-17), `recursive`, `exact` and `backward` (greenconv_conv_recursive).
 !>
 !> Tolerances:
 !> - `recursive` is `paper` without its growth factors: equal to 1e-12 of max|u|, the
@@ -15,12 +15,12 @@ module test_engines_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use duhamel_mod, only: step_response, sine_response, ramp_response
-    use random_mod, only: random_stream
-    use modal_set_mod, only: modal_set, random_modes
-    use sdof_mod, only: sdof_modes, sdof_impulse
-    use convolver_mod, only: convolver
-    use conv_modal_mod, only: new_paper_convolver
-    use conv_recursive_mod, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver, &
+    use greenconv_core_random, only: random_stream
+    use greenconv_model_modal_set, only: modal_set, random_modes
+    use greenconv_model_sdof, only: sdof_modes, sdof_impulse
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_paper, only: new_paper_convolver
+    use greenconv_conv_recursive, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver, &
                                   hold_functions
     implicit none
     private

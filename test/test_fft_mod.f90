@@ -1,4 +1,4 @@
-!> The `fft` engine (conv_fft_mod) against `direct` (conv_direct_mod), which sums the same
+!> The `fft` engine (greenconv_conv_fft) against `direct` (greenconv_conv_direct), which sums the same
 !> truncated kernel w_0 = dt*g_0, w_j = dt*g_j (j = 1..N_g) with the same one step of latency.
 !>
 !> Tolerance: 1e-12 relative, max|u_fft - u_direct|/max|u_direct| over the run, with
@@ -14,12 +14,13 @@ module test_fft_mod
     use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use random_mod, only: random_stream
-    use sdof_mod, only: sdof_modes
-    use conv_direct_mod, only: direct_convolver, new_direct_convolver, sample_kernel
-    use conv_fft_mod, only: fft_convolver, new_fft_convolver, default_head
-    use fftw_mod, only: fft_plan_set, forward_real_fft
-    use error_mod, only: error_type
+    use greenconv_core_random, only: random_stream
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_conv_direct, only: direct_convolver, new_direct_convolver
+    use greenconv_conv_kernel, only: sample_kernel
+    use greenconv_conv_fft, only: fft_convolver, new_fft_convolver, default_head
+    use greenconv_ext_fftw, only: fft_plan_set, forward_real_fft
+    use greenconv_core_error, only: error_type
     implicit none
     private
 

@@ -2,7 +2,7 @@
 !> against something that does not share the step under test: the explicit step where the
 !> two must agree, closed forms of the linear contact (static balance, steady state through
 !> the combined receptance), and the state-space ODE of the oscillator on its contact spring
-!> integrated by the adaptive Dormand-Prince 5(4) pair (contact_reference_mod).
+!> integrated by the adaptive Dormand-Prince 5(4) pair (greenconv_verify_contact).
 module test_implicit_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -26,7 +26,7 @@ module test_implicit_mod
 
 contains
 
-    !> Tests of the implicit step and of contact_stability_mod.
+    !> Tests of the implicit step and of greenconv_bench_stability.
     subroutine collect_implicit(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

@@ -7,7 +7,7 @@ module test_input_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
-    use files_mod, only: make_directory
+    use greenconv_io_files, only: make_directory
     use scene_text_mod, only: tab1_scene, write_text, omit
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
                          structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
@@ -24,7 +24,7 @@ module test_input_mod
 
 contains
 
-    !> Tests of namelist_scan_mod, scene_schema_mod, scene_mod's checks and the file readers.
+    !> Tests of greenconv_scene_scan, greenconv_scene_schema, greenconv_scene_input's checks and the file readers.
     subroutine collect_input(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

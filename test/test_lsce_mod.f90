@@ -1,5 +1,5 @@
-!> LSCE identification (lsce_mod), the FRF type and reader (frf_mod) and the FFT
-!> scaling (fftw_mod), each against the modes that generated the data.
+!> LSCE identification (greenconv_ident_lsce), the FRF type and reader (greenconv_model_frf) and the FFT
+!> scaling (greenconv_ext_fftw), each against the modes that generated the data.
 !>
 !> Grid of the noise-free tests: f_max = 500 Hz, 4001 lines (df = 0.125 Hz, period
 !> 1/df = 8 s, dt = 1 ms). Every mode decays below 1 % of its peak well within 0.9 of the
@@ -8,13 +8,13 @@
 module test_lsce_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use error_mod, only: error_type
-    use modal_set_mod, only: modal_set, modes_from_paper
-    use sdof_mod, only: sdof_impulse, sdof_receptance
-    use random_mod, only: random_stream
-    use fftw_mod, only: forward_real_fft
-    use frf_mod, only: frf_type, frf_from_modes, read_frf, write_frf
-    use lsce_mod, only: lsce_options, lsce_result, identify, impulse_from_frf, paper_form, &
+    use greenconv_core_error, only: error_type
+    use greenconv_model_modal_set, only: modal_set, modes_from_paper
+    use greenconv_model_sdof, only: sdof_impulse, sdof_receptance
+    use greenconv_core_random, only: random_stream
+    use greenconv_ext_fftw, only: forward_real_fft
+    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, write_frf
+    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf, paper_form, &
                         natural_frequency, damping_ratio
     implicit none
     private
@@ -29,7 +29,7 @@ module test_lsce_mod
 
 contains
 
-    !> Tests of lsce_mod, frf_mod and fftw_mod.
+    !> Tests of greenconv_ident_lsce, greenconv_model_frf and greenconv_ext_fftw.
     subroutine collect_lsce(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
@@ -434,7 +434,7 @@ contains
 
     !> Complex residues of both signs of Re r (non-proportional damping): the identified
     !> residues, G from the identified modal_set (its own `receptance`, the convention of
-    !> modal_set_mod) on and between the grid lines, and g(t) from its `impulse`.
+    !> greenconv_model_modal_set) on and between the grid lines, and g(t) from its `impulse`.
     subroutine test_residues(error)
         type(test_error), allocatable, intent(out) :: error
 

@@ -2,7 +2,7 @@
 !> multi-point contact loop, the tyre model, road files and the cost table.
 !>
 !> Tolerances, each against something computed another way:
-!> - one point: the same arithmetic as contact_mod's loop, so equal to 1e-15 of the peak
+!> - one point: the same arithmetic as greenconv_contact_single's loop, so equal to 1e-15 of the peak
 !>   (in practice bit for bit); a driving point of many modes, where the multi-point engine
 !>   sums phi*(phi*q) and the single-point one phi^2*q: 1e-12 of the peak, a few hundred
 !>   roundings (one per mode and step of memory) of a stable recursion;
@@ -20,25 +20,28 @@
 module test_multicontact_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use files_mod, only: make_directory
-    use error_mod, only: error_type, stat_input, stat_numerical
-    use text_mod, only: int_text
-    use random_mod, only: random_stream
-    use sdof_mod, only: sdof_modes
-    use modal_set_mod, only: modal_set
-    use lapack_mod, only: solve_linear, least_squares
-    use conv_direct_mod, only: direct_convolver, new_direct_convolver, sample_kernel
-    use conv_recursive_mod, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
-    use contact_mod, only: contact_law, contact_response, run_contact
-    use road_mod, only: sine_road, random_road, new_random_road
-    use column_file_mod, only: read_columns
-    use green_matrix_mod, only: multipoint_convolver, point_modes, sample_green_matrix
-    use green_modal_mod, only: modal_green_matrix, new_modal_green_matrix
-    use green_sampled_mod, only: sampled_green_matrix, new_sampled_green_matrix
-    use multi_contact_mod, only: newton_options, multi_contact_response, run_multi_contact, write_multi_contact
-    use tyre_model_mod, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
-    use road_file_mod, only: road_file, read_road_file, sample_road_file
-    use multi_bench_mod, only: multipoint_cost_table
+    use greenconv_io_files, only: make_directory
+    use greenconv_core_error, only: error_type, stat_input, stat_numerical
+    use greenconv_core_text, only: int_text
+    use greenconv_core_random, only: random_stream
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_ext_lapack, only: solve_linear, least_squares
+    use greenconv_conv_direct, only: direct_convolver, new_direct_convolver
+    use greenconv_conv_kernel, only: sample_kernel
+    use greenconv_conv_recursive, only: recursive_convolver, new_recursive_convolver, new_exact_convolver
+    use greenconv_contact_single, only: contact_law, contact_response, run_contact
+    use greenconv_model_road, only: sine_road, random_road, new_random_road
+    use greenconv_io_columns, only: read_columns
+    use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
+    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
+    use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
+    use greenconv_scene_output, only: write_multi_contact
+    use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
+    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file
+    use greenconv_bench_multipoint, only: multipoint_cost_table
     implicit none
     private
 

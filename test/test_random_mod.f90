@@ -3,7 +3,7 @@
 module test_random_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
-    use random_mod, only: random_stream
+    use greenconv_core_random, only: random_stream
     use greenconv, only: modal_set, random_modes, random_road, new_random_road
     implicit none
     private
@@ -12,7 +12,7 @@ module test_random_mod
 
 contains
 
-    !> Tests of random_mod, the random road of eq. (35) and random_modes.
+    !> Tests of greenconv_core_random, the random road of eq. (35) and random_modes.
     subroutine collect_random(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

@@ -18,7 +18,7 @@ module test_scene_mod
 
 contains
 
-    !> Tests of scene_mod, structure_mod and scene_run_mod.
+    !> Tests of greenconv_scene_input, greenconv_ident_structure and greenconv_scene_runner.
     subroutine collect_scene(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

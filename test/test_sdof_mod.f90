@@ -12,7 +12,7 @@ module test_sdof_mod
 
 contains
 
-    !> Tests of sdof_mod and modal_set_mod.
+    !> Tests of greenconv_model_sdof and greenconv_model_modal_set.
     subroutine collect_sdof(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

@@ -1,0 +1,559 @@
+!> greenconv for Fortran 77 style programs: plain subroutines whose arguments are scalars,
+!> explicit-shape arrays and character strings only, so that fixed-form code calls them
+!> after a single `use greenconv_legacy`. Names are six letters, `GC` first.
+!>
+!> Types: `DOUBLE PRECISION` reals (SI units), default `INTEGER` counts and status codes,
+!> and an `INTEGER*8` handle for a convolver (as FFTW's legacy Fortran interface does for
+!> its plans): the address of an object made by a `GC...` constructor, 0 when there is none.
+!> Free it with `GCFREE`. There is no module state: handles are independent of each other.
+!>
+!> Status `IERR`: 0 success, 2 bad input (`stat_input`: a value, a file, a null handle),
+!> 3 numerical failure (`stat_numerical`); the C API (`greenconv_capi`, include/greenconv.h)
+!> uses the same codes. Routines that can fail on their inputs also return a message in
+!> `ERRMSG` (any length; truncated to fit, blank on success).
+!>
+!> Units: masses [kg], stiffnesses [N/m], contact stiffness k_c [N/m^p], time step [s],
+!> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
+!> impulse-response samples g [m/(N*s)], frequencies [Hz].
+module greenconv_legacy
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_fortran_env, only: int64, output_unit
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_input
+    use greenconv_core_text, only: lower_text
+    use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_contact_single, only: contact_law, contact_response, run_contact
+    use greenconv_model_frf, only: frf_type, read_frf
+    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, structure_from_frf
+    use greenconv_api_library, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
+    implicit none
+    private
+
+    public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
+    public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc
+    public :: gcstep, gccont, gcid, gcscen
+
+    !> Status of a call that succeeded.
+    integer, parameter :: stat_ok = 0
+
+    !> What a handle points to: one convolver and the words that describe its model.
+    type :: convolver_box
+        !> The convolver.
+        class(convolver), allocatable :: conv
+        !> What the model neglects (from `new_convolver`).
+        character(len=:), allocatable :: description
+    end type convolver_box
+
+contains
+
+    !> Convolver of a damped mass-spring system (section 3.1): mass M, stiffness K, damping
+    !> ratio xi; one exact mode.
+    subroutine gcsdof(mass, stiff, xi, dt, nstep, method, handle, ierr, errmsg)
+        !> Mass M [kg], > 0.
+        real(dp), intent(in) :: mass
+        !> Stiffness K [N/m], > 0.
+        real(dp), intent(in) :: stiff
+        !> Damping ratio xi, 0 <= xi < 1.
+        real(dp), intent(in) :: xi
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Method: 'direct', 'fft', 'modal', 'recursive', 'paper', 'exact' or 'auto' (any case).
+        character(len=*), intent(in) :: method
+        !> The new convolver's handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+
+        handle = 0_int64
+        if (.not. (mass > 0.0_dp .and. ieee_is_finite(mass) .and. stiff > 0.0_dp .and. ieee_is_finite(stiff))) then
+            call fatal_error(error, 'gcsdof: the mass and the stiffness must be finite and > 0')
+        else if (.not. (xi >= 0.0_dp .and. xi < 1.0_dp)) then
+            call fatal_error(error, 'gcsdof: the damping ratio must be in [0, 1)')
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        call new_handle(method, structure_from_modes(sdof_modes(mass, stiff, xi)), dt, nstep, handle, ierr, errmsg)
+    end subroutine gcsdof
+
+    !> Convolver of a structure given by its modes in pole-residue form (greenconv_model_modal_set):
+    !> g(t) = sum_k 2*Re(r_k*exp(lambda_k*t)).
+    subroutine gcmode(nmode, polre, polim, resre, resim, dt, nstep, method, handle, ierr, errmsg)
+        !> Number of modes (conjugate pairs), >= 1.
+        integer, intent(in) :: nmode
+        !> Real parts of the poles lambda_k [rad/s], < 0.
+        real(dp), intent(in) :: polre(nmode)
+        !> Imaginary parts of the poles [rad/s], > 0.
+        real(dp), intent(in) :: polim(nmode)
+        !> Real parts of the residues r_k [m/(N*s)].
+        real(dp), intent(in) :: resre(nmode)
+        !> Imaginary parts of the residues [m/(N*s)].
+        real(dp), intent(in) :: resim(nmode)
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Method name (see `gcsdof`).
+        character(len=*), intent(in) :: method
+        !> The new convolver's handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(modal_set) :: modes
+
+        handle = 0_int64
+        if (nmode < 1) then
+            call fatal_error(error, 'gcmode: the number of modes must be >= 1')
+        else if (.not. all(polre < 0.0_dp .and. polim > 0.0_dp .and. ieee_is_finite(polre) &
+                           .and. ieee_is_finite(polim))) then
+            call fatal_error(error, 'gcmode: every pole needs a finite real part < 0 and imaginary part > 0 rad/s')
+        else if (.not. all(ieee_is_finite(resre) .and. ieee_is_finite(resim))) then
+            call fatal_error(error, 'gcmode: the residues must be finite')
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        allocate (modes%pole(nmode), modes%residue(nmode))
+        modes%pole(:) = cmplx(polre, polim, dp)
+        modes%residue(:) = cmplx(resre, resim, dp)
+        call new_handle(method, structure_from_modes(modes), dt, nstep, handle, ierr, errmsg)
+    end subroutine gcmode
+
+    !> Convolver of a structure known by its impulse response sampled at the time step:
+    !> methods 'direct' and 'fft' only.
+    subroutine gcsamp(nsamp, g, dt, nstep, method, handle, ierr, errmsg)
+        !> Number of samples, >= 2.
+        integer, intent(in) :: nsamp
+        !> Samples g(n*dt), n = 0..nsamp-1 [m/(N*s)].
+        real(dp), intent(in) :: g(nsamp)
+        !> Time step dt [s] of the samples and of the run, > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Method: 'direct' or 'fft'.
+        character(len=*), intent(in) :: method
+        !> The new convolver's handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+
+        handle = 0_int64
+        if (nsamp < 2) then
+            call fatal_error(error, 'gcsamp: at least two samples of g are needed')
+        else if (.not. all(ieee_is_finite(g))) then
+            call fatal_error(error, 'gcsamp: the samples of g must be finite')
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        call new_handle(method, structure_from_samples(g), dt, nstep, handle, ierr, errmsg)
+    end subroutine gcsamp
+
+    !> Convolver of a structure known by a receptance file (`#` comments, then columns
+    !> f [Hz], Re G, Im G [m/N] on a uniform grid from 0 Hz): modes identified by LSCE for the
+    !> modal methods, g by inverse FFT for 'direct' and 'fft' (dt a whole multiple of
+    !> 1/(2*f_max) then).
+    subroutine gcfrf(path, dt, nstep, method, tole, maxmod, handle, ierr, errmsg)
+        !> Path of the receptance file.
+        character(len=*), intent(in) :: path
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Method name (see `gcsdof`).
+        character(len=*), intent(in) :: method
+        !> Target of the identification error E of eq. (7), > 0 (1e-6 is usual).
+        real(dp), intent(in) :: tole
+        !> Largest number of modes the LSCE order scan tries, >= 1 (30 is usual).
+        integer, intent(in) :: maxmod
+        !> The new convolver's handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input, 3 failed identification.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(structure_model) :: structure
+        type(frf_type) :: frf
+        type(lsce_options) :: options
+        real(dp) :: dt_g
+
+        handle = 0_int64
+        call read_frf(trim(path), frf, error)
+        if (.not. allocated(error)) then
+            options%tol_e = tole
+            options%max_modes = maxmod
+            dt_g = 0.0_dp
+            if (any(lower_text(method) == [character(len=6) :: 'direct', 'fft', 'auto'])) dt_g = dt
+            call structure_from_frf(frf, options, dt_g, structure, error)
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg)
+    end subroutine gcfrf
+
+    !> Build a convolver for a structure and return its handle.
+    subroutine new_handle(method, structure, dt, nstep, handle, ierr, errmsg)
+        character(len=*), intent(in) :: method
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        integer, intent(in) :: nstep
+        integer(int64), intent(out) :: handle
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+
+        handle = 0_int64
+        allocate (box)
+        call new_convolver(lower_text(method), structure, dt, nstep, box%conv, error, description=box%description)
+        if (allocated(error)) then
+            deallocate (box)
+            call report(error, ierr, errmsg)
+            return
+        end if
+        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+        ierr = stat_ok
+        errmsg = ' '
+    end subroutine new_handle
+
+    !> Free a convolver (its FFTW plans too) and set its handle to 0; nothing for handle 0.
+    subroutine gcfree(handle)
+        !> The handle; 0 on return.
+        integer(int64), intent(inout) :: handle
+
+        type(convolver_box), pointer :: box
+
+        box => box_of(handle)
+        if (associated(box)) then
+            call free_convolver(box%conv)
+            deallocate (box)
+        end if
+        handle = 0_int64
+    end subroutine gcfree
+
+    !> History displacement u_h(n) [m]: the displacement at t_n from the forces pushed so far.
+    subroutine gchist(handle, uh, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> u_h(n) [m]; 0 on failure.
+        real(dp), intent(out) :: uh
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        uh = 0.0_dp
+        box => checked_box(handle, ierr)
+        if (associated(box)) uh = box%conv%history()
+    end subroutine gchist
+
+    !> Push the force q(t_n) [N] of the current step and advance to step n + 1.
+    subroutine gcpush(handle, q, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> Force q(t_n) [N] on the structure at this step.
+        real(dp), intent(in) :: q
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        box => checked_box(handle, ierr)
+        if (associated(box)) call box%conv%push(q)
+    end subroutine gcpush
+
+    !> Instantaneous weight w0 [m/N]: displacement per newton of the current step's own
+    !> force, u(t_n) = u_h(n) + w0*q(t_n) (0 for a mass-spring with the paper's scheme).
+    subroutine gcw0(handle, w0, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> w0 [m/N]; 0 on failure.
+        real(dp), intent(out) :: w0
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        w0 = 0.0_dp
+        box => checked_box(handle, ierr)
+        if (associated(box)) w0 = box%conv%instant_weight()
+    end subroutine gcw0
+
+    !> Forget every force pushed: back to step 0 (the structure at rest).
+    subroutine gcrset(handle, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        box => checked_box(handle, ierr)
+        if (associated(box)) call box%conv%reset()
+    end subroutine gcrset
+
+    !> Size of the convolver's model: N_g kernel samples ('direct', 'fft') or N_m modes.
+    subroutine gcsize(handle, nsize, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> N_g or N_m; 0 on failure.
+        integer, intent(out) :: nsize
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+        character(len=:), allocatable :: label
+
+        nsize = 0
+        box => checked_box(handle, ierr)
+        if (associated(box)) call box%conv%model_size(nsize, label)
+    end subroutine gcsize
+
+    !> The method's name, a colon and what its model neglects (for `auto`, what it chose).
+    subroutine gcdesc(handle, text, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> The description, truncated to fit; blank on failure.
+        character(len=*), intent(out) :: text
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        text = ' '
+        box => checked_box(handle, ierr)
+        if (associated(box)) text = box%conv%name//': '//box%description
+    end subroutine gcdesc
+
+    !> One explicit step of the contact loop (eqs. 20-24), as the driver takes it: from the
+    !> road height, the contact force and the body displacement of this step, the convolver
+    !> advanced. Start from a new or reset convolver (the body at rest under the preload).
+    subroutine gcstep(handle, kc, p, f0, road, u, f, delta, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> Contact stiffness k_c [N/m^p], > 0.
+        real(dp), intent(in) :: kc
+        !> Contact exponent p (1.5: Hertz, 1: linear), > 0.
+        real(dp), intent(in) :: p
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: f0
+        !> Road height u_r(t_n) [m].
+        real(dp), intent(in) :: road
+        !> Body displacement u(t_n) [m] from static equilibrium.
+        real(dp), intent(out) :: u
+        !> Contact force F(t_n) [N], >= 0.
+        real(dp), intent(out) :: f
+        !> Compression delta(t_n) [m] of the contact spring (<= 0: no contact).
+        real(dp), intent(out) :: delta
+        !> Status: 0 success, 2 null handle or bad contact law.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+
+        u = 0.0_dp
+        f = 0.0_dp
+        delta = 0.0_dp
+        box => checked_box(handle, ierr)
+        if (.not. associated(box)) return
+        call check_contact_law(contact_law(kc, p), f0, error)
+        if (allocated(error)) then
+            ierr = error%stat
+            return
+        end if
+        call contact_step(box%conv, contact_law(kc, p), road, f0, u, f, delta)
+    end subroutine gcstep
+
+    !> A whole contact run of nstep steps on a road profile (the convolver is reset first),
+    !> the same loop as the driver's: u, F and delta at t_n = n*dt, n = 0..nstep-1.
+    subroutine gccont(handle, kc, p, f0, nstep, road, u, f, delta, ierr, errmsg)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> Contact stiffness k_c [N/m^p], > 0.
+        real(dp), intent(in) :: kc
+        !> Contact exponent p (1.5: Hertz, 1: linear), > 0.
+        real(dp), intent(in) :: p
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: f0
+        !> Number of steps N_t, >= 1.
+        integer, intent(in) :: nstep
+        !> Road heights u_r(t_n) [m].
+        real(dp), intent(in) :: road(nstep)
+        !> Body displacements u(t_n) [m] from static equilibrium.
+        real(dp), intent(out) :: u(nstep)
+        !> Contact forces F(t_n) [N], >= 0.
+        real(dp), intent(out) :: f(nstep)
+        !> Compressions delta(t_n) [m] of the contact spring (<= 0: no contact).
+        real(dp), intent(out) :: delta(nstep)
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        type(contact_response) :: response
+
+        box => box_of(handle)
+        if (.not. associated(box)) then
+            call fatal_error(error, 'gccont: null convolver handle')
+        else if (nstep < 1) then
+            call fatal_error(error, 'gccont: the number of steps must be >= 1')
+        else
+            call check_contact_law(contact_law(kc, p), f0, error)
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        call run_contact(box%conv, contact_law(kc, p), road, f0, response)
+        u(:) = response%displacement
+        f(:) = response%force
+        delta(:) = response%compression
+        ierr = stat_ok
+        errmsg = ' '
+    end subroutine gccont
+
+    !> Identify modes from a receptance file by LSCE: poles and residues of the smallest model
+    !> whose E (eq. 7) meets tole, or the best up to maxmod modes, lowest frequency first.
+    subroutine gcid(path, tole, maxmod, ncap, nmode, polre, polim, resre, resim, e, ierr, errmsg)
+        !> Path of the receptance file (`#` comments, then f [Hz], Re G, Im G [m/N]).
+        character(len=*), intent(in) :: path
+        !> Target of the identification error E of eq. (7), > 0.
+        real(dp), intent(in) :: tole
+        !> Largest number of modes the order scan tries, >= 1.
+        integer, intent(in) :: maxmod
+        !> Capacity of the output arrays.
+        integer, intent(in) :: ncap
+        !> Number of modes found (also when it exceeds ncap, then with status 2).
+        integer, intent(out) :: nmode
+        !> Real parts of the poles [rad/s].
+        real(dp), intent(out) :: polre(ncap)
+        !> Imaginary parts of the poles [rad/s].
+        real(dp), intent(out) :: polim(ncap)
+        !> Real parts of the residues [m/(N*s)].
+        real(dp), intent(out) :: resre(ncap)
+        !> Imaginary parts of the residues [m/(N*s)].
+        real(dp), intent(out) :: resim(ncap)
+        !> Error E of eq. (7) of the model.
+        real(dp), intent(out) :: e
+        !> Status: 0 success, 2 bad input or too small ncap, 3 failed identification.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(frf_type) :: frf
+        type(lsce_options) :: options
+        type(lsce_result) :: fit
+        type(modal_set) :: modes
+
+        nmode = 0
+        e = 0.0_dp
+        call read_frf(trim(path), frf, error)
+        if (.not. allocated(error)) then
+            options%tol_e = tole
+            options%max_modes = maxmod
+            call identify(frf, options, fit, error)
+        end if
+        if (.not. allocated(error)) then
+            nmode = fit%modes%n_modes()
+            e = fit%e
+            if (nmode > ncap) call fatal_error(error, 'gcid: more modes found than the arrays hold (ncap)')
+        end if
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        modes = sorted_by_frequency(fit%modes)
+        polre(1:nmode) = real(modes%pole, dp)
+        polim(1:nmode) = aimag(modes%pole)
+        resre(1:nmode) = real(modes%residue, dp)
+        resim(1:nmode) = aimag(modes%residue)
+        ierr = stat_ok
+        errmsg = ' '
+    end subroutine gcid
+
+    !> Run a scene file as the driver does: column files in its output_dir, a summary line
+    !> per method on standard output.
+    subroutine gcscen(path, ierr, errmsg)
+        !> Path of the namelist scene file.
+        character(len=*), intent(in) :: path
+        !> Status: 0 success, 2 bad scene or file, 3 numerical failure.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+
+        call run_scene_file(trim(path), output_unit, error)
+        flush (output_unit)
+        if (allocated(error)) then
+            call report(error, ierr, errmsg)
+            return
+        end if
+        ierr = stat_ok
+        errmsg = ' '
+    end subroutine gcscen
+
+    !> The object a handle points to; null for handle 0.
+    function box_of(handle) result(box)
+        integer(int64), intent(in) :: handle
+        type(convolver_box), pointer :: box
+
+        type(c_ptr) :: address
+
+        box => null()
+        if (handle == 0_int64) return
+        address = transfer(int(handle, c_intptr_t), c_null_ptr)
+        call c_f_pointer(address, box)
+    end function box_of
+
+    !> The object a handle points to, with status 0, or null with status `stat_input`.
+    function checked_box(handle, ierr) result(box)
+        integer(int64), intent(in) :: handle
+        integer, intent(out) :: ierr
+        type(convolver_box), pointer :: box
+
+        box => box_of(handle)
+        ierr = stat_ok
+        if (.not. associated(box)) ierr = stat_input
+    end function checked_box
+
+    !> Status and message of an error.
+    subroutine report(error, ierr, errmsg)
+        type(error_type), intent(in) :: error
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
+        ierr = error%stat
+        errmsg = error%message
+    end subroutine report
+
+end module greenconv_legacy

@@ -1,0 +1,403 @@
+!> Exact causal convolution by non-uniformly partitioned FFT (Gardner 1995): the `fft` engine.
+!>
+!> It computes the same truncated sum as `direct` (greenconv_conv_direct), with the same one step
+!> of latency,
+!>
+!>     u(t_n) = u_h(n) + w0*q(t_n),   u_h(n) = sum_{j=1..N_g} w_j*q(t_{n-j}),   q(t_m) = 0 for m < 0,
+!>
+!> w0 = dt*g(0) and w_j = dt*g(t_j) [m/N], at a cost per step that grows like log N_g
+!> instead of N_g. The taps j = 1..N_g are split into
+!>
+!> - a head, taps 1..H (H = `default_head` = 64 unless asked otherwise), summed directly
+!>   every step from a doubled ring of the last H forces, as in `direct`;
+!> - levels l = 1..L, each of P_l consecutive partitions of B_l taps. Level l starts at tap
+!>   s_l: s_1 = H + 1, s_{l+1} = s_l + P_l*B_l. B_1 = H, and B_{l+1} is the largest H*2^k
+!>   not above s_{l+1}. P_l is the number of B_l-blocks left to cover when that is at most
+!>   `finish_parts` = 8 (the last level, whose last partition is zero-padded past N_g),
+!>   else `parts_per_level` = 3, which makes the block size grow fourfold per level:
+!>   (B, P) = (64, 3), (256, 3), (1024, 3), (4096, 4) for N_g = 19000 and H = 64.
+!>
+!> Level l works on blocks of B_l forces, q(t_m) for m = b*B_l..(b+1)*B_l - 1. When block b
+!> is complete (right after the push of its last force, at step n = (b+1)*B_l), its
+!> zero-padded 2*B_l-point real spectrum X_b is computed and kept in a frequency-domain
+!> delay line of the last P_l block spectra; one product sum and one inverse transform
+!>
+!>     y = IFFT( sum_{p=1..P_l} W_{l,p} * X_{b-p+1} ),
+!>
+!> where W_{l,p} is the precomputed spectrum of partition p (taps s_l + (p-1)*B_l onwards,
+!> zero-padded to 2*B_l, scaled by 1/(2*B_l)), give the contribution of all P_l partitions
+!> to the outputs n' = b*B_l + s_l + i, i = 0..2*B_l - 2, which are added into a ring of
+!> pending outputs. The first of them, n' = n - B_l + s_l, is never earlier than the next
+!> history because B_l <= s_l (by the choice of B_l; the one step of latency is what lets
+!> B_1 = H with s_1 = H + 1): every contribution is in place before its output is due.
+!> `history()` is the head's dot product plus the pending output of the current step.
+!>
+!> The work is done in bursts: a push at a step that is a multiple of B_l runs level l
+!> (two real FFTs of 2*B_l points and P_l*(B_l + 1) complex multiply-adds), so the push at
+!> a multiple of the largest block runs every level at once, O(N_g log N_g) operations in
+!> that one push (about 0.1 ms at N_g = 19000), while most pushes cost only the head.
+!> Averaged over the steps, the cost is H multiply-adds plus, per level, two transforms
+!> of 2*B_l points per B_l steps and P_l complex multiply-adds per step: about
+!> log4(N_g/H) levels of O(log B_l) each. Gardner's spreading of each level's work over
+!> its block is not done; a caller that needs a bounded time per step would need it.
+!>
+!> Round-off: FFT convolution errs by about 1e-16*log2(N_g) relative to sum_j |w_j*q|,
+!> not to |u|; the tests measure it below 1e-13 of max|u| against `direct`.
+!>
+!> Transforms use FFTW_ESTIMATE plans that the object owns (an `fft_plan_set` of greenconv_ext_fftw),
+!> made for the size and the alignment of its own work arrays and applied to them by FFTW's
+!> new-array execute functions, so SIMD codelets are kept. A new object holds no plan: the
+!> first push that runs a level plans it (tens of microseconds). Plans are destroyed by
+!> `release` (the object plans again if stepped further): call it before dropping an
+!> object that has run, or its plans stay allocated in FFTW (there is no finalizer; see
+!> greenconv_ext_fftw). A copy (intrinsic assignment, `source=`) plans for itself and never destroys
+!> its original's plans; its arrays may sit at other alignments and get other plans, so it
+!> may differ from the original in the last bits. One object rerun after `reset` repeats
+!> itself to the bit. Threads: independent objects may be stepped in parallel; plan creation
+!> and destruction are serialised as greenconv_ext_fftw describes (OpenMP critical section
+!> `greenconv_fftw_planner`).
+module greenconv_conv_fft
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_ext_fftw, only: fft_plan_set
+    implicit none
+    private
+
+    public :: fft_convolver, new_fft_convolver
+    public :: default_head
+
+    !> Number of taps summed directly when the constructor is given no `head`.
+    integer, parameter :: default_head = 64
+    !> Partitions per level that is not the last (the block size then grows fourfold).
+    integer, parameter :: parts_per_level = 3
+    !> A level that can cover all remaining taps with at most this many partitions is the last.
+    integer, parameter :: finish_parts = 8
+
+    !> One level of the partition: P partitions of B taps sharing one block size.
+    type :: fft_level
+        !> Block size B (forces per block, taps per partition); transforms have 2*B points.
+        integer :: block = 0
+        !> Number of partitions P.
+        integer :: parts = 0
+        !> First tap s of the level (taps s..s + P*B - 1, zero past N_g).
+        integer :: first_tap = 0
+        !> Column of `input_spectra` holding the newest block's spectrum.
+        integer :: newest = 1
+        !> Spectra of the partitions' zero-padded taps divided by 2*B [m/N]: lines 1..B + 1
+        !> of each of the P columns (columns padded to a multiple of 64 bytes).
+        complex(dp), allocatable :: kernel_spectra(:, :)
+        !> Spectra of the last P zero-padded force blocks [N], lines 1..B + 1, a ring of columns.
+        complex(dp), allocatable :: input_spectra(:, :)
+    end type fft_level
+
+    !> Partitioned FFT convolution: a direct head and FFT levels of growing block size.
+    type, extends(convolver) :: fft_convolver
+        !> Kernel length N_g (taps 1..N_g).
+        integer :: n_g = 0
+        !> Head weights w_j = dt*g(t_j) [m/N], j = 1..H.
+        real(dp), allocatable :: head_weight(:)
+        !> The last H forces [N], each stored twice (positions i and i + H), newest at `head_position`.
+        real(dp), allocatable :: head_past(:)
+        !> Position of the newest force in `head_past`.
+        integer :: head_position = 1
+        !> The FFT levels, smallest block first (none when N_g <= H).
+        type(fft_level), allocatable :: levels(:)
+        !> The last forces [N], force of step m at position mod(m, size) + 1 (size = largest block).
+        real(dp), allocatable :: recent(:)
+        !> Position in `recent` of the force of the current step, mod(step, size(recent)) + 1.
+        integer :: recent_position = 1
+        !> Contributions of the levels to coming outputs [m], output n at position mod(n, size) + 1.
+        real(dp), allocatable :: pending(:)
+        !> Position in `pending` of the output of the current step, mod(step, size(pending)) + 1.
+        integer :: pending_position = 1
+        !> Pushes left until the step is a multiple of the smallest block (huge without levels).
+        integer :: countdown = 0
+        !> Scratch: zero-padded samples of a block or partition, 2*(largest block).
+        real(dp), allocatable :: samples(:)
+        !> Scratch: a product spectrum, (largest block) + 1 lines.
+        complex(dp), allocatable :: spectrum(:)
+        !> The FFTW plans of this object's transforms, made on demand.
+        type(fft_plan_set) :: plans
+    contains
+        procedure :: history => fft_history
+        procedure :: push => fft_push
+        procedure :: reset => fft_reset
+        procedure :: model_size => fft_size
+        !> Destroy this object's FFTW plans now (it plans again if stepped further).
+        procedure :: release => fft_release_plans
+        !> Number of FFTW plan pairs this object owns.
+        procedure :: plan_count => fft_plan_count
+    end type fft_convolver
+
+contains
+
+    !> A partitioned-FFT convolver from kernel samples g(t_j) [m/(N*s)], j = 0..N_g, and step
+    !> dt [s]: the kernel and the results of `new_direct_convolver(kernel, dt)`.
+    function new_fft_convolver(kernel, dt, head) result(conv)
+        !> Samples g(j*dt), j = 0..N_g, of the impulse response [m/(N*s)].
+        real(dp), intent(in) :: kernel(0:)
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Number of taps H summed directly (default `default_head`; clipped to 1..N_g).
+        integer, intent(in), optional :: head
+        type(fft_convolver) :: conv
+
+        real(dp), allocatable :: weight(:)
+        integer :: n_g, n_head
+
+        n_g = ubound(kernel, 1)
+        n_head = default_head
+        if (present(head)) n_head = head
+        n_head = min(max(n_head, 1), n_g)
+        allocate (weight(n_g))
+        weight(:) = dt*kernel(1:n_g)
+        conv%name = 'fft'
+        conv%dt = dt
+        conv%weight0 = dt*kernel(0)
+        conv%n_g = n_g
+        allocate (conv%head_weight(n_head), conv%head_past(2*n_head))
+        conv%head_weight(:) = weight(1:n_head)
+        call build_levels(conv, weight, n_head)
+        ! The kernel spectra are made: the new object holds no plan (see the module notes).
+        call conv%plans%release()
+        call conv%reset()
+    end function new_fft_convolver
+
+    !> Lay out the levels behind a head of n_head taps, size the rings and scratch arrays,
+    !> and transform the partitions.
+    subroutine build_levels(conv, weight, n_head)
+        type(fft_convolver), intent(inout) :: conv
+        real(dp), intent(in) :: weight(:)
+        integer, intent(in) :: n_head
+
+        integer :: blocks(bit_size(0)), parts(bit_size(0)), first(bit_size(0))
+        integer :: n_levels, l, largest, span
+
+        call partition_schedule(size(weight), n_head, n_levels, blocks, parts, first)
+        largest = 1
+        span = 1
+        if (n_levels > 0) then
+            largest = blocks(n_levels)
+            span = maxval(first(1:n_levels) + blocks(1:n_levels) - 1)
+        end if
+        allocate (conv%levels(n_levels), conv%recent(largest), conv%pending(span))
+        allocate (conv%samples(2*largest), conv%spectrum(largest + 1))
+        do l = 1, n_levels
+            call build_level(conv%levels(l), weight, blocks(l), parts(l), first(l), conv%samples, conv%plans)
+        end do
+    end subroutine build_levels
+
+    !> The schedule: block size, partition count and first tap of each level.
+    pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first)
+        integer, intent(in) :: n_g, n_head
+        integer, intent(out) :: n_levels
+        integer, intent(out) :: blocks(:), parts(:), first(:)
+
+        integer :: block, start, count
+
+        n_levels = 0
+        block = max(n_head, 1)
+        start = n_head + 1
+        do while (start <= n_g)
+            count = (n_g - start + block)/block
+            if (count > finish_parts) count = parts_per_level
+            n_levels = n_levels + 1
+            blocks(n_levels) = block
+            parts(n_levels) = count
+            first(n_levels) = start
+            start = start + count*block
+            do while (2*block <= start)
+                block = 2*block
+            end do
+        end do
+    end subroutine partition_schedule
+
+    !> One level: the scaled spectra of its zero-padded partitions, an empty delay line.
+    subroutine build_level(level, weight, block, parts, first, samples, plans)
+        type(fft_level), intent(out) :: level
+        real(dp), intent(in) :: weight(:)
+        integer, intent(in) :: block, parts, first
+        real(dp), contiguous, intent(inout) :: samples(:)
+        type(fft_plan_set), intent(inout) :: plans
+
+        complex(dp) :: lines(block + 1)
+        integer :: p, tap, last, lead
+
+        level%block = block
+        level%parts = parts
+        level%first_tap = first
+        lead = 4*((block + 4)/4)
+        allocate (level%kernel_spectra(lead, parts), level%input_spectra(lead, parts))
+        level%kernel_spectra(:, :) = (0.0_dp, 0.0_dp)
+        do p = 1, parts
+            tap = first + (p - 1)*block
+            last = min(tap + block - 1, size(weight))
+            samples(1:2*block) = 0.0_dp
+            samples(1:last - tap + 1) = weight(tap:last)
+            call plans%forward(samples(1:2*block), lines)
+            level%kernel_spectra(1:block + 1, p) = lines/real(2*block, dp)
+        end do
+    end subroutine build_level
+
+    !> History displacement u_h(n) [m]: the head's dot product plus the levels' pending sum.
+    function fft_history(self) result(u)
+        class(fft_convolver), intent(in) :: self
+        real(dp) :: u
+
+        integer :: h
+
+        h = size(self%head_weight)
+        u = dot4(self%head_weight, self%head_past(self%head_position:self%head_position + h - 1)) &
+            + self%pending(self%pending_position)
+    end function fft_history
+
+    !> sum_i a(i)*b(i) in four interleaved partial sums: four multiply-adds in flight instead
+    !> of one dependent chain, without -ffast-math (2.5 times faster than dot_product for
+    !> the 64-tap head at -O2).
+    pure function dot4(a, b) result(total)
+        real(dp), contiguous, intent(in) :: a(:), b(:)
+        real(dp) :: total
+
+        real(dp) :: s1, s2, s3, s4
+        integer :: i, n4
+
+        n4 = size(a) - mod(size(a), 4)
+        s1 = 0.0_dp
+        s2 = 0.0_dp
+        s3 = 0.0_dp
+        s4 = 0.0_dp
+        do i = 1, n4, 4
+            s1 = s1 + a(i)*b(i)
+            s2 = s2 + a(i + 1)*b(i + 1)
+            s3 = s3 + a(i + 2)*b(i + 2)
+            s4 = s4 + a(i + 3)*b(i + 3)
+        end do
+        do i = n4 + 1, size(a)
+            s1 = s1 + a(i)*b(i)
+        end do
+        total = (s1 + s2) + (s3 + s4)
+    end function dot4
+
+    !> Store the force of step n, retire output n, advance, and run every level whose
+    !> block has just been completed.
+    subroutine fft_push(self, force)
+        class(fft_convolver), intent(inout) :: self
+        real(dp), intent(in) :: force
+
+        integer :: h, l
+
+        h = size(self%head_weight)
+        if (h > 0) then
+            self%head_position = self%head_position - 1
+            if (self%head_position < 1) self%head_position = h
+            self%head_past(self%head_position) = force
+            self%head_past(self%head_position + h) = force
+        end if
+        self%recent(self%recent_position) = force
+        self%recent_position = self%recent_position + 1
+        if (self%recent_position > size(self%recent)) self%recent_position = 1
+        self%pending(self%pending_position) = 0.0_dp
+        self%pending_position = self%pending_position + 1
+        if (self%pending_position > size(self%pending)) self%pending_position = 1
+        self%step = self%step + 1
+        self%countdown = self%countdown - 1
+        if (self%countdown > 0 .or. size(self%levels) == 0) return
+        self%countdown = self%levels(1)%block
+        do l = 1, size(self%levels)
+            if (mod(self%step, int(self%levels(l)%block, int64)) == 0) call run_level(self, l)
+        end do
+    end subroutine fft_push
+
+    !> Level l at step n (a multiple of its block size B): transform the block of forces
+    !> n - B..n - 1, multiply-add against the partitions, and add the inverse transform to
+    !> the pending outputs n - B + s..n + B + s - 2.
+    subroutine run_level(self, l)
+        class(fft_convolver), intent(inout) :: self
+        integer, intent(in) :: l
+
+        integer :: b, first, p, column
+
+        associate (level => self%levels(l))
+            b = level%block
+            first = int(mod(self%step - b, size(self%recent, kind=int64))) + 1
+            self%samples(1:b) = self%recent(first:first + b - 1)
+            self%samples(b + 1:2*b) = 0.0_dp
+            level%newest = level%newest - 1
+            if (level%newest < 1) level%newest = level%parts
+            call self%plans%forward(self%samples(1:2*b), level%input_spectra(1:b + 1, level%newest))
+            self%spectrum(1:b + 1) = level%kernel_spectra(1:b + 1, 1)*level%input_spectra(1:b + 1, level%newest)
+            do p = 2, level%parts
+                column = mod(level%newest + p - 2, level%parts) + 1
+                self%spectrum(1:b + 1) = self%spectrum(1:b + 1) &
+                                         + level%kernel_spectra(1:b + 1, p)*level%input_spectra(1:b + 1, column)
+            end do
+            call self%plans%inverse(self%spectrum(1:b + 1), self%samples(1:2*b))
+            call add_to_ring(self%pending, self%step - b + level%first_tap, self%samples(1:2*b - 1))
+        end associate
+    end subroutine run_level
+
+    !> ring(n) += values(i) for n = start + i - 1, ring position mod(n, size(ring)) + 1.
+    pure subroutine add_to_ring(ring, start, values)
+        real(dp), intent(inout) :: ring(:)
+        integer(int64), intent(in) :: start
+        real(dp), intent(in) :: values(:)
+
+        integer :: i0, n1, m
+
+        m = size(values)
+        i0 = int(mod(start, size(ring, kind=int64))) + 1
+        n1 = min(m, size(ring) - i0 + 1)
+        ring(i0:i0 + n1 - 1) = ring(i0:i0 + n1 - 1) + values(1:n1)
+        ring(1:m - n1) = ring(1:m - n1) + values(n1 + 1:m)
+    end subroutine add_to_ring
+
+    !> Clear the force history and the pending outputs.
+    subroutine fft_reset(self)
+        class(fft_convolver), intent(inout) :: self
+
+        integer :: l
+
+        self%head_past(:) = 0.0_dp
+        self%head_position = 1
+        self%recent(:) = 0.0_dp
+        self%recent_position = 1
+        self%pending(:) = 0.0_dp
+        self%pending_position = 1
+        self%countdown = huge(0)
+        if (size(self%levels) > 0) self%countdown = self%levels(1)%block
+        do l = 1, size(self%levels)
+            self%levels(l)%input_spectra(:, :) = (0.0_dp, 0.0_dp)
+            self%levels(l)%newest = 1
+        end do
+        self%step = 0
+    end subroutine fft_reset
+
+    !> Kernel length N_g.
+    subroutine fft_size(self, n, label)
+        class(fft_convolver), intent(in) :: self
+        integer, intent(out) :: n
+        character(len=:), allocatable, intent(out) :: label
+
+        n = self%n_g
+        label = 'N_g'
+    end subroutine fft_size
+
+    !> Destroy the FFTW plans this object owns; stepping on plans again.
+    subroutine fft_release_plans(self)
+        !> The convolver.
+        class(fft_convolver), intent(inout) :: self
+
+        call self%plans%release()
+    end subroutine fft_release_plans
+
+    !> Number of FFTW plan pairs (r2c and c2r) this object owns.
+    function fft_plan_count(self) result(count)
+        !> The convolver.
+        class(fft_convolver), intent(in) :: self
+        integer :: count
+
+        count = self%plans%plan_count()
+    end function fft_plan_count
+
+end module greenconv_conv_fft

@@ -1,0 +1,155 @@
+!> The Green's matrix of shared modes as decaying modal recursions, cost O(N_c*N_m) per step.
+!>
+!> With g_ij(t) = sum_k phi_ik*phi_jk*h_k(t) (greenconv_conv_multipoint), the history at every point
+!> is a combination of N_m modal histories, each driven by the modal force
+!> Q_k(t_n) = sum_j phi_jk*q_j(t_n):
+!>
+!>     u_h,i(n) = sum_k phi_ik*Re(p_k(n)),   p_k(n + 1) = z_k*p_k(n) + c_k*Q_k(t_n),
+!>     u_i(t_n) = u_h,i(n) + sum_j W0_ij*q_j(t_n),   W0_ij = sum_k phi_ik*phi_jk*w0_k.
+!>
+!> z_k = exp(lambda_k*dt) and c_k are those of the single-point engines of
+!> greenconv_conv_recursive, which this type holds (one `recursive_convolver` over the N_m modes,
+!> whose states are the p_k): `recursive`, the paper's rectangle rule (c_k = 2*r_k*dt*z_k,
+!> w0_k = 0, explicit), or `exact`, the first-order hold (c_k = 2*r_k*dt*phi1^2,
+!> w0_k = 2*Re(r_k*dt*phi2(lambda_k*dt)), with phi1, phi2 from `hold_functions`), or
+!> `backward`, the backward zero-order hold (c_k = 2*r_k*dt*phi1*z_k, w0_k = 2*Re(r_k*dt*phi1)).
+!> A step costs
+!> N_c*N_m multiplications for the modal forces, 4*N_m for the states and N_c*N_m for the
+!> displacements: O(N_c*N_m) instead of the O(N_c^2*N_g) of the sampled table.
+module greenconv_conv_green_modal
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_conv_recursive, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
+                                  new_backward_convolver, hold_functions
+    implicit none
+    private
+
+    public :: modal_green_matrix, new_modal_green_matrix
+
+    !> Shared modes stepped by one decaying recursion per mode (`recursive` or `exact`).
+    type, extends(multipoint_convolver) :: modal_green_matrix
+        !> The modal engine: decay factors z_k, input coefficients c_k and states p_k.
+        type(recursive_convolver) :: engine
+        !> Mode shapes at the points, shape(i, k) = phi_ik (N_c x N_m).
+        real(dp), allocatable :: shape(:, :)
+        !> Modal forces Q_k [N] of the last push (work space).
+        real(dp), allocatable :: modal_force(:)
+    contains
+        procedure :: history => modal_history
+        procedure :: push => modal_push
+        procedure :: reset => modal_reset
+        procedure :: model_size => modal_size
+    end type modal_green_matrix
+
+contains
+
+    !> A modal multi-point convolver with the scheme `recursive` (explicit, W0 = 0), `exact`
+    !> (first-order hold, W0 /= 0) or `backward` (backward zero-order hold, W0 /= 0), at time
+    !> step dt [s].
+    subroutine new_modal_green_matrix(description, dt, scheme, conv, error)
+        !> Modes and mode shapes at the points.
+        type(point_modes), intent(in) :: description
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> `recursive`, `exact` or `backward`.
+        character(len=*), intent(in) :: scheme
+        !> The convolver.
+        type(modal_green_matrix), intent(out) :: conv
+        !> Set for an unknown scheme or mode shapes that do not match the modes.
+        type(error_type), allocatable, intent(out) :: error
+
+        complex(dp), allocatable :: phi1(:), phi2(:)
+        real(dp), allocatable :: w0(:), weight0(:, :)
+        integer :: n_c, n_m, k
+
+        n_c = description%n_points()
+        n_m = description%modes%n_modes()
+        if (n_c < 1 .or. size(description%shape, 2) /= n_m) then
+            call fatal_error(error, 'modal Green''s matrix: expected mode shapes for at least one point and ' &
+                             //'one column per mode')
+            return
+        end if
+        allocate (w0(n_m), phi1(n_m), phi2(n_m))
+        select case (scheme)
+        case ('recursive')
+            conv%engine = new_recursive_convolver(description%modes, dt)
+            w0(:) = 0.0_dp
+        case ('exact')
+            conv%engine = new_exact_convolver(description%modes, dt)
+            call hold_functions(description%modes%pole*dt, phi1, phi2)
+            w0(:) = 2.0_dp*real(description%modes%residue*dt*phi2, kind=dp)
+        case ('backward')
+            conv%engine = new_backward_convolver(description%modes, dt)
+            call hold_functions(description%modes%pole*dt, phi1, phi2)
+            w0(:) = 2.0_dp*real(description%modes%residue*dt*phi1, kind=dp)
+        case default
+            call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme// &
+                             ''': expected ''recursive'', ''exact'' or ''backward''')
+            return
+        end select
+        conv%name = scheme
+        conv%dt = dt
+        allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
+        conv%shape(:, :) = description%shape
+        weight0(:, :) = 0.0_dp
+        do k = 1, n_m
+            weight0(:, :) = weight0 + w0(k)*spread(conv%shape(:, k), 2, n_c)*spread(conv%shape(:, k), 1, n_c)
+        end do
+        call conv%set_instant_matrix(weight0)
+        call conv%reset()
+    end subroutine new_modal_green_matrix
+
+    !> u_h,i(n) = sum_k phi_ik*Re(p_k(n)) [m].
+    subroutine modal_history(self, u)
+        class(modal_green_matrix), intent(in) :: self
+        real(dp), intent(out) :: u(:)
+
+        integer :: k
+
+        u(:) = 0.0_dp
+        do k = 1, size(self%shape, 2)
+            u(:) = u + self%shape(:, k)*self%engine%state_re(k)
+        end do
+    end subroutine modal_history
+
+    !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance.
+    subroutine modal_push(self, forces)
+        class(modal_green_matrix), intent(inout) :: self
+        real(dp), intent(in) :: forces(:)
+
+        real(dp) :: old_re(size(self%modal_force))
+        integer :: k
+
+        do k = 1, size(self%shape, 2)
+            self%modal_force(k) = dot_product(self%shape(:, k), forces)
+        end do
+        associate (e => self%engine, q => self%modal_force)
+            old_re(:) = e%state_re
+            e%state_re(:) = e%decay_re*old_re - e%decay_im*e%state_im + e%input_re*q
+            e%state_im(:) = e%decay_re*e%state_im + e%decay_im*old_re + e%input_im*q
+        end associate
+        self%step = self%step + 1
+    end subroutine modal_push
+
+    !> Clear the modal states.
+    subroutine modal_reset(self)
+        class(modal_green_matrix), intent(inout) :: self
+
+        call self%engine%reset()
+        self%modal_force(:) = 0.0_dp
+        self%step = 0
+    end subroutine modal_reset
+
+    !> Number of modes N_m.
+    subroutine modal_size(self, n, label)
+        class(modal_green_matrix), intent(in) :: self
+        integer, intent(out) :: n
+        character(len=:), allocatable, intent(out) :: label
+
+        n = size(self%shape, 2)
+        label = 'N_m'
+    end subroutine modal_size
+
+end module greenconv_conv_green_modal

@@ -1,0 +1,94 @@
+!> Numbers as text for messages and summaries, and names in one case.
+module greenconv_core_text
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    implicit none
+    private
+
+    public :: int_text, real_text, sci_text, lower_text
+
+    !> An integer (default or 64-bit) as text, without blanks.
+    interface int_text
+        module procedure default_int_text
+        module procedure long_int_text
+    end interface int_text
+
+contains
+
+    !> A default integer as text, without blanks.
+    pure function default_int_text(i) result(text)
+        !> The integer.
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+
+        text = long_int_text(int(i, int64))
+    end function default_int_text
+
+    !> A 64-bit integer (a step count of a long run) as text, without blanks.
+    pure function long_int_text(i) result(text)
+        !> The integer.
+        integer(int64), intent(in) :: i
+        character(len=:), allocatable :: text
+
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') i
+        text = trim(buffer)
+    end function long_int_text
+
+    !> A real with up to ten significant digits, without blanks and without the trailing
+    !> zeros of its digits: plain from 0.1 to 1e7 (`0.443`, `10.0`, `600.556`), scientific
+    !> otherwise (`-7.0E-03`, `1.5E+09`).
+    pure function real_text(x) result(text)
+        !> The real.
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=32) :: buffer
+        integer :: mark, last
+
+        if (abs(x) < tiny(x) .or. (abs(x) >= 0.1_dp .and. abs(x) < 1.0e7_dp)) then
+            write (buffer, '(f0.9)') x
+        else
+            write (buffer, '(es16.9)') x
+        end if
+        text = trim(adjustl(buffer))
+        if (text(1:1) == '.') text = '0'//text
+        if (text(1:2) == '-.') text = '-0'//text(2:)
+        mark = scan(text, 'E')
+        if (mark == 0) mark = len(text) + 1
+        last = mark - 1
+        do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
+            last = last - 1
+        end do
+        text = text(:last)//text(mark:)
+    end function real_text
+
+    !> A real in short scientific notation (three significant digits), without blanks.
+    pure function sci_text(x) result(text)
+        !> The real.
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=16) :: buffer
+
+        write (buffer, '(es9.2)') x
+        text = trim(adjustl(buffer))
+    end function sci_text
+
+    !> Text with the letters A-Z in lower case and trailing blanks removed.
+    pure function lower_text(text) result(lower)
+        !> The text.
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: lower
+
+        integer :: i, code
+
+        lower = trim(text)
+        do i = 1, len(lower)
+            code = iachar(lower(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
+        end do
+    end function lower_text
+
+end module greenconv_core_text

@@ -1,0 +1,246 @@
+!> Explicit interfaces to the LAPACK routines greenconv uses, and assumed-shape
+!> front ends that copy their inputs, query the workspace and report failures
+!> through an `error_type` (never `stop`).
+!>
+!> - dgelsd: minimum-norm least squares by the SVD (divide and conquer), so that a
+!>   rank-deficient or ill-conditioned system gives a bounded answer; no normal equations.
+!> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
+!> - dgesv: a square linear system by LU factorisation with partial pivoting.
+!>
+!> Inputs and results are checked to be finite: LAPACK is not asked to work on NaN or Inf,
+!> and a result that overflowed is reported rather than returned. LAPACK's argument-error
+!> handler XERBLA is replaced here (`xerbla_`, see `lapack_argument_error`): the reference one
+!> prints a line and stops the program, which a library must never do.
+module greenconv_ext_lapack
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_numerical
+    use greenconv_core_text, only: int_text
+    implicit none
+    private
+
+    public :: least_squares, eigenvalues, solve_linear
+
+    interface
+        !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
+        subroutine dgelsd(m, n, nrhs, a, lda, b, ldb, s, rcond, rank, work, lwork, iwork, info)
+            import :: dp
+            implicit none
+            integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            real(dp), intent(out) :: s(*)
+            real(dp), intent(in) :: rcond
+            integer, intent(out) :: rank, info
+            real(dp), intent(inout) :: work(*)
+            integer, intent(inout) :: iwork(*)
+        end subroutine dgelsd
+
+        !> Eigenvalues (and optionally eigenvectors) of a general real matrix (LAPACK).
+        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(dp), intent(inout) :: a(lda, *)
+            real(dp), intent(out) :: wr(*), wi(*)
+            real(dp), intent(inout) :: vl(ldvl, *), vr(ldvr, *)
+            real(dp), intent(inout) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
+
+        !> Solution of A X = B for a square A by LU factorisation with partial pivoting (LAPACK).
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            implicit none
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*)
+            integer, intent(out) :: info
+        end subroutine dgesv
+    end interface
+
+contains
+
+    !> Least-squares solution x of min ||b - A x||_2 (m >= 1 rows, n >= 1 unknowns) by dgelsd.
+    !> Singular values below rcond*s_max are treated as zero (minimum-norm solution).
+    subroutine least_squares(a, b, x, error, rcond, rank, singular_values)
+        !> Matrix A (m x n); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Right-hand side b (m).
+        real(dp), intent(in) :: b(:)
+        !> Solution x (n).
+        real(dp), intent(out) :: x(:)
+        !> Set on a size mismatch or when the SVD does not converge.
+        type(error_type), allocatable, intent(out) :: error
+        !> Relative threshold on the singular values; machine precision when absent.
+        real(dp), intent(in), optional :: rcond
+        !> Effective rank of A.
+        integer, intent(out), optional :: rank
+        !> Singular values of A, largest first (size min(m, n)).
+        real(dp), intent(out), optional :: singular_values(:)
+
+        real(dp), allocatable :: a_work(:, :), b_work(:, :), s(:), work(:)
+        integer, allocatable :: iwork(:)
+        real(dp) :: threshold, query(1)
+        integer :: m, n, ldb, lwork, info, effective_rank, iquery(1)
+
+        m = size(a, 1)
+        n = size(a, 2)
+        if (m < 1 .or. n < 1 .or. size(b) /= m .or. size(x) /= n) then
+            call fatal_error(error, 'least_squares: inconsistent sizes of A, b and x', stat_numerical)
+            return
+        end if
+        threshold = -1.0_dp
+        if (present(rcond)) threshold = rcond
+        ldb = max(m, n)
+        allocate (a_work(m, n), b_work(ldb, 1), s(min(m, n)))
+        a_work(:, :) = a
+        b_work(:, 1) = 0.0_dp
+        b_work(1:m, 1) = b
+        call require_finite('dgelsd', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        if (allocated(error)) return
+        call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, query, -1, iquery, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgelsd (workspace query)', info)
+            return
+        end if
+        lwork = max(1, int(query(1)))
+        allocate (work(lwork), iwork(max(1, iquery(1))))
+        call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgelsd', info)
+            return
+        end if
+        call require_finite('dgelsd', 'result', [all(ieee_is_finite(b_work(1:n, 1)))], error)
+        if (allocated(error)) return
+        x(:) = b_work(1:n, 1)
+        if (present(rank)) rank = effective_rank
+        if (present(singular_values)) then
+            singular_values(:) = 0.0_dp
+            singular_values(1:min(size(singular_values), size(s))) = s(1:min(size(singular_values), size(s)))
+        end if
+    end subroutine least_squares
+
+    !> Eigenvalues of a general real square matrix by dgeev (no eigenvectors).
+    subroutine eigenvalues(a, w, error)
+        !> Square matrix (n x n, n >= 1); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Eigenvalues (n); complex pairs come as conjugates with exactly opposite imaginary parts.
+        complex(dp), intent(out) :: w(:)
+        !> Set on a size mismatch or when the QR algorithm does not converge.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a_work(:, :), wr(:), wi(:), work(:)
+        real(dp) :: query(1), dummy(1, 1)
+        integer :: n, lwork, info
+
+        n = size(a, 1)
+        if (n < 1 .or. size(a, 2) /= n .or. size(w) /= n) then
+            call fatal_error(error, 'eigenvalues: expected a square matrix and n eigenvalues', stat_numerical)
+            return
+        end if
+        allocate (a_work(n, n), wr(n), wi(n))
+        a_work(:, :) = a
+        call require_finite('dgeev', 'input', [all(ieee_is_finite(a))], error)
+        if (allocated(error)) return
+        call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, query, -1, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgeev (workspace query)', info)
+            return
+        end if
+        lwork = max(1, int(query(1)))
+        allocate (work(lwork))
+        call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+        if (info /= 0) then
+            call lapack_error(error, 'dgeev', info)
+            return
+        end if
+        call require_finite('dgeev', 'result', [all(ieee_is_finite(wr)), all(ieee_is_finite(wi))], error)
+        if (allocated(error)) return
+        w(:) = cmplx(wr, wi, kind=dp)
+    end subroutine eigenvalues
+
+    !> Solution x of the square system A x = b by dgesv (LU with partial pivoting).
+    subroutine solve_linear(a, b, x, error)
+        !> Square matrix A (n x n, n >= 1); not modified.
+        real(dp), intent(in) :: a(:, :)
+        !> Right-hand side b (n).
+        real(dp), intent(in) :: b(:)
+        !> Solution x (n).
+        real(dp), intent(out) :: x(:)
+        !> Set on a size mismatch or when A is exactly singular (a zero pivot).
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a_work(:, :), b_work(:, :)
+        integer, allocatable :: pivot(:)
+        integer :: n, info
+
+        n = size(a, 1)
+        if (n < 1 .or. size(a, 2) /= n .or. size(b) /= n .or. size(x) /= n) then
+            call fatal_error(error, 'solve_linear: expected a square matrix and n-vectors b and x', stat_numerical)
+            return
+        end if
+        allocate (a_work(n, n), b_work(n, 1), pivot(n))
+        a_work(:, :) = a
+        b_work(:, 1) = b
+        call require_finite('dgesv', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        if (allocated(error)) return
+        call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
+        if (info > 0) then
+            call fatal_error(error, 'dgesv: singular matrix (zero pivot in column '//int_text(info)//')', &
+                             stat_numerical)
+            return
+        else if (info < 0) then
+            call lapack_error(error, 'dgesv', info)
+            return
+        end if
+        call require_finite('dgesv', 'result', [all(ieee_is_finite(b_work))], error)
+        if (allocated(error)) return
+        x(:) = b_work(:, 1)
+    end subroutine solve_linear
+
+    !> An error (status `stat_numerical`) unless every array checked is finite.
+    pure subroutine require_finite(routine, what, finite, error)
+        character(len=*), intent(in) :: routine, what
+        logical, intent(in) :: finite(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (all(finite)) return
+        call fatal_error(error, routine//': the '//what//' holds NaN or Inf (values beyond the double range, ' &
+                         //'about 1.8e308, or an overflow in the data given to it)', stat_numerical)
+    end subroutine require_finite
+
+    !> LAPACK's argument-error handler XERBLA(SRNAME, INFO), replacing the reference one
+    !> (which prints and stops): it returns, and the routine that detected the bad argument
+    !> returns with info < 0, reported by the front ends above; a routine called inside
+    !> another (DLASCL inside DGELSD) leaves its result to the finiteness checks.
+    subroutine lapack_argument_error(routine, info, routine_length) bind(c, name='xerbla_')
+        !> Name of the routine that found the bad argument (not NUL-terminated).
+        character(kind=c_char), intent(in) :: routine(*)
+        !> Position of the bad argument.
+        integer(c_int), intent(in) :: info
+        !> Length of `routine`, passed by gfortran-compiled LAPACK after the arguments.
+        integer(c_size_t), value, intent(in) :: routine_length
+
+        associate (unused => [routine(1), achar(info), achar(routine_length)])
+        end associate
+    end subroutine lapack_argument_error
+
+    !> An error naming the routine and its info code.
+    pure subroutine lapack_error(error, routine, info)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: routine
+        integer, intent(in) :: info
+
+        character(len=16) :: text
+
+        write (text, '(i0)') info
+        if (info < 0) then
+            call fatal_error(error, routine//': illegal value of argument '//trim(text(2:)), stat_numerical)
+        else
+            call fatal_error(error, routine//': failed to converge (info = '//trim(text)//')', stat_numerical)
+        end if
+    end subroutine lapack_error
+
+end module greenconv_ext_lapack

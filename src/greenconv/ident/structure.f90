@@ -1,0 +1,111 @@
+!> The structure of a scene as the convolution methods need it: the exact modes when they
+!> are known (an sdof, the random modes of section 3.2), the impulse response sampled at the
+!> scene's time step when only G is known (an FRF file), and the modes the modal method
+!> uses, which are either the exact ones or an LSCE fit of G.
+!>
+!> Library callers build one without a scene: `structure_from_modes` (known modes),
+!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT) or
+!> `structure_from_samples` (g sampled at the time step: `direct` and `fft` only).
+module greenconv_ident_structure
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
+    use greenconv_model_frf, only: frf_type
+    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
+    implicit none
+    private
+
+    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
+
+    !> A structure ready for the convolvers.
+    type :: structure_model
+        !> Whether the exact modes are known.
+        logical :: has_exact = .false.
+        !> The structure's own modes (when `has_exact`).
+        type(modal_set) :: exact
+        !> Impulse response g(t_n) [m/(N*s)] at the scene's time step, n = 0.. (when not `has_exact`).
+        real(dp), allocatable :: sampled_g(:)
+        !> The modes the modal methods use.
+        type(modal_set) :: model
+        !> Whether `model` comes from an LSCE fit (then `frf` and `fit` are set).
+        logical :: identified = .false.
+        !> The sampled receptance that was identified.
+        type(frf_type) :: frf
+        !> The identification: order, E of eq. (7), warnings.
+        type(lsce_result) :: fit
+    end type structure_model
+
+contains
+
+    !> A structure known by its modes, used as they are by the modal methods.
+    function structure_from_modes(modes) result(structure)
+        !> The modes.
+        type(modal_set), intent(in) :: modes
+        type(structure_model) :: structure
+
+        structure%has_exact = .true.
+        structure%exact = modes
+        structure%model = modes
+    end function structure_from_modes
+
+    !> A structure known only by its impulse response sampled at the time step of the run:
+    !> `direct` and `fft` convolve with it (truncated by the paper's rule); it has no modes.
+    pure function structure_from_samples(g) result(structure)
+        !> Samples g(n*dt), n = 0..N-1 [m/(N*s)], at the time step dt of the convolvers.
+        real(dp), intent(in) :: g(:)
+        type(structure_model) :: structure
+
+        allocate (structure%sampled_g(size(g)))
+        structure%sampled_g(:) = g
+        allocate (structure%model%pole(0), structure%model%residue(0))
+    end function structure_from_samples
+
+    !> A structure known by its sampled receptance G: modes fitted by LSCE (`identify`) for
+    !> the modal methods and, when dt > 0, g sampled at dt from the inverse FFT of G for
+    !> `direct` and `fft` (dt must then be a whole multiple of 1/(2*f_max)).
+    subroutine structure_from_frf(frf, options, dt, structure, error)
+        !> The receptance G [m/N] on a uniform grid from 0 Hz.
+        type(frf_type), intent(in) :: frf
+        !> Identification settings.
+        type(lsce_options), intent(in) :: options
+        !> Time step [s] of the convolvers; 0 for the modes alone.
+        real(dp), intent(in) :: dt
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the FRF grid.
+        type(error_type), allocatable, intent(out) :: error
+
+        structure%frf = frf
+        call identify(structure%frf, options, structure%fit, error)
+        if (allocated(error)) return
+        structure%model = sorted_by_frequency(structure%fit%modes)
+        structure%identified = .true.
+        if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
+    end subroutine structure_from_frf
+
+    !> g at the time step dt from the FRF: the inverse FFT gives it at 1/(2*f_max); dt must
+    !> be that step or a whole multiple of it.
+    subroutine sample_from_frf(dt, structure, error)
+        real(dp), intent(in) :: dt
+        type(structure_model), intent(inout) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: g(:)
+        real(dp) :: dt_frf
+        integer :: stride
+        character(len=64) :: text
+
+        call impulse_from_frf(structure%frf, g, dt_frf, error)
+        if (allocated(error)) return
+        stride = nint(dt/dt_frf)
+        if (stride < 1 .or. abs(stride*dt_frf - dt) > 1.0e-9_dp*dt) then
+            write (text, '(es12.5)') dt_frf
+            call fatal_error(error, 'time step dt: expected a whole multiple of 1/(2*f_max) = ' &
+                             //trim(adjustl(text))//' s, the step of g from the FRF')
+            return
+        end if
+        ! Only the first half of the period 1/df: the second half holds the wrapped end of g.
+        structure%sampled_g = g(1:size(g)/2:stride)
+    end subroutine sample_from_frf
+
+end module greenconv_ident_structure

@@ -1,0 +1,218 @@
+!> Reading column files: any number of lines starting with `#` (comments) and blank lines,
+!> and data lines of exactly N numbers separated by blanks or tabs. A bad line gets one
+!> message naming the file, the line, and what was expected and found:
+!>
+!>     road.dat:7: expected 2 columns (x [m], height [m]), found 3: "0.1 0.2 0.3"
+!>     road.dat:9: column 2 (height): expected a number, found "abc"
+!>     road.dat:9: column 1 (x): expected a finite number, found "NaN"
+module greenconv_io_columns
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_text, only: int_text
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_number_text, only: is_number, is_nan_or_inf
+    implicit none
+    private
+
+    public :: read_columns, read_line
+
+contains
+
+    !> Read all data lines of a file into table(:, 1:N), N = size(names), with the file line
+    !> number of each row in line_of.
+    subroutine read_columns(path, names, units, table, line_of, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> Short name of each column, for messages (e.g. `x`, `height`).
+        character(len=*), intent(in) :: names(:)
+        !> Unit of each column, for messages (e.g. `m`).
+        character(len=*), intent(in) :: units(:)
+        !> The numbers, one row per data line.
+        real(dp), allocatable, intent(out) :: table(:, :)
+        !> Line number in the file of each row.
+        integer, allocatable, intent(out) :: line_of(:)
+        !> Set when the file cannot be opened or a data line does not hold N finite numbers.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+        character(len=512) :: message
+        real(dp) :: row(size(names))
+        integer :: unit, stat, line_number, n
+
+        allocate (table(64, size(names)), line_of(64))
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call fatal_error(error, path//': cannot open: '//trim(message))
+            return
+        end if
+        n = 0
+        line_number = 0
+        do
+            call read_line(unit, line, stat)
+            if (stat /= 0) exit
+            line_number = line_number + 1
+            if (len_trim(line) == 0) cycle
+            if (index(adjustl(line), '#') == 1) cycle
+            call parse_row(path//':'//int_text(line_number)//': ', names, units, line, row, error)
+            if (allocated(error)) exit
+            n = n + 1
+            if (n > size(table, 1)) call grow(table, line_of, stat)
+            if (stat /= 0) then
+                call fatal_error(error, path//':'//int_text(line_number)//': expected a file that fits in memory, ' &
+                                 //'found more than '//int_text(n - 1)//' data lines')
+                exit
+            end if
+            table(n, :) = row
+            line_of(n) = line_number
+        end do
+        close (unit)
+        if (allocated(error)) return
+        call shrink(table, line_of, n)
+    end subroutine read_columns
+
+    !> Keep the first n rows of the row storage.
+    pure subroutine shrink(table, line_of, n)
+        real(dp), allocatable, intent(inout) :: table(:, :)
+        integer, allocatable, intent(inout) :: line_of(:)
+        integer, intent(in) :: n
+
+        real(dp), allocatable :: rows(:, :)
+        integer, allocatable :: lines(:)
+
+        allocate (rows(n, size(table, 2)), lines(n))
+        rows(:, :) = table(1:n, :)
+        lines(:) = line_of(1:n)
+        call move_alloc(rows, table)
+        call move_alloc(lines, line_of)
+    end subroutine shrink
+
+    !> Double the capacity of the row storage; stat /= 0 (storage unchanged) when that fails.
+    pure subroutine grow(table, line_of, stat)
+        real(dp), allocatable, intent(inout) :: table(:, :)
+        integer, allocatable, intent(inout) :: line_of(:)
+        integer, intent(out) :: stat
+
+        real(dp), allocatable :: bigger(:, :)
+        integer, allocatable :: longer(:)
+
+        stat = 1
+        if (size(table, 1) > huge(stat) - size(table, 1)) return
+        allocate (bigger(2*size(table, 1), size(table, 2)), stat=stat)
+        if (stat /= 0) return
+        allocate (longer(2*size(table, 1)), stat=stat)
+        if (stat /= 0) return
+        bigger(1:size(table, 1), :) = table
+        longer(1:size(line_of)) = line_of
+        call move_alloc(bigger, table)
+        call move_alloc(longer, line_of)
+    end subroutine grow
+
+    !> Parse one data line: exactly N finite numbers. `prefix` is `path:line: `.
+    subroutine parse_row(prefix, names, units, line, row, error)
+        character(len=*), intent(in) :: prefix
+        character(len=*), intent(in) :: names(:), units(:)
+        character(len=*), intent(in) :: line
+        real(dp), intent(out) :: row(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: first(size(names)), last(size(names)), n_tokens, i, stat
+
+        call split(line, first, last, n_tokens)
+        if (n_tokens /= size(names)) then
+            call fatal_error(error, prefix//'expected '//int_text(size(names))//' columns (' &
+                             //column_list(names, units)//'), found '//int_text(n_tokens)//': "' &
+                             //trim(adjustl(line))//'"')
+            return
+        end if
+        do i = 1, size(names)
+            associate (token => line(first(i):last(i)), what => prefix//'column '//int_text(i)//' (' &
+                                                                   //trim(names(i))//'): expected a ')
+                if (.not. is_number(token)) then
+                    if (is_nan_or_inf(token)) then
+                        call fatal_error(error, what//'finite number, found "'//token//'"')
+                    else
+                        call fatal_error(error, what//'number, found "'//token//'"')
+                    end if
+                    return
+                end if
+                read (token, *, iostat=stat) row(i)
+                if (stat /= 0 .or. .not. ieee_is_finite(row(i))) then
+                    call fatal_error(error, what//'finite number (|x| < 1.8e308), found "'//token//'"')
+                    return
+                end if
+            end associate
+        end do
+    end subroutine parse_row
+
+    !> `name [unit], name [unit], ...` for messages.
+    pure function column_list(names, units) result(text)
+        character(len=*), intent(in) :: names(:), units(:)
+        character(len=:), allocatable :: text
+
+        integer :: i
+
+        text = ''
+        do i = 1, size(names)
+            if (i > 1) text = text//', '
+            text = text//trim(names(i))//' ['//trim(units(i))//']'
+        end do
+    end function column_list
+
+    !> Positions of the blank- or tab-separated tokens of a line (at most size(first)
+    !> recorded, all counted).
+    pure subroutine split(line, first, last, n_tokens)
+        character(len=*), intent(in) :: line
+        integer, intent(out) :: first(:), last(:)
+        integer, intent(out) :: n_tokens
+
+        logical :: inside, blank
+        integer :: i, n_max
+
+        n_max = size(first)
+        n_tokens = 0
+        first = 0
+        last = 0
+        inside = .false.
+        do i = 1, len(line)
+            blank = line(i:i) == ' ' .or. line(i:i) == achar(9) .or. line(i:i) == achar(13)
+            if (.not. blank .and. .not. inside) then
+                n_tokens = n_tokens + 1
+                if (n_tokens <= n_max) first(n_tokens) = i
+                inside = .true.
+            else if (blank .and. inside) then
+                if (n_tokens <= n_max) last(n_tokens) = i - 1
+                inside = .false.
+            end if
+        end do
+        if (inside .and. n_tokens <= n_max) last(n_tokens) = len(line)
+    end subroutine split
+
+    !> Read one whole line of any length (stat: 0, or the iostat of the end of the file or a failure).
+    subroutine read_line(unit, line, stat)
+        !> An open formatted sequential unit.
+        integer, intent(in) :: unit
+        !> The line, without its end.
+        character(len=:), allocatable, intent(out) :: line
+        !> 0 when a line was read.
+        integer, intent(out) :: stat
+
+        character(len=256) :: buffer
+        integer :: n_read
+
+        line = ''
+        do
+            read (unit, '(a)', advance='no', iostat=stat, size=n_read) buffer
+            line = line//buffer(1:n_read)
+            if (is_iostat_eor(stat)) then
+                stat = 0
+                return
+            end if
+            if (is_iostat_end(stat) .and. len(line) > 0) then
+                stat = 0
+                return
+            end if
+            if (stat /= 0) return
+        end do
+    end subroutine read_line
+
+end module greenconv_io_columns

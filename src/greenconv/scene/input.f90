@@ -1,0 +1,639 @@
+!> A scene read from a namelist file: task, time grid, structure, road, contact law,
+!> identification and convolution methods. The file is first scanned (greenconv_scene_schema,
+!> greenconv_scene_scan: unknown names, wrong kinds, NaN/Inf, required values, each with its
+!> line); then each group is read with a namelist read and its values checked, messages
+!> carrying the line of the variable. Apart from the required values (greenconv_scene_schema),
+!> every variable has a default (the paper's Tab. 1 and section 3.1, section 3.2 for the
+!> random road and random modes), so a scene file states only what differs. README.md lists
+!> them all:
+!>
+!>     &scene          task, name, output_dir, dt [s], n_steps, output_every, progress
+!>     &structure      model = 'sdof' | 'random_modes' | 'frf_file' | 'tyre', mass [kg],
+!>                     stiffness [N/m], damping_ratio, n_modes, seed, f_low, f_high [Hz],
+!>                     xi_low, xi_high, a_low, a_high [1/kg], frf_file, belt_length [m],
+!>                     belt_mass [kg/m], belt_bending [N*m^2], belt_tension [N],
+!>                     belt_foundation [N/m^2], f_modes [Hz]
+!>     &identification f_max [Hz], n_freq, tol_e, max_order, order
+!>     &road           profile = 'sine' | 'random' | 'file', amplitude [m], omega [rad/s],
+!>                     wavelength [m], speed [m/s], n_terms, seed, road_file, x_start [m]
+!>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N],
+!>                     n_points, patch_length [m], scheme, divergence_bound [m]
+!>     &convolution    methods, truncation_tol, accuracy
+module greenconv_scene_input
+    use, intrinsic :: iso_fortran_env, only: iostat_end
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: real_text, int_text, sci_text
+    use greenconv_model_road, only: road_profile, sine_road, new_random_road
+    use greenconv_contact_single, only: contact_law, contact_options
+    use greenconv_model_tyre, only: tyre_belt, tyre_frequency, contact_positions
+    use greenconv_model_road_file, only: road_file, read_road_file, file_road, check_road_coverage
+    use greenconv_scene_scan, only: namelist_scan
+    use greenconv_scene_schema, only: scan_scene, max_methods
+    use greenconv_core_number_text, only: compact_real
+    use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
+                                max_contact_points, max_kernel_values, kernel_values
+    implicit none
+    private
+
+    public :: scene_type, read_scene, output_path, input_place
+
+    !> Length of names read from a namelist.
+    integer, parameter :: name_length = 64
+    !> Length of paths read from a namelist.
+    integer, parameter :: path_length = 1024
+    !> The convolution methods a scene may list, for messages.
+    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', " &
+                                                   //"'backward' or 'auto'"
+    !> Everything a contact run needs, in SI units.
+    type :: scene_type
+        !> The namelist file the scene came from.
+        character(len=:), allocatable :: file
+        !> Where each group and variable of the file stands (its lines), from the pre-scan.
+        type(namelist_scan) :: input
+        !> What to do: `contact` (simulate) or `identify` (fit modes to the structure's G only).
+        character(len=:), allocatable :: task
+        !> Base name of the output files.
+        character(len=:), allocatable :: name
+        !> Directory the column files are written to.
+        character(len=:), allocatable :: output_dir
+        !> Time step [s].
+        real(dp) :: dt = 1.0e-4_dp
+        !> Number of time steps N_t.
+        integer :: n_steps = 2000
+        !> Write every this many steps to the column files (1: every step), >= 1.
+        integer :: output_every = 1
+        !> Show a progress line on standard error for long runs (only when it is a terminal).
+        logical :: progress = .true.
+        !> Structure model: `sdof`, `random_modes` or `frf_file`.
+        character(len=:), allocatable :: model
+        !> Mass M [kg] of the sdof model.
+        real(dp) :: mass = 1.0_dp
+        !> Stiffness K [N/m] of the sdof model.
+        real(dp) :: stiffness = 1.0e6_dp
+        !> Damping ratio xi of the sdof model.
+        real(dp) :: damping_ratio = 0.02_dp
+        !> Number of modes of the random_modes model.
+        integer :: n_modes = 10
+        !> Seed of the random_modes model.
+        integer :: modes_seed = 2011
+        !> Range of natural frequencies [Hz] of the random_modes model.
+        real(dp) :: f_low = 100.0_dp, f_high = 1000.0_dp
+        !> Range of damping ratios of the random_modes model.
+        real(dp) :: xi_low = 0.025_dp, xi_high = 0.05_dp
+        !> Range of modal amplitudes A_k [1/kg] of the random_modes model.
+        real(dp) :: a_low = 0.5_dp, a_high = 2.0_dp
+        !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N]).
+        character(len=:), allocatable :: frf_file
+        !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
+        type(tyre_belt) :: tyre
+        !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
+        real(dp) :: f_modes = 0.0_dp
+        !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
+        real(dp) :: f_max = 0.0_dp
+        !> Number of frequency lines, 0 Hz to f_max, of the sampled G (random_modes).
+        integer :: n_freq = 20001
+        !> Target of the identification error E of eq. (7).
+        real(dp) :: tol_e = 1.0e-6_dp
+        !> Largest number of modes the order scan tries.
+        integer :: max_order = 30
+        !> Fixed number of modes (0: the smallest order that meets tol_e).
+        integer :: order = 0
+        !> Road profile.
+        class(road_profile), allocatable :: road
+        !> The road file of profile 'file' (heights over x), for the multi-point scene.
+        type(road_file) :: road_data
+        !> Position [m] on the road file of the body (the patch centre) at t = 0.
+        real(dp) :: x_start = 0.0_dp
+        !> Travel speed V [m/s] over the road.
+        real(dp) :: speed = 1.0_dp
+        !> Number of contact points N_c (tyre model; 1 otherwise).
+        integer :: n_points = 1
+        !> Length [m] of the contact patch the N_c points share (tyre model).
+        real(dp) :: patch_length = 0.1_dp
+        !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
+        type(contact_options) :: contact
+        !> Contact law.
+        type(contact_law) :: law
+        !> Static preload F0 [N].
+        real(dp) :: preload = 9.81_dp
+        !> Convolution methods to run, in order.
+        character(len=name_length), allocatable :: methods(:)
+        !> Truncation fraction of max |g| for the direct method.
+        real(dp) :: truncation_tol = 0.01_dp
+        !> Relative accuracy the `auto` method must meet: the largest E (eq. 7) of a modal model
+        !> it accepts; a scene that lists `auto` identifies modes with tol_e = accuracy.
+        real(dp) :: accuracy = 1.0e-3_dp
+    end type scene_type
+
+contains
+
+    !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`.
+    function output_path(scene, method) result(path)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Method name.
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: path
+
+        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
+    end function output_path
+
+    !> "file:line: &group variable" for messages about a value of the scene (the line of the
+    !> variable when the file sets it, else of its group), e.g. before a file it names.
+    function input_place(scene, group, variable) result(text)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: variable
+        character(len=:), allocatable :: text
+
+        text = place(scene, group, variable)//' '//variable
+    end function input_place
+
+    !> Read and check a scene namelist file.
+    subroutine read_scene(path, scene, error)
+        !> Path of the namelist file.
+        character(len=*), intent(in) :: path
+        !> The scene, with defaults where the file is silent.
+        type(scene_type), intent(out) :: scene
+        !> Set, naming the file, group and variable, when the input is unusable.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: unit, stat
+        character(len=512) :: message
+
+        scene%file = path
+        call scan_scene(path, scene%input, error)
+        if (allocated(error)) return
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call fatal_error(error, path//': cannot open the scene file: '//trim(message))
+            return
+        end if
+        call read_scene_group(unit, scene, error)
+        if (.not. allocated(error)) call read_structure_group(unit, scene, error)
+        if (.not. allocated(error)) call read_identification_group(unit, scene, error)
+        if (.not. allocated(error)) call read_road_group(unit, scene, error)
+        if (.not. allocated(error)) call read_contact_group(unit, scene, error)
+        if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
+        if (.not. allocated(error)) call check_scene_road(scene, error)
+        close (unit)
+    end subroutine read_scene
+
+    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, progress.
+    subroutine read_scene_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=name_length) :: task, name
+        character(len=path_length) :: output_dir
+        real(dp) :: dt
+        integer :: n_steps, output_every, stat
+        logical :: progress
+        character(len=512) :: message
+        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, progress
+
+        task = 'contact'
+        name = 'sdof_sine'
+        output_dir = 'out'
+        dt = this%dt
+        n_steps = this%n_steps
+        output_every = this%output_every
+        progress = this%progress
+        rewind (unit)
+        read (unit, nml=scene, iostat=stat, iomsg=message)
+        call group_status(this, 'scene', stat, message, error)
+        if (allocated(error)) return
+        call require(any(trim(task) == [character(len=8) :: 'contact', 'identify']), &
+                     expected(this, 'scene', 'task', "'contact' or 'identify'", task), error)
+        call require(len_trim(name) > 0, expected(this, 'scene', 'name', 'a file base name'), error)
+        call require(len_trim(output_dir) > 0, expected(this, 'scene', 'output_dir', 'a directory path'), error)
+        call require(dt > 0.0_dp .and. dt < huge(dt), &
+                     expected(this, 'scene', 'dt', 'a time step > 0 s', dt), error)
+        call require(n_steps > 0, expected(this, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
+        call require(output_every > 0, expected(this, 'scene', 'output_every', &
+                     'a number of steps >= 1 between written rows', output_every), error)
+        this%task = trim(task)
+        this%name = trim(name)
+        this%output_dir = trim(output_dir)
+        this%dt = dt
+        this%n_steps = n_steps
+        this%output_every = output_every
+        this%progress = progress
+    end subroutine read_scene_group
+
+    !> &structure: the model and its parameters.
+    subroutine read_structure_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=name_length) :: model
+        character(len=path_length) :: frf_file
+        real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
+        real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
+        integer :: n_modes, seed, stat
+        character(len=512) :: message
+        namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
+            xi_low, xi_high, a_low, a_high, frf_file, belt_length, belt_mass, belt_bending, belt_tension, &
+            belt_foundation, f_modes
+
+        model = 'sdof'
+        mass = this%mass
+        stiffness = this%stiffness
+        damping_ratio = this%damping_ratio
+        n_modes = this%n_modes
+        seed = this%modes_seed
+        f_low = this%f_low
+        f_high = this%f_high
+        xi_low = this%xi_low
+        xi_high = this%xi_high
+        a_low = this%a_low
+        a_high = this%a_high
+        frf_file = ''
+        belt_length = this%tyre%length
+        belt_mass = this%tyre%mass_per_length
+        belt_bending = this%tyre%bending_stiffness
+        belt_tension = this%tyre%tension
+        belt_foundation = this%tyre%foundation_stiffness
+        f_modes = this%f_modes
+        rewind (unit)
+        read (unit, nml=structure, iostat=stat, iomsg=message)
+        call group_status(this, 'structure', stat, message, error)
+        if (allocated(error)) return
+        call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file', 'tyre']), &
+                     expected(this, 'structure', 'model', "'sdof', 'random_modes', 'frf_file' or 'tyre'", &
+                              model), error)
+        call require(mass > 0.0_dp .and. mass < huge(mass), &
+                     expected(this, 'structure', 'mass', 'a mass > 0 kg', mass), error)
+        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
+                     expected(this, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
+        call require(damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp, &
+                     expected(this, 'structure', 'damping_ratio', 'a ratio in [0, 1)', damping_ratio), error)
+        call require(n_modes > 0 .and. n_modes <= max_random_modes, expected(this, 'structure', 'n_modes', &
+                     'a number of modes from 1 to '//int_text(max_random_modes), n_modes), error)
+        call require(f_low > 0.0_dp .and. f_high > f_low .and. f_high < huge(f_high), &
+                     expected(this, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
+        call require(xi_low > 0.0_dp .and. xi_high >= xi_low .and. xi_high < 1.0_dp, &
+                     expected(this, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
+        call require(a_low > 0.0_dp .and. a_high >= a_low .and. a_high < huge(a_high), &
+                     expected(this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
+        call require(trim(model) /= 'frf_file' .or. len_trim(frf_file) > 0, &
+                     expected(this, 'structure', 'frf_file', "a receptance file for model 'frf_file'"), error)
+        this%model = trim(model)
+        this%mass = mass
+        this%stiffness = stiffness
+        this%damping_ratio = damping_ratio
+        this%n_modes = n_modes
+        this%modes_seed = seed
+        this%f_low = f_low
+        this%f_high = f_high
+        this%xi_low = xi_low
+        this%xi_high = xi_high
+        this%a_low = a_low
+        this%a_high = a_high
+        call require(all([belt_length, belt_mass] > 0.0_dp) .and. &
+                     all([belt_bending, belt_tension, belt_foundation] >= 0.0_dp) .and. &
+                     all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
+                     expected(this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
+                              //'belt_tension, belt_foundation >= 0, all finite'), error)
+        call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this, 'structure', 'f_modes', &
+                     'a frequency >= 0 Hz (0: the band rule)', f_modes), error)
+        this%frf_file = trim(frf_file)
+        this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
+                              tension=belt_tension, foundation_stiffness=belt_foundation, &
+                              damping_ratio=damping_ratio)
+        this%f_modes = f_modes
+    end subroutine read_structure_group
+
+    !> &identification: frequency grid of the sampled G and LSCE options.
+    subroutine read_identification_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: f_max, tol_e
+        integer :: n_freq, max_order, order, stat
+        character(len=512) :: message
+        namelist /identification/ f_max, n_freq, tol_e, max_order, order
+
+        f_max = 0.5_dp/this%dt
+        n_freq = this%n_freq
+        tol_e = this%tol_e
+        max_order = this%max_order
+        order = this%order
+        rewind (unit)
+        read (unit, nml=identification, iostat=stat, iomsg=message)
+        call group_status(this, 'identification', stat, message, error)
+        if (allocated(error)) return
+        call require(f_max > 0.0_dp .and. f_max < huge(f_max), &
+                     expected(this, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
+        call require(n_freq >= 16 .and. n_freq <= max_freq_lines, expected(this, 'identification', 'n_freq', &
+                     'from 16 to '//int_text(max_freq_lines)//' lines', n_freq), error)
+        call require(tol_e > 0.0_dp .and. tol_e < 1.0_dp, &
+                     expected(this, 'identification', 'tol_e', 'an error target in (0, 1)', tol_e), error)
+        call require(max_order > 0 .and. max_order <= max_lsce_modes, expected(this, 'identification', &
+                     'max_order', 'a number of modes from 1 to '//int_text(max_lsce_modes), max_order), error)
+        call require(order >= 0 .and. order <= max_lsce_modes, expected(this, 'identification', 'order', &
+                     'a number of modes from 0 (chosen by tol_e) to '//int_text(max_lsce_modes), order), error)
+        this%f_max = f_max
+        this%n_freq = n_freq
+        this%tol_e = tol_e
+        this%max_order = max_order
+        this%order = order
+    end subroutine read_identification_group
+
+    !> &road: profile and its parameters.
+    subroutine read_road_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=name_length) :: profile
+        type(sine_road) :: sine
+        character(len=path_length) :: road_file
+        real(dp) :: amplitude, omega, wavelength, speed, x_start
+        integer :: n_terms, seed, stat
+        character(len=512) :: message
+        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start
+
+        profile = 'sine'
+        amplitude = sine%amplitude
+        omega = sine%omega
+        wavelength = 50.0e-3_dp
+        speed = 1.0_dp
+        n_terms = 10
+        seed = 35
+        road_file = ''
+        x_start = this%x_start
+        rewind (unit)
+        read (unit, nml=road, iostat=stat, iomsg=message)
+        call group_status(this, 'road', stat, message, error)
+        if (allocated(error)) return
+        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file']), &
+                     expected(this, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
+        call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
+                     expected(this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
+                     error)
+        call require(abs(x_start) < huge(x_start), &
+                     expected(this, 'road', 'x_start', 'a finite position in m', x_start), error)
+        call require(abs(amplitude) < huge(amplitude), &
+                     expected(this, 'road', 'amplitude', 'a finite height in m', amplitude), error)
+        call require(abs(omega) < huge(omega), &
+                     expected(this, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
+        call require(wavelength > 0.0_dp .and. wavelength < huge(wavelength), &
+                     expected(this, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
+        call require(abs(speed) < huge(speed), &
+                     expected(this, 'road', 'speed', 'a finite speed in m/s', speed), error)
+        call require(n_terms > 0 .and. n_terms <= max_road_terms, expected(this, 'road', 'n_terms', &
+                     'a number of terms from 1 to '//int_text(max_road_terms), n_terms), error)
+        if (allocated(error)) return
+        this%speed = speed
+        this%x_start = x_start
+        select case (trim(profile))
+        case ('sine')
+            sine%amplitude = amplitude
+            sine%omega = omega
+            this%road = sine
+        case ('random')
+            this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
+        case default
+            call read_file_road(this, trim(road_file), error)
+        end select
+    end subroutine read_road_group
+
+    !> Profile 'file': read the road file; a single contact point must stay on it for the
+    !> whole run (the tyre scene checks its patch when it samples the road).
+    subroutine read_file_road(this, path, error)
+        type(scene_type), intent(inout) :: this
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
+
+        call read_road_file(path, this%road_data, error)
+        if (allocated(error)) then
+            error%message = input_place(this, 'road', 'road_file')//': '//error%message
+            return
+        end if
+        this%road = file_road(this%road_data, this%x_start, this%speed)
+    end subroutine read_file_road
+
+    !> Profile 'file': every contact point stays on the road file for the whole run (a single
+    !> point at x_start + V*t; the tyre's points spread over the patch around it), so that
+    !> `--check` finds a road too short as a run would.
+    subroutine check_scene_road(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error)) return
+        if (.not. allocated(this%road_data%x) .or. this%task /= 'contact') return
+        call check_road_coverage(this%road_data, this%x_start + contact_positions(0.0_dp, this%patch_length, &
+                                 this%n_points), this%speed, this%dt, this%n_steps, error)
+        if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
+    end subroutine check_scene_road
+
+    !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
+    subroutine read_contact_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound
+        character(len=name_length) :: scheme
+        integer :: stat, n_points
+        character(len=512) :: message
+        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, scheme, divergence_bound
+
+        stiffness = this%law%stiffness
+        exponent = this%law%exponent
+        gravity = 9.81_dp
+        preload = -1.0_dp
+        n_points = this%n_points
+        patch_length = this%patch_length
+        scheme = this%contact%scheme
+        divergence_bound = this%contact%divergence_bound
+        rewind (unit)
+        read (unit, nml=contact, iostat=stat, iomsg=message)
+        call group_status(this, 'contact', stat, message, error)
+        if (allocated(error)) return
+        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
+                     expected(this, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
+        call require(exponent > 0.0_dp .and. exponent < huge(exponent), &
+                     expected(this, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
+        call require(gravity >= 0.0_dp .and. gravity < huge(gravity), &
+                     expected(this, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
+        call require(abs(preload) < huge(preload), &
+                     expected(this, 'contact', 'preload', 'a finite force in N', preload), error)
+        call require(preload >= 0.0_dp .or. this%model == 'sdof' .or. this%task /= 'contact', &
+                     expected(this, 'contact', 'preload', &
+                     "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
+        call require(n_points <= max_contact_points, expected(this, 'contact', 'n_points', &
+                     'at most '//int_text(max_contact_points)//' points', n_points), error)
+        call require(n_points >= 1 .and. (n_points == 1 .or. this%model == 'tyre'), &
+                     expected(this, 'contact', 'n_points', &
+                              "1, or a number of points >= 1 for model 'tyre'", n_points), error)
+        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
+                     'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
+        call require(any(trim(scheme) == [character(len=8) :: 'explicit', 'implicit']), &
+                     expected(this, 'contact', 'scheme', "'explicit' or 'implicit'", scheme), error)
+        call require(divergence_bound > 0.0_dp .and. divergence_bound < huge(divergence_bound), &
+                     expected(this, 'contact', 'divergence_bound', 'a displacement > 0 m', divergence_bound), &
+                     error)
+        this%law = contact_law(stiffness=stiffness, exponent=exponent)
+        this%contact%scheme = trim(scheme)
+        this%contact%divergence_bound = divergence_bound
+        this%n_points = n_points
+        this%patch_length = patch_length
+        this%preload = preload
+        if (preload < 0.0_dp) this%preload = this%mass*gravity
+    end subroutine read_contact_group
+
+    !> &convolution: methods (list of names), truncation_tol, accuracy.
+    subroutine read_convolution_group(unit, this, error)
+        integer, intent(in) :: unit
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=name_length) :: methods(max_methods)
+        real(dp) :: truncation_tol, accuracy
+        integer :: stat, i
+        character(len=512) :: message
+        namelist /convolution/ methods, truncation_tol, accuracy
+
+        ! No default list: a contact scene must name its methods (the scan requires it), and
+        ! a list that started from defaults would keep the defaults the file does not overwrite.
+        methods = ''
+        truncation_tol = this%truncation_tol
+        accuracy = this%accuracy
+        rewind (unit)
+        read (unit, nml=convolution, iostat=stat, iomsg=message)
+        call group_status(this, 'convolution', stat, message, error)
+        if (allocated(error)) return
+        do i = 1, max_methods
+            select case (trim(methods(i)))
+            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward', 'auto')
+            case default
+                call fatal_error(error, &
+                                 expected(this, 'convolution', 'methods', known_methods, methods(i)))
+                return
+            end select
+        end do
+        call require(truncation_tol > 0.0_dp .and. truncation_tol < 1.0_dp, &
+            expected(this, 'convolution', 'truncation_tol', &
+                                             'a fraction of max |g| in (0, 1)', truncation_tol), error)
+        this%methods = pack(methods, methods /= '')
+        call require(size(this%methods) > 0 .or. this%task /= 'contact', &
+                     expected(this, 'convolution', 'methods', 'at least one method'), error)
+        do i = 2, size(this%methods)
+            call require(all(this%methods(:i - 1) /= this%methods(i)), expected(this, 'convolution', 'methods', &
+                         'each method once (its file would be written twice)', this%methods(i)), error)
+        end do
+        call require(accuracy > 0.0_dp .and. accuracy < 1.0_dp, &
+                     expected(this, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
+        this%truncation_tol = truncation_tol
+        this%accuracy = accuracy
+        if (.not. allocated(error)) call check_kernel_size(this, error)
+    end subroutine read_convolution_group
+
+    !> A sampled kernel (`direct`, `fft`, and `auto`, which samples it to weigh its cost) must
+    !> fit in max_kernel_values; a receptance file's g is bounded by the file and not checked.
+    subroutine check_kernel_size(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: values, decay_rate
+
+        if (this%task /= 'contact' .or. this%model == 'frf_file') return
+        if (.not. any(this%methods == 'direct' .or. this%methods == 'fft' .or. this%methods == 'auto')) return
+        select case (this%model)
+        case ('sdof')
+            decay_rate = this%damping_ratio*sqrt(this%stiffness/this%mass)
+        case ('tyre')
+            decay_rate = this%damping_ratio*tyre_frequency(this%tyre, 1)
+        case default
+            decay_rate = this%xi_low*2.0_dp*acos(-1.0_dp)*this%f_low
+        end select
+        values = kernel_values(decay_rate, this%dt, this%truncation_tol, this%n_steps, this%n_points)
+        call require(values <= max_kernel_values, expected(this, 'convolution', 'methods', &
+                     'a sampled kernel (direct, fft, auto) of at most '//sci_text(real(max_kernel_values, dp)) &
+                     //' values (8 bytes each); use a larger dt or truncation_tol, or a modal method (modal, ' &
+                     //'exact), found '//sci_text(values)//' values'), error)
+    end subroutine check_kernel_size
+
+    !> Turn the status of a namelist read into an error ("file:line: &group: message"); a
+    !> missing group is no error here (greenconv_scene_schema checks the required ones).
+    subroutine group_status(scene, group, stat, message, error)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, message
+        integer, intent(in) :: stat
+        type(error_type), allocatable, intent(out) :: error
+
+        if (stat == 0 .or. stat == iostat_end) return
+        call fatal_error(error, scene%file//':'//int_text(scene%input%line_of(group, ''))//': &'//group//': ' &
+                         //trim(message))
+    end subroutine group_status
+
+    !> "file:line: &group variable: expected what[, found value]", the line that of the variable
+    !> (the first of a list `a, b`) when the file sets it, else the group's; value is a real, an
+    !> integer or a text.
+    function expected(scene, group, variable, what, found) result(line)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variable, what
+        class(*), intent(in), optional :: found
+        character(len=:), allocatable :: line
+
+        character(len=32) :: value
+
+        line = place(scene, group, variable)//' '//variable//': expected '//what
+        if (.not. present(found)) return
+        select type (found)
+        type is (real(dp))
+            line = line//', found '//compact_real(found)
+        type is (integer)
+            write (value, '(i0)') found
+            line = line//', found '//trim(value)
+        type is (character(len=*))
+            line = line//", found '"//trim(found)//"'"
+        end select
+    end function expected
+
+    !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
+    !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
+    function place(scene, group, variables) result(text)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variables
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: rest
+        integer :: line, comma
+
+        line = 0
+        rest = variables
+        do while (line == 0 .and. len_trim(rest) > 0)
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            line = scene%input%line_of(group, trim(adjustl(rest(:comma - 1))))
+            rest = rest(min(comma + 1, len(rest) + 1):)
+        end do
+        if (line == 0) line = scene%input%line_of(group, '')
+        if (line > 0) then
+            text = scene%file//':'//int_text(line)//': &'//group
+        else
+            text = scene%file//': &'//group
+        end if
+    end function place
+
+    !> Record `message` as the error unless `ok` holds or an earlier check already failed.
+    subroutine require(ok, message, error)
+        logical, intent(in) :: ok
+        character(len=*), intent(in) :: message
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (ok .or. allocated(error)) return
+        call fatal_error(error, message)
+    end subroutine require
+
+end module greenconv_scene_input

@@ -1,0 +1,75 @@
+!> Column files of the contact runs: the layout of a multi-point run's histories (one row
+!> per step and point) that the tyre scene streams and `write_multi_contact` writes whole.
+module greenconv_scene_output
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_io_files, only: write_columns
+    use greenconv_contact_multi, only: multi_contact_response
+    implicit none
+    private
+
+    public :: write_multi_contact, multi_contact_header, multi_contact_table
+
+contains
+
+    !> Write a run as one row per step and point, time-major, with a blank-free layout that
+    !> gnuplot maps directly (`plot FILE using 2:1:5 with image` gives F over x and t):
+    !> columns t [s], x [m], u_road [m], u [m], f_contact [N], delta [m], f_total [N].
+    subroutine write_multi_contact(path, title, positions, response, error)
+        !> Target file (written atomically).
+        character(len=*), intent(in) :: path
+        !> First header line, e.g. the scene and method.
+        character(len=*), intent(in) :: title
+        !> Position x_i [m] of each point, for the second column.
+        real(dp), intent(in) :: positions(:)
+        !> Histories of the run.
+        type(multi_contact_response), intent(in) :: response
+        !> Set when the file cannot be written.
+        type(error_type), allocatable, intent(out) :: error
+
+        call write_columns(path, multi_contact_header(title), multi_contact_table(positions, response, 0, 1), error)
+    end subroutine write_multi_contact
+
+    !> The header lines of `write_multi_contact`'s files: the title, the units, the columns.
+    pure function multi_contact_header(title) result(comments)
+        !> First header line, e.g. the scene and method.
+        character(len=*), intent(in) :: title
+        character(len=200) :: comments(3)
+
+        comments(1) = title
+        comments(2) = 'units: s m m m N m N'
+        comments(3) = 't x u_road u f_contact delta f_total'
+    end function multi_contact_header
+
+    !> The rows of `write_multi_contact` for the steps j = first, first + stride, ... of
+    !> `response` (N_c rows per step: t, x, u_road, u, f_contact, delta, f_total).
+    pure function multi_contact_table(positions, response, first, stride) result(table)
+        !> Position x_i [m] of each point, for the second column.
+        real(dp), intent(in) :: positions(:)
+        !> Histories (of a run or of one block).
+        type(multi_contact_response), intent(in) :: response
+        !> Index (from 0) of the first step written.
+        integer, intent(in) :: first
+        !> Steps between two rows written, >= 1.
+        integer, intent(in) :: stride
+        real(dp), allocatable :: table(:, :)
+
+        integer :: n_c, n, row
+
+        n_c = size(positions)
+        allocate (table(n_c*size(response%time(first::stride)), 7))
+        row = 0
+        do n = first, size(response%time) - 1, stride
+            table(row + 1:row + n_c, 1) = response%time(n)
+            table(row + 1:row + n_c, 2) = positions
+            table(row + 1:row + n_c, 3) = response%road(n, :)
+            table(row + 1:row + n_c, 4) = response%displacement(n, :)
+            table(row + 1:row + n_c, 5) = response%force(n, :)
+            table(row + 1:row + n_c, 6) = response%compression(n, :)
+            table(row + 1:row + n_c, 7) = response%total_force(n)
+            row = row + n_c
+        end do
+    end function multi_contact_table
+
+
+end module greenconv_scene_output

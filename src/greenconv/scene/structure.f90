@@ -1,0 +1,72 @@
+!> The structure of a scene: its `&structure` and `&identification` groups turned into a
+!> `structure_model` (greenconv_ident_structure) from values, with the scene's file and line
+!> put in front of any error.
+module greenconv_scene_structure
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_model_modal_set, only: modal_set, random_modes
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
+    use greenconv_ident_lsce, only: lsce_options
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf
+    use greenconv_scene_input, only: scene_type, input_place
+    implicit none
+    private
+
+    public :: build_structure
+
+contains
+
+    !> Build the structure of a scene: exact modes, or G sampled and identified by LSCE.
+    subroutine build_structure(scene, structure, error)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the FRF file is unusable or the identification fails.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(modal_set) :: exact
+        real(dp) :: dt
+
+        select case (scene%model)
+        case ('sdof')
+            structure = structure_from_modes(sdof_modes(scene%mass, scene%stiffness, scene%damping_ratio))
+        case ('random_modes')
+            exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
+                                 scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
+            call structure_from_frf(frf_from_modes(exact, scene%f_max, scene%n_freq), scene_options(scene), &
+                                    0.0_dp, structure, error)
+            structure%has_exact = .true.
+            structure%exact = exact
+        case ('frf_file')
+            call read_frf(scene%frf_file, frf, error)
+            if (.not. allocated(error)) then
+                dt = 0.0_dp
+                if (scene%task == 'contact') dt = scene%dt
+                call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+                if (allocated(error)) error%message = scene%frf_file//': '//error%message
+            end if
+            if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
+        case default
+            call fatal_error(error, scene%file//": &structure model: unknown model '"//scene%model//"'")
+        end select
+    end subroutine build_structure
+
+    !> The scene's identification settings.
+    function scene_options(scene) result(options)
+        type(scene_type), intent(in) :: scene
+        type(lsce_options) :: options
+
+        options%tol_e = scene%tol_e
+        ! `auto` wants the smallest model that meets the scene's accuracy, not more.
+        if (allocated(scene%methods)) then
+            if (any(scene%methods == 'auto')) options%tol_e = scene%accuracy
+        end if
+        options%max_modes = scene%max_order
+        options%fixed_modes = scene%order
+    end function scene_options
+
+
+end module greenconv_scene_structure
