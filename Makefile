@@ -161,7 +161,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
