@@ -21,12 +21,21 @@
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
 #                   data of the speed/accuracy and stability charts in out/bench/, then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
-#   make test       deps, `make lib`, check that the Makefile-built driver writes the same
-#                   output as the fpm-built one, build and run the examples (each compares
-#                   its results with the driver's output for data/sdof_sine.nml), install
-#                   into a temporary prefix and build the C and Fortran 77 examples against
-#                   it with pkg-config, run the fuzz test (`make fuzz`), then `fpm test` (its "N passed, N failed" line is the
-#                   last line printed)
+#   make test       deps, the layer check (`make layers`), `make lib`, check that the
+#                   Makefile-built driver writes the same output as the fpm-built one, build
+#                   and run the examples (each compares its results with the driver's output
+#                   for data/sdof_sine.nml), install into a temporary prefix and build the C
+#                   and Fortran 77 examples against it with pkg-config, run the fuzz test
+#                   (`make fuzz`), the benchmark's smoke checks (`make bench-smoke`), then
+#                   `fpm test` (its "N passed, N failed" line is the last line printed)
+#   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
+#                   follow their paths), then its self-test tools/test_check_layers.sh
+#   make bench-smoke  the benchmark's smoke checks: `fpm run --example greenconv-bench -- --smoke`
+#                   (the stability map and the multi-point cost table on small cases)
+#
+#   One suite or one test of the unit tests:  fpm test -- SUITE [TEST]
+#   e.g. `fpm test -- contact`, `fpm test -- sdof 'receptance at rest is 1/K'`; an unknown
+#   name lists the valid ones.
 #   make fuzz       damage the shipped scene, receptance and road files FUZZ_CASES ways (default
 #                   2000) and check that the driver always ends with status 0, 2 or 3 and one
 #                   clean message, never a signal or a half-written file (fuzz/fuzz_main.f90)
@@ -101,7 +110,8 @@ FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run bench bench-data figures test clean examples install doc doc-check fuzz
+.PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
+        fuzz
 
 all: lib
 
@@ -151,7 +161,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -249,14 +259,29 @@ figures:
 # printed is fpm test's "N passed, N failed" (the helper runs `fpm test` and, when it
 # fails, repeats that line after fpm's error messages).
 test: deps
+	@$(MAKE) layers
 	@$(MAKE) lib
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz
+	@$(MAKE) bench-smoke
 	@echo "fpm test"
 	@$(HELPER) fpm-test
+
+# The layering of src/ (cheap, so `make test` runs it first), and proof that the check fails
+# on a planted violation.
+layers:
+	@echo "greenconv: layer check (tools/check_layers.sh)"
+	@bash tools/check_layers.sh
+	@bash tools/test_check_layers.sh
+
+# The benchmark's code lives in bench/, which `fpm test` cannot see: its checks run through
+# the benchmark program (fpm's default profile, the build `fpm test` uses).
+bench-smoke:
+	@echo "greenconv: smoke checks of the benchmark (greenconv-bench --smoke)"
+	@$(FPM) run --example greenconv-bench -- --smoke
 
 # ---- clean -----------------------------------------------------------------------------
 

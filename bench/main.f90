@@ -3,25 +3,38 @@
 !> recursion (and the charts' data) written to out/bench/.
 !>
 !>     greenconv-bench [SDOF_SCENE [MDOF_SCENE]]
+!>     greenconv-bench --smoke
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
-!> directory: `make bench`).
+!> directory: `make bench`). `--smoke` runs only the smoke checks of the benchmark's code
+!> (bench_smoke_mod, a few seconds, part of `make test`): one pass/FAIL line per check, then
+!> `N passed, N failed`; the exit status is 1 when a check failed.
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
     use bench_tables_mod, only: print_tables
     use bench_stability_mod, only: overflow_map
-    use greenconv_bench_stability, only: stability_map
-    use greenconv_bench_multipoint, only: multipoint_cost_table
+    use bench_contact_stability_mod, only: stability_map
+    use bench_multipoint_mod, only: multipoint_cost_table
+    use bench_smoke_mod, only: run_smoke_checks
     use greenconv_io_files, only: make_directory
     use bench_accuracy_mod, only: accuracy_charts
     implicit none
 
     type(error_type), allocatable :: error
     character(len=:), allocatable :: sdof_file, mdof_file
+    integer :: n_passed, n_failed
     !> Where the benchmark's column files go (plot/bench_*.gp read them there).
     character(len=*), parameter :: output_dir = 'out/bench'
 
+    if (argument(1, '') == '--smoke') then
+        n_passed = 0
+        n_failed = 0
+        call run_smoke_checks(output_unit, n_passed, n_failed)
+        write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
+        if (n_failed > 0) stop 1, quiet=.true.
+        stop
+    end if
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
     call make_directory(output_dir, error)

@@ -14,8 +14,9 @@
 !> A case passes when every run ends with status 0 (done), 2 (bad input) or 3 (numerical
 !> fault), standard error holds only lines starting "greenconv: " with exactly one that is
 !> not a warning when the status is 2 or 3 and none when it is 0, no `.part` file is left,
-!> and no written row holds NaN or Inf. A signal, a runtime error, a backtrace or a hang
-!> (60 s) fails it; the damaged file is kept in WORKDIR/failures/. The counts of cases and
+!> no written row holds NaN or Inf, and standard output holds no message of LAPACK's XERBLA
+!> ("On entry to ..."; the reference one prints it and stops with status 0, so the status alone
+!> would not show it). A signal, a runtime error, a backtrace or a hang (60 s) fails it; the damaged file is kept in WORKDIR/failures/. The counts of cases and
 !> of each outcome are printed; the exit status is 1 when a case failed.
 program greenconv_fuzz
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
@@ -228,9 +229,9 @@ contains
         if (stat /= 0) status = -1
         clean = stderr_is_clean(status)
         text = file_text(work//'/leftovers.txt')
-        ok = any(status == statuses) .and. clean .and. len_trim(text) == 0
-        n_steps = 0
         stdout = file_text(work//'/stdout.txt')
+        ok = any(status == statuses) .and. clean .and. len_trim(text) == 0 .and. index(stdout, 'On entry to') == 0
+        n_steps = 0
         at = index(stdout, 'N_t = ')
         if (at > 0) then
             read (stdout(at + 6:), *, iostat=stat) n_steps

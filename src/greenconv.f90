@@ -18,8 +18,7 @@ module greenconv
     use greenconv_contact_single, only: contact_law, contact_response, contact_options, run_contact, contact_state, &
                            start_contact, contact_block
     use greenconv_verify_ode, only: ode_system, integrate
-    use greenconv_verify_contact, only: contact_reference
-    use greenconv_bench_stability, only: stability_cell, stability_map, contact_frequency
+    use greenconv_verify_contact, only: contact_reference, contact_frequency
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, write_frf
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
@@ -54,7 +53,7 @@ module greenconv
     public :: contact_law, contact_response, contact_options, run_contact
     public :: contact_state, start_contact, contact_block
     public :: ode_system, integrate, contact_reference
-    public :: stability_cell, stability_map, contact_frequency
+    public :: contact_frequency
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form

@@ -1,8 +1,14 @@
-!> Runs every test suite of greenconv and ends with the line `N passed, N failed`;
-!> exits with status 1 when a test failed.
+!> Runs the test suites of greenconv and ends with the line `N passed, N failed`; exits with
+!> status 1 when a test failed.
+!>
+!>     fpm test                          every suite
+!>     fpm test -- SUITE                 one suite, e.g. `fpm test -- contact`
+!>     fpm test -- SUITE 'TEST NAME'     one test of a suite, by its full name
+!>
+!> An unknown suite or test prints the valid names and exits with status 2.
 program greenconv_tests
     use, intrinsic :: iso_fortran_env, only: output_unit
-    use testsuite_mod, only: run_testsuite
+    use testsuite_mod, only: new_testsuite, run_selected
     use test_sdof_mod, only: collect_sdof
     use test_convolution_mod, only: collect_convolution
     use test_contact_mod, only: collect_contact
@@ -17,26 +23,30 @@ program greenconv_tests
     use test_library_mod, only: collect_library
     use test_input_mod, only: collect_input
     use test_longrun_mod, only: collect_longrun
+    use test_lapack_mod, only: collect_lapack
     implicit none
 
     integer :: n_passed, n_failed
+    logical :: valid
 
     n_passed = 0
     n_failed = 0
-    call run_testsuite('sdof', collect_sdof, output_unit, n_passed, n_failed)
-    call run_testsuite('convolution', collect_convolution, output_unit, n_passed, n_failed)
-    call run_testsuite('contact', collect_contact, output_unit, n_passed, n_failed)
-    call run_testsuite('random', collect_random, output_unit, n_passed, n_failed)
-    call run_testsuite('lsce', collect_lsce, output_unit, n_passed, n_failed)
-    call run_testsuite('scene', collect_scene, output_unit, n_passed, n_failed)
-    call run_testsuite('engines', collect_engines, output_unit, n_passed, n_failed)
-    call run_testsuite('fft', collect_fft, output_unit, n_passed, n_failed)
-    call run_testsuite('multicontact', collect_multicontact, output_unit, n_passed, n_failed)
-    call run_testsuite('implicit', collect_implicit, output_unit, n_passed, n_failed)
-    call run_testsuite('accuracy', collect_accuracy, output_unit, n_passed, n_failed)
-    call run_testsuite('library', collect_library, output_unit, n_passed, n_failed)
-    call run_testsuite('input', collect_input, output_unit, n_passed, n_failed)
-    call run_testsuite('longrun', collect_longrun, output_unit, n_passed, n_failed)
+    call run_selected([new_testsuite('sdof', collect_sdof), &
+                       new_testsuite('convolution', collect_convolution), &
+                       new_testsuite('contact', collect_contact), &
+                       new_testsuite('random', collect_random), &
+                       new_testsuite('lsce', collect_lsce), &
+                       new_testsuite('scene', collect_scene), &
+                       new_testsuite('engines', collect_engines), &
+                       new_testsuite('fft', collect_fft), &
+                       new_testsuite('multicontact', collect_multicontact), &
+                       new_testsuite('implicit', collect_implicit), &
+                       new_testsuite('accuracy', collect_accuracy), &
+                       new_testsuite('library', collect_library), &
+                       new_testsuite('input', collect_input), &
+                       new_testsuite('lapack', collect_lapack), &
+                       new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
+    if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

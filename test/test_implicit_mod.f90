@@ -1,4 +1,4 @@
-!> The implicit contact step, divergence detection and the stability map, each checked
+!> The implicit contact step and divergence detection, each checked
 !> against something that does not share the step under test: the explicit step where the
 !> two must agree, closed forms of the linear contact (static balance, steady state through
 !> the combined receptance), and the state-space ODE of the oscillator on its contact spring
@@ -9,8 +9,8 @@ module test_implicit_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv, only: convolver, contact_law, contact_response, contact_options, run_contact, sdof_modes, &
                          sdof_receptance, make_convolver, error_type, stat_input, stat_numerical, sine_road, &
-                         structure_from_modes, new_direct_convolver, direct_convolver, stability_map, &
-                         stability_cell, contact_frequency, contact_reference
+                         structure_from_modes, new_direct_convolver, direct_convolver, &
+                         contact_frequency, contact_reference
     implicit none
     private
 
@@ -26,7 +26,8 @@ module test_implicit_mod
 
 contains
 
-    !> Tests of the implicit step and of greenconv_bench_stability.
+    !> Tests of the implicit step (the stability map's check is a smoke check of the benchmark:
+    !> `greenconv-bench --smoke`).
     subroutine collect_implicit(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
@@ -41,8 +42,7 @@ contains
                      new_unittest('implicit tends to explicit as dt -> 0 (Hertz scene)', test_small_dt), &
                      new_unittest('Newton: complementarity and the implicit relation, p = 3/2 and 1/2', &
                                   test_complementarity), &
-                     new_unittest('faults: Newton out of iterations, bad options', test_faults), &
-                     new_unittest('stability map: edges near omega_c*dt = 2 and 2*sqrt(3)', test_map)]
+                     new_unittest('faults: Newton out of iterations, bad options', test_faults)]
     end subroutine collect_implicit
 
     !> The SDOF of Tab. 1 on a sine road, through the driver's convolver factory.
@@ -500,75 +500,5 @@ contains
         call check(error, fault%stat == stat_input .and. index(fault%message, 'w0') > 0, &
                    'implicit with w0 < 0: input error naming w0: '//fault%message)
     end subroutine test_faults
-
-    !> A small map with A0 = 1 um (closed contact, where the linear edges hold): k_c = 1e9 N/m
-    !> and dt = 12.5 us * 2^k, so omega_c*dt = 0.40, 0.79, 1.58, 3.16, 6.33. A cell fails when
-    !> it was stopped or its error exceeds 1. Explicit: good (error below 1e-2) at 0.40, failed
-    !> at 3.16 and 6.33. Implicit: good at 0.40 and at 3.16 (error below 1e-2, see test_stiff),
-    !> failed at 6.33 beyond 2*sqrt(3). The file has the units and names lines and one row per cell.
-    subroutine test_map(error)
-        type(test_error), allocatable, intent(out) :: error
-
-        character(len=*), parameter :: path = scratch//'/map/contact_stability_map.dat'
-        type(stability_cell), allocatable :: cells(:)
-        type(error_type), allocatable :: fault
-        character(len=200) :: line, previous
-        integer :: unit, rows, stat
-
-        call stability_map(path, fault, stiffness=[1.0e9_dp], dt_min=1.25e-5_dp, n_dt=5, amplitude=1.0e-6_dp, &
-                           cells=cells)
-        call check(error, .not. allocated(fault), 'the map runs')
-        if (allocated(error)) return
-        call note('omega_c*dt first', cells(1)%omega_dt)
-        call note('explicit error', cells(1)%explicit_error)
-        call note('implicit error', cells(1)%implicit_error)
-        call note('omega_c*dt', cells(4)%omega_dt)
-        call note('implicit error', cells(4)%implicit_error)
-        call check(error, good(cells(1)%explicit_bounded, cells(1)%explicit_error) .and. &
-                   failed(cells(4)%explicit_bounded, cells(4)%explicit_error) .and. &
-                   failed(cells(5)%explicit_bounded, cells(5)%explicit_error), &
-                   'explicit: good at omega_c*dt = 0.4, failed at 3.2 and 6.3')
-        if (allocated(error)) return
-        call check(error, good(cells(1)%implicit_bounded, cells(1)%implicit_error) .and. &
-                   good(cells(4)%implicit_bounded, cells(4)%implicit_error) .and. &
-                   failed(cells(5)%implicit_bounded, cells(5)%implicit_error), &
-                   'implicit: good at omega_c*dt = 0.4 and 3.2, failed at 6.3')
-        if (allocated(error)) return
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
-        call check(error, stat == 0, 'the map file exists')
-        if (allocated(error)) return
-        rows = 0
-        previous = ''
-        do
-            read (unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            if (line(1:1) == '#') then
-                if (index(line, '# dt k_c omega_c_dt') == 1) exit
-                previous = line
-            end if
-        end do
-        do
-            read (unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            rows = rows + 1
-        end do
-        close (unit)
-        call check(error, index(previous, '# units: s N/m^p') == 1 .and. rows == 5, &
-                   'the file: units line, names line, 5 rows')
-    contains
-        pure logical function good(bounded, relative)
-            logical, intent(in) :: bounded
-            real(dp), intent(in) :: relative
-
-            good = bounded .and. relative >= 0.0_dp .and. relative < 1.0e-2_dp
-        end function good
-
-        pure logical function failed(bounded, relative)
-            logical, intent(in) :: bounded
-            real(dp), intent(in) :: relative
-
-            failed = .not. bounded .or. relative > 1.0_dp
-        end function failed
-    end subroutine test_map
 
 end module test_implicit_mod

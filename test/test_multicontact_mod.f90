@@ -1,5 +1,6 @@
 !> Many contact points (issue 5): the Green's matrix in modal and sampled form, the
-!> multi-point contact loop, the tyre model, road files and the cost table.
+!> multi-point contact loop, the tyre model and road files (the cost table is a smoke check of
+!> the benchmark: `greenconv-bench --smoke`).
 !>
 !> Tolerances, each against something computed another way:
 !> - one point: the same arithmetic as greenconv_contact_single's loop, so equal to 1e-15 of the peak
@@ -41,7 +42,6 @@ module test_multicontact_mod
     use greenconv_scene_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file
-    use greenconv_bench_multipoint, only: multipoint_cost_table
     implicit none
     private
 
@@ -77,8 +77,7 @@ contains
                      new_unittest('tyre: frequencies, shapes, unit modal mass, defaults', test_tyre), &
                      new_unittest('road file: sample profile follows its header, interpolation', test_road_sample), &
                      new_unittest('road file: bad files and ranges give one clear message', test_road_errors), &
-                     new_unittest('write_multi_contact: one row per step and point', test_write), &
-                     new_unittest('cost table: header, rows, model sizes', test_cost_table)]
+                     new_unittest('write_multi_contact: one row per step and point', test_write)]
     end subroutine collect_multicontact
 
     ! ---- helpers -----------------------------------------------------------------------
@@ -823,36 +822,5 @@ contains
         call check(error, maxval(abs(response%total_force - sum(response%force, dim=2))), 0.0_dp, &
                    'total force is the sum over the points', thr=0.0_dp)
     end subroutine test_write
-
-    !> A small table: 2 header lines, one row per N_c with the tyre's N_m and N_g.
-    subroutine test_cost_table(error)
-        type(test_error), allocatable, intent(out) :: error
-
-        character(len=*), parameter :: path = scratch//'/test_cost.txt'
-        type(error_type), allocatable :: failure
-        character(len=200) :: line(4)
-        real(dp) :: row(7)
-        integer :: unit, j, n_m_expected
-        integer, parameter :: counts(2) = [1, 4]
-
-        call make_directory(scratch, failure)
-        open (newunit=unit, file=path, status='replace', action='readwrite')
-        call multipoint_cost_table(unit, failure, n_points=[1, 4], n_steps_modal=200, n_steps_direct=3, dt=1.0e-4_dp)
-        rewind (unit)
-        read (unit, '(a)') line
-        close (unit, status='delete')
-        call check(error, .not. allocated(failure), 'the cost table runs')
-        if (allocated(error)) return
-        call check(error, line(1)(1:1) == '#' .and. line(2)(1:5) == '# N_c', 'two # header lines')
-        if (allocated(error)) return
-        n_m_expected = tyre_mode_count(tyre_belt(), tyre_band(20.0_dp, 0.02_dp, 1.0e-4_dp))
-        do j = 3, 4
-            read (line(j), *) row
-            call check(error, nint(row(1)) == counts(j - 2) .and. nint(row(2)) == n_m_expected .and. &
-                       nint(row(3)) > 100 .and. all(row(4:7) >= 0.0_dp), 'row: '//trim(line(j)))
-            if (allocated(error)) return
-        end do
-        call note('N_m', real(n_m_expected, dp))
-    end subroutine test_cost_table
 
 end module test_multicontact_mod

@@ -4,9 +4,28 @@
 # to top, are listed in LAYERS; src/greenconv.f90 (the facade) sits at the top with api.
 # Every module under src/greenconv/<layer>/<name>.f90 must be named greenconv_<layer>_<name>
 # (the path says the layer and the name), and every layer folder must be in LAYERS.
-# Prints one line per violation and exits 1 when there is any; silent and 0 otherwise.
+#
+#   bash tools/check_layers.sh [SRC]
+#
+# SRC is the source root to check (default: the project's src/). Prints one line per
+# violation, naming the file (and the line of a `use`), and exits 1 when there is any;
+# silent and 0 otherwise. `use` statements are read in every form Fortran allows:
+# `use m`, `use :: m`, `use, non_intrinsic :: m`, any letter case; `use, intrinsic :: m`
+# and modules defined outside SRC (FFTW's, the compiler's) are not ours and are skipped.
+# tools/test_check_layers.sh proves that each kind of violation is caught.
 set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+if [ $# -gt 1 ]; then
+    echo "usage: bash tools/check_layers.sh [SRC]" >&2
+    exit 2
+fi
+if [ $# -eq 1 ]; then
+    [ -d "$1" ] || { echo "check_layers: no directory '$1': give the source root (e.g. src)" >&2; exit 2; }
+    root=${1%/}
+else
+    cd "$(dirname "${BASH_SOURCE[0]}")/.."
+    root=src
+fi
 
 LAYERS=(core ext io model ident conv contact verify scene api)
 
@@ -16,22 +35,44 @@ rank_of() { # rank of a layer name, or -1
     echo -1
 }
 
+# The layer of a file: the folder under greenconv/, or api for the facade greenconv.f90.
+layer_of_file() {
+    local rel=${1#"$root"/}
+    if [ "$rel" = greenconv.f90 ]; then echo api; return; fi
+    rel=${rel#greenconv/}
+    echo "${rel%%/*}"
+}
+
+# The modules a file defines, lower case, one a line (`module procedure` and
+# `module subroutine`/`function` of submodules are not definitions).
+modules_defined() {
+    sed -n -E 's/^[[:space:]]*[Mm][Oo][Dd][Uu][Ll][Ee][[:space:]]+([A-Za-z][A-Za-z0-9_]*)[[:space:]]*(!.*)?$/\1/p' "$1" \
+        | tr 'A-Z' 'a-z' | grep -v -x -E 'procedure|subroutine|function' || true
+}
+
+# "LINE:MODULE" for every non-intrinsic `use` of a file, MODULE in lower case.
+modules_used() {
+    grep -n -i -E '^[[:space:]]*use([[:space:]]*,[[:space:]]*non_intrinsic[[:space:]]*::|[[:space:]]*::|[[:space:]]+)[[:space:]]*[A-Za-z]' "$1" \
+        | sed -E 's/^([0-9]+):[[:space:]]*[Uu][Ss][Ee][[:space:]]*(,[[:space:]]*[A-Za-z_]+[[:space:]]*)?(::)?[[:space:]]*([A-Za-z][A-Za-z0-9_]*).*/\1:\4/' \
+        | tr 'A-Z' 'a-z' || true
+}
+
+mapfile -t files < <(find "$root" -name '*.f90' -o -name '*.F90' | sort)
+
 # module name -> layer, from the file that defines it
 declare -A layer_of
 status=0
-while IFS= read -r file; do
-    rel=${file#src/}
-    if [ "$rel" = greenconv.f90 ]; then
-        layer=api
-    else
-        layer=${rel#greenconv/}; layer=${layer%%/*}
+for file in "${files[@]}"; do
+    layer=$(layer_of_file "$file")
+    rel=${file#"$root"/}
+    if [ "$rel" != greenconv.f90 ]; then
         if [ "$(rank_of "$layer")" -lt 0 ]; then
-            echo "$file: expected a file in a layer folder src/greenconv/{$(IFS=,; echo "${LAYERS[*]}")}/, found folder '$layer'"
+            echo "$file: expected a file in a layer folder $root/greenconv/{$(IFS=,; echo "${LAYERS[*]}")}/, found folder '$layer'"
             status=1; continue
         fi
-        stem=${rel#greenconv/"$layer"/}; stem=${stem%.f90}; stem=${stem//\//_}
+        stem=${rel#greenconv/"$layer"/}; stem=${stem%.*}; stem=${stem//\//_}
         expected="greenconv_${layer}_${stem}"
-        found=$(sed -n 's/^[[:space:]]*module[[:space:]]\+\([A-Za-z0-9_]\+\)[[:space:]]*$/\1/Ip' "$file" | head -n 1 | tr 'A-Z' 'a-z')
+        found=$(modules_defined "$file" | head -n 1)
         # the C API and the F77 layer keep the names host programs already `use`
         if [ "$found" != "$expected" ] && ! { [ "$layer" = api ] && [[ $found == greenconv_* ]]; }; then
             echo "$file: expected module $expected (the path names the layer and the module), found '$found'"
@@ -40,23 +81,21 @@ while IFS= read -r file; do
     fi
     while IFS= read -r module; do
         layer_of[$module]=$layer
-    done < <(sed -n 's/^[[:space:]]*module[[:space:]]\+\([A-Za-z0-9_]\+\)[[:space:]]*$/\1/Ip' "$file" | tr 'A-Z' 'a-z')
-done < <(find src -name '*.f90' | sort)
+    done < <(modules_defined "$file")
+done
 
-while IFS= read -r file; do
-    rel=${file#src/}
-    if [ "$rel" = greenconv.f90 ]; then layer=api; else layer=${rel#greenconv/}; layer=${layer%%/*}; fi
+for file in "${files[@]}"; do
+    layer=$(layer_of_file "$file")
     own=$(rank_of "$layer")
     [ "$own" -lt 0 ] && continue
     while IFS=: read -r line used; do
-        used=$(tr 'A-Z' 'a-z' <<< "$used")
+        [ -z "$used" ] && continue
         other=${layer_of[$used]:-}
-        [ -z "$other" ] && continue   # intrinsic or external module
+        [ -z "$other" ] && continue   # a module not defined under SRC (FFTW's, the compiler's)
         if [ "$(rank_of "$other")" -gt "$own" ]; then
             echo "$file:$line: layer '$layer' uses $used of the higher layer '$other'"
             status=1
         fi
-    done < <(grep -n -i -E '^[[:space:]]*use[[:space:]]*(,[[:space:]]*non_intrinsic[[:space:]]*::)?[[:space:]]*[A-Za-z0-9_]+' "$file" \
-             | sed -E 's/^([0-9]+):[[:space:]]*[Uu][Ss][Ee][[:space:]]*(,[[:space:]]*[A-Za-z_]+[[:space:]]*::)?[[:space:]]*([A-Za-z0-9_]+).*/\1:\3/')
-done < <(find src -name '*.f90' | sort)
+    done < <(modules_used "$file")
+done
 exit $status

@@ -50,6 +50,7 @@
 #   tools/make_helpers.sh fpm-test [ARGS...]
 #       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
 #       after fpm's own error lines, so that it stays the last line of the test output.
+#       A run that ends without that line (the program was stopped early) fails.
 set -euo pipefail
 
 # The fpm command (the Makefile exports its FPM variable).
@@ -442,6 +443,13 @@ cmd_fpm_test() {
     $FPM test "$@" 2>&1 | tee "$log" || rc=$?
     summary=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1 || true)
     rm -f "$log"
+    # A program stopped inside a library (the reference LAPACK's XERBLA stops with status 0)
+    # exits "successfully" without the harness's closing line: that is a failure too.
+    if [ "$rc" -eq 0 ] && [ -z "$summary" ]; then
+        say "fpm test ended without its \"N passed, N failed\" line: the test program was stopped" \
+            "early (see the last lines above, e.g. a LAPACK \"On entry to ...\" message)"
+        rc=1
+    fi
     if [ "$rc" -ne 0 ]; then
         say "fpm test failed (exit status $rc)"
         if [ -n "$summary" ]; then printf '%s\n' "$summary"; fi

@@ -7,12 +7,15 @@
 !> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
 !> - dgesv: a square linear system by LU factorisation with partial pivoting.
 !>
-!> Inputs and results are checked to be finite: LAPACK is not asked to work on NaN or Inf,
-!> and a result that overflowed is reported rather than returned. LAPACK's argument-error
-!> handler XERBLA is replaced here (`xerbla_`, see `lapack_argument_error`): the reference one
-!> prints a line and stops the program, which a library must never do.
+!> LAPACK reports a bad argument through XERBLA, whose reference version prints a line and
+!> stops the program, and which belongs to the host program (it may have its own): greenconv
+!> neither replaces it nor lets LAPACK reach it. Every argument is checked before each call
+!> (`check_arguments`): dimensions, leading dimensions and the workspace sizes the query
+!> returned; so are the inputs, which must be finite, because LAPACK's inner scaling (DLASCL,
+!> called by DGELSD and DGEEV with the norm of the input) rejects a NaN or infinite norm
+!> through XERBLA. A result that overflowed is reported rather than returned. Every failure
+!> is an `error_type` with status `stat_numerical`.
 module greenconv_ext_lapack
-    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_numerical
@@ -94,19 +97,26 @@ contains
         threshold = -1.0_dp
         if (present(rcond)) threshold = rcond
         ldb = max(m, n)
+        call require_finite('dgelsd', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b)), &
+                                                ieee_is_finite(threshold)], error)
+        if (allocated(error)) return
         allocate (a_work(m, n), b_work(ldb, 1), s(min(m, n)))
         a_work(:, :) = a
         b_work(:, 1) = 0.0_dp
         b_work(1:m, 1) = b
-        call require_finite('dgelsd', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        call check_arguments('dgelsd', [m >= 1, n >= 1, size(a_work, 1) >= max(1, m), &
+                                        size(b_work, 1) >= max(1, m, n)], error)
         if (allocated(error)) return
         call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, query, -1, iquery, info)
         if (info /= 0) then
             call lapack_error(error, 'dgelsd (workspace query)', info)
             return
         end if
-        lwork = max(1, int(query(1)))
-        allocate (work(lwork), iwork(max(1, iquery(1))))
+        call workspace_size('dgelsd', query(1), 1, lwork, error)
+        if (allocated(error)) return
+        call check_arguments('dgelsd', [iquery(1) >= 1], error)
+        if (allocated(error)) return
+        allocate (work(lwork), iwork(iquery(1)))
         call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
         if (info /= 0) then
             call lapack_error(error, 'dgelsd', info)
@@ -140,16 +150,21 @@ contains
             call fatal_error(error, 'eigenvalues: expected a square matrix and n eigenvalues', stat_numerical)
             return
         end if
+        call require_finite('dgeev', 'input', [all(ieee_is_finite(a))], error)
+        if (allocated(error)) return
         allocate (a_work(n, n), wr(n), wi(n))
         a_work(:, :) = a
-        call require_finite('dgeev', 'input', [all(ieee_is_finite(a))], error)
+        ! no eigenvectors (jobvl = jobvr = 'N'): their leading dimensions need only be >= 1
+        call check_arguments('dgeev', [n >= 1, size(a_work, 1) >= max(1, n), size(dummy, 1) >= 1], error)
         if (allocated(error)) return
         call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, query, -1, info)
         if (info /= 0) then
             call lapack_error(error, 'dgeev (workspace query)', info)
             return
         end if
-        lwork = max(1, int(query(1)))
+        ! documented minimum without eigenvectors: 3*n
+        call workspace_size('dgeev', query(1), 3*n, lwork, error)
+        if (allocated(error)) return
         allocate (work(lwork))
         call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
         if (info /= 0) then
@@ -181,10 +196,12 @@ contains
             call fatal_error(error, 'solve_linear: expected a square matrix and n-vectors b and x', stat_numerical)
             return
         end if
+        call require_finite('dgesv', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        if (allocated(error)) return
         allocate (a_work(n, n), b_work(n, 1), pivot(n))
         a_work(:, :) = a
         b_work(:, 1) = b
-        call require_finite('dgesv', 'input', [all(ieee_is_finite(a)), all(ieee_is_finite(b))], error)
+        call check_arguments('dgesv', [n >= 1, size(a_work, 1) >= max(1, n), size(b_work, 1) >= max(1, n)], error)
         if (allocated(error)) return
         call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
         if (info > 0) then
@@ -211,21 +228,41 @@ contains
                          //'about 1.8e308, or an overflow in the data given to it)', stat_numerical)
     end subroutine require_finite
 
-    !> LAPACK's argument-error handler XERBLA(SRNAME, INFO), replacing the reference one
-    !> (which prints and stops): it returns, and the routine that detected the bad argument
-    !> returns with info < 0, reported by the front ends above; a routine called inside
-    !> another (DLASCL inside DGELSD) leaves its result to the finiteness checks.
-    subroutine lapack_argument_error(routine, info, routine_length) bind(c, name='xerbla_')
-        !> Name of the routine that found the bad argument (not NUL-terminated).
-        character(kind=c_char), intent(in) :: routine(*)
-        !> Position of the bad argument.
-        integer(c_int), intent(in) :: info
-        !> Length of `routine`, passed by gfortran-compiled LAPACK after the arguments.
-        integer(c_size_t), value, intent(in) :: routine_length
+    !> An error (status `stat_numerical`) unless every argument condition holds: checked before
+    !> a call, so that LAPACK never reaches XERBLA. A failure here is a bug of greenconv's.
+    pure subroutine check_arguments(routine, conditions, error)
+        character(len=*), intent(in) :: routine
+        logical, intent(in) :: conditions(:)
+        type(error_type), allocatable, intent(inout) :: error
 
-        associate (unused => [routine(1), achar(info), achar(routine_length)])
-        end associate
-    end subroutine lapack_argument_error
+        integer :: i
+
+        do i = 1, size(conditions)
+            if (conditions(i)) cycle
+            call fatal_error(error, routine//': argument check '//int_text(i)//' failed before the call (sizes of ' &
+                             //'the arrays given to LAPACK); please report this as a greenconv bug', stat_numerical)
+            return
+        end do
+    end subroutine check_arguments
+
+    !> The workspace length from a LAPACK workspace query (`optimal`, returned as a real), checked
+    !> to be a whole number of at least `minimum` that fits a default integer.
+    pure subroutine workspace_size(routine, optimal, minimum, lwork, error)
+        character(len=*), intent(in) :: routine
+        real(dp), intent(in) :: optimal
+        integer, intent(in) :: minimum
+        integer, intent(out) :: lwork
+        type(error_type), allocatable, intent(inout) :: error
+
+        lwork = 0
+        if (.not. (optimal >= real(max(1, minimum), dp) .and. optimal <= real(huge(lwork), dp))) then
+            call fatal_error(error, routine//': the workspace query gave an unusable size; the problem is too ' &
+                             //'large for one LAPACK call (use fewer frequency lines or a smaller model order)', &
+                             stat_numerical)
+            return
+        end if
+        lwork = int(optimal)
+    end subroutine workspace_size
 
     !> An error naming the routine and its info code.
     pure subroutine lapack_error(error, routine, info)
@@ -237,7 +274,8 @@ contains
 
         write (text, '(i0)') info
         if (info < 0) then
-            call fatal_error(error, routine//': illegal value of argument '//trim(text(2:)), stat_numerical)
+            call fatal_error(error, routine//': illegal value of argument '//trim(text(2:)) &
+                             //'; please report this as a greenconv bug', stat_numerical)
         else
             call fatal_error(error, routine//': failed to converge (info = '//trim(text)//')', stat_numerical)
         end if

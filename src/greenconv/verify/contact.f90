@@ -1,7 +1,12 @@
-!> The independent reference of every contact run: the structure's state-space equations,
-!> not its convolution, integrated by the adaptive Dormand-Prince pair of greenconv_verify_ode
-!> at a tight tolerance.
+!> Verification of contact runs, a user feature: the independent reference of a contact run
+!> and the contact frequency that tells whether a time step can be trusted. Use it to check
+!> your own scene: run it with your convolution method and with `contact_reference`, at
+!> your dt, and compare u and F; keep omega_c*dt = `contact_frequency(...)`*dt below 2 for
+!> the explicit contact step and below 2*sqrt(3) for the implicit one (greenconv_contact_single).
+!> The library's tests and the benchmark (bench/) check every method against it the same way.
 !>
+!> The reference solves the structure's state-space equations, not its convolution,
+!> integrated by the adaptive Dormand-Prince pair of greenconv_verify_ode at a tight tolerance.
 !> For a modal set g(t) = sum_k 2*Re(r_k*exp(lambda_k*t)) each mode carries one complex
 !> state x_k with x_k' = lambda_k*x_k + q(t), so that u(t) = sum_k 2*Re(r_k*x_k(t)) is the
 !> convolution of g with the load q = F - F0 exactly. The contact force is evaluated from
@@ -16,7 +21,7 @@ module greenconv_verify_contact
     implicit none
     private
 
-    public :: contact_reference
+    public :: contact_reference, contact_frequency
 
     !> The modal state-space equations of a structure in contact with a road.
     type, extends(ode_system) :: modal_contact
@@ -33,6 +38,21 @@ module greenconv_verify_contact
     end type modal_contact
 
 contains
+
+    !> Contact frequency omega_c = sqrt(k_c'/M) [rad/s] of a body of mass M resting on the law
+    !> under the preload F0: k_c' = p*k_c*delta0^(p-1) is the tangent stiffness of the law at
+    !> the static compression delta0 = (F0/k_c)^(1/p). The explicit contact step is stable for
+    !> omega_c*dt < 2, the implicit one for omega_c*dt < 2*sqrt(3) (greenconv_contact_single).
+    elemental real(dp) function contact_frequency(law, preload, body_mass)
+        !> The contact law.
+        type(contact_law), intent(in) :: law
+        !> Static preload F0 [N], > 0.
+        real(dp), intent(in) :: preload
+        !> Mass M [kg] of the body on the spring, > 0.
+        real(dp), intent(in) :: body_mass
+
+        contact_frequency = sqrt(law%tangent(law%compression(preload))/body_mass)
+    end function contact_frequency
 
     !> The contact run from rest (static equilibrium under the preload), sampled at
     !> t_n = n*dt, n = 0..n_steps-1: displacement u [m] and contact force F [N].

@@ -1,8 +1,11 @@
-!> An independent reference integrator: the embedded Runge-Kutta pair of Dormand and
-!> Prince, order 5(4) (J. Comput. Appl. Math. 6, 1980), with adaptive steps, for small
-!> systems y' = f(t, y). It shares nothing with the convolution code it checks: the tests
-!> and the benchmark measure every convolution method against the structure's state-space
-!> equations solved by it at tight tolerance (greenconv_verify_contact).
+!> Verification, a user feature: an independent reference integrator to check a scene's
+!> results against, the embedded Runge-Kutta pair of Dormand and Prince, order 5(4)
+!> (J. Comput. Appl. Math. 6, 1980), with adaptive steps, for small systems y' = f(t, y).
+!> It shares nothing with the convolution code it checks. Extend `ode_system` with your
+!> structure's state-space equations and `integrate` them at a tight tolerance to check a
+!> convolution method on your own structure; greenconv_verify_contact does so for a modal
+!> structure in contact with a road. The library's tests and the benchmark (bench/) measure
+!> every convolution method against it.
 module greenconv_verify_ode
     use greenconv_core_kinds, only: dp
     implicit none

@@ -17,7 +17,7 @@
 !> starts at 0.1 m/s under a body at rest): that bouncing is sensitive to small changes, so
 !> errors of a few per cent remain there at any dt, and impacts can break the implicit step
 !> a little below 3.46. A small A0 (1 um) keeps the contact closed and shows the linear edges.
-module greenconv_bench_stability
+module bench_contact_stability_mod
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_core_text, only: int_text, sci_text
@@ -26,10 +26,11 @@ module greenconv_bench_stability
     use greenconv_contact_single, only: contact_law, contact_response, contact_options, run_contact
     use greenconv_model_road, only: sine_road
     use greenconv_io_files, only: write_columns, make_directory
+    use greenconv_verify_contact, only: contact_frequency
     implicit none
     private
 
-    public :: stability_cell, stability_map, contact_frequency
+    public :: stability_cell, stability_map
 
     !> One cell of the map: a contact stiffness and a time step, run by both schemes.
     type :: stability_cell
@@ -61,19 +62,6 @@ module greenconv_bench_stability
     integer, parameter :: max_levels = 28
 
 contains
-
-    !> Contact frequency omega_c = sqrt(k_c'/M) [rad/s], k_c' = p*k_c*delta0^(p-1) the
-    !> tangent stiffness of the law at the static compression delta0 = (F0/k_c)^(1/p).
-    elemental real(dp) function contact_frequency(law, preload, body_mass)
-        !> The contact law.
-        type(contact_law), intent(in) :: law
-        !> Static preload F0 [N], > 0.
-        real(dp), intent(in) :: preload
-        !> Mass M [kg] of the body on the spring, > 0.
-        real(dp), intent(in) :: body_mass
-
-        contact_frequency = sqrt(law%tangent(law%compression(preload))/body_mass)
-    end function contact_frequency
 
     !> Run the map and write it to `path` (its directory is created when missing).
     !>
@@ -289,4 +277,4 @@ contains
         call write_columns(path, comments, table, error)
     end subroutine write_map
 
-end module greenconv_bench_stability
+end module bench_contact_stability_mod

@@ -17,7 +17,7 @@
 !>   long run); the `exact` modal scheme (implicit: Newton, dgesv) is timed as well.
 !>
 !> CPU seconds per step are the CPU time of the timed steps over their number.
-module greenconv_bench_multipoint
+module bench_multipoint_mod
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_contact_single, only: contact_law
@@ -184,4 +184,4 @@ contains
         seconds = (finish - start)/n_steps
     end subroutine time_steps
 
-end module greenconv_bench_multipoint
+end module bench_multipoint_mod
