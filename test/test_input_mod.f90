@@ -12,6 +12,10 @@ module test_input_mod
     use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
                          structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
                          new_convolver, convolver, sdof_modes
+    use greenconv_scene_input, only: write_scene_template
+    use greenconv_scene_schema, only: scene_variable, scene_table, scene_group_names
+    use greenconv_scene_models, only: structure_kind, structure_models, model_names, model_requires
+    use greenconv_scene_scan, only: value_real, value_integer, value_logical
     implicit none
     private
 
@@ -40,7 +44,10 @@ contains
                      new_unittest('receptance files: empty, grid, columns, garbage, NaN', test_frf_files), &
                      new_unittest('road files: order, length, garbage', test_road_files), &
                      new_unittest('LSCE drops a pole with Re lambda >= 0 and warns', test_unstable_pole), &
-                     new_unittest('library: modes with Re lambda >= 0 or NaN refused', test_library_modes)]
+                     new_unittest('library: modes with Re lambda >= 0 or NaN refused', test_library_modes), &
+                     new_unittest('scene table: each namelist holds the table''s variables', test_table_namelists), &
+                     new_unittest('scene table: defaults read as their kind', test_table_defaults), &
+                     new_unittest('model registry: names, required variables in the table', test_model_registry)]
     end subroutine collect_input
 
     !> Write `text` as scratch/name, read it as the driver does (read_scene, and
@@ -505,5 +512,142 @@ contains
         call check(error, index(build_error%message, 'new_convolver: mode 1: expected a finite pole and residue') &
                    == 1, 'message: '//build_error%message)
     end subroutine test_library_modes
+
+    !> The namelists that read a scene, written with write_scene_template, hold exactly the
+    !> variables of the scene table, group by group and in table order: a variable added to
+    !> one and not the other fails here.
+    subroutine test_table_namelists(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_variable), allocatable :: table(:)
+        type(error_type), allocatable :: write_error
+        character(len=:), allocatable :: groups(:), listed, expected
+        character(len=4096) :: line
+        character(len=32) :: name
+        integer :: unit, stat, g, i, equals
+
+        table = scene_table()
+        groups = scene_group_names()
+        open (newunit=unit, status='scratch', action='readwrite', form='formatted')
+        call write_scene_template(unit, write_error)
+        call check(error, .not. allocated(write_error), 'the template is written')
+        if (allocated(error)) return
+        rewind (unit)
+        g = 0
+        listed = ''
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) line = '&'
+            line = adjustl(line)
+            if (line(1:1) == '&' .or. line(1:1) == '/') then
+                if (g > 0 .and. len(listed) > 0) then
+                    expected = ''
+                    do i = 1, size(table)
+                        if (table(i)%group == trim(groups(g))) expected = expected//' '//table(i)%name
+                    end do
+                    call check(error, listed == expected, '&'//trim(groups(g))//': namelist"'//listed &
+                               //'", table"'//expected//'"')
+                    if (allocated(error)) return
+                    listed = ''
+                end if
+                if (stat /= 0) exit
+                if (line(1:1) == '&') then
+                    g = g + 1
+                    call check(error, g <= size(groups), 'more groups written than the table has')
+                    if (allocated(error)) return
+                    call check(error, lower(line(2:)) == groups(g), 'group '//trim(line)//', expected &'//groups(g))
+                    if (allocated(error)) return
+                end if
+                cycle
+            end if
+            equals = index(line, '=')
+            if (equals < 2) cycle
+            if (verify(line(:equals - 1), 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_0123456789') /= 0) cycle
+            name = lower(line(:equals - 1))
+            listed = listed//' '//trim(name)
+        end do
+        close (unit)
+        call check(error, g == size(groups), 'every group of the table is written')
+    end subroutine test_table_namelists
+
+    !> Lower case of a name.
+    pure function lower(text) result(low)
+        character(len=*), intent(in) :: text
+        character(len=len_trim(text)) :: low
+
+        integer :: i
+
+        low = text
+        do i = 1, len(low)
+            if (low(i:i) >= 'A' .and. low(i:i) <= 'Z') low(i:i) = achar(iachar(low(i:i)) + 32)
+        end do
+    end function lower
+
+    !> Every default of a real, integer or logical variable reads as that kind, but for the two
+    !> computed from other variables (f_max = 1/(2*dt), preload = mass*gravity).
+    subroutine test_table_defaults(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_variable), allocatable :: table(:)
+        real(dp) :: x
+        integer :: i, n, stat
+        logical :: flag
+
+        table = scene_table()
+        do i = 1, size(table)
+            stat = 0
+            select case (table(i)%kind)
+            case (value_real)
+                read (table(i)%default, *, iostat=stat) x
+            case (value_integer)
+                read (table(i)%default, *, iostat=stat) n
+            case (value_logical)
+                read (table(i)%default, *, iostat=stat) flag
+            end select
+            if (table(i)%name == 'f_max' .or. table(i)%name == 'preload') stat = 0
+            call check(error, stat == 0, '&'//table(i)%group//' '//table(i)%name//': default "' &
+                       //table(i)%default//'" does not read as its kind')
+            if (allocated(error)) return
+            call check(error, len(table(i)%meaning) > 0, table(i)%name//' has no meaning')
+            if (allocated(error)) return
+        end do
+    end subroutine test_table_defaults
+
+    !> The registry's names are listed in messages as before, and every variable a model
+    !> requires is a &structure variable of the table.
+    subroutine test_model_registry(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(structure_kind), allocatable :: models(:)
+        type(scene_variable), allocatable :: table(:)
+        integer :: i, m, n
+
+        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file' or 'tyre'", model_names())
+        if (allocated(error)) return
+        models = structure_models()
+        table = scene_table()
+        do m = 1, size(models)
+            n = 0
+            do i = 1, size(table)
+                if (table(i)%group == 'structure' .and. model_requires(models(m), table(i)%name)) n = n + 1
+            end do
+            call check(error, n == count_words(models(m)%requires), trim(models(m)%name)//' requires "' &
+                       //trim(models(m)%requires)//'": not all are &structure variables of the table')
+            if (allocated(error)) return
+        end do
+    end subroutine test_model_registry
+
+    !> Number of blank-separated words.
+    pure integer function count_words(text)
+        character(len=*), intent(in) :: text
+
+        integer :: i
+
+        count_words = 0
+        do i = 1, len(text)
+            if (text(i:i) /= ' ' .and. (i == 1 .or. text(max(i - 1, 1):max(i - 1, 1)) == ' ')) &
+                count_words = count_words + 1
+        end do
+    end function count_words
 
 end module test_input_mod

@@ -31,7 +31,8 @@ contains
                      new_unittest('auto: direct for a small N_t*N_g, exact modes for a long run', test_auto_sdof), &
                      new_unittest('auto: the smallest LSCE model meeting the accuracy, else fft', test_auto_modes), &
                      new_unittest('tyre scene: files for each method; implicit near explicit', test_tyre_scene), &
-                     new_unittest('tyre scene: bad combinations get one message each', test_tyre_bad)]
+                     new_unittest('tyre scene: bad combinations get one message each', test_tyre_bad), &
+                     new_unittest('dt: a receptance''s g is sampled at the scene''s one dt', test_one_dt)]
     end subroutine collect_scene
 
     !> Write `text` as a scene file in the scratch directory and read it.
@@ -431,5 +432,41 @@ contains
                                 //'x = 0.0 m to 1999.0 m (the run), found 0.0 m to 10.0 m') > 0, &
                    'message: '//run_error%message)
     end subroutine test_tyre_bad
+
+    !> The scene's dt is the only time step: build_structure samples a receptance's g at it
+    !> (every second FFT sample for twice the FFT step), and an `identify` scene samples none.
+    subroutine test_one_dt(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(structure_model) :: fine, coarse
+        type(error_type), allocatable :: input_error
+        character(len=*), parameter :: structure = "model = 'frf_file', frf_file = '"//scratch//"/one_dt.frf'"
+        integer :: n
+
+        call write_frf(scratch//'/one_dt.frf', frf_from_modes(sdof_modes(1.0_dp, 1.0e6_dp, 0.02_dp), 5000.0_dp, &
+                                                                 801), input_error)
+        call scene_from_text('one_dt_fine.nml', tab1_scene(scene='dt = 1.0e-4, n_steps = 100', structure=structure, &
+                             contact='stiffness = 1.0e6, exponent = 1.5, preload = 9.81'), scene, input_error)
+        if (.not. allocated(input_error)) call build_structure(scene, fine, input_error)
+        call check(error, .not. allocated(input_error), 'the scene at dt = 1e-4 s builds')
+        if (allocated(error)) return
+        call scene_from_text('one_dt_coarse.nml', tab1_scene(scene='dt = 2.0e-4, n_steps = 100', &
+                             structure=structure, contact='stiffness = 1.0e6, exponent = 1.5, preload = 9.81'), &
+                             scene, input_error)
+        if (.not. allocated(input_error)) call build_structure(scene, coarse, input_error)
+        call check(error, .not. allocated(input_error), 'the scene at dt = 2e-4 s builds')
+        if (allocated(error)) return
+        n = size(coarse%sampled_g)
+        call check(error, n > 1 .and. all(coarse%sampled_g == fine%sampled_g(1:2*n - 1:2)), &
+                   'g at 2e-4 s is every second sample of g at 1e-4 s')
+        if (allocated(error)) return
+        call scene_from_text('one_dt_identify.nml', "&scene task = 'identify', dt = 1.0e-4 /"//new_line('a') &
+                             //'&structure '//structure//' /', scene, input_error)
+        if (.not. allocated(input_error)) call build_structure(scene, coarse, input_error)
+        call check(error, .not. allocated(input_error), 'the identify scene builds')
+        if (allocated(error)) return
+        call check(error, .not. allocated(coarse%sampled_g), 'task identify samples no g')
+    end subroutine test_one_dt
 
 end module test_scene_mod

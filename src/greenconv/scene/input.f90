@@ -1,24 +1,11 @@
 !> A scene read from a namelist file: task, time grid, structure, road, contact law,
 !> identification and convolution methods. The file is first scanned (greenconv_scene_schema,
 !> greenconv_scene_scan: unknown names, wrong kinds, NaN/Inf, required values, each with its
-!> line); then each group is read with a namelist read and its values checked, messages
-!> carrying the line of the variable. Apart from the required values (greenconv_scene_schema),
-!> every variable has a default (the paper's Tab. 1 and section 3.1, section 3.2 for the
-!> random road and random modes), so a scene file states only what differs. README.md lists
-!> them all:
-!>
-!>     &scene          task, name, output_dir, dt [s], n_steps, output_every, progress
-!>     &structure      model = 'sdof' | 'random_modes' | 'frf_file' | 'tyre', mass [kg],
-!>                     stiffness [N/m], damping_ratio, n_modes, seed, f_low, f_high [Hz],
-!>                     xi_low, xi_high, a_low, a_high [1/kg], frf_file, belt_length [m],
-!>                     belt_mass [kg/m], belt_bending [N*m^2], belt_tension [N],
-!>                     belt_foundation [N/m^2], f_modes [Hz]
-!>     &identification f_max [Hz], n_freq, tol_e, max_order, order
-!>     &road           profile = 'sine' | 'random' | 'file', amplitude [m], omega [rad/s],
-!>                     wavelength [m], speed [m/s], n_terms, seed, road_file, x_start [m]
-!>     &contact        stiffness [N/m^p], exponent, gravity [m/s^2], preload [N],
-!>                     n_points, patch_length [m], scheme, divergence_bound [m]
-!>     &convolution    methods, truncation_tol, accuracy
+!> line); then each group is read with a namelist read, starting from the defaults of the
+!> scene table (greenconv_scene_schema's `scene_table`: the paper's Tab. 1 and section 3.1,
+!> section 3.2 for the random road and random modes), and its values checked, messages
+!> carrying the line of the variable. So a scene file states only what differs. The table
+!> lists every variable with its units; README.md shows it.
 module greenconv_scene_input
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use greenconv_core_kinds, only: dp
@@ -29,14 +16,16 @@ module greenconv_scene_input
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, file_road, check_road_coverage
     use greenconv_scene_scan, only: namelist_scan
-    use greenconv_scene_schema, only: scan_scene, max_methods
+    use greenconv_scene_schema, only: scan_scene, max_methods, scene_default
+    use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
+                                      model_sdof, model_tyre
     use greenconv_core_number_text, only: compact_real
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
                                 max_contact_points, max_kernel_values, kernel_values
     implicit none
     private
 
-    public :: scene_type, read_scene, output_path, input_place
+    public :: scene_type, read_scene, output_path, input_place, write_scene_template
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -45,7 +34,8 @@ module greenconv_scene_input
     !> The convolution methods a scene may list, for messages.
     character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', " &
                                                    //"'backward' or 'auto'"
-    !> Everything a contact run needs, in SI units.
+    !> Everything a contact run needs, in SI units. `read_scene` sets every component; the
+    !> defaults are those of the scene table, not component initialisers.
     type :: scene_type
         !> The namelist file the scene came from.
         character(len=:), allocatable :: file
@@ -58,72 +48,72 @@ module greenconv_scene_input
         !> Directory the column files are written to.
         character(len=:), allocatable :: output_dir
         !> Time step [s].
-        real(dp) :: dt = 1.0e-4_dp
+        real(dp) :: dt
         !> Number of time steps N_t.
-        integer :: n_steps = 2000
+        integer :: n_steps
         !> Write every this many steps to the column files (1: every step), >= 1.
-        integer :: output_every = 1
+        integer :: output_every
         !> Show a progress line on standard error for long runs (only when it is a terminal).
-        logical :: progress = .true.
+        logical :: progress
         !> Structure model: `sdof`, `random_modes` or `frf_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
-        real(dp) :: mass = 1.0_dp
+        real(dp) :: mass
         !> Stiffness K [N/m] of the sdof model.
-        real(dp) :: stiffness = 1.0e6_dp
+        real(dp) :: stiffness
         !> Damping ratio xi of the sdof model.
-        real(dp) :: damping_ratio = 0.02_dp
+        real(dp) :: damping_ratio
         !> Number of modes of the random_modes model.
-        integer :: n_modes = 10
+        integer :: n_modes
         !> Seed of the random_modes model.
-        integer :: modes_seed = 2011
+        integer :: modes_seed
         !> Range of natural frequencies [Hz] of the random_modes model.
-        real(dp) :: f_low = 100.0_dp, f_high = 1000.0_dp
+        real(dp) :: f_low, f_high
         !> Range of damping ratios of the random_modes model.
-        real(dp) :: xi_low = 0.025_dp, xi_high = 0.05_dp
+        real(dp) :: xi_low, xi_high
         !> Range of modal amplitudes A_k [1/kg] of the random_modes model.
-        real(dp) :: a_low = 0.5_dp, a_high = 2.0_dp
+        real(dp) :: a_low, a_high
         !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N]).
         character(len=:), allocatable :: frf_file
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
-        real(dp) :: f_modes = 0.0_dp
+        real(dp) :: f_modes
         !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
-        real(dp) :: f_max = 0.0_dp
+        real(dp) :: f_max
         !> Number of frequency lines, 0 Hz to f_max, of the sampled G (random_modes).
-        integer :: n_freq = 20001
+        integer :: n_freq
         !> Target of the identification error E of eq. (7).
-        real(dp) :: tol_e = 1.0e-6_dp
+        real(dp) :: tol_e
         !> Largest number of modes the order scan tries.
-        integer :: max_order = 30
+        integer :: max_order
         !> Fixed number of modes (0: the smallest order that meets tol_e).
-        integer :: order = 0
+        integer :: order
         !> Road profile.
         class(road_profile), allocatable :: road
         !> The road file of profile 'file' (heights over x), for the multi-point scene.
         type(road_file) :: road_data
         !> Position [m] on the road file of the body (the patch centre) at t = 0.
-        real(dp) :: x_start = 0.0_dp
+        real(dp) :: x_start
         !> Travel speed V [m/s] over the road.
-        real(dp) :: speed = 1.0_dp
+        real(dp) :: speed
         !> Number of contact points N_c (tyre model; 1 otherwise).
-        integer :: n_points = 1
+        integer :: n_points
         !> Length [m] of the contact patch the N_c points share (tyre model).
-        real(dp) :: patch_length = 0.1_dp
+        real(dp) :: patch_length
         !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
         type(contact_options) :: contact
         !> Contact law.
         type(contact_law) :: law
         !> Static preload F0 [N].
-        real(dp) :: preload = 9.81_dp
+        real(dp) :: preload
         !> Convolution methods to run, in order.
         character(len=name_length), allocatable :: methods(:)
         !> Truncation fraction of max |g| for the direct method.
-        real(dp) :: truncation_tol = 0.01_dp
+        real(dp) :: truncation_tol
         !> Relative accuracy the `auto` method must meet: the largest E (eq. 7) of a modal model
         !> it accepts; a scene that lists `auto` identifies modes with tol_e = accuracy.
-        real(dp) :: accuracy = 1.0e-3_dp
+        real(dp) :: accuracy
     end type scene_type
 
 contains
@@ -183,11 +173,34 @@ contains
         close (unit)
     end subroutine read_scene
 
+    !> Write every group of a scene file with its namelist, each variable at its default (a
+    !> scene template; `preload` shows -1 for its default M*g). Written by the same namelists
+    !> that read a scene, so it also shows which variables they hold.
+    subroutine write_scene_template(unit, error)
+        !> An open formatted unit.
+        integer, intent(in) :: unit
+        !> Set when a group cannot be written.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+
+        scene%file = 'scene template'
+        call scene_default('scene', 'dt', scene%dt)
+        call read_scene_group(unit, scene, error, .true.)
+        if (.not. allocated(error)) call read_structure_group(unit, scene, error, .true.)
+        if (.not. allocated(error)) call read_identification_group(unit, scene, error, .true.)
+        if (.not. allocated(error)) call read_road_group(unit, scene, error, .true.)
+        if (.not. allocated(error)) call read_contact_group(unit, scene, error, .true.)
+        if (.not. allocated(error)) call read_convolution_group(unit, scene, error, .true.)
+    end subroutine write_scene_template
+
     !> &scene: task, name, output_dir, dt [s], n_steps, output_every, progress.
-    subroutine read_scene_group(unit, this, error)
+    subroutine read_scene_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         character(len=name_length) :: task, name
         character(len=path_length) :: output_dir
@@ -197,17 +210,21 @@ contains
         character(len=512) :: message
         namelist /scene/ task, name, output_dir, dt, n_steps, output_every, progress
 
-        task = 'contact'
-        name = 'sdof_sine'
-        output_dir = 'out'
-        dt = this%dt
-        n_steps = this%n_steps
-        output_every = this%output_every
-        progress = this%progress
-        rewind (unit)
-        read (unit, nml=scene, iostat=stat, iomsg=message)
+        call scene_default('scene', 'task', task)
+        call scene_default('scene', 'name', name)
+        call scene_default('scene', 'output_dir', output_dir)
+        call scene_default('scene', 'dt', dt)
+        call scene_default('scene', 'n_steps', n_steps)
+        call scene_default('scene', 'output_every', output_every)
+        call scene_default('scene', 'progress', progress)
+        if (present(template)) then
+            write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=scene, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'scene', stat, message, error)
-        if (allocated(error)) return
+        if (allocated(error) .or. present(template)) return
         call require(any(trim(task) == [character(len=8) :: 'contact', 'identify']), &
                      expected(this, 'scene', 'task', "'contact' or 'identify'", task), error)
         call require(len_trim(name) > 0, expected(this, 'scene', 'name', 'a file base name'), error)
@@ -227,10 +244,12 @@ contains
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
-    subroutine read_structure_group(unit, this, error)
+    subroutine read_structure_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         character(len=name_length) :: model
         character(len=path_length) :: frf_file
@@ -242,32 +261,34 @@ contains
             xi_low, xi_high, a_low, a_high, frf_file, belt_length, belt_mass, belt_bending, belt_tension, &
             belt_foundation, f_modes
 
-        model = 'sdof'
-        mass = this%mass
-        stiffness = this%stiffness
-        damping_ratio = this%damping_ratio
-        n_modes = this%n_modes
-        seed = this%modes_seed
-        f_low = this%f_low
-        f_high = this%f_high
-        xi_low = this%xi_low
-        xi_high = this%xi_high
-        a_low = this%a_low
-        a_high = this%a_high
-        frf_file = ''
-        belt_length = this%tyre%length
-        belt_mass = this%tyre%mass_per_length
-        belt_bending = this%tyre%bending_stiffness
-        belt_tension = this%tyre%tension
-        belt_foundation = this%tyre%foundation_stiffness
-        f_modes = this%f_modes
-        rewind (unit)
-        read (unit, nml=structure, iostat=stat, iomsg=message)
+        call scene_default('structure', 'model', model)
+        call scene_default('structure', 'mass', mass)
+        call scene_default('structure', 'stiffness', stiffness)
+        call scene_default('structure', 'damping_ratio', damping_ratio)
+        call scene_default('structure', 'n_modes', n_modes)
+        call scene_default('structure', 'seed', seed)
+        call scene_default('structure', 'f_low', f_low)
+        call scene_default('structure', 'f_high', f_high)
+        call scene_default('structure', 'xi_low', xi_low)
+        call scene_default('structure', 'xi_high', xi_high)
+        call scene_default('structure', 'a_low', a_low)
+        call scene_default('structure', 'a_high', a_high)
+        call scene_default('structure', 'frf_file', frf_file)
+        call scene_default('structure', 'belt_length', belt_length)
+        call scene_default('structure', 'belt_mass', belt_mass)
+        call scene_default('structure', 'belt_bending', belt_bending)
+        call scene_default('structure', 'belt_tension', belt_tension)
+        call scene_default('structure', 'belt_foundation', belt_foundation)
+        call scene_default('structure', 'f_modes', f_modes)
+        if (present(template)) then
+            write (unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=structure, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'structure', stat, message, error)
-        if (allocated(error)) return
-        call require(any(trim(model) == [character(len=12) :: 'sdof', 'random_modes', 'frf_file', 'tyre']), &
-                     expected(this, 'structure', 'model', "'sdof', 'random_modes', 'frf_file' or 'tyre'", &
-                              model), error)
+        if (allocated(error) .or. present(template)) return
+        call require(model_id(trim(model)) > 0, expected(this, 'structure', 'model', model_names(), model), error)
         call require(mass > 0.0_dp .and. mass < huge(mass), &
                      expected(this, 'structure', 'mass', 'a mass > 0 kg', mass), error)
         call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
@@ -282,8 +303,8 @@ contains
                      expected(this, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
         call require(a_low > 0.0_dp .and. a_high >= a_low .and. a_high < huge(a_high), &
                      expected(this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
-        call require(trim(model) /= 'frf_file' .or. len_trim(frf_file) > 0, &
-                     expected(this, 'structure', 'frf_file', "a receptance file for model 'frf_file'"), error)
+        call require(.not. model_requires(find_model(trim(model)), 'frf_file') .or. len_trim(frf_file) > 0, &
+                     expected(this, 'structure', 'frf_file', "a receptance file for model '"//trim(model)//"'"), error)
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
@@ -311,25 +332,32 @@ contains
     end subroutine read_structure_group
 
     !> &identification: frequency grid of the sampled G and LSCE options.
-    subroutine read_identification_group(unit, this, error)
+    subroutine read_identification_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         real(dp) :: f_max, tol_e
         integer :: n_freq, max_order, order, stat
         character(len=512) :: message
         namelist /identification/ f_max, n_freq, tol_e, max_order, order
 
+        ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
         f_max = 0.5_dp/this%dt
-        n_freq = this%n_freq
-        tol_e = this%tol_e
-        max_order = this%max_order
-        order = this%order
-        rewind (unit)
-        read (unit, nml=identification, iostat=stat, iomsg=message)
+        call scene_default('identification', 'n_freq', n_freq)
+        call scene_default('identification', 'tol_e', tol_e)
+        call scene_default('identification', 'max_order', max_order)
+        call scene_default('identification', 'order', order)
+        if (present(template)) then
+            write (unit, nml=identification, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=identification, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'identification', stat, message, error)
-        if (allocated(error)) return
+        if (allocated(error) .or. present(template)) return
         call require(f_max > 0.0_dp .and. f_max < huge(f_max), &
                      expected(this, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
         call require(n_freq >= 16 .and. n_freq <= max_freq_lines, expected(this, 'identification', 'n_freq', &
@@ -348,32 +376,40 @@ contains
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.
-    subroutine read_road_group(unit, this, error)
+    subroutine read_road_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
-        character(len=path_length) :: road_file
+        character(len=path_length) :: road_file, path
         real(dp) :: amplitude, omega, wavelength, speed, x_start
         integer :: n_terms, seed, stat
         character(len=512) :: message
         namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start
 
-        profile = 'sine'
-        amplitude = sine%amplitude
-        omega = sine%omega
-        wavelength = 50.0e-3_dp
-        speed = 1.0_dp
-        n_terms = 10
-        seed = 35
-        road_file = ''
-        x_start = this%x_start
-        rewind (unit)
-        read (unit, nml=road, iostat=stat, iomsg=message)
+        call scene_default('road', 'profile', profile)
+        call scene_default('road', 'amplitude', amplitude)
+        call scene_default('road', 'omega', omega)
+        call scene_default('road', 'wavelength', wavelength)
+        call scene_default('road', 'speed', speed)
+        call scene_default('road', 'n_terms', n_terms)
+        call scene_default('road', 'seed', seed)
+        ! Through `path`: gfortran takes the name `road_file` as an actual argument for the type.
+        call scene_default('road', 'road_file', path)
+        road_file = path
+        call scene_default('road', 'x_start', x_start)
+        if (present(template)) then
+            write (unit, nml=road, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=road, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'road', stat, message, error)
-        if (allocated(error)) return
+        if (allocated(error) .or. present(template)) return
         call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file']), &
                      expected(this, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
         call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
@@ -436,29 +472,37 @@ contains
     end subroutine check_scene_road
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
-    subroutine read_contact_group(unit, this, error)
+    subroutine read_contact_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound
         character(len=name_length) :: scheme
+        type(structure_kind) :: model
         integer :: stat, n_points
         character(len=512) :: message
         namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, scheme, divergence_bound
 
-        stiffness = this%law%stiffness
-        exponent = this%law%exponent
-        gravity = 9.81_dp
+        call scene_default('contact', 'stiffness', stiffness)
+        call scene_default('contact', 'exponent', exponent)
+        call scene_default('contact', 'gravity', gravity)
+        ! The table's default `mass*gravity`, set below when the file is silent.
         preload = -1.0_dp
-        n_points = this%n_points
-        patch_length = this%patch_length
-        scheme = this%contact%scheme
-        divergence_bound = this%contact%divergence_bound
-        rewind (unit)
-        read (unit, nml=contact, iostat=stat, iomsg=message)
+        call scene_default('contact', 'n_points', n_points)
+        call scene_default('contact', 'patch_length', patch_length)
+        call scene_default('contact', 'scheme', scheme)
+        call scene_default('contact', 'divergence_bound', divergence_bound)
+        if (present(template)) then
+            write (unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=contact, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'contact', stat, message, error)
-        if (allocated(error)) return
+        if (allocated(error) .or. present(template)) return
         call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
                      expected(this, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
         call require(exponent > 0.0_dp .and. exponent < huge(exponent), &
@@ -467,12 +511,13 @@ contains
                      expected(this, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
         call require(abs(preload) < huge(preload), &
                      expected(this, 'contact', 'preload', 'a finite force in N', preload), error)
-        call require(preload >= 0.0_dp .or. this%model == 'sdof' .or. this%task /= 'contact', &
+        model = find_model(this%model)
+        call require(preload >= 0.0_dp .or. model%has_mass .or. this%task /= 'contact', &
                      expected(this, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
         call require(n_points <= max_contact_points, expected(this, 'contact', 'n_points', &
                      'at most '//int_text(max_contact_points)//' points', n_points), error)
-        call require(n_points >= 1 .and. (n_points == 1 .or. this%model == 'tyre'), &
+        call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point), &
                      expected(this, 'contact', 'n_points', &
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
         call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
@@ -492,10 +537,12 @@ contains
     end subroutine read_contact_group
 
     !> &convolution: methods (list of names), truncation_tol, accuracy.
-    subroutine read_convolution_group(unit, this, error)
+    subroutine read_convolution_group(unit, this, error, template)
         integer, intent(in) :: unit
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
+        !> Present: write the group with its defaults on `unit` instead of reading it.
+        logical, intent(in), optional :: template
 
         character(len=name_length) :: methods(max_methods)
         real(dp) :: truncation_tol, accuracy
@@ -506,12 +553,16 @@ contains
         ! No default list: a contact scene must name its methods (the scan requires it), and
         ! a list that started from defaults would keep the defaults the file does not overwrite.
         methods = ''
-        truncation_tol = this%truncation_tol
-        accuracy = this%accuracy
-        rewind (unit)
-        read (unit, nml=convolution, iostat=stat, iomsg=message)
+        call scene_default('convolution', 'truncation_tol', truncation_tol)
+        call scene_default('convolution', 'accuracy', accuracy)
+        if (present(template)) then
+            write (unit, nml=convolution, delim='quote', iostat=stat, iomsg=message)
+        else
+            rewind (unit)
+            read (unit, nml=convolution, iostat=stat, iomsg=message)
+        end if
         call group_status(this, 'convolution', stat, message, error)
-        if (allocated(error)) return
+        if (allocated(error) .or. present(template)) return
         do i = 1, max_methods
             select case (trim(methods(i)))
             case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward', 'auto')
@@ -545,13 +596,15 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: values, decay_rate
+        type(structure_kind) :: model
 
-        if (this%task /= 'contact' .or. this%model == 'frf_file') return
+        model = find_model(this%model)
+        if (this%task /= 'contact' .or. model%sampled_g) return
         if (.not. any(this%methods == 'direct' .or. this%methods == 'fft' .or. this%methods == 'auto')) return
-        select case (this%model)
-        case ('sdof')
+        select case (model%id)
+        case (model_sdof)
             decay_rate = this%damping_ratio*sqrt(this%stiffness/this%mass)
-        case ('tyre')
+        case (model_tyre)
             decay_rate = this%damping_ratio*tyre_frequency(this%tyre, 1)
         case default
             decay_rate = this%xi_low*2.0_dp*acos(-1.0_dp)*this%f_low

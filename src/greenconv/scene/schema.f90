@@ -1,31 +1,241 @@
-!> What a scene file may and must hold: its groups, the variables of each with the kind of
-!> their values (for greenconv_scene_scan), and the values a scene must state because no
-!> default would be a sensible guess. README.md's scene table marks them; everything else
-!> keeps its default (the paper's Tab. 1).
+!> The scene table: every variable a scene file may set, written once with its group, kind,
+!> default, units, meaning and when it is required. Everything else derives from it: the
+!> groups and kinds the pre-scan (greenconv_scene_scan) checks and suggests names from, the
+!> required-value checks, the defaults greenconv_scene_input starts each namelist from, and
+!> README.md's scene table. Which `&structure` variables a model requires comes from the
+!> model registry (greenconv_scene_models).
 !>
 !> Required:
 !>
 !>     &scene                        always; dt and n_steps for task 'contact'
-!>     &structure model              always
-!>       mass, stiffness, damping_ratio      for model 'sdof'
-!>       frf_file                            for model 'frf_file'
+!>     &structure model              always, and the variables its model requires
+!>                                   (mass, stiffness, damping_ratio for 'sdof'; frf_file for 'frf_file')
 !>     &road profile                 for task 'contact' (road_file for profile 'file')
 !>     &contact stiffness, exponent  for task 'contact'
 !>     &convolution methods          for task 'contact'
+!>
+!> Adding a scene variable: one `row` in `scene_table`, the variable in its group's namelist
+!> and a component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
+!> when a namelist and the table disagree.
 module greenconv_scene_schema
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text
+    use greenconv_core_kinds, only: dp
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
+    use greenconv_scene_models, only: structure_kind, find_model, model_names, model_requires
     implicit none
     private
 
-    public :: scan_scene, max_methods
+    public :: scan_scene, max_methods, scene_variable, scene_table, scene_group_names, scene_groups
+    public :: scene_default, required_text
 
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
 
+    !> One variable of a scene file.
+    type :: scene_variable
+        !> Group name, lower case, without the `&`.
+        character(len=:), allocatable :: group
+        !> Variable name, lower case.
+        character(len=:), allocatable :: name
+        !> Kind of its values (greenconv_scene_scan's value_real, ..., value_text_list).
+        integer :: kind = value_real
+        !> Number of elements: 1 for a scalar, max_methods for the list of methods.
+        integer :: size = 1
+        !> Default as the file would write it ('' for a text: empty); a formula naming other
+        !> variables (`1/(2*dt)`, `mass*gravity`) is computed by greenconv_scene_input.
+        character(len=:), allocatable :: default
+        !> Units of its values ('' when dimensionless or a name).
+        character(len=:), allocatable :: units
+        !> What it is, a noun phrase ("the mass M"): messages say "expected <meaning> in <units>".
+        character(len=:), allocatable :: meaning
+        !> When a scene must state it: '' (never, unless its model requires it), 'always', or
+        !> "<variable> '<value>'" (e.g. "task 'contact'"), the variable's value or default.
+        character(len=:), allocatable :: required
+    end type scene_variable
+
+    !> The groups in the order of a scene file.
+    character(len=*), parameter :: group_names(6) = [character(len=14) :: 'scene', 'structure', &
+        'identification', 'road', 'contact', 'convolution']
+    !> When each group must be present (as `scene_variable%required`).
+    character(len=*), parameter :: group_required(6) = [character(len=14) :: 'always', 'always', '', &
+        "task 'contact'", "task 'contact'", "task 'contact'"]
+    !> What a missing required group should hold, for its message.
+    character(len=*), parameter :: group_holds(6) = [character(len=42) :: "dt and n_steps for task 'contact'", &
+        'model', '', "profile, for task 'contact'", "stiffness and exponent, for task 'contact'", &
+        "methods, for task 'contact'"]
+
 contains
+
+    !> Every variable of a scene file, group by group in file order.
+    function scene_table() result(table)
+        !> The table.
+        type(scene_variable), allocatable :: table(:)
+
+        type(scene_variable) :: rows(64)
+        integer :: n
+
+        n = 0
+        call add(rows, n, 'scene', 'task', value_text, 'contact', '', &
+            "what to do, 'contact' (simulate) or 'identify' (fit modes to G only)", '')
+        call add(rows, n, 'scene', 'name', value_text, 'sdof_sine', '', &
+            'the base name of the output files', '')
+        call add(rows, n, 'scene', 'output_dir', value_text, 'out', '', &
+            'the directory the output files are written to', '')
+        call add(rows, n, 'scene', 'dt', value_real, '1.0e-4', 's', &
+            'a time step', "task 'contact'")
+        call add(rows, n, 'scene', 'n_steps', value_integer, '2000', '', &
+            'a number of steps', "task 'contact'")
+        call add(rows, n, 'scene', 'output_every', value_integer, '1', '', &
+            'the steps between written rows (1: every step)', '')
+        call add(rows, n, 'scene', 'progress', value_logical, '.true.', '', &
+            'whether to show a progress line on a terminal', '')
+        call add(rows, n, 'structure', 'model', value_text, '', '', &
+            "the structure model, "//model_names(), 'always')
+        call add(rows, n, 'structure', 'mass', value_real, '1.0', 'kg', &
+            'the mass M', '')
+        call add(rows, n, 'structure', 'stiffness', value_real, '1.0e6', 'N/m', &
+            'the stiffness K', '')
+        call add(rows, n, 'structure', 'damping_ratio', value_real, '0.02', '', &
+            'the damping ratio in [0, 1)', '')
+        call add(rows, n, 'structure', 'n_modes', value_integer, '10', '', &
+            'the number of random modes', '')
+        call add(rows, n, 'structure', 'seed', value_integer, '2011', '', &
+            'the seed of the random modes', '')
+        call add(rows, n, 'structure', 'f_low', value_real, '100.0', 'Hz', &
+            'the lowest natural frequency of the random modes', '')
+        call add(rows, n, 'structure', 'f_high', value_real, '1000.0', 'Hz', &
+            'the highest natural frequency of the random modes', '')
+        call add(rows, n, 'structure', 'xi_low', value_real, '0.025', '', &
+            'the lowest damping ratio of the random modes', '')
+        call add(rows, n, 'structure', 'xi_high', value_real, '0.05', '', &
+            'the highest damping ratio of the random modes', '')
+        call add(rows, n, 'structure', 'a_low', value_real, '0.5', '1/kg', &
+            'the smallest modal amplitude A_k of the random modes', '')
+        call add(rows, n, 'structure', 'a_high', value_real, '2.0', '1/kg', &
+            'the largest modal amplitude A_k of the random modes', '')
+        call add(rows, n, 'structure', 'frf_file', value_text, '', '', &
+            'a receptance file', '')
+        call add(rows, n, 'structure', 'belt_length', value_real, '1.885', 'm', &
+            'the tyre belt length', '')
+        call add(rows, n, 'structure', 'belt_mass', value_real, '2.5', 'kg/m', &
+            'the tyre belt mass per length', '')
+        call add(rows, n, 'structure', 'belt_bending', value_real, '5.0', 'N*m^2', &
+            'the tyre belt bending stiffness', '')
+        call add(rows, n, 'structure', 'belt_tension', value_real, '1.2e4', 'N', &
+            'the tyre belt tension', '')
+        call add(rows, n, 'structure', 'belt_foundation', value_real, '7.0e5', 'N/m^2', &
+            'the tyre foundation stiffness', '')
+        call add(rows, n, 'structure', 'f_modes', value_real, '0.0', 'Hz', &
+            'the highest tyre mode kept (0: the band rule)', '')
+        call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
+            'the highest frequency of the sampled G', '')
+        call add(rows, n, 'identification', 'n_freq', value_integer, '20001', '', &
+            'the number of frequency lines of G, 0 Hz to f_max', '')
+        call add(rows, n, 'identification', 'tol_e', value_real, '1.0e-6', '', &
+            'the target of the identification error E, eq. (7)', '')
+        call add(rows, n, 'identification', 'max_order', value_integer, '30', '', &
+            'the largest number of modes the order scan tries', '')
+        call add(rows, n, 'identification', 'order', value_integer, '0', '', &
+            'a fixed number of modes (0: the smallest meeting tol_e)', '')
+        call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
+            "the road profile, 'sine', 'random' or 'file'", "task 'contact'")
+        call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &
+            'the road amplitude', '')
+        call add(rows, n, 'road', 'omega', value_real, '100.0', 'rad/s', &
+            'the angular frequency of the sine road', '')
+        call add(rows, n, 'road', 'wavelength', value_real, '50.0e-3', 'm', &
+            'the shortest wavelength of the random road', '')
+        call add(rows, n, 'road', 'speed', value_real, '1.0', 'm/s', &
+            'the travel speed V', '')
+        call add(rows, n, 'road', 'n_terms', value_integer, '10', '', &
+            'the number of terms of the random road, eq. (35)', '')
+        call add(rows, n, 'road', 'seed', value_integer, '35', '', &
+            'the seed of the random road', '')
+        call add(rows, n, 'road', 'road_file', value_text, '', '', &
+            'a road file', "profile 'file'")
+        call add(rows, n, 'road', 'x_start', value_real, '0.0', 'm', &
+            'the position on the road file at t = 0', '')
+        call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
+            'the contact stiffness k_c', "task 'contact'")
+        call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
+            'the contact exponent p', "task 'contact'")
+        call add(rows, n, 'contact', 'gravity', value_real, '9.81', 'm/s^2', &
+            'the gravity g weighing the mass', '')
+        call add(rows, n, 'contact', 'preload', value_real, 'mass*gravity', 'N', &
+            'the static preload F0', '')
+        call add(rows, n, 'contact', 'n_points', value_integer, '1', '', &
+            'the number of contact points N_c (tyre)', '')
+        call add(rows, n, 'contact', 'patch_length', value_real, '0.1', 'm', &
+            'the length of the contact patch (tyre)', '')
+        call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
+            "the contact step, 'explicit' or 'implicit'", '')
+        call add(rows, n, 'contact', 'divergence_bound', value_real, '0.1', 'm', &
+            'the displacement beyond which a run diverged', '')
+        call add(rows, n, 'convolution', 'methods', value_text_list, '', '', &
+            "the methods to run, e.g. 'direct', 'modal'", "task 'contact'")
+        call add(rows, n, 'convolution', 'truncation_tol', value_real, '0.01', '', &
+            'the truncation fraction of max |g| (direct)', '')
+        call add(rows, n, 'convolution', 'accuracy', value_real, '1.0e-3', '', &
+            'the largest error E that auto accepts', '')
+        table = rows(:n)
+    end function scene_table
+
+    !> Append a row to the table.
+    subroutine add(rows, n, group, name, kind, default, units, meaning, required)
+        type(scene_variable), intent(inout) :: rows(:)
+        integer, intent(inout) :: n
+        character(len=*), intent(in) :: group, name, default, units, meaning, required
+        integer, intent(in) :: kind
+
+        n = n + 1
+        rows(n)%group = group
+        rows(n)%name = name
+        rows(n)%kind = kind
+        rows(n)%size = 1
+        if (kind == value_text_list) rows(n)%size = max_methods
+        rows(n)%default = default
+        rows(n)%units = units
+        rows(n)%meaning = meaning
+        rows(n)%required = required
+    end subroutine add
+
+    !> The group names of a scene file, in file order.
+    pure function scene_group_names() result(names)
+        !> Names, lower case, blank-padded.
+        character(len=len(group_names)) :: names(size(group_names))
+
+        names = group_names
+    end function scene_group_names
+
+    !> The groups of a scene file with their variables and kinds, for greenconv_scene_scan.
+    function scene_groups() result(groups)
+        !> One group per scene group, variables in table order.
+        type(namelist_group), allocatable :: groups(:)
+
+        type(scene_variable), allocatable :: table(:)
+        integer :: g, i, k
+
+        table = scene_table()
+        allocate (groups(size(group_names)))
+        do g = 1, size(group_names)
+            groups(g)%name = trim(group_names(g))
+            k = 0
+            do i = 1, size(table)
+                if (table(i)%group == groups(g)%name) k = k + 1
+            end do
+            allocate (groups(g)%variables(k))
+            k = 0
+            do i = 1, size(table)
+                if (table(i)%group /= groups(g)%name) cycle
+                k = k + 1
+                groups(g)%variables(k)%name = table(i)%name
+                groups(g)%variables(k)%kind = table(i)%kind
+                groups(g)%variables(k)%size = table(i)%size
+            end do
+        end do
+    end function scene_groups
 
     !> Scan a scene file (greenconv_scene_scan), then check that it states every required value.
     subroutine scan_scene(path, scan, error)
@@ -40,118 +250,132 @@ contains
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
-    !> The groups of a scene file and their variables, each `name:kind` (kind real, integer,
-    !> logical, text, or texts*N for a list of at most N texts).
-    function scene_groups() result(groups)
-        type(namelist_group), allocatable :: groups(:)
+    !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
+    function required_text(variable, when) result(text)
+        !> The table row.
+        type(scene_variable), intent(in) :: variable
+        !> The condition that makes it required ('always': none to name).
+        character(len=*), intent(in) :: when
+        character(len=:), allocatable :: text
 
-        groups = [group_of('scene', 'task:text name:text output_dir:text dt:real n_steps:integer ' &
-                           //'output_every:integer progress:logical'), &
-                  group_of('structure', 'model:text mass:real stiffness:real damping_ratio:real n_modes:integer ' &
-                           //'seed:integer f_low:real f_high:real xi_low:real xi_high:real a_low:real a_high:real ' &
-                           //'frf_file:text belt_length:real belt_mass:real belt_bending:real belt_tension:real ' &
-                           //'belt_foundation:real f_modes:real'), &
-                  group_of('identification', 'f_max:real n_freq:integer tol_e:real max_order:integer order:integer'), &
-                  group_of('road', 'profile:text amplitude:real omega:real wavelength:real speed:real ' &
-                           //'n_terms:integer seed:integer road_file:text x_start:real'), &
-                  group_of('contact', 'stiffness:real exponent:real gravity:real preload:real n_points:integer ' &
-                           //'patch_length:real scheme:text divergence_bound:real'), &
-                  group_of('convolution', 'methods:texts*'//int_text(max_methods) &
-                           //' truncation_tol:real accuracy:real')]
-    end function scene_groups
+        text = variable%meaning
+        if (len(variable%units) > 0) text = text//' in '//variable%units
+        if (when == 'always') then
+            text = text//' (required)'
+        else
+            text = text//' (required for '//when//')'
+        end if
+    end function required_text
 
-    !> A group from its name and a blank-separated list of `variable:kind`.
-    pure function group_of(name, list) result(group)
-        character(len=*), intent(in) :: name, list
-        type(namelist_group) :: group
-
-        character(len=*), parameter :: kinds(4) = [character(len=8) :: 'real', 'integer', 'logical', 'text']
-        integer, parameter :: codes(4) = [value_real, value_integer, value_logical, value_text]
-        character(len=:), allocatable :: rest, item
-        type(namelist_variable) :: variable
-        integer :: blank, colon, k
-
-        group%name = name
-        allocate (group%variables(0))
-        rest = trim(adjustl(list))
-        do while (len(rest) > 0)
-            blank = index(rest//' ', ' ')
-            item = rest(:blank - 1)
-            rest = trim(adjustl(rest(blank:)))
-            colon = index(item, ':')
-            variable%name = item(:colon - 1)
-            variable%kind = value_text_list
-            variable%size = 1
-            do k = 1, size(kinds)
-                if (item(colon + 1:) == trim(kinds(k))) variable%kind = codes(k)
-            end do
-            if (variable%kind == value_text_list) read (item(index(item, '*') + 1:), *) variable%size
-            group%variables = [group%variables, variable]
-        end do
-    end function group_of
-
-    !> The required values (module description), in the order of the file's groups.
+    !> The required groups and values, in table order: a group, then its variables.
     subroutine check_required(scan, error)
         type(namelist_scan), intent(in) :: scan
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: task, model
-        logical :: contact
+        type(scene_variable), allocatable :: table(:)
+        type(structure_kind) :: model
+        character(len=:), allocatable :: model_name
+        integer :: g, i
 
-        task = lower_text(scan%value_of('scene', 'task'))
-        if (len(task) == 0) task = 'contact'
-        contact = task == 'contact'
-        model = lower_text(scan%value_of('structure', 'model'))
-        call need_group(scan, 'scene', "dt and n_steps for task 'contact'", .true., error)
-        call need(scan, 'scene', 'dt', "a time step in s (required for task 'contact')", contact, error)
-        call need(scan, 'scene', 'n_steps', "a number of steps (required for task 'contact')", contact, error)
-        call need_group(scan, 'structure', 'model', .true., error)
-        call need(scan, 'structure', 'model', "the structure model, 'sdof', 'random_modes', 'frf_file' or " &
-                  //"'tyre' (required)", .true., error)
-        call need(scan, 'structure', 'mass', "the mass M in kg (required for model 'sdof')", model == 'sdof', error)
-        call need(scan, 'structure', 'stiffness', "the stiffness K in N/m (required for model 'sdof')", &
-                  model == 'sdof', error)
-        call need(scan, 'structure', 'damping_ratio', "the damping ratio in [0, 1) (required for model 'sdof')", &
-                  model == 'sdof', error)
-        call need(scan, 'structure', 'frf_file', "a receptance file (required for model 'frf_file')", &
-                  model == 'frf_file', error)
-        call need_group(scan, 'road', "profile, for task 'contact'", contact, error)
-        call need(scan, 'road', 'profile', "the road profile, 'sine', 'random' or 'file' (required for task " &
-                  //"'contact')", contact, error)
-        call need(scan, 'road', 'road_file', "a road file (required for profile 'file')", &
-                  contact .and. lower_text(scan%value_of('road', 'profile')) == 'file', error)
-        call need_group(scan, 'contact', "stiffness and exponent, for task 'contact'", contact, error)
-        call need(scan, 'contact', 'stiffness', "the contact stiffness k_c in N/m^p (required for task 'contact')", &
-                  contact, error)
-        call need(scan, 'contact', 'exponent', "the contact exponent p (required for task 'contact')", contact, error)
-        call need_group(scan, 'convolution', "methods, for task 'contact'", contact, error)
-        call need(scan, 'convolution', 'methods', "the methods to run, e.g. 'direct', 'modal' (required for task " &
-                  //"'contact')", contact, error)
+        table = scene_table()
+        model_name = lower_text(scan%value_of('structure', 'model'))
+        model = find_model(model_name)
+        do g = 1, size(group_names)
+            if (holds(scan, table, group_required(g)) .and. .not. scan%has_group(trim(group_names(g)))) then
+                call fatal_error(error, scan%file//': &'//trim(group_names(g))//': expected the group &' &
+                                 //trim(group_names(g))//' ... / (required: '//trim(group_holds(g))//'), found none')
+                return
+            end if
+            if (len_trim(group_required(g)) > 0 .and. .not. holds(scan, table, group_required(g))) cycle
+            do i = 1, size(table)
+                if (table(i)%group /= trim(group_names(g))) cycle
+                if (holds(scan, table, table(i)%required)) then
+                    call need(scan, table(i), table(i)%required, error)
+                else if (table(i)%group == 'structure' .and. model_requires(model, table(i)%name)) then
+                    call need(scan, table(i), "model '"//model_name//"'", error)
+                end if
+                if (allocated(error)) return
+            end do
+        end do
     end subroutine check_required
 
-    !> A required group: `file: &group: expected the group (required: what), found none`.
-    subroutine need_group(scan, group, what, required, error)
+    !> Whether a condition of the table holds for the scanned file: '' never, 'always', or
+    !> "<variable> '<value>'" when the variable (its default when the file is silent) has
+    !> that value, compared in lower case.
+    logical function holds(scan, table, condition)
         type(namelist_scan), intent(in) :: scan
-        character(len=*), intent(in) :: group, what
-        logical, intent(in) :: required
-        type(error_type), allocatable, intent(inout) :: error
+        type(scene_variable), intent(in) :: table(:)
+        character(len=*), intent(in) :: condition
 
-        if (allocated(error) .or. .not. required .or. scan%has_group(group)) return
-        call fatal_error(error, scan%file//': &'//group//': expected the group &'//group//' ... / (required: ' &
-                         //what//'), found none')
-    end subroutine need_group
+        character(len=:), allocatable :: name, wanted, value
+        integer :: blank, i
+
+        holds = condition == 'always'
+        if (len_trim(condition) == 0 .or. holds) return
+        blank = index(condition, ' ')
+        name = condition(:blank - 1)
+        wanted = condition(blank + 2:len_trim(condition) - 1)
+        do i = 1, size(table)
+            if (table(i)%name /= name) cycle
+            value = lower_text(scan%value_of(table(i)%group, name))
+            if (len(value) == 0) value = table(i)%default
+            holds = value == wanted
+            return
+        end do
+    end function holds
 
     !> A required value: `file:line: &group variable: expected what, found no value` (the
     !> line of the group).
-    subroutine need(scan, group, variable, what, required, error)
+    subroutine need(scan, variable, when, error)
         type(namelist_scan), intent(in) :: scan
-        character(len=*), intent(in) :: group, variable, what
-        logical, intent(in) :: required
+        type(scene_variable), intent(in) :: variable
+        character(len=*), intent(in) :: when
         type(error_type), allocatable, intent(inout) :: error
 
-        if (allocated(error) .or. .not. required .or. scan%has_value(group, variable)) return
-        call fatal_error(error, scan%file//':'//int_text(scan%line_of(group, ''))//': &'//group//' '//variable &
-                         //': expected '//what//', found no value')
+        if (scan%has_value(variable%group, variable%name)) return
+        call fatal_error(error, scan%file//':'//int_text(scan%line_of(variable%group, ''))//': &'//variable%group &
+                         //' '//variable%name//': expected '//required_text(variable, when)//', found no value')
     end subroutine need
+
+    !> The table row of a variable; an empty row when the table lacks it.
+    function variable_row(group, name) result(variable)
+        character(len=*), intent(in) :: group, name
+        type(scene_variable) :: variable
+
+        type(scene_variable), allocatable :: table(:)
+        integer :: i
+
+        table = scene_table()
+        variable%group = ''
+        variable%name = ''
+        variable%default = ''
+        do i = 1, size(table)
+            if (table(i)%group == group .and. table(i)%name == name) variable = table(i)
+        end do
+    end function variable_row
+
+    !> Give a namelist variable its default from the table (a real, integer, logical or text).
+    subroutine scene_default(group, name, value)
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: name
+        !> The variable, set to its default (a text blank-padded).
+        class(*), intent(inout) :: value
+
+        type(scene_variable) :: variable
+
+        variable = variable_row(group, name)
+        select type (value)
+        type is (real(dp))
+            read (variable%default, *) value
+        type is (integer)
+            read (variable%default, *) value
+        type is (logical)
+            read (variable%default, *) value
+        type is (character(len=*))
+            value = variable%default
+        end select
+    end subroutine scene_default
 
 end module greenconv_scene_schema

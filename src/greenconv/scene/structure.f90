@@ -10,6 +10,7 @@ module greenconv_scene_structure
     use greenconv_ident_lsce, only: lsce_options
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf
     use greenconv_scene_input, only: scene_type, input_place
+    use greenconv_scene_models, only: model_id, model_sdof, model_random_modes, model_frf_file
     implicit none
     private
 
@@ -28,24 +29,21 @@ contains
 
         type(frf_type) :: frf
         type(modal_set) :: exact
-        real(dp) :: dt
 
-        select case (scene%model)
-        case ('sdof')
+        select case (model_id(scene%model))
+        case (model_sdof)
             structure = structure_from_modes(sdof_modes(scene%mass, scene%stiffness, scene%damping_ratio))
-        case ('random_modes')
+        case (model_random_modes)
             exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
                                  scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
             call structure_from_frf(frf_from_modes(exact, scene%f_max, scene%n_freq), scene_options(scene), &
                                     0.0_dp, structure, error)
             structure%has_exact = .true.
             structure%exact = exact
-        case ('frf_file')
+        case (model_frf_file)
             call read_frf(scene%frf_file, frf, error)
             if (.not. allocated(error)) then
-                dt = 0.0_dp
-                if (scene%task == 'contact') dt = scene%dt
-                call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+                call structure_from_frf(frf, scene_options(scene), sampling_step(scene), structure, error)
                 if (allocated(error)) error%message = scene%frf_file//': '//error%message
             end if
             if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
@@ -53,6 +51,15 @@ contains
             call fatal_error(error, scene%file//": &structure model: unknown model '"//scene%model//"'")
         end select
     end subroutine build_structure
+
+    !> The step [s] g is sampled at: the scene's dt for a contact run (the step every convolver
+    !> of the run gets), 0 (modes alone, no g) for task `identify`.
+    pure real(dp) function sampling_step(scene)
+        type(scene_type), intent(in) :: scene
+
+        sampling_step = 0.0_dp
+        if (scene%task == 'contact') sampling_step = scene%dt
+    end function sampling_step
 
     !> The scene's identification settings.
     function scene_options(scene) result(options)
