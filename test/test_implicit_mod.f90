@@ -7,10 +7,10 @@ module test_implicit_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use greenconv, only: convolver, contact_law, contact_response, contact_options, run_contact, sdof_modes, &
-                         sdof_receptance, make_convolver, error_type, stat_input, stat_numerical, sine_road, &
-                         structure_from_modes, new_direct_convolver, direct_convolver, stability_map, &
-                         stability_cell, contact_frequency, contact_reference
+    use greenconv_api_all, only: convolver, contact_law, contact_response, contact_options, run_contact, sdof_modes, &
+                                 sdof_receptance, make_convolver, error_type, stat_input, stat_numerical, sine_road, &
+                                 structure_from_modes, new_direct_convolver, direct_convolver, stability_map, &
+                                 stability_cell, contact_frequency, contact_reference
     implicit none
     private
 
