@@ -192,6 +192,35 @@ $(EXDIR)/omp_threads: example/omp_threads.f90 $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
+# ---- C API tests (test/c) ----------------------------------------------------------------
+# One C program per behaviour of include/greenconv.h, built against the plain build's static
+# library and run from the top folder (they read data/). Each prints one line per check,
+# "ok: ..." or "FAIL: ...", and exits non-zero on a failure; `make ctest` ends with the
+# checks' "N passed, N failed" line and fails when a check failed or a program crashed.
+
+CTEST_DIR := $(BUILD)/ctest
+CTESTS := $(patsubst test/c/%.c,$(CTEST_DIR)/%,$(wildcard test/c/*.c))
+
+.PHONY: ctest
+ctest: $(CTESTS)
+	@passed=0; failed=0; \
+	for program in $(CTESTS); do \
+	    echo "C test $${program##*/}"; \
+	    if output=$$("$$program" 2>&1); then status=0; else status=$$?; fi; \
+	    printf '%s\n' "$$output"; \
+	    passed=$$((passed + $$(printf '%s\n' "$$output" | grep -c '^ok: ' || true))); \
+	    failed=$$((failed + $$(printf '%s\n' "$$output" | grep -c '^FAIL: ' || true))); \
+	    if [ "$$status" -ne 0 ] && ! printf '%s\n' "$$output" | grep -q '^FAIL: '; then \
+	        echo "FAIL: $$program exited with status $$status"; failed=$$((failed + 1)); \
+	    fi; \
+	done; \
+	echo "C tests: $$passed passed, $$failed failed"; \
+	[ "$$failed" -eq 0 ]
+
+$(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
 # ---- fuzz test of the driver -------------------------------------------------------------
 
 FUZZ := $(BUILD)/greenconv-fuzz
@@ -264,6 +293,7 @@ test: deps
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
+	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz
 	@$(MAKE) bench-smoke

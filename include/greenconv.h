@@ -10,15 +10,21 @@
  *
  * Conventions.
  * - Functions return a status: GC_OK (0) on success, GC_ERROR_INPUT (2) for a bad value,
- *   file or NULL handle, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit).
- *   These are the status codes of the library's Fortran error type (greenconv_core_error).
+ *   file or NULL pointer, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit, a
+ *   contact run that diverged). These are the status codes of the library's Fortran error
+ *   type (greenconv_core_error).
  * - Functions that take `char *errmsg, size_t errmsg_len` write a one-line message there on
- *   failure (empty on success), truncated to errmsg_len - 1 bytes and NUL-terminated;
- *   errmsg may be NULL. There is no global "last error": nothing is kept between calls.
+ *   failure ("" on success): the whole message when errmsg_len exceeds its length, else its
+ *   first errmsg_len - 1 bytes; always NUL-terminated when errmsg_len >= 1. errmsg may be
+ *   NULL and errmsg_len may be 0: nothing is written then. Messages have no length limit.
+ *   There is no global "last error": nothing is kept between calls.
+ * - A NULL handle or a NULL output pointer that is not documented as optional gives
+ *   GC_ERROR_INPUT, never a crash.
  * - Strings passed in are NUL-terminated. Arrays are plain C arrays of the stated length.
  * - A gc_convolver is an opaque object made by a gc_convolver_new_* function and released by
- *   gc_convolver_free. Objects are independent: two simulations in one program do not
- *   interfere.
+ *   gc_convolver_free (or gc_convolver_delete, which also sets your pointer to NULL so that
+ *   a second call does nothing). Objects are independent: two simulations in one program do
+ *   not interfere.
  *
  * Threads. Different convolvers may be used from different threads at the same time; one
  * convolver must not be used by two threads at once. The library built by the Makefile is
@@ -36,9 +42,12 @@
  * Methods (the `method` string): "direct" (the truncated sum, cost per step ~ N_g),
  * "fft" (the same sum by partitioned FFT, ~ log N_g), "modal" = "recursive" (modal recursion
  * with decaying factors, ~ N_m), "paper" (the paper's recursion, eqs. 15-17), "exact"
- * (force linear within a step, integrated exactly), "auto" (the cheapest of these that meets
- * a relative accuracy of 1e-3). "direct" and "fft" truncate g where it falls below 1 % of
- * max|g| (the paper's rule), never beyond n_steps samples.
+ * (force linear within a step, integrated exactly), "backward" (the force of a step held
+ * from the step before it to it: with the implicit contact scheme a backward-Euler contact
+ * spring), "auto" (the cheapest of these that meets a relative accuracy of 1e-3). "direct"
+ * and "fft" truncate g where it falls below 1 % of max|g| (the paper's rule), never beyond
+ * n_steps samples. Both numbers can be changed with gc_build_options and the *_opts
+ * constructors.
  */
 #ifndef GREENCONV_H
 #define GREENCONV_H
@@ -61,6 +70,28 @@ enum gc_status {
 
 /** Opaque convolver: one structure's Green's function and one force history. */
 typedef struct gc_convolver gc_convolver;
+
+/** Settings of a new convolver (the *_opts constructors). Fill with gc_build_options_init. */
+typedef struct gc_build_options {
+    double truncation_tol; /**< "direct", "fft": truncate g below this fraction of max|g|, in (0, 1); 0.01 */
+    double accuracy;       /**< "auto": the relative accuracy (largest error E, eq. 7) to meet, > 0; 1e-3 */
+} gc_build_options;
+
+/** Contact schemes (gc_contact_options.scheme). */
+enum gc_scheme {
+    GC_SCHEME_EXPLICIT = 0, /**< the paper's step: the force from the history displacement alone */
+    GC_SCHEME_IMPLICIT = 1  /**< force, compression and displacement of a step solved together
+                                 (safeguarded Newton); needs w0 >= 0, gains with w0 > 0 ("exact",
+                                 "backward") */
+};
+
+/** How a contact run steps and when it gives up. Fill with gc_contact_options_init. */
+typedef struct gc_contact_options {
+    int scheme;              /**< GC_SCHEME_EXPLICIT (default) or GC_SCHEME_IMPLICIT */
+    int max_iterations;      /**< implicit step: most Newton/bisection iterations per step, >= 1; 100 */
+    double divergence_bound; /**< largest |u| [m] accepted; beyond it (or NaN) the run stops; 0.1 m */
+    double tolerance;        /**< implicit step: residual tolerance relative to the compression, > 0; 1e-12 */
+} gc_contact_options;
 
 /* ---- creating and freeing convolvers ------------------------------------------------ */
 
@@ -106,6 +137,34 @@ int gc_convolver_new_frf_file(const char *path, double dt, const char *method, i
 /** Free a convolver and everything it holds (FFTW plans included). NULL is allowed. */
 void gc_convolver_free(gc_convolver *conv);
 
+/**
+ * Free *conv (as gc_convolver_free) and set *conv to NULL, so that calling it twice on the
+ * same variable is harmless. conv == NULL or *conv == NULL: nothing.
+ */
+void gc_convolver_delete(gc_convolver **conv);
+
+/** Fill *options with the library's defaults (truncation_tol 0.01, accuracy 1e-3). */
+int gc_build_options_init(gc_build_options *options);
+
+/**
+ * The constructors above with build options (NULL: the defaults), e.g. a finer truncation
+ * of g for "direct" and "fft" or another accuracy for "auto". Bad options give
+ * GC_ERROR_INPUT with a message naming them.
+ */
+int gc_convolver_new_sdof_opts(double mass, double stiffness, double damping_ratio, double dt,
+                               const char *method, int n_steps, const gc_build_options *options,
+                               gc_convolver **conv, char *errmsg, size_t errmsg_len);
+int gc_convolver_new_modes_opts(int n_modes, const double *pole_re, const double *pole_im,
+                                const double *residue_re, const double *residue_im, double dt,
+                                const char *method, int n_steps, const gc_build_options *options,
+                                gc_convolver **conv, char *errmsg, size_t errmsg_len);
+int gc_convolver_new_samples_opts(int n_samples, const double *g, double dt, const char *method,
+                                  int n_steps, const gc_build_options *options,
+                                  gc_convolver **conv, char *errmsg, size_t errmsg_len);
+int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method, int n_steps,
+                                   double tol_e, int max_modes, const gc_build_options *options,
+                                   gc_convolver **conv, char *errmsg, size_t errmsg_len);
+
 /* ---- stepping a convolver ------------------------------------------------------------- */
 
 /** History displacement u_h(n) [m] at t_n from the forces pushed so far. */
@@ -150,11 +209,46 @@ int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, do
 /**
  * A whole contact run of n_steps steps (the convolver is reset first) on the road heights
  * road[n] = u_r(n*dt) [m]: displacement[n] [m], force[n] [N] and, unless NULL,
- * compression[n] [m]. The same loop as the greenconv driver.
+ * compression[n] [m]. The same loop as the greenconv driver, with the explicit step.
+ * A run that diverges (|u| beyond 0.1 m, or a NaN or infinite value, e.g. from a NaN road
+ * height) stops: GC_ERROR_NUMERICAL, the message names the step and its time, the outputs
+ * hold the steps before it and 0 from that step on.
  */
 int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps,
                    const double *road, double *displacement, double *force, double *compression,
                    char *errmsg, size_t errmsg_len);
+
+/** Fill *options with the defaults: the explicit scheme, bound 0.1 m, 1e-12, 100 iterations. */
+int gc_contact_options_init(gc_contact_options *options);
+
+/**
+ * gc_run_contact with contact options (NULL: the defaults), e.g. the implicit scheme. Bad
+ * options give GC_ERROR_INPUT naming the field; an implicit step that does not converge,
+ * GC_ERROR_NUMERICAL naming the step, the outputs then as for a divergent run.
+ */
+int gc_run_contact_opts(gc_convolver *conv, double k_c, double p, double preload, int n_steps,
+                        const double *road, const gc_contact_options *options,
+                        double *displacement, double *force, double *compression,
+                        char *errmsg, size_t errmsg_len);
+
+/**
+ * Start a contact run stepped one call at a time with options (NULL: the defaults): the
+ * convolver is reset, the body at rest under the preload. Then call gc_contact_advance once
+ * per step. The run ends at its first fault, at gc_convolver_reset or at a new start; do not
+ * mix gc_contact_step or gc_convolver_push into it.
+ */
+int gc_contact_start(gc_convolver *conv, double k_c, double p, double preload,
+                     const gc_contact_options *options, char *errmsg, size_t errmsg_len);
+
+/**
+ * The next step of the run gc_contact_start began, with its scheme: road height in;
+ * displacement [m], force [N] and (unless NULL) compression [m] out. A divergent or
+ * unconverged step gives GC_ERROR_NUMERICAL naming the step, outputs 0, and ends the run;
+ * without a run going on, GC_ERROR_INPUT. A run stepped this way equals gc_run_contact_opts
+ * on the same road bit for bit.
+ */
+int gc_contact_advance(gc_convolver *conv, double road, double *displacement, double *force,
+                       double *compression, char *errmsg, size_t errmsg_len);
 
 /* ---- identification and scenes -------------------------------------------------------- */
 

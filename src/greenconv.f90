@@ -1,72 +1,54 @@
 !> greenconv: fast convolution with Green's functions and dynamic contact.
 !>
-!> The public facade: `use greenconv` gives every type and procedure a user calls.
+!> The public facade: `use greenconv` gives what a program calls, and only that: kinds, the
+!> error type and its statuses, structure models (modal sets, the mass-spring, receptances,
+!> roads), identification, convolvers built by `new_convolver`, single-point contact (whole
+!> runs, single steps, streamed blocks), multi-point contact, and scene files. Engines'
+!> internals, test oracles and benchmarks are not here; the test suite reaches them through
+!> greenconv_api_all, whose extra names are not a supported API.
 !> Method: R. Meftah, D. Duhamel, J. Cesbron, H.P. Yin, "Une methode rapide pour calculer
 !> un produit de convolution avec une fonction de Green", CSMA 2011 (hal-00668511).
 module greenconv
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, stat_input, stat_numerical
-    use greenconv_model_modal_set, only: modal_set, modes_from_paper, random_modes
-    use greenconv_model_sdof, only: sdof_receptance, sdof_impulse, sdof_modes
-    use greenconv_conv_convolver, only: convolver
-    use greenconv_conv_direct, only: direct_convolver, new_direct_convolver
-    use greenconv_conv_kernel, only: truncation_length, sample_kernel, lane_dot
-    use greenconv_conv_paper, only: paper_convolver, new_paper_convolver
-    use greenconv_conv_recursive, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
-                                 new_backward_convolver
-    use greenconv_conv_fft, only: fft_convolver, new_fft_convolver, default_head
-    use greenconv_contact_single, only: contact_law, contact_response, contact_options, run_contact, contact_state, &
-                           start_contact, contact_block
-    use greenconv_verify_ode, only: ode_system, integrate
-    use greenconv_verify_contact, only: contact_reference, contact_frequency
+    use greenconv_model_modal_set, only: modal_set, random_modes
+    use greenconv_model_sdof, only: sdof_modes, sdof_receptance
+    use greenconv_model_frf, only: frf_type, read_frf, frf_from_modes
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
-    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, write_frf
-    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
-    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
-    use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, &
-                                 multi_contact_state, start_multi_contact, multi_contact_block
-    use greenconv_scene_output, only: write_multi_contact
-    use greenconv_model_tyre, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
-    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, &
-                             file_road
-    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: run_scene, check_scene, make_convolver, output_path
-    use greenconv_api_library, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file, &
-                           default_truncation_tol, default_accuracy
+    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
+                                         structure_from_samples
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_conv_green_modal, only: new_modal_green_matrix
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact, contact_state, &
+                                        start_contact, contact_block
+    use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
+    use greenconv_scene_input, only: scene_type, read_scene
+    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_api_library, only: new_convolver, free_convolver, contact_step, run_scene_file
     implicit none
     private
 
-    public :: dp
-    public :: error_type, stat_input, stat_numerical
-    public :: modal_set, modes_from_paper, random_modes
-    public :: sdof_receptance, sdof_impulse, sdof_modes
-    public :: convolver
-    public :: direct_convolver, new_direct_convolver, truncation_length, sample_kernel, lane_dot
-    public :: paper_convolver, new_paper_convolver
-    public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
-    public :: fft_convolver, new_fft_convolver, default_head
-    public :: contact_law, contact_response, contact_options, run_contact
-    public :: contact_state, start_contact, contact_block
-    public :: ode_system, integrate, contact_reference
-    public :: contact_frequency
+    ! kinds and errors
+    public :: dp, error_type, stat_input, stat_numerical
+    ! structure models and roads
+    public :: modal_set, random_modes, sdof_modes, sdof_receptance
+    public :: frf_type, read_frf, frf_from_modes
     public :: road_profile, sine_road, random_road, new_random_road
-    public :: frf_type, frf_from_modes, read_frf, write_frf
-    public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
-    public :: scene_type, read_scene
-    public :: point_modes, multipoint_convolver, sample_green_matrix
-    public :: modal_green_matrix, new_modal_green_matrix, sampled_green_matrix, new_sampled_green_matrix
-    public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, write_multi_contact
-    public :: multi_contact_state, start_multi_contact, multi_contact_block
-    public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
-    public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
-    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
-    public :: run_scene, check_scene, make_convolver, output_path
-    public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
-    public :: default_truncation_tol, default_accuracy
+    public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
+    ! identification
+    public :: lsce_options, lsce_result, identify
+    ! convolvers
+    public :: convolver, new_convolver, free_convolver
+    ! single-point contact: whole runs, single steps, streamed blocks
+    public :: contact_law, contact_options, contact_response, run_contact, contact_step
+    public :: contact_state, start_contact, contact_block
+    ! multi-point contact
+    public :: point_modes, multipoint_convolver, new_modal_green_matrix
+    public :: newton_options, multi_contact_response, run_multi_contact
+    ! scene files
+    public :: scene_type, read_scene, check_scene, run_scene, run_scene_file
 
 end module greenconv

@@ -11,8 +11,8 @@ module test_convolution_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use duhamel_mod, only: step_response, sine_response
-    use greenconv, only: convolver, modal_set, sdof_modes, sdof_impulse, new_direct_convolver, &
-                         new_paper_convolver, truncation_length, sample_kernel
+    use greenconv_api_all, only: convolver, modal_set, sdof_modes, sdof_impulse, new_direct_convolver, &
+                                 new_paper_convolver, truncation_length, sample_kernel
     implicit none
     private
 

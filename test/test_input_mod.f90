@@ -9,9 +9,9 @@ module test_input_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
     use greenconv_io_files, only: make_directory
     use scene_text_mod, only: tab1_scene, write_text, omit
-    use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
-                         structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
-                         new_convolver, convolver, sdof_modes
+    use greenconv_api_all, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
+                                 structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
+                                 new_convolver, convolver, sdof_modes
     use greenconv_scene_input, only: write_scene_template
     use greenconv_scene_schema, only: scene_variable, scene_table, scene_group_names
     use greenconv_scene_models, only: structure_kind, structure_models, model_names, model_requires

@@ -4,9 +4,10 @@
 module test_library_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use greenconv, only: error_type, stat_input, convolver, contact_law, contact_response, run_contact, sdof_modes, &
-                         sdof_impulse, structure_model, structure_from_modes, structure_from_samples, new_convolver, &
-                         free_convolver, contact_step, read_frf, frf_type, lsce_options, structure_from_frf
+    use greenconv_api_all, only: error_type, stat_input, convolver, contact_law, contact_response, run_contact, &
+                                 sdof_modes, sdof_impulse, structure_model, structure_from_modes, &
+                                 structure_from_samples, new_convolver, free_convolver, contact_step, read_frf, &
+                                 frf_type, lsce_options, structure_from_frf
     use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcdesc, gcscen
     implicit none
     private

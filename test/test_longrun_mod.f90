@@ -8,15 +8,14 @@ module test_longrun_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use scene_text_mod, only: tab1_scene, read_scene_text
     use greenconv_scene_progress, only: progress_meter, start_progress, progress_line, progress_due
-    use greenconv, only: scene_type, read_scene, run_scene, error_type, stat_numerical, convolver, &
-                         contact_law, contact_options, contact_response, run_contact, contact_state, &
-                         start_contact, contact_block, road_profile, sine_road, sdof_modes, &
-                         new_recursive_convolver, new_exact_convolver, new_direct_convolver, new_fft_convolver, &
-                         fft_convolver, &
-                         sdof_impulse, point_modes, tyre_belt, tyre_modes, contact_positions, &
-                         modal_green_matrix, new_modal_green_matrix, multi_contact_response, run_multi_contact, &
-                         multi_contact_state, start_multi_contact, multi_contact_block, road_file, read_road_file, &
-                         sample_road_file
+    use greenconv_api_all, only: scene_type, read_scene, run_scene, error_type, stat_numerical, convolver, &
+                                 contact_law, contact_options, contact_response, run_contact, contact_state, &
+                                 start_contact, contact_block, road_profile, sine_road, sdof_modes, &
+                                 new_recursive_convolver, new_exact_convolver, new_direct_convolver, &
+                                 new_fft_convolver, fft_convolver, sdof_impulse, point_modes, tyre_belt, tyre_modes, &
+                                 contact_positions, modal_green_matrix, new_modal_green_matrix, &
+                                 multi_contact_response, run_multi_contact, multi_contact_state, start_multi_contact, &
+                                 multi_contact_block, road_file, read_road_file, sample_road_file
     implicit none
     private
 

@@ -5,9 +5,9 @@ module test_scene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use scene_text_mod, only: tab1_scene, read_scene_text
-    use greenconv, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
-                         convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
-                         write_frf, structure_from_modes, modal_set, error_e, run_scene
+    use greenconv_api_all, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
+                                 convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
+                                 write_frf, structure_from_modes, modal_set, error_e, run_scene
     implicit none
     private
 

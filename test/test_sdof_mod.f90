@@ -2,7 +2,7 @@
 module test_sdof_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
-    use greenconv, only: sdof_receptance, sdof_impulse, sdof_modes, modal_set
+    use greenconv_api_all, only: sdof_receptance, sdof_impulse, sdof_modes, modal_set
     implicit none
     private
 

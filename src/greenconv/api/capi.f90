@@ -1,28 +1,69 @@
 !> The C interface of greenconv: `bind(c)` functions declared in include/greenconv.h, usable
-!> from C and C++. Each is a thin layer over the plain subroutines of `greenconv_legacy`:
-!> it turns C strings into Fortran ones, opaque `gc_convolver *` handles into the legacy
-!> `INTEGER*8` handles (the same address), and Fortran messages into NUL-terminated text in
-!> a buffer the caller provides. No function keeps state between calls.
+!> from C and C++, written directly on the Fortran API (greenconv_api_library and
+!> greenconv_api_handle), as minpack's C API and dftd4's api.f90 are.
 !>
-!> Conventions (see the header): functions return a status, 0 (`GC_OK`), 2
-!> (`GC_ERROR_INPUT`) or 3 (`GC_ERROR_NUMERICAL`), the codes of greenconv_core_error; `errmsg` may be
-!> NULL, otherwise it receives at most `errmsg_len` bytes, NUL included. SI units throughout.
+!> A `gc_convolver *` is an opaque handle: the C address of a Fortran `convolver_box` that
+!> holds the `class(convolver)` object, what its model neglects and the state of a contact run
+!> stepped one call at a time. No function keeps state outside the handles it is given.
+!>
+!> Conventions (see the header): functions return a status, 0 (`GC_OK`), 2 (`GC_ERROR_INPUT`)
+!> or 3 (`GC_ERROR_NUMERICAL`), the codes of greenconv_core_error. A message buffer `errmsg`
+!> of `errmsg_len` bytes (a `size_t`) receives the whole message when it fits, else its first
+!> errmsg_len - 1 bytes; it is always NUL-terminated when errmsg_len >= 1, left untouched when
+!> errmsg_len = 0 or errmsg is NULL, and holds "" on success. Pointers that must not be NULL
+!> are checked: NULL gives status 2 (with a message where the function takes a buffer), never
+!> a crash. SI units throughout.
 module greenconv_capi
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, &
-                                           c_null_char, c_associated, c_f_pointer, c_intptr_t
-    use, intrinsic :: iso_fortran_env, only: int64
-    use greenconv_legacy, only: gcsdof, gcmode, gcsamp, gcfrf, gcfree, gchist, gcpush, gcw0, gcrset, gcsize, &
-                                gcdesc, gcstep, gccont, gcid, gcscen
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_null_char, &
+                                           c_associated, c_f_pointer, c_loc
+    use, intrinsic :: iso_fortran_env, only: output_unit
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_input
+    use greenconv_core_text, only: int_text
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response, start_contact, contact_block
+    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file, default_truncation_tol, &
+                                     default_accuracy
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
+                                    samples_structure, frf_file_structure, run_box, identify_file
     implicit none
     private
 
+    public :: gc_contact_options, gc_build_options, gc_scheme_explicit, gc_scheme_implicit
     public :: gc_convolver_new_sdof, gc_convolver_new_modes, gc_convolver_new_samples, gc_convolver_new_frf_file
-    public :: gc_convolver_free, gc_convolver_history, gc_convolver_push, gc_convolver_instant_weight
-    public :: gc_convolver_reset, gc_convolver_model_size, gc_convolver_describe
-    public :: gc_contact_step, gc_run_contact, gc_identify_frf_file, gc_run_scene
+    public :: gc_build_options_init, gc_convolver_new_sdof_opts, gc_convolver_new_modes_opts
+    public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_opts
+    public :: gc_convolver_free, gc_convolver_delete, gc_convolver_history, gc_convolver_push
+    public :: gc_convolver_instant_weight, gc_convolver_reset, gc_convolver_model_size, gc_convolver_describe
+    public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
+    public :: gc_contact_start, gc_contact_advance
+    public :: gc_identify_frf_file, gc_run_scene
 
-    !> Length of the Fortran message buffers (messages are one line).
-    integer, parameter :: message_length = 1024
+    !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
+    integer(c_int), parameter :: gc_scheme_explicit = 0
+    !> `GC_SCHEME_IMPLICIT`: force, compression and displacement of a step solved together.
+    integer(c_int), parameter :: gc_scheme_implicit = 1
+
+    !> C `gc_contact_options`: how a contact run steps and when it gives up (`contact_options`).
+    type, bind(c) :: gc_contact_options
+        !> `GC_SCHEME_EXPLICIT` (0) or `GC_SCHEME_IMPLICIT` (1).
+        integer(c_int) :: scheme
+        !> Implicit step: most Newton or bisection iterations per step, >= 1.
+        integer(c_int) :: max_iterations
+        !> Largest |u| [m] accepted; a larger, infinite or NaN u stops the run as divergent.
+        real(c_double) :: divergence_bound
+        !> Implicit step: relative tolerance on the compression residual (dimensionless), > 0.
+        real(c_double) :: tolerance
+    end type gc_contact_options
+
+    !> C `gc_build_options`: settings of a new convolver (`new_convolver`'s optional arguments).
+    type, bind(c) :: gc_build_options
+        !> Truncation fraction of max |g| for "direct" and "fft", in (0, 1).
+        real(c_double) :: truncation_tol
+        !> Relative accuracy "auto" must meet (the largest E of eq. 7 it accepts), > 0.
+        real(c_double) :: accuracy
+    end type gc_build_options
 
     interface
         !> size_t strlen(const char *s)
@@ -35,6 +76,23 @@ module greenconv_capi
     end interface
 
 contains
+
+    ! ---- creating and freeing convolvers -------------------------------------------------
+
+    !> int gc_build_options_init(gc_build_options *options): the library's defaults.
+    function gc_build_options_init(options) bind(c, name='gc_build_options_init') result(status)
+        !> The options to fill (status 2 for NULL).
+        type(c_ptr), value, intent(in) :: options
+        integer(c_int) :: status
+
+        type(gc_build_options), pointer :: settings
+
+        status = stat_input
+        if (.not. c_associated(options)) return
+        call c_f_pointer(options, settings)
+        settings = gc_build_options(default_truncation_tol, default_accuracy)
+        status = 0
+    end function gc_build_options_init
 
     !> int gc_convolver_new_sdof(double mass, double stiffness, double damping_ratio, double dt,
     !> const char *method, int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
@@ -52,22 +110,52 @@ contains
         type(c_ptr), value, intent(in) :: method
         !> Number of steps N_t of the run, >= 1.
         integer(c_int), value, intent(in) :: n_steps
-        !> The new convolver (NULL on failure).
-        type(c_ptr), intent(out) :: conv
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer(int64) :: handle
-        integer :: ierr
-        character(len=message_length) :: message
-
-        call gcsdof(mass, stiffness, damping_ratio, dt, int(n_steps), from_c(method), handle, ierr, message)
-        conv = pointer_of(handle)
-        status = finish(ierr, message, errmsg, errmsg_len)
+        status = gc_convolver_new_sdof_opts(mass, stiffness, damping_ratio, dt, method, n_steps, c_null_ptr, conv, &
+                                            errmsg, errmsg_len)
     end function gc_convolver_new_sdof
+
+    !> int gc_convolver_new_sdof_opts(double mass, double stiffness, double damping_ratio,
+    !> double dt, const char *method, int n_steps, const gc_build_options *options,
+    !> gc_convolver **conv, char *errmsg, size_t errmsg_len)
+    function gc_convolver_new_sdof_opts(mass, stiffness, damping_ratio, dt, method, n_steps, options, conv, errmsg, &
+                                        errmsg_len) bind(c, name='gc_convolver_new_sdof_opts') result(status)
+        !> Mass M [kg], > 0.
+        real(c_double), value, intent(in) :: mass
+        !> Stiffness K [N/m], > 0.
+        real(c_double), value, intent(in) :: stiffness
+        !> Damping ratio xi, 0 <= xi < 1.
+        real(c_double), value, intent(in) :: damping_ratio
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method name, a NUL-terminated string.
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(structure_model) :: structure
+        type(error_type), allocatable :: error
+
+        call sdof_structure('gc_convolver_new_sdof', mass, stiffness, damping_ratio, structure, error)
+        status = made('gc_convolver_new_sdof', method, structure, dt, n_steps, options, conv, error, errmsg, &
+                      errmsg_len)
+    end function gc_convolver_new_sdof_opts
 
     !> int gc_convolver_new_modes(int n_modes, const double *pole_re, const double *pole_im,
     !> const double *residue_re, const double *residue_im, double dt, const char *method,
@@ -77,37 +165,87 @@ contains
         !> Number of modes (conjugate pairs), >= 1.
         integer(c_int), value, intent(in) :: n_modes
         !> Real parts of the poles lambda_k [rad/s], < 0.
-        real(c_double), intent(in) :: pole_re(*)
+        type(c_ptr), value, intent(in) :: pole_re
         !> Imaginary parts of the poles [rad/s], > 0.
-        real(c_double), intent(in) :: pole_im(*)
+        type(c_ptr), value, intent(in) :: pole_im
         !> Real parts of the residues r_k [m/(N*s)].
-        real(c_double), intent(in) :: residue_re(*)
+        type(c_ptr), value, intent(in) :: residue_re
         !> Imaginary parts of the residues [m/(N*s)].
-        real(c_double), intent(in) :: residue_im(*)
+        type(c_ptr), value, intent(in) :: residue_im
         !> Time step dt [s], > 0.
         real(c_double), value, intent(in) :: dt
         !> Method name, a NUL-terminated string.
         type(c_ptr), value, intent(in) :: method
         !> Number of steps N_t of the run, >= 1.
         integer(c_int), value, intent(in) :: n_steps
-        !> The new convolver (NULL on failure).
-        type(c_ptr), intent(out) :: conv
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer(int64) :: handle
-        integer :: ierr, n
-        character(len=message_length) :: message
+        status = gc_convolver_new_modes_opts(n_modes, pole_re, pole_im, residue_re, residue_im, dt, method, n_steps, &
+                                             c_null_ptr, conv, errmsg, errmsg_len)
+    end function gc_convolver_new_modes
+
+    !> int gc_convolver_new_modes_opts(int n_modes, const double *pole_re, const double *pole_im,
+    !> const double *residue_re, const double *residue_im, double dt, const char *method,
+    !> int n_steps, const gc_build_options *options, gc_convolver **conv, char *errmsg,
+    !> size_t errmsg_len)
+    function gc_convolver_new_modes_opts(n_modes, pole_re, pole_im, residue_re, residue_im, dt, method, n_steps, &
+                                         options, conv, errmsg, errmsg_len) &
+        bind(c, name='gc_convolver_new_modes_opts') result(status)
+        !> Number of modes (conjugate pairs), >= 1.
+        integer(c_int), value, intent(in) :: n_modes
+        !> Real parts of the poles lambda_k [rad/s], < 0.
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Imaginary parts of the poles [rad/s], > 0.
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Real parts of the residues r_k [m/(N*s)].
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Imaginary parts of the residues [m/(N*s)].
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method name, a NUL-terminated string.
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(structure_model) :: structure
+        type(error_type), allocatable :: error
+        real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:)
+        integer :: n
 
         n = max(int(n_modes), 0)
-        call gcmode(int(n_modes), pole_re(1:n), pole_im(1:n), residue_re(1:n), residue_im(1:n), dt, int(n_steps), &
-                    from_c(method), handle, ierr, message)
-        conv = pointer_of(handle)
-        status = finish(ierr, message, errmsg, errmsg_len)
-    end function gc_convolver_new_modes
+        if (n_modes < 1) then
+            call fatal_error(error, 'gc_convolver_new_modes: n_modes = '//int_text(int(n_modes)) &
+                             //': give at least 1 mode')
+        else if (.not. all([c_associated(pole_re), c_associated(pole_im), c_associated(residue_re), &
+                            c_associated(residue_im)])) then
+            call fatal_error(error, 'gc_convolver_new_modes: pole_re, pole_im, residue_re and residue_im must not ' &
+                             //'be NULL: pass arrays of n_modes values')
+        else
+            call c_f_pointer(pole_re, p_re, [n])
+            call c_f_pointer(pole_im, p_im, [n])
+            call c_f_pointer(residue_re, r_re, [n])
+            call c_f_pointer(residue_im, r_im, [n])
+            call modes_structure('gc_convolver_new_modes', p_re, p_im, r_re, r_im, structure, error)
+        end if
+        status = made('gc_convolver_new_modes', method, structure, dt, n_steps, options, conv, error, errmsg, &
+                      errmsg_len)
+    end function gc_convolver_new_modes_opts
 
     !> int gc_convolver_new_samples(int n_samples, const double *g, double dt, const char *method,
     !> int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
@@ -116,30 +254,63 @@ contains
         !> Number of samples, >= 2.
         integer(c_int), value, intent(in) :: n_samples
         !> Samples g(n*dt), n = 0..n_samples-1 [m/(N*s)].
-        real(c_double), intent(in) :: g(*)
+        type(c_ptr), value, intent(in) :: g
         !> Time step dt [s] of the samples and of the run, > 0.
         real(c_double), value, intent(in) :: dt
         !> Method name, "direct" or "fft".
         type(c_ptr), value, intent(in) :: method
         !> Number of steps N_t of the run, >= 1.
         integer(c_int), value, intent(in) :: n_steps
-        !> The new convolver (NULL on failure).
-        type(c_ptr), intent(out) :: conv
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer(int64) :: handle
-        integer :: ierr
-        character(len=message_length) :: message
-
-        call gcsamp(int(n_samples), g(1:max(int(n_samples), 0)), dt, int(n_steps), from_c(method), handle, ierr, &
-                    message)
-        conv = pointer_of(handle)
-        status = finish(ierr, message, errmsg, errmsg_len)
+        status = gc_convolver_new_samples_opts(n_samples, g, dt, method, n_steps, c_null_ptr, conv, errmsg, &
+                                               errmsg_len)
     end function gc_convolver_new_samples
+
+    !> int gc_convolver_new_samples_opts(int n_samples, const double *g, double dt,
+    !> const char *method, int n_steps, const gc_build_options *options, gc_convolver **conv,
+    !> char *errmsg, size_t errmsg_len)
+    function gc_convolver_new_samples_opts(n_samples, g, dt, method, n_steps, options, conv, errmsg, errmsg_len) &
+        bind(c, name='gc_convolver_new_samples_opts') result(status)
+        !> Number of samples, >= 2.
+        integer(c_int), value, intent(in) :: n_samples
+        !> Samples g(n*dt), n = 0..n_samples-1 [m/(N*s)].
+        type(c_ptr), value, intent(in) :: g
+        !> Time step dt [s] of the samples and of the run, > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method name, "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(structure_model) :: structure
+        type(error_type), allocatable :: error
+        real(c_double), pointer :: samples(:)
+
+        if (.not. c_associated(g) .and. n_samples > 0) then
+            call fatal_error(error, 'gc_convolver_new_samples: g is NULL: pass an array of n_samples values')
+        else
+            call c_f_pointer(g, samples, [max(int(n_samples), 0)])
+            call samples_structure('gc_convolver_new_samples', samples, structure, error)
+        end if
+        status = made('gc_convolver_new_samples', method, structure, dt, n_steps, options, conv, error, errmsg, &
+                      errmsg_len)
+    end function gc_convolver_new_samples_opts
 
     !> int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps,
     !> double tol_e, int max_modes, gc_convolver **conv, char *errmsg, size_t errmsg_len)
@@ -157,46 +328,95 @@ contains
         real(c_double), value, intent(in) :: tol_e
         !> Largest number of modes the LSCE scan tries, >= 1.
         integer(c_int), value, intent(in) :: max_modes
-        !> The new convolver (NULL on failure).
-        type(c_ptr), intent(out) :: conv
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer(int64) :: handle
-        integer :: ierr
-        character(len=message_length) :: message
-
-        call gcfrf(from_c(path), dt, int(n_steps), from_c(method), tol_e, int(max_modes), handle, ierr, message)
-        conv = pointer_of(handle)
-        status = finish(ierr, message, errmsg, errmsg_len)
+        status = gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, c_null_ptr, conv, &
+                                                errmsg, errmsg_len)
     end function gc_convolver_new_frf_file
+
+    !> int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method,
+    !> int n_steps, double tol_e, int max_modes, const gc_build_options *options,
+    !> gc_convolver **conv, char *errmsg, size_t errmsg_len)
+    function gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, options, conv, errmsg, &
+                                            errmsg_len) bind(c, name='gc_convolver_new_frf_file_opts') result(status)
+        !> Path of the receptance file (f [Hz], Re G, Im G [m/N]), NUL-terminated.
+        type(c_ptr), value, intent(in) :: path
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method name, a NUL-terminated string.
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Target of the identification error E of eq. (7), > 0.
+        real(c_double), value, intent(in) :: tol_e
+        !> Largest number of modes the LSCE scan tries, >= 1.
+        integer(c_int), value, intent(in) :: max_modes
+        !> Build options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(structure_model) :: structure
+        type(error_type), allocatable :: error
+
+        call frf_file_structure(from_c(path), from_c(method), dt, tol_e, int(max_modes), structure, error)
+        status = made('gc_convolver_new_frf_file', method, structure, dt, n_steps, options, conv, error, errmsg, &
+                      errmsg_len)
+    end function gc_convolver_new_frf_file_opts
 
     !> void gc_convolver_free(gc_convolver *conv): free a convolver (NULL: nothing).
     subroutine gc_convolver_free(conv) bind(c, name='gc_convolver_free')
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
 
-        integer(int64) :: handle
+        type(convolver_box), pointer :: box
 
-        handle = handle_of(conv)
-        call gcfree(handle)
+        box => box_of(conv)
+        call free_box(box)
     end subroutine gc_convolver_free
+
+    !> void gc_convolver_delete(gc_convolver **conv): free *conv and set it to NULL, so that a
+    !> second call does nothing (conv NULL or *conv NULL: nothing).
+    subroutine gc_convolver_delete(conv) bind(c, name='gc_convolver_delete')
+        !> Address of the caller's handle.
+        type(c_ptr), value, intent(in) :: conv
+
+        type(c_ptr), pointer :: handle
+
+        if (.not. c_associated(conv)) return
+        call c_f_pointer(conv, handle)
+        call gc_convolver_free(handle)
+        handle = c_null_ptr
+    end subroutine gc_convolver_delete
+
+    ! ---- stepping a convolver ---------------------------------------------------------------
 
     !> int gc_convolver_history(const gc_convolver *conv, double *displacement)
     function gc_convolver_history(conv, displacement) bind(c, name='gc_convolver_history') result(status)
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
-        !> History displacement u_h(n) [m] from the forces pushed so far.
-        real(c_double), intent(out) :: displacement
+        !> Where the history displacement u_h(n) [m] goes.
+        type(c_ptr), value, intent(in) :: displacement
         integer(c_int) :: status
 
-        integer :: ierr
+        type(convolver_box), pointer :: box
 
-        call gchist(handle_of(conv), displacement, ierr)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. (associated(box) .and. c_associated(displacement))) return
+        call put(displacement, box%conv%history())
+        status = 0
     end function gc_convolver_history
 
     !> int gc_convolver_push(gc_convolver *conv, double force)
@@ -207,24 +427,30 @@ contains
         real(c_double), value, intent(in) :: force
         integer(c_int) :: status
 
-        integer :: ierr
+        type(convolver_box), pointer :: box
 
-        call gcpush(handle_of(conv), force, ierr)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. associated(box)) return
+        call box%conv%push(force)
+        status = 0
     end function gc_convolver_push
 
     !> int gc_convolver_instant_weight(const gc_convolver *conv, double *weight)
     function gc_convolver_instant_weight(conv, weight) bind(c, name='gc_convolver_instant_weight') result(status)
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
-        !> Instantaneous weight w0 [m/N] of the current step's own force.
-        real(c_double), intent(out) :: weight
+        !> Where the instantaneous weight w0 [m/N] goes.
+        type(c_ptr), value, intent(in) :: weight
         integer(c_int) :: status
 
-        integer :: ierr
+        type(convolver_box), pointer :: box
 
-        call gcw0(handle_of(conv), weight, ierr)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. (associated(box) .and. c_associated(weight))) return
+        call put(weight, box%conv%instant_weight())
+        status = 0
     end function gc_convolver_instant_weight
 
     !> int gc_convolver_reset(gc_convolver *conv)
@@ -233,25 +459,36 @@ contains
         type(c_ptr), value, intent(in) :: conv
         integer(c_int) :: status
 
-        integer :: ierr
+        type(convolver_box), pointer :: box
 
-        call gcrset(handle_of(conv), ierr)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. associated(box)) return
+        call box%conv%reset()
+        box%stepping = .false.
+        status = 0
     end function gc_convolver_reset
 
     !> int gc_convolver_model_size(const gc_convolver *conv, int *size)
     function gc_convolver_model_size(conv, size) bind(c, name='gc_convolver_model_size') result(status)
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
-        !> N_g kernel samples ("direct", "fft") or N_m modes.
-        integer(c_int), intent(out) :: size
+        !> Where N_g kernel samples ("direct", "fft") or N_m modes go.
+        type(c_ptr), value, intent(in) :: size
         integer(c_int) :: status
 
-        integer :: ierr, n
+        type(convolver_box), pointer :: box
+        integer(c_int), pointer :: size_out
+        character(len=:), allocatable :: label
+        integer :: n
 
-        call gcsize(handle_of(conv), n, ierr)
-        size = int(n, c_int)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. (associated(box) .and. c_associated(size))) return
+        call box%conv%model_size(n, label)
+        call c_f_pointer(size, size_out)
+        size_out = int(n, c_int)
+        status = 0
     end function gc_convolver_model_size
 
     !> int gc_convolver_describe(const gc_convolver *conv, char *text, size_t text_len)
@@ -264,16 +501,22 @@ contains
         integer(c_size_t), value, intent(in) :: text_len
         integer(c_int) :: status
 
-        integer :: ierr
-        character(len=message_length) :: description
+        type(convolver_box), pointer :: box
 
-        call gcdesc(handle_of(conv), description, ierr)
-        call to_c(description, text, text_len)
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. associated(box)) then
+            call to_c('', text, text_len)
+            return
+        end if
+        call to_c(box%conv%name//': '//box%description, text, text_len)
+        status = 0
     end function gc_convolver_describe
 
+    ! ---- dynamic contact --------------------------------------------------------------------
+
     !> int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road,
-    !> double *displacement, double *force, double *compression)
+    !> double *displacement, double *force, double *compression): one explicit step.
     function gc_contact_step(conv, k_c, p, preload, road, displacement, force, compression) &
         bind(c, name='gc_contact_step') result(status)
         !> The convolver, advanced by one step.
@@ -286,29 +529,54 @@ contains
         real(c_double), value, intent(in) :: preload
         !> Road height u_r(t_n) [m].
         real(c_double), value, intent(in) :: road
-        !> Body displacement u(t_n) [m].
-        real(c_double), intent(out) :: displacement
-        !> Contact force F(t_n) [N].
-        real(c_double), intent(out) :: force
-        !> Compression delta(t_n) [m], or NULL.
+        !> Where the body displacement u(t_n) [m] goes.
+        type(c_ptr), value, intent(in) :: displacement
+        !> Where the contact force F(t_n) [N] goes.
+        type(c_ptr), value, intent(in) :: force
+        !> Where the compression delta(t_n) [m] goes, or NULL.
         type(c_ptr), value, intent(in) :: compression
         integer(c_int) :: status
 
-        real(c_double), pointer :: delta_out
-        real(c_double) :: delta
-        integer :: ierr
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        real(dp) :: u, f, delta
 
-        call gcstep(handle_of(conv), k_c, p, preload, road, displacement, force, delta, ierr)
-        if (c_associated(compression)) then
-            call c_f_pointer(compression, delta_out)
-            delta_out = delta
-        end if
-        status = int(ierr, c_int)
+        box => box_of(conv)
+        status = stat_input
+        if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
+        call check_contact_law(contact_law(k_c, p), preload, error)
+        if (allocated(error)) return
+        call contact_step(box%conv, contact_law(k_c, p), road, preload, u, f, delta)
+        call put(displacement, u)
+        call put(force, f)
+        if (c_associated(compression)) call put(compression, delta)
+        status = 0
     end function gc_contact_step
+
+    !> int gc_contact_options_init(gc_contact_options *options): the library's defaults (the
+    !> paper's explicit step).
+    function gc_contact_options_init(options) bind(c, name='gc_contact_options_init') result(status)
+        !> The options to fill (status 2 for NULL).
+        type(c_ptr), value, intent(in) :: options
+        integer(c_int) :: status
+
+        type(gc_contact_options), pointer :: settings
+        type(contact_options) :: defaults
+
+        status = stat_input
+        if (.not. c_associated(options)) return
+        call c_f_pointer(options, settings)
+        settings%scheme = gc_scheme_explicit
+        if (defaults%scheme == 'implicit') settings%scheme = gc_scheme_implicit
+        settings%max_iterations = int(defaults%max_iterations, c_int)
+        settings%divergence_bound = defaults%divergence_bound
+        settings%tolerance = defaults%tolerance
+        status = 0
+    end function gc_contact_options_init
 
     !> int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps,
     !> const double *road, double *displacement, double *force, double *compression,
-    !> char *errmsg, size_t errmsg_len)
+    !> char *errmsg, size_t errmsg_len): the explicit step, default options.
     function gc_run_contact(conv, k_c, p, preload, n_steps, road, displacement, force, compression, errmsg, &
                             errmsg_len) bind(c, name='gc_run_contact') result(status)
         !> The convolver (reset first).
@@ -322,12 +590,12 @@ contains
         !> Number of steps N_t, >= 1.
         integer(c_int), value, intent(in) :: n_steps
         !> Road heights u_r(t_n) [m], n_steps values.
-        real(c_double), intent(in) :: road(*)
-        !> Body displacements u(t_n) [m], n_steps values.
-        real(c_double), intent(out) :: displacement(*)
-        !> Contact forces F(t_n) [N], n_steps values.
-        real(c_double), intent(out) :: force(*)
-        !> Compressions delta(t_n) [m], n_steps values, or NULL.
+        type(c_ptr), value, intent(in) :: road
+        !> Body displacements u(t_n) [m], n_steps values (0 after a fault).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Contact forces F(t_n) [N], n_steps values (0 after a fault).
+        type(c_ptr), value, intent(in) :: force
+        !> Compressions delta(t_n) [m], n_steps values (0 after a fault), or NULL.
         type(c_ptr), value, intent(in) :: compression
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
@@ -335,21 +603,173 @@ contains
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        real(c_double), pointer :: delta_out(:)
-        real(c_double), allocatable :: delta(:)
-        integer :: ierr, n
-        character(len=message_length) :: message
+        status = gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, c_null_ptr, displacement, force, &
+                                     compression, errmsg, errmsg_len)
+    end function gc_run_contact
 
+    !> int gc_run_contact_opts(gc_convolver *conv, double k_c, double p, double preload,
+    !> int n_steps, const double *road, const gc_contact_options *options, double *displacement,
+    !> double *force, double *compression, char *errmsg, size_t errmsg_len)
+    function gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, options, displacement, force, compression, &
+                                 errmsg, errmsg_len) bind(c, name='gc_run_contact_opts') result(status)
+        !> The convolver (reset first).
+        type(c_ptr), value, intent(in) :: conv
+        !> Contact stiffness k_c [N/m^p], > 0.
+        real(c_double), value, intent(in) :: k_c
+        !> Contact exponent p, > 0.
+        real(c_double), value, intent(in) :: p
+        !> Static preload F0 [N], >= 0.
+        real(c_double), value, intent(in) :: preload
+        !> Number of steps N_t, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Road heights u_r(t_n) [m], n_steps values.
+        type(c_ptr), value, intent(in) :: road
+        !> Contact options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Body displacements u(t_n) [m], n_steps values (0 after a fault).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Contact forces F(t_n) [N], n_steps values (0 after a fault).
+        type(c_ptr), value, intent(in) :: force
+        !> Compressions delta(t_n) [m], n_steps values (0 after a fault), or NULL.
+        type(c_ptr), value, intent(in) :: compression
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        type(contact_options) :: settings
+        real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
+        real(dp), allocatable :: delta(:)
+        integer :: n
+
+        box => box_of(conv)
         n = max(int(n_steps), 0)
         allocate (delta(n))
-        call gccont(handle_of(conv), k_c, p, preload, int(n_steps), road(1:n), displacement(1:n), force(1:n), delta, &
-                    ierr, message)
-        if (ierr == 0 .and. c_associated(compression)) then
+        delta(:) = 0.0_dp
+        if (.not. associated(box)) then
+            call fatal_error(error, 'gc_run_contact: conv is NULL: make a convolver with gc_convolver_new_*')
+        else if (n_steps < 1) then
+            call fatal_error(error, 'gc_run_contact: n_steps = '//int_text(int(n_steps))//': give at least 1 step')
+        else if (.not. (c_associated(road) .and. c_associated(displacement) .and. c_associated(force))) then
+            call fatal_error(error, 'gc_run_contact: road, displacement and force must not be NULL: pass arrays ' &
+                             //'of n_steps values')
+        else
+            call options_from_c(options, settings, error)
+            call c_f_pointer(displacement, u, [n])
+            call c_f_pointer(force, f, [n])
+            if (allocated(error)) then
+                u(:) = 0.0_dp
+                f(:) = 0.0_dp
+            else
+                call c_f_pointer(road, heights, [n])
+                call run_box(box, contact_law(k_c, p), preload, heights, settings, u, f, delta, error)
+                if (allocated(error)) error%message = 'gc_run_contact: '//error%message
+            end if
+        end if
+        if (c_associated(compression) .and. n > 0) then
             call c_f_pointer(compression, delta_out, [n])
             delta_out(:) = delta
         end if
-        status = finish(ierr, message, errmsg, errmsg_len)
-    end function gc_run_contact
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_run_contact_opts
+
+    !> int gc_contact_start(gc_convolver *conv, double k_c, double p, double preload,
+    !> const gc_contact_options *options, char *errmsg, size_t errmsg_len): reset the convolver
+    !> and start a contact run stepped by gc_contact_advance.
+    function gc_contact_start(conv, k_c, p, preload, options, errmsg, errmsg_len) &
+        bind(c, name='gc_contact_start') result(status)
+        !> The convolver; reset here.
+        type(c_ptr), value, intent(in) :: conv
+        !> Contact stiffness k_c [N/m^p], > 0.
+        real(c_double), value, intent(in) :: k_c
+        !> Contact exponent p, > 0.
+        real(c_double), value, intent(in) :: p
+        !> Static preload F0 [N], >= 0.
+        real(c_double), value, intent(in) :: preload
+        !> Contact options, or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        type(contact_options) :: settings
+
+        box => box_of(conv)
+        if (.not. associated(box)) then
+            call fatal_error(error, 'gc_contact_start: conv is NULL: make a convolver with gc_convolver_new_*')
+        else
+            box%stepping = .false.
+            call check_contact_law(contact_law(k_c, p), preload, error)
+            if (.not. allocated(error)) call options_from_c(options, settings, error)
+            if (.not. allocated(error)) call start_contact(box%conv, contact_law(k_c, p), preload, box%contact, &
+                                                           error, settings)
+            box%stepping = .not. allocated(error)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_contact_start
+
+    !> int gc_contact_advance(gc_convolver *conv, double road, double *displacement,
+    !> double *force, double *compression, char *errmsg, size_t errmsg_len): the next step of
+    !> the run gc_contact_start began, with its scheme.
+    function gc_contact_advance(conv, road, displacement, force, compression, errmsg, errmsg_len) &
+        bind(c, name='gc_contact_advance') result(status)
+        !> The convolver, advanced by one step.
+        type(c_ptr), value, intent(in) :: conv
+        !> Road height u_r(t_n) [m] of this step.
+        real(c_double), value, intent(in) :: road
+        !> Where the body displacement u(t_n) [m] goes (0 on a fault).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Where the contact force F(t_n) [N] goes (0 on a fault).
+        type(c_ptr), value, intent(in) :: force
+        !> Where the compression delta(t_n) [m] goes (0 on a fault), or NULL.
+        type(c_ptr), value, intent(in) :: compression
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        type(contact_response) :: response
+        real(dp) :: u, f, delta
+
+        box => box_of(conv)
+        u = 0.0_dp
+        f = 0.0_dp
+        delta = 0.0_dp
+        if (.not. associated(box)) then
+            call fatal_error(error, 'gc_contact_advance: conv is NULL: make a convolver with gc_convolver_new_*')
+        else if (.not. (c_associated(displacement) .and. c_associated(force))) then
+            call fatal_error(error, 'gc_contact_advance: displacement and force must not be NULL')
+        else if (.not. box%stepping) then
+            call fatal_error(error, 'gc_contact_advance: no contact run is going on with this convolver: call ' &
+                             //'gc_contact_start first (a fault or a reset ends a run)')
+        else
+            call contact_block(box%conv, box%contact, [real(road, dp)], response, error)
+            if (allocated(error)) then
+                box%stepping = .false.
+                error%message = 'gc_contact_advance: '//error%message
+            else
+                u = response%displacement(0)
+                f = response%force(0)
+                delta = response%compression(0)
+            end if
+        end if
+        if (c_associated(displacement)) call put(displacement, u)
+        if (c_associated(force)) call put(force, f)
+        if (c_associated(compression)) call put(compression, delta)
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_contact_advance
+
+    ! ---- identification and scenes -------------------------------------------------------
 
     !> int gc_identify_frf_file(const char *path, double tol_e, int max_modes, int capacity,
     !> int *n_modes, double *pole_re, double *pole_im, double *residue_re, double *residue_im,
@@ -383,14 +803,26 @@ contains
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer :: ierr, n, cap
-        character(len=message_length) :: message
+        type(error_type), allocatable :: error
+        type(modal_set) :: modes
+        integer :: n
 
-        cap = max(int(capacity), 0)
-        call gcid(from_c(path), tol_e, int(max_modes), cap, n, pole_re(1:cap), pole_im(1:cap), residue_re(1:cap), &
-                  residue_im(1:cap), error_e, ierr, message)
-        n_modes = int(n, c_int)
-        status = finish(ierr, message, errmsg, errmsg_len)
+        n_modes = 0
+        call identify_file(from_c(path), tol_e, int(max_modes), modes, error_e, error)
+        if (.not. allocated(error)) then
+            n = modes%n_modes()
+            n_modes = int(n, c_int)
+            if (n > capacity) then
+                call fatal_error(error, 'gc_identify_frf_file: '//int_text(n)//' modes found, more than capacity = ' &
+                                 //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
+            else
+                pole_re(1:n) = real(modes%pole, dp)
+                pole_im(1:n) = aimag(modes%pole)
+                residue_re(1:n) = real(modes%residue, dp)
+                residue_im(1:n) = aimag(modes%residue)
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
     end function gc_identify_frf_file
 
     !> int gc_run_scene(const char *path, char *errmsg, size_t errmsg_len)
@@ -403,23 +835,114 @@ contains
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        integer :: ierr
-        character(len=message_length) :: message
+        type(error_type), allocatable :: error
 
-        call gcscen(from_c(path), ierr, message)
-        status = finish(ierr, message, errmsg, errmsg_len)
+        call run_scene_file(from_c(path), output_unit, error)
+        flush (output_unit)
+        status = finish(error, errmsg, errmsg_len)
     end function gc_run_scene
 
-    !> The status as a C int, the message copied to the caller's buffer.
-    function finish(ierr, message, errmsg, errmsg_len) result(status)
-        integer, intent(in) :: ierr
-        character(len=*), intent(in) :: message
+    ! ---- conversions -------------------------------------------------------------------------
+
+    !> Build the convolver `method` for a structure into *conv, unless `error` is already set;
+    !> the status, with the message copied to the caller's buffer.
+    function made(caller, method, structure, dt, n_steps, options, conv, error, errmsg, errmsg_len) result(status)
+        character(len=*), intent(in) :: caller
+        type(c_ptr), intent(in) :: method, options, conv, errmsg
+        type(structure_model), intent(in) :: structure
+        real(c_double), intent(in) :: dt
+        integer(c_int), intent(in) :: n_steps
+        type(error_type), allocatable, intent(inout) :: error
+        integer(c_size_t), intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(c_ptr), pointer :: handle
+        type(gc_build_options), pointer :: settings
+        type(gc_build_options), target :: defaults
+        type(convolver_box), pointer :: box
+
+        handle => null()
+        if (c_associated(conv)) then
+            call c_f_pointer(conv, handle)
+            handle = c_null_ptr
+        else if (.not. allocated(error)) then
+            call fatal_error(error, caller//': conv is NULL: pass the address of a gc_convolver * to receive ' &
+                             //'the convolver')
+        end if
+        if (.not. allocated(error) .and. .not. c_associated(method)) then
+            call fatal_error(error, caller//': method is NULL: pass a method name such as "modal"')
+        end if
+        if (.not. allocated(error)) then
+            defaults = gc_build_options(default_truncation_tol, default_accuracy)
+            settings => defaults
+            if (c_associated(options)) call c_f_pointer(options, settings)
+            call new_box(from_c(method), structure, dt, int(n_steps), box, error, settings%truncation_tol, &
+                         settings%accuracy)
+            if (allocated(error)) error%message = caller//': '//error%message
+        end if
+        if (.not. allocated(error)) handle = c_loc(box)
+        status = finish(error, errmsg, errmsg_len)
+    end function made
+
+    !> The Fortran contact options from a C `gc_contact_options *` (defaults for NULL).
+    subroutine options_from_c(options, settings, error)
+        type(c_ptr), intent(in) :: options
+        type(contact_options), intent(out) :: settings
+        type(error_type), allocatable, intent(out) :: error
+
+        type(gc_contact_options), pointer :: given
+
+        if (.not. c_associated(options)) return
+        call c_f_pointer(options, given)
+        select case (given%scheme)
+        case (gc_scheme_explicit)
+            settings%scheme = 'explicit'
+        case (gc_scheme_implicit)
+            settings%scheme = 'implicit'
+        case default
+            call fatal_error(error, 'options->scheme = '//int_text(int(given%scheme))//': expected ' &
+                             //'GC_SCHEME_EXPLICIT (0) or GC_SCHEME_IMPLICIT (1)')
+            return
+        end select
+        settings%max_iterations = int(given%max_iterations)
+        settings%divergence_bound = given%divergence_bound
+        settings%tolerance = given%tolerance
+    end subroutine options_from_c
+
+    !> The box behind a C handle; null for NULL.
+    function box_of(conv) result(box)
+        type(c_ptr), intent(in) :: conv
+        type(convolver_box), pointer :: box
+
+        box => null()
+        if (c_associated(conv)) call c_f_pointer(conv, box)
+    end function box_of
+
+    !> Store a value at a C `double *` (not NULL).
+    subroutine put(address, value)
+        type(c_ptr), intent(in) :: address
+        real(dp), intent(in) :: value
+
+        real(c_double), pointer :: target_value
+
+        call c_f_pointer(address, target_value)
+        target_value = value
+    end subroutine put
+
+    !> The status of an error (0 when none), its message copied to the caller's buffer ("" when none).
+    function finish(error, errmsg, errmsg_len) result(status)
+        type(error_type), allocatable, intent(in) :: error
         type(c_ptr), intent(in) :: errmsg
         integer(c_size_t), intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        call to_c(message, errmsg, errmsg_len)
-        status = int(ierr, c_int)
+        status = 0
+        if (allocated(error)) then
+            status = int(error%stat, c_int)
+            call to_c(error%message, errmsg, errmsg_len)
+        else
+            call to_c('', errmsg, errmsg_len)
+        end if
     end function finish
 
     !> A NUL-terminated C string as Fortran text (empty for NULL).
@@ -440,40 +963,25 @@ contains
         end do
     end function from_c
 
-    !> Copy trimmed text into a C buffer of `length` bytes, truncated, NUL-terminated.
+    !> Copy text into a C buffer of `length` bytes: all of it when it fits, else its first
+    !> length - 1 bytes, then a NUL. Nothing for a NULL buffer or length 0. A length that does
+    !> not fit a signed size (negative here) is as good as unlimited.
     subroutine to_c(text, buffer, length)
         character(len=*), intent(in) :: text
         type(c_ptr), intent(in) :: buffer
         integer(c_size_t), intent(in) :: length
 
         character(kind=c_char), pointer :: chars(:)
-        integer :: i, n
+        integer(c_size_t) :: i, n
 
-        if (.not. c_associated(buffer) .or. length < 1) return
-        call c_f_pointer(buffer, chars, [length])
-        n = min(len_trim(text), int(length) - 1)
+        if (.not. c_associated(buffer) .or. length == 0) return
+        n = len(text, kind=c_size_t)
+        if (length > 0) n = min(n, length - 1)
+        call c_f_pointer(buffer, chars, [n + 1])
         do i = 1, n
             chars(i) = text(i:i)
         end do
         chars(n + 1) = c_null_char
     end subroutine to_c
-
-    !> The C pointer of a legacy handle.
-    function pointer_of(handle) result(pointer)
-        integer(int64), intent(in) :: handle
-        type(c_ptr) :: pointer
-
-        pointer = c_null_ptr
-        if (handle /= 0_int64) pointer = transfer(int(handle, c_intptr_t), c_null_ptr)
-    end function pointer_of
-
-    !> The legacy handle of a C pointer.
-    function handle_of(pointer) result(handle)
-        type(c_ptr), intent(in) :: pointer
-        integer(int64) :: handle
-
-        handle = 0_int64
-        if (c_associated(pointer)) handle = int(transfer(pointer, 0_c_intptr_t), int64)
-    end function handle_of
 
 end module greenconv_capi

@@ -8,9 +8,13 @@
 !> Free it with `GCFREE`. There is no module state: handles are independent of each other.
 !>
 !> Status `IERR`: 0 success, 2 bad input (`stat_input`: a value, a file, a null handle),
-!> 3 numerical failure (`stat_numerical`); the C API (`greenconv_capi`, include/greenconv.h)
-!> uses the same codes. Routines that can fail on their inputs also return a message in
-!> `ERRMSG` (any length; truncated to fit, blank on success).
+!> 3 numerical failure (`stat_numerical`: a failed fit, a contact run that diverged); the C
+!> API (`greenconv_capi`, include/greenconv.h) uses the same codes. Routines that can fail
+!> also return a message in `ERRMSG` (any length; truncated to fit, blank on success).
+!>
+!> Methods (the `METHOD` string, any case): 'direct', 'fft', 'modal' (= 'recursive'),
+!> 'paper', 'exact', 'backward' and 'auto'; see `new_convolver` (greenconv_api_library).
+!> Each routine is a thin conversion onto the Fortran API (greenconv_api_handle).
 !>
 !> Units: masses [kg], stiffnesses [N/m], contact stiffness k_c [N/m^p], time step [s],
 !> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
@@ -18,18 +22,14 @@
 module greenconv_legacy
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
-    use greenconv_core_text, only: lower_text
-    use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
-    use greenconv_model_sdof, only: sdof_modes
-    use greenconv_conv_convolver, only: convolver
-    use greenconv_contact_single, only: contact_law, contact_response, run_contact
-    use greenconv_model_frf, only: frf_type, read_frf
-    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
-    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, structure_from_frf
-    use greenconv_api_library, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_contact_single, only: contact_law, contact_options
+    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
+                                    samples_structure, frf_file_structure, run_box, identify_file
     implicit none
     private
 
@@ -39,14 +39,6 @@ module greenconv_legacy
 
     !> Status of a call that succeeded.
     integer, parameter :: stat_ok = 0
-
-    !> What a handle points to: one convolver and the words that describe its model.
-    type :: convolver_box
-        !> The convolver.
-        class(convolver), allocatable :: conv
-        !> What the model neglects (from `new_convolver`).
-        character(len=:), allocatable :: description
-    end type convolver_box
 
 contains
 
@@ -63,7 +55,8 @@ contains
         real(dp), intent(in) :: dt
         !> Number of steps N_t of the run, >= 1.
         integer, intent(in) :: nstep
-        !> Method: 'direct', 'fft', 'modal', 'recursive', 'paper', 'exact' or 'auto' (any case).
+        !> Method: 'direct', 'fft', 'modal', 'recursive', 'paper', 'exact', 'backward' or 'auto'
+        !> (any case).
         character(len=*), intent(in) :: method
         !> The new convolver's handle; 0 on failure.
         integer(int64), intent(out) :: handle
@@ -73,18 +66,10 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
+        type(structure_model) :: structure
 
-        handle = 0_int64
-        if (.not. (mass > 0.0_dp .and. ieee_is_finite(mass) .and. stiff > 0.0_dp .and. ieee_is_finite(stiff))) then
-            call fatal_error(error, 'gcsdof: the mass and the stiffness must be finite and > 0')
-        else if (.not. (xi >= 0.0_dp .and. xi < 1.0_dp)) then
-            call fatal_error(error, 'gcsdof: the damping ratio must be in [0, 1)')
-        end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        call new_handle(method, structure_from_modes(sdof_modes(mass, stiff, xi)), dt, nstep, handle, ierr, errmsg)
+        call sdof_structure('gcsdof', mass, stiff, xi, structure, error)
+        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
     end subroutine gcsdof
 
     !> Convolver of a structure given by its modes in pole-residue form (greenconv_model_modal_set):
@@ -114,25 +99,12 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(modal_set) :: modes
+        type(structure_model) :: structure
+        integer :: n
 
-        handle = 0_int64
-        if (nmode < 1) then
-            call fatal_error(error, 'gcmode: the number of modes must be >= 1')
-        else if (.not. all(polre < 0.0_dp .and. polim > 0.0_dp .and. ieee_is_finite(polre) &
-                           .and. ieee_is_finite(polim))) then
-            call fatal_error(error, 'gcmode: every pole needs a finite real part < 0 and imaginary part > 0 rad/s')
-        else if (.not. all(ieee_is_finite(resre) .and. ieee_is_finite(resim))) then
-            call fatal_error(error, 'gcmode: the residues must be finite')
-        end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        allocate (modes%pole(nmode), modes%residue(nmode))
-        modes%pole(:) = cmplx(polre, polim, dp)
-        modes%residue(:) = cmplx(resre, resim, dp)
-        call new_handle(method, structure_from_modes(modes), dt, nstep, handle, ierr, errmsg)
+        n = max(nmode, 0)
+        call modes_structure('gcmode', polre(1:n), polim(1:n), resre(1:n), resim(1:n), structure, error)
+        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
     end subroutine gcmode
 
     !> Convolver of a structure known by its impulse response sampled at the time step:
@@ -156,18 +128,10 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
+        type(structure_model) :: structure
 
-        handle = 0_int64
-        if (nsamp < 2) then
-            call fatal_error(error, 'gcsamp: at least two samples of g are needed')
-        else if (.not. all(ieee_is_finite(g))) then
-            call fatal_error(error, 'gcsamp: the samples of g must be finite')
-        end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        call new_handle(method, structure_from_samples(g), dt, nstep, handle, ierr, errmsg)
+        call samples_structure('gcsamp', g(1:max(nsamp, 0)), structure, error)
+        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
     end subroutine gcsamp
 
     !> Convolver of a structure known by a receptance file (`#` comments, then columns
@@ -196,28 +160,14 @@ contains
 
         type(error_type), allocatable :: error
         type(structure_model) :: structure
-        type(frf_type) :: frf
-        type(lsce_options) :: options
-        real(dp) :: dt_g
 
-        handle = 0_int64
-        call read_frf(trim(path), frf, error)
-        if (.not. allocated(error)) then
-            options%tol_e = tole
-            options%max_modes = maxmod
-            dt_g = 0.0_dp
-            if (any(lower_text(method) == [character(len=6) :: 'direct', 'fft', 'auto'])) dt_g = dt
-            call structure_from_frf(frf, options, dt_g, structure, error)
-        end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg)
+        call frf_file_structure(trim(path), method, dt, tole, maxmod, structure, error)
+        call new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
     end subroutine gcfrf
 
-    !> Build a convolver for a structure and return its handle.
-    subroutine new_handle(method, structure, dt, nstep, handle, ierr, errmsg)
+    !> Build a convolver for a structure and return its handle, unless `error` already says
+    !> the structure could not be made.
+    subroutine new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
         character(len=*), intent(in) :: method
         type(structure_model), intent(in) :: structure
         real(dp), intent(in) :: dt
@@ -225,21 +175,15 @@ contains
         integer(int64), intent(out) :: handle
         integer, intent(out) :: ierr
         character(len=*), intent(out) :: errmsg
+        type(error_type), allocatable, intent(inout) :: error
 
         type(convolver_box), pointer :: box
-        type(error_type), allocatable :: error
 
         handle = 0_int64
-        allocate (box)
-        call new_convolver(lower_text(method), structure, dt, nstep, box%conv, error, description=box%description)
-        if (allocated(error)) then
-            deallocate (box)
-            call report(error, ierr, errmsg)
-            return
-        end if
+        if (.not. allocated(error)) call new_box(method, structure, dt, nstep, box, error)
+        call report(error, ierr, errmsg)
+        if (allocated(error)) return
         handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
-        ierr = stat_ok
-        errmsg = ' '
     end subroutine new_handle
 
     !> Free a convolver (its FFTW plans too) and set its handle to 0; nothing for handle 0.
@@ -250,10 +194,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => box_of(handle)
-        if (associated(box)) then
-            call free_convolver(box%conv)
-            deallocate (box)
-        end if
+        call free_box(box)
         handle = 0_int64
     end subroutine gcfree
 
@@ -411,33 +352,29 @@ contains
         real(dp), intent(out) :: f(nstep)
         !> Compressions delta(t_n) [m] of the contact spring (<= 0: no contact).
         real(dp), intent(out) :: delta(nstep)
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 bad input, 3 the run diverged (the message names the step and
+        !> its time; u, F and delta are those of the steps before it, then 0).
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
 
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
-        type(contact_response) :: response
 
         box => box_of(handle)
         if (.not. associated(box)) then
-            call fatal_error(error, 'gccont: null convolver handle')
+            call fatal_error(error, 'gccont: null convolver handle: make one with GCSDOF, GCMODE, GCSAMP or GCFRF')
         else if (nstep < 1) then
             call fatal_error(error, 'gccont: the number of steps must be >= 1')
         else
-            call check_contact_law(contact_law(kc, p), f0, error)
+            call run_box(box, contact_law(kc, p), f0, road, contact_options(), u, f, delta, error)
         end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
+        if (.not. associated(box) .or. nstep < 1) then
+            u(1:max(nstep, 0)) = 0.0_dp
+            f(1:max(nstep, 0)) = 0.0_dp
+            delta(1:max(nstep, 0)) = 0.0_dp
         end if
-        call run_contact(box%conv, contact_law(kc, p), road, f0, response)
-        u(:) = response%displacement
-        f(:) = response%force
-        delta(:) = response%compression
-        ierr = stat_ok
-        errmsg = ' '
+        call report(error, ierr, errmsg)
     end subroutine gccont
 
     !> Identify modes from a receptance file by LSCE: poles and residues of the smallest model
@@ -469,35 +406,21 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(frf_type) :: frf
-        type(lsce_options) :: options
-        type(lsce_result) :: fit
         type(modal_set) :: modes
 
         nmode = 0
-        e = 0.0_dp
-        call read_frf(trim(path), frf, error)
+        call identify_file(trim(path), tole, maxmod, modes, e, error)
         if (.not. allocated(error)) then
-            options%tol_e = tole
-            options%max_modes = maxmod
-            call identify(frf, options, fit, error)
+            nmode = modes%n_modes()
+            if (nmode > ncap) call fatal_error(error, 'gcid: more modes found than the arrays hold (ncap): ' &
+                                                  //'pass arrays of at least NMODE elements')
         end if
-        if (.not. allocated(error)) then
-            nmode = fit%modes%n_modes()
-            e = fit%e
-            if (nmode > ncap) call fatal_error(error, 'gcid: more modes found than the arrays hold (ncap)')
-        end if
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        modes = sorted_by_frequency(fit%modes)
+        call report(error, ierr, errmsg)
+        if (allocated(error)) return
         polre(1:nmode) = real(modes%pole, dp)
         polim(1:nmode) = aimag(modes%pole)
         resre(1:nmode) = real(modes%residue, dp)
         resim(1:nmode) = aimag(modes%residue)
-        ierr = stat_ok
-        errmsg = ' '
     end subroutine gcid
 
     !> Run a scene file as the driver does: column files in its output_dir, a summary line
@@ -514,12 +437,7 @@ contains
 
         call run_scene_file(trim(path), output_unit, error)
         flush (output_unit)
-        if (allocated(error)) then
-            call report(error, ierr, errmsg)
-            return
-        end if
-        ierr = stat_ok
-        errmsg = ' '
+        call report(error, ierr, errmsg)
     end subroutine gcscen
 
     !> The object a handle points to; null for handle 0.
@@ -546,12 +464,15 @@ contains
         if (.not. associated(box)) ierr = stat_input
     end function checked_box
 
-    !> Status and message of an error.
+    !> Status and message of an error, or 0 and a blank message when there is none.
     subroutine report(error, ierr, errmsg)
-        type(error_type), intent(in) :: error
+        type(error_type), allocatable, intent(in) :: error
         integer, intent(out) :: ierr
         character(len=*), intent(out) :: errmsg
 
+        ierr = stat_ok
+        errmsg = ' '
+        if (.not. allocated(error)) return
         ierr = error%stat
         errmsg = error%message
     end subroutine report

@@ -44,7 +44,7 @@
 !> range by sqrt(3) and makes the discrete static balance exact; it is not unconditionally
 !> stable. Impacts, the contact closing and opening within a few steps, pump energy in near
 !> either edge (the implicit step fails at omega_c*dt = 3.16 on a body bouncing on the road);
-!> greenconv_bench_stability maps both schemes.
+!> bench/bench_contact_stability_mod.f90 maps both schemes.
 !>
 !> A run that diverges is stopped (`contact_options%divergence_bound`): the response keeps
 !> the steps computed before, and never holds a NaN or an infinity.
@@ -66,7 +66,7 @@ module greenconv_contact_single
     private
 
     public :: contact_law, contact_response, contact_options, run_contact
-    public :: contact_state, start_contact, contact_block
+    public :: contact_state, start_contact, contact_block, copy_histories
 
     !> Power-law contact spring F = k_c*delta^p, active in compression only.
     type :: contact_law
@@ -186,8 +186,8 @@ contains
     !> static equilibrium under the preload. Without `options` the step is the paper's
     !> explicit one. A fault (bad options, an implicit step that does not converge, a
     !> divergent run) ends the run: the response then holds the steps done before it (none
-    !> for bad options) and `error` says what happened. When `error` is absent the fault is
-    !> not reported at all and the shortened response is the only sign of it.
+    !> for bad options) and `error` says what happened. When `error` is absent a fault stops
+    !> the program with the message (`error stop`, as stdlib does): pass `error` to handle it.
     subroutine run_contact(conv, law, road, preload, response, options, error)
         !> The convolution method: history before each step, load pushed after it.
         class(convolver), intent(inout) :: conv
@@ -203,6 +203,7 @@ contains
         type(contact_options), intent(in), optional :: options
         !> Set on a fault: `stat_input` for bad options, `stat_numerical` for divergence or
         !> an implicit step that did not converge, with the step, time and values in the message.
+        !> Absent: a fault stops the program with that message.
         type(error_type), allocatable, intent(out), optional :: error
 
         type(contact_state) :: state
@@ -214,8 +215,35 @@ contains
         else
             call contact_block(conv, state, road, response, fault)
         end if
-        if (present(error) .and. allocated(fault)) call move_alloc(fault, error)
+        if (.not. allocated(fault)) return
+        if (.not. present(error)) error stop fault%message
+        call move_alloc(fault, error)
     end subroutine run_contact
+
+    !> Copy a run's histories into arrays as long as the run was asked to be: the steps done
+    !> first, then zero (0 m, 0 N, 0 m) for every step a fault left undone, so that a caller's
+    !> fixed-size arrays never keep stale values and nothing past the response is read.
+    subroutine copy_histories(response, displacement, force, compression)
+        !> The run, possibly shortened by a fault (histories indexed from 0).
+        type(contact_response), intent(in) :: response
+        !> Body displacements u(t_n) [m]; zero after the steps done.
+        real(dp), intent(out) :: displacement(:)
+        !> Contact forces F(t_n) [N]; zero after the steps done.
+        real(dp), intent(out) :: force(:)
+        !> Compressions delta(t_n) [m]; zero after the steps done.
+        real(dp), intent(out) :: compression(:)
+
+        integer :: n_done
+
+        displacement(:) = 0.0_dp
+        force(:) = 0.0_dp
+        compression(:) = 0.0_dp
+        if (.not. allocated(response%displacement)) return
+        n_done = min(size(response%displacement), size(displacement), size(force), size(compression))
+        displacement(1:n_done) = response%displacement(0:n_done - 1)
+        force(1:n_done) = response%force(0:n_done - 1)
+        compression(1:n_done) = response%compression(0:n_done - 1)
+    end subroutine copy_histories
 
     !> Start a streamed contact run: check the options, reset the convolver (rest, the static
     !> equilibrium under the preload) and set `state` at step 0. Then call `contact_block`
@@ -324,7 +352,11 @@ contains
                     call implicit_compression(law, delta0 + road(j) - u_h + w0*preload, w0, delta0, settings, &
                                               delta, residual, converged)
                     if (.not. converged) then
-                        call fatal_error(fault, convergence_message(n, conv%dt, residual, settings), stat_numerical)
+                        if (ieee_is_finite(road(j))) then
+                            call fatal_error(fault, convergence_message(n, conv%dt, residual, settings), stat_numerical)
+                        else
+                            call fatal_error(fault, road_message(n, conv%dt), stat_numerical)
+                        end if
                         return
                     end if
                 else
@@ -334,8 +366,12 @@ contains
                 u = u_h + w0*(force - preload)
                 if (.not. (abs(u) <= settings%divergence_bound .and. ieee_is_finite(force) &
                            .and. ieee_is_finite(delta))) then
-                    call fatal_error(fault, divergence_message(n, conv%dt, u, settings, law%tangent(delta0), w0), &
-                                     stat_numerical)
+                    if (ieee_is_finite(road(j))) then
+                        call fatal_error(fault, divergence_message(n, conv%dt, u, settings, law%tangent(delta0), w0), &
+                                         stat_numerical)
+                    else
+                        call fatal_error(fault, road_message(n, conv%dt), stat_numerical)
+                    end if
                     return
                 end if
                 call conv%push(force - preload)
@@ -349,6 +385,17 @@ contains
         end associate
         n_done = n_t
     end subroutine contact_loop
+
+    !> One line on a road height that is not a finite number at step n.
+    pure function road_message(n, dt) result(message)
+        integer(int64), intent(in) :: n
+        real(dp), intent(in) :: dt
+        character(len=:), allocatable :: message
+
+        message = 'contact run stopped at step '//int_text(n)//' (t = '//sci_text(n*dt)//' s): the road height ' &
+                  //'u_r is not a finite number (NaN or infinite); steps before it are kept. Check the road data ' &
+                  //'of that step'
+    end function road_message
 
     !> One line on an implicit step n that did not converge: where, and the residual.
     pure function convergence_message(n, dt, residual, settings) result(message)

@@ -1,0 +1,258 @@
+!> What the two foreign front doors share: the object behind a handle, the checks of the
+!> constructors' plain arguments, and a contact run into caller-sized arrays.
+!>
+!> The C API (greenconv_capi, opaque `gc_convolver *`) and the Fortran 77 layer
+!> (greenconv_legacy, `INTEGER*8` handles) both point at a `convolver_box`: a convolver built
+!> by `new_convolver` (greenconv_api_library), what its model neglects, and the state of a
+!> contact run stepped one call at a time. Everything here works on the Fortran API; the two
+!> doors only convert arguments and messages. There is no module state.
+module greenconv_api_handle
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: lower_text, sci_text, int_text
+    use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_model_frf, only: frf_type, read_frf
+    use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
+                                         structure_from_frf
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response, contact_state, run_contact, &
+                                        copy_histories
+    use greenconv_api_library, only: new_convolver, free_convolver, check_contact_law
+    implicit none
+    private
+
+    public :: convolver_box, new_box, free_box
+    public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
+    public :: run_box, identify_file
+
+    !> What a foreign handle points to.
+    type :: convolver_box
+        !> The convolver.
+        class(convolver), allocatable :: conv
+        !> What the model neglects, in words (from `new_convolver`).
+        character(len=:), allocatable :: description
+        !> The contact run stepped one call at a time (C: `gc_contact_start`, `gc_contact_advance`).
+        type(contact_state) :: contact
+        !> True between a successful start of a stepped contact run and its first fault.
+        logical :: stepping = .false.
+    end type convolver_box
+
+contains
+
+    !> A new box holding the convolver `method` (any case) for a structure; null on failure.
+    subroutine new_box(method, structure, dt, n_steps, box, error, truncation_tol, accuracy)
+        !> Method name (see `new_convolver`), any case.
+        character(len=*), intent(in) :: method
+        !> The structure.
+        type(structure_model), intent(in) :: structure
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> The new box; null when `error` is set.
+        type(convolver_box), pointer, intent(out) :: box
+        !> Set when the convolver cannot be made.
+        type(error_type), allocatable, intent(out) :: error
+        !> Truncation fraction of max |g| for `direct` and `fft`, in (0, 1); the library's default when absent.
+        real(dp), intent(in), optional :: truncation_tol
+        !> Relative accuracy `auto` must meet, > 0; the library's default when absent.
+        real(dp), intent(in), optional :: accuracy
+
+        allocate (box)
+        call new_convolver(lower_text(method), structure, dt, n_steps, box%conv, error, truncation_tol, accuracy, &
+                           box%description)
+        if (allocated(error)) then
+            deallocate (box)
+            box => null()
+        end if
+    end subroutine new_box
+
+    !> Free a box and its convolver (FFTW plans too); nothing for a null pointer. Null on return.
+    subroutine free_box(box)
+        !> The box.
+        type(convolver_box), pointer, intent(inout) :: box
+
+        if (.not. associated(box)) return
+        if (allocated(box%conv)) call free_convolver(box%conv)
+        deallocate (box)
+        box => null()
+    end subroutine free_box
+
+    !> The structure of a damped mass-spring system, its arguments checked by name.
+    subroutine sdof_structure(caller, mass, stiffness, damping_ratio, structure, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Mass M [kg], finite and > 0.
+        real(dp), intent(in) :: mass
+        !> Stiffness K [N/m], finite and > 0.
+        real(dp), intent(in) :: stiffness
+        !> Damping ratio xi, in [0, 1).
+        real(dp), intent(in) :: damping_ratio
+        !> The structure (one exact mode).
+        type(structure_model), intent(out) :: structure
+        !> Set (`stat_input`) naming the first argument out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (mass > 0.0_dp .and. ieee_is_finite(mass))) then
+            call fatal_error(error, caller//': mass = '//sci_text(mass)//' kg: give a finite mass > 0 kg')
+        else if (.not. (stiffness > 0.0_dp .and. ieee_is_finite(stiffness))) then
+            call fatal_error(error, caller//': stiffness = '//sci_text(stiffness) &
+                             //' N/m: give a finite stiffness > 0 N/m')
+        else if (.not. (damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp)) then
+            call fatal_error(error, caller//': damping ratio = '//sci_text(damping_ratio) &
+                             //': give a damping ratio in [0, 1)')
+        else
+            structure = structure_from_modes(sdof_modes(mass, stiffness, damping_ratio))
+        end if
+    end subroutine sdof_structure
+
+    !> The structure of modes in pole-residue form, the arrays checked.
+    subroutine modes_structure(caller, pole_re, pole_im, residue_re, residue_im, structure, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Real parts of the poles [rad/s], < 0.
+        real(dp), intent(in) :: pole_re(:)
+        !> Imaginary parts of the poles [rad/s], > 0.
+        real(dp), intent(in) :: pole_im(:)
+        !> Real parts of the residues [m/(N*s)].
+        real(dp), intent(in) :: residue_re(:)
+        !> Imaginary parts of the residues [m/(N*s)].
+        real(dp), intent(in) :: residue_im(:)
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set (`stat_input`) naming what is out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(modal_set) :: modes
+
+        if (size(pole_re) < 1) then
+            call fatal_error(error, caller//': number of modes = '//int_text(size(pole_re))//': give at least 1 mode')
+        else if (.not. all(pole_re < 0.0_dp .and. pole_im > 0.0_dp .and. ieee_is_finite(pole_re) &
+                           .and. ieee_is_finite(pole_im))) then
+            call fatal_error(error, caller//': poles: give every pole a finite real part < 0 and imaginary ' &
+                             //'part > 0 rad/s (a damped mode)')
+        else if (.not. all(ieee_is_finite(residue_re) .and. ieee_is_finite(residue_im))) then
+            call fatal_error(error, caller//': residues: give finite residues [m/(N*s)]')
+        else
+            modes%pole = cmplx(pole_re, pole_im, dp)
+            modes%residue = cmplx(residue_re, residue_im, dp)
+            structure = structure_from_modes(modes)
+        end if
+    end subroutine modes_structure
+
+    !> The structure known by samples of g, the samples checked.
+    subroutine samples_structure(caller, g, structure, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Samples g(n*dt) [m/(N*s)], at least two, finite.
+        real(dp), intent(in) :: g(:)
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set (`stat_input`) naming what is out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (size(g) < 2) then
+            call fatal_error(error, caller//': number of samples = '//int_text(size(g)) &
+                             //': give at least 2 samples of g')
+        else if (.not. all(ieee_is_finite(g))) then
+            call fatal_error(error, caller//': samples of g: give finite values [m/(N*s)]')
+        else
+            structure = structure_from_samples(g)
+        end if
+    end subroutine samples_structure
+
+    !> The structure known by a receptance file: modes by LSCE, and g at dt for the methods
+    !> that convolve with it (`direct`, `fft`, `auto`).
+    subroutine frf_file_structure(path, method, dt, tol_e, max_modes, structure, error)
+        !> Path of the receptance file (`#` comments, then f [Hz], Re G, Im G [m/N]).
+        character(len=*), intent(in) :: path
+        !> Method name, any case.
+        character(len=*), intent(in) :: method
+        !> Time step dt [s] of the run.
+        real(dp), intent(in) :: dt
+        !> Target of the identification error E of eq. (7), > 0.
+        real(dp), intent(in) :: tol_e
+        !> Largest number of modes the LSCE order scan tries, >= 1.
+        integer, intent(in) :: max_modes
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the file is unusable (`stat_input`) or the fit fails (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(lsce_options) :: options
+        real(dp) :: dt_g
+
+        call read_frf(path, frf, error)
+        if (allocated(error)) return
+        options%tol_e = tol_e
+        options%max_modes = max_modes
+        dt_g = 0.0_dp
+        if (any(lower_text(method) == [character(len=6) :: 'direct', 'fft', 'auto'])) dt_g = dt
+        call structure_from_frf(frf, options, dt_g, structure, error)
+    end subroutine frf_file_structure
+
+    !> A whole contact run on a box's convolver (reset first) into arrays of the road's length:
+    !> the steps done, then zero after a fault, which `error` names (step and time).
+    subroutine run_box(box, law, preload, road, options, displacement, force, compression, error)
+        !> The box.
+        type(convolver_box), intent(inout) :: box
+        !> The contact law (k_c [N/m^p], p).
+        type(contact_law), intent(in) :: law
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: preload
+        !> Road heights u_r(t_n) [m], one per step.
+        real(dp), intent(in) :: road(:)
+        !> Scheme, divergence bound and Newton settings.
+        type(contact_options), intent(in) :: options
+        !> Body displacements u(t_n) [m]; zero after a fault.
+        real(dp), intent(out) :: displacement(:)
+        !> Contact forces F(t_n) [N]; zero after a fault.
+        real(dp), intent(out) :: force(:)
+        !> Compressions delta(t_n) [m]; zero after a fault.
+        real(dp), intent(out) :: compression(:)
+        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(contact_response) :: response
+
+        box%stepping = .false.
+        call check_contact_law(law, preload, error)
+        if (.not. allocated(error)) call run_contact(box%conv, law, road, preload, response, options, error)
+        call copy_histories(response, displacement, force, compression)
+    end subroutine run_box
+
+    !> Modes identified by LSCE from a receptance file, lowest natural frequency first.
+    subroutine identify_file(path, tol_e, max_modes, modes, e, error)
+        !> Path of the receptance file (`#` comments, then f [Hz], Re G, Im G [m/N]).
+        character(len=*), intent(in) :: path
+        !> Target of the identification error E of eq. (7), > 0.
+        real(dp), intent(in) :: tol_e
+        !> Largest number of modes the LSCE order scan tries, >= 1.
+        integer, intent(in) :: max_modes
+        !> The modes (poles [rad/s], residues [m/(N*s)]).
+        type(modal_set), intent(out) :: modes
+        !> Error E of eq. (7) of the fit; 0 on failure.
+        real(dp), intent(out) :: e
+        !> Set when the file is unusable (`stat_input`) or the fit fails (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(lsce_options) :: options
+        type(lsce_result) :: fit
+
+        e = 0.0_dp
+        call read_frf(path, frf, error)
+        if (allocated(error)) return
+        options%tol_e = tol_e
+        options%max_modes = max_modes
+        call identify(frf, options, fit, error)
+        if (allocated(error)) return
+        modes = sorted_by_frequency(fit%modes)
+        e = fit%e
+    end subroutine identify_file
+
+end module greenconv_api_handle

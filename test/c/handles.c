@@ -1,0 +1,54 @@
+/*
+ * Handles: NULL everywhere is refused with GC_ERROR_INPUT, never a crash; gc_convolver_free
+ * of NULL does nothing; gc_convolver_delete frees once and then finds NULL, however often it
+ * is called; two convolvers are independent.
+ */
+#include "greenconv.h"
+#include "check.h"
+
+int main(void)
+{
+    char msg[256];
+    gc_convolver *conv = NULL, *other = NULL;
+    double value = 0.0, road = 0.0;
+    int size = 0, status;
+
+    gc_convolver_free(NULL);
+    check(1, "free(NULL): no crash", NULL);
+    gc_convolver_delete(NULL);
+    gc_convolver_delete(&conv);
+    check(conv == NULL, "delete(NULL) and delete(&NULL): no crash", NULL);
+    check(gc_convolver_history(NULL, &value) == GC_ERROR_INPUT, "history(NULL): status 2", NULL);
+    check(gc_convolver_push(NULL, 1.0) == GC_ERROR_INPUT, "push(NULL): status 2", NULL);
+    check(gc_convolver_instant_weight(NULL, &value) == GC_ERROR_INPUT, "instant_weight(NULL): status 2", NULL);
+    check(gc_convolver_reset(NULL) == GC_ERROR_INPUT, "reset(NULL): status 2", NULL);
+    check(gc_convolver_model_size(NULL, &size) == GC_ERROR_INPUT, "model_size(NULL): status 2", NULL);
+    check(gc_convolver_describe(NULL, msg, sizeof msg) == GC_ERROR_INPUT && msg[0] == '\0',
+          "describe(NULL): status 2, \"\"", NULL);
+    check(gc_contact_step(NULL, 1e6, 1.5, 10.0, 0.0, &value, &value, NULL) == GC_ERROR_INPUT,
+          "contact_step(NULL): status 2", NULL);
+    status = gc_run_contact(NULL, 1e6, 1.5, 10.0, 1, &road, &value, &value, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "conv", "run_contact(NULL): status 2 naming conv");
+    status = gc_contact_start(NULL, 1e6, 1.5, 10.0, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "conv", "contact_start(NULL): status 2 naming conv");
+    status = gc_contact_advance(NULL, 0.0, &value, &value, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "conv", "contact_advance(NULL): status 2 naming conv");
+    check(gc_contact_options_init(NULL) == GC_ERROR_INPUT && gc_build_options_init(NULL) == GC_ERROR_INPUT,
+          "options_init(NULL): status 2", NULL);
+
+    status = gc_convolver_new_sdof(1.0, 1e4, 0.1, 1e-3, "fft", 100, &conv, msg, sizeof msg);
+    status += gc_convolver_new_sdof(1.0, 1e4, 0.1, 1e-3, "fft", 100, &other, msg, sizeof msg);
+    check(status == GC_OK && conv != NULL && other != NULL && conv != other, "two new convolvers", msg);
+    check(gc_convolver_history(conv, NULL) == GC_ERROR_INPUT, "history(conv, NULL): status 2", NULL);
+    gc_convolver_push(conv, 1.0);
+    gc_convolver_push(conv, 1.0);
+    gc_convolver_history(other, &value);
+    check(value == 0.0, "pushing one leaves the other at rest", NULL);
+    gc_convolver_delete(&conv);
+    check(conv == NULL, "delete: the handle is NULL", NULL);
+    gc_convolver_delete(&conv);
+    check(1, "delete twice: no crash", NULL);
+    check(gc_convolver_push(conv, 1.0) == GC_ERROR_INPUT, "push on the deleted handle: status 2", NULL);
+    gc_convolver_free(other);
+    return check_exit();
+}
