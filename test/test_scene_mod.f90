@@ -7,7 +7,9 @@ module test_scene_mod
     use scene_text_mod, only: tab1_scene, read_scene_text
     use greenconv_api_all, only: scene_type, read_scene, error_type, structure_model, build_structure, make_convolver, &
                                  convolver, contact_response, run_contact, sdof_modes, frf_type, frf_from_modes, &
-                                 write_frf, structure_from_modes, modal_set, error_e, run_scene
+                                 write_frf, structure_from_modes, modal_set, error_e, run_scene, &
+                                 check_scene, stat_input
+    use greenconv_conv_methods, only: method_names, method_name_length
     implicit none
     private
 
@@ -32,7 +34,9 @@ contains
                      new_unittest('auto: the smallest LSCE model meeting the accuracy, else fft', test_auto_modes), &
                      new_unittest('tyre scene: files for each method; implicit near explicit', test_tyre_scene), &
                      new_unittest('tyre scene: bad combinations get one message each', test_tyre_bad), &
-                     new_unittest('dt: a receptance''s g is sampled at the scene''s one dt', test_one_dt)]
+                     new_unittest('dt: a receptance''s g is sampled at the scene''s one dt', test_one_dt), &
+                     new_unittest('--check refuses a method on a model exactly when the run does', &
+                                  test_check_equals_run)]
     end subroutine collect_scene
 
     !> Write `text` as a scene file in the scratch directory and read it.
@@ -468,5 +472,81 @@ contains
         if (allocated(error)) return
         call check(error, .not. allocated(coarse%sampled_g), 'task identify samples no g')
     end subroutine test_one_dt
+
+    !> Every method of the registry on every model (sdof, random_modes, frf_file, tyre), in
+    !> scenes of 40 steps: the check (`read_scene`, then `check_scene`, as `--check` runs
+    !> them) refuses the pair exactly when the run refuses it (bad input, `stat_input`), and
+    !> its message names the file, line, group and variable. The run is given the method
+    !> behind the check's back: the scene is read with `direct`, then its list replaced.
+    subroutine test_check_equals_run(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: models(4) = [character(len=12) :: 'sdof', 'random_modes', 'frf_file', &
+                                                     'tyre']
+        character(len=method_name_length) :: names(size(method_names()))
+        type(scene_type) :: scene
+        type(error_type), allocatable :: check_error, run_error
+        logical :: check_refuses, run_refuses
+        integer :: i, j, unit, refused
+
+        names = method_names()
+        refused = 0
+        open (newunit=unit, status='scratch', action='readwrite')
+        do i = 1, size(models)
+            do j = 1, size(names)
+                call scene_from_text('pair.nml', pair_scene(trim(models(i)), trim(names(j))), scene, check_error)
+                if (.not. allocated(check_error)) call check_scene(scene, unit, check_error)
+                check_refuses = allocated(check_error)
+                call scene_from_text('pair.nml', pair_scene(trim(models(i)), 'direct'), scene, run_error)
+                call check(error, .not. allocated(run_error), trim(models(i))//' with direct is a valid scene')
+                if (allocated(error)) exit
+                scene%methods = [names(j)]
+                call run_scene(scene, unit, run_error)
+                run_refuses = .false.
+                if (allocated(run_error)) run_refuses = run_error%stat == stat_input
+                call check(error, check_refuses .eqv. run_refuses, trim(names(j))//' on '//trim(models(i))// &
+                           ': check '//merge('refuses', 'accepts', check_refuses)//', run ' &
+                           //merge('refuses', 'accepts', run_refuses))
+                if (allocated(error)) exit
+                if (.not. check_refuses) cycle
+                refused = refused + 1
+                call check(error, index(check_error%message, 'pair.nml:') > 0 .and. &
+                           index(check_error%message, ': &convolution methods: ') > 0, &
+                           'file:line, group and variable: '//check_error%message)
+                if (allocated(error)) exit
+            end do
+            if (allocated(error)) exit
+        end do
+        close (unit)
+        call note('pairs refused', real(refused, dp))
+    end subroutine test_check_equals_run
+
+    !> A scene of 40 steps of `model` running `method` (in the scratch directory).
+    function pair_scene(model, method) result(text)
+        character(len=*), intent(in) :: model, method
+        character(len=:), allocatable :: text
+
+        character(len=*), parameter :: scene = "name = 'pair', output_dir = '"//scratch//"', n_steps = 40, ", &
+                                       preload = 'stiffness = 1.0e6, exponent = 1.5, preload = 100.0'
+
+        select case (model)
+        case ('sdof')
+            text = tab1_scene(scene=scene//'dt = 1.0e-4', convolution="methods = '"//method//"'")
+        case ('random_modes')
+            text = tab1_scene(scene=scene//'dt = 1.0e-4', structure="model = 'random_modes', n_modes = 2", &
+                              identification='f_max = 2000.0, n_freq = 1001', contact=preload, &
+                              convolution="methods = '"//method//"'")
+        case ('frf_file')
+            text = tab1_scene(scene=scene//'dt = 5.0e-4', &
+                              structure="model = 'frf_file', frf_file = 'data/sample_receptance.frf'", &
+                              contact=preload, convolution="methods = '"//method//"'")
+        case default
+            text = tab1_scene(scene=scene//'dt = 2.0e-5', structure="model = 'tyre', damping_ratio = 0.05", &
+                              road="profile = 'file', road_file = 'data/road_sample.dat', x_start = 1.0, " &
+                              //'speed = 20.0', &
+                              contact='n_points = 3, patch_length = 0.1, stiffness = 2.0e5, exponent = 1.0, ' &
+                              //'preload = 1200.0', convolution="methods = '"//method//"'")
+        end select
+    end function pair_scene
 
 end module test_scene_mod

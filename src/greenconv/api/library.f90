@@ -1,6 +1,8 @@
 !> Entry points for programs that embed greenconv rather than run the driver: build any
-!> convolver from a structure with its inputs checked, step a contact loop yourself one step
-!> at a time, free a convolver, run a scene file.
+!> convolver from a structure with its inputs checked (`new_convolver`, from
+!> greenconv_conv_builder, the methods and their defaults from the registry
+!> greenconv_conv_methods), step a contact loop yourself one step at a time, free a
+!> convolver, run a scene file.
 !>
 !> Every procedure here works only on its arguments: there is no module state, so two
 !> simulations in one program (or in two threads, see greenconv_ext_fftw on FFTW's planner) do not
@@ -12,119 +14,19 @@ module greenconv_api_library
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_convolver, only: convolver, free_convolver
     use greenconv_contact_single, only: contact_law
-    use greenconv_ident_structure, only: structure_model
-    use greenconv_model_modal_set, only: modal_set
-    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
+    use greenconv_conv_builder, only: new_convolver
     use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_runner, only: make_convolver, run_scene
+    use greenconv_scene_runner, only: run_scene
     implicit none
     private
 
+    !> Re-exported: `new_convolver` (greenconv_conv_builder), `free_convolver`
+    !> (greenconv_conv_convolver), the defaults of the methods (greenconv_conv_methods).
     public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
     public :: default_truncation_tol, default_accuracy
 
-    !> Truncation of g for `direct` and `fft` when none is given: the paper's 1 % of max |g|.
-    real(dp), parameter :: default_truncation_tol = 0.01_dp
-    !> Relative accuracy `auto` must meet when none is given: the largest E (eq. 7) it accepts.
-    real(dp), parameter :: default_accuracy = 1.0e-3_dp
-
 contains
-
-    !> Build the convolver called `method` for a structure, after checking that the method
-    !> can run on it: `direct` and `fft` need g (exact modes, or g sampled at dt), the modal
-    !> methods (`modal`, `recursive`, `paper`, `exact`, `backward`) and `auto` need modes. See
-    !> `make_convolver` (greenconv_scene_runner) for what each method computes.
-    subroutine new_convolver(method, structure, dt, n_steps, conv, error, truncation_tol, accuracy, description)
-        !> Method: `direct`, `fft`, `modal`, `recursive`, `paper`, `exact`, `backward` or `auto`.
-        character(len=*), intent(in) :: method
-        !> The structure (from `structure_from_modes`, `structure_from_frf` or `structure_from_samples`).
-        type(structure_model), intent(in) :: structure
-        !> Time step dt [s], > 0; for a structure from samples or an FRF, the step of its g.
-        real(dp), intent(in) :: dt
-        !> Number of steps N_t the run will take, >= 1 (caps the kernel of `direct` and `fft`).
-        integer, intent(in) :: n_steps
-        !> The convolver, at step 0. Free it with `free_convolver` (an `fft` convolver holds FFTW plans).
-        class(convolver), allocatable, intent(out) :: conv
-        !> Set (status `stat_input`) when the inputs cannot make this convolver.
-        type(error_type), allocatable, intent(out) :: error
-        !> Truncation fraction of max |g| for `direct` and `fft`, in (0, 1); default 0.01.
-        real(dp), intent(in), optional :: truncation_tol
-        !> Relative accuracy `auto` must meet, > 0; default 1e-3.
-        real(dp), intent(in), optional :: accuracy
-        !> What the model neglects, in words (and, for `auto`, what it chose and why).
-        character(len=:), allocatable, intent(out), optional :: description
-
-        character(len=:), allocatable :: text
-        real(dp) :: tol, requested
-
-        tol = default_truncation_tol
-        if (present(truncation_tol)) tol = truncation_tol
-        requested = default_accuracy
-        if (present(accuracy)) requested = accuracy
-        call check_request(method, structure, dt, n_steps, tol, requested, error)
-        if (allocated(error)) return
-        call make_convolver(method, structure, dt, tol, n_steps, conv, text, error, requested)
-        if (allocated(error)) return
-        if (present(description)) description = text
-    end subroutine new_convolver
-
-    !> Reject a request `make_convolver` cannot serve.
-    subroutine check_request(method, structure, dt, n_steps, tol, requested, error)
-        character(len=*), intent(in) :: method
-        type(structure_model), intent(in) :: structure
-        real(dp), intent(in) :: dt, tol, requested
-        integer, intent(in) :: n_steps
-        type(error_type), allocatable, intent(out) :: error
-
-        logical :: has_g
-
-        has_g = structure%has_exact
-        if (allocated(structure%sampled_g)) has_g = has_g .or. size(structure%sampled_g) >= 2
-        if (.not. (dt > 0.0_dp .and. ieee_is_finite(dt))) then
-            call fatal_error(error, 'new_convolver: the time step dt must be finite and > 0 s')
-        else if (n_steps < 1) then
-            call fatal_error(error, 'new_convolver: the number of steps must be >= 1')
-        else if (.not. (tol > 0.0_dp .and. tol < 1.0_dp)) then
-            call fatal_error(error, 'new_convolver: truncation_tol must be in (0, 1)')
-        else if (.not. (requested > 0.0_dp)) then
-            call fatal_error(error, 'new_convolver: accuracy must be > 0')
-        else if ((method == 'direct' .or. method == 'fft') .and. .not. has_g) then
-            call fatal_error(error, "new_convolver: method '"//method//"' needs g: give the structure modes, " &
-                             //'samples of g, or an FRF with dt > 0')
-        else if (method /= 'direct' .and. method /= 'fft' .and. structure%model%n_modes() == 0) then
-            call fatal_error(error, "new_convolver: method '"//method//"' needs modes, and this structure has " &
-                             //"none (only sampled g): use 'direct' or 'fft'")
-        else
-            call check_modes(structure%model, error)
-            if (.not. allocated(error) .and. structure%has_exact) call check_modes(structure%exact, error)
-        end if
-    end subroutine check_request
-
-    !> Modes a caller gives (structure_from_modes) must be those of a passive structure:
-    !> finite poles with Re lambda < 0 and Im lambda > 0, finite residues.
-    subroutine check_modes(modes, error)
-        type(modal_set), intent(in) :: modes
-        type(error_type), allocatable, intent(out) :: error
-
-        integer :: k
-
-        do k = 1, modes%n_modes()
-            associate (pole => modes%pole(k), residue => modes%residue(k))
-                if (.not. (ieee_is_finite(real(pole, dp)) .and. ieee_is_finite(aimag(pole)) .and. &
-                           ieee_is_finite(real(residue, dp)) .and. ieee_is_finite(aimag(residue)))) then
-                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a finite pole and ' &
-                                     //'residue, found lambda = ('//sci_text(real(pole, dp))//', ' &
-                                     //sci_text(aimag(pole))//') rad/s, r = ('//sci_text(real(residue, dp))//', ' &
-                                     //sci_text(aimag(residue))//')')
-                else if (.not. (real(pole, dp) < 0.0_dp .and. aimag(pole) > 0.0_dp)) then
-                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a pole with ' &
-                                     //'Re lambda < 0 and Im lambda > 0 rad/s (a damped mode), found lambda = (' &
-                                     //sci_text(real(pole, dp))//', '//sci_text(aimag(pole))//') rad/s')
-                end if
-            end associate
-            if (allocated(error)) return
-        end do
-    end subroutine check_modes
 
     !> One explicit step n of the contact loop, exactly as `run_contact` takes it (eqs. 20-24):
     !> u_h = history, delta = delta0 + u_r - u_h with delta0 = (F0/k_c)^(1/p), F = k_c*delta^p

@@ -23,6 +23,7 @@ module greenconv_conv_green_modal
     use greenconv_model_point_modes, only: point_modes
     use greenconv_conv_recursive, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
                                   new_backward_convolver, hold_functions
+    use greenconv_conv_methods, only: canonical_method, method_engine, method_list
     implicit none
     private
 
@@ -47,13 +48,14 @@ contains
 
     !> A modal multi-point convolver with the scheme `recursive` (explicit, W0 = 0), `exact`
     !> (first-order hold, W0 /= 0) or `backward` (backward zero-order hold, W0 /= 0), at time
-    !> step dt [s].
+    !> step dt [s]: any method of the registry (greenconv_conv_methods) that the decaying
+    !> recursion steps, aliases included (`modal` is `recursive`).
     subroutine new_modal_green_matrix(description, dt, scheme, conv, error)
         !> Modes and mode shapes at the points.
         type(point_modes), intent(in) :: description
         !> Time step [s].
         real(dp), intent(in) :: dt
-        !> `recursive`, `exact` or `backward`.
+        !> A method of greenconv_conv_methods's `method_list(engine='recursive')`.
         character(len=*), intent(in) :: scheme
         !> The convolver.
         type(modal_green_matrix), intent(out) :: conv
@@ -71,8 +73,13 @@ contains
                              //'one column per mode')
             return
         end if
+        if (method_engine(scheme) /= 'recursive') then
+            call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme//''': expected ' &
+                             //method_list(engine='recursive'))
+            return
+        end if
         allocate (w0(n_m), phi1(n_m), phi2(n_m))
-        select case (scheme)
+        select case (canonical_method(scheme))
         case ('recursive')
             conv%engine = new_recursive_convolver(description%modes, dt)
             w0(:) = 0.0_dp
@@ -84,12 +91,8 @@ contains
             conv%engine = new_backward_convolver(description%modes, dt)
             call hold_functions(description%modes%pole*dt, phi1, phi2)
             w0(:) = 2.0_dp*real(description%modes%residue*dt*phi1, kind=dp)
-        case default
-            call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme// &
-                             ''': expected ''recursive'', ''exact'' or ''backward''')
-            return
         end select
-        conv%name = scheme
+        conv%name = canonical_method(scheme)
         conv%dt = dt
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape

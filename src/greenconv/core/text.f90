@@ -5,7 +5,7 @@ module greenconv_core_text
     implicit none
     private
 
-    public :: int_text, real_text, sci_text, lower_text
+    public :: int_text, real_text, sci_text, lower_text, exact_text
 
     !> An integer (default or 64-bit) as text, without blanks.
     interface int_text
@@ -90,5 +90,27 @@ contains
             if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
         end do
     end function lower_text
+
+    !> A real as the shortest scientific text (1 to 17 significant digits) that reads back to
+    !> the same double, without blanks: `1.E-02` for 0.01, `1.5E+00`. Non-finite values are
+    !> written as Fortran writes them.
+    function exact_text(x) result(text)
+        !> The number.
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+
+        character(len=32) :: buffer
+        character(len=16) :: form
+        real(dp) :: back
+        integer :: digits, status
+
+        do digits = 1, 17
+            write (form, '(a,i0,a,i0,a)') '(es', digits + 8, '.', digits - 1, ')'
+            write (buffer, form) x
+            read (buffer, *, iostat=status) back
+            if (status == 0 .and. back == x) exit
+        end do
+        text = trim(adjustl(buffer))
+    end function exact_text
 
 end module greenconv_core_text

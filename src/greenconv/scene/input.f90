@@ -20,6 +20,8 @@ module greenconv_scene_input
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                       model_sdof, model_tyre
     use greenconv_core_number_text, only: compact_real
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
+                                      method_needs_g, check_method
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
                                 max_contact_points, max_kernel_values, kernel_values
     implicit none
@@ -31,9 +33,6 @@ module greenconv_scene_input
     integer, parameter :: name_length = 64
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
-    !> The convolution methods a scene may list, for messages.
-    character(len=*), parameter :: known_methods = "'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', " &
-                                                   //"'backward' or 'auto'"
     !> Everything a contact run needs, in SI units. `read_scene` sets every component; the
     !> defaults are those of the scene table, not component initialisers.
     type :: scene_type
@@ -564,13 +563,9 @@ contains
         call group_status(this, 'convolution', stat, message, error)
         if (allocated(error) .or. present(template)) return
         do i = 1, max_methods
-            select case (trim(methods(i)))
-            case ('', 'direct', 'fft', 'modal', 'paper', 'recursive', 'exact', 'backward', 'auto')
-            case default
-                call fatal_error(error, &
-                                 expected(this, 'convolution', 'methods', known_methods, methods(i)))
-                return
-            end select
+            if (methods(i) == '' .or. is_method(methods(i))) cycle
+            call fatal_error(error, expected(this, 'convolution', 'methods', method_list(), methods(i)))
+            return
         end do
         call require(truncation_tol > 0.0_dp .and. truncation_tol < 1.0_dp, &
             expected(this, 'convolution', 'truncation_tol', &
@@ -586,8 +581,28 @@ contains
                      expected(this, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
         this%truncation_tol = truncation_tol
         this%accuracy = accuracy
+        if (.not. allocated(error)) call check_methods_on_model(this, error)
         if (.not. allocated(error)) call check_kernel_size(this, error)
     end subroutine read_convolution_group
+
+    !> Every method must run on the scene's structure, as the registry (greenconv_conv_methods)
+    !> says and the run would find: a tyre has several contact points; every model has g and
+    !> modes (exact, of the tyre's belt, or identified from G).
+    subroutine check_methods_on_model(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i
+
+        if (this%task /= 'contact') return
+        do i = 1, size(this%methods)
+            call check_method(trim(this%methods(i)), this%model == 'tyre', .true., .true., error)
+            if (allocated(error)) then
+                error%message = input_place(this, 'convolution', 'methods')//': '//error%message
+                return
+            end if
+        end do
+    end subroutine check_methods_on_model
 
     !> A sampled kernel (`direct`, `fft`, and `auto`, which samples it to weigh its cost) must
     !> fit in max_kernel_values; a receptance file's g is bounded by the file and not checked.
@@ -600,7 +615,7 @@ contains
 
         model = find_model(this%model)
         if (this%task /= 'contact' .or. model%sampled_g) return
-        if (.not. any(this%methods == 'direct' .or. this%methods == 'fft' .or. this%methods == 'auto')) return
+        if (.not. any(method_needs_g(this%methods))) return
         select case (model%id)
         case (model_sdof)
             decay_rate = this%damping_ratio*sqrt(this%stiffness/this%mass)

@@ -19,8 +19,9 @@
 !> when a namelist and the table disagree.
 module greenconv_scene_schema
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text, lower_text
+    use greenconv_core_text, only: int_text, lower_text, exact_text
     use greenconv_core_kinds, only: dp
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
     use greenconv_scene_models, only: structure_kind, find_model, model_names, model_requires
@@ -175,9 +176,9 @@ contains
             'the displacement beyond which a run diverged', '')
         call add(rows, n, 'convolution', 'methods', value_text_list, '', '', &
             "the methods to run, e.g. 'direct', 'modal'", "task 'contact'")
-        call add(rows, n, 'convolution', 'truncation_tol', value_real, '0.01', '', &
+        call add(rows, n, 'convolution', 'truncation_tol', value_real, exact_text(default_truncation_tol), '', &
             'the truncation fraction of max |g| (direct)', '')
-        call add(rows, n, 'convolution', 'accuracy', value_real, '1.0e-3', '', &
+        call add(rows, n, 'convolution', 'accuracy', value_real, exact_text(default_accuracy), '', &
             'the largest error E that auto accepts', '')
         table = rows(:n)
     end function scene_table

@@ -1,0 +1,349 @@
+!> The one place convolvers are built, single- and multi-point alike, from a method name of
+!> the registry (greenconv_conv_methods): the registry says whether the method can run on the
+!> structure, this module calls the engine's constructor and says in words what the model
+!> neglects.
+!>
+!> - `new_convolver`: a single-point convolver from a `structure_model`, its inputs checked
+!>   (what the library and both APIs call);
+!> - `make_convolver`: the same without the value checks (the scene runner, whose scene was
+!>   checked when it was read);
+!> - `make_multipoint_convolver`: a multi-point convolver (a Green's matrix) from modes and
+!>   mode shapes at the contact points.
+module greenconv_conv_builder
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, canonical_method, &
+                                      method_needs_modes, check_method
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_direct, only: new_direct_convolver
+    use greenconv_conv_kernel, only: sample_kernel, truncation_length
+    use greenconv_conv_fft, only: new_fft_convolver
+    use greenconv_conv_paper, only: new_paper_convolver
+    use greenconv_conv_recursive, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
+    use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
+    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
+    implicit none
+    private
+
+    public :: new_convolver, make_convolver, make_multipoint_convolver
+
+    !> `auto` runs the direct sum when N_t*N_g is at most this many multiply-adds (about
+    !> 2 ms at the measured 6-7 GMAC/s): then no model is worth building.
+    real(dp), parameter :: direct_work_limit = 1.0e7_dp
+
+contains
+
+    !> Build the convolver called `method` for a structure, after checking the inputs and
+    !> that the method can run on it (greenconv_conv_methods's `check_method`: `direct` and
+    !> `fft` need g, exact modes or g sampled at dt; the modal methods need modes; `auto`
+    !> needs both). See `make_convolver` for what each method computes.
+    subroutine new_convolver(method, structure, dt, n_steps, conv, error, truncation_tol, accuracy, description)
+        !> Method, one of greenconv_conv_methods's `method_list()`.
+        character(len=*), intent(in) :: method
+        !> The structure (from `structure_from_modes`, `structure_from_frf` or `structure_from_samples`).
+        type(structure_model), intent(in) :: structure
+        !> Time step dt [s], > 0; for a structure from samples or an FRF, the step of its g.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t the run will take, >= 1 (caps the kernel of `direct` and `fft`).
+        integer, intent(in) :: n_steps
+        !> The convolver, at step 0. Free it with `free_convolver` (an `fft` convolver holds FFTW plans).
+        class(convolver), allocatable, intent(out) :: conv
+        !> Set (status `stat_input`) when the inputs cannot make this convolver.
+        type(error_type), allocatable, intent(out) :: error
+        !> Truncation fraction of max |g| for `direct` and `fft`, in (0, 1); default `default_truncation_tol`.
+        real(dp), intent(in), optional :: truncation_tol
+        !> Relative accuracy `auto` must meet, > 0; default `default_accuracy`.
+        real(dp), intent(in), optional :: accuracy
+        !> What the model neglects, in words (and, for `auto`, what it chose and why).
+        character(len=:), allocatable, intent(out), optional :: description
+
+        character(len=:), allocatable :: text
+        real(dp) :: tol, requested
+
+        tol = default_truncation_tol
+        if (present(truncation_tol)) tol = truncation_tol
+        requested = default_accuracy
+        if (present(accuracy)) requested = accuracy
+        call check_request(method, structure, dt, n_steps, tol, requested, error)
+        if (allocated(error)) return
+        call make_convolver(method, structure, dt, tol, n_steps, conv, text, error, requested)
+        if (allocated(error)) return
+        if (present(description)) description = text
+    end subroutine new_convolver
+
+    !> Reject a request `make_convolver` cannot serve, the message starting "new_convolver: ".
+    subroutine check_request(method, structure, dt, n_steps, tol, requested, error)
+        character(len=*), intent(in) :: method
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt, tol, requested
+        integer, intent(in) :: n_steps
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (dt > 0.0_dp .and. ieee_is_finite(dt))) then
+            call fatal_error(error, 'new_convolver: the time step dt must be finite and > 0 s')
+        else if (n_steps < 1) then
+            call fatal_error(error, 'new_convolver: the number of steps must be >= 1')
+        else if (.not. (tol > 0.0_dp .and. tol < 1.0_dp)) then
+            call fatal_error(error, 'new_convolver: truncation_tol must be in (0, 1)')
+        else if (.not. (requested > 0.0_dp)) then
+            call fatal_error(error, 'new_convolver: accuracy must be > 0')
+        else
+            call check_structure_method(method, structure, error)
+            if (allocated(error)) then
+                error%message = 'new_convolver: '//error%message
+                return
+            end if
+            call check_modes(structure%model, error)
+            if (.not. allocated(error) .and. structure%has_exact) call check_modes(structure%exact, error)
+        end if
+    end subroutine check_request
+
+    !> The registry's check of a single-point method on what a structure has (g, modes).
+    subroutine check_structure_method(method, structure, error)
+        character(len=*), intent(in) :: method
+        type(structure_model), intent(in) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        logical :: has_g
+
+        has_g = structure%has_exact
+        if (allocated(structure%sampled_g)) has_g = has_g .or. size(structure%sampled_g) >= 2
+        call check_method(method, .false., has_g, structure%model%n_modes() > 0, error)
+    end subroutine check_structure_method
+
+    !> Modes a caller gives (structure_from_modes) must be those of a passive structure:
+    !> finite poles with Re lambda < 0 and Im lambda > 0, finite residues.
+    subroutine check_modes(modes, error)
+        type(modal_set), intent(in) :: modes
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: k
+
+        do k = 1, modes%n_modes()
+            associate (pole => modes%pole(k), residue => modes%residue(k))
+                if (.not. (ieee_is_finite(real(pole, dp)) .and. ieee_is_finite(aimag(pole)) .and. &
+                           ieee_is_finite(real(residue, dp)) .and. ieee_is_finite(aimag(residue)))) then
+                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a finite pole and ' &
+                                     //'residue, found lambda = ('//sci_text(real(pole, dp))//', ' &
+                                     //sci_text(aimag(pole))//') rad/s, r = ('//sci_text(real(residue, dp))//', ' &
+                                     //sci_text(aimag(residue))//')')
+                else if (.not. (real(pole, dp) < 0.0_dp .and. aimag(pole) > 0.0_dp)) then
+                    call fatal_error(error, 'new_convolver: mode '//int_text(k)//': expected a pole with ' &
+                                     //'Re lambda < 0 and Im lambda > 0 rad/s (a damped mode), found lambda = (' &
+                                     //sci_text(real(pole, dp))//', '//sci_text(aimag(pole))//') rad/s')
+                end if
+            end associate
+            if (allocated(error)) return
+        end do
+    end subroutine check_modes
+
+    !> Build the convolver called `method` for a structure. The registry checks that the
+    !> method is known and serves single-point contact; whether the structure has what the
+    !> method needs (g, modes) and the values dt, n_steps and truncation_tol are the caller's
+    !> to check, as `new_convolver` does.
+    !>
+    !> `direct` convolves with the structure's own g (from its exact modes, or sampled from
+    !> its FRF), truncated by the paper's rule; `fft` computes the same sum by partitioned FFT.
+    !> The modal methods recur on the structure's model modes: `paper` (eqs. 15-17 as
+    !> written), `recursive` (the same sum with decaying factors), `exact` (force linear
+    !> within a step) and `backward` (force constant over the step ending at its sample, first
+    !> order, for the implicit step of stiff contacts); `modal` is `recursive`. `auto` picks
+    !> the cheapest of these that meets `requested` (see `choose_method`; never `backward`).
+    !> `accuracy` says in words how far the model is from the exact g (and, for `auto`, what it
+    !> chose and why).
+    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested)
+        !> Method, one of greenconv_conv_methods's `method_list()`.
+        character(len=*), intent(in) :: method
+        !> The structure.
+        type(structure_model), intent(in) :: structure
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g| for `direct`.
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps of the run.
+        integer, intent(in) :: n_steps
+        !> The convolver.
+        class(convolver), allocatable, intent(out) :: conv
+        !> What the model neglects, in words.
+        character(len=:), allocatable, intent(out) :: accuracy
+        !> Set for a method the registry does not know or that does not serve single-point contact.
+        type(error_type), allocatable, intent(out) :: error
+        !> Relative accuracy `auto` must meet (default `default_accuracy`): the largest E (eq. 7) it accepts.
+        real(dp), intent(in), optional :: requested
+
+        character(len=:), allocatable :: chosen, reason
+        real(dp) :: target
+
+        ! What the structure has is the caller's to check (`new_convolver` does; a scene's
+        ! structures all have g and modes, the modes an LSCE fit may have left empty).
+        call check_method(method, .false., .true., .true., error)
+        if (allocated(error)) return
+        if (canonical_method(method) /= 'auto') then
+            call build_method(canonical_method(method), structure, dt, truncation_tol, n_steps, conv, accuracy)
+            return
+        end if
+        target = default_accuracy
+        if (present(requested)) target = requested
+        call choose_method(structure, dt, truncation_tol, n_steps, target, chosen, reason)
+        call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy)
+        conv%name = 'auto'
+        accuracy = 'chose '//chosen//': '//reason//'; '//accuracy
+    end subroutine make_convolver
+
+    !> The cheapest method whose model meets a requested accuracy, and why, in words:
+    !> - `direct` when N_t*N_g is at most `direct_work_limit` (the run costs a few ms and
+    !>   its only approximation is the truncation of g);
+    !> - otherwise `exact` (the first-order hold: a modal recursion's cost, second order in
+    !>   dt, the static gain exact) on the structure's modes when they are its own, or on the
+    !>   identified model when its E (eq. 7) meets the accuracy; the identification scan
+    !>   stops at the smallest such order;
+    !> - otherwise `fft` on the sampled g: no modal model up to the scan's largest order does.
+    subroutine choose_method(structure, dt, truncation_tol, n_steps, requested, chosen, reason)
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt, truncation_tol, requested
+        integer, intent(in) :: n_steps
+        character(len=:), allocatable, intent(out) :: chosen, reason
+
+        real(dp), allocatable :: kernel(:)
+        real(dp) :: tail, work
+
+        call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
+        work = real(n_steps, dp)*(size(kernel) - 1)
+        if (work <= direct_work_limit) then
+            chosen = 'direct'
+            reason = 'N_t*N_g = '//sci_text(work)//' <= '//sci_text(direct_work_limit)//' multiply-adds'
+        else if (.not. structure%identified) then
+            chosen = 'exact'
+            reason = 'N_t*N_g = '//sci_text(work)//' and the '//int_text(structure%model%n_modes()) &
+                     //' modes are the structure''s own'
+        else if (structure%fit%e <= requested) then
+            chosen = 'exact'
+            reason = int_text(structure%model%n_modes())//' modes, the smallest LSCE model with E <= ' &
+                     //sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
+        else
+            chosen = 'fft'
+            reason = 'no LSCE model meets E <= '//sci_text(requested)//' (best E = '//sci_text(structure%fit%e) &
+                     //'), N_t*N_g = '//sci_text(work)
+        end if
+    end subroutine choose_method
+
+    !> Build one method the registry accepted for this structure, by its canonical name (not `auto`).
+    subroutine build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
+        character(len=*), intent(in) :: method
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        real(dp), intent(in) :: truncation_tol
+        integer, intent(in) :: n_steps
+        class(convolver), allocatable, intent(out) :: conv
+        character(len=:), allocatable, intent(out) :: accuracy
+
+        real(dp), allocatable :: kernel(:)
+        real(dp) :: tail, misfit
+        integer :: j
+
+        select case (method)
+        case ('direct', 'fft')
+            call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
+            if (method == 'direct') then
+                conv = new_direct_convolver(kernel, dt)
+            else
+                conv = new_fft_convolver(kernel, dt)
+            end if
+            accuracy = 'exact: the kernel covers the whole run'
+            if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
+            if (.not. structure%has_exact) then
+                misfit = maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)])))
+                accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE modes'' g by ' &
+                           //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
+            end if
+        case ('paper')
+            conv = new_paper_convolver(structure%model, dt)
+        case ('recursive')
+            conv = new_recursive_convolver(structure%model, dt)
+        case ('exact')
+            conv = new_exact_convolver(structure%model, dt)
+        case ('backward')
+            conv = new_backward_convolver(structure%model, dt)
+        end select
+        if (method_needs_modes(method)) then
+            accuracy = 'exact: the modes are the structure''s own'
+            if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci_text(structure%fit%e)//' (eq. 7)'
+        end if
+    end subroutine build_method
+
+    !> The truncated kernel of the structure's own g and the largest neglected sample.
+    subroutine direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
+        real(dp), allocatable, intent(out) :: kernel(:)
+        real(dp), intent(out) :: tail
+
+        integer :: last, n_g
+
+        if (structure%has_exact) then
+            call sample_kernel(structure%exact, dt, truncation_tol, n_steps, kernel, tail)
+            return
+        end if
+        last = min(n_steps, size(structure%sampled_g)) - 1
+        n_g = truncation_length(structure%sampled_g(1:last + 1), truncation_tol)
+        allocate (kernel(0:n_g))
+        kernel(:) = structure%sampled_g(1:n_g + 1)
+        tail = 0.0_dp
+        if (n_g < last) tail = maxval(abs(structure%sampled_g(n_g + 2:last + 1)))/maxval(abs(kernel))
+    end subroutine direct_kernel
+
+    !> Build the multi-point convolver (Green's matrix) called `method` for modes shared by
+    !> N_c contact points, after the registry's check that it serves multi-point contact:
+    !> `modal`/`recursive` (the rectangle-rule recursion, explicit: W0 = 0), `exact` (the
+    !> first-order hold: W0 /= 0, every step solved by Newton on the active set) and `direct`
+    !> (the sampled table g_ij(t_n), truncated by the paper's rule).
+    subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error)
+        !> Method, one of greenconv_conv_methods's `method_list(multi_point=.true.)`.
+        character(len=*), intent(in) :: method
+        !> Modes and mode shapes at the points.
+        type(point_modes), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct`.
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps of the run (caps the table of `direct`).
+        integer, intent(in) :: n_steps
+        !> The convolver, at step 0.
+        class(multipoint_convolver), allocatable, intent(out) :: conv
+        !> What the model neglects, in words.
+        character(len=:), allocatable, intent(out) :: accuracy
+        !> Set for a method that does not serve multi-point contact or modes that do not fit.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(modal_green_matrix) :: modal
+        type(sampled_green_matrix) :: sampled
+        real(dp), allocatable :: kernel(:, :, :)
+        real(dp) :: tail
+
+        accuracy = ''
+        call check_method(method, .true., modes%modes%n_modes() > 0, modes%modes%n_modes() > 0, error)
+        if (allocated(error)) return
+        select case (canonical_method(method))
+        case ('recursive', 'exact')
+            call new_modal_green_matrix(modes, dt, canonical_method(method), modal, error)
+            if (allocated(error)) return
+            allocate (conv, source=modal)
+            accuracy = 'exact on the model''s modes (explicit step)'
+            if (modal%name == 'exact') accuracy = 'first-order hold, implicit step (Newton, all points)'
+        case ('direct')
+            call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
+            call new_sampled_green_matrix(kernel, dt, sampled, error)
+            if (allocated(error)) return
+            allocate (conv, source=sampled)
+            accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        end select
+    end subroutine make_multipoint_convolver
+
+end module greenconv_conv_builder

@@ -1,0 +1,265 @@
+!> The registry of convolution methods: each method is written here once, with its aliases,
+!> what it convolves with (sampled g, modes, or both), whether it serves single-point and
+!> multi-point contact, and a one-line description; the defaults of the methods' options too.
+!>
+!> The scene check, the builder (greenconv_conv_builder), the runner and the library ask it,
+!> so a scene `--check` refuses exactly what a run refuses. Adding an engine: one row in
+!> `registry` and its `case` in the builder.
+module greenconv_conv_methods
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    implicit none
+    private
+
+    public :: default_truncation_tol, default_accuracy
+    public :: method_name_length, n_methods
+    public :: is_method, canonical_method, method_engine, method_names, method_list, method_summary
+    public :: method_needs_g, method_needs_modes, check_method
+
+    !> Truncation of g for `direct` and `fft` when none is given: the paper's 1 % of max |g|.
+    real(dp), parameter :: default_truncation_tol = 0.01_dp
+    !> Relative accuracy `auto` must meet when none is given: the largest E (eq. 7) it accepts.
+    real(dp), parameter :: default_accuracy = 1.0e-3_dp
+
+    !> Length of a method name in the registry (names are shorter and blank-padded).
+    integer, parameter :: method_name_length = 9
+
+    !> One method.
+    type :: method_entry
+        !> Name a scene or a caller gives.
+        character(len=method_name_length) :: name
+        !> Name of the method it runs (itself, or the method it is an alias of).
+        character(len=method_name_length) :: canonical
+        !> The engine that steps it: `direct`, `fft`, `paper` or `recursive` (the decaying modal
+        !> recursion of greenconv_conv_recursive, single-point, and greenconv_conv_green_modal,
+        !> multi-point); '' for `auto`, which picks another method.
+        character(len=method_name_length) :: engine
+        !> Whether it convolves with the sampled impulse response g (or samples it to weigh a choice).
+        logical :: needs_g
+        !> Whether it recurs on modes (poles and residues).
+        logical :: needs_modes
+        !> Whether it serves one contact point (a `convolver`).
+        logical :: single_point
+        !> Whether it serves several contact points (a `multipoint_convolver`).
+        logical :: multi_point
+        !> What it computes, in one line.
+        character(len=96) :: summary
+    end type method_entry
+
+    !> The methods, in the order messages list them.
+    type(method_entry), parameter :: registry(*) = [ &
+        method_entry('direct', 'direct', 'direct', .true., .false., .true., .true., &
+                     'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)'), &
+        method_entry('fft', 'fft', 'fft', .true., .false., .true., .false., &
+                     'the same truncated sum by partitioned FFT convolution'), &
+        method_entry('modal', 'recursive', 'recursive', .false., .true., .true., .true., &
+                     'the modal recursion of the paper with decaying factors (an alias of recursive)'), &
+        method_entry('paper', 'paper', 'paper', .false., .true., .true., .false., &
+                     'the modal recursion as eqs. (15)-(17) write it'), &
+        method_entry('recursive', 'recursive', 'recursive', .false., .true., .true., .true., &
+                     'the modal recursion (rectangle rule) with decaying factors, explicit'), &
+        method_entry('exact', 'exact', 'recursive', .false., .true., .true., .true., &
+                     'the modal recursion with the force linear within a step (first-order hold)'), &
+        method_entry('backward', 'backward', 'recursive', .false., .true., .true., .false., &
+                     'the modal recursion with the force constant over the step ending at its sample'), &
+        method_entry('auto', 'auto', '', .true., .true., .true., .false., &
+                     'the cheapest of direct, exact and fft that meets the requested accuracy')]
+
+    !> Number of methods in the registry.
+    integer, parameter :: n_methods = size(registry)
+
+contains
+
+    !> Whether `name` is a method of the registry (trailing blanks ignored).
+    elemental logical function is_method(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        is_method = find(name) > 0
+    end function is_method
+
+    !> The method a name runs: the method itself, or the one it is an alias of (`modal`
+    !> gives `recursive`); '' for an unknown name.
+    function canonical_method(name) result(canonical)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: canonical
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        canonical = trim(entry%canonical)
+    end function canonical_method
+
+    !> The names of the methods, in the registry's order (blank-padded to `method_name_length`).
+    pure function method_names() result(names)
+        character(len=method_name_length) :: names(n_methods)
+
+        names(:) = registry%name
+    end function method_names
+
+    !> The method names for messages, "'direct', 'fft', ... or 'auto'"; with `multi_point`
+    !> present, only those that serve single-point (false) or multi-point (true) contact.
+    function method_list(multi_point, engine) result(text)
+        !> Keep only the methods for this kind of contact.
+        logical, intent(in), optional :: multi_point
+        !> Keep only the methods this engine steps (see `method_engine`).
+        character(len=*), intent(in), optional :: engine
+        character(len=:), allocatable :: text
+
+        logical :: keep(n_methods)
+
+        keep(:) = .true.
+        if (present(multi_point)) keep = keep .and. merge(registry%multi_point, registry%single_point, multi_point)
+        if (present(engine)) keep = keep .and. registry%engine == engine
+        text = joined(keep)
+    end function method_list
+
+    !> The engine that steps a method: `direct`, `fft`, `paper` or `recursive`; '' for `auto`
+    !> (it picks another method) and for an unknown name.
+    function method_engine(name) result(engine)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: engine
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        engine = trim(entry%engine)
+    end function method_engine
+
+    !> What a method computes, in one line; '' for an unknown name.
+    function method_summary(name) result(text)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        text = trim(entry%summary)
+    end function method_summary
+
+    !> Whether a method needs the sampled g (`direct`, `fft`, and `auto`, which samples it to
+    !> weigh the cost of a direct sum); false for an unknown name.
+    elemental logical function method_needs_g(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        method_needs_g = entry%needs_g
+    end function method_needs_g
+
+    !> Whether a method needs modes (the modal recursions and `auto`); false for an unknown name.
+    elemental logical function method_needs_modes(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        method_needs_modes = entry%needs_modes
+    end function method_needs_modes
+
+    !> Check that method `name` can run on a structure: known, serving this kind of contact
+    !> (single- or multi-point), and given what it needs (g, modes). The message says what
+    !> to do and names no file: the caller puts its place (file:line, procedure) in front.
+    subroutine check_method(name, multi_point, has_g, has_modes, error)
+        !> The method name.
+        character(len=*), intent(in) :: name
+        !> Whether the structure has several contact points.
+        logical, intent(in) :: multi_point
+        !> Whether the structure has a sampled g (or modes to sample it from).
+        logical, intent(in) :: has_g
+        !> Whether the structure has modes.
+        logical, intent(in) :: has_modes
+        !> Set (status `stat_input`) when the method cannot run on it.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(method_entry) :: method
+        integer :: i
+
+        i = find(name)
+        if (i == 0) then
+            call fatal_error(error, "unknown convolution method '"//trim(name)//"': expected "//method_list())
+            return
+        end if
+        method = registry(i)
+        if (multi_point .and. .not. method%multi_point) then
+            call fatal_error(error, "method '"//trim(name)//"' is not available for multi-point contact: " &
+                             //'expected '//method_list(.true.))
+        else if (.not. multi_point .and. .not. method%single_point) then
+            call fatal_error(error, "method '"//trim(name)//"' is not available for single-point contact: " &
+                             //'expected '//method_list(.false.))
+        else if (method%needs_g .and. .not. has_g) then
+            call fatal_error(error, "method '"//trim(name)//"' needs g: give the structure modes, samples of " &
+                             //'g, or an FRF with dt > 0')
+        else if (method%needs_modes .and. .not. has_modes) then
+            call fatal_error(error, "method '"//trim(name)//"' needs modes, and this structure has none " &
+                             //'(only sampled g): use '//g_only_list())
+        end if
+    end subroutine check_method
+
+    !> The entry of `name`, or a blank one (empty names, needing and serving nothing) when unknown.
+    elemental function entry_of(name) result(entry)
+        character(len=*), intent(in) :: name
+        type(method_entry) :: entry
+
+        integer :: i
+
+        i = find(name)
+        if (i > 0) then
+            entry = registry(i)
+        else
+            entry = method_entry('', '', '', .false., .false., .false., .false., '')
+        end if
+    end function entry_of
+
+    !> Index of `name` in the registry, 0 when unknown.
+    elemental integer function find(name)
+        character(len=*), intent(in) :: name
+
+        integer :: i
+
+        find = 0
+        if (len_trim(name) > method_name_length) return
+        do i = 1, n_methods
+            if (registry(i)%name == name) then
+                find = i
+                return
+            end if
+        end do
+    end function find
+
+    !> The methods that need g alone, "'direct' or 'fft'".
+    function g_only_list() result(text)
+        character(len=:), allocatable :: text
+
+        text = joined(registry%needs_g .and. .not. registry%needs_modes)
+    end function g_only_list
+
+    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
+    function joined(keep) result(text)
+        logical, intent(in) :: keep(n_methods)
+        character(len=:), allocatable :: text
+
+        integer :: i, k, n
+
+        n = count(keep)
+        k = 0
+        text = ''
+        do i = 1, n_methods
+            if (.not. keep(i)) cycle
+            k = k + 1
+            if (k > 1 .and. k == n) then
+                text = text//' or '
+            else if (k > 1) then
+                text = text//', '
+            end if
+            text = text//"'"//trim(registry(i)%name)//"'"
+        end do
+    end function joined
+
+end module greenconv_conv_methods
