@@ -7,7 +7,7 @@ module test_library_mod
     use greenconv_api_all, only: error_type, stat_input, convolver, contact_law, contact_response, run_contact, &
                                  sdof_modes, sdof_impulse, structure_model, structure_from_modes, &
                                  structure_from_samples, new_convolver, free_convolver, contact_step, read_frf, &
-                                 frf_type, lsce_options, structure_from_frf
+                                 frf_type, lsce_options, structure_from_frf, frf_from_modes
     use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcdesc, gcscen
     implicit none
     private
@@ -30,7 +30,8 @@ contains
                      new_unittest('new_convolver: bad requests give stat_input and a message', test_bad_requests), &
                      new_unittest('legacy: gcsdof + gccont and gcstep equal the Fortran API', test_legacy_contact), &
                      new_unittest('legacy: statuses and messages, null handles', test_legacy_errors), &
-                     new_unittest('legacy: gcid and gcfrf on data/sample_receptance.frf', test_legacy_frf)]
+                     new_unittest('legacy: gcid and gcfrf on data/sample_receptance.frf', test_legacy_frf), &
+                     new_unittest('g from a receptance runs only at the dt it was sampled at', test_sample_step)]
     end subroutine collect_library
 
     !> Road heights of the scene [m].
@@ -241,5 +242,35 @@ contains
         call gcfree(handle)
         call check(error, ierr == 0 .and. index(description, 'LSCE') > 0, 'gcfrf: '//trim(description))
     end subroutine test_legacy_frf
+
+    !> A structure from a receptance samples g at the dt it is given; `direct`, `fft` and
+    !> `auto` at another dt are refused (stat_input, naming both steps), at the same dt built.
+    subroutine test_sample_step(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=6), parameter :: methods(3) = [character(len=6) :: 'direct', 'fft', 'auto']
+        type(structure_model) :: structure
+        class(convolver), allocatable :: conv
+        type(error_type), allocatable :: build_error
+        integer :: i
+
+        call structure_from_frf(frf_from_modes(sdof_modes(mass, stiffness, xi), 5000.0_dp, 801), lsce_options(), &
+                                dt, structure, build_error)
+        call check(error, .not. allocated(build_error), 'the structure from G builds at dt = 1e-4 s')
+        if (allocated(error)) return
+        do i = 1, size(methods)
+            call new_convolver(trim(methods(i)), structure, 2.0_dp*dt, 100, conv, build_error)
+            call check(error, allocated(build_error), trim(methods(i))//' at 2e-4 s is refused')
+            if (allocated(error)) return
+            call check(error, build_error%stat == stat_input .and. index(build_error%message, '1.00E-04') > 0 &
+                       .and. index(build_error%message, '2.00E-04') > 0, &
+                       'the message names both steps: '//build_error%message)
+            if (allocated(error)) return
+            call new_convolver(trim(methods(i)), structure, dt, 100, conv, build_error)
+            call check(error, .not. allocated(build_error), trim(methods(i))//' at 1e-4 s builds')
+            if (allocated(error)) return
+            call free_convolver(conv)
+        end do
+    end subroutine test_sample_step
 
 end module test_library_mod

@@ -18,6 +18,7 @@ module greenconv_api_handle
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
                                          structure_from_frf
     use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_methods, only: method_needs_g
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, contact_state, run_contact, &
                                         copy_histories
     use greenconv_api_library, only: new_convolver, free_convolver, check_contact_law
@@ -191,7 +192,7 @@ contains
         options%tol_e = tol_e
         options%max_modes = max_modes
         dt_g = 0.0_dp
-        if (any(lower_text(method) == [character(len=6) :: 'direct', 'fft', 'auto'])) dt_g = dt
+        if (method_needs_g(lower_text(method))) dt_g = dt
         call structure_from_frf(frf, options, dt_g, structure, error)
     end subroutine frf_file_structure
 

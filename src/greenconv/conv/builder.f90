@@ -184,6 +184,8 @@ contains
         ! structures all have g and modes, the modes an LSCE fit may have left empty).
         call check_method(method, .false., .true., .true., error)
         if (allocated(error)) return
+        call check_sample_step(structure, dt, error)
+        if (allocated(error)) return
         if (canonical_method(method) /= 'auto') then
             call build_method(canonical_method(method), structure, dt, truncation_tol, n_steps, conv, accuracy)
             return
@@ -276,6 +278,22 @@ contains
             if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci_text(structure%fit%e)//' (eq. 7)'
         end if
     end subroutine build_method
+
+    !> g sampled from a receptance reaches the convolvers by one route: the structure records
+    !> the step it was sampled at, and a convolver at any other step is refused (its kernel
+    !> would be g at the wrong times).
+    subroutine check_sample_step(structure, dt, error)
+        type(structure_model), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        type(error_type), allocatable, intent(out) :: error
+
+        if (structure%has_exact .or. .not. allocated(structure%sampled_g)) return
+        if (structure%sampled_step <= 0.0_dp) return
+        if (abs(dt - structure%sampled_step) <= 1.0e-9_dp*structure%sampled_step) return
+        call fatal_error(error, 'time step dt: expected '//sci_text(structure%sampled_step) &
+                         //' s, the step g was sampled at from the receptance, found '//sci_text(dt) &
+                         //' s: build the structure with the run''s dt')
+    end subroutine check_sample_step
 
     !> The truncated kernel of the structure's own g and the largest neglected sample.
     subroutine direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)

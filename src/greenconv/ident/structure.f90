@@ -25,6 +25,9 @@ module greenconv_ident_structure
         type(modal_set) :: exact
         !> Impulse response g(t_n) [m/(N*s)] at the scene's time step, n = 0.. (when not `has_exact`).
         real(dp), allocatable :: sampled_g(:)
+        !> Time step [s] at which `sampled_g` was sampled from a receptance (0 when the caller
+        !> gave the samples: the step is then the one given to the convolvers).
+        real(dp) :: sampled_step = 0.0_dp
         !> The modes the modal methods use.
         type(modal_set) :: model
         !> Whether `model` comes from an LSCE fit (then `frf` and `fit` are set).
@@ -106,6 +109,7 @@ contains
         end if
         ! Only the first half of the period 1/df: the second half holds the wrapped end of g.
         structure%sampled_g = g(1:size(g)/2:stride)
+        structure%sampled_step = dt
     end subroutine sample_from_frf
 
 end module greenconv_ident_structure

@@ -18,7 +18,7 @@ module greenconv_scene_input
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
-                                      model_sdof, model_tyre
+                                      model_sdof, model_tyre, multi_point_model
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
@@ -169,6 +169,7 @@ contains
         if (.not. allocated(error)) call read_contact_group(unit, scene, error)
         if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
         if (.not. allocated(error)) call check_scene_road(scene, error)
+        if (.not. allocated(error)) call check_multipoint_scene(scene, error)
         close (unit)
     end subroutine read_scene
 
@@ -470,6 +471,23 @@ contains
         if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
     end subroutine check_scene_road
 
+    !> A multi-point model (the tyre) runs a contact over a road file: anything else is
+    !> refused here, with the scene's line, as the run would refuse it.
+    subroutine check_multipoint_scene(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: road
+
+        if (.not. multi_point_model(this%model)) return
+        if (this%task == 'contact' .and. allocated(this%road_data%x)) return
+        road = ' and no road file'
+        if (allocated(this%road_data%x)) road = ' with a road file'
+        call fatal_error(error, input_place(this, 'structure', 'model')//": expected task = 'contact' and " &
+                         //"&road profile = 'file' for model '"//this%model//"' (its contact points are spread " &
+                         //"over a road file), found task '"//this%task//"'"//road)
+    end subroutine check_multipoint_scene
+
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, this, error, template)
         integer, intent(in) :: unit
@@ -596,7 +614,7 @@ contains
 
         if (this%task /= 'contact') return
         do i = 1, size(this%methods)
-            call check_method(trim(this%methods(i)), this%model == 'tyre', .true., .true., error)
+            call check_method(trim(this%methods(i)), multi_point_model(this%model), .true., .true., error)
             if (allocated(error)) then
                 error%message = input_place(this, 'convolution', 'methods')//': '//error%message
                 return

@@ -10,6 +10,7 @@ module greenconv_scene_models
     private
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
+    public :: multi_point_model
     public :: model_sdof, model_random_modes, model_frf_file, model_tyre
 
     !> Identifier of the single-degree-of-freedom oscillator (M, K, xi) of Tab. 1.
@@ -113,5 +114,16 @@ contains
 
         model_requires = index(' '//trim(model%requires)//' ', ' '//trim(variable)//' ') > 0
     end function model_requires
+
+    !> Whether the model called `name` touches the road at several points (N_c >= 1).
+    pure logical function multi_point_model(name)
+        !> Model name as the scene writes it.
+        character(len=*), intent(in) :: name
+
+        type(structure_kind) :: model
+
+        model = find_model(name)
+        multi_point_model = model%multi_point
+    end function multi_point_model
 
 end module greenconv_scene_models

@@ -29,6 +29,7 @@ module greenconv_scene_runner
     use greenconv_model_road_file, only: sample_road_steps
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type, output_path, input_place
+    use greenconv_scene_models, only: find_model, model_requires, multi_point_model
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure
     use greenconv_model_frf, only: frf_type, read_frf
@@ -147,7 +148,7 @@ contains
         type(structure_model) :: structure
         integer :: block_size
 
-        if (scene%model == 'tyre') then
+        if (multi_point_model(scene%model)) then
             block_size = max(block_rows/scene%n_points, 1)
             if (present(block)) block_size = max(block, 1)
             call make_directory(scene%output_dir, error)
@@ -186,7 +187,7 @@ contains
         integer :: i
 
         line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
-        if (scene%model == 'frf_file') then
+        if (model_requires(find_model(scene%model), 'frf_file')) then
             call read_frf(scene%frf_file, frf, error)
             if (allocated(error)) then
                 error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
@@ -198,7 +199,7 @@ contains
         if (scene%task == 'contact') then
             line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &
                    //int_text(scene%n_points)//' contact point(s), '
-            if (scene%model == 'tyre') then
+            if (multi_point_model(scene%model)) then
                 line = line//'Newton on all points'
             else
                 line = line//trim(scene%contact%scheme)//' step'
