@@ -11,7 +11,7 @@
 module greenconv
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, stat_input, stat_numerical
-    use greenconv_model_modal_set, only: modal_set, random_modes
+    use greenconv_model_modal_set, only: modal_set, modes_from_paper, random_modes
     use greenconv_model_sdof, only: sdof_modes, sdof_receptance
     use greenconv_model_frf, only: frf_type, read_frf, frf_from_modes
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
@@ -21,7 +21,7 @@ module greenconv
                                          structure_from_samples
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_green_modal, only: new_modal_green_matrix
+    use greenconv_conv_builder, only: new_multipoint_convolver => make_multipoint_convolver
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact, contact_state, &
                                         start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
@@ -34,7 +34,7 @@ module greenconv
     ! kinds and errors
     public :: dp, error_type, stat_input, stat_numerical
     ! structure models and roads
-    public :: modal_set, random_modes, sdof_modes, sdof_receptance
+    public :: modal_set, modes_from_paper, random_modes, sdof_modes, sdof_receptance
     public :: frf_type, read_frf, frf_from_modes
     public :: road_profile, sine_road, random_road, new_random_road
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
@@ -46,7 +46,7 @@ module greenconv
     public :: contact_law, contact_options, contact_response, run_contact, contact_step
     public :: contact_state, start_contact, contact_block
     ! multi-point contact
-    public :: point_modes, multipoint_convolver, new_modal_green_matrix
+    public :: point_modes, multipoint_convolver, new_multipoint_convolver
     public :: newton_options, multi_contact_response, run_multi_contact
     ! scene files
     public :: scene_type, read_scene, check_scene, run_scene, run_scene_file

@@ -314,7 +314,7 @@ contains
         real(dp), intent(in) :: delta
 
         slope = 0.0_dp
-        if (delta > 0.0_dp) slope = law%exponent*law%stiffness*delta**(law%exponent - 1.0_dp)
+        if (delta > 0.0_dp) slope = law%tangent(delta)
     end function slope
 
     !> An error when a displacement exceeds the bound or a value is not finite.
