@@ -21,7 +21,8 @@
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
 #                   data of the speed/accuracy and stability charts in out/bench/, then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
-#   make test       deps, the layer check (`make layers`), `make lib`, check that the
+#   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
+#                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
 #                   Makefile-built driver writes the same output as the fpm-built one, build
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml), install into a temporary prefix and build the C
@@ -290,6 +291,7 @@ figures:
 test: deps
 	@$(MAKE) layers
 	@$(MAKE) lib
+	@bash tools/check_symbols.sh $(LIB) $(SHLIB)
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
