@@ -157,6 +157,8 @@ contains
                 i_skipped = i_skipped + 1
                 read (line, *) keyword, dataset
                 call check(error, file%skipped(i_skipped)%dataset == dataset, name//': '//trim(line))
+            case default
+                call check(error, .false., name//'.expected: unknown line "'//trim(line)//'"')
             end select
             if (allocated(error)) exit
         end do

@@ -621,12 +621,12 @@ contains
         call read_record7(at(path, set%first + 8, 58, 7), lines(set%first + 8)%text, function, n_points, error)
         if (allocated(error)) return
         call read_axis(at(path, set%first + 9, 58, 8), lines(set%first + 9)%text, function%abscissa_axis, error)
-        if (.not. allocated(error)) &
-            call read_axis(at(path, set%first + 10, 58, 9), lines(set%first + 10)%text, function%numerator, error)
-        if (.not. allocated(error)) &
-            call read_axis(at(path, set%first + 11, 58, 10), lines(set%first + 11)%text, function%denominator, error)
-        if (.not. allocated(error)) &
-            call read_axis(at(path, set%first + 12, 58, 11), lines(set%first + 12)%text, function%z_axis, error)
+        if (allocated(error)) return
+        call read_axis(at(path, set%first + 10, 58, 9), lines(set%first + 10)%text, function%numerator, error)
+        if (allocated(error)) return
+        call read_axis(at(path, set%first + 11, 58, 10), lines(set%first + 11)%text, function%denominator, error)
+        if (allocated(error)) return
+        call read_axis(at(path, set%first + 12, 58, 11), lines(set%first + 12)%text, function%z_axis, error)
         if (allocated(error)) return
         function%kind = ordinate_kind(function%numerator%data_type, function%denominator%data_type)
         call read_data(path, lines, set%first + 13, set%last, n_points, function, error)
@@ -715,10 +715,10 @@ contains
         end if
         function%even = spacing == 1
         call real_field(prefix, line, 31, 43, 'the abscissa minimum', layout, function%even, minimum, error)
-        if (.not. allocated(error)) &
-            call real_field(prefix, line, 44, 56, 'the abscissa increment', layout, function%even, step, error)
-        if (.not. allocated(error)) &
-            call real_field(prefix, line, 57, 69, 'the z-axis value', layout, .false., function%z_value, error)
+        if (allocated(error)) return
+        call real_field(prefix, line, 44, 56, 'the abscissa increment', layout, function%even, step, error)
+        if (allocated(error)) return
+        call real_field(prefix, line, 57, 69, 'the z-axis value', layout, .false., function%z_value, error)
         if (allocated(error)) return
         if (len_trim(line) > 69) then
             call fatal_error(error, prefix//'expected nothing after column 69 ('//layout//'), found "' &
@@ -740,10 +740,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call integer_field(prefix, line, 1, 10, 'the specific data type', .true., axis%data_type, error)
-        if (.not. allocated(error)) &
-            call integer_field(prefix, line, 11, 15, 'the length units exponent', .false., axis%length_exponent, error)
-        if (.not. allocated(error)) &
-            call integer_field(prefix, line, 16, 20, 'the force units exponent', .false., axis%force_exponent, error)
+        if (allocated(error)) return
+        call integer_field(prefix, line, 11, 15, 'the length units exponent', .false., axis%length_exponent, error)
+        if (allocated(error)) return
+        call integer_field(prefix, line, 16, 20, 'the force units exponent', .false., axis%force_exponent, error)
         if (.not. allocated(error)) call integer_field(prefix, line, 21, 25, 'the temperature units exponent', &
                                                        .false., axis%temperature_exponent, error)
         axis%label = trim(adjustl(columns(line, 27, 46)))
@@ -763,6 +763,8 @@ contains
             ordinate_kind = uff_mobility
         case (12)
             ordinate_kind = uff_accelerance
+        case default
+            ordinate_kind = uff_other
         end select
     end function ordinate_kind
 
@@ -956,8 +958,8 @@ contains
                     'the definition coordinate system', .false., node%definition_system, error)
                 if (.not. allocated(error)) call integer_field(prefix, line, 21, 30, &
                     'the displacement coordinate system', .false., node%displacement_system, error)
-                if (.not. allocated(error)) &
-                    call integer_field(prefix, line, 31, 40, 'the color', .false., node%color, error)
+                if (allocated(error)) return
+                call integer_field(prefix, line, 31, 40, 'the color', .false., node%color, error)
                 if (allocated(error)) return
             end if
             if (set%number == 15) then
