@@ -66,6 +66,7 @@ module greenconv_conv_fft
 
     public :: fft_convolver, new_fft_convolver
     public :: default_head
+    public :: partition_schedule, add_to_ring
 
     !> Number of taps summed directly when the constructor is given no `head`.
     integer, parameter :: default_head = 64
@@ -188,11 +189,21 @@ contains
         end do
     end subroutine build_levels
 
-    !> The schedule: block size, partition count and first tap of each level.
+    !> The schedule: block size, partition count and first tap of each level (see the module
+    !> notes); also the schedule of the multi-point engine (greenconv_conv_green_fft).
     pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first)
-        integer, intent(in) :: n_g, n_head
+        !> Kernel length N_g (taps 1..N_g).
+        integer, intent(in) :: n_g
+        !> Number of taps H summed directly.
+        integer, intent(in) :: n_head
+        !> Number of levels L (0 when N_g <= H).
         integer, intent(out) :: n_levels
-        integer, intent(out) :: blocks(:), parts(:), first(:)
+        !> Block size B_l of each level l = 1..L (room for bit_size(0) levels).
+        integer, intent(out) :: blocks(:)
+        !> Partition count P_l of each level.
+        integer, intent(out) :: parts(:)
+        !> First tap s_l of each level.
+        integer, intent(out) :: first(:)
 
         integer :: block, start, count
 
@@ -339,8 +350,11 @@ contains
 
     !> ring(n) += values(i) for n = start + i - 1, ring position mod(n, size(ring)) + 1.
     pure subroutine add_to_ring(ring, start, values)
+        !> A ring of pending outputs [m] (size >= size(values)).
         real(dp), intent(inout) :: ring(:)
+        !> Step n of the first value (>= 0).
         integer(int64), intent(in) :: start
+        !> Contributions [m] to outputs start, start + 1, ...
         real(dp), intent(in) :: values(:)
 
         integer :: i0, n1, m
