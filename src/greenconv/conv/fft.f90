@@ -191,7 +191,7 @@ contains
 
     !> The schedule: block size, partition count and first tap of each level (see the module
     !> notes); also the schedule of the multi-point engine (greenconv_conv_green_fft).
-    pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first)
+    pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first, level_parts, finish)
         !> Kernel length N_g (taps 1..N_g).
         integer, intent(in) :: n_g
         !> Number of taps H summed directly.
@@ -204,15 +204,25 @@ contains
         integer, intent(out) :: parts(:)
         !> First tap s_l of each level.
         integer, intent(out) :: first(:)
+        !> Partitions of a level that is not the last (default `parts_per_level`).
+        integer, intent(in), optional :: level_parts
+        !> A level that covers the remaining taps with at most this many partitions is the
+        !> last (default `finish_parts`).
+        integer, intent(in), optional :: finish
 
-        integer :: block, start, count
+        integer :: block, start, count, per_level, last_parts
+
+        per_level = parts_per_level
+        if (present(level_parts)) per_level = level_parts
+        last_parts = finish_parts
+        if (present(finish)) last_parts = finish
 
         n_levels = 0
         block = max(n_head, 1)
         start = n_head + 1
         do while (start <= n_g)
             count = (n_g - start + block)/block
-            if (count > finish_parts) count = parts_per_level
+            if (count > last_parts) count = per_level
             n_levels = n_levels + 1
             blocks(n_levels) = block
             parts(n_levels) = count

@@ -6,7 +6,8 @@
 !>
 !> with the partition of the single-point engine (greenconv_conv_fft, whose notes say how the
 !> taps are split and why every contribution is in place before its output is due): a head
-!> of the newest H taps summed directly, then levels l of P_l partitions of B_l taps. What
+!> of the newest H taps summed directly, then levels l of P_l partitions of B_l taps, here
+!> one partition per level (the block doubling per level) and at most two in the last. What
 !> changes with N_c points is the bookkeeping of a level's block, done once per block:
 !>
 !> - one forward transform per source point j of its last B_l forces, kept in j's
@@ -30,7 +31,6 @@ module greenconv_conv_green_fft
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_ext_fftw, only: fft_plan_set
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_kernel, only: lane_dot
     use greenconv_conv_fft, only: partition_schedule, add_to_ring
     implicit none
     private
@@ -41,6 +41,13 @@ module greenconv_conv_green_fft
     !> Taps summed directly when the constructor is given no `head`: fewer than the
     !> single-point engine's 64, because the head costs N_c^2 multiply-adds per tap and step.
     integer, parameter :: default_multipoint_head = 32
+    !> Partitions per level that is not the last: one, so that the block size doubles per
+    !> level. The N_c^2 products per line and partition dominate the cost, and one partition
+    !> per level gives the fewest partitions (about log2(N_g/H)) at the price of more levels
+    !> of cheap transforms.
+    integer, parameter :: level_parts = 1
+    !> A level that can cover the remaining taps with at most this many partitions is the last.
+    integer, parameter :: finish_parts = 2
 
     !> One level: P partitions of B taps for every pair of points.
     type :: green_fft_level
@@ -52,19 +59,21 @@ module greenconv_conv_green_fft
         integer :: first_tap = 0
         !> Column of `input_spectra` holding the newest block's spectrum.
         integer :: newest = 1
-        !> kernel_spectra(k, p, i, j): spectrum of partition p of W_ij, zero-padded, divided
-        !> by 2*B [m/N], lines k = 1..B + 1 (columns padded to a multiple of 64 bytes).
-        complex(dp), allocatable :: kernel_spectra(:, :, :, :)
-        !> input_spectra(k, c, j): spectra of the last P force blocks of point j [N], a ring
-        !> of columns c.
-        complex(dp), allocatable :: input_spectra(:, :, :)
+        !> kernel_re(k, p, i, j), kernel_im(k, p, i, j): real and imaginary parts of the
+        !> spectrum of partition p of W_ij, zero-padded, divided by 2*B [m/N], lines k = 1..B + 1
+        !> (held apart so that the product sums vectorise; columns padded to 64 bytes).
+        real(dp), allocatable :: kernel_re(:, :, :, :), kernel_im(:, :, :, :)
+        !> input_re(k, c, j), input_im(k, c, j): spectra of the last P force blocks of point
+        !> j [N], a ring of columns c.
+        real(dp), allocatable :: input_re(:, :, :), input_im(:, :, :)
     end type green_fft_level
 
     !> Partitioned FFT convolution with a sampled Green's matrix.
     type, extends(multipoint_convolver) :: fft_green_matrix
         !> Kernel length N_g.
         integer :: n_g = 0
-        !> Head weights head_weight(m, i, j) = W_ij(m) [m/N], m = 1..H.
+        !> Head weights head_weight(i, m, j) = W_ij(m) [m/N], m = 1..H (receiving point first,
+        !> so that the head's sum is a vectorised update of all points per tap and source).
         real(dp), allocatable :: head_weight(:, :, :)
         !> The last H forces of each point [N], each stored twice (rows r and r + H), newest
         !> at row `head_position`.
@@ -85,8 +94,10 @@ module greenconv_conv_green_fft
         integer :: countdown = 0
         !> Scratch: zero-padded samples, 2*(largest block).
         real(dp), allocatable :: samples(:)
-        !> Scratch: a product spectrum, (largest block) + 1 lines.
+        !> Scratch: a spectrum, (largest block) + 1 lines.
         complex(dp), allocatable :: spectrum(:)
+        !> Scratch: real and imaginary parts of a product sum, (largest block) + 1 lines.
+        real(dp), allocatable :: sum_re(:), sum_im(:)
         !> The FFTW plans of this object's transforms, made on demand.
         type(fft_plan_set) :: plans
     contains
@@ -131,8 +142,8 @@ contains
         conv%dt = dt
         conv%n_g = n_g
         call conv%set_instant_matrix(dt*kernel(0, :, :))
-        allocate (conv%head_weight(n_head, n_c, n_c), conv%head_past(2*n_head, n_c))
-        conv%head_weight(:, :, :) = dt*kernel(1:n_head, :, :)
+        allocate (conv%head_weight(n_c, n_head, n_c), conv%head_past(2*n_head, n_c))
+        conv%head_weight(:, :, :) = reshape(dt*kernel(1:n_head, :, :), [n_c, n_head, n_c], order=[2, 1, 3])
         call build_levels(conv, kernel, dt, n_head)
         ! The kernel spectra are made: the new object holds no plan (as the single-point engine).
         call conv%plans%release()
@@ -150,7 +161,7 @@ contains
         integer :: n_levels, l, largest, span, n_c
 
         n_c = size(kernel, 2)
-        call partition_schedule(conv%n_g, n_head, n_levels, blocks, parts, first)
+        call partition_schedule(conv%n_g, n_head, n_levels, blocks, parts, first, level_parts, finish_parts)
         largest = 1
         span = 1
         if (n_levels > 0) then
@@ -158,7 +169,8 @@ contains
             span = maxval(first(1:n_levels) + blocks(1:n_levels) - 1)
         end if
         allocate (conv%levels(n_levels), conv%recent(largest, n_c), conv%pending(span, n_c))
-        allocate (conv%samples(2*largest), conv%spectrum(largest + 1))
+        allocate (conv%samples(2*largest), conv%spectrum(largest + 1), conv%sum_re(largest + 1), &
+                  conv%sum_im(largest + 1))
         do l = 1, n_levels
             call build_level(conv%levels(l), kernel, dt, blocks(l), parts(l), first(l), conv%samples, conv%plans)
         end do
@@ -180,9 +192,11 @@ contains
         level%block = block
         level%parts = parts
         level%first_tap = first
-        lead = 4*((block + 4)/4)
-        allocate (level%kernel_spectra(lead, parts, n_c, n_c), level%input_spectra(lead, parts, n_c))
-        level%kernel_spectra(:, :, :, :) = (0.0_dp, 0.0_dp)
+        lead = 8*((block + 8)/8)
+        allocate (level%kernel_re(lead, parts, n_c, n_c), level%kernel_im(lead, parts, n_c, n_c))
+        allocate (level%input_re(lead, parts, n_c), level%input_im(lead, parts, n_c))
+        level%kernel_re(:, :, :, :) = 0.0_dp
+        level%kernel_im(:, :, :, :) = 0.0_dp
         do j = 1, n_c
             do i = 1, n_c
                 do p = 1, parts
@@ -191,7 +205,8 @@ contains
                     samples(1:2*block) = 0.0_dp
                     samples(1:last - tap + 1) = dt*kernel(tap:last, i, j)
                     call plans%forward(samples(1:2*block), lines)
-                    level%kernel_spectra(1:block + 1, p, i, j) = lines/real(2*block, dp)
+                    level%kernel_re(1:block + 1, p, i, j) = real(lines, dp)/real(2*block, dp)
+                    level%kernel_im(1:block + 1, p, i, j) = aimag(lines)/real(2*block, dp)
                 end do
             end do
         end do
@@ -202,14 +217,14 @@ contains
         class(fft_green_matrix), intent(in) :: self
         real(dp), intent(out) :: u(:)
 
-        integer :: h, i, j, first
+        integer :: h, m, j, first
 
-        h = size(self%head_weight, 1)
-        first = self%head_position
+        h = size(self%head_weight, 2)
+        first = self%head_position - 1
         u(:) = self%pending(self%pending_position, :)
         do j = 1, size(self%head_past, 2)
-            do i = 1, size(u)
-                u(i) = u(i) + lane_dot(h, self%head_weight(:, i, j), self%head_past(first:first + h - 1, j))
+            do m = 1, h
+                u(:) = u(:) + self%head_weight(:, m, j)*self%head_past(first + m, j)
             end do
         end do
     end subroutine green_fft_history
@@ -222,7 +237,7 @@ contains
 
         integer :: h, l
 
-        h = size(self%head_weight, 1)
+        h = size(self%head_weight, 2)
         self%head_position = self%head_position - 1
         if (self%head_position < 1) self%head_position = h
         self%head_past(self%head_position, :) = forces
@@ -260,23 +275,41 @@ contains
             self%samples(b + 1:2*b) = 0.0_dp
             do j = 1, n_c
                 self%samples(1:b) = self%recent(first:first + b - 1, j)
-                call self%plans%forward(self%samples(1:2*b), level%input_spectra(1:b + 1, level%newest, j))
+                call self%plans%forward(self%samples(1:2*b), self%spectrum(1:b + 1))
+                level%input_re(1:b + 1, level%newest, j) = real(self%spectrum(1:b + 1), dp)
+                level%input_im(1:b + 1, level%newest, j) = aimag(self%spectrum(1:b + 1))
             end do
             do i = 1, n_c
-                self%spectrum(1:b + 1) = (0.0_dp, 0.0_dp)
+                self%sum_re(1:b + 1) = 0.0_dp
+                self%sum_im(1:b + 1) = 0.0_dp
                 do j = 1, n_c
                     do p = 1, level%parts
                         column = mod(level%newest + p - 2, level%parts) + 1
-                        self%spectrum(1:b + 1) = self%spectrum(1:b + 1) &
-                                                 + level%kernel_spectra(1:b + 1, p, i, j) &
-                                                 *level%input_spectra(1:b + 1, column, j)
+                        call multiply_add(b + 1, level%kernel_re(:, p, i, j), level%kernel_im(:, p, i, j), &
+                                          level%input_re(:, column, j), level%input_im(:, column, j), &
+                                          self%sum_re, self%sum_im)
                     end do
                 end do
+                self%spectrum(1:b + 1) = cmplx(self%sum_re(1:b + 1), self%sum_im(1:b + 1), dp)
                 call self%plans%inverse(self%spectrum(1:b + 1), self%samples(1:2*b))
                 call add_to_ring(self%pending(:, i), self%step - b + level%first_tap, self%samples(1:2*b - 1))
             end do
         end associate
     end subroutine run_level
+
+    !> (s_re + i*s_im) += (k_re + i*k_im)*(x_re + i*x_im), lines 1..n, on split parts.
+    pure subroutine multiply_add(n, k_re, k_im, x_re, x_im, s_re, s_im)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: k_re(n), k_im(n), x_re(n), x_im(n)
+        real(dp), intent(inout) :: s_re(n), s_im(n)
+
+        integer :: k
+
+        do k = 1, n
+            s_re(k) = s_re(k) + (k_re(k)*x_re(k) - k_im(k)*x_im(k))
+            s_im(k) = s_im(k) + (k_re(k)*x_im(k) + k_im(k)*x_re(k))
+        end do
+    end subroutine multiply_add
 
     !> Clear the force history and the pending outputs.
     subroutine green_fft_reset(self)
@@ -293,7 +326,8 @@ contains
         self%countdown = huge(0)
         if (size(self%levels) > 0) self%countdown = self%levels(1)%block
         do l = 1, size(self%levels)
-            self%levels(l)%input_spectra(:, :, :) = (0.0_dp, 0.0_dp)
+            self%levels(l)%input_re(:, :, :) = 0.0_dp
+            self%levels(l)%input_im(:, :, :) = 0.0_dp
             self%levels(l)%newest = 1
         end do
         self%step = 0
