@@ -88,7 +88,8 @@ contains
         deallocate (kernel)
         t_fft = step_seconds(partitioned, 0, max(2*n_g, 4096))
         call partitioned%release()
-        write (unit, '(i5,i7,3x,es14.4,5x,es14.4,3x,f10.1)') n_c, n_g, t_direct, t_fft, t_direct/max(t_fft, tiny(1.0_dp))
+        write (unit, '(i5,i7,3x,es14.4,5x,es14.4,3x,f10.1)') n_c, n_g, t_direct, t_fft, &
+            t_direct/max(t_fft, tiny(1.0_dp))
     end subroutine cost_row
 
     !> CPU seconds per step of runs of n_steps steps after `warm_up` pushes, the forces

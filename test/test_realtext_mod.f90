@@ -237,7 +237,8 @@ contains
         if (allocated(error)) return
         do i = 1, 3
             read (text((i - 1)*(2*real_field + 1) + 1:i*(2*real_field + 1) - 1), *, iostat=stat) back
-            call check(error, stat == 0 .and. all(transfer(back, 0_int64, 2) == transfer(table(i, :), 0_int64, 2)), 'row read back')
+            call check(error, stat == 0 .and. all(transfer(back, 0_int64, 2) == transfer(table(i, :), 0_int64, 2)), &
+                       'row read back')
             if (allocated(error)) return
         end do
         call real_rows_text(table, text(1:10), length)
