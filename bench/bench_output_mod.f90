@@ -144,16 +144,12 @@ contains
         real(dp) :: seconds
 
         character(len=:), allocatable :: text
-        integer :: file, stat, first, last, length
+        integer :: file, first, last, length
 
         seconds = wall_seconds()
         allocate (character(len=rows_text_length(block_rows, size(table, 2))) :: text)
-        open (newunit=file, file=path, status='replace', action='write', access='stream', form='unformatted', &
-              iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, 'output benchmark: cannot write '//path)
-            return
-        end if
+        call open_stream(path, file, error)
+        if (allocated(error)) return
         do first = 0, size(table, 1) - 1, block_rows
             last = min(first + block_rows, size(table, 1)) - 1
             call real_rows_text(table(first:last, :), text, length)
@@ -170,15 +166,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(dp) :: seconds
 
-        integer :: file, stat, first, last
+        integer :: file, first, last
 
         seconds = wall_seconds()
-        open (newunit=file, file=path, status='replace', action='write', access='stream', form='unformatted', &
-              iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, 'output benchmark: cannot write '//path)
-            return
-        end if
+        call open_stream(path, file, error)
+        if (allocated(error)) return
         do first = 0, size(table, 1) - 1, block_rows
             last = min(first + block_rows, size(table, 1)) - 1
             write (file) transpose(table(first:last, :))
@@ -186,6 +178,19 @@ contains
         close (file)
         seconds = wall_seconds() - seconds
     end function binary_seconds
+
+    !> Open a new file for stream writes.
+    subroutine open_stream(path, file, error)
+        character(len=*), intent(in) :: path
+        integer, intent(out) :: file
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: stat
+
+        open (newunit=file, file=path, status='replace', action='write', access='stream', form='unformatted', &
+              iostat=stat)
+        if (stat /= 0) call fatal_error(error, 'output benchmark: cannot write '//path)
+    end subroutine open_stream
 
     !> Run the C anchor on the same rows and read the seconds it prints.
     subroutine run_anchor(anchor, output_dir, rows, seconds, error)

@@ -44,25 +44,22 @@ program greenconv_bench
         if (n_failed > 0) stop 1, quiet=.true.
         stop
     end if
-    if (argument(1, '') == '--fft') then
+    select case (argument(1, ''))
+    case ('--fft', '--output')
+        ! One part alone: the multi-point fft (cost table, tyre scene) or the output benchmark.
         call make_directory(output_dir, error)
-        if (.not. allocated(error)) call greenfft_cost_table(output_unit, error)
-        if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
+        if (.not. allocated(error) .and. argument(1, '') == '--fft') then
+            call greenfft_cost_table(output_unit, error)
+            if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
+        else if (.not. allocated(error)) then
+            call output_table(output_unit, output_dir, error, anchor=anchor(argument(2, '')))
+        end if
         if (allocated(error)) then
             write (error_unit, '(a)') 'greenconv-bench: '//error%message
             stop 2, quiet=.true.
         end if
         stop
-    end if
-    if (argument(1, '') == '--output') then
-        call make_directory(output_dir, error)
-        if (.not. allocated(error)) call output_table(output_unit, output_dir, error, anchor=anchor(argument(2, '')))
-        if (allocated(error)) then
-            write (error_unit, '(a)') 'greenconv-bench: '//error%message
-            stop 2, quiet=.true.
-        end if
-        stop
-    end if
+    end select
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
     call make_directory(output_dir, error)
