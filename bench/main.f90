@@ -4,11 +4,16 @@
 !>
 !>     greenconv-bench [SDOF_SCENE [MDOF_SCENE]]
 !>     greenconv-bench --smoke
+!>     greenconv-bench --fft
+!>     greenconv-bench --output [ANCHOR]
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
 !> directory: `make bench`). `--smoke` runs only the smoke checks of the benchmark's code
 !> (bench_smoke_mod, a few seconds, part of `make test`): one pass/FAIL line per check, then
-!> `N passed, N failed`; the exit status is 1 when a check failed.
+!> `N passed, N failed`; the exit status is 1 when a check failed. `--fft` runs only the
+!> multi-point fft part (bench_greenfft_mod: its cost table and the tyre scene); `--output`
+!> only the output benchmark (bench_output_mod), with the C anchor ANCHOR (default
+!> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -16,6 +21,8 @@ program greenconv_bench
     use bench_stability_mod, only: overflow_map
     use bench_contact_stability_mod, only: stability_map
     use bench_multipoint_mod, only: multipoint_cost_table
+    use bench_greenfft_mod, only: greenfft_cost_table, tyre_scene_speedup
+    use bench_output_mod, only: output_table
     use bench_smoke_mod, only: run_smoke_checks
     use greenconv_io_files, only: make_directory
     use bench_accuracy_mod, only: accuracy_charts
@@ -26,6 +33,8 @@ program greenconv_bench
     integer :: n_passed, n_failed
     !> Where the benchmark's column files go (plot/bench_*.gp read them there).
     character(len=*), parameter :: output_dir = 'out/bench'
+    !> Where bench/output_bench.sh (and `make bench`) put the compiled bench/anchor/printf_rows.c.
+    character(len=*), parameter :: anchor_program = 'build/printf_rows'
 
     if (argument(1, '') == '--smoke') then
         n_passed = 0
@@ -35,6 +44,22 @@ program greenconv_bench
         if (n_failed > 0) stop 1, quiet=.true.
         stop
     end if
+    select case (argument(1, ''))
+    case ('--fft', '--output')
+        ! One part alone: the multi-point fft (cost table, tyre scene) or the output benchmark.
+        call make_directory(output_dir, error)
+        if (.not. allocated(error) .and. argument(1, '') == '--fft') then
+            call greenfft_cost_table(output_unit, error)
+            if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
+        else if (.not. allocated(error)) then
+            call output_table(output_unit, output_dir, error, anchor=anchor(argument(2, '')))
+        end if
+        if (allocated(error)) then
+            write (error_unit, '(a)') 'greenconv-bench: '//error%message
+            stop 2, quiet=.true.
+        end if
+        stop
+    end select
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
     call make_directory(output_dir, error)
@@ -44,6 +69,9 @@ program greenconv_bench
     if (.not. allocated(error)) write (output_unit, '(a)') '# Contact stability map (explicit and implicit step over ' &
         //'k_c and dt): '//output_dir//'/contact_stability_map.dat', ''
     if (.not. allocated(error)) call multipoint_cost_table(output_unit, error)
+    if (.not. allocated(error)) call greenfft_cost_table(output_unit, error)
+    if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
+    if (.not. allocated(error)) call output_table(output_unit, output_dir, error, anchor=anchor(''))
     if (.not. allocated(error)) call accuracy_charts(output_unit, output_dir, sdof_file, mdof_file, error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
@@ -51,6 +79,19 @@ program greenconv_bench
     end if
 
 contains
+
+    !> The anchor program: `path`, or `anchor_program` when it exists, else '' (no anchor).
+    function anchor(path) result(program)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: program
+
+        logical :: exists
+
+        program = path
+        if (len(program) > 0) return
+        inquire (file=anchor_program, exist=exists)
+        if (exists) program = anchor_program
+    end function anchor
 
     !> Command-line argument i, or `default` when absent.
     function argument(i, default) result(value)

@@ -28,6 +28,7 @@ module greenconv_conv_builder
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
+    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
     implicit none
     private
 
@@ -320,8 +321,9 @@ contains
     !> Build the multi-point convolver (Green's matrix) called `method` for modes shared by
     !> N_c contact points, after the registry's check that it serves multi-point contact:
     !> `modal`/`recursive` (the rectangle-rule recursion, explicit: W0 = 0), `exact` (the
-    !> first-order hold: W0 /= 0, every step solved by Newton on the active set) and `direct`
-    !> (the sampled table g_ij(t_n), truncated by the paper's rule).
+    !> first-order hold: W0 /= 0, every step solved by Newton on the active set), `direct`
+    !> (the sampled table g_ij(t_n), truncated by the paper's rule) and `fft` (the same sum by
+    !> partitioned FFT; free it with its `release`, it holds FFTW plans).
     subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error)
         !> Method, one of greenconv_conv_methods's `method_list(multi_point=.true.)`.
         character(len=*), intent(in) :: method
@@ -329,9 +331,9 @@ contains
         type(point_modes), intent(in) :: modes
         !> Time step [s].
         real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct`.
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`.
         real(dp), intent(in) :: truncation_tol
-        !> Number of steps of the run (caps the table of `direct`).
+        !> Number of steps of the run (caps the table of `direct` and `fft`).
         integer, intent(in) :: n_steps
         !> The convolver, at step 0.
         class(multipoint_convolver), allocatable, intent(out) :: conv
@@ -342,6 +344,7 @@ contains
 
         type(modal_green_matrix) :: modal
         type(sampled_green_matrix) :: sampled
+        type(fft_green_matrix) :: partitioned
         real(dp), allocatable :: kernel(:, :, :)
         real(dp) :: tail
 
@@ -355,11 +358,17 @@ contains
             allocate (conv, source=modal)
             accuracy = 'exact on the model''s modes (explicit step)'
             if (modal%name == 'exact') accuracy = 'first-order hold, implicit step (Newton, all points)'
-        case ('direct')
+        case ('direct', 'fft')
             call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
-            call new_sampled_green_matrix(kernel, dt, sampled, error)
-            if (allocated(error)) return
-            allocate (conv, source=sampled)
+            if (canonical_method(method) == 'direct') then
+                call new_sampled_green_matrix(kernel, dt, sampled, error)
+                if (allocated(error)) return
+                allocate (conv, source=sampled)
+            else
+                call new_fft_green_matrix(kernel, dt, partitioned, error)
+                if (allocated(error)) return
+                allocate (conv, source=partitioned)
+            end if
             accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         end select
     end subroutine make_multipoint_convolver

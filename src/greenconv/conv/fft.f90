@@ -66,6 +66,7 @@ module greenconv_conv_fft
 
     public :: fft_convolver, new_fft_convolver
     public :: default_head
+    public :: partition_schedule, add_to_ring
 
     !> Number of taps summed directly when the constructor is given no `head`.
     integer, parameter :: default_head = 64
@@ -188,20 +189,40 @@ contains
         end do
     end subroutine build_levels
 
-    !> The schedule: block size, partition count and first tap of each level.
-    pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first)
-        integer, intent(in) :: n_g, n_head
+    !> The schedule: block size, partition count and first tap of each level (see the module
+    !> notes); also the schedule of the multi-point engine (greenconv_conv_green_fft).
+    pure subroutine partition_schedule(n_g, n_head, n_levels, blocks, parts, first, level_parts, finish)
+        !> Kernel length N_g (taps 1..N_g).
+        integer, intent(in) :: n_g
+        !> Number of taps H summed directly.
+        integer, intent(in) :: n_head
+        !> Number of levels L (0 when N_g <= H).
         integer, intent(out) :: n_levels
-        integer, intent(out) :: blocks(:), parts(:), first(:)
+        !> Block size B_l of each level l = 1..L (room for bit_size(0) levels).
+        integer, intent(out) :: blocks(:)
+        !> Partition count P_l of each level.
+        integer, intent(out) :: parts(:)
+        !> First tap s_l of each level.
+        integer, intent(out) :: first(:)
+        !> Partitions of a level that is not the last (default `parts_per_level`).
+        integer, intent(in), optional :: level_parts
+        !> A level that covers the remaining taps with at most this many partitions is the
+        !> last (default `finish_parts`).
+        integer, intent(in), optional :: finish
 
-        integer :: block, start, count
+        integer :: block, start, count, per_level, last_parts
+
+        per_level = parts_per_level
+        if (present(level_parts)) per_level = level_parts
+        last_parts = finish_parts
+        if (present(finish)) last_parts = finish
 
         n_levels = 0
         block = max(n_head, 1)
         start = n_head + 1
         do while (start <= n_g)
             count = (n_g - start + block)/block
-            if (count > finish_parts) count = parts_per_level
+            if (count > last_parts) count = per_level
             n_levels = n_levels + 1
             blocks(n_levels) = block
             parts(n_levels) = count
@@ -339,8 +360,11 @@ contains
 
     !> ring(n) += values(i) for n = start + i - 1, ring position mod(n, size(ring)) + 1.
     pure subroutine add_to_ring(ring, start, values)
+        !> A ring of pending outputs [m] (size >= size(values)).
         real(dp), intent(inout) :: ring(:)
+        !> Step n of the first value (>= 0).
         integer(int64), intent(in) :: start
+        !> Contributions [m] to outputs start, start + 1, ...
         real(dp), intent(in) :: values(:)
 
         integer :: i0, n1, m

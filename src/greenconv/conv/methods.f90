@@ -50,7 +50,7 @@ module greenconv_conv_methods
     type(method_entry), parameter :: registry(*) = [ &
         method_entry('direct', 'direct', 'direct', .true., .false., .true., .true., &
                      'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)'), &
-        method_entry('fft', 'fft', 'fft', .true., .false., .true., .false., &
+        method_entry('fft', 'fft', 'fft', .true., .false., .true., .true., &
                      'the same truncated sum by partitioned FFT convolution'), &
         method_entry('modal', 'recursive', 'recursive', .false., .true., .true., .true., &
                      'the modal recursion of the paper with decaying factors (an alias of recursive)'), &

@@ -64,6 +64,9 @@ module greenconv_conv_multipoint
         procedure :: is_explicit
         !> Set the instant compliance matrix W0 [m/N] (by the constructors).
         procedure :: set_instant_matrix
+        !> Free what the convolver holds outside Fortran (the FFTW plans of `fft`); call it
+        !> before dropping a convolver that has run. Nothing by default.
+        procedure :: release => release_nothing
     end type multipoint_convolver
 
     abstract interface
@@ -132,6 +135,15 @@ contains
         self%weight0(:, :) = w0
         self%explicit = maxval(abs(w0)) <= 0.0_dp
     end subroutine set_instant_matrix
+
+    !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
+    subroutine release_nothing(self)
+        !> The convolver.
+        class(multipoint_convolver), intent(inout) :: self
+
+        associate (unused => self)
+        end associate
+    end subroutine release_nothing
 
     !> Tabulate g_ij(t_m), t_m = m*dt, from modes and truncate it by the paper's rule.
     !>

@@ -276,6 +276,7 @@ contains
             run%peak = -huge(1.0_dp)
             call stream_run(run, scene, method, multi_contact_header(title(scene, method)), 7, block, &
                             scene%file//': '//method//': ', seconds, error)
+            call run%conv%release()
             if (allocated(error)) return
             call run%conv%model_size(n, label)
             write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, &
