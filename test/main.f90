@@ -26,6 +26,7 @@ program greenconv_tests
     use test_lapack_mod, only: collect_lapack
     use test_uff_mod, only: collect_uff
     use test_plate_mod, only: collect_plate
+    use test_spectra_mod, only: collect_spectra
     use test_uffwrite_mod, only: collect_uffwrite
     implicit none
 
@@ -50,6 +51,7 @@ program greenconv_tests
                        new_testsuite('lapack', collect_lapack), &
                        new_testsuite('uff', collect_uff), &
                        new_testsuite('plate', collect_plate), &
+                       new_testsuite('spectra', collect_spectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
