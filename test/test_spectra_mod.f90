@@ -8,7 +8,8 @@ module test_spectra_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
     use greenconv_core_random, only: random_stream
-    use greenconv_io_spectra, only: band_spectrum, third_octave_bands, welch_psd, band_levels
+    use greenconv_io_files, only: make_directory
+    use greenconv_io_spectra, only: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels
     implicit none
     private
 
@@ -129,6 +130,10 @@ contains
         call note('sum of bands/sum A^2/2 - 1', sum(spectrum%power)/sum(a**2/2.0_dp) - 1.0_dp)
         call check(error, abs(sum(spectrum%power)/sum(a**2/2.0_dp) - 1.0_dp) < 1.0e-3_dp, &
                    'the band powers do not add up to the mean square within 0.1 %')
+        if (allocated(error)) return
+        call make_directory('build/test_scratch', fail)
+        call write_band_levels('build/test_scratch/seven_sines_bands.dat', spectrum, 'seven sines', fail)
+        call check(error, .not. allocated(fail), 'write_band_levels failed')
         if (allocated(error)) return
         n = 4096
         call welch_psd(force, dt, n, psd, df, n_segments, fail)

@@ -46,7 +46,8 @@ contains
 
         do k = 1, 8
             n = 3 + k
-            functions(k)%id_lines = [character(len=80) :: 'function '//achar(48 + k)//' written by the test', 'run 7', '', &
+            functions(k)%id_lines = [character(len=80) :: 'function '//achar(48 + k)//' written by the test', &
+                                     'run 7', '', &
                                      'load case A', 'last ID line']
             functions(k)%function_type = merge(4, 1, mod(k, 2) == 0)
             functions(k)%function_id = 100 + k

@@ -22,8 +22,8 @@
 !> (default 8) lines: N is the smallest power of two with f_s/N <= (lowest band width)/8.
 !> Then the Hann window's main lobe (+-2 lines) of a tone at a band's centre lies well inside
 !> the band (which reaches at least 3.7 lines below and 4.2 above its centre), and its level
-!> comes out within 1e-4 dB (suite spectra measures 1.3e-5 dB). A record shorter than N samples is refused with the lowest band it
-!> could resolve.
+!> comes out within 1e-4 dB (suite spectra measures 1.3e-5 dB). A record shorter than N
+!> samples is refused with the lowest band it could resolve.
 !>
 !> **Band power and level**: P_band = integral of the PSD over the band's edges, each line
 !> standing for [f_k - df/2, f_k + df/2] and counted with the fraction of that interval inside
@@ -229,14 +229,17 @@ contains
         !> Set when the file cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        call write_columns(path, [character(len=200) :: '1/3-octave band levels of the '//what, &
-                           'IEC 61260-1 base-10 bands, exact centres 1000*10^(x/10) Hz, edges f_c*10^(+-1/20)', &
-                           'Welch PSD: Hann window, 50 % overlap, segment mean removed, '//int_text(spectrum%n_segments) &
-                           //' segments of '//int_text(spectrum%segment_length)//' samples, df = ' &
-                           //real_text(spectrum%df)//' Hz; band power = PSD integrated over the band edges', &
-                           'units: Hz Hz Hz N^2 dB_re_1N', 'f_centre f_lower f_upper power level'], &
-                           reshape([spectrum%centre, spectrum%lower, spectrum%upper, spectrum%power, spectrum%level], &
-                                   [size(spectrum%centre), 5]), error)
+        character(len=200) :: comments(5)
+
+        comments(1) = '1/3-octave band levels of the '//what
+        comments(2) = 'IEC 61260-1 base-10 bands, exact centres 1000*10^(x/10) Hz, edges f_c*10^(+-1/20)'
+        comments(3) = 'Welch PSD: Hann window, 50 % overlap, segment mean removed, '//int_text(spectrum%n_segments) &
+                      //' segments of '//int_text(spectrum%segment_length)//' samples, df = ' &
+                      //real_text(spectrum%df)//' Hz; band power = PSD integrated over the band edges'
+        comments(4) = 'units: Hz Hz Hz N^2 dB_re_1N'
+        comments(5) = 'f_centre f_lower f_upper power level'
+        call write_columns(path, comments, reshape([spectrum%centre, spectrum%lower, spectrum%upper, spectrum%power, &
+                                                    spectrum%level], [size(spectrum%centre), 5]), error)
     end subroutine write_band_levels
 
 end module greenconv_io_spectra

@@ -219,7 +219,7 @@ contains
             call fatal_error(error, prefix//'expected finite values, found a NaN or an infinity')
             return
         end if
-        if (function%ordinate_type <= 4 .and. any(function%ordinate%im /= 0.0_dp)) then
+        if (function%ordinate_type <= 4 .and. any(abs(function%ordinate%im) > 0.0_dp)) then
             call fatal_error(error, prefix//'a real ordinate type ('//int_text(function%ordinate_type) &
                              //') cannot hold the imaginary parts given; use type 5 or 6')
             return
@@ -257,7 +257,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         integer :: values(8), widths(8), k
-        character(len=*), parameter :: names(8) = [character(len=26) :: 'the function type', &
+        character(len=*), parameter :: names(8) = [character(len=27) :: 'the function type', &
             'the function identification', 'the version', 'the load case', 'the response node', &
             'the response direction', 'the reference node', 'the reference direction']
 
