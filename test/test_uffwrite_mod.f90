@@ -10,6 +10,8 @@ module test_uffwrite_mod
     use greenconv_io_files, only: make_directory
     use greenconv_io_uff, only: uff_file, uff_function, uff_node, uff_axis, read_uff, uff_receptance
     use greenconv_io_uff_write, only: uff_header, write_uff, receptance_function, impulse_function
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_plate, only: tyre_plate, plate_modes, patch_receptance
     implicit none
     private
 
@@ -32,7 +34,9 @@ contains
                                   test_round_trip_15), &
                      new_unittest('round trip: nodes in dataset 2411 to 17 digits', test_round_trip_2411), &
                      new_unittest('receptance and impulse response functions: kinds, axes, grids', test_builders), &
-                     new_unittest('refused: types, grids, values, fields, nodes, paths; no file left', test_refused)]
+                     new_unittest('refused: types, grids, values, fields, nodes, paths; no file left', test_refused), &
+                     new_unittest('shipped data/patch_green.uff equals the plate model within its 1 % noise', &
+                                  test_shipped_patch)]
     end subroutine collect_uffwrite
 
     !> Eight functions, one per ordinate type and spacing, with values over many decades
@@ -252,6 +256,48 @@ contains
                    maxval(abs(file%functions(1)%ordinate - g)/abs(g)) < double_digits .and. &
                    maxval(abs(file%functions(2)%ordinate%re - h)) < double_digits, 'grids or values differ')
     end subroutine test_builders
+
+    !> The shipped file read back: 144 receptances on 0..1200 Hz by 4 Hz and 12 nodes; each line
+    !> divided by the noiseless G of the plate at the file's node coordinates deviates from 1
+    !> by the stated 1 % rms of complex noise.
+    subroutine test_shipped_patch(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(uff_file) :: file
+        type(point_modes) :: description
+        type(error_type), allocatable :: fail
+        complex(dp), allocatable :: g(:, :)
+        real(dp) :: x(12), y(12), squares, worst
+        integer :: k, f, i, j
+
+        call read_uff('data/patch_green.uff', file, fail)
+        call check(error, .not. allocated(fail), 'read_uff failed: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, size(file%functions) == 144 .and. size(file%nodes) == 12, 'expected 144 functions, 12 nodes')
+        if (allocated(error)) return
+        x = file%nodes%position(1)
+        y = file%nodes%position(2)
+        call plate_modes(tyre_plate(), x, y, 1.0e4_dp, description, fail)
+        call check(error, .not. allocated(fail), 'plate_modes failed')
+        if (allocated(error)) return
+        squares = 0.0_dp
+        worst = 0.0_dp
+        do f = 1, size(file%functions(1)%ordinate)
+            g = patch_receptance(description, 2.0_dp*acos(-1.0_dp)*file%functions(1)%abscissa(f))
+            do k = 1, 144
+                i = file%functions(k)%response_node
+                j = file%functions(k)%reference_node
+                squares = squares + abs(file%functions(k)%ordinate(f)/g(i, j) - 1.0_dp)**2
+                worst = max(worst, abs(file%functions(k)%ordinate(f)/g(i, j) - 1.0_dp))
+            end do
+        end do
+        squares = sqrt(squares/(144*size(file%functions(1)%ordinate)))
+        call note('rms |G_file/G - 1|', squares)
+        call note('max |G_file/G - 1|', worst)
+        call note('f_max [Hz]', file%functions(1)%abscissa(size(file%functions(1)%abscissa)))
+        call check(error, abs(squares - 0.01_dp) < 5.0e-4_dp .and. worst < 0.06_dp, &
+                   'the shipped file differs from the plate model by more than its 1 % noise')
+    end subroutine test_shipped_patch
 
     !> Each case the writer refuses: one message naming what to change, and no file.
     subroutine test_refused(error)
