@@ -27,6 +27,9 @@ program greenconv_tests
     use test_uff_mod, only: collect_uff
     use test_greenfft_mod, only: collect_greenfft
     use test_realtext_mod, only: collect_realtext
+    use test_plate_mod, only: collect_plate
+    use test_spectra_mod, only: collect_spectra
+    use test_uffwrite_mod, only: collect_uffwrite
     implicit none
 
     integer :: n_passed, n_failed
@@ -51,6 +54,9 @@ program greenconv_tests
                        new_testsuite('uff', collect_uff), &
                        new_testsuite('greenfft', collect_greenfft), &
                        new_testsuite('realtext', collect_realtext), &
+                       new_testsuite('plate', collect_plate), &
+                       new_testsuite('spectra', collect_spectra), &
+                       new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
