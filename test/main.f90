@@ -17,6 +17,7 @@ program greenconv_tests
     use test_library_mod, only: collect_library
     use test_input_mod, only: collect_input
     use test_longrun_mod, only: collect_longrun
+    use test_mlfit_mod, only: collect_mlfit
     implicit none
 
     integer :: n_passed, n_failed
@@ -37,6 +38,7 @@ program greenconv_tests
     call run_testsuite('library', collect_library, output_unit, n_passed, n_failed)
     call run_testsuite('input', collect_input, output_unit, n_passed, n_failed)
     call run_testsuite('longrun', collect_longrun, output_unit, n_passed, n_failed)
+    call run_testsuite('mlfit', collect_mlfit, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

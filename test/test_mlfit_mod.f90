@@ -1,0 +1,422 @@
+!> Maximum-likelihood identification (greenconv_ident_mlfit) against the Cramér-Rao bound.
+!>
+!> The bound is computed here, independently of the fit: the Jacobian of the modal model
+!> with respect to (f_k [Hz], xi_k, Re r_k, Im r_k) at the TRUE parameters by central
+!> differences of greenconv_model_modal_set's `receptance`, W = diag(1/sigma_l^2) with the
+!> true sigma_l = level*|G_l|, Fisher F = sum_l 2*Re(J_l^H*J_l)/sigma_l^2 (the noise is complex
+!> Gaussian, E|n_l|^2 = sigma_l^2, variance sigma_l^2/2 in each of Re and Im), CRB = inv(F).
+!>
+!> Structures: (a) 12 modes to 5 kHz on 8193 lines, a close pair 412/418 Hz, xi 0.003 to
+!> 0.2, mixed signs; (b) xi = 0.001 and 0.3, modes at 8 Hz and 985 Hz of a 1 kHz band;
+!> (c) 3 modes. Amplitudes A_k = sign*c_k*xi_k*omega_k^2 give peaks |G| = c_k/2 of the same order.
+module test_mlfit_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use greenconv_core_error, only: error_type
+    use greenconv_core_random, only: random_stream
+    use greenconv_ext_lapack, only: solve_linear
+    use greenconv_model_modal_set, only: modal_set, modes_from_paper
+    use greenconv_model_frf, only: frf_type, frf_from_modes
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    implicit none
+    private
+
+    public :: collect_mlfit
+
+    real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
+    real(dp), parameter :: two_pi = 2.0_dp*pi
+    !> Largest error allowed, in units of the CRB standard deviation, for every mode and draw.
+    real(dp), parameter :: crb_limit = 5.0_dp
+    !> Noise levels (fraction of |G| per line).
+    real(dp), parameter :: levels(3) = [1.0e-3_dp, 1.0e-2_dp, 3.0e-2_dp]
+
+contains
+
+    !> Tests of greenconv_ident_mlfit.
+    subroutine collect_mlfit(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('crb: (a) 12 modes, close pair, mixed signs; 0.1/1/3 % noise', test_case_a), &
+                     new_unittest('crb: (b) xi 0.001 and 0.3, both band edges; 0.1/1/3 % noise', test_case_b), &
+                     new_unittest('crb: (c) 3 modes; 0.1/1/3 % noise', test_case_c), &
+                     new_unittest('uncertainty: reported sigma against the spread of 50 draws', test_monte_carlo), &
+                     new_unittest('clean: (a) fitted to round-off with exactly 12 modes', test_clean), &
+                     new_unittest('coarse grid: an under-resolved light mode is reported', test_coarse), &
+                     new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed)]
+    end subroutine collect_mlfit
+
+    ! ---- structures --------------------------------------------------------------------
+
+    !> Paper modes with peaks |G| = c_k/2 [m/N]: A_k = sign_k*c_k*xi_k*omega_k^2.
+    pure function structure(frequency, damping, height) result(modes)
+        real(dp), intent(in) :: frequency(:), damping(:), height(:)
+        type(modal_set) :: modes
+
+        modes = modes_from_paper(height*damping*(two_pi*frequency)**2, two_pi*frequency, damping)
+    end function structure
+
+    !> (a) 12 modes to 5 kHz.
+    function case_a() result(modes)
+        type(modal_set) :: modes
+
+        modes = structure([95.0_dp, 412.0_dp, 418.0_dp, 730.0_dp, 1150.0_dp, 1600.0_dp, 2100.0_dp, 2650.0_dp, &
+                           3200.0_dp, 3800.0_dp, 4300.0_dp, 4750.0_dp], &
+                          [0.01_dp, 0.003_dp, 0.005_dp, 0.02_dp, 0.12_dp, 0.008_dp, 0.05_dp, 0.2_dp, 0.015_dp, &
+                           0.03_dp, 0.006_dp, 0.04_dp], &
+                          1.0e-6_dp*[1.0_dp, -0.6_dp, 0.8_dp, 1.5_dp, -2.0_dp, 0.7_dp, 3.0_dp, -4.0_dp, 1.2_dp, &
+                                     -0.9_dp, 0.5_dp, 2.0_dp])
+    end function case_a
+
+    !> (b) light and heavy damping, modes near both band edges of 1 kHz.
+    function case_b() result(modes)
+        type(modal_set) :: modes
+
+        modes = structure([8.0_dp, 300.0_dp, 520.0_dp, 700.0_dp, 985.0_dp], &
+                          [0.05_dp, 0.001_dp, 0.3_dp, 0.01_dp, 0.005_dp], &
+                          1.0e-6_dp*[1.0_dp, 0.5_dp, -3.0_dp, 1.0_dp, -0.8_dp])
+    end function case_b
+
+    !> (c) 3 modes to 500 Hz.
+    function case_c() result(modes)
+        type(modal_set) :: modes
+
+        modes = structure([60.0_dp, 180.0_dp, 320.0_dp], [0.02_dp, 0.01_dp, 0.04_dp], &
+                          1.0e-6_dp*[1.0_dp, -0.7_dp, 1.5_dp])
+    end function case_c
+
+    ! ---- helpers -----------------------------------------------------------------------
+
+    !> Add complex Gaussian noise of standard deviation level*|G_l| to each line (Re and Im
+    !> independent, each of variance (level*|G_l|)^2/2; Box-Muller on the portable stream).
+    subroutine add_noise(frf, level, seed)
+        type(frf_type), intent(inout) :: frf
+        real(dp), intent(in) :: level
+        integer, intent(in) :: seed
+
+        type(random_stream) :: stream
+        real(dp) :: radius, angle
+        integer :: l
+
+        stream = random_stream(seed)
+        do l = 1, frf%n_freq()
+            radius = sqrt(-2.0_dp*log(1.0_dp - stream%uniform()))
+            angle = two_pi*stream%uniform()
+            frf%receptance(l) = frf%receptance(l) + level*abs(frf%receptance(l))*sqrt(0.5_dp) &
+                                *cmplx(radius*cos(angle), radius*sin(angle), dp)
+        end do
+    end subroutine add_noise
+
+    !> Receptance of modes given as (f [Hz], xi, Re r, Im r) per mode, at omega [rad/s].
+    pure function model_of(theta, omega) result(g)
+        real(dp), intent(in) :: theta(:), omega(:)
+        complex(dp) :: g(size(omega))
+
+        type(modal_set) :: modes
+        integer :: k, n
+
+        n = size(theta)/4
+        allocate (modes%pole(n), modes%residue(n))
+        do k = 1, n
+            modes%pole(k) = two_pi*theta(4*k - 3)*cmplx(-theta(4*k - 2), sqrt(1.0_dp - theta(4*k - 2)**2), dp)
+            modes%residue(k) = cmplx(theta(4*k - 1), theta(4*k), dp)
+        end do
+        g = modes%receptance(omega)
+    end function model_of
+
+    !> Cramér-Rao standard deviations of f [Hz] and xi of each true mode for noise level*|G|.
+    subroutine cramer_rao(truth, frf, level, sigma_f, sigma_xi, error)
+        type(modal_set), intent(in) :: truth
+        type(frf_type), intent(in) :: frf
+        real(dp), intent(in) :: level
+        real(dp), allocatable, intent(out) :: sigma_f(:), sigma_xi(:)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: theta(:), omega(:), fisher(:, :), x(:), e(:), w(:), scale(:)
+        complex(dp), allocatable :: jac(:, :)
+        type(error_type), allocatable :: failure
+        real(dp) :: h
+        integer :: n, p, i, j, k
+
+        n = truth%n_modes()
+        p = 4*n
+        allocate (theta(p), jac(frf%n_freq(), p), fisher(p, p), x(p), e(p), sigma_f(n), sigma_xi(n))
+        do k = 1, n
+            theta(4*k - 3) = abs(truth%pole(k))/two_pi
+            theta(4*k - 2) = -real(truth%pole(k), dp)/abs(truth%pole(k))
+            theta(4*k - 1) = real(truth%residue(k), dp)
+            theta(4*k) = aimag(truth%residue(k))
+        end do
+        omega = two_pi*frf%frequency
+        do i = 1, p
+            h = 1.0e-6_dp*max(abs(theta(i)), abs(truth%residue((i + 3)/4)))
+            if (mod(i, 4) == 1 .or. mod(i, 4) == 2) h = 1.0e-6_dp*abs(theta(i))
+            e = 0.0_dp
+            e(i) = h
+            jac(:, i) = (model_of(theta + e, omega) - model_of(theta - e, omega))/(2.0_dp*h)
+        end do
+        w = 2.0_dp/(level*abs(model_of(theta, omega)))**2
+        do j = 1, p
+            do i = 1, p
+                fisher(i, j) = sum(w*real(conjg(jac(:, i))*jac(:, j), dp))
+            end do
+        end do
+        scale = [(sqrt(fisher(i, i)), i=1, p)]
+        fisher = fisher/spread(scale, 1, p)/spread(scale, 2, p)
+        do k = 1, n
+            do i = 1, 2
+                j = 4*(k - 1) + i
+                e = 0.0_dp
+                e(j) = 1.0_dp
+                call solve_linear(fisher, e, x, failure)
+                call check(error, .not. allocated(failure), 'CRB: singular Fisher information')
+                if (allocated(error)) return
+                if (i == 1) sigma_f(k) = sqrt(x(j))/scale(j)
+                if (i == 2) sigma_xi(k) = sqrt(x(j))/scale(j)
+            end do
+        end do
+    end subroutine cramer_rao
+
+    !> Fit one noisy draw and measure the worst error of f and xi in CRB units; fails when a
+    !> mode is missed or invented (numbers differ or two true modes share a found one).
+    subroutine fit_draw(truth, f_max, n_freq, level, seed, worst_f, worst_xi, error, result)
+        type(modal_set), intent(in) :: truth
+        real(dp), intent(in) :: f_max, level
+        integer, intent(in) :: n_freq, seed
+        real(dp), intent(out) :: worst_f, worst_xi
+        type(test_error), allocatable, intent(out) :: error
+        type(ml_result), intent(out), optional :: result
+
+        type(frf_type) :: clean, noisy
+        type(ml_options) :: options
+        type(ml_result) :: fitted
+        type(error_type), allocatable :: failure
+        real(dp), allocatable :: sigma_f(:), sigma_xi(:)
+        integer, allocatable :: match(:)
+        character(len=200) :: text
+        integer :: k
+
+        worst_f = huge(1.0_dp)
+        worst_xi = huge(1.0_dp)
+        clean = frf_from_modes(truth, f_max, n_freq)
+        noisy = clean
+        call add_noise(noisy, level, seed)
+        call identify_ml(noisy, options, fitted, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        write (text, '(a,es8.1,a,i0,a,i0,a,i0)') 'noise ', level, ', seed ', seed, ': found ', &
+            fitted%modes%n_modes(), ' modes, expected ', truth%n_modes()
+        call check(error, fitted%modes%n_modes() == truth%n_modes(), trim(text))
+        if (allocated(error)) return
+        allocate (match(truth%n_modes()))
+        do k = 1, truth%n_modes()
+            match(k) = minloc(abs(fitted%modes%pole - truth%pole(k)), 1)
+        end do
+        do k = 1, truth%n_modes()
+            call check(error, count(match == match(k)) == 1, trim(text)//': two true modes share one found mode')
+            if (allocated(error)) return
+        end do
+        call cramer_rao(truth, clean, level, sigma_f, sigma_xi, error)
+        if (allocated(error)) return
+        worst_f = 0.0_dp
+        worst_xi = 0.0_dp
+        do k = 1, truth%n_modes()
+            associate (found => fitted%modes%pole(match(k)), pole => truth%pole(k))
+                worst_f = max(worst_f, abs(abs(found) - abs(pole))/two_pi/sigma_f(k))
+                worst_xi = max(worst_xi, abs(real(found, dp)/abs(found) - real(pole, dp)/abs(pole))/sigma_xi(k))
+            end associate
+        end do
+        if (present(result)) result = fitted
+    end subroutine fit_draw
+
+    !> Every noise level with `seeds` draws: no mode missed or invented, every error within
+    !> crb_limit CRB standard deviations; the worst per level is noted.
+    subroutine check_case(error, truth, f_max, n_freq, seeds)
+        type(test_error), allocatable, intent(out) :: error
+        type(modal_set), intent(in) :: truth
+        real(dp), intent(in) :: f_max
+        integer, intent(in) :: n_freq, seeds
+
+        real(dp) :: worst_f, worst_xi, level_f, level_xi
+        character(len=24) :: label
+        integer :: i, seed
+
+        do i = 1, size(levels)
+            level_f = 0.0_dp
+            level_xi = 0.0_dp
+            do seed = 1, seeds
+                call fit_draw(truth, f_max, n_freq, levels(i), 1000*i + seed, worst_f, worst_xi, error)
+                if (allocated(error)) return
+                level_f = max(level_f, worst_f)
+                level_xi = max(level_xi, worst_xi)
+            end do
+            write (label, '(f4.1,a)') 100.0_dp*levels(i), ' %'
+            call note('f/crb '//trim(adjustl(label)), level_f)
+            call note('xi/crb '//trim(adjustl(label)), level_xi)
+            call check(error, level_f, 0.0_dp, 'worst |f - f_true|/sigma_CRB at '//trim(adjustl(label)), thr=crb_limit)
+            if (allocated(error)) return
+            call check(error, level_xi, 0.0_dp, 'worst |xi - xi_true|/sigma_CRB at '//trim(adjustl(label)), &
+                       thr=crb_limit)
+            if (allocated(error)) return
+        end do
+    end subroutine check_case
+
+    ! ---- tests -------------------------------------------------------------------------
+
+    subroutine test_case_a(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call check_case(error, case_a(), 5000.0_dp, 8193, 2)
+    end subroutine test_case_a
+
+    subroutine test_case_b(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call check_case(error, case_b(), 1000.0_dp, 4097, 3)
+    end subroutine test_case_b
+
+    subroutine test_case_c(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call check_case(error, case_c(), 500.0_dp, 2049, 3)
+    end subroutine test_case_c
+
+    !> Case (c) at 1 % noise, 50 draws: for every mode the standard deviation of f_hat and of
+    !> xi_hat over the draws agrees with the mean reported sigma within +-30 % (the spread of
+    !> a standard deviation from 50 draws is about 10 %); the ratio to the CRB is noted.
+    subroutine test_monte_carlo(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: draws = 50
+        type(modal_set) :: truth
+        type(ml_result) :: result
+        real(dp) :: f(draws, 3), xi(draws, 3), sf(draws, 3), sx(draws, 3), worst_f, worst_xi, ratio
+        real(dp) :: worst_ratio, best_ratio
+        integer :: d, k, j
+
+        truth = case_c()
+        do d = 1, draws
+            call fit_draw(truth, 500.0_dp, 2049, 1.0e-2_dp, 7000 + d, worst_f, worst_xi, error, result)
+            if (allocated(error)) return
+            do k = 1, 3
+                j = minloc(abs(result%modes%pole - truth%pole(k)), 1)
+                f(d, k) = abs(result%modes%pole(j))/two_pi
+                xi(d, k) = -real(result%modes%pole(j), dp)/abs(result%modes%pole(j))
+                sf(d, k) = result%sigma_frequency(j)
+                sx(d, k) = result%sigma_damping(j)
+            end do
+        end do
+        worst_ratio = 0.0_dp
+        best_ratio = huge(1.0_dp)
+        do k = 1, 3
+            ratio = spread_of(f(:, k))/(sum(sf(:, k))/draws)
+            worst_ratio = max(worst_ratio, ratio)
+            best_ratio = min(best_ratio, ratio)
+            ratio = spread_of(xi(:, k))/(sum(sx(:, k))/draws)
+            worst_ratio = max(worst_ratio, ratio)
+            best_ratio = min(best_ratio, ratio)
+        end do
+        call note('max std/sigma', worst_ratio)
+        call note('min std/sigma', best_ratio)
+        call check(error, worst_ratio, 1.0_dp, 'largest spread/reported sigma', thr=0.3_dp)
+        if (allocated(error)) return
+        call check(error, best_ratio, 1.0_dp, 'smallest spread/reported sigma', thr=0.3_dp)
+    contains
+        pure real(dp) function spread_of(x)
+            real(dp), intent(in) :: x(:)
+
+            spread_of = sqrt(sum((x - sum(x)/size(x))**2)/(size(x) - 1))
+        end function spread_of
+    end subroutine test_monte_carlo
+
+    !> Case (a) without noise: exactly 12 modes, f and xi to 1e-9 relative, residual below
+    !> 1e-10 of max |G| on every line.
+    subroutine test_clean(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(modal_set) :: truth
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+        real(dp) :: err_f, err_xi, misfit
+        integer :: k, j
+
+        truth = case_a()
+        frf = frf_from_modes(truth, 5000.0_dp, 8193)
+        call identify_ml(frf, options, result, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call check(error, result%modes%n_modes() == 12, 'expected 12 modes on clean data')
+        if (allocated(error)) return
+        err_f = 0.0_dp
+        err_xi = 0.0_dp
+        do k = 1, 12
+            j = minloc(abs(result%modes%pole - truth%pole(k)), 1)
+            err_f = max(err_f, abs(abs(result%modes%pole(j))/abs(truth%pole(k)) - 1.0_dp))
+            err_xi = max(err_xi, abs(real(result%modes%pole(j), dp)/abs(result%modes%pole(j)) &
+                                     /(real(truth%pole(k), dp)/abs(truth%pole(k))) - 1.0_dp))
+        end do
+        misfit = maxval(abs(frf%receptance(2:) - result%receptance(two_pi*frf%frequency(2:)))) &
+                 /maxval(abs(frf%receptance))
+        call note('f err', err_f)
+        call note('xi err', err_xi)
+        call note('misfit', misfit)
+        call check(error, err_f, 0.0_dp, 'relative error of f', thr=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, err_xi, 0.0_dp, 'relative error of xi', thr=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, misfit, 0.0_dp, 'max |G - G_model|/max |G|', thr=1.0e-10_dp)
+    end subroutine test_clean
+
+    !> 100 Hz with xi = 0.001 (half-power band 0.2 Hz) on a 1 Hz grid, beside 300 Hz with xi =
+    !> 0.02, 0.1 % noise: both found, and the light one named as under-resolved.
+    subroutine test_coarse(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+
+        frf = frf_from_modes(structure([100.0_dp, 300.0_dp], [0.001_dp, 0.02_dp], 1.0e-6_dp*[1.0_dp, 1.0_dp]), &
+                             500.0_dp, 501)
+        call add_noise(frf, 1.0e-3_dp, 11)
+        call identify_ml(frf, options, result, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call check(error, result%modes%n_modes() == 2, 'expected 2 modes')
+        if (allocated(error)) return
+        call check(error, index(result%warning, 'under-resolved mode at 100') > 0, &
+                   'expected a warning naming the under-resolved mode at 100 Hz, got: '//result%warning)
+        if (allocated(error)) return
+        call check(error, index(result%warning, 'under-resolved mode at 300') == 0, &
+                   'the resolved mode at 300 Hz must not be reported: '//result%warning)
+    end subroutine test_coarse
+
+    !> Case (a) at 1 % noise with the default max_order = 30: CPU time of one fit noted (not
+    !> asserted), with the chosen order and the noise estimate.
+    subroutine test_speed(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+        real(dp) :: start, finish
+
+        frf = frf_from_modes(case_a(), 5000.0_dp, 8193)
+        call add_noise(frf, 1.0e-2_dp, 5)
+        call cpu_time(start)
+        call identify_ml(frf, options, result, failure)
+        call cpu_time(finish)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call note('cpu s', finish - start)
+        call note('modes', real(result%modes%n_modes(), dp))
+        call note('noise', result%noise_level)
+        call note('noise fit', result%noise_level_fit)
+        call note('LM iterations', real(result%iterations, dp))
+        call check(error, result%modes%n_modes() == 12, 'expected 12 modes')
+    end subroutine test_speed
+
+end module test_mlfit_mod
