@@ -42,6 +42,9 @@ contains
                      new_unittest('uncertainty: reported sigma against the spread of 50 draws', test_monte_carlo), &
                      new_unittest('clean: (a) fitted to round-off with exactly 12 modes', test_clean), &
                      new_unittest('coarse grid: an under-resolved light mode is reported', test_coarse), &
+                     new_unittest('noise given per line: same modes, sigma scale confirmed', test_given_sigma), &
+                     new_unittest('drop: spurious start poles are removed by the criterion and listed', test_drop), &
+                     new_unittest('diagram: orders 1..max_order, flags, stable poles at the true modes', test_diagram), &
                      new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed)]
     end subroutine collect_mlfit
 
@@ -417,6 +420,121 @@ contains
         call note('noise fit', result%noise_level_fit)
         call note('LM iterations', real(result%iterations, dp))
         call check(error, result%modes%n_modes() == 12, 'expected 12 modes')
+        if (allocated(error)) return
+        ! The smoothness estimate (bias stated in the module) within 10 %, the refit within 3 %
+        ! (its own spread is about 1/sqrt(2L) = 0.8 %).
+        call check(error, result%noise_level, 1.0e-2_dp, 'noise level estimated from the data', thr=0.1_dp, rel=.true.)
+        if (allocated(error)) return
+        call check(error, result%noise_level_fit, 1.0e-2_dp, 'noise level from the final residual', thr=0.03_dp, &
+                   rel=.true.)
     end subroutine test_speed
+
+    !> Case (c) at 1 % noise with the true sigma_l = 0.01*|G_l| given: 3 modes within the CRB
+    !> limit, the residual asks a factor within 5 % of 1 on the given sigma, and the chi2 test
+    !> says the residual is explained.
+    subroutine test_given_sigma(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(modal_set) :: truth
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+        real(dp), allocatable :: sigma_f(:), sigma_xi(:)
+        real(dp) :: worst
+        integer :: k, j
+
+        truth = case_c()
+        frf = frf_from_modes(truth, 500.0_dp, 2049)
+        options%sigma = 1.0e-2_dp*abs(frf%receptance)
+        call cramer_rao(truth, frf, 1.0e-2_dp, sigma_f, sigma_xi, error)
+        if (allocated(error)) return
+        call add_noise(frf, 1.0e-2_dp, 42)
+        call identify_ml(frf, options, result, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call check(error, result%modes%n_modes() == 3 .and. .not. result%noise_estimated, &
+                   'expected 3 modes and the noise not estimated')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do k = 1, 3
+            j = minloc(abs(result%modes%pole - truth%pole(k)), 1)
+            worst = max(worst, abs(abs(result%modes%pole(j)) - abs(truth%pole(k)))/two_pi/sigma_f(k))
+        end do
+        call note('f/crb', worst)
+        call note('sigma factor', result%noise_level_fit)
+        call check(error, worst, 0.0_dp, 'worst |f - f_true|/sigma_CRB', thr=crb_limit)
+        if (allocated(error)) return
+        call check(error, result%noise_level_fit, 1.0_dp, 'factor on the given sigma', thr=0.05_dp)
+        if (allocated(error)) return
+        call check(error, result%explained, 'chi2 test: residual explained by the given noise')
+    end subroutine test_given_sigma
+
+    !> Case (c) at 1 % noise with stable_orders = 1: every pole of the highest order that is
+    !> stable once starts the fit (noise poles among them); the result still has the 3 true
+    !> modes, and the removed ones are listed with their reason.
+    subroutine test_drop(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+
+        frf = frf_from_modes(case_c(), 500.0_dp, 2049)
+        call add_noise(frf, 1.0e-2_dp, 43)
+        options%stable_orders = 1
+        call identify_ml(frf, options, result, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call note('start poles', real(result%n_start, dp))
+        call note('dropped', real(size(result%dropped_pole), dp))
+        call check(error, result%n_start > 3, 'expected noise poles among the start poles with stable_orders = 1')
+        if (allocated(error)) return
+        call check(error, result%modes%n_modes() == 3, 'expected the 3 true modes')
+        if (allocated(error)) return
+        call check(error, size(result%dropped_pole) >= result%n_start - 3 .and. size(result%dropped_reason) &
+                   == size(result%dropped_pole), 'expected every start pole not kept to be listed as dropped')
+    end subroutine test_drop
+
+    !> Case (c) at 0.1 % noise: the diagram holds the orders 1..30 (the default max_order), flags
+    !> in 0..2, and at the highest order a pole stable in f and xi within 1 % of each true mode.
+    subroutine test_diagram(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(modal_set) :: truth
+        type(frf_type) :: frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+        logical :: top(0:0)
+        integer :: k
+        real(dp) :: f
+
+        truth = case_c()
+        frf = frf_from_modes(truth, 500.0_dp, 2049)
+        call add_noise(frf, 1.0e-3_dp, 44)
+        call identify_ml(frf, options, result, failure)
+        call check(error, .not. allocated(failure), 'identify_ml failed')
+        if (allocated(error)) return
+        call check(error, minval(result%diagram_order) >= 1 .and. maxval(result%diagram_order) == 30 .and. &
+                   all(result%diagram_flag >= 0 .and. result%diagram_flag <= 2) .and. &
+                   size(result%unstable_by_order) == 30, 'diagram orders 1..30, flags 0..2')
+        if (allocated(error)) return
+        do k = 1, 3
+            f = abs(truth%pole(k))/two_pi
+            top(0) = any(result%diagram_order == 30 .and. result%diagram_flag == 2 .and. &
+                         abs(result%diagram_frequency - f) < 0.01_dp*f)
+            call check(error, top(0), 'no stable pole at the highest order near '//trim(text_of(f))//' Hz')
+            if (allocated(error)) return
+        end do
+    contains
+        function text_of(x) result(text)
+            real(dp), intent(in) :: x
+            character(len=16) :: text
+
+            write (text, '(f8.1)') x
+        end function text_of
+    end subroutine test_diagram
 
 end module test_mlfit_mod

@@ -56,6 +56,7 @@
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 module greenconv_ident_mlfit
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, real_text
@@ -67,7 +68,7 @@ module greenconv_ident_mlfit
     private
 
     public :: ml_options, ml_result, identify_ml, estimate_noise
-    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate
+    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -79,6 +80,12 @@ module greenconv_ident_mlfit
     integer, parameter :: dropped_left_band = 2
     !> Reason code of a dropped mode: its Fisher information was singular (e.g. two poles merged).
     integer, parameter :: dropped_degenerate = 3
+    !> Reason code of a dropped mode: the fit pushed it onto the stability boundary
+    !> (xi < boundary_damping: a line-wide spike fitting noise, not a mode).
+    integer, parameter :: dropped_boundary = 4
+
+    !> Damping ratio below which a fitted pole counts as on the stability boundary.
+    real(dp), parameter :: boundary_damping = 1.0e-8_dp
 
     !> Damping ratios tried for a mode started at a residual peak.
     real(dp), parameter :: trial_damping(6) = [0.001_dp, 0.003_dp, 0.01_dp, 0.03_dp, 0.1_dp, 0.3_dp]
@@ -131,9 +138,11 @@ module greenconv_ident_mlfit
         logical :: has_upper = .false.
         !> Whether R_l is part of the model (the 0 Hz line is then left out).
         logical :: has_lower = .false.
-        !> Noise level used for the order choice: rho (relative model) or sigma [m/N] (absolute); 0 if given.
+        !> Noise level used for the order choice: rho (relative model) or sigma [m/N] (absolute);
+        !> 1 when sigma is given (the scale of the given sigma).
         real(dp) :: noise_level = 0.0_dp
-        !> Noise level refitted from the final residual, noise_level*sqrt(chi2/nu).
+        !> Noise level refitted from the final residual, noise_level*sqrt(chi2/nu) (for a given
+        !> sigma: the factor the residual asks of it).
         real(dp) :: noise_level_fit = 0.0_dp
         !> Whether the noise level was estimated from the data (not given).
         logical :: noise_estimated = .false.
@@ -165,7 +174,7 @@ module greenconv_ident_mlfit
         integer :: n_start = 0
         !> Modes removed during the fit (pole [rad/s]).
         complex(dp), allocatable :: dropped_pole(:)
-        !> Why each was removed: dropped_by_criterion, dropped_left_band or dropped_degenerate.
+        !> Why each was removed: dropped_by_criterion, dropped_left_band, dropped_degenerate or dropped_boundary.
         integer, allocatable :: dropped_reason(:)
         !> Warnings for the user ('' when none).
         character(len=:), allocatable :: warning
@@ -181,13 +190,19 @@ module greenconv_ident_mlfit
         real(dp) :: r_u = 0.0_dp, r_l = 0.0_dp
     end type model_type
 
-    !> The weighted data: lines used, G and 1/sigma on them.
+    !> The weighted data: lines used, G and 1/sigma on them; for the relative noise model the
+    !> level rho and the floor of sigma, to take the weights from a model's |G|.
     type :: data_type
-        real(dp), allocatable :: omega(:), weight(:)
+        real(dp), allocatable :: omega(:), weight(:), floor(:)
         complex(dp), allocatable :: g(:)
-        real(dp) :: penalty = 0.0_dp, f_max = 0.0_dp
+        real(dp) :: penalty = 0.0_dp, f_max = 0.0_dp, level = 0.0_dp
+        logical :: relative = .false.
         integer :: max_iterations = 60
     end type data_type
+
+    !> Levenberg-Marquardt iterations of a trial fit (a mode added or removed, a residual term)
+    !> before the criterion decides; the kept model is then refined fully.
+    integer, parameter :: trial_iterations = 5
 
 contains
 
@@ -295,7 +310,7 @@ contains
         type(data_type) :: data
         type(model_type) :: model
         complex(dp), allocatable :: start(:), candidates(:)
-        real(dp), allocatable :: sigma(:)
+        real(dp), allocatable :: sigma(:), floor(:)
         logical :: allow_lower
 
         call check_input(frf, options, error)
@@ -304,6 +319,8 @@ contains
         result%warning = ''
         allow_lower = any(options%residual_terms == [character(len=8) :: 'auto', 'lower', 'both'])
         ! Noise standard deviation per line.
+        floor = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
+        result%noise_level = 1.0_dp
         if (allocated(options%sigma)) then
             sigma = options%sigma
         else
@@ -315,8 +332,9 @@ contains
                 sigma = result%noise_level*abs(frf%receptance)
             end if
         end if
-        sigma = max(sigma, options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
-        call make_data(frf, sigma, allow_lower, options, data)
+        call make_data(frf, max(sigma, floor), floor, allow_lower, options, data)
+        data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
+        data%level = result%noise_level
 
         call build_diagram(frf, options, result, start, candidates, error)
         if (allocated(error)) return
@@ -327,15 +345,12 @@ contains
         model%lower = any(options%residual_terms == [character(len=8) :: 'lower', 'both'])
         call fit(data, model, result, error)
         if (allocated(error)) return
+        call reweight(data, model, result)
         call choose_order(data, options, candidates, model, result, error)
         if (allocated(error)) return
-        ! Relative noise: weights from the model rather than from the noisy |G|, then refit.
-        if (result%noise_estimated .and. options%noise_model /= 'absolute') then
-            sigma = max(result%noise_level*abs(evaluate(model, two_pi*frf%frequency)), &
-                        options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
-            call make_data(frf, sigma, allow_lower, options, data)
-            call refine(data, model, result)
-        end if
+        call reweight(data, model, result)
+        call drop_outside(data, model, result, error)
+        if (allocated(error)) return
         call finish(frf, data, options, model, result)
     end subroutine identify_ml
 
@@ -349,6 +364,13 @@ contains
             call fatal_error(error, 'identify_ml: the FRF has fewer than '//int_text(min_frf_lines)//' lines')
         else if (abs(frf%frequency(1)) > 0.0_dp .or. .not. (frf%df() > 0.0_dp)) then
             call fatal_error(error, 'identify_ml: the FRF grid must start at 0 Hz and increase')
+        else if (size(frf%receptance) /= frf%n_freq()) then
+            call fatal_error(error, 'identify_ml: the FRF has not one receptance per frequency')
+        else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
+            call fatal_error(error, 'identify_ml: the FRF holds a NaN or infinite receptance; remove or repair ' &
+                             //'those lines')
+        else if (.not. any(abs(frf%receptance(2:)) > 0.0_dp)) then
+            call fatal_error(error, 'identify_ml: the receptance is zero on every line above 0 Hz: nothing to fit')
         else if (options%max_order < 1 .or. options%stable_orders < 1) then
             call fatal_error(error, 'identify_ml: max_order and stable_orders must be >= 1')
         else if (.not. any(options%residual_terms == [character(len=8) :: 'auto', 'none', 'upper', 'lower', &
@@ -370,9 +392,9 @@ contains
 
     !> The lines used (the 0 Hz line is left out when a lower residual may be fitted), their
     !> weights 1/sigma_l and the MDL price per parameter ln(2L).
-    subroutine make_data(frf, sigma, skip_zero, options, data)
+    subroutine make_data(frf, sigma, floor, skip_zero, options, data)
         type(frf_type), intent(in) :: frf
-        real(dp), intent(in) :: sigma(:)
+        real(dp), intent(in) :: sigma(:), floor(:)
         logical, intent(in) :: skip_zero
         type(ml_options), intent(in) :: options
         type(data_type), intent(out) :: data
@@ -383,6 +405,7 @@ contains
         data%omega = two_pi*frf%frequency(first:)
         data%g = frf%receptance(first:)
         data%weight = 1.0_dp/sigma(first:)
+        data%floor = floor(first:)
         data%penalty = log(2.0_dp*size(data%g))
         data%f_max = frf%f_max()
         data%max_iterations = options%max_iterations
@@ -437,10 +460,63 @@ contains
             call move_alloc(run, run_prev)
             deallocate (flag)
         end do
-        start = pack(poles, run_prev >= options%stable_orders .and. f_prev < frf%f_max())
         candidates = pack(poles, .not. (run_prev >= options%stable_orders) .and. f_prev < frf%f_max())
         result%n_wandering = size(candidates)
+        call start_poles(result, options, frf%f_max(), start)
     end subroutine build_diagram
+
+    !> Start poles from the diagram: going down from the highest order, every pole stable in
+    !> f and xi for stable_orders orders in a row (flag 2 that many times along its chain)
+    !> whose frequency is not within stable_frequency of one already taken.
+    pure subroutine start_poles(result, options, f_max, start)
+        type(ml_result), intent(in) :: result
+        type(ml_options), intent(in) :: options
+        real(dp), intent(in) :: f_max
+        complex(dp), allocatable, intent(out) :: start(:)
+
+        integer :: run(size(result%diagram_order))
+        real(dp), allocatable :: taken(:)
+        integer :: i, j, n
+
+        ! run(i): orders in a row ending at pole i stable in f and xi, along nearest-frequency links.
+        run = 0
+        do i = 1, size(run)
+            if (result%diagram_flag(i) < 2) cycle
+            n = result%diagram_order(i)
+            j = nearest_pole(result%diagram_frequency, result%diagram_order, n - 1, result%diagram_frequency(i))
+            if (j > 0) run(i) = run(j) + 1
+        end do
+        allocate (start(0), taken(0))
+        do i = size(run), 1, -1
+            if (run(i) < options%stable_orders .or. result%diagram_frequency(i) >= f_max) cycle
+            if (size(taken) > 0) then
+                if (minval(abs(taken - result%diagram_frequency(i))) <= options%stable_frequency &
+                    *result%diagram_frequency(i)) cycle
+            end if
+            taken = [taken, result%diagram_frequency(i)]
+            start = [start, two_pi*result%diagram_frequency(i)*cmplx(-result%diagram_damping(i), &
+                                                                     sqrt(1.0_dp - result%diagram_damping(i)**2), dp)]
+        end do
+    end subroutine start_poles
+
+    !> Index of the pole of order n nearest in frequency to f (0 when order n has none).
+    pure integer function nearest_pole(frequency, order, n, f)
+        real(dp), intent(in) :: frequency(:)
+        integer, intent(in) :: order(:), n
+        real(dp), intent(in) :: f
+
+        integer :: i
+
+        nearest_pole = 0
+        do i = 1, size(order)
+            if (order(i) /= n) cycle
+            if (nearest_pole == 0) then
+                nearest_pole = i
+            else if (abs(frequency(i) - f) < abs(frequency(nearest_pole) - f)) then
+                nearest_pole = i
+            end if
+        end do
+    end function nearest_pole
 
     !> Receptance of a model on omega [rad/s].
     pure function evaluate(model, omega) result(g)
@@ -612,47 +688,66 @@ contains
         type(model_type), intent(in) :: model
         real(dp), allocatable, intent(out) :: fisher(:, :), gradient(:)
 
-        real(dp), allocatable :: jac(:, :), residual(:)
+        real(dp), allocatable :: jac(:, :), jac_t(:, :), residual(:)
 
         allocate (jac(2*size(data%g), n_parameters(model)))
         call jacobian(data, model, jac)
         residual = stacked_vector(data%weight*(data%g - evaluate(model, data%omega)))
-        fisher = 2.0_dp*matmul(transpose(jac), jac)
-        gradient = 2.0_dp*matmul(residual, jac)
+        ! An explicit transposed copy: matmul(transpose(jac), jac) is three times slower (measured).
+        jac_t = transpose(jac)
+        fisher = 2.0_dp*matmul(jac_t, jac)
+        gradient = 2.0_dp*matmul(jac_t, residual)
     end subroutine information
 
-    !> Residues for the model's poles, then Levenberg-Marquardt.
-    subroutine fit(data, model, result, error)
+    !> Residues for the model's poles, then Levenberg-Marquardt (at most `iterations`).
+    subroutine fit(data, model, result, error, iterations)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
         type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: iterations
 
         call fit_linear(data, model, error)
         if (allocated(error)) return
-        call refine(data, model, result)
+        call refine(data, model, result, iterations)
     end subroutine fit
+
+    !> Relative noise model: weights 1/max(rho*|G_model|, floor) from the model rather than
+    !> from the noisy |G|, and the model refined with them.
+    subroutine reweight(data, model, result)
+        type(data_type), intent(inout) :: data
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+
+        if (.not. data%relative) return
+        data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        call refine(data, model, result)
+    end subroutine reweight
 
     !> Levenberg-Marquardt on all parameters: the Gauss-Newton system scaled to unit diagonal,
     !> damped by mu*I, solved by Cholesky; a step is kept when chi2 falls and every pole stays
-    !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than 1e-12
-    !> of itself twice in a row.
-    subroutine refine(data, model, result)
+    !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than
+    !> 1e-3 + 1e-10*chi2 (a parameter change of a few hundredths of its standard deviation).
+    subroutine refine(data, model, result, iterations)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
+        !> Most iterations (data%max_iterations when absent).
+        integer, intent(in), optional :: iterations
 
         type(model_type) :: trial
         real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:)
         real(dp) :: chi, chi_trial, mu
-        integer :: iteration, p, small, i
+        integer :: iteration, p, small, i, last
         logical :: ok
 
         if (n_parameters(model) == 0) return
         chi = chi_square(data, model)
         mu = 1.0e-4_dp
         small = 0
-        do iteration = 1, data%max_iterations
+        last = data%max_iterations
+        if (present(iterations)) last = iterations
+        do iteration = 1, last
             call information(data, model, fisher, gradient)
             result%iterations = result%iterations + 1
             p = size(gradient)
@@ -671,15 +766,11 @@ contains
                 mu = 10.0_dp*mu
                 if (mu > 1.0e12_dp) return
             end do
-            if (chi - chi_trial <= 1.0e-12_dp*chi) then
-                small = small + 1
-            else
-                small = 0
-            end if
+            small = merge(1, 0, chi - chi_trial <= 1.0e-3_dp + 1.0e-10_dp*chi)
             model = trial
             chi = chi_trial
             mu = max(0.1_dp*mu, 1.0e-12_dp)
-            if (small >= 2) exit
+            if (small >= 1) exit
         end do
     end subroutine refine
 
@@ -774,7 +865,7 @@ contains
     !> Add modes while MDL accepts one, then drop modes while MDL accepts their removal;
     !> repeat until neither changes the model, then decide the residual terms ('auto').
     subroutine choose_order(data, options, candidates, model, result, error)
-        type(data_type), intent(in) :: data
+        type(data_type), intent(inout) :: data
         type(ml_options), intent(in) :: options
         complex(dp), intent(in) :: candidates(:)
         type(model_type), intent(inout) :: model
@@ -782,28 +873,31 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         integer :: changes
-        logical :: changed, added, removed
+        logical :: added, removed
 
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
         changes = 0
+        ! Adding stops when no candidate is accepted; only a removal can make a new addition
+        ! worth trying (the residual changed), so the rounds end with a round that removes nothing.
         do
-            changed = .false.
             do while (changes < options%max_changes)
                 call add_mode(data, candidates, model, result, added, error)
                 if (allocated(error)) return
                 if (.not. added) exit
                 changes = changes + 1
-                changed = .true.
+                call reweight(data, model, result)
             end do
+            removed = .false.
             do while (changes < options%max_changes)
-                call drop_mode(data, model, result, removed, error)
+                call drop_mode(data, model, result, added, error)
                 if (allocated(error)) return
-                if (.not. removed) exit
+                if (.not. added) exit
+                removed = .true.
                 changes = changes + 1
-                changed = .true.
+                call reweight(data, model, result)
             end do
-            if (.not. changed .or. changes >= options%max_changes) exit
+            if (.not. removed .or. changes >= options%max_changes) exit
         end do
         if (options%residual_terms == 'auto') then
             call try_term(data, model, result, .true., error)
@@ -903,11 +997,12 @@ contains
             score(k) = -huge(1.0_dp)
             trial = model
             trial%pole = [model%pole, pool(k)]
-            call fit(data, trial, result, error)
+            call fit(data, trial, result, error, trial_iterations)
             if (allocated(error)) return
             if (.not. all(natural_frequency(trial%pole) <= two_pi*data%f_max)) cycle
             if (criterion(data, trial, chi_square(data, trial)) < before) then
                 model = trial
+                call refine(data, model, result)
                 added = .true.
                 return
             end if
@@ -947,9 +1042,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:)
+        real(dp) :: block2(2, 2)
         type(model_type) :: trial
         logical :: ok
-        integer :: k, c, worst
+        integer :: k, c, worst, try
 
         removed = .false.
         if (size(model%pole) == 0) return
@@ -966,19 +1062,29 @@ contains
         end if
         do k = 1, size(model%pole)
             c = 4*(k - 1)
-            wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), [real(model%residue(k), dp), aimag(model%residue(k))])
+            block2 = cov(c + 3:c + 4, c + 3:c + 4)
+            wald(k) = quadratic(block2, [real(model%residue(k), dp), aimag(model%residue(k))])
         end do
-        worst = minloc(wald, 1)
-        if (.not. (wald(worst) < 4.0_dp*data%penalty)) return
-        trial = model
-        trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
-        call fit(data, trial, result, error)
-        if (allocated(error)) return
-        if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
-            call record_drop(result, [model%pole(worst)], dropped_by_criterion)
-            model = trial
-            removed = .true.
-        end if
+        ! Poles the fit pushed onto the stability boundary go first, whatever their statistic.
+        where (damping_ratio(model%pole) < boundary_damping) wald = -1.0_dp
+        do try = 1, tries_per_add
+            worst = minloc(wald, 1)
+            if (.not. (wald(worst) < 4.0_dp*data%penalty)) return
+            wald(worst) = huge(1.0_dp)
+            trial = model
+            trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
+            ! A full refit: with several noise poles the others move when one goes.
+            call fit(data, trial, result, error)
+            if (allocated(error)) return
+            if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
+                call record_drop(result, [model%pole(worst)], &
+                                 merge(dropped_boundary, dropped_by_criterion, damping_ratio(model%pole(worst)) &
+                                                                               < boundary_damping))
+                model = trial
+                removed = .true.
+                return
+            end if
+        end do
     end subroutine drop_mode
 
     !> The mode to drop when the information is singular: of the two closest poles the one
@@ -1031,10 +1137,12 @@ contains
             if (model%lower) return
             trial%lower = .true.
         end if
-        call fit(data, trial, result, error)
+        call fit(data, trial, result, error, trial_iterations)
         if (allocated(error)) return
-        if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) &
+        if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
             model = trial
+            call refine(data, model, result)
+        end if
     end subroutine try_term
 
     !> Fill the result: modes sorted by frequency with their standard deviations, chi2, E, the
