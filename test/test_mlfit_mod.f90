@@ -44,7 +44,7 @@ contains
                      new_unittest('coarse grid: an under-resolved light mode is reported', test_coarse), &
                      new_unittest('noise given per line: same modes, sigma scale confirmed', test_given_sigma), &
                      new_unittest('drop: spurious start poles are removed by the criterion and listed', test_drop), &
-                     new_unittest('diagram: orders 1..max_order, flags, stable poles at the true modes', test_diagram), &
+                     new_unittest('diagram: orders 1..max_order, flags, stable poles at true modes', test_diagram), &
                      new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed)]
     end subroutine collect_mlfit
 

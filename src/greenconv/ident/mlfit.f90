@@ -23,38 +23,55 @@
 !>    (1e-13) keeps clean data fittable to round-off. The order choice below compares chi2 of
 !>    models, so it depends on the level only through its scale; the uncertainties use the
 !>    level refitted from the final residual (noise_level_fit, unbiased for the right model).
+!>    Weights of the relative model: during the order search rho times the rms of |G| over 5
+!>    lines (the noise of |G| in the weight reduced by sqrt(5), independent of any model, so
+!>    the chi2 of different models stay comparable without a refit after each change); for
+!>    the final fit and the uncertainty rho*|G_model|.
 !> 2. **Stabilisation diagram** with the linear LSCE step only (greenconv_ident_lsce's
 !>    lsce_poles, no out-of-band correction, no residues, no polish) at N = 1..max_order modes:
 !>    each physical pole is flagged 2 (its f within stable_frequency and its xi within
-!>    stable_damping of a pole of order N - 1), 1 (f only) or 0, and counts the orders in a row
-!>    it has been flagged 2 (`run`).
-!> 3. **Start poles**: those of the highest order with run >= stable_orders. Poles that
-!>    wander (shorter runs) are not used and counted in n_wandering; roots with |z| >= 1
-!>    (unstable) or real roots are never poles (counted per order in the diagram).
+!>    stable_damping of the pole of order N - 1 nearest in f), 1 (f only) or 0.
+!> 3. **Start poles**: going down from the highest order, every pole flagged 2 along a chain
+!>    of at least stable_orders orders (nearest-frequency links), one per stable_frequency
+!>    band. The other poles of the highest order (wandering: n_wandering) are only candidates
+!>    for step 5; roots with |z| >= 1 (unstable) or real roots (xi >= 1) never become poles
+!>    (counted per order in unstable_by_order and real_by_order).
 !> 4. **Maximum likelihood**: residues and residual terms by weighted linear least squares for
 !>    the poles, then Levenberg-Marquardt on all parameters (Re, Im of poles and residues, R_u,
 !>    R_l) with the analytic Jacobian, Marquardt's diagonal scaling and a Cholesky solve; a
 !>    step that would make a pole unstable or move it to Im <= 0 is refused like one that
-!>    raises chi2.
+!>    raises chi2, so a returned pole always has Re < 0 < Im (0 < xi < 1). Poles the fit moves
+!>    above f_max are dropped (their effect belongs to R_u), poles it pushes to xi < 1e-8 (a
+!>    spike between two lines fitting noise) too; the result lists each with its reason.
 !> 5. **Order from the data, by MDL** (Rissanen; the BIC of a Gaussian likelihood): minimise
-!>    chi2 + P*ln(2L). AIC's 2 per parameter is too weak here: a spurious mode placed on the
-!>    largest of the ~L independent noise bumps lowers chi2 by about 2*ln(L) + a few (25 for
-!>    8193 lines) > 8 = its AIC price, and less than its MDL price 4*ln(2L) (39). Modes are added
-!>    one at a time, the candidate chosen among the diagram poles not in the model and the
-!>    largest peaks of the weighted residual (a damping grid at each), ranked by the drop of chi2
-!>    their two residue columns alone would give; the best three are refitted in turn and
-!>    the first that lowers the criterion is kept. Modes are dropped while the one with the
-!>    smallest Wald statistic for r_k = 0 (its residue against its covariance, the chi2 rise its
-!>    removal would cause) is below 4*ln(2L) and its removal, refitted, lowers the criterion.
-!>    R_u and R_l ('auto') are kept when they lower it. The chi2 test of the final model
-!>    (chi2/nu against 1 + 3*sqrt(2/nu)) is reported, not used to stop: with an estimated level
-!>    its own error (~1.4/sqrt(L) on rho^2) is as large as the test's width.
+!>    chi2 + P*ln(2L), 4*ln(2L) per mode (39 for 8193 lines, 33 for 2049). AIC's 8 per mode
+!>    is too weak: a spurious mode on the largest noise bump, its pole free, lowers chi2 by
+!>    the maximum of ~L*(damping scales) chi-square variables, about 2*ln(6L) + 2 plus a Gumbel
+!>    tail (measured during development: up to 32 for 8193 lines, 30 for 2049, each refused).
+!>    Modes are added one at a time, the candidate chosen among the diagram poles not in the
+!>    model and the three largest peaks of the weighted residual (a damping grid at each),
+!>    ranked by the drop of chi2 their two residue columns alone would give; the best three
+!>    are fitted in turn (3 LM iterations: a true mode gains hundreds at once) and the first
+!>    that lowers the criterion is kept and refined. Modes are dropped while, of the three
+!>    with the smallest Wald statistic for r_k = 0 (the residue against its covariance: the
+!>    chi2 rise its removal would cause) below 4*ln(2L), one whose removal, fully refitted,
+!>    lowers the criterion. R_u and R_l ('auto') are kept when the residues and terms refitted
+!>    for the current poles lower it. The chi2 test of the final model (chi2/nu against
+!>    1 + 3*sqrt(2/nu)) is reported, not used to stop: with an estimated level its own error
+!>    (~1.4/sqrt(L) on rho^2) is as large as the test's width.
 !> 6. **Uncertainty**: the covariance of the parameters is the inverse of the Fisher
 !>    information 2*Re(J^H*W*J), W = diag(1/sigma_l^2), at the optimum; with an estimated level
 !>    it is scaled by chi2/nu. sigma_f [Hz], sigma_xi and sigma_r = sqrt(var Re r + var Im r)
 !>    follow by linearisation of f = |lambda|/(2*pi), xi = -Re lambda/|lambda|.
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
+!>
+!> ## Measured (suite mlfit, and 174 further draws)
+!> Three structures (12 modes to 5 kHz with a 412/418 Hz pair; xi 0.001 and 0.3 with modes at
+!> 0.8 % and 98.5 % of the band; 3 modes) at 0.1, 1 and 3 % noise: no mode missed or invented,
+!> the worst error 3.8 CRB standard deviations in f and 3.3 in xi. The reported sigma against
+!> the spread of 50 draws: ratios 0.82 to 1.09. Clean data: round-off (2e-16). One fit of 8193
+!> lines, 12 modes, max_order 30: 39 LM iterations, 0.8 s CPU (the diagram 0.17 s of it).
 module greenconv_ident_mlfit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
@@ -593,7 +610,8 @@ contains
             return
         end if
         a = stacked(column)
-        norms = sqrt(sum(a**2, dim=1))
+        allocate (norms(size(a, 2)))
+        norms(:) = sqrt(sum(a**2, dim=1))
         where (.not. (norms > 0.0_dp)) norms = 1.0_dp
         do col = 1, size(a, 2)
             a(:, col) = a(:, col)/norms(col)
@@ -789,7 +807,10 @@ contains
             call information(data, model, fisher, gradient, jac, jac_t)
             result%iterations = result%iterations + 1
             p = size(gradient)
-            scale = sqrt([(fisher(i, i), i=1, p)])
+            if (.not. allocated(scale)) allocate (scale(p))
+            do i = 1, p
+                scale(i) = sqrt(fisher(i, i))
+            end do
             where (.not. (scale > 0.0_dp)) scale = 1.0_dp
             do
                 a = fisher/spread(scale, 1, p)/spread(scale, 2, p)
@@ -952,7 +973,9 @@ contains
         logical, allocatable :: inside(:)
 
         do
-            inside = natural_frequency(model%pole) <= two_pi*data%f_max
+            if (allocated(inside)) deallocate (inside)
+            allocate (inside(size(model%pole)))
+            inside(:) = natural_frequency(model%pole) <= two_pi*data%f_max
             if (all(inside)) return
             call record_drop(result, pack(model%pole, .not. inside), dropped_left_band)
             model%pole = pack(model%pole, inside)
@@ -991,9 +1014,10 @@ contains
         integer :: k, j, try, peak, l, h
 
         added = .false.
-        residual = data%weight*(data%g - evaluate(model, data%omega))
-        l = size(residual)
-        pool = [complex(dp) ::]
+        l = size(data%g)
+        allocate (residual(l))
+        residual(:) = data%weight*(data%g - evaluate(model, data%omega))
+        allocate (pool(0), power(l))
         do k = 1, size(candidates)
             if (size(model%pole) > 0) then
                 if (minval(abs(model%pole - candidates(k))) < 0.01_dp*abs(candidates(k))) cycle
@@ -1002,7 +1026,9 @@ contains
         end do
         ! Residual peaks: the largest local maxima of |e_w|^2 summed over 5 lines.
         h = 2
-        power = [(sum(abs(residual(max(1, j - h):min(l, j + h)))**2), j=1, l)]
+        do j = 1, l
+            power(j) = sum(abs(residual(max(1, j - h):min(l, j + h)))**2)
+        end do
         do try = 1, 3
             peak = maxloc(power, 1)
             if (.not. (power(peak) > 0.0_dp)) exit
@@ -1212,8 +1238,9 @@ contains
         result%has_lower = model%lower
         result%upper_residual = model%r_u
         result%lower_residual = model%r_l
-        unsorted%pole = model%pole
-        unsorted%residue = model%residue
+        allocate (unsorted%pole(n), unsorted%residue(n))
+        unsorted%pole(:) = model%pole
+        unsorted%residue(:) = model%residue
         result%modes = sorted_by_frequency(unsorted)
         allocate (result%sigma_frequency(n), result%sigma_damping(n), result%sigma_residue(n))
         result%sigma_frequency = huge(1.0_dp)
