@@ -192,7 +192,6 @@ contains
         type(frf_type) :: clean, noisy
         type(ml_options) :: options
         type(ml_result) :: fitted
-        type(error_type), allocatable :: failure
         real(dp), allocatable :: sigma_f(:), sigma_xi(:)
         integer, allocatable :: match(:)
         character(len=200) :: text
@@ -203,8 +202,7 @@ contains
         clean = frf_from_modes(truth, f_max, n_freq)
         noisy = clean
         call add_noise(noisy, level, seed)
-        call identify_ml(noisy, options, fitted, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(noisy, options, fitted, error)
         if (allocated(error)) return
         write (text, '(a,es8.1,a,i0,a,i0,a,i0)') 'noise ', level, ', seed ', seed, ': found ', &
             fitted%modes%n_modes(), ' modes, expected ', truth%n_modes()
@@ -262,6 +260,19 @@ contains
             if (allocated(error)) return
         end do
     end subroutine check_case
+
+    !> identify_ml, failing the test when it returns an error (its message is passed on).
+    subroutine fit_ok(frf, options, result, error)
+        type(frf_type), intent(in) :: frf
+        type(ml_options), intent(in) :: options
+        type(ml_result), intent(out) :: result
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: failure
+
+        call identify_ml(frf, options, result, failure)
+        if (allocated(failure)) call check(error, .false., 'identify_ml failed: '//failure%message)
+    end subroutine fit_ok
 
     ! ---- tests -------------------------------------------------------------------------
 
@@ -340,14 +351,12 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
         real(dp) :: err_f, err_xi, misfit
         integer :: k, j
 
         truth = case_a()
         frf = frf_from_modes(truth, 5000.0_dp, 8193)
-        call identify_ml(frf, options, result, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(frf, options, result, error)
         if (allocated(error)) return
         call check(error, result%modes%n_modes() == 12, 'expected 12 modes on clean data')
         if (allocated(error)) return
@@ -379,13 +388,11 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
 
         frf = frf_from_modes(structure([100.0_dp, 300.0_dp], [0.001_dp, 0.02_dp], 1.0e-6_dp*[1.0_dp, 1.0_dp]), &
                              500.0_dp, 501)
         call add_noise(frf, 1.0e-3_dp, 11)
-        call identify_ml(frf, options, result, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(frf, options, result, error)
         if (allocated(error)) return
         call check(error, result%modes%n_modes() == 2, 'expected 2 modes')
         if (allocated(error)) return
@@ -404,15 +411,13 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
         real(dp) :: start, finish
 
         frf = frf_from_modes(case_a(), 5000.0_dp, 8193)
         call add_noise(frf, 1.0e-2_dp, 5)
         call cpu_time(start)
-        call identify_ml(frf, options, result, failure)
+        call fit_ok(frf, options, result, error)
         call cpu_time(finish)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
         if (allocated(error)) return
         call note('cpu s', finish - start)
         call note('modes', real(result%modes%n_modes(), dp))
@@ -439,7 +444,6 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
         real(dp), allocatable :: sigma_f(:), sigma_xi(:)
         real(dp) :: worst
         integer :: k, j
@@ -450,8 +454,7 @@ contains
         call cramer_rao(truth, frf, 1.0e-2_dp, sigma_f, sigma_xi, error)
         if (allocated(error)) return
         call add_noise(frf, 1.0e-2_dp, 42)
-        call identify_ml(frf, options, result, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(frf, options, result, error)
         if (allocated(error)) return
         call check(error, result%modes%n_modes() == 3 .and. .not. result%noise_estimated, &
                    'expected 3 modes and the noise not estimated')
@@ -479,13 +482,11 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
 
         frf = frf_from_modes(case_c(), 500.0_dp, 2049)
         call add_noise(frf, 1.0e-2_dp, 43)
         options%stable_orders = 1
-        call identify_ml(frf, options, result, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(frf, options, result, error)
         if (allocated(error)) return
         call note('start poles', real(result%n_start, dp))
         call note('dropped', real(size(result%dropped_pole), dp))
@@ -506,7 +507,6 @@ contains
         type(frf_type) :: frf
         type(ml_options) :: options
         type(ml_result) :: result
-        type(error_type), allocatable :: failure
         logical :: top(0:0)
         integer :: k
         real(dp) :: f
@@ -514,8 +514,7 @@ contains
         truth = case_c()
         frf = frf_from_modes(truth, 500.0_dp, 2049)
         call add_noise(frf, 1.0e-3_dp, 44)
-        call identify_ml(frf, options, result, failure)
-        call check(error, .not. allocated(failure), 'identify_ml failed')
+        call fit_ok(frf, options, result, error)
         if (allocated(error)) return
         call check(error, minval(result%diagram_order) >= 1 .and. maxval(result%diagram_order) == 30 .and. &
                    all(result%diagram_flag >= 0 .and. result%diagram_flag <= 2) .and. &

@@ -1093,9 +1093,10 @@ contains
         if (det > 0.0_dp) score = 2.0_dp*(g22*b1**2 - 2.0_dp*g12*b1*b2 + g11*b2**2)/det
     end function column_score
 
-    !> Try to drop the mode with the smallest Wald statistic for r_k = 0 when it is below the
-    !> MDL price of a mode; the removal is kept when the refitted model lowers the criterion.
-    !> A singular information (merged poles) drops the mode with the largest residue variance.
+    !> Try to drop one of the three modes with the smallest Wald statistic for r_k = 0 below
+    !> the MDL price of a mode (poles on the stability boundary first); a removal is kept when
+    !> the fully refitted model lowers the criterion. A singular information drops the mode
+    !> `merged` names.
     subroutine drop_mode(data, model, result, removed, error)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
