@@ -45,6 +45,7 @@ contains
                      new_unittest('noise given per line: same modes, sigma scale confirmed', test_given_sigma), &
                      new_unittest('drop: spurious start poles are removed by the criterion and listed', test_drop), &
                      new_unittest('diagram: orders 1..max_order, flags, stable poles at true modes', test_diagram), &
+                     new_unittest('residual terms: R_u, R_l kept when in the data, not otherwise', test_terms), &
                      new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed)]
     end subroutine collect_mlfit
 
@@ -535,5 +536,47 @@ contains
             write (text, '(f8.1)') x
         end function text_of
     end subroutine test_diagram
+
+    !> Case (c) at 0.1 % noise on 2049 lines to 500 Hz: with a constant R_u = 2e-9 m/N added
+    !> (the static flexibility of modes far above the band) R_u is kept, within 1 %; with a
+    !> mass-like term -R_l/omega^2, R_l = 0.04 1/kg (1e-7 m/N at 100 Hz, of the order of the
+    !> modes there), R_l is kept, within 1 %; the plain case keeps neither. Each time the 3 modes.
+    subroutine test_terms(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(frf_type) :: plain, frf
+        type(ml_options) :: options
+        type(ml_result) :: result
+
+        plain = frf_from_modes(case_c(), 500.0_dp, 2049)
+        frf = plain
+        call add_noise(frf, 1.0e-3_dp, 61)
+        call fit_ok(frf, options, result, error)
+        if (allocated(error)) return
+        call check(error, result%modes%n_modes() == 3 .and. .not. (result%has_upper .or. result%has_lower), &
+                   'plain case: 3 modes and no residual term')
+        if (allocated(error)) return
+        frf = plain
+        frf%receptance = frf%receptance + 2.0e-9_dp
+        call add_noise(frf, 1.0e-3_dp, 64)
+        call fit_ok(frf, options, result, error)
+        if (allocated(error)) return
+        call note('R_u', result%upper_residual)
+        call check(error, result%modes%n_modes() == 3 .and. result%has_upper .and. .not. result%has_lower, &
+                   'constant added: 3 modes and R_u alone kept')
+        if (allocated(error)) return
+        call check(error, result%upper_residual, 2.0e-9_dp, 'R_u', thr=0.01_dp, rel=.true.)
+        if (allocated(error)) return
+        frf = plain
+        frf%receptance(2:) = frf%receptance(2:) - 4.0e-2_dp/(two_pi*frf%frequency(2:))**2
+        call add_noise(frf, 1.0e-3_dp, 63)
+        call fit_ok(frf, options, result, error)
+        if (allocated(error)) return
+        call note('R_l', result%lower_residual)
+        call check(error, result%modes%n_modes() == 3 .and. result%has_lower .and. .not. result%has_upper, &
+                   'mass-like term added: 3 modes and R_l alone kept')
+        if (allocated(error)) return
+        call check(error, result%lower_residual, 4.0e-2_dp, 'R_l', thr=0.01_dp, rel=.true.)
+    end subroutine test_terms
 
 end module test_mlfit_mod

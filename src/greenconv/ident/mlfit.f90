@@ -55,10 +55,11 @@
 !>    that lowers the criterion is kept and refined. Modes are dropped while, of the three
 !>    with the smallest Wald statistic for r_k = 0 (the residue against its covariance: the
 !>    chi2 rise its removal would cause) below 4*ln(2L), one whose removal, fully refitted,
-!>    lowers the criterion. R_u and R_l ('auto') are kept when the residues and terms refitted
-!>    for the current poles lower it. The chi2 test of the final model (chi2/nu against
-!>    1 + 3*sqrt(2/nu)) is reported, not used to stop: with an estimated level its own error
-!>    (~1.4/sqrt(L) on rho^2) is as large as the test's width.
+!>    lowers the criterion. R_u and R_l ('auto') take part in the whole search (a static offset
+!>    would otherwise drag poles out of the band) and each is removed at its end when the residues
+!>    and other term refitted for the current poles lower the criterion without it. The chi2
+!>    test of the final model (chi2/nu against 1 + 3*sqrt(2/nu)) is reported, not used to stop:
+!>    with an estimated level its own error (~1.4/sqrt(L) on rho^2) is as large as its width.
 !> 6. **Uncertainty**: the covariance of the parameters is the inverse of the Fisher
 !>    information 2*Re(J^H*W*J), W = diag(1/sigma_l^2), at the optimum; with an estimated level
 !>    it is scaled by chi2/nu. sigma_f [Hz], sigma_xi and sigma_r = sqrt(var Re r + var Im r)
@@ -374,8 +375,10 @@ contains
         result%n_start = size(start)
 
         model%pole = start
-        model%upper = any(options%residual_terms == [character(len=8) :: 'upper', 'both'])
-        model%lower = any(options%residual_terms == [character(len=8) :: 'lower', 'both'])
+        ! With 'auto' both terms take part in the search (so that a static offset does not drag
+        ! poles out of the band) and each is removed at its end when MDL prefers.
+        model%upper = any(options%residual_terms == [character(len=8) :: 'upper', 'both', 'auto'])
+        model%lower = allow_lower
         call fit(data, model, result, error)
         if (allocated(error)) return
         call choose_order(data, options, candidates, model, result, error)
@@ -606,6 +609,7 @@ contains
         allocate (column(size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
         call linear_columns(data, model, column)
         if (size(column, 2) == 0) then
+            if (allocated(model%residue)) deallocate (model%residue)
             allocate (model%residue(0))
             return
         end if
@@ -957,9 +961,9 @@ contains
             if (.not. removed .or. changes >= options%max_changes) exit
         end do
         if (options%residual_terms == 'auto') then
-            call try_term(data, model, result, .true., error)
+            call drop_term(data, model, result, .true., error)
             if (allocated(error)) return
-            call try_term(data, model, result, .false., error)
+            call drop_term(data, model, result, .false., error)
         end if
     end subroutine choose_order
 
@@ -1048,6 +1052,11 @@ contains
             j = max(3, nint(0.01_dp*peak))
             power(max(1, peak - j):min(l, peak + j)) = 0.0_dp
         end do
+        ! Never again a pole the search has dropped (no add-drop cycles).
+        if (size(result%dropped_pole) > 0) then
+            pool = pack(pool, [(minval(abs(result%dropped_pole - pool(k))) >= 0.01_dp*abs(pool(k)), &
+                                k=1, size(pool))])
+        end if
         if (size(pool) == 0) return
         allocate (score(size(pool)))
         do k = 1, size(pool)
@@ -1182,9 +1191,10 @@ contains
         if (det > 0.0_dp) quadratic = (c(2, 2)*x(1)**2 - (c(1, 2) + c(2, 1))*x(1)*x(2) + c(1, 1)*x(2)**2)/det
     end function quadratic
 
-    !> Add R_u (upper = .true.) or R_l to the model when the model with it, its residues and
-    !> terms refitted for the current poles, lowers MDL; the kept model is then refined.
-    subroutine try_term(data, model, result, upper, error)
+    !> Remove R_u (upper = .true.) or R_l from the model when the model without it, its
+    !> residues and other term refitted for the current poles, lowers MDL; the kept model is
+    !> then refined. Without the poles refitted the removal is judged conservatively.
+    subroutine drop_term(data, model, result, upper, error)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
@@ -1195,22 +1205,21 @@ contains
 
         trial = model
         if (upper) then
-            if (model%upper) return
-            trial%upper = .true.
+            if (.not. model%upper) return
+            trial%upper = .false.
+            trial%r_u = 0.0_dp
         else
-            if (model%lower) return
-            trial%lower = .true.
+            if (.not. model%lower) return
+            trial%lower = .false.
+            trial%r_l = 0.0_dp
         end if
-        ! Residues and terms refitted for the fixed poles: a chi2 no higher than the current
-        ! one (the current residues with a zero term are a candidate), and the gain is the
-        ! full refit's to first order (the poles move only to second order).
         call fit(data, trial, result, error, 0)
         if (allocated(error)) return
         if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
             model = trial
             call refine(data, model, result)
         end if
-    end subroutine try_term
+    end subroutine drop_term
 
     !> Fill the result: modes sorted by frequency with their standard deviations, chi2, E, the
     !> rescaled noise level and the warnings.
