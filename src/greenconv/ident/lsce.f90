@@ -119,6 +119,7 @@ module greenconv_ident_lsce
     public :: lsce_options, lsce_result, identify
     public :: impulse_from_frf, fit_residues, error_e, paper_form
     public :: natural_frequency, damping_ratio
+    public :: lsce_poles
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -782,12 +783,24 @@ contains
     !> The LSCE step: linear prediction of order p of the samples g_1..g_M (M = min(N_t - 1,
     !> max_samples)), solved by SVD least squares, roots of the prediction polynomial as the
     !> eigenvalues of its companion matrix, physical poles lambda = ln(z)/dt kept.
+    !> Public as the cheap linear step of a stabilisation diagram (one call per order, no
+    !> out-of-band correction, no residues).
     subroutine lsce_poles(g, dt, p, max_samples, poles, n_unstable, n_real, error)
+        !> Impulse samples g(n*dt), n = 0..N_t-1 [m/(N*s)] (e.g. from impulse_from_frf).
         real(dp), intent(in) :: g(:)
+        !> Time step [s].
         real(dp), intent(in) :: dt
-        integer, intent(in) :: p, max_samples
+        !> Order of the prediction polynomial (2 per mode).
+        integer, intent(in) :: p
+        !> Most samples used (t_1..t_M, M = min(N_t - 1, max_samples)).
+        integer, intent(in) :: max_samples
+        !> Physical poles lambda = ln(z)/dt [rad/s] (Re < 0, Im > 0).
         complex(dp), allocatable, intent(out) :: poles(:)
-        integer, intent(out) :: n_unstable, n_real
+        !> Roots dropped with |z| >= 1 (unstable), upper half plane only.
+        integer, intent(out) :: n_unstable
+        !> Real roots dropped (no conjugate pair).
+        integer, intent(out) :: n_real
+        !> Set when there are too few samples for the order or LAPACK fails.
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: a(:, :), b(:), coefficients(:), companion(:, :), h(:)
