@@ -25,6 +25,7 @@ program greenconv_tests
     use test_longrun_mod, only: collect_longrun
     use test_lapack_mod, only: collect_lapack
     use test_uff_mod, only: collect_uff
+    use test_sweep_mod, only: collect_sweep
     implicit none
 
     integer :: n_passed, n_failed
@@ -47,6 +48,7 @@ program greenconv_tests
                        new_testsuite('input', collect_input), &
                        new_testsuite('lapack', collect_lapack), &
                        new_testsuite('uff', collect_uff), &
+                       new_testsuite('sweep', collect_sweep), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

@@ -1011,7 +1011,7 @@ contains
 
         type(sweep_text), allocatable :: lines(:), row(:)
         character(len=:), allocatable :: text
-        integer :: i, n
+        integer :: i
 
         if (size(names) > 0) then
             call fatal_error(error, file//':'//int_text(line)//': &sweep table_file: expected one table file, ' &
@@ -1023,15 +1023,13 @@ contains
             error%message = file//':'//int_text(line)//': &sweep table_file: '//error%message
             return
         end if
-        n = 0
-        deallocate (table)
-        allocate (table(0, 0))
         do i = 1, size(lines)
             text = adjustl(lines(i)%text)
             if (len_trim(text) == 0) cycle
             if (size(names) == 0) then
                 if (text(1:1) == '#') text = text(2:)
                 names = without_commas(split_tokens(lower_text(text)))
+                deallocate (table)
                 allocate (table(0, size(names)))
                 cycle
             end if
@@ -1044,8 +1042,10 @@ contains
             end if
             table = appended_row(table, row)
         end do
-        if (size(table, 1) == 0) call fatal_error(error, path//': expected a header naming the variables and ' &
-                                                  //'at least one row of values, found none')
+        if (size(names) == 0 .or. size(table, 1) == 0) then
+            call fatal_error(error, path//': expected a header naming the variables and at least one row of ' &
+                             //'values, found none')
+        end if
     end subroutine read_design
 
     !> Tokens without the commas between them.
@@ -1278,7 +1278,7 @@ contains
                 i = j + 1
             end select
         end do
-        changed = line(:at)//' '//value//' '//line(finish + 1:)
+        changed = line(:at)//' '//value//line(finish + 1:)
     end function replaced_value
 
     !> A line with `assignment` written right after its `&group`.
