@@ -475,9 +475,17 @@ contains
     !> The line after the check: the count of variants, done and bad; with `check_only`,
     !> an error (status 2) when a variant is bad.
     subroutine report_check(plan, unit, n_done, n_bad, check_only, error)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
-        integer, intent(in) :: unit, n_done, n_bad
+        !> Unit of the line.
+        integer, intent(in) :: unit
+        !> Variants found done (skipped).
+        integer, intent(in) :: n_done
+        !> Variants that failed their check.
+        integer, intent(in) :: n_bad
+        !> Whether this is `--check` (nothing runs).
         logical, intent(in) :: check_only
+        !> Set (status 2) with `check_only` when a variant is bad.
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: line
@@ -673,9 +681,14 @@ contains
 
     !> One line per finished variant that failed, on `unit`.
     subroutine report_variant(plan, k, outcome, unit)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
-        integer, intent(in) :: k, unit
+        !> Variant number.
+        integer, intent(in) :: k
+        !> Its outcome.
         type(variant_outcome), intent(in) :: outcome
+        !> Unit of the line.
+        integer, intent(in) :: unit
 
         if (outcome%status /= 0) write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k) &
             //' failed (status '//int_text(outcome%status)//', recorded in its row): '//outcome%message
@@ -683,9 +696,13 @@ contains
 
     !> Write the table and say where it is and how many variants failed.
     subroutine finish_report(plan, outcomes, unit, error)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
+        !> One per variant, in variant order.
         type(variant_outcome), intent(in) :: outcomes(:)
+        !> Unit of the line.
         integer, intent(in) :: unit
+        !> Set when the table cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
         integer :: k, n_failed
