@@ -162,7 +162,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install fuzz $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz mpi sweep-test sweep-bench $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -236,6 +236,31 @@ $(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
 fuzz: $(BIN) $(FUZZ)
 	@$(HELPER) fuzz $(BIN) $(FUZZ) $(FUZZ_CASES) $(FUZZ_SEED)
 
+# ---- MPI driver for sweep scenes (issue 17) ----------------------------------------------
+# build/make/greenconv-mpi: mpi/greenconv_mpi.f90 compiled with Debian's OpenMPI (mpif90)
+# against the plain build's library, which itself needs no MPI. `make sweep-test` runs the
+# sweep checks (tools/test_sweep.sh: 1 and 2 ranks and the serial driver give the same table,
+# resume, a failing variant, variant order); `make sweep-bench` the throughput on 1 and 2 ranks.
+# As root (CI), mpirun needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM), which the scripts set.
+
+MPIFC ?= mpif90
+MPIRUN ?= mpirun
+export MPIRUN
+MPI_BIN := $(BUILD)/greenconv-mpi
+
+.PHONY: mpi sweep-test sweep-bench
+mpi: $(MPI_BIN)
+
+$(MPI_BIN): mpi/greenconv_mpi.f90 $(LIB)
+	@mkdir -p $(BUILD)/mpi
+	$(MPIFC) $(FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(BUILD)/mpi -o $@ $< $(LIB) $(LDLIBS)
+
+sweep-test: $(BIN) $(MPI_BIN)
+	@bash tools/test_sweep.sh $(BIN) $(MPI_BIN)
+
+sweep-bench: $(MPI_BIN)
+	@bash tools/bench_sweep.sh $(MPI_BIN)
+
 # ---- install ---------------------------------------------------------------------------
 
 # PREFIX/bin/greenconv, PREFIX/lib/libgreenconv.{a,so*}, PREFIX/include/greenconv.h, the
@@ -299,6 +324,7 @@ test: deps
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz
 	@$(MAKE) bench-smoke
+	@$(MAKE) sweep-test
 	@echo "fpm test"
 	@$(HELPER) fpm-test
 

@@ -8,9 +8,12 @@
 !> the progress line off (it is shown on standard error only when that is a terminal).
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
 !> variable); 3 a numerical fault (one line saying where; the rows before it are written).
+!> A sweep scene (`task = 'sweep'`, a `&sweep` group; greenconv_scene_sweep) runs its
+!> variants one after the other into `<name>_sweep.dat` (mpi/greenconv_mpi.f90 shares them among MPI ranks).
 program greenconv_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
+    use greenconv_scene_sweep, only: is_sweep_file, run_sweep
     implicit none
 
     character(len=*), parameter :: usage = 'usage: greenconv [--check] [--quiet] SCENE.nml   ' &
@@ -18,7 +21,7 @@ program greenconv_driver
     type(scene_type) :: scene
     type(error_type), allocatable :: error
     character(len=:), allocatable :: path, argument
-    logical :: check_only, quiet
+    logical :: check_only, quiet, sweep
     integer :: i, length
 
     check_only = .false.
@@ -44,8 +47,13 @@ program greenconv_driver
     end do
     if (len(path) == 0) call usage_error('no scene file given')
 
-    call read_scene(path, scene, error)
-    if (.not. allocated(error)) then
+    sweep = is_sweep_file(path)
+    if (sweep) then
+        call run_sweep(path, output_unit, check_only, error)
+    else
+        call read_scene(path, scene, error)
+    end if
+    if (.not. allocated(error) .and. .not. sweep) then
         if (quiet) scene%progress = .false.
         if (check_only) then
             call check_scene(scene, output_unit, error)

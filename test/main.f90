@@ -31,6 +31,7 @@ program greenconv_tests
     use test_spectra_mod, only: collect_spectra
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
+    use test_sweep_mod, only: collect_sweep
     implicit none
 
     integer :: n_passed, n_failed
@@ -58,23 +59,10 @@ program greenconv_tests
                        new_testsuite('plate', collect_plate), &
                        new_testsuite('spectra', collect_spectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
+                       new_testsuite('mlfit', collect_mlfit), &
+                       new_testsuite('sweep', collect_sweep), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
-    call run_testsuite('sdof', collect_sdof, output_unit, n_passed, n_failed)
-    call run_testsuite('convolution', collect_convolution, output_unit, n_passed, n_failed)
-    call run_testsuite('contact', collect_contact, output_unit, n_passed, n_failed)
-    call run_testsuite('random', collect_random, output_unit, n_passed, n_failed)
-    call run_testsuite('lsce', collect_lsce, output_unit, n_passed, n_failed)
-    call run_testsuite('scene', collect_scene, output_unit, n_passed, n_failed)
-    call run_testsuite('engines', collect_engines, output_unit, n_passed, n_failed)
-    call run_testsuite('fft', collect_fft, output_unit, n_passed, n_failed)
-    call run_testsuite('multicontact', collect_multicontact, output_unit, n_passed, n_failed)
-    call run_testsuite('implicit', collect_implicit, output_unit, n_passed, n_failed)
-    call run_testsuite('accuracy', collect_accuracy, output_unit, n_passed, n_failed)
-    call run_testsuite('library', collect_library, output_unit, n_passed, n_failed)
-    call run_testsuite('input', collect_input, output_unit, n_passed, n_failed)
-    call run_testsuite('longrun', collect_longrun, output_unit, n_passed, n_failed)
-    call run_testsuite('mlfit', collect_mlfit, output_unit, n_passed, n_failed)
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
 end program greenconv_tests

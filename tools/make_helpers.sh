@@ -93,13 +93,16 @@ as_root() {
 }
 
 cmd_deps() {
-    local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox pkg-config)
+    local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox pkg-config openmpi-bin
+                               libopenmpi-dev)
     command -v gfortran >/dev/null 2>&1 || missing+=(gfortran)
     have_lib lapack || missing+=(LAPACK)
     have_lib blas || missing+=(BLAS)
     have_lib fftw3 || missing+=(FFTW3)
     command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot)
     command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
+    # OpenMPI for the MPI driver of sweeps (make mpi, make sweep-test).
+    command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1 || missing+=(OpenMPI)
     # fpm comes from pip; without python3/pip, apt brings them along.
     if ! have_fpm && ! have_pip; then
         missing+=(pip)

@@ -1,0 +1,209 @@
+!> greenconv-mpi: the driver built with MPI (`make mpi`, through mpif90), for sweep scenes.
+!>
+!>     mpirun -np N greenconv-mpi [--check] [--quiet] SWEEP.nml
+!>
+!> Every rank reads the sweep; rank 0 checks every variant, finds those a previous run
+!> recorded, and says so. The variants still to run are then taken one at a time by
+!> whichever rank is free: a counter on rank 0 that each rank advances with an atomic
+!> MPI_Fetch_and_op (one-sided), so rank 0 works too and a cheap variant never waits for
+!> an expensive one. Each rank records each variant it finishes (greenconv_scene_sweep's
+!> `save_record`, atomic); at the end the outcomes are sent to rank 0, which writes the
+!> table in variant order, so the table does not depend on the number of ranks.
+!> A scene that is not a sweep runs on rank 0 as the serial driver runs it.
+!> Exit status as the serial driver's: 0 done (failed variants are in the table), 2 bad input.
+program greenconv_mpi
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_f_pointer
+    use mpi_f08
+    use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
+    use greenconv_scene_sweep, only: sweep_plan, variant_outcome, is_sweep_file, read_sweep, check_sweep, &
+                                     run_variant, save_record, outcome_text, outcome_from_text, report_check, &
+                                     report_variant, finish_report
+    use greenconv_core_text, only: int_text
+    implicit none
+
+    character(len=*), parameter :: usage = 'usage: mpirun -np N greenconv-mpi [--check] [--quiet] SWEEP.nml'
+    character(len=:), allocatable :: path, argument
+    logical :: check_only, quiet
+    integer :: i, length, rank, ranks, status
+
+    call MPI_Init()
+    call MPI_Comm_rank(MPI_COMM_WORLD, rank)
+    call MPI_Comm_size(MPI_COMM_WORLD, ranks)
+    check_only = .false.
+    quiet = .false.
+    path = ''
+    status = 0
+    do i = 1, command_argument_count()
+        call get_command_argument(i, length=length)
+        allocate (character(len=length) :: argument)
+        call get_command_argument(i, argument)
+        select case (argument)
+        case ('--check')
+            check_only = .true.
+        case ('--quiet')
+            quiet = .true.
+        case default
+            if (index(argument, '-') == 1 .or. len(path) > 0) status = 2
+            path = argument
+        end select
+        deallocate (argument)
+    end do
+    if (len(path) == 0 .or. status /= 0) then
+        if (rank == 0) write (error_unit, '(a)') 'greenconv: unexpected or missing argument; '//usage
+        status = 2
+    else if (is_sweep_file(path)) then
+        call run_on_ranks(path, check_only, status)
+    else if (rank == 0) then
+        call run_alone(path, check_only, quiet, status)
+    end if
+    call MPI_Allreduce(MPI_IN_PLACE, status, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
+    call MPI_Finalize()
+    if (status /= 0) stop status, quiet=.true.
+
+contains
+
+    !> A scene that is not a sweep, on this rank alone.
+    subroutine run_alone(path, check_only, quiet, status)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: check_only, quiet
+        integer, intent(out) :: status
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: error
+
+        status = 0
+        call read_scene(path, scene, error)
+        if (.not. allocated(error)) then
+            if (quiet) scene%progress = .false.
+            if (check_only) then
+                call check_scene(scene, output_unit, error)
+            else
+                call run_scene(scene, output_unit, error)
+            end if
+        end if
+        call give_up(error, status)
+    end subroutine run_alone
+
+    !> A sweep shared among the ranks.
+    subroutine run_on_ranks(path, check_only, status)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: check_only
+        integer, intent(out) :: status
+
+        type(sweep_plan) :: plan
+        type(variant_outcome), allocatable :: outcomes(:)
+        type(variant_outcome) :: outcome
+        type(error_type), allocatable :: error
+        integer, allocatable :: pending(:)
+        integer :: n_done, n_bad, n_pending, next, k
+        type(MPI_Win) :: window
+        type(c_ptr) :: base
+        integer, pointer :: counter(:)
+        integer(MPI_ADDRESS_KIND) :: bytes
+
+        status = 0
+        call read_sweep(path, plan, error, 'rank'//int_text(rank))
+        if (allocated(error)) then
+            if (rank /= 0) deallocate (error)
+            call give_up(error, status)
+            status = 2
+            return
+        end if
+        if (rank == 0) then
+            call check_sweep(plan, output_unit, pending, outcomes, n_done, n_bad)
+            call report_check(plan, output_unit, n_done, n_bad, check_only, error)
+            call give_up(error, status)
+            n_pending = size(pending)
+        end if
+        call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        if (check_only .or. status /= 0) return
+        call MPI_Bcast(n_pending, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        if (rank /= 0) allocate (pending(n_pending))
+        call MPI_Bcast(pending, n_pending, MPI_INTEGER, 0, MPI_COMM_WORLD)
+
+        bytes = 0
+        if (rank == 0) bytes = storage_size(0)/8
+        call MPI_Win_allocate(bytes, storage_size(0)/8, MPI_INFO_NULL, MPI_COMM_WORLD, base, window)
+        if (rank == 0) then
+            call c_f_pointer(base, counter, [1])
+            counter(1) = 0
+        end if
+        call MPI_Barrier(MPI_COMM_WORLD)
+        do
+            call MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window)
+            call MPI_Fetch_and_op(1, next, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, MPI_SUM, window)
+            call MPI_Win_unlock(0, window)
+            if (next >= n_pending) exit
+            k = pending(next + 1)
+            call run_variant(plan, k, outcome)
+            call report_variant(plan, k, outcome, output_unit)
+            call save_record(plan, k, outcome, error)
+            if (allocated(error)) then
+                write (error_unit, '(a)') 'greenconv: '//error%message
+                deallocate (error)
+            end if
+            if (rank == 0) then
+                outcomes(k) = outcome
+            else
+                call send_outcome(k, outcome)
+            end if
+        end do
+        call MPI_Win_free(window)
+        if (rank /= 0) then
+            call MPI_Send(0, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+            return
+        end if
+        call gather_outcomes(outcomes)
+        call finish_report(plan, outcomes, output_unit, error)
+        call give_up(error, status)
+    end subroutine run_on_ranks
+
+    !> Send an outcome to rank 0: the variant's number (tag 1), then its text (tag 2).
+    subroutine send_outcome(k, outcome)
+        integer, intent(in) :: k
+        type(variant_outcome), intent(in) :: outcome
+
+        character(len=:), allocatable :: text
+
+        text = outcome_text(outcome)
+        call MPI_Send(k, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+        call MPI_Send(text, len(text), MPI_CHARACTER, 0, 2, MPI_COMM_WORLD)
+    end subroutine send_outcome
+
+    !> On rank 0: every other rank's outcomes, until each has sent 0 (its end).
+    subroutine gather_outcomes(outcomes)
+        type(variant_outcome), intent(inout) :: outcomes(:)
+
+        type(MPI_Status) :: state
+        character(len=:), allocatable :: text
+        integer :: k, n, finished
+        logical :: ok
+
+        finished = 0
+        do while (finished < ranks - 1)
+            call MPI_Recv(k, 1, MPI_INTEGER, MPI_ANY_SOURCE, 1, MPI_COMM_WORLD, state)
+            if (k == 0) then
+                finished = finished + 1
+                cycle
+            end if
+            call MPI_Probe(state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
+            call MPI_Get_count(state, MPI_CHARACTER, n)
+            allocate (character(len=n) :: text)
+            call MPI_Recv(text, n, MPI_CHARACTER, state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
+            call outcome_from_text(text, outcomes(k), ok)
+            deallocate (text)
+        end do
+    end subroutine gather_outcomes
+
+    !> Print an error (if any) and set the exit status from it.
+    subroutine give_up(error, status)
+        type(error_type), allocatable, intent(in) :: error
+        integer, intent(inout) :: status
+
+        if (.not. allocated(error)) return
+        write (error_unit, '(a)') 'greenconv: '//error%message
+        status = error%stat
+    end subroutine give_up
+
+end program greenconv_mpi
