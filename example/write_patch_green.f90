@@ -20,7 +20,9 @@
 !>   complex double, even spacing), response node i the slow index; written by
 !>   greenconv_io_uff_write, so read_uff reads it back.
 !>
-!> Build and run from the repository root against the plain build (`make lib`):
+!> `make test` rebuilds it and checks that it writes the shipped file byte for byte
+!> (`make patch-green-check`). Build and run from the repository root against the plain
+!> build (`make lib`), optionally with another output path as the argument:
 !>
 !>     gfortran -O2 -Ibuild/make/include example/write_patch_green.f90 build/make/libgreenconv.a \
 !>         -llapack -lblas -lfftw3 -fopenmp -o build/write_patch_green && build/write_patch_green
@@ -34,7 +36,7 @@ program write_patch_green
     use greenconv_io_uff_write, only: uff_header, write_uff, receptance_function
     implicit none
 
-    character(len=*), parameter :: path = 'data/patch_green.uff'
+    character(len=:), allocatable :: path
     integer, parameter :: n_x = 4, n_y = 3, n_c = n_x*n_y, n_f = 301, seed = 14
     real(dp), parameter :: df = 4.0_dp, f_modes = 1.0e4_dp, noise = 0.01_dp
     real(dp), parameter :: pi = acos(-1.0_dp)
@@ -50,6 +52,17 @@ program write_patch_green
     character(len=80) :: how
     integer :: i, j, k
 
+    ! The output path: the first argument, by default the shipped file.
+    block
+        integer :: length
+        call get_command_argument(1, length=length)
+        if (length > 0) then
+            allocate (character(len=length) :: path)
+            call get_command_argument(1, path)
+        else
+            path = 'data/patch_green.uff'
+        end if
+    end block
     call patch_points([plate%length/2, plate%width/2], [0.12_dp, 0.15_dp], n_x, n_y, x, y)
     call plate_modes(plate, x, y, f_modes, description, error)
     if (allocated(error)) then
