@@ -309,6 +309,7 @@ run: build
 
 bench: build
 	@$(MAKE) bench-data
+	@$(MAKE) sweep-bench
 	@$(MAKE) figures
 
 # The tables go to a temporary file renamed when complete, like every other output.
