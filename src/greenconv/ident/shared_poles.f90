@@ -131,8 +131,13 @@ contains
 
         n_c = size(g, 1)
         n_m = size(fit%pole)
-        lines = [(l, l=1, size(frequency))]
-        if (fit%pole_fit%has_lower) lines = pack(lines, frequency > 0.0_dp)
+        if (fit%pole_fit%has_lower) then
+            allocate (lines(count(frequency > 0.0_dp)))
+            lines(:) = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        else
+            allocate (lines(size(frequency)))
+            lines(:) = [(l, l=1, size(frequency))]
+        end if
         n_p = 2*n_m
         i_u = 0
         i_l = 0
@@ -274,10 +279,10 @@ contains
         integer :: k, l, n_c
 
         n_c = size(fit%residue, 1)
-        allocate (pole(0), residue(0), shape(n_c, 0))
+        allocate (pole(0), residue(0), shape(n_c, 0), a(n_c, n_c), b(n_c, n_c))
         do k = 1, size(fit%pole)
-            a = 0.5_dp*real(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)), kind=dp)
-            b = 0.5_dp*aimag(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)))
+            a(:, :) = 0.5_dp*real(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)), kind=dp)
+            b(:, :) = 0.5_dp*aimag(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)))
             call symmetric_eigen(a, ea, va)
             call symmetric_eigen(b, eb, vb)
             largest = max(maxval(abs(ea)), maxval(abs(eb)))
@@ -310,8 +315,8 @@ contains
         integer :: n, p, q, sweep
 
         n = size(matrix, 1)
-        a = matrix
-        allocate (vectors(n, n), values(n))
+        allocate (a(n, n), column_p(n), column_q(n), vectors(n, n), values(n))
+        a(:, :) = matrix
         vectors(:, :) = 0.0_dp
         do p = 1, n
             vectors(p, p) = 1.0_dp
@@ -327,7 +332,7 @@ contains
             if (off <= 1.0e-32_dp*scale .or. scale <= 0.0_dp) exit
             do q = 2, n
                 do p = 1, q - 1
-                    if (a(p, q) == 0.0_dp) cycle
+                    if (abs(a(p, q)) <= tiny(1.0_dp)) cycle
                     theta = (a(q, q) - a(p, p))/(2.0_dp*a(p, q))
                     t = sign(1.0_dp, theta)/(abs(theta) + sqrt(theta**2 + 1.0_dp))
                     c = 1.0_dp/sqrt(t**2 + 1.0_dp)
