@@ -32,6 +32,7 @@ program greenconv_tests
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
     use test_sweep_mod, only: collect_sweep
+    use test_patch_mod, only: collect_patch
     implicit none
 
     integer :: n_passed, n_failed
@@ -61,6 +62,7 @@ program greenconv_tests
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('mlfit', collect_mlfit), &
                        new_testsuite('sweep', collect_sweep), &
+                       new_testsuite('patch', collect_patch), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

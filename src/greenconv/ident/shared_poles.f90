@@ -1,0 +1,360 @@
+!> Shared-pole identification of a Green's matrix G_ij(omega), i, j = 1..N_c (issue 14): the
+!> poles are the structure's, the same in all N_c^2 receptances, so they are identified once and
+!> only the residues differ from pair to pair:
+!>
+!>     G_ij(omega) = sum_k [R_k,ij/(i*omega - lambda_k) + conj(R_k,ij)/(i*omega - conj(lambda_k))]
+!>                   + U_ij - L_ij/omega^2                                              [m/N]
+!>
+!> R_k the complex residue matrix [m/(N*s)] of mode k, U and L the upper and lower residual
+!> matrices (present when the pole fit keeps them).
+!>
+!> 1. **Poles**: greenconv_ident_mlfit's `identify_ml` on the sum of the driving-point
+!>    receptances, sum_i G_ii: every mode with a non-zero shape at some point shows in it with
+!>    a positive-definite weight (for real modes R_k,ii = r_k*phi_ik^2 adds up without
+!>    cancelling), its noise estimated from the data and the order chosen by MDL. A pair of
+!>    modes of one frequency (the cosine and sine modes of a ring) gives one pole there.
+!> 2. **Residue matrices**: for those poles, linear least squares on each receptance (the same
+!>    design matrix for all, unweighted, so that the fit minimises |G - G_model|^2 as E of
+!>    eq. (7) measures it), R_k general complex: a repeated pole gets the rank two its pair of
+!>    modes needs. When the matrix is reciprocal the fit is to (G_ij + G_ji)/2, which makes
+!>    every R_k, U, L symmetric.
+!> 3. **Report**: E of eq. (7) per receptance (worst and mean), per point (of row i, all
+!>    receptances at response point i together), and per mode how far R_k is from rank one,
+!>    ||R_k - best rank one||_F/||R_k||_F = sqrt(1 - s_1^2/sum s^2) (s the singular values;
+!>    0 for one real mode, 1/sqrt(2) for two equal modes on one pole).
+!> 4. **Modes for the convolvers** (`shared_point_modes`): greenconv_model_point_modes holds
+!>    real shapes; a symmetric complex R_k = A + i*B is written exactly as terms with real
+!>    shapes from the eigenvectors of A and of B, R_k = sum_l a_l*v_l*v_l^T + i*sum_l b_l*w_l*w_l^T,
+!>    each term a mode of pole lambda_k with residue a_l (or i*b_l) and shape v_l (w_l); terms
+!>    with |a_l| or |b_l| below `term_tol` of the pole's largest are dropped. A proportionally
+!>    damped mode (R_k = r_k*phi*phi^T, r_k imaginary) is one term. U and L have no place in a
+!>    modal recursion: they are neglected there and reported.
+module greenconv_ident_shared_poles
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_frf, only: frf_type
+    use greenconv_ext_lapack, only: least_squares
+    use greenconv_ident_lsce, only: error_e
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    implicit none
+    private
+
+    public :: shared_fit, identify_shared, shared_point_modes, shared_receptance
+
+    real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
+
+    !> A Green's matrix identified with shared poles.
+    type :: shared_fit
+        !> The fit of the summed driving points that gave the poles (order, noise, warnings).
+        type(ml_result) :: pole_fit
+        !> Poles lambda_k [rad/s] (Re < 0 < Im), by frequency.
+        complex(dp), allocatable :: pole(:)
+        !> Residue matrices residue(i, j, k) = R_k,ij [m/(N*s)].
+        complex(dp), allocatable :: residue(:, :, :)
+        !> Upper residual matrix U [m/N] (zero unless the pole fit kept R_u).
+        real(dp), allocatable :: upper(:, :)
+        !> Lower residual matrix L [1/kg] of -L/omega^2 (zero unless the pole fit kept R_l).
+        real(dp), allocatable :: lower(:, :)
+        !> Whether R_k, U, L were fitted to (G_ij + G_ji)/2 (symmetric).
+        logical :: symmetric = .true.
+        !> E of eq. (7) of each receptance, e_pair(i, j).
+        real(dp), allocatable :: e_pair(:, :)
+        !> E of eq. (7) of each response point i over its row of receptances.
+        real(dp), allocatable :: e_point(:)
+        !> Largest and mean E over the receptances.
+        real(dp) :: e_worst = 0.0_dp, e_mean = 0.0_dp
+        !> Distance of each R_k from rank one, sqrt(1 - s_1^2/sum s^2).
+        real(dp), allocatable :: rank_one(:)
+    end type shared_fit
+
+contains
+
+    !> Identify a Green's matrix with shared poles (see the module description).
+    subroutine identify_shared(frequency, g, symmetric, options, fit, error)
+        !> Frequency lines f_l = l*df, l = 0..n - 1 [Hz] (uniform, from 0 Hz).
+        real(dp), intent(in) :: frequency(:)
+        !> Receptances g(i, j, l) = G_ij(2*pi*f_l) [m/N].
+        complex(dp), intent(in) :: g(:, :, :)
+        !> Fit (G_ij + G_ji)/2 (a reciprocal structure) rather than each G_ij on its own.
+        logical, intent(in) :: symmetric
+        !> Settings of the pole fit (greenconv_ident_mlfit).
+        type(ml_options), intent(in) :: options
+        !> The identification.
+        type(shared_fit), intent(out) :: fit
+        !> Set when the grid is not uniform from 0 Hz, the pole fit fails or finds no mode.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: summed
+        complex(dp), allocatable :: model(:, :, :)
+        integer :: i, n_c
+
+        n_c = size(g, 1)
+        summed%frequency = frequency
+        allocate (summed%receptance(size(frequency)))
+        summed%receptance(:) = 0.0_dp
+        do i = 1, n_c
+            summed%receptance = summed%receptance + g(i, i, :)
+        end do
+        call identify_ml(summed, options, fit%pole_fit, error)
+        if (allocated(error)) then
+            error%message = 'shared poles: the sum of the driving-point receptances: '//error%message
+            return
+        end if
+        if (fit%pole_fit%modes%n_modes() == 0) then
+            call fatal_error(error, 'shared poles: no mode found in the sum of the driving-point receptances; ' &
+                             //'check the file''s units and band')
+            return
+        end if
+        fit%pole = fit%pole_fit%modes%pole
+        fit%symmetric = symmetric
+        call fit_residues(frequency, g, fit, error)
+        if (allocated(error)) return
+        call shared_receptance(fit, frequency, model)
+        call report_errors(g, model, fit)
+    end subroutine identify_shared
+
+    !> Residue and residual matrices by linear least squares for the fit's poles.
+    subroutine fit_residues(frequency, g, fit, error)
+        real(dp), intent(in) :: frequency(:)
+        complex(dp), intent(in) :: g(:, :, :)
+        type(shared_fit), intent(inout) :: fit
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: design(:, :), x(:), rhs(:)
+        complex(dp), allocatable :: columns(:, :), target(:)
+        integer, allocatable :: lines(:)
+        integer :: n_c, n_m, n_p, i, j, k, l, i_u, i_l
+
+        n_c = size(g, 1)
+        n_m = size(fit%pole)
+        if (fit%pole_fit%has_lower) then
+            allocate (lines(count(frequency > 0.0_dp)))
+            lines(:) = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        else
+            allocate (lines(size(frequency)))
+            lines(:) = [(l, l=1, size(frequency))]
+        end if
+        n_p = 2*n_m
+        i_u = 0
+        i_l = 0
+        if (fit%pole_fit%has_upper) then
+            n_p = n_p + 1
+            i_u = n_p
+        end if
+        if (fit%pole_fit%has_lower) then
+            n_p = n_p + 1
+            i_l = n_p
+        end if
+        allocate (columns(size(lines), n_p))
+        associate (s => i_unit*two_pi*frequency(lines))
+            do k = 1, n_m
+                columns(:, 2*k - 1) = 1.0_dp/(s - fit%pole(k)) + 1.0_dp/(s - conjg(fit%pole(k)))
+                columns(:, 2*k) = i_unit*(1.0_dp/(s - fit%pole(k)) - 1.0_dp/(s - conjg(fit%pole(k))))
+            end do
+            if (i_u > 0) columns(:, i_u) = 1.0_dp
+            if (i_l > 0) columns(:, i_l) = 1.0_dp/s**2
+        end associate
+        allocate (design(2*size(lines), n_p))
+        design(1:size(lines), :) = real(columns, kind=dp)
+        design(size(lines) + 1:, :) = aimag(columns)
+        allocate (fit%residue(n_c, n_c, n_m), fit%upper(n_c, n_c), fit%lower(n_c, n_c), x(n_p))
+        fit%upper(:, :) = 0.0_dp
+        fit%lower(:, :) = 0.0_dp
+        do j = 1, n_c
+            do i = 1, n_c
+                if (fit%symmetric .and. i < j) then
+                    fit%residue(i, j, :) = fit%residue(j, i, :)
+                    fit%upper(i, j) = fit%upper(j, i)
+                    fit%lower(i, j) = fit%lower(j, i)
+                    cycle
+                end if
+                target = g(i, j, lines)
+                if (fit%symmetric) target = 0.5_dp*(g(i, j, lines) + g(j, i, lines))
+                rhs = [real(target, kind=dp), aimag(target)]
+                call least_squares(design, rhs, x, error)
+                if (allocated(error)) then
+                    error%message = 'shared poles: residues of G_'//int_text(i)//','//int_text(j)//': ' &
+                                    //error%message
+                    return
+                end if
+                fit%residue(i, j, :) = cmplx(x(1:2*n_m:2), x(2:2*n_m:2), kind=dp)
+                if (i_u > 0) fit%upper(i, j) = x(i_u)
+                if (i_l > 0) fit%lower(i, j) = x(i_l)
+            end do
+        end do
+    end subroutine fit_residues
+
+    !> The receptances of a shared-pole model, model(i, j, l) = G_ij(2*pi*f_l) [m/N]; a lower
+    !> residual is left out at 0 Hz (infinite there).
+    pure subroutine shared_receptance(fit, frequency, model)
+        !> The identification.
+        type(shared_fit), intent(in) :: fit
+        !> Frequencies [Hz].
+        real(dp), intent(in) :: frequency(:)
+        !> The model's receptances [m/N].
+        complex(dp), allocatable, intent(out) :: model(:, :, :)
+
+        complex(dp) :: s
+        integer :: k, l
+
+        allocate (model(size(fit%residue, 1), size(fit%residue, 2), size(frequency)))
+        do l = 1, size(frequency)
+            s = i_unit*two_pi*frequency(l)
+            model(:, :, l) = fit%upper
+            if (frequency(l) > 0.0_dp) model(:, :, l) = model(:, :, l) + fit%lower/s**2
+            do k = 1, size(fit%pole)
+                model(:, :, l) = model(:, :, l) + fit%residue(:, :, k)/(s - fit%pole(k)) &
+                                 + conjg(fit%residue(:, :, k))/(s - conjg(fit%pole(k)))
+            end do
+        end do
+    end subroutine shared_receptance
+
+    !> E of eq. (7) per receptance and per point, and each residue matrix's distance from rank one.
+    subroutine report_errors(g, model, fit)
+        complex(dp), intent(in) :: g(:, :, :), model(:, :, :)
+        type(shared_fit), intent(inout) :: fit
+
+        integer :: i, j, k, n_c
+
+        n_c = size(g, 1)
+        allocate (fit%e_pair(n_c, n_c), fit%e_point(n_c), fit%rank_one(size(fit%pole)))
+        do j = 1, n_c
+            do i = 1, n_c
+                fit%e_pair(i, j) = error_e(g(i, j, :), model(i, j, :))
+            end do
+        end do
+        do i = 1, n_c
+            fit%e_point(i) = error_e(reshape(g(i, :, :), [size(g(i, :, :))]), &
+                                     reshape(model(i, :, :), [size(model(i, :, :))]))
+        end do
+        fit%e_worst = maxval(fit%e_pair)
+        fit%e_mean = sum(fit%e_pair)/n_c**2
+        do k = 1, size(fit%pole)
+            fit%rank_one(k) = rank_one_distance(fit%residue(:, :, k))
+        end do
+    end subroutine report_errors
+
+    !> sqrt(1 - s_1^2/||R||_F^2), s_1 the largest singular value of R (power iteration on R^H*R).
+    pure real(dp) function rank_one_distance(r) result(distance)
+        complex(dp), intent(in) :: r(:, :)
+
+        complex(dp) :: v(size(r, 2)), w(size(r, 2))
+        real(dp) :: frobenius, s1_squared
+        integer :: iteration
+
+        frobenius = sum(abs(r)**2)
+        distance = 0.0_dp
+        if (frobenius <= 0.0_dp) return
+        v = sum(abs(r), dim=1) + 1.0_dp
+        v = v/norm2(abs(v))
+        s1_squared = 0.0_dp
+        do iteration = 1, 500
+            w = matmul(conjg(transpose(r)), matmul(r, v))
+            s1_squared = real(dot_product(v, w), kind=dp)
+            if (norm2(abs(w)) <= 0.0_dp) exit
+            v = w/norm2(abs(w))
+        end do
+        distance = sqrt(max(0.0_dp, 1.0_dp - s1_squared/frobenius))
+    end function rank_one_distance
+
+    !> The fit as modes with real shapes at the points, for the multi-point convolvers (see the
+    !> module description, 4.): the symmetric part of each R_k split into eigen-terms; terms below
+    !> `term_tol` of the pole's largest dropped. U and L are not part of it.
+    pure subroutine shared_point_modes(fit, term_tol, modes)
+        !> The identification.
+        type(shared_fit), intent(in) :: fit
+        !> Terms with |eigenvalue| below this fraction of the pole's largest are dropped (e.g. 1e-10).
+        real(dp), intent(in) :: term_tol
+        !> Poles, residues and real shapes (N_c x terms).
+        type(point_modes), intent(out) :: modes
+
+        real(dp), allocatable :: a(:, :), b(:, :), va(:, :), vb(:, :), ea(:), eb(:)
+        complex(dp), allocatable :: pole(:), residue(:)
+        real(dp), allocatable :: shape(:, :)
+        real(dp) :: largest
+        integer :: k, l, n_c
+
+        n_c = size(fit%residue, 1)
+        allocate (pole(0), residue(0), shape(n_c, 0), a(n_c, n_c), b(n_c, n_c))
+        do k = 1, size(fit%pole)
+            a(:, :) = 0.5_dp*real(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)), kind=dp)
+            b(:, :) = 0.5_dp*aimag(fit%residue(:, :, k) + transpose(fit%residue(:, :, k)))
+            call symmetric_eigen(a, ea, va)
+            call symmetric_eigen(b, eb, vb)
+            largest = max(maxval(abs(ea)), maxval(abs(eb)))
+            do l = 1, n_c
+                if (abs(ea(l)) > term_tol*largest) then
+                    pole = [pole, fit%pole(k)]
+                    residue = [residue, cmplx(ea(l), 0.0_dp, kind=dp)]
+                    shape = reshape([shape, va(:, l)], [n_c, size(shape, 2) + 1])
+                end if
+                if (abs(eb(l)) > term_tol*largest) then
+                    pole = [pole, fit%pole(k)]
+                    residue = [residue, cmplx(0.0_dp, eb(l), kind=dp)]
+                    shape = reshape([shape, vb(:, l)], [n_c, size(shape, 2) + 1])
+                end if
+            end do
+        end do
+        modes%modes = modal_set(pole, residue)
+        modes%shape = shape
+    end subroutine shared_point_modes
+
+    !> Eigenvalues and eigenvectors (columns) of a small real symmetric matrix by cyclic Jacobi
+    !> rotations, to round-off.
+    pure subroutine symmetric_eigen(matrix, values, vectors)
+        real(dp), intent(in) :: matrix(:, :)
+        real(dp), allocatable, intent(out) :: values(:)
+        real(dp), allocatable, intent(out) :: vectors(:, :)
+
+        real(dp), allocatable :: a(:, :), column_p(:), column_q(:)
+        real(dp) :: theta, t, c, s, off, scale
+        integer :: n, p, q, sweep
+
+        n = size(matrix, 1)
+        allocate (a(n, n), column_p(n), column_q(n), vectors(n, n), values(n))
+        a(:, :) = matrix
+        vectors(:, :) = 0.0_dp
+        do p = 1, n
+            vectors(p, p) = 1.0_dp
+        end do
+        scale = sum(a**2)
+        do sweep = 1, 60
+            off = 0.0_dp
+            do q = 2, n
+                do p = 1, q - 1
+                    off = off + a(p, q)**2
+                end do
+            end do
+            if (off <= 1.0e-32_dp*scale .or. scale <= 0.0_dp) exit
+            do q = 2, n
+                do p = 1, q - 1
+                    if (abs(a(p, q)) <= tiny(1.0_dp)) cycle
+                    theta = (a(q, q) - a(p, p))/(2.0_dp*a(p, q))
+                    t = sign(1.0_dp, theta)/(abs(theta) + sqrt(theta**2 + 1.0_dp))
+                    c = 1.0_dp/sqrt(t**2 + 1.0_dp)
+                    s = t*c
+                    column_p = a(:, p)
+                    column_q = a(:, q)
+                    a(:, p) = c*column_p - s*column_q
+                    a(:, q) = s*column_p + c*column_q
+                    column_p = a(p, :)
+                    column_q = a(q, :)
+                    a(p, :) = c*column_p - s*column_q
+                    a(q, :) = s*column_p + c*column_q
+                    column_p = vectors(:, p)
+                    column_q = vectors(:, q)
+                    vectors(:, p) = c*column_p - s*column_q
+                    vectors(:, q) = s*column_p + c*column_q
+                end do
+            end do
+        end do
+        do p = 1, n
+            values(p) = a(p, p)
+        end do
+    end subroutine symmetric_eigen
+
+end module greenconv_ident_shared_poles
