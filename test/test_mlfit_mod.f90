@@ -18,6 +18,14 @@ module test_mlfit_mod
     use greenconv_model_modal_set, only: modal_set, modes_from_paper
     use greenconv_model_frf, only: frf_type, frf_from_modes
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    use greenconv_model_frf, only: read_frf
+    use greenconv_io_uff, only: uff_function, uff_node
+    use greenconv_io_uff_write, only: write_uff, receptance_function, impulse_function
+    use greenconv_scene_input, only: scene_type
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_report, only: write_identification
+    use scene_text_mod, only: read_scene_text
     implicit none
     private
 
@@ -46,7 +54,10 @@ contains
                      new_unittest('drop: spurious start poles are removed by the criterion and listed', test_drop), &
                      new_unittest('diagram: orders 1..max_order, flags, stable poles at true modes', test_diagram), &
                      new_unittest('residual terms: R_u, R_l kept when in the data, not otherwise', test_terms), &
-                     new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed)]
+                     new_unittest('speed: 8193 lines, 12 modes, max order 30 (CPU time noted)', test_speed), &
+                     new_unittest('scene: a noisy universal file fitted end to end, within CRB', test_scene_noisy), &
+                     new_unittest('uff: receptance, mobility, accelerance give the same receptance', test_uff_kinds), &
+                     new_unittest('uff: malformed or ambiguous files get one file:line message', test_uff_refused)]
     end subroutine collect_mlfit
 
     ! ---- structures --------------------------------------------------------------------
@@ -578,5 +589,211 @@ contains
         if (allocated(error)) return
         call check(error, result%lower_residual, 4.0e-2_dp, 'R_l', thr=0.01_dp, rel=.true.)
     end subroutine test_terms
+
+    ! ---- the scene path and universal files (issue 13) ----------------------------------
+
+    !> A noisy receptance of structure (a) at 1 % written as a universal file, a scene naming it
+    !> (method 'ml' by default for a file), the structure built and its files written: every
+    !> mode found, none invented, f and xi within crb_limit CRB standard deviations, the
+    !> modes file with its sigma columns and the diagram file present.
+    subroutine test_scene_noisy(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: dir = 'build/test_scratch'
+        type(modal_set) :: truth
+        type(frf_type) :: clean, noisy
+        type(scene_type) :: scene
+        type(structure_model) :: built
+        type(error_type), allocatable :: failure
+        type(uff_node) :: nodes(0)
+        real(dp), allocatable :: sigma_f(:), sigma_xi(:)
+        real(dp) :: worst_f, worst_xi
+        integer :: k, m
+        logical :: exists
+
+        truth = case_a()
+        clean = frf_from_modes(truth, 5000.0_dp, 8193)
+        noisy = clean
+        call add_noise(noisy, 1.0e-2_dp, 131)
+        call read_scene_text(dir, 'ml_scene.nml', "&scene task = 'identify', name = 'ml_scene', output_dir = '" &
+                             //dir//"' /"//new_line('a')//"&structure model = 'frf_file', frf_file = '"//dir &
+                             //"/ml_scene.uff' /"//new_line('a')//'&identification max_order = 30 /', scene, failure)
+        call check(error, .not. allocated(failure), 'scene read')
+        if (allocated(error)) return
+        call write_uff(dir//'/ml_scene.uff', [receptance_function([7, -2], [3, 1], 0.0_dp, noisy%frequency(2), &
+                                                                   noisy%receptance, 'test')], nodes, failure)
+        call check(error, .not. allocated(failure), 'universal file written')
+        if (allocated(error)) return
+        call build_structure(scene, built, failure)
+        if (allocated(failure)) call check(error, .false., failure%message)
+        if (allocated(error)) return
+        call check(error, built%method == 'ml' .and. index(built%frf%source, 'response 7-Y, reference 3+X') > 0, &
+                   'method ml and the DOFs reported, source: '//built%frf%source)
+        if (allocated(error)) return
+        call check(error, built%model%n_modes() == truth%n_modes(), 'modes found: expected 12')
+        if (allocated(error)) return
+        call cramer_rao(truth, clean, 1.0e-2_dp, sigma_f, sigma_xi, error)
+        if (allocated(error)) return
+        worst_f = 0.0_dp
+        worst_xi = 0.0_dp
+        do k = 1, truth%n_modes()
+            m = minloc(abs(built%model%pole - truth%pole(k)), 1)
+            associate (found => built%model%pole(m), pole => truth%pole(k))
+                worst_f = max(worst_f, abs(abs(found) - abs(pole))/two_pi/sigma_f(k))
+                worst_xi = max(worst_xi, abs(real(found, dp)/abs(found) - real(pole, dp)/abs(pole))/sigma_xi(k))
+            end associate
+        end do
+        call note('scene, 1 % noise: worst |f error|/CRB sigma', worst_f)
+        call note('scene, 1 % noise: worst |xi error|/CRB sigma', worst_xi)
+        call check(error, worst_f <= crb_limit .and. worst_xi <= crb_limit, 'within the CRB limit')
+        if (allocated(error)) return
+        call write_identification(scene, built, failure)
+        call check(error, .not. allocated(failure), 'identification files written')
+        if (allocated(error)) return
+        inquire (file=dir//'/ml_scene_diagram.dat', exist=exists)
+        call check(error, exists, 'the stabilisation diagram file is written')
+        if (allocated(error)) return
+        call check(error, column_count(dir//'/ml_scene_modes.dat') == 10, 'modes file: 10 columns with sigma')
+    end subroutine test_scene_noisy
+
+    !> Number of columns of the first data line of a column file (0 when none).
+    function column_count(path) result(n)
+        character(len=*), intent(in) :: path
+        integer :: n
+
+        character(len=1000) :: line
+        real(dp) :: values(20)
+        integer :: unit, stat
+
+        n = 0
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (line(1:1) == '#') cycle
+            do n = 20, 1, -1
+                read (line, *, iostat=stat) values(1:n)
+                if (stat == 0) exit
+            end do
+            exit
+        end do
+        close (unit)
+    end function column_count
+
+    !> The same receptance written as a receptance, a mobility Y = i*omega*G and an accelerance
+    !> A = -omega^2*G (records 9 of velocity 11 and acceleration 12): read_frf gives G back on
+    !> every line above 0 Hz to round-off, and at 0 Hz within the extrapolation error (df = 0.5 Hz,
+    !> exact in the E13.5 increment of record 7).
+    subroutine test_uff_kinds(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = 'build/test_scratch/ml_kinds.uff'
+        character(len=*), parameter :: names(3) = ['receptance ', 'mobility   ', 'accelerance']
+        type(frf_type) :: exact, read_back
+        type(uff_function) :: function
+        type(uff_node) :: nodes(0)
+        type(error_type), allocatable :: failure
+        complex(dp), allocatable :: values(:)
+        real(dp), allocatable :: omega(:)
+        real(dp) :: worst
+        integer :: kind
+
+        exact = frf_from_modes(case_c(), 512.0_dp, 1025)
+        omega = two_pi*exact%frequency
+        do kind = 1, 3
+            select case (kind)
+            case (1)
+                values = exact%receptance
+            case (2)
+                values = cmplx(0.0_dp, omega, dp)*exact%receptance
+            case (3)
+                values = -omega**2*exact%receptance
+            end select
+            function = receptance_function([1, 3], [1, 3], 0.0_dp, exact%frequency(2), values, 'kinds')
+            if (kind == 2) function%numerator%data_type = 11
+            if (kind == 3) function%numerator%data_type = 12
+            call write_uff(path, [function], nodes, failure)
+            if (.not. allocated(failure)) call read_frf(path, read_back, failure)
+            if (allocated(failure)) call check(error, .false., trim(names(kind))//': '//failure%message)
+            if (allocated(error)) return
+            worst = maxval(abs(read_back%receptance(2:) - exact%receptance(2:)))/maxval(abs(exact%receptance))
+            call note(trim(names(kind))//': worst relative error above 0 Hz', worst)
+            call check(error, worst < 1.0e-10_dp, trim(names(kind))//': G back to round-off above 0 Hz')
+            if (allocated(error)) return
+            call check(error, abs(read_back%receptance(1) - exact%receptance(1)) < 1.0e-4_dp*abs(exact%receptance(1)), &
+                       trim(names(kind))//': 0 Hz line within 1e-4')
+            if (allocated(error)) return
+            call check(error, index(read_back%source, trim(names(kind))) > 0, trim(names(kind))//': the kind is ' &
+                       //'reported: '//read_back%source)
+            if (allocated(error)) return
+        end do
+    end subroutine test_uff_kinds
+
+    !> Universal files that cannot give a receptance, each refused with the file, the line and
+    !> what to do: two datasets 58 without frf_dataset (both listed), frf_dataset too large, a
+    !> time response (function type 1), an uneven grid that is not uniform, a grid not from 0 Hz.
+    subroutine test_uff_refused(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = 'build/test_scratch/ml_bad.uff'
+        type(frf_type) :: exact, read_back
+        type(uff_function) :: first, second
+        type(uff_node) :: nodes(0)
+        type(error_type), allocatable :: failure
+        integer :: j
+
+        exact = frf_from_modes(case_c(), 512.0_dp, 257)
+        first = receptance_function([1, 3], [1, 3], 0.0_dp, exact%frequency(2), exact%receptance, 'one')
+        second = receptance_function([2, 3], [1, 3], 0.0_dp, exact%frequency(2), exact%receptance, 'two')
+        call write_uff(path, [first, second], nodes, failure)
+        call read_frf(path, read_back, failure)
+        call expect_refusal(error, failure, path//': the file holds 2 datasets 58; say which one with ' &
+                            //'&structure frf_dataset', 'response 2+Z')
+        if (allocated(error)) return
+        call read_frf(path, read_back, failure, 2)
+        call check(error, .not. allocated(failure), 'frf_dataset = 2 accepted')
+        if (allocated(error)) return
+        call check(error, index(read_back%source, 'response 2+Z') > 0, 'frf_dataset = 2 reads the second')
+        if (allocated(error)) return
+        call read_frf(path, read_back, failure, 3)
+        call expect_refusal(error, failure, 'frf_dataset = 3 asks for dataset 58 number 3', '#2 line')
+        if (allocated(error)) return
+        call write_uff(path, [impulse_function([1, 3], [1, 3], 0.0_dp, 1.0e-3_dp, real(exact%receptance, dp), &
+                                               'time')], nodes, failure)
+        call read_frf(path, read_back, failure)
+        call expect_refusal(error, failure, path//':1: dataset 58: expected function type 4', 'time response')
+        if (allocated(error)) return
+        first%even = .false.
+        first%abscissa = [(exact%frequency(j) + merge(0.3_dp, 0.0_dp, j == 9), j=1, exact%n_freq())]
+        call write_uff(path, [first], nodes, failure)
+        call read_frf(path, read_back, failure)
+        call expect_refusal(error, failure, path//':1: expected a uniform grid', 'resample the FRF')
+        if (allocated(error)) return
+        first%abscissa = exact%frequency + exact%frequency(2)
+        call write_uff(path, [first], nodes, failure)
+        call read_frf(path, read_back, failure)
+        call expect_refusal(error, failure, path//':1: expected the grid to start at 0 Hz', 'uneven')
+        if (allocated(error)) return
+        first%abscissa = exact%frequency
+        first%abscissa(9) = first%abscissa(9) + 1.0e-9_dp*exact%frequency(2)
+        call write_uff(path, [first], nodes, failure)
+        call read_frf(path, read_back, failure)
+        call check(error, .not. allocated(failure), 'an uneven abscissa on the uniform grid is accepted')
+    end subroutine test_uff_refused
+
+    !> The failure is set and its message holds both parts.
+    subroutine expect_refusal(error, failure, start, detail)
+        type(test_error), allocatable, intent(out) :: error
+        type(error_type), allocatable, intent(in) :: failure
+        character(len=*), intent(in) :: start, detail
+
+        if (.not. allocated(failure)) then
+            call check(error, .false., 'expected a refusal: '//start)
+            return
+        end if
+        call check(error, index(failure%message, start) > 0 .and. index(failure%message, detail) > 0, &
+                   'expected "'//start//'" and "'//detail//'", found: '//failure%message)
+    end subroutine expect_refusal
 
 end module test_mlfit_mod

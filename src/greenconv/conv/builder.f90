@@ -225,14 +225,18 @@ contains
             chosen = 'exact'
             reason = 'N_t*N_g = '//sci_text(work)//' and the '//int_text(structure%model%n_modes()) &
                      //' modes are the structure''s own'
-        else if (structure%fit%e <= requested) then
+        else if (structure%fit_e() <= requested .and. structure%method == 'ml') then
+            chosen = 'exact'
+            reason = int_text(structure%model%n_modes())//' modes of the maximum-likelihood model, E = ' &
+                     //sci_text(structure%fit_e())//' <= '//sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
+        else if (structure%fit_e() <= requested) then
             chosen = 'exact'
             reason = int_text(structure%model%n_modes())//' modes, the smallest LSCE model with E <= ' &
                      //sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
         else
             chosen = 'fft'
-            reason = 'no LSCE model meets E <= '//sci_text(requested)//' (best E = '//sci_text(structure%fit%e) &
-                     //'), N_t*N_g = '//sci_text(work)
+            reason = 'no '//trim(merge('ML  ', 'LSCE', structure%method == 'ml'))//' model meets E <= ' &
+                     //sci_text(requested)//' (best E = '//sci_text(structure%fit_e())//'), N_t*N_g = '//sci_text(work)
         end if
     end subroutine choose_method
 
@@ -262,7 +266,7 @@ contains
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
             if (.not. structure%has_exact) then
                 misfit = maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)])))
-                accuracy = accuracy//'; g by FFT of the band-limited G is off the LSCE modes'' g by ' &
+                accuracy = accuracy//'; g by FFT of the band-limited G is off the identified modes'' g by ' &
                            //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
             end if
         case ('paper')
@@ -276,7 +280,8 @@ contains
         end select
         if (method_needs_modes(method)) then
             accuracy = 'exact: the modes are the structure''s own'
-            if (structure%identified) accuracy = 'LSCE fit of G: E = '//sci_text(structure%fit%e)//' (eq. 7)'
+            if (structure%identified) accuracy = trim(merge('ML  ', 'LSCE', structure%method == 'ml')) &
+                                                 //' fit of G: E = '//sci_text(structure%fit_e())//' (eq. 7)'
         end if
     end subroutine build_method
 

@@ -4,7 +4,8 @@
 !> uses, which are either the exact ones or an LSCE fit of G.
 !>
 !> Library callers build one without a scene: `structure_from_modes` (known modes),
-!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT) or
+!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT), `structure_from_frf_ml`
+!> (the same with the maximum-likelihood fit of greenconv_ident_mlfit, for measured G) or
 !> `structure_from_samples` (g sampled at the time step: `direct` and `fft` only).
 module greenconv_ident_structure
     use greenconv_core_kinds, only: dp
@@ -12,10 +13,12 @@ module greenconv_ident_structure
     use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     implicit none
     private
 
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
+    public :: structure_from_frf_ml
 
     !> A structure ready for the convolvers.
     type :: structure_model
@@ -30,12 +33,24 @@ module greenconv_ident_structure
         real(dp) :: sampled_step = 0.0_dp
         !> The modes the modal methods use.
         type(modal_set) :: model
-        !> Whether `model` comes from an LSCE fit (then `frf` and `fit` are set).
+        !> Whether `model` comes from a fit of G (then `frf`, `method` and `fit` or `ml` are set).
         logical :: identified = .false.
         !> The sampled receptance that was identified.
         type(frf_type) :: frf
-        !> The identification: order, E of eq. (7), warnings.
+        !> The identification used: 'lsce' (`fit`) or 'ml' (`ml`); '' when not identified.
+        character(len=4) :: method = ''
+        !> The LSCE identification (method 'lsce'): order, E of eq. (7), warnings.
         type(lsce_result) :: fit
+        !> The maximum-likelihood identification (method 'ml'): modes with their standard
+        !> deviations, noise level, stabilisation diagram, dropped modes, E of eq. (7).
+        type(ml_result) :: ml
+        !> CPU time of the identification [s].
+        real(dp) :: cpu_time = 0.0_dp
+    contains
+        !> E of eq. (7) of the identified model (1 when not identified).
+        procedure :: fit_e => structure_fit_e
+        !> Receptance [m/N] of the identified model, residual terms included, at omega [rad/s].
+        procedure :: fitted => structure_fitted
     end type structure_model
 
 contains
@@ -78,13 +93,81 @@ contains
         !> Set when the identification fails or dt does not fit the FRF grid.
         type(error_type), allocatable, intent(out) :: error
 
+        real(dp) :: start, finish
+
         structure%frf = frf
+        call cpu_time(start)
         call identify(structure%frf, options, structure%fit, error)
         if (allocated(error)) return
+        call cpu_time(finish)
+        structure%cpu_time = finish - start
+        structure%method = 'lsce'
         structure%model = sorted_by_frequency(structure%fit%modes)
         structure%identified = .true.
         if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
     end subroutine structure_from_frf
+
+    !> A structure known by its sampled receptance G, possibly measured with noise: modes
+    !> fitted by maximum likelihood (`identify_ml`: the noise level, the order and each
+    !> mode's uncertainty from the data) for the modal methods and, when dt > 0, g sampled
+    !> at dt from the inverse FFT of G for `direct` and `fft`, as `structure_from_frf`.
+    subroutine structure_from_frf_ml(frf, options, dt, structure, error)
+        !> The receptance G [m/N] on a uniform grid from 0 Hz.
+        type(frf_type), intent(in) :: frf
+        !> Identification settings.
+        type(ml_options), intent(in) :: options
+        !> Time step [s] of the convolvers; 0 for the modes alone.
+        real(dp), intent(in) :: dt
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the FRF grid.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: start, finish
+
+        structure%frf = frf
+        call cpu_time(start)
+        call identify_ml(structure%frf, options, structure%ml, error)
+        if (allocated(error)) return
+        call cpu_time(finish)
+        structure%cpu_time = finish - start
+        structure%method = 'ml'
+        structure%model = structure%ml%modes
+        structure%identified = .true.
+        if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
+    end subroutine structure_from_frf_ml
+
+    !> E of eq. (7) of the identified model; 1 when the structure was not identified.
+    elemental real(dp) function structure_fit_e(self)
+        !> The structure.
+        class(structure_model), intent(in) :: self
+
+        select case (self%method)
+        case ('lsce')
+            structure_fit_e = self%fit%e
+        case ('ml')
+            structure_fit_e = self%ml%e
+        case default
+            structure_fit_e = 1.0_dp
+        end select
+    end function structure_fit_e
+
+    !> Receptance of the identified model [m/N] at omega [rad/s] (0 when not identified).
+    elemental complex(dp) function structure_fitted(self, omega)
+        !> The structure.
+        class(structure_model), intent(in) :: self
+        !> Angular frequency [rad/s].
+        real(dp), intent(in) :: omega
+
+        select case (self%method)
+        case ('lsce')
+            structure_fitted = self%fit%receptance(omega)
+        case ('ml')
+            structure_fitted = self%ml%receptance(omega)
+        case default
+            structure_fitted = (0.0_dp, 0.0_dp)
+        end select
+    end function structure_fitted
 
     !> g at the time step dt from the FRF: the inverse FFT gives it at 1/(2*f_max); dt must
     !> be that step or a whole multiple of it.

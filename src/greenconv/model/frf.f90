@@ -10,6 +10,21 @@
 !> every f_j is within 1e-6*df of j*df (df = f_{n-1}/(n - 1)); the grid is then stored
 !> exactly as j*df. G must be finite. Each kind of bad file gets one message naming the
 !> file, the line and what was expected and found.
+!>
+!> A universal file (recognised by its content, a first non-blank line holding `-1` in
+!> columns 1-6, or by the extension .uff or .unv) is read too (greenconv_io_uff): one
+!> dataset 58 of function type 4 (FRF) with a frequency abscissa, or the one `dataset`
+!> names when the file holds several. Its ordinate is converted to a receptance:
+!> - receptance (displacement over force): taken as it is [m/N];
+!> - mobility (velocity over force): G = Y/(i*omega);
+!> - accelerance (acceleration over force): G = A/(i*omega)^2 = -A/omega^2;
+!> and for the two converted kinds the 0 Hz line, where the division is 0/0, is the real
+!> part of the linear extrapolation 2*G(df) - G(2*df) (G(0) of a real impulse response is
+!> real). Other kinds (e.g. a coherence, or units the file does not say) are refused. The
+!> abscissa must be the uniform grid from 0 Hz read_frf asks of a column file: an uneven
+!> abscissa is accepted when its values are that grid within the tolerance, and refused
+!> otherwise, since every identification here (LSCE, and identify_ml's linear step) and
+!> the impulse response g of `direct` and `fft` go through the inverse FFT of the grid.
 module greenconv_model_frf
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, real_text
@@ -17,10 +32,12 @@ module greenconv_model_frf
     use greenconv_model_modal_set, only: modal_set
     use greenconv_io_files, only: write_columns
     use greenconv_io_columns, only: read_columns
+    use greenconv_io_uff, only: uff_file, uff_function, read_uff, uff_kind_name, uff_function_type_name, &
+                                uff_receptance, uff_mobility, uff_accelerance
     implicit none
     private
 
-    public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines
+    public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
 
     !> Fewest data lines read_frf accepts: n lines give 2*(n - 1) impulse samples, and 8
     !> lines (14 samples) is the least for an overdetermined order-2 linear prediction
@@ -38,6 +55,9 @@ module greenconv_model_frf
         real(dp), allocatable :: frequency(:)
         !> Receptance G [m/N] at each frequency.
         complex(dp), allocatable :: receptance(:)
+        !> Where G came from, in words, for a summary (set for a universal file: the dataset,
+        !> its kind and conversion, response and reference node and direction); '' otherwise.
+        character(len=:), allocatable :: source
     contains
         !> Number of frequency lines n.
         procedure :: n_freq => frf_n_freq
@@ -125,19 +145,29 @@ contains
         call write_columns(path, header, table, error)
     end subroutine write_frf
 
-    !> Read an FRF file (format in the module description) and check its grid.
-    subroutine read_frf(path, frf, error)
+    !> Read an FRF file, a column file or a universal file (formats in the module
+    !> description), and check its grid.
+    subroutine read_frf(path, frf, error, dataset)
         !> File to read.
         character(len=*), intent(in) :: path
         !> The FRF read, with the grid stored exactly as j*df.
         type(frf_type), intent(out) :: frf
         !> Set, with one message naming the file and line, when the file does not fit.
         type(error_type), allocatable, intent(out) :: error
+        !> Universal file: which of its datasets 58 to read (1 = the first); 0 or absent: the
+        !> file must hold exactly one.
+        integer, intent(in), optional :: dataset
 
         real(dp), allocatable :: table(:, :)
         integer, allocatable :: line_of(:)
-        integer :: n
+        integer :: n, chosen
 
+        if (is_universal_file(path)) then
+            chosen = 0
+            if (present(dataset)) chosen = dataset
+            call read_universal(path, chosen, frf, error)
+            return
+        end if
         call read_columns(path, ['f   ', 'Re G', 'Im G'], ['Hz ', 'm/N', 'm/N'], table, line_of, error)
         if (allocated(error)) return
         n = size(table, 1)
@@ -156,7 +186,178 @@ contains
         allocate (frf%frequency(n), frf%receptance(n))
         frf%frequency(:) = grid(table(n, 1), n)
         frf%receptance(:) = cmplx(table(:, 2), table(:, 3), kind=dp)
+        frf%source = ''
     end subroutine read_frf
+
+    !> Whether a file is a universal file: its extension is .uff or .unv (any case), or its
+    !> first non-blank line is a dataset delimiter (`-1` right-justified in columns 1-6).
+    function is_universal_file(path) result(universal)
+        !> The file.
+        character(len=*), intent(in) :: path
+        logical :: universal
+
+        character(len=4) :: extension
+        character(len=256) :: line
+        integer :: unit, stat, i
+
+        extension = ''
+        if (len_trim(path) >= 4) extension = path(len_trim(path) - 3:len_trim(path))
+        do i = 1, 4
+            if (extension(i:i) >= 'A' .and. extension(i:i) <= 'Z') &
+                extension(i:i) = achar(iachar(extension(i:i)) + 32)
+        end do
+        universal = extension == '.uff' .or. extension == '.unv'
+        if (universal) return
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (len_trim(line) == 0) cycle
+            universal = line(1:6) == '    -1' .and. len_trim(line(7:)) == 0
+            exit
+        end do
+        close (unit)
+    end function is_universal_file
+
+    !> Read a universal file and take one of its datasets 58 as the FRF.
+    subroutine read_universal(path, dataset, frf, error)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: dataset
+        type(frf_type), intent(out) :: frf
+        type(error_type), allocatable, intent(out) :: error
+
+        type(uff_file) :: file
+        character(len=:), allocatable :: list
+        integer :: i, n
+
+        call read_uff(path, file, error)
+        if (allocated(error)) return
+        n = size(file%functions)
+        if (n == 0) then
+            call fatal_error(error, path//': expected a dataset 58 (a function at nodal DOF) in this universal ' &
+                             //'file, found none')
+            return
+        end if
+        if (dataset > n) then
+            call fatal_error(error, path//': frf_dataset = '//int_text(dataset)//' asks for dataset 58 number ' &
+                             //int_text(dataset)//', but the file holds '//int_text(n)//': '//listing(file))
+            return
+        end if
+        if (dataset < 1 .and. n > 1) then
+            list = listing(file)
+            call fatal_error(error, path//': the file holds '//int_text(n)//' datasets 58; say which one with ' &
+                             //'&structure frf_dataset = N (1 to '//int_text(n)//'): '//list)
+            return
+        end if
+        i = max(dataset, 1)
+        call frf_from_uff(file%functions(i), frf, error, path)
+        if (allocated(error)) return
+        frf%source = path//' dataset 58 number '//int_text(i)//' of '//int_text(n)//' (line ' &
+                     //int_text(file%functions(i)%line)//'): '//frf%source
+    end subroutine read_universal
+
+    !> The datasets 58 of a file in one line: `#1 line 1: frequency response function,
+    !> receptance, 3+Z/1+Z; #2 ...`.
+    pure function listing(file) result(text)
+        type(uff_file), intent(in) :: file
+        character(len=:), allocatable :: text
+
+        integer :: i
+
+        text = ''
+        do i = 1, size(file%functions)
+            associate (f => file%functions(i))
+                if (i > 1) text = text//'; '
+                text = text//'#'//int_text(i)//' line '//int_text(f%line)//': ' &
+                       //uff_function_type_name(f%function_type)//', '//uff_kind_name(f%kind)//', response ' &
+                       //dof_text(f%response_node, f%response_direction)//' / reference ' &
+                       //dof_text(f%reference_node, f%reference_direction)
+            end associate
+        end do
+    end function listing
+
+    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
+    pure function dof_text(node, direction) result(text)
+        integer, intent(in) :: node, direction
+        character(len=:), allocatable :: text
+
+        character(len=*), parameter :: axes(6) = ['X ', 'Y ', 'Z ', 'RX', 'RY', 'RZ']
+
+        text = int_text(node)
+        if (direction == 0) return
+        text = text//merge('+', '-', direction > 0)//trim(axes(min(abs(direction), 6)))
+    end function dof_text
+
+    !> A receptance from one dataset 58 of a universal file (function type 4, frequency
+    !> abscissa), converted from mobility or accelerance as the module description says.
+    !> `frf%source` says what was read: `receptance, response 3+Z, reference 1+Z` (with
+    !> `, converted from mobility: G = Y/(i*omega)` when converted).
+    subroutine frf_from_uff(function, frf, error, path)
+        !> The dataset 58.
+        type(uff_function), intent(in) :: function
+        !> The receptance on the uniform grid from 0 Hz.
+        type(frf_type), intent(out) :: frf
+        !> Set, naming the file and the dataset's line, when the function cannot be a receptance.
+        type(error_type), allocatable, intent(out) :: error
+        !> The file, for messages.
+        character(len=*), intent(in) :: path
+
+        character(len=:), allocatable :: place
+        real(dp), allocatable :: omega(:)
+        integer, allocatable :: line_of(:)
+        integer :: n
+
+        place = path//':'//int_text(function%line)//': dataset 58'
+        n = 0
+        if (allocated(function%ordinate)) n = size(function%ordinate)
+        if (function%function_type /= 4) then
+            call fatal_error(error, place//': expected function type 4 (frequency response function) in record 6, ' &
+                             //'found '//int_text(function%function_type)//' ('// &
+                             uff_function_type_name(function%function_type)//')')
+        else if (function%abscissa_axis%data_type /= 18 .and. function%abscissa_axis%data_type /= 0) then
+            call fatal_error(error, place//': expected a frequency abscissa (specific data type 18 in record 8), ' &
+                             //'found '//int_text(function%abscissa_axis%data_type))
+        else if (all(function%kind /= [uff_receptance, uff_mobility, uff_accelerance])) then
+            call fatal_error(error, place//': expected a receptance, mobility or accelerance (records 9/10: ' &
+                             //'displacement 8, velocity 11 or acceleration 12 over force 9 or 13), found data ' &
+                             //'types '//int_text(function%numerator%data_type)//' over ' &
+                             //int_text(function%denominator%data_type))
+        else if (n < min_frf_lines) then
+            call fatal_error(error, place//': expected at least '//int_text(min_frf_lines)//' points (a uniform ' &
+                             //'grid from 0 Hz), found '//int_text(n))
+        end if
+        if (allocated(error)) return
+        allocate (line_of(n))
+        line_of(:) = function%line
+        call check_grid(path, function%abscissa, line_of, error)
+        if (allocated(error)) then
+            error%message = error%message//' (dataset 58 abscissa, '//trim(merge('even  ', 'uneven', function%even)) &
+                            //' spacing); identification and the impulse response need the uniform grid from ' &
+                            //'0 Hz (they use its inverse FFT): resample the FRF onto one'
+            return
+        end if
+        allocate (frf%frequency(n), frf%receptance(n))
+        frf%frequency(:) = grid(function%abscissa(n), n)
+        omega = two_pi*frf%frequency
+        frf%source = uff_kind_name(function%kind)
+        select case (function%kind)
+        case (uff_receptance)
+            frf%receptance(:) = function%ordinate
+        case (uff_mobility)
+            frf%receptance(2:) = function%ordinate(2:)/cmplx(0.0_dp, omega(2:), dp)
+            frf%source = frf%source//' converted by G = Y/(i*omega)'
+        case (uff_accelerance)
+            frf%receptance(2:) = -function%ordinate(2:)/omega(2:)**2
+            frf%source = frf%source//' converted by G = -A/omega^2'
+        end select
+        if (function%kind /= uff_receptance) then
+            frf%receptance(1) = real(2.0_dp*frf%receptance(2) - frf%receptance(3), dp)
+            frf%source = frf%source//' (0 Hz line extrapolated)'
+        end if
+        frf%source = frf%source//', response '//dof_text(function%response_node, function%response_direction) &
+                     //', reference '//dof_text(function%reference_node, function%reference_direction)
+    end subroutine frf_from_uff
 
     !> The uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max.
     pure function grid(f_max, n) result(f)

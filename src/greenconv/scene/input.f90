@@ -72,8 +72,10 @@ module greenconv_scene_input
         real(dp) :: xi_low, xi_high
         !> Range of modal amplitudes A_k [1/kg] of the random_modes model.
         real(dp) :: a_low, a_high
-        !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N]).
+        !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N], or a universal file).
         character(len=:), allocatable :: frf_file
+        !> Which dataset 58 of a universal frf_file to read (0: the file must hold one).
+        integer :: frf_dataset = 0
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
@@ -88,6 +90,8 @@ module greenconv_scene_input
         integer :: max_order
         !> Fixed number of modes (0: the smallest order that meets tol_e).
         integer :: order
+        !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
+        character(len=:), allocatable :: ident_method
         !> Road profile.
         class(road_profile), allocatable :: road
         !> The road file of profile 'file' (heights over x), for the multi-point scene.
@@ -255,11 +259,11 @@ contains
         character(len=path_length) :: frf_file
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
-        integer :: n_modes, seed, stat
+        integer :: n_modes, seed, stat, frf_dataset
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
-            xi_low, xi_high, a_low, a_high, frf_file, belt_length, belt_mass, belt_bending, belt_tension, &
-            belt_foundation, f_modes
+            xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
+            belt_tension, belt_foundation, f_modes
 
         call scene_default('structure', 'model', model)
         call scene_default('structure', 'mass', mass)
@@ -274,6 +278,7 @@ contains
         call scene_default('structure', 'a_low', a_low)
         call scene_default('structure', 'a_high', a_high)
         call scene_default('structure', 'frf_file', frf_file)
+        call scene_default('structure', 'frf_dataset', frf_dataset)
         call scene_default('structure', 'belt_length', belt_length)
         call scene_default('structure', 'belt_mass', belt_mass)
         call scene_default('structure', 'belt_bending', belt_bending)
@@ -324,7 +329,10 @@ contains
                               //'belt_tension, belt_foundation >= 0, all finite'), error)
         call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this, 'structure', 'f_modes', &
                      'a frequency >= 0 Hz (0: the band rule)', f_modes), error)
+        call require(frf_dataset >= 0, expected(this, 'structure', 'frf_dataset', &
+                     'a dataset 58 number >= 1 of the universal file (0: its only one)', frf_dataset), error)
         this%frf_file = trim(frf_file)
+        this%frf_dataset = frf_dataset
         this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
                               tension=belt_tension, foundation_stiffness=belt_foundation, &
                               damping_ratio=damping_ratio)
@@ -341,8 +349,9 @@ contains
 
         real(dp) :: f_max, tol_e
         integer :: n_freq, max_order, order, stat
+        character(len=name_length) :: method
         character(len=512) :: message
-        namelist /identification/ f_max, n_freq, tol_e, max_order, order
+        namelist /identification/ f_max, n_freq, tol_e, max_order, order, method
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
         f_max = 0.5_dp/this%dt
@@ -350,6 +359,7 @@ contains
         call scene_default('identification', 'tol_e', tol_e)
         call scene_default('identification', 'max_order', max_order)
         call scene_default('identification', 'order', order)
+        call scene_default('identification', 'method', method)
         if (present(template)) then
             write (unit, nml=identification, delim='quote', iostat=stat, iomsg=message)
         else
@@ -372,7 +382,14 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
+        call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), expected(this, 'identification', 'method', &
+                     "'ml' (maximum likelihood) or 'lsce'", method), error)
+        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file')
+        call require(order == 0 .or. trim(method) == 'lsce', expected(this, 'identification', 'order', &
+                     "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
+                     //"method = 'lsce')", order), error)
         this%order = order
+        this%ident_method = trim(method)
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.

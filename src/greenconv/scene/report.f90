@@ -1,10 +1,14 @@
-!> What an identification reports: a summary on the terminal (order, E of eq. 7, poles
-!> dropped, warnings) and column files of the modes and of G against its fit.
+!> What an identification reports: a summary on the terminal (order, noise, uncertainty,
+!> E of eq. 7, CPU time, poles dropped, warnings) and column files of the modes (with their
+!> standard deviations for the maximum-likelihood fit), of G against its fit and residual,
+!> and of the stabilisation diagram.
 module greenconv_scene_report
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_model_modal_set, only: modal_set
+    use greenconv_core_text, only: int_text, sci_text
     use greenconv_ident_lsce, only: paper_form
+    use greenconv_ident_mlfit, only: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
     use greenconv_io_files, only: write_columns
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
@@ -18,13 +22,21 @@ module greenconv_scene_report
 
 contains
 
-    !> Print the identification in a few `#` lines: order, E, dropped poles, warnings.
+    !> Print the identification in a few `#` lines: where G came from (a universal file), the
+    !> order, noise, worst uncertainty, E and CPU time, dropped poles, warnings.
     subroutine identification_summary(structure, unit)
         !> The identified structure.
         type(structure_model), intent(in) :: structure
         !> Unit to print on.
         integer, intent(in) :: unit
 
+        if (allocated(structure%frf%source)) then
+            if (len(structure%frf%source) > 0) write (unit, '(a)') '# receptance: '//structure%frf%source
+        end if
+        if (structure%method == 'ml') then
+            call ml_summary(structure, unit)
+            return
+        end if
         associate (fit => structure%fit)
             write (unit, '(a,i0,a,i0,a,i0,a,es9.2,a,l1)') '# identification: LSCE order 2N = ', 2*fit%order_modes, &
                 ' (N = ', fit%order_modes, '), ', fit%modes%n_modes(), ' modes, E = ', fit%e, &
@@ -36,6 +48,76 @@ contains
             end if
         end associate
     end subroutine identification_summary
+
+    !> The maximum-likelihood fit in three to five lines, e.g.
+    !>
+    !>     # identification: maximum likelihood, 12 modes (order by MDL, diagram to N = 30), noise 1.00E-02
+    !>     #   of |G| (estimated), worst sigma_f/f 1.2E-04, worst sigma_xi/xi 6.9E-02, E = 1.0E-04 (eq. 7), 0.74 s CPU
+    subroutine ml_summary(structure, unit)
+        type(structure_model), intent(in) :: structure
+        integer, intent(in) :: unit
+
+        character(len=:), allocatable :: line, noise
+        real(dp) :: worst_f, worst_xi
+        integer :: k, n
+
+        associate (ml => structure%ml)
+            n = ml%modes%n_modes()
+            worst_f = 0.0_dp
+            worst_xi = 0.0_dp
+            do k = 1, n
+                worst_f = max(worst_f, two_pi*ml%sigma_frequency(k)/abs(ml%modes%pole(k)))
+                worst_xi = max(worst_xi, ml%sigma_damping(k)*abs(ml%modes%pole(k))/max(-real(ml%modes%pole(k), dp), &
+                                                                                         tiny(1.0_dp)))
+            end do
+            if (ml%noise_estimated) then
+                noise = 'noise '//sci_text(ml%noise_level_fit)//' of |G| (estimated from the data)'
+            else
+                noise = 'noise given per line (the residual asks '//sci_text(ml%noise_level_fit)//' times it)'
+            end if
+            line = '# identification: maximum likelihood, '//int_text(n)//' modes (order by MDL, diagram to N = ' &
+                   //int_text(maxval([0, ml%diagram_order]))//'), '//noise//', worst sigma_f/f = ' &
+                   //sci_text(worst_f)//', worst sigma_xi/xi = '//sci_text(worst_xi)//', E = '//sci_text(ml%e) &
+                   //' (eq. 7), CPU '//sci_text(structure%cpu_time)//' s'
+            write (unit, '(a)') line
+            write (unit, '(a)') '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
+                trim(merge('explained by the noise    ', 'larger than the noise asks', ml%explained))//'), ' &
+                //int_text(ml%n_start)//' start poles from the stabilisation diagram, '//int_text(ml%n_wandering) &
+                //' wandering, '//int_text(ml%iterations)//' Levenberg-Marquardt iterations' &
+                //trim(merge(', upper residual kept', '                     ', ml%has_upper)) &
+                //trim(merge(', lower residual kept', '                     ', ml%has_lower))
+            if (size(ml%dropped_pole) > 0) then
+                line = '# dropped:'
+                do k = 1, size(ml%dropped_pole)
+                    if (k > 1) line = line//';'
+                    line = line//' '//sci_text(abs(ml%dropped_pole(k))/two_pi)//' Hz ('//reason(ml%dropped_reason(k)) &
+                           //')'
+                end do
+                write (unit, '(a)') line
+            end if
+            if (allocated(ml%warning)) then
+                if (len(ml%warning) > 0) write (unit, '(a)') '# warning: '//ml%warning
+            end if
+        end associate
+    contains
+        pure function reason(code) result(text)
+            integer, intent(in) :: code
+            character(len=:), allocatable :: text
+
+            select case (code)
+            case (dropped_by_criterion)
+                text = 'its removal lowered MDL'
+            case (dropped_left_band)
+                text = 'moved out of the band'
+            case (dropped_degenerate)
+                text = 'singular information, merged'
+            case (dropped_boundary)
+                text = 'pushed to xi = 0, a noise spike'
+            case default
+                text = 'code '//int_text(code)
+            end select
+        end function reason
+    end subroutine ml_summary
 
     !> Write `<name>_modes.dat` (identified), `<name>_modes_true.dat` (when the exact modes are
     !> known) and `<name>_frf.dat` (G and its fit on the identified grid).
@@ -50,7 +132,13 @@ contains
         character(len=:), allocatable :: stem
 
         stem = scene%output_dir//'/'//scene%name
-        call write_modes(stem//'_modes.dat', 'modes identified by LSCE', structure%model, error)
+        if (structure%method == 'ml') then
+            call write_ml_modes(stem//'_modes.dat', structure, error)
+            if (allocated(error)) return
+            call write_diagram(stem//'_diagram.dat', structure, error)
+        else
+            call write_modes(stem//'_modes.dat', 'modes identified by LSCE', structure%model, error)
+        end if
         if (allocated(error)) return
         if (structure%has_exact) then
             call write_modes(stem//'_modes_true.dat', 'the structure''s own modes', structure%exact, error)
@@ -80,6 +168,69 @@ contains
                                                    [modes%n_modes(), 7]), error)
     end subroutine write_modes
 
+    !> The maximum-likelihood modes: the columns of `write_modes` and the standard deviations
+    !> sigma_f [Hz], sigma_xi and sigma_r [m/(N*s)] from the Fisher information.
+    subroutine write_ml_modes(path, structure, error)
+        character(len=*), intent(in) :: path
+        type(structure_model), intent(in) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: amplitude(:), omega(:), damping(:), lost(:)
+        character(len=110) :: comments(7)
+
+        associate (ml => structure%ml, modes => structure%ml%modes)
+            call paper_form(modes, amplitude, omega, damping, lost)
+            comments(1) = 'greenconv: modes identified by maximum likelihood (order by MDL), with their standard ' &
+                          //'deviations'
+            comments(2) = 'G(w) = sum_k r_k/(iw - l_k) + conj(r_k)/(iw - conj(l_k)), l_k = -xi_k w_k + i w_k ' &
+                          //'sqrt(1-xi_k^2)'
+            comments(3) = 'paper form, eq. (6): A_k/(w_k^2 - w^2 + 2i xi_k w w_k), A_k = -2 Im(l_k) Im(r_k); ' &
+                          //'lost = |Re r_k|/|r_k|'
+            comments(4) = 'sigma_f, sigma_xi, sigma_r = sqrt(var Re r + var Im r): Fisher information at the optimum'
+            write (comments(5), '(a,es10.3,a,es10.3,a)') 'noise level ', ml%noise_level_fit, ', upper residual ', &
+                ml%upper_residual, ' m/N'
+            comments(6) = 'units: Hz rad/s 1 m/(N*s) m/(N*s) 1/kg 1 Hz 1 m/(N*s)'
+            comments(7) = 'f omega xi re_r im_r a_paper lost sigma_f sigma_xi sigma_r'
+            call write_columns(path, comments, reshape([omega/two_pi, omega, damping, real(modes%residue, dp), &
+                                                        aimag(modes%residue), amplitude, lost, ml%sigma_frequency, &
+                                                        ml%sigma_damping, ml%sigma_residue], &
+                                                       [modes%n_modes(), 10]), error)
+        end associate
+    end subroutine write_ml_modes
+
+    !> The stabilisation diagram: one row per pole of every order N, and the chosen modes as
+    !> rows of order 0 with flag 3 (so one file draws both).
+    subroutine write_diagram(path, structure, error)
+        character(len=*), intent(in) :: path
+        type(structure_model), intent(in) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=110) :: comments(5)
+        real(dp), allocatable :: table(:, :)
+        integer :: n, m
+
+        associate (ml => structure%ml)
+            n = size(ml%diagram_order)
+            m = ml%modes%n_modes()
+            comments(1) = 'greenconv: stabilisation diagram of the linear LSCE step, N = 1..max_order modes'
+            comments(2) = 'flag 2: f and xi stable against order N - 1, 1: f only, 0: neither; ' &
+                          //'flag 3 (order 0): a chosen mode'
+            comments(3) = 'chosen modes (order by MDL): '//int_text(m)
+            comments(4) = 'units: 1 Hz 1 1'
+            comments(5) = 'order f xi flag'
+            allocate (table(n + m, 4))
+            table(:n, 1) = ml%diagram_order
+            table(:n, 2) = ml%diagram_frequency
+            table(:n, 3) = ml%diagram_damping
+            table(:n, 4) = ml%diagram_flag
+            table(n + 1:, 1) = 0.0_dp
+            table(n + 1:, 2) = abs(ml%modes%pole)/two_pi
+            table(n + 1:, 3) = -real(ml%modes%pole, dp)/abs(ml%modes%pole)
+            table(n + 1:, 4) = 3.0_dp
+            call write_columns(path, comments, table, error)
+        end associate
+    end subroutine write_diagram
+
     !> G and the fitted model on the identified grid: real and imaginary parts, magnitude
     !> and phase, for Fig. 4.
     subroutine write_fit(path, structure, error)
@@ -93,7 +244,11 @@ contains
 
         allocate (fitted(structure%frf%n_freq()))
         associate (f => structure%frf%frequency, g => structure%frf%receptance)
-            fitted(:) = structure%fit%receptance(two_pi*f)
+            fitted(:) = structure%fitted(two_pi*f)
+            if (structure%method == 'ml') then
+                call write_ml_fit(path, structure, fitted, error)
+                return
+            end if
             write (comments(1), '(a,es9.2,a)') 'greenconv: receptance G and its LSCE fit, E = ', structure%fit%e, &
                 ' (eq. 7)'
             comments(2) = 'phase in degrees, in (-180, 180]'
@@ -106,5 +261,35 @@ contains
                                                        [size(f), 9]), error)
         end associate
     end subroutine write_fit
+
+    !> G, the maximum-likelihood model, the residual |G - model| and the noise standard
+    !> deviation of each line (the level times |model| for the relative noise model); the 0 Hz
+    !> line is left out when the model has a lower residual term (infinite there).
+    subroutine write_ml_fit(path, structure, fitted, error)
+        character(len=*), intent(in) :: path
+        type(structure_model), intent(in) :: structure
+        complex(dp), intent(in) :: fitted(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=120) :: comments(4)
+        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
+        integer :: first
+
+        first = merge(2, 1, structure%ml%has_lower)
+        associate (f => structure%frf%frequency(first:), g => structure%frf%receptance(first:), &
+                   model => fitted(first:), ml => structure%ml)
+            write (comments(1), '(a,es9.2,a,es9.2,a)') 'greenconv: G, its maximum-likelihood fit (E = ', ml%e, &
+                ', eq. 7), the residual and the noise (level ', ml%noise_level_fit, ')'
+            comments(2) = 'phase in degrees, in (-180, 180]; sigma: noise standard deviation of the line'
+            comments(3) = 'units: Hz m/N m/N m/N deg m/N m/N m/N deg m/N m/N'
+            comments(4) = 'f re_g im_g abs_g phase_g re_fit im_fit abs_fit phase_fit abs_residual sigma'
+            call write_columns(path, comments, reshape([f, real(g, dp), aimag(g), abs(g), &
+                                                        degrees*atan2(aimag(g), real(g, dp)), real(model, dp), &
+                                                        aimag(model), abs(model), &
+                                                        degrees*atan2(aimag(model), real(model, dp)), &
+                                                        abs(g - model), ml%noise_level_fit*abs(model)], &
+                                                       [size(f), 11]), error)
+        end associate
+    end subroutine write_ml_fit
 
 end module greenconv_scene_report

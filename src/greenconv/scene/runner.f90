@@ -188,7 +188,7 @@ contains
 
         line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
         if (model_requires(find_model(scene%model), 'frf_file')) then
-            call read_frf(scene%frf_file, frf, error)
+            call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
             if (allocated(error)) then
                 error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
                 return

@@ -118,6 +118,8 @@ contains
             'the largest modal amplitude A_k of the random modes', '')
         call add(rows, n, 'structure', 'frf_file', value_text, '', '', &
             'a receptance file', '')
+        call add(rows, n, 'structure', 'frf_dataset', value_integer, '0', '', &
+            'which dataset 58 of a universal frf_file (0: its only one)', '')
         call add(rows, n, 'structure', 'belt_length', value_real, '1.885', 'm', &
             'the tyre belt length', '')
         call add(rows, n, 'structure', 'belt_mass', value_real, '2.5', 'kg/m', &
@@ -140,6 +142,8 @@ contains
             'the largest number of modes the order scan tries', '')
         call add(rows, n, 'identification', 'order', value_integer, '0', '', &
             'a fixed number of modes (0: the smallest meeting tol_e)', '')
+        call add(rows, n, 'identification', 'method', value_text, '', '', &
+            "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
             "the road profile, 'sine', 'random' or 'file'", "task 'contact'")
         call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &

@@ -8,7 +8,9 @@ module greenconv_scene_structure
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
     use greenconv_ident_lsce, only: lsce_options
-    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf
+    use greenconv_ident_mlfit, only: ml_options
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
+                                         structure_from_frf_ml
     use greenconv_scene_input, only: scene_type, input_place
     use greenconv_scene_models, only: model_id, model_sdof, model_random_modes, model_frf_file
     implicit none
@@ -18,7 +20,8 @@ module greenconv_scene_structure
 
 contains
 
-    !> Build the structure of a scene: exact modes, or G sampled and identified by LSCE.
+    !> Build the structure of a scene: exact modes, or G sampled (random_modes) or read (frf_file,
+    !> a column or universal file) and identified by the scene's method, 'ml' or 'lsce'.
     subroutine build_structure(scene, structure, error)
         !> The scene.
         type(scene_type), intent(in) :: scene
@@ -36,14 +39,13 @@ contains
         case (model_random_modes)
             exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
                                  scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
-            call structure_from_frf(frf_from_modes(exact, scene%f_max, scene%n_freq), scene_options(scene), &
-                                    0.0_dp, structure, error)
+            call identify_scene(scene, frf_from_modes(exact, scene%f_max, scene%n_freq), 0.0_dp, structure, error)
             structure%has_exact = .true.
             structure%exact = exact
         case (model_frf_file)
-            call read_frf(scene%frf_file, frf, error)
+            call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
             if (.not. allocated(error)) then
-                call structure_from_frf(frf, scene_options(scene), sampling_step(scene), structure, error)
+                call identify_scene(scene, frf, sampling_step(scene), structure, error)
                 if (allocated(error)) error%message = scene%frf_file//': '//error%message
             end if
             if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
@@ -51,6 +53,27 @@ contains
             call fatal_error(error, scene%file//": &structure model: unknown model '"//scene%model//"'")
         end select
     end subroutine build_structure
+
+    !> Identify G by the scene's method (`&identification method`).
+    subroutine identify_scene(scene, frf, dt, structure, error)
+        type(scene_type), intent(in) :: scene
+        type(frf_type), intent(in) :: frf
+        real(dp), intent(in) :: dt
+        type(structure_model), intent(out) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        type(ml_options) :: options
+        logical :: ml
+
+        ml = .false.
+        if (allocated(scene%ident_method)) ml = scene%ident_method == 'ml'
+        if (ml) then
+            options%max_order = scene%max_order
+            call structure_from_frf_ml(frf, options, dt, structure, error)
+        else
+            call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+        end if
+    end subroutine identify_scene
 
     !> The step [s] g is sampled at: the scene's dt for a contact run (the step every convolver
     !> of the run gets), 0 (modes alone, no g) for task `identify`.
