@@ -39,6 +39,7 @@ module greenconv_capi
     public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
+    public :: finish, from_c, to_c
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
     integer(c_int), parameter :: gc_scheme_explicit = 0
