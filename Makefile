@@ -9,7 +9,8 @@
 #                   thread-safe; see src/greenconv/ext/fftw.f90)
 #   make examples   the library examples against the plain build: example/c_contact.c (C),
 #                   example/cxx_header.cpp (C++, when $(CXX) exists), example/legacy_f77.f
-#                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads)
+#                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads),
+#                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch)
 #   make install    install the driver, both libraries, include/greenconv.h, the .mod files
 #                   and greenconv.pc (pkg-config) under PREFIX (default /usr/local; DESTDIR too)
 #   make doc        API documentation with FORD (installed with pip when missing) into
@@ -100,7 +101,7 @@ SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
 EXDIR   := $(BUILD)/examples
-EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
             $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
@@ -182,6 +183,14 @@ examples: $(EXAMPLES)
 $(EXDIR)/c_contact: example/c_contact.c include/greenconv.h $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/c_patch: example/c_patch.c include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/legacy_patch: example/legacy_patch.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
 $(EXDIR)/cxx_header: example/cxx_header.cpp include/greenconv.h $(LIB)
 	@mkdir -p $(@D)

@@ -274,3 +274,124 @@ int gc_run_scene(const char *path, char *errmsg, size_t errmsg_len);
 #endif
 
 #endif /* GREENCONV_H */
+
+/* ======================================================================================== *
+ * Multi-point contact (N_c contact points, all forces of a step solved together)            *
+ * ======================================================================================== */
+/*
+ * A gc_multi_convolver holds the Green's matrix g_ij(t) [m/(N*s)] of a structure touched at
+ * N_c points (the displacement at i per unit impulse at j) and steps the matrix form of
+ * eq. (20): u(t_n) = u_h(n) + W0*q(t_n), u_h(n) the history displacements of all points,
+ * W0 the N_c x N_c instant compliance (zero for the explicit methods "modal"/"recursive",
+ * "direct" and "fft" on modal g; non-zero for "exact", solved by Newton at every step).
+ *
+ * Conventions as above (status GC_OK / GC_ERROR_INPUT / GC_ERROR_NUMERICAL, a message in
+ * errmsg on every call, NULL checked). Arrays are laid out first index fastest (as Fortran
+ * stores them):
+ *     shape[k*n_points + i]                 = phi_ik, mode k at point i
+ *     g[(j*n_points + i)*n_samples + m]     = g_ij(m*dt)
+ *     road[i*n_steps + n], and the outputs  = value at point i, step n
+ *     w0[j*n_points + i]                    = W0_ij [m/N]
+ * Functions taking `n_points` check it against the convolver's N_c (GC_ERROR_INPUT, naming
+ * n_points, when they differ).
+ *
+ * Contact, per point i (as the single-point run): compression delta_i = delta0_i + u_r,i - u_i,
+ * delta0_i = (F0_i/k_c,i)^(1/p_i); F_i = k_c,i*delta_i^p_i in compression, 0 otherwise; the
+ * structure is loaded by F - F0 and rests in static equilibrium at step 0. A step that
+ * diverges (|u_i| above the bound, or not finite) or whose Newton iteration does not converge
+ * returns GC_ERROR_NUMERICAL with a message naming the step, its time and the point.
+ */
+#ifndef GREENCONV_MULTI_H
+#define GREENCONV_MULTI_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Opaque multi-point convolver (a Green's matrix of N_c points). */
+typedef struct gc_multi_convolver gc_multi_convolver;
+
+/**
+ * A multi-point convolver from modes shared by the points:
+ *     g_ij(t) = sum_k phi_ik*phi_jk*2*Re(r_k*exp(lambda_k*t)),
+ * poles lambda_k = pole_re + i*pole_im [rad/s] (damped: pole_re < 0 < pole_im), residues r_k of
+ * the unit modal impulse responses (1/(2i*omega_d,k) [1/(kg*s)] for modes of unit modal mass,
+ * phi then in 1/sqrt(kg)), shape as above. This is a rank-one residue matrix r_k*phi_k*phi_k^T
+ * per mode; a general residue matrix is not accepted. method: "modal" (= "recursive"),
+ * "exact", "direct" or "fft"; options: truncation_tol for "direct"/"fft" (accuracy unused),
+ * NULL for the defaults.
+ */
+int gc_multi_new_modes(int n_points, int n_modes, const double *pole_re, const double *pole_im,
+                       const double *residue_re, const double *residue_im, const double *shape,
+                       double dt, const char *method, int n_steps, const gc_build_options *options,
+                       gc_multi_convolver **conv, char *errmsg, size_t errmsg_len);
+
+/**
+ * A multi-point convolver from samples g_ij(m*dt) [m/(N*s)], m = 0..n_samples-1 ("direct" or
+ * "fft"), truncated where max_ij |g_ij| falls below truncation_tol of its maximum (the paper's
+ * rule; 0 keeps every sample), never beyond n_steps. W0 = dt*g(0): non-zero g_ij(0) make the
+ * contact step implicit.
+ */
+int gc_multi_new_samples(int n_points, int n_samples, const double *g, double dt, const char *method,
+                         int n_steps, const gc_build_options *options, gc_multi_convolver **conv,
+                         char *errmsg, size_t errmsg_len);
+
+/**
+ * The modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
+ * foundation, default parameters) up to f_max [Hz], seen at an n_x by n_y patch of length x
+ * width [m] centred on the belt; point i = iy*n_x + ix at (x[i], y[i]) (x and y may be NULL).
+ * At most `capacity` modes (shape: n_x*n_y*capacity values); *n_modes is set even when it
+ * exceeds capacity (GC_ERROR_INPUT). The arrays feed gc_multi_new_modes.
+ */
+int gc_multi_plate_patch(int n_x, int n_y, double length, double width, double f_max, int capacity,
+                         int *n_modes, double *pole_re, double *pole_im, double *residue_re,
+                         double *residue_im, double *shape, double *x, double *y, char *errmsg,
+                         size_t errmsg_len);
+
+/** Free a multi-point convolver (NULL: nothing). */
+void gc_multi_free(gc_multi_convolver *conv);
+/** Free *conv and set it to NULL (conv or *conv NULL: nothing), so a second call is harmless. */
+void gc_multi_delete(gc_multi_convolver **conv);
+
+/** The number of points N_c. */
+int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len);
+/** History displacements u_h,i(n) [m] of all points from the forces pushed so far. */
+int gc_multi_history(const gc_multi_convolver *conv, int n_points, double *displacement, char *errmsg,
+                     size_t errmsg_len);
+/** Record this step's forces q_i(t_n) [N] and advance to the next step. */
+int gc_multi_push(gc_multi_convolver *conv, int n_points, const double *force, char *errmsg,
+                  size_t errmsg_len);
+/** The instant compliance matrix W0 [m/N] (n_points*n_points values). */
+int gc_multi_instant_matrix(const gc_multi_convolver *conv, int n_points, double *w0, char *errmsg,
+                            size_t errmsg_len);
+/** Back to step 0 with no force history (ends a stepped contact run). */
+int gc_multi_reset(gc_multi_convolver *conv, char *errmsg, size_t errmsg_len);
+/** "method: what the model neglects, N_g (or N_m) = size" into text (the message on failure);
+ *  the model size into *model_size unless NULL. */
+int gc_multi_describe(const gc_multi_convolver *conv, int *model_size, char *text, size_t text_len);
+
+/** Newton and divergence settings of the next contact runs: relative tolerance of a step's
+ *  residual (default 1e-12), most iterations per step (50), largest |u_i| [m] (1). */
+int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iterations,
+                        double divergence_bound, char *errmsg, size_t errmsg_len);
+
+/** Reset the convolver and start a contact run stepped by gc_multi_contact_step: per point,
+ *  k_c [N/m^p] > 0, p > 0 and preload F0 [N] >= 0 (the message names a bad point). */
+int gc_multi_contact_start(gc_multi_convolver *conv, int n_points, const double *k_c, const double *p,
+                           const double *preload, char *errmsg, size_t errmsg_len);
+/** The next step: road heights u_r,i [m] in; displacements, forces and compressions out
+ *  (compression may be NULL; all 0 on a fault, which ends the run). Stepping a whole road
+ *  equals gc_multi_run_contact bit for bit. */
+int gc_multi_contact_step(gc_multi_convolver *conv, int n_points, const double *road, double *displacement,
+                          double *force, double *compression, char *errmsg, size_t errmsg_len);
+/** A whole run over n_steps (the convolver reset first); outputs 0 from a fault on
+ *  (compression may be NULL). */
+int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps, const double *k_c,
+                         const double *p, const double *preload, const double *road, double *displacement,
+                         double *force, double *compression, char *errmsg, size_t errmsg_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GREENCONV_MULTI_H */

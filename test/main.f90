@@ -31,6 +31,7 @@ program greenconv_tests
     use test_spectra_mod, only: collect_spectra
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
+    use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
     implicit none
@@ -61,6 +62,7 @@ program greenconv_tests
                        new_testsuite('spectra', collect_spectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('mlfit', collect_mlfit), &
+                       new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)

@@ -21,7 +21,8 @@
 #       Run DRIVER (the Makefile build) on data/sdof_sine.nml into a temporary directory,
 #       then each built example: c_contact and legacy_f77 compare their results with
 #       those files (the directory is c_contact's argument, with data/sample_receptance.frf,
-#       and legacy_f77's standard input); cxx_header and omp_threads check themselves.
+#       and legacy_f77's standard input); cxx_header, omp_threads, c_patch and
+#       legacy_patch check themselves.
 #
 #   tools/make_helpers.sh install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE
 #       Install the driver, libgreenconv.a, libgreenconv.so.VERSION (with its soname and
@@ -32,7 +33,9 @@
 #       `make install` into a temporary prefix, then build example/c_contact.c against the
 #       installed shared library and example/legacy_f77.f against the installed static
 #       library, both with the flags of `pkg-config greenconv`, and run them against
-#       DRIVER's output for data/sdof_sine.nml. Uses $MAKE, $CC and $FC.
+#       DRIVER's output for data/sdof_sine.nml; the same for example/c_patch.c and
+#       example/legacy_patch.f (the multi-point patch, checked against the library's whole
+#       run). Uses $MAKE, $CC and $FC.
 #
 #   tools/make_helpers.sh doc-check SOURCE...
 #       Check that every public entity of the sources (modules; types, procedures and
@@ -377,8 +380,19 @@ cmd_install_test() {
         "$prefix/lib/libgreenconv.a" $private \
         || die "building example/legacy_f77.f against the installed library failed"
     run_example "$tmp/legacy_f77" "$tmp/reference" || die "the installed Fortran 77 example failed"
-    say "ok: C example (shared library) and Fortran 77 example (static library), built with" \
-        "pkg-config from the installed prefix, match the driver"
+    # The multi-point patch: C against the shared library, fixed form against the static one.
+    # shellcheck disable=SC2086
+    "${CC:-cc}" -O2 -o "$tmp/c_patch" example/c_patch.c $cflags $libs -lm \
+        || die "building example/c_patch.c against the installed library failed"
+    LD_LIBRARY_PATH=$prefix/lib run_example "$tmp/c_patch" || die "the installed C patch example failed"
+    # shellcheck disable=SC2086
+    "${FC:-gfortran}" -O2 -ffixed-form -J"$tmp" -o "$tmp/legacy_patch" example/legacy_patch.f $cflags \
+        "$prefix/lib/libgreenconv.a" $private \
+        || die "building example/legacy_patch.f against the installed library failed"
+    run_example "$tmp/legacy_patch" || die "the installed Fortran 77 patch example failed"
+    say "ok: C examples (shared library) and Fortran 77 examples (static library), built with" \
+        "pkg-config from the installed prefix, match the driver (c_contact, legacy_f77) and the" \
+        "library's whole multi-point run (c_patch, legacy_patch)"
 }
 
 # ---------------------------------------------------------------------------------

@@ -39,6 +39,8 @@ module greenconv_capi
     public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
+    !> The message and string conversions, shared with greenconv_capi_multi.
+    public :: finish, from_c, to_c
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
     integer(c_int), parameter :: gc_scheme_explicit = 0
@@ -931,8 +933,11 @@ contains
 
     !> The status of an error (0 when none), its message copied to the caller's buffer ("" when none).
     function finish(error, errmsg, errmsg_len) result(status)
+        !> The error, or unallocated for success.
         type(error_type), allocatable, intent(in) :: error
+        !> Message buffer, or NULL.
         type(c_ptr), intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
         integer(c_size_t), intent(in) :: errmsg_len
         integer(c_int) :: status
 
@@ -947,6 +952,7 @@ contains
 
     !> A NUL-terminated C string as Fortran text (empty for NULL).
     function from_c(text) result(fortran_text)
+        !> A NUL-terminated C string, or NULL.
         type(c_ptr), intent(in) :: text
         character(len=:), allocatable :: fortran_text
 
@@ -967,8 +973,11 @@ contains
     !> length - 1 bytes, then a NUL. Nothing for a NULL buffer or length 0. A length that does
     !> not fit a signed size (negative here) is as good as unlimited.
     subroutine to_c(text, buffer, length)
+        !> The text.
         character(len=*), intent(in) :: text
+        !> The C buffer, or NULL.
         type(c_ptr), intent(in) :: buffer
+        !> Size of the buffer [bytes].
         integer(c_size_t), intent(in) :: length
 
         character(kind=c_char), pointer :: chars(:)

@@ -290,7 +290,8 @@ contains
         end do
         call fatal_error(error, 'multi-point contact: Newton did not converge in '//int_text(options%max_iterations) &
                          //' iterations, max |residual| = '//sci_text(maxval(abs(r)))//' m > ' &
-                         //sci_text(options%tolerance*scale)//' m', stat_numerical)
+                         //sci_text(options%tolerance*scale)//' m at point '//int_text(maxloc(abs(r), 1)), &
+                         stat_numerical)
     end subroutine solve_compressions
 
     !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].

@@ -1,0 +1,683 @@
+!> The C interface of multi-point contact: `bind(c)` functions `gc_multi_*` declared in the
+!> multi-point section of include/greenconv.h, on the shared layer greenconv_api_multi_handle.
+!>
+!> A `gc_multi_convolver *` is the C address of a `multi_box`. Conventions are those of
+!> greenconv_capi: every function returns 0, 2 (bad input, NULL pointer) or 3 (numerical
+!> failure) and writes its message into `errmsg` (`errmsg_len` bytes as a `size_t`, clamped,
+!> always NUL-terminated, "" on success). Arrays are C arrays laid out as Fortran stores them
+!> (the first index fastest): shape[k*n_points + i] = phi_ik, g[(j*n_points + i)*n_samples + m]
+!> = g_ij(m*dt), road[i*n_steps + n] = u_r,i(t_n), W0[j*n_points + i] = W0_ij. SI units.
+module greenconv_capi_multi
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_null_ptr, c_associated, &
+                                           c_f_pointer, c_loc
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_api_library, only: default_truncation_tol
+    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+                                          check_box, set_multi_options, start_multi_box, advance_multi_box, &
+                                          run_multi_box
+    use greenconv_capi, only: gc_build_options, finish, from_c, to_c
+    implicit none
+    private
+
+    public :: gc_multi_new_modes, gc_multi_new_samples, gc_multi_plate_patch, gc_multi_free, gc_multi_delete
+    public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
+    public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
+    public :: gc_multi_run_contact
+
+    !> What a NULL handle's message says.
+    character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes or ' &
+                                                 //'gc_multi_new_samples'
+
+contains
+
+    !> int gc_multi_new_modes(int n_points, int n_modes, const double *pole_re,
+    !> const double *pole_im, const double *residue_re, const double *residue_im,
+    !> const double *shape, double dt, const char *method, int n_steps,
+    !> const gc_build_options *options, gc_multi_convolver **conv, char *errmsg, size_t errmsg_len)
+    function gc_multi_new_modes(n_points, n_modes, pole_re, pole_im, residue_re, residue_im, shape, dt, method, &
+                                n_steps, options, conv, errmsg, errmsg_len) bind(c, name='gc_multi_new_modes') &
+        result(status)
+        !> Number of contact points N_c, >= 1.
+        integer(c_int), value, intent(in) :: n_points
+        !> Number of modes N_m, >= 1.
+        integer(c_int), value, intent(in) :: n_modes
+        !> Real parts of the poles lambda_k [rad/s], < 0 (n_modes values).
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Imaginary parts of the poles [rad/s], > 0 (n_modes values).
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Real parts of the modal residues r_k (n_modes values).
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Imaginary parts of the modal residues (n_modes values).
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Mode shapes shape[k*n_points + i] = phi_ik (n_points*n_modes values).
+        type(c_ptr), value, intent(in) :: shape
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method: "modal" (= "recursive"), "exact", "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options (truncation_tol; accuracy is not used), or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_new_modes'
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :)
+
+        box => null()
+        call start_handle(caller, conv, method, error)
+        if (allocated(error)) then
+            continue
+        else if (n_points < 1) then
+            call fatal_error(error, caller//': n_points = '//int_text(int(n_points))//': give at least 1 point')
+        else if (n_modes < 1) then
+            call fatal_error(error, caller//': n_modes = '//int_text(int(n_modes))//': give at least 1 mode')
+        else if (.not. all([c_associated(pole_re), c_associated(pole_im), c_associated(residue_re), &
+                            c_associated(residue_im), c_associated(shape)])) then
+            call fatal_error(error, caller//': pole_re, pole_im, residue_re, residue_im and shape must not be ' &
+                             //'NULL: pass arrays of n_modes (shape: n_points*n_modes) values')
+        else
+            call c_f_pointer(pole_re, p_re, [n_modes])
+            call c_f_pointer(pole_im, p_im, [n_modes])
+            call c_f_pointer(residue_re, r_re, [n_modes])
+            call c_f_pointer(residue_im, r_im, [n_modes])
+            call c_f_pointer(shape, phi, [n_points, n_modes])
+            call modes_multi_box(caller, from_c(method), p_re, p_im, r_re, r_im, phi, dt, tolerance_of(options), &
+                                 int(n_steps), box, error)
+        end if
+        status = made(box, conv, error, errmsg, errmsg_len)
+    end function gc_multi_new_modes
+
+    !> int gc_multi_new_samples(int n_points, int n_samples, const double *g, double dt,
+    !> const char *method, int n_steps, const gc_build_options *options,
+    !> gc_multi_convolver **conv, char *errmsg, size_t errmsg_len)
+    function gc_multi_new_samples(n_points, n_samples, g, dt, method, n_steps, options, conv, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_new_samples') result(status)
+        !> Number of contact points N_c, >= 1.
+        integer(c_int), value, intent(in) :: n_points
+        !> Number of samples of each g_ij, >= 2.
+        integer(c_int), value, intent(in) :: n_samples
+        !> Samples g[(j*n_points + i)*n_samples + m] = g_ij(m*dt) [m/(N*s)].
+        type(c_ptr), value, intent(in) :: g
+        !> Time step dt [s] of the samples and of the run, > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Method: "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options (truncation_tol; accuracy is not used), or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_new_samples'
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: samples(:, :, :)
+
+        box => null()
+        call start_handle(caller, conv, method, error)
+        if (allocated(error)) then
+            continue
+        else if (n_points < 1) then
+            call fatal_error(error, caller//': n_points = '//int_text(int(n_points))//': give at least 1 point')
+        else if (n_samples < 2) then
+            call fatal_error(error, caller//': n_samples = '//int_text(int(n_samples)) &
+                             //': give at least 2 samples of every g_ij')
+        else if (.not. c_associated(g)) then
+            call fatal_error(error, caller//': g is NULL: pass n_points*n_points*n_samples samples')
+        else
+            call c_f_pointer(g, samples, [n_samples, n_points, n_points])
+            call samples_multi_box(caller, from_c(method), samples, dt, tolerance_of(options), int(n_steps), box, &
+                                   error)
+        end if
+        status = made(box, conv, error, errmsg, errmsg_len)
+    end function gc_multi_new_samples
+
+    !> int gc_multi_plate_patch(int n_x, int n_y, double length, double width, double f_max,
+    !> int capacity, int *n_modes, double *pole_re, double *pole_im, double *residue_re,
+    !> double *residue_im, double *shape, double *x, double *y, char *errmsg, size_t errmsg_len)
+    function gc_multi_plate_patch(n_x, n_y, length, width, f_max, capacity, n_modes, pole_re, pole_im, residue_re, &
+                                  residue_im, shape, x, y, errmsg, errmsg_len) bind(c, name='gc_multi_plate_patch') &
+        result(status)
+        !> Points along x (the direction of travel), >= 1.
+        integer(c_int), value, intent(in) :: n_x
+        !> Points across, >= 1.
+        integer(c_int), value, intent(in) :: n_y
+        !> Length of the patch along x [m].
+        real(c_double), value, intent(in) :: length
+        !> Width of the patch across [m].
+        real(c_double), value, intent(in) :: width
+        !> Highest natural frequency kept [Hz].
+        real(c_double), value, intent(in) :: f_max
+        !> Room in the arrays: modes (shape: n_x*n_y*capacity values).
+        integer(c_int), value, intent(in) :: capacity
+        !> Where the number of modes N_m goes.
+        type(c_ptr), value, intent(in) :: n_modes
+        !> Real parts of the poles [rad/s] (capacity values).
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Imaginary parts of the poles [rad/s] (capacity values).
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Real parts of the modal residues (capacity values).
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Imaginary parts of the modal residues (capacity values).
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Mode shapes shape[k*n_x*n_y + i] = phi_ik [1/sqrt(kg)].
+        type(c_ptr), value, intent(in) :: shape
+        !> x_i [m] of the n_x*n_y points (x fastest), or NULL.
+        type(c_ptr), value, intent(in) :: x
+        !> y_i [m] of the points, or NULL.
+        type(c_ptr), value, intent(in) :: y
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_plate_patch'
+        type(error_type), allocatable :: error
+        type(point_modes) :: modes
+        real(dp), allocatable :: x_points(:), y_points(:)
+        integer(c_int), pointer :: count
+        real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :), out(:)
+        integer :: n_m, n_c
+
+        if (.not. all([c_associated(n_modes), c_associated(pole_re), c_associated(pole_im), &
+                       c_associated(residue_re), c_associated(residue_im), c_associated(shape)])) then
+            call fatal_error(error, caller//': n_modes, pole_re, pole_im, residue_re, residue_im and shape must ' &
+                             //'not be NULL')
+        else
+            call patch_modes(caller, int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
+                             x_points, y_points, error)
+        end if
+        if (.not. allocated(error)) then
+            n_m = modes%modes%n_modes()
+            n_c = modes%n_points()
+            call c_f_pointer(n_modes, count)
+            count = int(n_m, c_int)
+            if (n_m > capacity) then
+                call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': the plate has ' &
+                                 //int_text(n_m)//' modes below f_max: give arrays of that many modes')
+            else
+                call c_f_pointer(pole_re, p_re, [n_m])
+                call c_f_pointer(pole_im, p_im, [n_m])
+                call c_f_pointer(residue_re, r_re, [n_m])
+                call c_f_pointer(residue_im, r_im, [n_m])
+                call c_f_pointer(shape, phi, [n_c, n_m])
+                p_re(:) = modes%modes%pole%re
+                p_im(:) = modes%modes%pole%im
+                r_re(:) = modes%modes%residue%re
+                r_im(:) = modes%modes%residue%im
+                phi(:, :) = modes%shape
+                if (c_associated(x)) then
+                    call c_f_pointer(x, out, [n_c])
+                    out(:) = x_points
+                end if
+                if (c_associated(y)) then
+                    call c_f_pointer(y, out, [n_c])
+                    out(:) = y_points
+                end if
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_plate_patch
+
+    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing).
+    subroutine gc_multi_free(conv) bind(c, name='gc_multi_free')
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+
+        type(multi_box), pointer :: box
+
+        box => box_of(conv)
+        call free_multi_box(box)
+    end subroutine gc_multi_free
+
+    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL.
+    subroutine gc_multi_delete(conv) bind(c, name='gc_multi_delete')
+        !> Address of the caller's handle (NULL, or *conv NULL: nothing).
+        type(c_ptr), value, intent(in) :: conv
+
+        type(c_ptr), pointer :: handle
+
+        if (.not. c_associated(conv)) return
+        call c_f_pointer(conv, handle)
+        call gc_multi_free(handle)
+        handle = c_null_ptr
+    end subroutine gc_multi_delete
+
+    !> int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len)
+    function gc_multi_n_points(conv, n_points, errmsg, errmsg_len) bind(c, name='gc_multi_n_points') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Where N_c goes.
+        type(c_ptr), value, intent(in) :: n_points
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        integer(c_int), pointer :: count
+
+        box => box_of(conv)
+        call check_box('gc_multi_n_points', null_handle, box, -1, error)
+        if (.not. allocated(error) .and. .not. c_associated(n_points)) then
+            call fatal_error(error, 'gc_multi_n_points: n_points is NULL: pass the address of an int')
+        end if
+        if (.not. allocated(error)) then
+            call c_f_pointer(n_points, count)
+            count = int(box%conv%n_points(), c_int)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_n_points
+
+    !> int gc_multi_history(const gc_multi_convolver *conv, int n_points, double *displacement,
+    !> char *errmsg, size_t errmsg_len): u_h(n) [m] at every point.
+    function gc_multi_history(conv, n_points, displacement, errmsg, errmsg_len) bind(c, name='gc_multi_history') &
+        result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points the array holds (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Where the history displacements u_h,i(n) [m] go (n_points values).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: u(:)
+
+        box => checked('gc_multi_history', conv, n_points, [displacement], 'displacement', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(displacement, u, [n_points])
+            call box%conv%history(u)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_history
+
+    !> int gc_multi_push(gc_multi_convolver *conv, int n_points, const double *force,
+    !> char *errmsg, size_t errmsg_len): the forces q_i(t_n) [N] of this step; on to the next.
+    function gc_multi_push(conv, n_points, force, errmsg, errmsg_len) bind(c, name='gc_multi_push') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points the array holds (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Forces q_i(t_n) [N] (n_points values).
+        type(c_ptr), value, intent(in) :: force
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: q(:)
+
+        box => checked('gc_multi_push', conv, n_points, [force], 'force', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(force, q, [n_points])
+            call box%conv%push(q)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_push
+
+    !> int gc_multi_instant_matrix(const gc_multi_convolver *conv, int n_points, double *w0,
+    !> char *errmsg, size_t errmsg_len): W0[j*n_points + i] = W0_ij [m/N] (0: explicit scheme).
+    function gc_multi_instant_matrix(conv, n_points, w0, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_instant_matrix') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Where W0 goes (n_points*n_points values).
+        type(c_ptr), value, intent(in) :: w0
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: matrix(:, :)
+
+        box => checked('gc_multi_instant_matrix', conv, n_points, [w0], 'w0', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(w0, matrix, [n_points, n_points])
+            matrix(:, :) = box%conv%weight0
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_instant_matrix
+
+    !> int gc_multi_reset(gc_multi_convolver *conv, char *errmsg, size_t errmsg_len): back to
+    !> step 0 with no force history; ends a stepped contact run.
+    function gc_multi_reset(conv, errmsg, errmsg_len) bind(c, name='gc_multi_reset') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => box_of(conv)
+        call check_box('gc_multi_reset', null_handle, box, -1, error)
+        if (.not. allocated(error)) then
+            call box%conv%reset()
+            box%stepping = .false.
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_reset
+
+    !> int gc_multi_describe(const gc_multi_convolver *conv, int *model_size, char *text,
+    !> size_t text_len): "method: what the model neglects" into text (the message on failure),
+    !> N_g samples or N_m modes into *model_size (when not NULL).
+    function gc_multi_describe(conv, model_size, text, text_len) bind(c, name='gc_multi_describe') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Where the model size goes, or NULL.
+        type(c_ptr), value, intent(in) :: model_size
+        !> Buffer for the description, or NULL.
+        type(c_ptr), value, intent(in) :: text
+        !> Size of the buffer [bytes].
+        integer(c_size_t), value, intent(in) :: text_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        integer(c_int), pointer :: size_out
+        character(len=:), allocatable :: label
+        integer :: n
+
+        box => box_of(conv)
+        call check_box('gc_multi_describe', null_handle, box, -1, error)
+        status = finish(error, text, text_len)
+        if (allocated(error)) return
+        call box%conv%model_size(n, label)
+        if (c_associated(model_size)) then
+            call c_f_pointer(model_size, size_out)
+            size_out = int(n, c_int)
+        end if
+        call to_c(box%conv%name//': '//box%description//', '//label//' = '//int_text(n), text, text_len)
+    end function gc_multi_describe
+
+    !> int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iterations,
+    !> double divergence_bound, char *errmsg, size_t errmsg_len): settings of the next runs.
+    function gc_multi_set_newton(conv, tolerance, max_iterations, divergence_bound, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_set_newton') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Relative tolerance of a step's residual, > 0 (default 1e-12).
+        real(c_double), value, intent(in) :: tolerance
+        !> Most Newton iterations per step, >= 1 (default 50).
+        integer(c_int), value, intent(in) :: max_iterations
+        !> Largest |u_i| [m] accepted, > 0 (default 1 m).
+        real(c_double), value, intent(in) :: divergence_bound
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => box_of(conv)
+        call check_box('gc_multi_set_newton', null_handle, box, -1, error)
+        if (.not. allocated(error)) call set_multi_options('gc_multi_set_newton', box, tolerance, &
+                                                           int(max_iterations), divergence_bound, error)
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_set_newton
+
+    !> int gc_multi_contact_start(gc_multi_convolver *conv, int n_points, const double *k_c,
+    !> const double *p, const double *preload, char *errmsg, size_t errmsg_len): reset the
+    !> convolver and start a run stepped by gc_multi_contact_step.
+    function gc_multi_contact_start(conv, n_points, k_c, p, preload, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_contact_start') result(status)
+        !> The convolver; reset here.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
+        type(c_ptr), value, intent(in) :: k_c
+        !> Contact exponent p_i of each point, > 0.
+        type(c_ptr), value, intent(in) :: p
+        !> Static preload F0_i [N] of each point, >= 0.
+        type(c_ptr), value, intent(in) :: preload
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: stiffness(:), exponent(:), load(:)
+
+        box => checked('gc_multi_contact_start', conv, n_points, [k_c, p, preload], 'k_c, p and preload', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(k_c, stiffness, [n_points])
+            call c_f_pointer(p, exponent, [n_points])
+            call c_f_pointer(preload, load, [n_points])
+            call start_multi_box('gc_multi_contact_start', box, stiffness, exponent, load, error)
+        else if (associated(box)) then
+            box%stepping = .false.
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_contact_start
+
+    !> int gc_multi_contact_step(gc_multi_convolver *conv, int n_points, const double *road,
+    !> double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len):
+    !> the next step of the run gc_multi_contact_start began, all forces solved together.
+    function gc_multi_contact_step(conv, n_points, road, displacement, force, compression, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_contact_step') result(status)
+        !> The convolver, advanced by one step.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Road heights u_r,i(t_n) [m] under the points.
+        type(c_ptr), value, intent(in) :: road
+        !> Where the displacements u_i(t_n) [m] go (0 on a fault).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Where the forces F_i(t_n) [N] go (0 on a fault).
+        type(c_ptr), value, intent(in) :: force
+        !> Where the compressions delta_i(t_n) [m] go (0 on a fault), or NULL.
+        type(c_ptr), value, intent(in) :: compression
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
+        real(dp), allocatable :: delta(:)
+
+        box => checked('gc_multi_contact_step', conv, n_points, [road, displacement, force], &
+                       'road, displacement and force', error)
+        if (.not. allocated(error)) then
+            allocate (delta(n_points))
+            call c_f_pointer(road, heights, [n_points])
+            call c_f_pointer(displacement, u, [n_points])
+            call c_f_pointer(force, f, [n_points])
+            call advance_multi_box('gc_multi_contact_step', box, heights, u, f, delta, error)
+            if (c_associated(compression)) then
+                call c_f_pointer(compression, delta_out, [n_points])
+                delta_out(:) = delta
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_contact_step
+
+    !> int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps,
+    !> const double *k_c, const double *p, const double *preload, const double *road,
+    !> double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len):
+    !> a whole run (the convolver reset first); arrays road[i*n_steps + n].
+    function gc_multi_run_contact(conv, n_points, n_steps, k_c, p, preload, road, displacement, force, compression, &
+                                  errmsg, errmsg_len) bind(c, name='gc_multi_run_contact') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Number of steps N_t, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
+        type(c_ptr), value, intent(in) :: k_c
+        !> Contact exponent p_i of each point, > 0.
+        type(c_ptr), value, intent(in) :: p
+        !> Static preload F0_i [N] of each point, >= 0.
+        type(c_ptr), value, intent(in) :: preload
+        !> Road heights road[i*n_steps + n] = u_r,i(t_n) [m].
+        type(c_ptr), value, intent(in) :: road
+        !> Displacements u_i(t_n) [m], same layout (0 from a fault on).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Forces F_i(t_n) [N], same layout (0 from a fault on).
+        type(c_ptr), value, intent(in) :: force
+        !> Compressions delta_i(t_n) [m], same layout (0 from a fault on), or NULL.
+        type(c_ptr), value, intent(in) :: compression
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_run_contact'
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: stiffness(:), exponent(:), load(:), heights(:, :), u(:, :), f(:, :), &
+                                   delta_out(:, :)
+        real(dp), allocatable :: delta(:, :)
+
+        box => checked(caller, conv, n_points, [k_c, p, preload, road, displacement, force], &
+                       'k_c, p, preload, road, displacement and force', error)
+        if (.not. allocated(error) .and. n_steps < 1) then
+            call fatal_error(error, caller//': n_steps = '//int_text(int(n_steps))//': give at least 1 step')
+        end if
+        if (.not. allocated(error)) then
+            allocate (delta(n_steps, n_points))
+            call c_f_pointer(k_c, stiffness, [n_points])
+            call c_f_pointer(p, exponent, [n_points])
+            call c_f_pointer(preload, load, [n_points])
+            call c_f_pointer(road, heights, [n_steps, n_points])
+            call c_f_pointer(displacement, u, [n_steps, n_points])
+            call c_f_pointer(force, f, [n_steps, n_points])
+            call run_multi_box(caller, box, stiffness, exponent, load, heights, u, f, delta, error)
+            if (c_associated(compression)) then
+                call c_f_pointer(compression, delta_out, [n_steps, n_points])
+                delta_out(:, :) = delta
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_run_contact
+
+    ! ---- conversions -------------------------------------------------------------------------
+
+    !> The box behind a C handle; null for NULL.
+    function box_of(conv) result(box)
+        type(c_ptr), intent(in) :: conv
+        type(multi_box), pointer :: box
+
+        box => null()
+        if (c_associated(conv)) call c_f_pointer(conv, box)
+    end function box_of
+
+    !> The box behind a handle, checked with its count of points and the arrays it needs.
+    function checked(caller, conv, n_points, arrays, names, error) result(box)
+        character(len=*), intent(in) :: caller, names
+        type(c_ptr), intent(in) :: conv, arrays(:)
+        integer(c_int), intent(in) :: n_points
+        type(error_type), allocatable, intent(out) :: error
+        type(multi_box), pointer :: box
+
+        integer :: i
+
+        box => box_of(conv)
+        call check_box(caller, null_handle, box, int(n_points), error)
+        if (allocated(error)) return
+        do i = 1, size(arrays)
+            if (.not. c_associated(arrays(i))) then
+                call fatal_error(error, caller//': '//names//' must not be NULL: pass arrays of n_points values')
+                return
+            end if
+        end do
+    end function checked
+
+    !> Check the handle and method pointers of a constructor and clear *conv.
+    subroutine start_handle(caller, conv, method, error)
+        character(len=*), intent(in) :: caller
+        type(c_ptr), intent(in) :: conv, method
+        type(error_type), allocatable, intent(out) :: error
+
+        type(c_ptr), pointer :: handle
+
+        if (.not. c_associated(conv)) then
+            call fatal_error(error, caller//': conv is NULL: pass the address of a gc_multi_convolver * to ' &
+                             //'receive the convolver')
+            return
+        end if
+        call c_f_pointer(conv, handle)
+        handle = c_null_ptr
+        if (.not. c_associated(method)) then
+            call fatal_error(error, caller//': method is NULL: pass a method name such as "modal"')
+        end if
+    end subroutine start_handle
+
+    !> The truncation fraction of C build options (the library's default for NULL).
+    function tolerance_of(options) result(tol)
+        type(c_ptr), intent(in) :: options
+        real(dp) :: tol
+
+        type(gc_build_options), pointer :: settings
+
+        tol = default_truncation_tol
+        if (.not. c_associated(options)) return
+        call c_f_pointer(options, settings)
+        tol = settings%truncation_tol
+    end function tolerance_of
+
+    !> Store a new box at *conv (when made) and return the status with the message.
+    function made(box, conv, error, errmsg, errmsg_len) result(status)
+        type(multi_box), pointer, intent(in) :: box
+        type(c_ptr), intent(in) :: conv, errmsg
+        type(error_type), allocatable, intent(in) :: error
+        integer(c_size_t), intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(c_ptr), pointer :: handle
+
+        if (.not. allocated(error) .and. associated(box)) then
+            call c_f_pointer(conv, handle)
+            handle = c_loc(box)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function made
+
+end module greenconv_capi_multi

@@ -1,0 +1,489 @@
+!> Multi-point contact for Fortran 77 style programs: plain subroutines `GCM...` (scalars,
+!> explicit-shape arrays, strings), after `use greenconv_legacy_multi`, on the shared layer
+!> greenconv_api_multi_handle.
+!>
+!> A multi-point convolver is an `INTEGER*8` handle (0: none), made by `GCMMOD` (poles,
+!> residues and mode shapes at the points) or `GCMSMP` (samples g_ij(m*dt)), freed by
+!> `GCMFRE`. Every routine returns `IERR` (0 success, 2 bad input or a 0 handle, 3 a step
+!> that diverged or did not converge) and a message `ERRMSG` (blank on success). Arrays are
+!> Fortran's: SHAPE(NC, NMODE), G(NSAMP, NC, NC) with G(M+1, I, J) = g_ij(M*DT),
+!> ROAD(NSTEP, NC), W0(NC, NC). SI units: poles [rad/s], g [m/(N*s)], k_c [N/m^p], forces [N],
+!> displacements and heights [m].
+module greenconv_legacy_multi
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+                                          check_box, set_multi_options, start_multi_box, advance_multi_box, &
+                                          run_multi_box
+    implicit none
+    private
+
+    public :: gcmmod, gcmsmp, gcmplt, gcmfre, gcmnpt, gcmhis, gcmpsh, gcmw0, gcmrst, gcmdsc
+    public :: gcmopt, gcmbeg, gcmstp, gcmrun
+
+    !> What a 0 handle's message says.
+    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD or GCMSMP'
+
+contains
+
+    !> Multi-point convolver from modes shared by NC points:
+    !> g_ij(t) = sum_k SHAPE(i,k)*SHAPE(j,k)*2*Re(r_k*exp(lambda_k*t)).
+    subroutine gcmmod(nc, nmode, polre, polim, resre, resim, shape, dt, nstep, tol, method, handle, ierr, errmsg)
+        !> Number of points N_c, >= 1.
+        integer, intent(in) :: nc
+        !> Number of modes N_m, >= 1.
+        integer, intent(in) :: nmode
+        !> Real parts of the poles [rad/s], < 0.
+        real(dp), intent(in) :: polre(*)
+        !> Imaginary parts of the poles [rad/s], > 0.
+        real(dp), intent(in) :: polim(*)
+        !> Real parts of the modal residues r_k.
+        real(dp), intent(in) :: resre(*)
+        !> Imaginary parts of the modal residues.
+        real(dp), intent(in) :: resim(*)
+        !> Mode shapes phi_ik at the points (NC x NMODE).
+        real(dp), intent(in) :: shape(max(nc, 0), *)
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Truncation fraction of max |g_ij| for 'direct' and 'fft', in [0, 1) (0.01: the paper's).
+        real(dp), intent(in) :: tol
+        !> Method: 'modal' (= 'recursive'), 'exact', 'direct' or 'fft' (any case).
+        character(len=*), intent(in) :: method
+        !> The new handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        integer :: n_m
+
+        box => null()
+        n_m = max(nmode, 0)
+        if (nc < 1) then
+            call fatal_error(error, 'gcmmod: NC = '//int_text(nc)//': give at least 1 point')
+        else
+            call modes_multi_box('gcmmod', method, polre(1:n_m), polim(1:n_m), resre(1:n_m), resim(1:n_m), &
+                                 shape(:, 1:n_m), dt, tol, nstep, box, error)
+        end if
+        call new_handle(box, handle, error, ierr, errmsg)
+    end subroutine gcmmod
+
+    !> Multi-point convolver from samples G(M+1, I, J) = g_ij(M*DT) ('direct' or 'fft').
+    subroutine gcmsmp(nc, nsamp, g, dt, nstep, tol, method, handle, ierr, errmsg)
+        !> Number of points N_c, >= 1.
+        integer, intent(in) :: nc
+        !> Number of samples of each g_ij, >= 2.
+        integer, intent(in) :: nsamp
+        !> Samples [m/(N*s)] (NSAMP x NC x NC).
+        real(dp), intent(in) :: g(max(nsamp, 0), max(nc, 0), *)
+        !> Time step dt [s] of the samples and the run, > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Truncation fraction of max |g_ij|, in [0, 1) (0.01: the paper's).
+        real(dp), intent(in) :: tol
+        !> Method: 'direct' or 'fft' (any case).
+        character(len=*), intent(in) :: method
+        !> The new handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => null()
+        if (nc < 1) then
+            call fatal_error(error, 'gcmsmp: NC = '//int_text(nc)//': give at least 1 point')
+        else
+            call samples_multi_box('gcmsmp', method, g(:, :, 1:nc), dt, tol, nstep, box, error)
+        end if
+        call new_handle(box, handle, error, ierr, errmsg)
+    end subroutine gcmsmp
+
+    !> Modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
+    !> foundation, greenconv_model_plate) up to FMAX at an NX by NY patch of XLEN by YLEN
+    !> centred on the belt: points I = (IY-1)*NX + IX at (X(I), Y(I)).
+    subroutine gcmplt(nx, ny, xlen, ylen, fmax, ncap, nmode, polre, polim, resre, resim, shape, x, y, ierr, errmsg)
+        !> Points along x (the direction of travel), >= 1.
+        integer, intent(in) :: nx
+        !> Points across, >= 1.
+        integer, intent(in) :: ny
+        !> Length of the patch along x [m].
+        real(dp), intent(in) :: xlen
+        !> Width of the patch across [m].
+        real(dp), intent(in) :: ylen
+        !> Highest natural frequency kept [Hz].
+        real(dp), intent(in) :: fmax
+        !> Room for modes in the arrays.
+        integer, intent(in) :: ncap
+        !> Number of modes N_m (also set when it exceeds NCAP).
+        integer, intent(out) :: nmode
+        !> Real parts of the poles [rad/s] (NCAP).
+        real(dp), intent(out) :: polre(*)
+        !> Imaginary parts of the poles [rad/s] (NCAP).
+        real(dp), intent(out) :: polim(*)
+        !> Real parts of the modal residues (NCAP).
+        real(dp), intent(out) :: resre(*)
+        !> Imaginary parts of the modal residues (NCAP).
+        real(dp), intent(out) :: resim(*)
+        !> Mode shapes at the points [1/sqrt(kg)] (NX*NY x NCAP).
+        real(dp), intent(out) :: shape(max(nx*ny, 0), *)
+        !> x_i [m] (NX*NY).
+        real(dp), intent(out) :: x(*)
+        !> y_i [m] (NX*NY).
+        real(dp), intent(out) :: y(*)
+        !> Status: 0 success, 2 bad input or too small arrays.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(point_modes) :: modes
+        real(dp), allocatable :: x_points(:), y_points(:)
+        integer :: n_c
+
+        nmode = 0
+        call patch_modes('gcmplt', nx, ny, [xlen, ylen], fmax, modes, x_points, y_points, error)
+        if (.not. allocated(error)) then
+            nmode = modes%modes%n_modes()
+            n_c = modes%n_points()
+            if (nmode > ncap) then
+                call fatal_error(error, 'gcmplt: NCAP = '//int_text(ncap)//': the plate has '//int_text(nmode) &
+                                 //' modes below FMAX: give arrays of that many modes')
+            else
+                polre(1:nmode) = modes%modes%pole%re
+                polim(1:nmode) = modes%modes%pole%im
+                resre(1:nmode) = modes%modes%residue%re
+                resim(1:nmode) = modes%modes%residue%im
+                shape(:, 1:nmode) = modes%shape
+                x(1:n_c) = x_points
+                y(1:n_c) = y_points
+            end if
+        end if
+        call report(error, ierr, errmsg)
+    end subroutine gcmplt
+
+    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return.
+    subroutine gcmfre(handle)
+        !> The handle (0: nothing).
+        integer(int64), intent(inout) :: handle
+
+        type(multi_box), pointer :: box
+
+        box => box_of(handle)
+        call free_multi_box(box)
+        handle = 0_int64
+    end subroutine gcmfre
+
+    !> Number of points N_c of a multi-point convolver.
+    subroutine gcmnpt(handle, nc, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (0 on failure).
+        integer, intent(out) :: nc
+        !> Status: 0, or 2 for a 0 handle.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        nc = 0
+        box => checked('gcmnpt', handle, -1, error)
+        if (.not. allocated(error)) nc = box%conv%n_points()
+        call report(error, ierr, errmsg)
+    end subroutine gcmnpt
+
+    !> History displacements u_h,i(n) [m] at the NC points.
+    subroutine gcmhis(handle, nc, uh, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> History displacements [m] (NC).
+        real(dp), intent(out) :: uh(*)
+        !> Status: 0, or 2 for a 0 handle or a wrong NC.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmhis', handle, nc, error)
+        if (.not. allocated(error)) call box%conv%history(uh(1:nc))
+        call report(error, ierr, errmsg)
+    end subroutine gcmhis
+
+    !> Push this step's forces q_i(t_n) [N] and advance to the next step.
+    subroutine gcmpsh(handle, nc, q, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Forces [N] (NC).
+        real(dp), intent(in) :: q(*)
+        !> Status: 0, or 2 for a 0 handle or a wrong NC.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmpsh', handle, nc, error)
+        if (.not. allocated(error)) call box%conv%push(q(1:nc))
+        call report(error, ierr, errmsg)
+    end subroutine gcmpsh
+
+    !> The instant compliance matrix W0 [m/N] (NC x NC; zero for an explicit method).
+    subroutine gcmw0(handle, nc, w0, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> W0 [m/N] (NC x NC).
+        real(dp), intent(out) :: w0(max(nc, 0), *)
+        !> Status: 0, or 2 for a 0 handle or a wrong NC.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmw0', handle, nc, error)
+        if (.not. allocated(error)) w0(:, 1:nc) = box%conv%weight0
+        call report(error, ierr, errmsg)
+    end subroutine gcmw0
+
+    !> Back to step 0 with no force history (ends a stepped contact run).
+    subroutine gcmrst(handle, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Status: 0, or 2 for a 0 handle.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmrst', handle, -1, error)
+        if (.not. allocated(error)) then
+            call box%conv%reset()
+            box%stepping = .false.
+        end if
+        call report(error, ierr, errmsg)
+    end subroutine gcmrst
+
+    !> Model size (N_g samples or N_m modes) and "method: what the model neglects".
+    subroutine gcmdsc(handle, nsize, text, ierr)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Model size (0 on failure).
+        integer, intent(out) :: nsize
+        !> Description; the message on failure.
+        character(len=*), intent(out) :: text
+        !> Status: 0, or 2 for a 0 handle.
+        integer, intent(out) :: ierr
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        character(len=:), allocatable :: label
+
+        nsize = 0
+        box => checked('gcmdsc', handle, -1, error)
+        call report(error, ierr, text)
+        if (allocated(error)) return
+        call box%conv%model_size(nsize, label)
+        text = box%conv%name//': '//box%description//', '//label//' = '//int_text(nsize)
+    end subroutine gcmdsc
+
+    !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).
+    subroutine gcmopt(handle, tol, maxit, bound, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Relative tolerance of a step's residual, > 0.
+        real(dp), intent(in) :: tol
+        !> Most Newton iterations per step, >= 1.
+        integer, intent(in) :: maxit
+        !> Largest |u_i| [m] accepted, > 0.
+        real(dp), intent(in) :: bound
+        !> Status: 0, or 2 for a 0 handle or a value out of range.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmopt', handle, -1, error)
+        if (.not. allocated(error)) call set_multi_options('gcmopt', box, tol, maxit, bound, error)
+        call report(error, ierr, errmsg)
+    end subroutine gcmopt
+
+    !> Start a contact run stepped by GCMSTP (the convolver reset): a law and a preload per point.
+    subroutine gcmbeg(handle, nc, kc, p, f0, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Contact stiffness k_c,i [N/m^p] (NC), > 0.
+        real(dp), intent(in) :: kc(*)
+        !> Contact exponent p_i (NC), > 0.
+        real(dp), intent(in) :: p(*)
+        !> Static preload F0_i [N] (NC), >= 0.
+        real(dp), intent(in) :: f0(*)
+        !> Status: 0, or 2 for bad input.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmbeg', handle, nc, error)
+        if (.not. allocated(error)) then
+            call start_multi_box('gcmbeg', box, kc(1:nc), p(1:nc), f0(1:nc), error)
+        else if (associated(box)) then
+            box%stepping = .false.
+        end if
+        call report(error, ierr, errmsg)
+    end subroutine gcmbeg
+
+    !> The next step of the run GCMBEG began: all forces of the step solved together.
+    subroutine gcmstp(handle, nc, road, u, f, delta, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Road heights u_r,i(t_n) [m] (NC).
+        real(dp), intent(in) :: road(*)
+        !> Displacements u_i(t_n) [m] (NC); 0 on a fault.
+        real(dp), intent(out) :: u(*)
+        !> Forces F_i(t_n) [N] (NC); 0 on a fault.
+        real(dp), intent(out) :: f(*)
+        !> Compressions delta_i(t_n) [m] (NC); 0 on a fault.
+        real(dp), intent(out) :: delta(*)
+        !> Status: 0, 2 bad input or no run going on, 3 a step that diverged or did not converge.
+        integer, intent(out) :: ierr
+        !> Message on failure (naming step and point), blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmstp', handle, nc, error)
+        if (.not. allocated(error)) call advance_multi_box('gcmstp', box, road(1:nc), u(1:nc), f(1:nc), &
+                                                          delta(1:nc), error)
+        call report(error, ierr, errmsg)
+    end subroutine gcmstp
+
+    !> A whole contact run (the convolver reset first): ROAD(N, I) = u_r,i(t_(N-1)).
+    subroutine gcmrun(handle, nc, nstep, kc, p, f0, road, u, f, delta, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Number of steps N_t, >= 1.
+        integer, intent(in) :: nstep
+        !> Contact stiffness k_c,i [N/m^p] (NC), > 0.
+        real(dp), intent(in) :: kc(*)
+        !> Contact exponent p_i (NC), > 0.
+        real(dp), intent(in) :: p(*)
+        !> Static preload F0_i [N] (NC), >= 0.
+        real(dp), intent(in) :: f0(*)
+        !> Road heights [m] (NSTEP x NC).
+        real(dp), intent(in) :: road(max(nstep, 0), *)
+        !> Displacements [m] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: u(max(nstep, 0), *)
+        !> Forces [N] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: f(max(nstep, 0), *)
+        !> Compressions [m] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: delta(max(nstep, 0), *)
+        !> Status: 0, 2 bad input, 3 a step that diverged or did not converge.
+        integer, intent(out) :: ierr
+        !> Message on failure (naming step and point), blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmrun', handle, nc, error)
+        if (.not. allocated(error) .and. nstep < 1) then
+            call fatal_error(error, 'gcmrun: NSTEP = '//int_text(nstep)//': give at least 1 step')
+        end if
+        if (.not. allocated(error)) call run_multi_box('gcmrun', box, kc(1:nc), p(1:nc), f0(1:nc), road(:, 1:nc), &
+                                                       u(:, 1:nc), f(:, 1:nc), delta(:, 1:nc), error)
+        call report(error, ierr, errmsg)
+    end subroutine gcmrun
+
+    ! ---- conversions -------------------------------------------------------------------------
+
+    !> The handle of a new box (0 when it was not made), with status and message.
+    subroutine new_handle(box, handle, error, ierr, errmsg)
+        type(multi_box), pointer, intent(in) :: box
+        integer(int64), intent(out) :: handle
+        type(error_type), allocatable, intent(in) :: error
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
+        handle = 0_int64
+        call report(error, ierr, errmsg)
+        if (allocated(error) .or. .not. associated(box)) return
+        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+    end subroutine new_handle
+
+    !> The box a handle points to; null for handle 0.
+    function box_of(handle) result(box)
+        integer(int64), intent(in) :: handle
+        type(multi_box), pointer :: box
+
+        type(c_ptr) :: address
+
+        box => null()
+        if (handle == 0_int64) return
+        address = transfer(int(handle, c_intptr_t), c_null_ptr)
+        call c_f_pointer(address, box)
+    end function box_of
+
+    !> The box of a handle, checked (with NC when >= 0).
+    function checked(caller, handle, nc, error) result(box)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        integer, intent(in) :: nc
+        type(error_type), allocatable, intent(out) :: error
+        type(multi_box), pointer :: box
+
+        box => box_of(handle)
+        call check_box(caller, null_handle, box, nc, error)
+    end function checked
+
+    !> Status and message of an error, or 0 and a blank message.
+    subroutine report(error, ierr, errmsg)
+        type(error_type), allocatable, intent(in) :: error
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
+        ierr = 0
+        errmsg = ' '
+        if (.not. allocated(error)) return
+        ierr = error%stat
+        errmsg = error%message
+    end subroutine report
+
+end module greenconv_legacy_multi

@@ -1,0 +1,444 @@
+!> What the C and Fortran 77 front doors share for multi-point contact: the object behind a
+!> multi-point handle, the checks of the constructors' plain arrays, and contact runs into
+!> caller-sized arrays.
+!>
+!> A `multi_box` holds a multi-point convolver (greenconv_conv_multipoint) built from one of
+!>
+!> - modes shared by the N_c points in the form of greenconv_model_point_modes: poles lambda_k
+!>   [rad/s], residues r_k of the unit modal impulse responses and mode shapes phi_ik, so that
+!>   g_ij(t) = sum_k phi_ik*phi_jk*2*Re(r_k*exp(lambda_k*t)) (a rank-one residue matrix
+!>   r_k*phi_k*phi_k^T per mode; no engine takes a general residue matrix), for every method
+!>   of the registry that serves multi-point contact;
+!> - samples g_ij(m*dt) [m/(N*s)], for `direct` and `fft`, truncated by the paper's rule;
+!>
+!> with what its model neglects, the Newton and divergence settings of its contact runs and
+!> the state of a run stepped one call at a time. The arrays the doors pass are laid out as
+!> Fortran stores them: shape(i, k) = phi_ik, g(m, i, j) = g_ij(m*dt), road(n, i) = u_r,i(t_n).
+!> There is no module state.
+module greenconv_api_multi_handle
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: lower_text, sci_text, int_text
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
+    use greenconv_conv_methods, only: check_method, canonical_method
+    use greenconv_conv_kernel, only: truncation_length
+    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
+    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
+    use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_multi, only: newton_options, multi_contact_state, multi_contact_response, &
+                                       start_multi_contact, multi_contact_block, run_multi_contact
+    use greenconv_api_library, only: check_contact_law
+    implicit none
+    private
+
+    public :: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes
+    public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
+
+    !> What a foreign multi-point handle points to.
+    type :: multi_box
+        !> The multi-point convolver (Green's matrix of the N_c points).
+        class(multipoint_convolver), allocatable :: conv
+        !> What the model neglects, in words.
+        character(len=:), allocatable :: description
+        !> Newton and divergence settings of the contact runs on this convolver.
+        type(newton_options) :: settings
+        !> The contact run stepped one call at a time.
+        type(multi_contact_state) :: contact
+        !> True between a successful start of a stepped run and its first fault or reset.
+        logical :: stepping = .false.
+    end type multi_box
+
+contains
+
+    !> Free a box and its convolver (FFTW plans too); nothing for a null pointer. Null on return.
+    subroutine free_multi_box(box)
+        !> The box.
+        type(multi_box), pointer, intent(inout) :: box
+
+        if (.not. associated(box)) return
+        if (allocated(box%conv)) then
+            call box%conv%release()
+            deallocate (box%conv)
+        end if
+        deallocate (box)
+        box => null()
+    end subroutine free_multi_box
+
+    !> A new box for modes shared by the points (poles, residues, mode shapes), the arrays
+    !> checked by name; null on failure.
+    subroutine modes_multi_box(caller, method, pole_re, pole_im, residue_re, residue_im, shape, dt, truncation_tol, &
+                               n_steps, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
+        character(len=*), intent(in) :: method
+        !> Real parts of the poles lambda_k [rad/s], < 0 (N_m).
+        real(dp), intent(in) :: pole_re(:)
+        !> Imaginary parts of the poles [rad/s], > 0 (N_m).
+        real(dp), intent(in) :: pole_im(:)
+        !> Real parts of the residues r_k of the modal impulse responses (N_m).
+        real(dp), intent(in) :: residue_re(:)
+        !> Imaginary parts of the residues (N_m).
+        real(dp), intent(in) :: residue_im(:)
+        !> Mode shapes shape(i, k) = phi_ik at the points (N_c x N_m), phi_ik*phi_jk*r_k in m/(N*s).
+        real(dp), intent(in) :: shape(:, :)
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> The new box; null when `error` is set.
+        type(multi_box), pointer, intent(out) :: box
+        !> Set (`stat_input`) naming the argument out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(point_modes) :: description
+
+        box => null()
+        if (size(pole_re) < 1) then
+            call fatal_error(error, caller//': n_modes = '//int_text(size(pole_re))//': give at least 1 mode')
+        else if (size(shape, 1) < 1) then
+            call fatal_error(error, caller//': n_points = '//int_text(size(shape, 1))//': give at least 1 point')
+        else if (.not. all(pole_re < 0.0_dp .and. pole_im > 0.0_dp .and. ieee_is_finite(pole_re) &
+                           .and. ieee_is_finite(pole_im))) then
+            call fatal_error(error, caller//': pole_re, pole_im: give every pole a finite real part < 0 and ' &
+                             //'imaginary part > 0 rad/s (a damped mode)')
+        else if (.not. all(ieee_is_finite(residue_re) .and. ieee_is_finite(residue_im))) then
+            call fatal_error(error, caller//': residue_re, residue_im: give finite residues')
+        else if (.not. all(ieee_is_finite(shape))) then
+            call fatal_error(error, caller//': shape: give finite mode shapes phi_ik')
+        else
+            call check_run(caller, dt, truncation_tol, n_steps, error)
+        end if
+        if (allocated(error)) return
+        description%modes%pole = cmplx(pole_re, pole_im, dp)
+        description%modes%residue = cmplx(residue_re, residue_im, dp)
+        description%shape = shape
+        allocate (box)
+        call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
+                                       box%description, error)
+        call keep_or_drop(caller, box, error)
+    end subroutine modes_multi_box
+
+    !> A new box convolving with samples g(m, i, j) = g_ij(m*dt) (`direct` or `fft`), the
+    !> table truncated by the paper's rule over max_ij |g_ij(t_m)| and never beyond the run;
+    !> null on failure.
+    subroutine samples_multi_box(caller, method, g, dt, truncation_tol, n_steps, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Method: `direct` or `fft`, any case.
+        character(len=*), intent(in) :: method
+        !> Samples g(m, i, j) = g_ij(m*dt) [m/(N*s)], m = 0..N_s-1 (N_s >= 2), N_c x N_c.
+        real(dp), intent(in) :: g(0:, :, :)
+        !> Time step dt [s] of the samples and of the run, > 0.
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> The new box; null when `error` is set.
+        type(multi_box), pointer, intent(out) :: box
+        !> Set (`stat_input`) naming the argument out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(sampled_green_matrix) :: sampled
+        type(fft_green_matrix) :: partitioned
+        real(dp), allocatable :: row_max(:)
+        real(dp) :: tail
+        integer :: last, n_g, m
+
+        box => null()
+        if (size(g, 2) < 1) then
+            call fatal_error(error, caller//': n_points = '//int_text(size(g, 2))//': give at least 1 point')
+        else if (size(g, 1) < 2) then
+            call fatal_error(error, caller//': n_samples = '//int_text(size(g, 1)) &
+                             //': give at least 2 samples of every g_ij')
+        else if (.not. all(ieee_is_finite(g))) then
+            call fatal_error(error, caller//': g: give finite samples [m/(N*s)]')
+        else
+            call check_run(caller, dt, truncation_tol, n_steps, error)
+        end if
+        if (.not. allocated(error)) call check_method(lower_text(method), .true., .true., .false., error)
+        if (allocated(error)) then
+            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
+            return
+        end if
+        last = max(min(n_steps, size(g, 1)) - 1, 1)
+        row_max = [(maxval(abs(g(m, :, :))), m=0, last)]
+        n_g = last
+        if (truncation_tol > 0.0_dp) n_g = truncation_length(row_max, truncation_tol)
+        tail = 0.0_dp
+        if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
+        allocate (box)
+        if (canonical_method(lower_text(method)) == 'direct') then
+            call new_sampled_green_matrix(g(0:n_g, :, :), dt, sampled, error)
+            if (.not. allocated(error)) allocate (box%conv, source=sampled)
+        else
+            call new_fft_green_matrix(g(0:n_g, :, :), dt, partitioned, error)
+            if (.not. allocated(error)) allocate (box%conv, source=partitioned)
+        end if
+        box%description = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        call keep_or_drop(caller, box, error)
+    end subroutine samples_multi_box
+
+    !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
+    !> to f_max at an n_x by n_y patch centred on the belt (`patch_points`, x fastest), in the
+    !> order of `plate_modes`.
+    subroutine patch_modes(caller, n_x, n_y, extent, f_max, modes, x, y, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Points along x (the direction of travel), >= 1.
+        integer, intent(in) :: n_x
+        !> Points across, >= 1.
+        integer, intent(in) :: n_y
+        !> Length along x and width along y of the patch [m], each in (0, the belt's size).
+        real(dp), intent(in) :: extent(2)
+        !> Highest natural frequency kept [Hz], > 0.
+        real(dp), intent(in) :: f_max
+        !> The modes and shapes at the points.
+        type(point_modes), intent(out) :: modes
+        !> x_i [m] of the points.
+        real(dp), allocatable, intent(out) :: x(:)
+        !> y_i [m] of the points.
+        real(dp), allocatable, intent(out) :: y(:)
+        !> Set (`stat_input`) naming the argument out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(tyre_plate) :: plate
+
+        if (n_x < 1 .or. n_y < 1) then
+            call fatal_error(error, caller//': n_x = '//int_text(n_x)//', n_y = '//int_text(n_y) &
+                             //': give at least 1 point each way')
+        else if (.not. (extent(1) > 0.0_dp .and. extent(1) < plate%length .and. extent(2) > 0.0_dp &
+                        .and. extent(2) < plate%width)) then
+            call fatal_error(error, caller//': extent = ('//sci_text(extent(1))//', '//sci_text(extent(2)) &
+                             //') m: give a patch within the belt, '//sci_text(plate%length)//' m by ' &
+                             //sci_text(plate%width)//' m')
+        else if (.not. (f_max > 0.0_dp .and. ieee_is_finite(f_max))) then
+            call fatal_error(error, caller//': f_max = '//sci_text(f_max)//' Hz: give a finite f_max > 0 Hz')
+        end if
+        if (allocated(error)) return
+        allocate (x(n_x*n_y), y(n_x*n_y))
+        call patch_points([plate%length/2, plate%width/2], extent, n_x, n_y, x, y)
+        call plate_modes(plate, x, y, f_max, modes, error)
+        if (allocated(error)) error%message = caller//': '//error%message
+    end subroutine patch_modes
+
+    !> Check a door's handle and, when n_points >= 0, that its count of points agrees with
+    !> the convolver's.
+    subroutine check_box(caller, missing, box, n_points, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> What to say of a null handle, e.g. "conv is NULL: make one with gc_multi_new_modes".
+        character(len=*), intent(in) :: missing
+        !> The box, or null.
+        type(multi_box), pointer, intent(in) :: box
+        !> Number of points the caller's arrays hold; < 0: not checked.
+        integer, intent(in) :: n_points
+        !> Set (`stat_input`) for a null handle or a count that differs.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. associated(box)) then
+            call fatal_error(error, caller//': '//missing)
+        else if (n_points >= 0 .and. n_points /= box%conv%n_points()) then
+            call fatal_error(error, caller//': n_points = '//int_text(n_points)//': the convolver has ' &
+                             //int_text(box%conv%n_points())//' points: pass arrays of that many values')
+        end if
+    end subroutine check_box
+
+    !> Set the Newton and divergence settings of the box's next contact runs.
+    subroutine set_multi_options(caller, box, tolerance, max_iterations, divergence_bound, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(multi_box), intent(inout) :: box
+        !> Relative tolerance of the step's residual (dimensionless), > 0.
+        real(dp), intent(in) :: tolerance
+        !> Most Newton iterations per step, >= 1.
+        integer, intent(in) :: max_iterations
+        !> Largest |u_i| [m] accepted, > 0.
+        real(dp), intent(in) :: divergence_bound
+        !> Set (`stat_input`) naming the setting out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (tolerance > 0.0_dp .and. ieee_is_finite(tolerance))) then
+            call fatal_error(error, caller//': tolerance = '//sci_text(tolerance)//': give a finite tolerance > 0')
+        else if (max_iterations < 1) then
+            call fatal_error(error, caller//': max_iterations = '//int_text(max_iterations)//': give at least 1')
+        else if (.not. (divergence_bound > 0.0_dp)) then
+            call fatal_error(error, caller//': divergence_bound = '//sci_text(divergence_bound) &
+                             //' m: give a bound > 0 m')
+        else
+            box%settings = newton_options(tolerance, max_iterations, divergence_bound)
+        end if
+    end subroutine set_multi_options
+
+    !> Start a contact run stepped one call at a time (`advance_multi_box`): laws and preloads
+    !> checked point by point, the convolver reset.
+    subroutine start_multi_box(caller, box, stiffness, exponent, preload, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(multi_box), intent(inout) :: box
+        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
+        real(dp), intent(in) :: stiffness(:)
+        !> Contact exponent p_i of each point, > 0.
+        real(dp), intent(in) :: exponent(:)
+        !> Static preload F0_i [N] of each point, >= 0.
+        real(dp), intent(in) :: preload(:)
+        !> Set (`stat_input`) naming the point whose law is out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        box%stepping = .false.
+        call check_laws(caller, stiffness, exponent, preload, error)
+        if (allocated(error)) return
+        call start_multi_contact(box%conv, laws_of(stiffness, exponent), preload, box%contact, error, box%settings)
+        if (allocated(error)) error%message = caller//': '//error%message
+        box%stepping = .not. allocated(error)
+    end subroutine start_multi_box
+
+    !> The next step of the run `start_multi_box` began, exactly as `run_multi_contact` takes
+    !> it: the outputs are zero after a fault, which ends the run and names step and point.
+    subroutine advance_multi_box(caller, box, road, displacement, force, compression, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(multi_box), intent(inout) :: box
+        !> Road heights u_r,i(t_n) [m] under the points.
+        real(dp), intent(in) :: road(:)
+        !> Displacements u_i(t_n) [m].
+        real(dp), intent(out) :: displacement(:)
+        !> Contact forces F_i(t_n) [N].
+        real(dp), intent(out) :: force(:)
+        !> Compressions delta_i(t_n) [m].
+        real(dp), intent(out) :: compression(:)
+        !> Set when no run is going on (`stat_input`) or the step fails (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(multi_contact_response) :: response
+
+        displacement(:) = 0.0_dp
+        force(:) = 0.0_dp
+        compression(:) = 0.0_dp
+        if (.not. box%stepping) then
+            call fatal_error(error, caller//': no contact run is going on with this convolver: start one first ' &
+                             //'(a fault or a reset ends a run)')
+            return
+        end if
+        call multi_contact_block(box%conv, box%contact, reshape(road, [1, size(road)]), response, error)
+        if (allocated(error)) then
+            box%stepping = .false.
+            error%message = caller//': '//error%message
+            return
+        end if
+        displacement(:) = response%displacement(0, :)
+        force(:) = response%force(0, :)
+        compression(:) = response%compression(0, :)
+    end subroutine advance_multi_box
+
+    !> A whole contact run (`run_multi_contact`, the convolver reset first) into arrays
+    !> road-shaped (0:N_t-1, N_c): the steps done, then zero after a fault, which `error`
+    !> names (step, time, point).
+    subroutine run_multi_box(caller, box, stiffness, exponent, preload, road, displacement, force, compression, &
+                             error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(multi_box), intent(inout) :: box
+        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
+        real(dp), intent(in) :: stiffness(:)
+        !> Contact exponent p_i of each point, > 0.
+        real(dp), intent(in) :: exponent(:)
+        !> Static preload F0_i [N] of each point, >= 0.
+        real(dp), intent(in) :: preload(:)
+        !> Road heights road(n, i) = u_r,i(t_n) [m].
+        real(dp), intent(in) :: road(0:, :)
+        !> Displacements u_i(t_n) [m]; zero after a fault.
+        real(dp), intent(out) :: displacement(0:, :)
+        !> Contact forces F_i(t_n) [N]; zero after a fault.
+        real(dp), intent(out) :: force(0:, :)
+        !> Compressions delta_i(t_n) [m]; zero after a fault.
+        real(dp), intent(out) :: compression(0:, :)
+        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(multi_contact_response) :: response
+        integer :: n_done
+
+        box%stepping = .false.
+        displacement(:, :) = 0.0_dp
+        force(:, :) = 0.0_dp
+        compression(:, :) = 0.0_dp
+        call check_laws(caller, stiffness, exponent, preload, error)
+        if (allocated(error)) return
+        call run_multi_contact(box%conv, laws_of(stiffness, exponent), road, preload, response, error, &
+                               box%settings)
+        if (allocated(error)) error%message = caller//': '//error%message
+        if (.not. allocated(response%force)) return
+        n_done = size(response%force, 1)
+        displacement(0:n_done - 1, :) = response%displacement
+        force(0:n_done - 1, :) = response%force
+        compression(0:n_done - 1, :) = response%compression
+    end subroutine run_multi_box
+
+    !> The contact laws of the points.
+    pure function laws_of(stiffness, exponent) result(laws)
+        real(dp), intent(in) :: stiffness(:), exponent(:)
+        type(contact_law) :: laws(size(stiffness))
+
+        integer :: i
+
+        laws = [(contact_law(stiffness(i), exponent(i)), i=1, size(stiffness))]
+    end function laws_of
+
+    !> Every point's law checked, the message naming the point.
+    subroutine check_laws(caller, stiffness, exponent, preload, error)
+        character(len=*), intent(in) :: caller
+        real(dp), intent(in) :: stiffness(:), exponent(:), preload(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i
+
+        do i = 1, size(stiffness)
+            call check_contact_law(contact_law(stiffness(i), exponent(i)), preload(i), error)
+            if (allocated(error)) then
+                error%message = caller//': point '//int_text(i)//': '//error%message
+                return
+            end if
+        end do
+    end subroutine check_laws
+
+    !> Time step, truncation and run length checked by name.
+    subroutine check_run(caller, dt, truncation_tol, n_steps, error)
+        character(len=*), intent(in) :: caller
+        real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (dt > 0.0_dp .and. ieee_is_finite(dt))) then
+            call fatal_error(error, caller//': dt = '//sci_text(dt)//' s: give a finite time step > 0 s')
+        else if (.not. (truncation_tol >= 0.0_dp .and. truncation_tol < 1.0_dp)) then
+            call fatal_error(error, caller//': truncation_tol = '//sci_text(truncation_tol) &
+                             //': give a fraction of max|g_ij| in [0, 1)')
+        else if (n_steps < 1) then
+            call fatal_error(error, caller//': n_steps = '//int_text(n_steps)//': give at least 1 step')
+        end if
+    end subroutine check_run
+
+    !> Keep a box whose convolver was made; otherwise free it and put the caller's name in front.
+    subroutine keep_or_drop(caller, box, error)
+        character(len=*), intent(in) :: caller
+        type(multi_box), pointer, intent(inout) :: box
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (.not. allocated(error)) return
+        error%message = caller//': '//error%message
+        call free_multi_box(box)
+    end subroutine keep_or_drop
+
+end module greenconv_api_multi_handle
