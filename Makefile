@@ -102,7 +102,9 @@ EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(if $(OMPFLAGS),$(EXDIR)/omp
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
 SRCS := $(sort $(shell find src -name '*.f90' -o -name '*.F90' 2>/dev/null))
-OBJS := $(patsubst %,$(BUILD)/%.o,$(basename $(SRCS)))
+# The C sources under src/ (fpm compiles them too): objects beside the Fortran ones.
+CSRCS := $(sort $(shell find src -name '*.c' 2>/dev/null))
+OBJS := $(patsubst %,$(BUILD)/%.o,$(basename $(SRCS))) $(patsubst %.c,$(BUILD)/%.c.o,$(CSRCS))
 
 SCENES  := $(wildcard data/*.nml)
 PLOTS   := $(wildcard plot/*.gp)
@@ -142,6 +144,10 @@ $(BUILD)/%.o: %.f90 $(BUILD)/compile.cmd | $(MODDIR)
 $(BUILD)/%.o: %.F90 $(BUILD)/compile.cmd | $(MODDIR)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) -J$(MODDIR) -c $< -o $@
+
+$(BUILD)/%.c.o: %.c $(BUILD)/compile.cmd
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(PICFLAGS) -c $< -o $@
 
 $(LIB): $(OBJS)
 	@rm -f $@

@@ -7,10 +7,13 @@
 !> names, prints one line saying what a run would do, and writes nothing. `--quiet` turns
 !> the progress line off (it is shown on standard error only when that is a terminal).
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
-!> variable); 3 a numerical fault (one line saying where; the rows before it are written).
+!> variable, or an output file that could not be written, which is then absent); 3 a
+!> numerical fault (one line saying where; the rows before it are written). SIGINT and
+!> SIGTERM delete the temporary `<out>.<pid>.<n>.part` files in flight.
 program greenconv_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
+    use greenconv_io_files, only: remove_parts_on_signals
     implicit none
 
     character(len=*), parameter :: usage = 'usage: greenconv [--check] [--quiet] SCENE.nml   ' &
@@ -44,6 +47,8 @@ program greenconv_driver
     end do
     if (len(path) == 0) call usage_error('no scene file given')
 
+    ! SIGINT/SIGTERM delete the temporary files of the outputs being written.
+    call remove_parts_on_signals()
     call read_scene(path, scene, error)
     if (.not. allocated(error)) then
         if (quiet) scene%progress = .false.

@@ -24,6 +24,7 @@ program greenconv_tests
     use test_input_mod, only: collect_input
     use test_longrun_mod, only: collect_longrun
     use test_lapack_mod, only: collect_lapack
+    use test_reliability_mod, only: collect_reliability
     implicit none
 
     integer :: n_passed, n_failed
@@ -45,6 +46,7 @@ program greenconv_tests
                        new_testsuite('library', collect_library), &
                        new_testsuite('input', collect_input), &
                        new_testsuite('lapack', collect_lapack), &
+                       new_testsuite('reliability', collect_reliability), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

@@ -1,0 +1,212 @@
+!> Reliability (issue 15): a failed run is never reported as a success. Output files are
+!> complete or absent (a full disk, a planted symlink, two writers of one file), `--check`
+!> refuses an output directory a run cannot write, and the other cases of the issue.
+module test_reliability_mod
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+    use, intrinsic :: iso_fortran_env, only: dp => real64, int64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use scene_text_mod, only: tab1_scene, read_scene_text, write_text
+    use greenconv_io_files, only: make_directory, column_writer, open_columns, append_rows, close_columns, &
+                                  write_columns
+    use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene
+    implicit none
+    private
+
+    public :: collect_reliability
+
+    !> Scratch directory for the files the tests write.
+    character(len=*), parameter :: scratch = 'build/test_scratch/reliability'
+
+    interface
+        !> C library symlink(2).
+        function c_symlink(target, link) bind(c, name='symlink') result(stat)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: target(*), link(*)
+            integer(c_int) :: stat
+        end function c_symlink
+
+        !> C library getpid(2).
+        function c_getpid() bind(c, name='getpid') result(pid)
+            import :: c_int
+            implicit none
+            integer(c_int) :: pid
+        end function c_getpid
+    end interface
+
+contains
+
+    !> Tests of issue 15.
+    subroutine collect_reliability(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('full disk: status 2 naming the file, no file left', test_full_disk), &
+                     new_unittest('planted .part symlinks are never followed', test_planted_symlink), &
+                     new_unittest('two writers of one file: the last whole file wins', test_two_writers), &
+                     new_unittest('--check refuses an output_dir a run cannot write', test_check_output_dir)]
+    end subroutine collect_reliability
+
+    !> Number of names in a directory matching a shell pattern (0 when none).
+    integer function count_files(directory, pattern)
+        character(len=*), intent(in) :: directory, pattern
+
+        integer :: unit, stat
+
+        call execute_command_line('ls -A '//directory//' | grep -c -e '''//pattern//''' > '//scratch &
+                                  //'/count.txt 2>/dev/null || true')
+        count_files = -1
+        open (newunit=unit, file=scratch//'/count.txt', status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        read (unit, *, iostat=stat) count_files
+        close (unit, status='delete')
+    end function count_files
+
+    !> A run onto a 64 KiB file system (a tmpfs mounted for the test; skipped with a note when
+    !> mount is not allowed): status 2, the file and the reason named, no output and no
+    !> temporary file left (gfortran's own I/O reported success here and left a cut file).
+    subroutine test_full_disk(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: mount_point = scratch//'/full'
+        type(scene_type) :: scene
+        type(error_type), allocatable :: run_error
+        integer :: status, sink
+
+        call make_directory(mount_point, run_error)
+        call execute_command_line('mount -t tmpfs -o size=64k tmpfs '//mount_point//' 2>/dev/null', &
+                                  exitstat=status)
+        if (status /= 0) then
+            call note('skipped', 0.0_dp)
+            return
+        end if
+        call read_scene_text(scratch, 'full.nml', tab1_scene(scene="dt = 1.0e-4, n_steps = 2000, output_dir = '" &
+                                                              //mount_point//"/out'"), scene, run_error)
+        if (.not. allocated(run_error)) then
+            open (newunit=sink, file='/dev/null', action='write')
+            call run_scene(scene, sink, run_error)
+            close (sink)
+        end if
+        call check(error, allocated(run_error), 'a run onto a full disk reported success')
+        if (.not. allocated(error)) then
+            call check(error, run_error%stat == 2 .and. index(run_error%message, mount_point//'/out/') > 0 &
+                       .and. index(run_error%message, 'No space left') > 0, &
+                       'status 2, the file and the reason: '//run_error%message)
+        end if
+        if (.not. allocated(error)) then
+            call check(error, count_files(mount_point//'/out', '.') == 0, &
+                       'files left on the full disk after a failed write')
+        end if
+        call execute_command_line('umount '//mount_point)
+    end subroutine test_full_disk
+
+    !> Symlinks planted under the old temporary name and under every name this process could
+    !> choose next: the writer writes none of their targets and leaves a regular output file.
+    subroutine test_planted_symlink(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: target = scratch//'/target.txt', output = scratch//'/planted.dat'
+        character(len=64) :: suffix
+        type(error_type), allocatable :: write_error
+        character(len=32) :: line
+        integer :: n, unit, stat
+
+        call make_directory(scratch, write_error)
+        call execute_command_line('rm -f '//output//'*')
+        call write_text(target, 'secret')
+        stat = c_symlink('target.txt'//c_null_char, output//'.part'//c_null_char)
+        do n = 1, 5000
+            write (suffix, '(a,i0,a,i0,a)') '.', c_getpid(), '.', n, '.part'
+            stat = c_symlink('target.txt'//c_null_char, output//trim(suffix)//c_null_char)
+        end do
+        call write_columns(output, ['t'], reshape([1.0_dp, 2.0_dp], [2, 1]), write_error)
+        call check(error, .not. allocated(write_error), 'the writer gave up on planted names')
+        if (allocated(error)) return
+        open (newunit=unit, file=target, status='old', action='read')
+        read (unit, '(a)') line
+        close (unit)
+        call check(error, line == 'secret', 'the target of a planted symlink was overwritten: '//trim(line))
+        if (allocated(error)) return
+        call check(error, count_files(scratch, '^planted.dat$') == 1, 'no output file')
+        if (allocated(error)) return
+        call execute_command_line('test -L '//output, exitstat=stat)
+        call check(error, stat /= 0, 'the output is a symlink')
+        call execute_command_line('rm -f '//output//'*')
+    end subroutine test_planted_symlink
+
+    !> Two writers of one file open at once, their rows interleaved: the file holds the whole
+    !> content of the one closed last, not a mix (they shared one temporary file before).
+    subroutine test_two_writers(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: output = scratch//'/shared.dat'
+        type(column_writer) :: first, second
+        type(error_type), allocatable :: write_error
+        real(dp) :: value
+        character(len=80) :: line
+        integer :: i, unit, stat, rows
+
+        call make_directory(scratch, write_error)
+        call open_columns(first, output, ['first'], 1, write_error)
+        if (.not. allocated(write_error)) call open_columns(second, output, ['second'], 1, write_error)
+        do i = 1, 3000
+            if (.not. allocated(write_error)) call append_rows(first, reshape([1.0_dp], [1, 1]), write_error)
+            if (.not. allocated(write_error)) call append_rows(second, reshape([2.0_dp], [1, 1]), write_error)
+        end do
+        if (.not. allocated(write_error)) call append_rows(second, reshape([2.0_dp], [1, 1]), write_error)
+        if (.not. allocated(write_error)) call close_columns(first, write_error)
+        if (.not. allocated(write_error)) call close_columns(second, write_error)
+        call check(error, .not. allocated(write_error), 'two writers of one file failed')
+        if (allocated(error)) return
+        open (newunit=unit, file=output, status='old', action='read')
+        read (unit, '(a)') line
+        call check(error, line == '# second', 'header of the last writer expected: '//trim(line))
+        rows = 0
+        do
+            read (unit, *, iostat=stat) value
+            if (stat /= 0) exit
+            rows = rows + 1
+            if (value /= 2.0_dp) exit
+        end do
+        close (unit)
+        if (allocated(error)) return
+        call check(error, rows == 3001 .and. stat /= 0, 'rows of one writer only, all of them')
+        if (allocated(error)) return
+        call check(error, count_files(scratch, '^shared.dat.*part$') == 0, 'a temporary file was left')
+    end subroutine test_two_writers
+
+    !> `--check` (check_scene) on an output_dir under a regular file: status 2 naming
+    !> &scene output_dir; a writable one (not yet made) still passes and is not created.
+    subroutine test_check_output_dir(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: check_error
+        integer :: sink
+        logical :: made
+
+        call read_scene_text(scratch, 'check_dir.nml', tab1_scene(scene="dt = 1.0e-4, n_steps = 2000, output_dir = '" &
+                                                                   //scratch//"/check_dir.nml/out'"), scene, check_error)
+        call check(error, .not. allocated(check_error), 'the scene was refused on reading')
+        if (allocated(error)) return
+        open (newunit=sink, file='/dev/null', action='write')
+        call check_scene(scene, sink, check_error)
+        call check(error, allocated(check_error), '--check said ok for an output_dir under a file')
+        if (.not. allocated(error)) then
+            call check(error, check_error%stat == 2 .and. index(check_error%message, 'output_dir') > 0, &
+                       'status 2 naming output_dir: '//check_error%message)
+        end if
+        if (allocated(error)) then
+            close (sink)
+            return
+        end if
+        call read_scene_text(scratch, 'check_dir2.nml', tab1_scene(scene="dt = 1.0e-4, n_steps = 2000, output_dir = '" &
+                                                                    //scratch//"/not_yet/made'"), scene, check_error)
+        if (.not. allocated(check_error)) call check_scene(scene, sink, check_error)
+        close (sink)
+        call check(error, .not. allocated(check_error), 'a writable output_dir refused')
+        if (allocated(error)) return
+        inquire (file=scratch//'/not_yet/.', exist=made)
+        call check(error, .not. made, '--check created the output directory')
+    end subroutine test_check_output_dir
+
+end module test_reliability_mod
