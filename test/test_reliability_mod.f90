@@ -8,6 +8,8 @@ module test_reliability_mod
     use scene_text_mod, only: tab1_scene, read_scene_text, write_text
     use greenconv_io_files, only: make_directory, column_writer, open_columns, append_rows, close_columns, &
                                   write_columns
+    use greenconv_core_text, only: sci_text, real_text, exact_text
+    use greenconv_core_number_text, only: compact_real
     use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene
     implicit none
     private
@@ -43,7 +45,8 @@ contains
         testsuite = [new_unittest('full disk: status 2 naming the file, no file left', test_full_disk), &
                      new_unittest('planted .part symlinks are never followed', test_planted_symlink), &
                      new_unittest('two writers of one file: the last whole file wins', test_two_writers), &
-                     new_unittest('--check refuses an output_dir a run cannot write', test_check_output_dir)]
+                     new_unittest('--check refuses an output_dir a run cannot write', test_check_output_dir), &
+                     new_unittest('three-digit exponents printed as numbers', test_three_digit_exponents)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -208,5 +211,24 @@ contains
         inquire (file=scratch//'/not_yet/.', exist=made)
         call check(error, .not. made, '--check created the output directory')
     end subroutine test_check_output_dir
+
+    !> Messages print 1e-300 and 3.15e284 with their `E` (Fortran's ESw.d drops it for a
+    !> three-digit exponent, and compact_real read text(-1:-1) then), two-digit ones as before.
+    subroutine test_three_digit_exponents(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: expected(8) = [character(len=12) :: '-1.0E-300', '1.0E-04', '3.15E+284', &
+                                                      '1.50E+09', '1.0E-300', '1.5E+09', '1.E-300', '1.E-02']
+        character(len=12) :: actual(8)
+        integer :: i
+
+        actual = [character(len=12) :: compact_real(-1.0e-300_dp), compact_real(1.0e-4_dp), sci_text(3.15e284_dp), &
+                  sci_text(1.5e9_dp), real_text(1.0e-300_dp), real_text(1.5e9_dp), exact_text(1.0e-300_dp), &
+                  exact_text(0.01_dp)]
+        do i = 1, size(expected)
+            call check(error, actual(i) == expected(i), 'expected '//trim(expected(i))//', got '//trim(actual(i)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_three_digit_exponents
 
 end module test_reliability_mod
