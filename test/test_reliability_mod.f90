@@ -10,7 +10,8 @@ module test_reliability_mod
                                   write_columns
     use greenconv_core_text, only: sci_text, real_text, exact_text
     use greenconv_core_number_text, only: compact_real
-    use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene
+    use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene, read_scene
+    use greenconv_io_columns, only: read_columns
     implicit none
     private
 
@@ -46,7 +47,10 @@ contains
                      new_unittest('planted .part symlinks are never followed', test_planted_symlink), &
                      new_unittest('two writers of one file: the last whole file wins', test_two_writers), &
                      new_unittest('--check refuses an output_dir a run cannot write', test_check_output_dir), &
-                     new_unittest('three-digit exponents printed as numbers', test_three_digit_exponents)]
+                     new_unittest('three-digit exponents printed as numbers', test_three_digit_exponents), &
+                     new_unittest('scene from a FIFO, read once', test_scene_fifo), &
+                     new_unittest('scene with a byte-order mark, CR-only line ends, 1e-300', test_scene_text_forms), &
+                     new_unittest('long lines read in linear time; over 1 MiB refused at once', test_long_lines)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -230,5 +234,107 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_three_digit_exponents
+
+    !> A scene read from a FIFO with one writer: read once (it used to be opened twice, the
+    !> second open waiting for a writer that never came, and rewound, which a pipe cannot do).
+    subroutine test_scene_fifo(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: fifo = scratch//'/scene.fifo'
+        type(scene_type) :: scene
+        type(error_type), allocatable :: read_error
+        integer :: status
+
+        call make_directory(scratch, read_error)
+        call execute_command_line('rm -f '//fifo//' && mkfifo '//fifo, exitstat=status)
+        if (status /= 0) then
+            call note('skipped', 0.0_dp)
+            return
+        end if
+        call execute_command_line('timeout 60 sh -c ''cat data/sdof_sine.nml > '//fifo//''' &')
+        call read_scene(fifo, scene, read_error)
+        if (allocated(read_error)) then
+            call check(error, .false., 'a scene from a FIFO refused: '//read_error%message)
+            return
+        end if
+        call check(error, scene%n_steps == 2000 .and. scene%name == 'sdof_sine', 'the FIFO scene read wrong')
+        call execute_command_line('rm -f '//fifo)
+    end subroutine test_scene_fifo
+
+    !> A UTF-8 byte-order mark is skipped; CR-only line ends read with the right line numbers;
+    !> 1e-300 read and shown in a message as -1.0E-300.
+    subroutine test_scene_text_forms(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: cr = achar(13), bom = achar(239)//achar(187)//achar(191)
+        type(scene_type) :: scene
+        type(error_type), allocatable :: read_error
+        character(len=:), allocatable :: text
+        integer :: i
+
+        call read_scene_text(scratch, 'bom.nml', bom//tab1_scene(), scene, read_error)
+        call check(error, .not. allocated(read_error), 'a byte-order mark refused')
+        if (allocated(error)) return
+        text = tab1_scene(contact='stiffness = 1.0e6, exponent = -1.5')
+        do i = 1, len(text)
+            if (text(i:i) == new_line('a')) text(i:i) = cr
+        end do
+        call read_scene_text(scratch, 'cr.nml', text, scene, read_error)
+        call check(error, allocated(read_error), 'CR-only: a bad exponent accepted')
+        if (allocated(error)) return
+        call check(error, index(read_error%message, 'cr.nml:4: &contact exponent') > 0, &
+                   'CR-only: the line of the mistake: '//read_error%message)
+        if (allocated(error)) return
+        call read_scene_text(scratch, 'tiny.nml', tab1_scene(road="profile = 'sine', amplitude = 1.0e-300", &
+                                                             contact='stiffness = -1.0e-300, exponent = 1.5'), &
+                             scene, read_error)
+        call check(error, allocated(read_error), 'a negative contact stiffness accepted')
+        if (allocated(error)) return
+        call check(error, index(read_error%message, 'found -1.0E-300') > 0, &
+                   'the value shown with its exponent: '//read_error%message)
+    end subroutine test_scene_text_forms
+
+    !> A 1,000,000-character comment line of a road file is read in well under a second (the
+    !> line used to grow 256 characters at a time: 2.9 s); a 21 MB file without line ends is
+    !> refused at line 1 naming the limit, at once.
+    subroutine test_long_lines(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: long = scratch//'/long_comment.dat', garbage = scratch//'/garbage.dat'
+        type(error_type), allocatable :: read_error
+        real(dp), allocatable :: table(:, :)
+        integer, allocatable :: line_of(:)
+        integer(int64) :: start, finish, rate
+        integer :: unit
+        real(dp) :: seconds
+
+        call make_directory(scratch, read_error)
+        open (newunit=unit, file=long, status='replace', action='write')
+        write (unit, '(a)') '# '//repeat('x', 1000000)
+        write (unit, '(a)') '0.0 1.0'
+        write (unit, '(a)') '1.0 2.0'
+        close (unit)
+        call system_clock(start, rate)
+        call read_columns(long, ['x     ', 'height'], ['m', 'm'], table, line_of, read_error)
+        call system_clock(finish)
+        seconds = real(finish - start, dp)/real(rate, dp)
+        call note('seconds for a 1 MB line', seconds)
+        call check(error, .not. allocated(read_error), 'a long comment refused')
+        if (allocated(error)) return
+        call check(error, size(table, 1) == 2 .and. line_of(2) == 3 .and. seconds < 0.5_dp, &
+                   'two rows, quickly (under 0.5 s)')
+        if (allocated(error)) return
+        call execute_command_line('head -c 21000000 /dev/zero | tr ''\000'' ''a'' > '//garbage)
+        call system_clock(start, rate)
+        call read_columns(garbage, ['x     ', 'height'], ['m', 'm'], table, line_of, read_error)
+        call system_clock(finish)
+        seconds = real(finish - start, dp)/real(rate, dp)
+        call note('seconds to refuse 21 MB', seconds)
+        call check(error, allocated(read_error), 'a 21 MB line accepted')
+        if (allocated(error)) return
+        call check(error, index(read_error%message, garbage//':1: expected lines of at most 1048576') == 1 &
+                   .and. seconds < 1.0_dp, 'refused at line 1 at once: '//read_error%message)
+        call execute_command_line('rm -f '//garbage//' '//long)
+    end subroutine test_long_lines
 
 end module test_reliability_mod
