@@ -12,6 +12,10 @@ module test_reliability_mod
     use greenconv_core_number_text, only: compact_real
     use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene, read_scene
     use greenconv_io_columns, only: read_columns
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use greenconv_api_all, only: convolver, new_convolver, structure_from_modes, sdof_modes, structure_model, &
+                                 structure_from_frf, frf_from_modes, lsce_options, free_convolver
+    use greenconv_legacy, only: gcsdof, gchist, gcpush, gcfree
     implicit none
     private
 
@@ -50,7 +54,10 @@ contains
                      new_unittest('three-digit exponents printed as numbers', test_three_digit_exponents), &
                      new_unittest('scene from a FIFO, read once', test_scene_fifo), &
                      new_unittest('scene with a byte-order mark, CR-only line ends, 1e-300', test_scene_text_forms), &
-                     new_unittest('long lines read in linear time; over 1 MiB refused at once', test_long_lines)]
+                     new_unittest('long lines read in linear time; over 1 MiB refused at once', test_long_lines), &
+                     new_unittest('direct/fft past a cut kernel: NaN (Fortran), refused (F77); xi = 0', &
+                                  test_cut_kernel), &
+                     new_unittest('wrap-around: direct/fft refused, auto picks the modes', test_wrapped_g)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -336,5 +343,89 @@ contains
                    .and. seconds < 1.0_dp, 'refused at line 1 at once: '//read_error%message)
         call execute_command_line('rm -f '//garbage//' '//long)
     end subroutine test_long_lines
+
+    !> A `direct` or `fft` convolver made for 100 steps of a lightly damped mass-spring (its
+    !> kernel cut there, g far from decayed): through the Fortran API its history from step
+    !> 100 on is NaN (a contact run then stops at that step), through the F77 door the step is
+    !> refused with status 2; before, both went on with a short sum, 62-68 % off. xi = 0 is
+    !> accepted by GCSDOF for every method, as the driver accepts it.
+    subroutine test_cut_kernel(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: methods(2) = ['direct', 'fft   ']
+        class(convolver), allocatable :: conv
+        type(error_type), allocatable :: make_error
+        character(len=200) :: message
+        integer(int64) :: handle
+        real(dp) :: u
+        integer :: i, n, ierr
+
+        do i = 1, size(methods)
+            call new_convolver(trim(methods(i)), structure_from_modes(sdof_modes(1.0_dp, 1.0e4_dp, 0.001_dp)), &
+                               1.0e-3_dp, 100, conv, make_error)
+            call check(error, .not. allocated(make_error), trim(methods(i))//': not made')
+            if (allocated(error)) return
+            do n = 0, 99
+                u = conv%history()
+                if (ieee_is_nan(u)) exit
+                call conv%push(merge(1.0_dp, 0.0_dp, n == 0))
+            end do
+            call check(error, n == 100 .and. ieee_is_nan(conv%history()), &
+                       trim(methods(i))//': history finite for steps 0-99 and NaN at step 100')
+            if (allocated(error)) return
+            call gcsdof(1.0_dp, 1.0e4_dp, 0.001_dp, 1.0e-3_dp, 100, trim(methods(i)), handle, ierr, message)
+            do n = 0, 99
+                call gchist(handle, u, ierr)
+                if (ierr == 0) call gcpush(handle, 0.0_dp, ierr)
+                if (ierr /= 0) exit
+            end do
+            call gchist(handle, u, ierr)
+            call check(error, n == 100 .and. ierr == 2, trim(methods(i))//': GCHIST refused at step 100 only')
+            call gcfree(handle)
+            if (allocated(error)) return
+            call gcsdof(1.0_dp, 1.0e4_dp, 0.0_dp, 1.0e-3_dp, 100, trim(methods(i)), handle, ierr, message)
+            call check(error, ierr == 0, trim(methods(i))//': GCSDOF refused xi = 0: '//trim(message))
+            call gcfree(handle)
+            if (allocated(error)) return
+        end do
+    end subroutine test_cut_kernel
+
+    !> A receptance of a mass-spring with xi = 1e-5 on a 0.25 Hz grid: g has not decayed within
+    !> 1/df = 4 s, so its inverse FFT wraps around and `direct`/`fft` on it were 6-20 times off
+    !> while the run said 0. Now both are refused with a message naming the cause and the way
+    !> out, `auto` picks the identified modes, and `modal` runs.
+    subroutine test_wrapped_g(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(structure_model) :: structure
+        type(error_type), allocatable :: make_error
+        class(convolver), allocatable :: conv
+        character(len=:), allocatable :: description
+
+        call structure_from_frf(frf_from_modes(sdof_modes(1.0_dp, 1.0e4_dp, 1.0e-5_dp), 50.0_dp, 201), &
+                                lsce_options(), 0.01_dp, structure, make_error)
+        call check(error, .not. allocated(make_error), 'the receptance was not identified')
+        if (allocated(error)) return
+        call check(error, structure%fit%wrap_around, 'the test receptance does not wrap around')
+        if (allocated(error)) return
+        call new_convolver('direct', structure, 0.01_dp, 1000, conv, make_error)
+        call check(error, allocated(make_error), 'direct on a wrapped g accepted')
+        if (allocated(error)) return
+        call check(error, make_error%stat == 2 .and. index(make_error%message, 'wrap-around') > 0 .and. &
+                   index(make_error%message, 'finer frequency grid') > 0, 'direct: message '//make_error%message)
+        if (allocated(error)) return
+        call new_convolver('fft', structure, 0.01_dp, 1000, conv, make_error)
+        call check(error, allocated(make_error), 'fft on a wrapped g accepted')
+        if (allocated(error)) return
+        call new_convolver('auto', structure, 0.01_dp, 1000, conv, make_error, description=description)
+        call check(error, .not. allocated(make_error), 'auto refused')
+        if (allocated(error)) return
+        call check(error, index(description, 'chose exact') > 0, 'auto: '//description)
+        call free_convolver(conv)
+        if (allocated(error)) return
+        call new_convolver('modal', structure, 0.01_dp, 1000, conv, make_error)
+        call check(error, .not. allocated(make_error), 'modal refused')
+        if (allocated(conv)) call free_convolver(conv)
+    end subroutine test_wrapped_g
 
 end module test_reliability_mod
