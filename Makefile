@@ -39,6 +39,12 @@
 #   make fuzz       damage the shipped scene, receptance and road files FUZZ_CASES ways (default
 #                   2000) and check that the driver always ends with status 0, 2 or 3 and one
 #                   clean message, never a signal or a half-written file (fuzz/fuzz_main.f90)
+#   make valgrind   the plain build's driver on every data/*.nml scene (n_steps cut to 2000),
+#                   the examples and the C tests under valgrind; fails on an invalid access or
+#                   memory "definitely lost" (tools/make_helpers.sh valgrind)
+#   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
+#                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
+#                   fuzz cases (default 200) on each; see the target below
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -113,7 +119,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz
+        fuzz valgrind sanitize
 
 all: lib
 
@@ -167,7 +173,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install fuzz $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz ctest valgrind $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -240,6 +246,16 @@ $(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
 
 fuzz: $(BIN) $(FUZZ)
 	@$(HELPER) fuzz $(BIN) $(FUZZ) $(FUZZ_CASES) $(FUZZ_SEED)
+
+# ---- sanitizers and valgrind ---------------------------------------------------------------
+
+SANITIZE_FUZZ ?= 200
+
+sanitize:
+	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
+
+valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
+	@$(HELPER) valgrind $(BIN) $(EXAMPLES) $(CTESTS)
 
 # ---- install ---------------------------------------------------------------------------
 

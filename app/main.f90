@@ -22,7 +22,7 @@ program greenconv_driver
     type(error_type), allocatable :: error
     character(len=:), allocatable :: path, argument
     logical :: check_only, quiet
-    integer :: i, length
+    integer :: i, length, status
 
     check_only = .false.
     quiet = .false.
@@ -50,6 +50,9 @@ program greenconv_driver
     ! SIGINT/SIGTERM delete the temporary files of the outputs being written.
     call remove_parts_on_signals()
     call read_scene(path, scene, error)
+    ! Freed here and below (the scene keeps its own copy): the main program's variables are
+    ! not freed at its end, and valgrind would count them as lost.
+    deallocate (path)
     if (.not. allocated(error)) then
         if (quiet) scene%progress = .false.
         if (check_only) then
@@ -60,7 +63,9 @@ program greenconv_driver
     end if
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv: '//error%message
-        stop error%stat, quiet=.true.
+        status = error%stat
+        deallocate (error)
+        stop status, quiet=.true.
     end if
 
 contains

@@ -448,12 +448,20 @@ contains
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
 
+        type(file_road), allocatable :: road
+
         call read_road_file(path, this%road_data, error)
         if (allocated(error)) then
             error%message = input_place(this, 'road', 'road_file')//': '//error%message
             return
         end if
-        this%road = file_road(this%road_data, this%x_start, this%speed)
+        ! Built in place and moved: gfortran 12 loses the allocatable components of a
+        ! structure constructor assigned to a polymorphic variable (80 KB per road file).
+        allocate (road)
+        road%profile = this%road_data
+        road%x_start = this%x_start
+        road%speed = this%speed
+        call move_alloc(road, this%road)
     end subroutine read_file_road
 
     !> Profile 'file': every contact point stays on the road file for the whole run (a single
