@@ -26,7 +26,8 @@
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
-#                   (`make fuzz`), the benchmark's smoke checks (`make bench-smoke`), then
+#                   (`make fuzz`), the sanitizer builds (`make sanitize`, about 6 minutes),
+#                   the benchmark's smoke checks (`make bench-smoke`), then
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
 #                   follow their paths), then its self-test tools/test_check_layers.sh
@@ -318,6 +319,7 @@ test: deps
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz
+	@$(MAKE) sanitize
 	@$(MAKE) bench-smoke
 	@echo "fpm test"
 	@$(HELPER) fpm-test
