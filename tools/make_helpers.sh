@@ -341,7 +341,8 @@ cmd_examples() {
 vg_run() {
     local log=$1
     shift
-    if valgrind --quiet --leak-check=full --errors-for-leak-kinds=definite --error-exitcode=99 \
+    if valgrind --quiet --leak-check=full --show-leak-kinds=definite --errors-for-leak-kinds=definite \
+        --error-exitcode=99 \
         --log-file="$log" "$@" >"$log.out" 2>&1 && [ ! -s "$log" ]; then
         return 0
     fi
