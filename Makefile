@@ -28,7 +28,8 @@
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
-#                   (`make fuzz`), the benchmark's smoke checks (`make bench-smoke`), then
+#                   (`make fuzz`), the sanitizer builds (`make sanitize`, about 6 minutes),
+#                   the benchmark's smoke checks (`make bench-smoke`), then
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
 #                   follow their paths), then its self-test tools/test_check_layers.sh
@@ -43,6 +44,12 @@
 #   make fuzz       damage the shipped scene, receptance and road files FUZZ_CASES ways (default
 #                   2000) and check that the driver always ends with status 0, 2 or 3 and one
 #                   clean message, never a signal or a half-written file (fuzz/fuzz_main.f90)
+#   make valgrind   the plain build's driver on every data/*.nml scene (n_steps cut to 2000),
+#                   the examples and the C tests under valgrind; fails on an invalid access or
+#                   memory "definitely lost" (tools/make_helpers.sh valgrind)
+#   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
+#                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
+#                   fuzz cases (default 200) on each; see the target below
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -106,7 +113,9 @@ EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/leg
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
 SRCS := $(sort $(shell find src -name '*.f90' -o -name '*.F90' 2>/dev/null))
-OBJS := $(patsubst %,$(BUILD)/%.o,$(basename $(SRCS)))
+# The C sources under src/ (fpm compiles them too): objects beside the Fortran ones.
+CSRCS := $(sort $(shell find src -name '*.c' 2>/dev/null))
+OBJS := $(patsubst %,$(BUILD)/%.o,$(basename $(SRCS))) $(patsubst %.c,$(BUILD)/%.c.o,$(CSRCS))
 
 SCENES  := $(wildcard data/*.nml)
 PLOTS   := $(wildcard plot/*.gp)
@@ -115,7 +124,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz
+        fuzz valgrind sanitize
 
 all: lib
 
@@ -147,6 +156,10 @@ $(BUILD)/%.o: %.F90 $(BUILD)/compile.cmd | $(MODDIR)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) -J$(MODDIR) -c $< -o $@
 
+$(BUILD)/%.c.o: %.c $(BUILD)/compile.cmd
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(PICFLAGS) -c $< -o $@
+
 $(LIB): $(OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
@@ -165,7 +178,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install fuzz mpi sweep-test sweep-bench patch-green-check $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz ctest valgrind mpi sweep-test sweep-bench patch-green-check $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -289,6 +302,16 @@ sweep-test: $(BIN) $(MPI_BIN)
 sweep-bench: $(MPI_BIN)
 	@bash tools/bench_sweep.sh $(MPI_BIN)
 
+# ---- sanitizers and valgrind ---------------------------------------------------------------
+
+SANITIZE_FUZZ ?= 200
+
+sanitize:
+	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
+
+valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
+	@$(HELPER) valgrind $(BIN) $(EXAMPLES) $(CTESTS)
+
 # ---- install ---------------------------------------------------------------------------
 
 # PREFIX/bin/greenconv, PREFIX/lib/libgreenconv.{a,so*}, PREFIX/include/greenconv.h, the
@@ -354,6 +377,7 @@ test: deps
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz
+	@$(MAKE) sanitize
 	@$(MAKE) bench-smoke
 	@$(MAKE) sweep-test
 	@$(MAKE) patch-green-check

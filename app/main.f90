@@ -7,12 +7,16 @@
 !> names, prints one line saying what a run would do, and writes nothing. `--quiet` turns
 !> the progress line off (it is shown on standard error only when that is a terminal).
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
-!> variable); 3 a numerical fault (one line saying where; the rows before it are written).
+!> variable, or an output file that could not be written, which is then absent); 3 a
+!> numerical fault (one line saying where; the rows before it are written). SIGINT and
+!> SIGTERM delete the temporary `<out>.<pid>.<n>.part` files in flight.
 !> A sweep scene (`task = 'sweep'`, a `&sweep` group; greenconv_scene_sweep) runs its
-!> variants one after the other into `<name>_sweep.dat` (mpi/greenconv_mpi.f90 shares them among MPI ranks).
+!> variants one after the other into `<name>_sweep.dat` (mpi/greenconv_mpi.f90 shares them
+!> among MPI ranks); it must be a regular file, as it is read once per variant.
 program greenconv_driver
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
+    use greenconv_io_files, only: remove_parts_on_signals
     use greenconv_scene_sweep, only: is_sweep_file, run_sweep
     implicit none
 
@@ -22,7 +26,8 @@ program greenconv_driver
     type(error_type), allocatable :: error
     character(len=:), allocatable :: path, argument
     logical :: check_only, quiet, sweep
-    integer :: i, length
+    integer :: i, length, status
+    integer(int64) :: file_size
 
     check_only = .false.
     quiet = .false.
@@ -47,12 +52,20 @@ program greenconv_driver
     end do
     if (len(path) == 0) call usage_error('no scene file given')
 
-    sweep = is_sweep_file(path)
+    ! SIGINT/SIGTERM delete the temporary files of the outputs being written.
+    call remove_parts_on_signals()
+    ! A sweep is a regular file (size > 0); a pipe or a FIFO is read once, as one scene.
+    inquire (file=path, size=file_size)
+    sweep = .false.
+    if (file_size > 0) sweep = is_sweep_file(path)
     if (sweep) then
         call run_sweep(path, output_unit, check_only, error)
     else
         call read_scene(path, scene, error)
     end if
+    ! Freed here and below (the scene keeps its own copy): the main program's variables are
+    ! not freed at its end, and valgrind would count them as lost.
+    deallocate (path)
     if (.not. allocated(error) .and. .not. sweep) then
         if (quiet) scene%progress = .false.
         if (check_only) then
@@ -63,7 +76,9 @@ program greenconv_driver
     end if
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv: '//error%message
-        stop error%stat, quiet=.true.
+        status = error%stat
+        deallocate (error)
+        stop status, quiet=.true.
     end if
 
 contains

@@ -170,7 +170,15 @@ int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *meth
 /** History displacement u_h(n) [m] at t_n from the forces pushed so far. */
 int gc_convolver_history(const gc_convolver *conv, double *displacement);
 
-/** Record the force q(t_n) [N] of the current step and advance to step n + 1. */
+/**
+ * Record the force q(t_n) [N] of the current step and advance to step n + 1.
+ *
+ * "direct" and "fft" cut g at the n_steps they were made for when it has not decayed below
+ * the truncation level by then: such a convolver is valid for n_steps steps only, and
+ * gc_convolver_history, gc_convolver_push, gc_contact_step, gc_contact_advance and
+ * gc_run_contact refuse a later step with GC_ERROR_INPUT (the messages say so) instead of
+ * returning a short, wrong sum. Make the convolver for the whole run, or use a modal method.
+ */
 int gc_convolver_push(gc_convolver *conv, double force);
 
 /** Instantaneous weight w0 [m/N]: displacement per newton of the current step's own force. */
@@ -187,6 +195,14 @@ int gc_convolver_model_size(const gc_convolver *conv, int *size);
  * (at most text_len bytes, NUL-terminated; text may be NULL).
  */
 int gc_convolver_describe(const gc_convolver *conv, char *text, size_t text_len);
+
+/**
+ * The warnings of the identification the convolver's structure came from (a receptance
+ * file: wrap-around, a fit that missed tol_e, dropped unstable poles), "; " between them,
+ * "" when there are none, written to text as gc_convolver_describe does. A constructor that
+ * succeeds with a warning still returns GC_OK: ask this before trusting an identified model.
+ */
+int gc_convolver_warnings(const gc_convolver *conv, char *text, size_t text_len);
 
 /* ---- dynamic contact ----------------------------------------------------------------- */
 

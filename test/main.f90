@@ -34,6 +34,7 @@ program greenconv_tests
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
+    use test_reliability_mod, only: collect_reliability
     implicit none
 
     integer :: n_passed, n_failed
@@ -65,6 +66,7 @@ program greenconv_tests
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
+                       new_testsuite('reliability', collect_reliability), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

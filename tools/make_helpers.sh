@@ -50,6 +50,21 @@
 #       DRIVER (CASES damaged files from SEED). The directory is removed when every case
 #       passes, and kept (its path printed, with the damaged files in failures/) when not.
 #
+#   tools/make_helpers.sh valgrind DRIVER PROGRAM...
+#       Run DRIVER under valgrind on every data/*.nml scene (output_dir redirected into a
+#       temporary directory, n_steps cut to at most VALGRIND_STEPS, default 2000), then each
+#       PROGRAM (the examples, the C tests) the way `make examples` / `make ctest` runs it.
+#       Fails when valgrind reports an invalid access or memory "definitely lost"; the log of
+#       a failing run is kept and its path printed.
+#
+#   tools/make_helpers.sh sanitize CASES
+#       Two instrumented builds, each in its own build directory: AddressSanitizer with
+#       UndefinedBehaviorSanitizer (every finding fatal) and gfortran's -fcheck=all. Each runs
+#       the unit tests (`fpm test` with those flags: fpm keeps a build directory per set of
+#       flags), the C tests and CASES fuzz cases (the Makefile build in build/sanitize-*).
+#       ASan runs with quarantine_size_mb=0 (the 1e8-step memory test measures the resident
+#       size) and detect_leaks=0 (leaks are valgrind's: `make valgrind`).
+#
 #   tools/make_helpers.sh fpm-test [ARGS...]
 #       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
 #       after fpm's own error lines, so that it stays the last line of the test output.
@@ -328,6 +343,86 @@ cmd_examples() {
     return "$failed"
 }
 
+# vg_run LOG COMMAND...: COMMAND under valgrind; 0 when clean, else the log is kept.
+vg_run() {
+    local log=$1
+    shift
+    if valgrind --quiet --leak-check=full --show-leak-kinds=definite --errors-for-leak-kinds=definite \
+        --error-exitcode=99 \
+        --log-file="$log" "$@" >"$log.out" 2>&1 && [ ! -s "$log" ]; then
+        return 0
+    fi
+    say "FAIL: valgrind: $* (log: $log, output: $log.out)"
+    return 1
+}
+
+cmd_valgrind() {
+    [ $# -ge 1 ] || die "usage: $0 valgrind DRIVER PROGRAM..."
+    local driver=$1 tmp scene name program failed=0 steps=${VALGRIND_STEPS:-2000}
+    shift
+    command -v valgrind >/dev/null || die "valgrind not found (apt-get install valgrind)"
+    [ -x "$driver" ] || die "$driver not built (run make lib)"
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-valgrind.XXXXXX")
+    driver_reference "$driver" "$tmp/reference"
+    for scene in data/*.nml; do
+        name=${scene##*/}
+        name=${name%.nml}
+        redirected_scene "$scene" "$tmp/$name" |
+            awk -v cap="$steps" 'tolower($0) ~ /^[[:space:]]*n_steps[[:space:]]*=/ {
+                split($0, part, "="); value = part[2] + 0
+                if (value > cap) { sub(/=[[:space:]]*[0-9]+/, "= " cap) } } { print }' >"$tmp/$name.nml"
+        say "valgrind: $scene"
+        vg_run "$tmp/$name.log" "$driver" --quiet "$tmp/$name.nml" || failed=1
+    done
+    for program in "$@"; do
+        say "valgrind: $program"
+        case ${program##*/} in
+            c_contact) vg_run "$tmp/c_contact.log" "$program" "$tmp/reference" data/sample_receptance.frf || failed=1 ;;
+            legacy_f77) vg_run "$tmp/legacy_f77.log" "$program" <<<"$tmp/reference" || failed=1 ;;
+            *) vg_run "$tmp/${program##*/}.log" "$program" || failed=1 ;;
+        esac
+    done
+    if [ "$failed" -eq 0 ]; then
+        rm -rf "$tmp"
+        say "valgrind: clean (no invalid access, nothing definitely lost)"
+    fi
+    return "$failed"
+}
+
+cmd_sanitize() {
+    [ $# -eq 1 ] || die "usage: $0 sanitize CASES"
+    local cases=$1 variant fflags cflags lflags failed=0 started
+    local asan='-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer'
+    export ASAN_OPTIONS=quarantine_size_mb=0:detect_leaks=0:abort_on_error=1
+    export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    for variant in asan check; do
+        started=$SECONDS
+        if [ "$variant" = asan ]; then
+            fflags="-g -O1 $asan"
+            cflags="-g -O1 -std=c99 $asan"
+            lflags=$asan
+        else
+            fflags='-g -O0 -fcheck=all -fbacktrace'
+            cflags='-g -O0 -std=c99'
+            lflags=''
+        fi
+        say "sanitize ($variant): fpm test with $fflags"
+        if ! "$FPM" test --flag "$fflags" --c-flag "$cflags" ${lflags:+--link-flag "$lflags"}; then
+            say "FAIL: sanitize ($variant): fpm test"
+            failed=1
+        fi
+        say "sanitize ($variant): C tests and $cases fuzz cases (build/sanitize-$variant)"
+        if ! "${MAKE:-make}" BUILD="build/sanitize-$variant" FFLAGS="$fflags -std=f2018 -fimplicit-none" \
+            CFLAGS="$cflags" FUZZ_CASES="$cases" ctest fuzz; then
+            say "FAIL: sanitize ($variant): C tests or fuzz"
+            failed=1
+        fi
+        say "sanitize ($variant): $((SECONDS - started)) s"
+    done
+    [ "$failed" -eq 0 ] && say "sanitize: clean (ASan+UBSan and -fcheck=all)"
+    return "$failed"
+}
+
 cmd_install() {
     [ $# -eq 5 ] || die "usage: $0 install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE"
     local destdir=$1 prefix=$2 version=$3 build=$4 private=$5
@@ -485,7 +580,9 @@ case "${1:-}" in
     doc) shift; cmd_doc "$@" ;;
     fuzz) shift; cmd_fuzz "$@" ;;
     fpm-test) shift; cmd_fpm_test "$@" ;;
+    valgrind) shift; cmd_valgrind "$@" ;;
+    sanitize) shift; cmd_sanitize "$@" ;;
     *) die "usage: $0 deps | f90deps OBJDIR SOURCE... | same-output DRIVER SCENE... | examples DRIVER EXAMPLE..." \
            "| install DESTDIR PREFIX VERSION BUILD LIBS | install-test DRIVER | doc-check SOURCE... | doc" \
-           "| fuzz DRIVER FUZZ CASES SEED | fpm-test [ARGS...]" ;;
+           "| fuzz DRIVER FUZZ CASES SEED | fpm-test [ARGS...] | valgrind DRIVER PROGRAM... | sanitize CASES" ;;
 esac

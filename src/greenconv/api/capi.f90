@@ -16,7 +16,7 @@
 module greenconv_capi
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_null_char, &
                                            c_associated, c_f_pointer, c_loc
-    use, intrinsic :: iso_fortran_env, only: output_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_core_text, only: int_text
@@ -26,7 +26,7 @@ module greenconv_capi
     use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file, default_truncation_tol, &
                                      default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
     implicit none
     private
 
@@ -36,6 +36,7 @@ module greenconv_capi
     public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_opts
     public :: gc_convolver_free, gc_convolver_delete, gc_convolver_history, gc_convolver_push
     public :: gc_convolver_instant_weight, gc_convolver_reset, gc_convolver_model_size, gc_convolver_describe
+    public :: gc_convolver_warnings
     public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
@@ -395,10 +396,13 @@ contains
         type(c_ptr), value, intent(in) :: conv
 
         type(c_ptr), pointer :: handle
+        type(c_ptr) :: object
 
         if (.not. c_associated(conv)) return
         call c_f_pointer(conv, handle)
-        call gc_convolver_free(handle)
+        ! A copy: gfortran's -fcheck=pointer takes a pointer to a C NULL for a disassociated one.
+        object = handle
+        call gc_convolver_free(object)
         handle = c_null_ptr
     end subroutine gc_convolver_delete
 
@@ -413,10 +417,13 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
 
         box => box_of(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement))) return
+        call check_steps(box, 'gc_convolver_history', 1_int64, error)
+        if (allocated(error)) return
         call put(displacement, box%conv%history())
         status = 0
     end function gc_convolver_history
@@ -430,10 +437,13 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
 
         box => box_of(conv)
         status = stat_input
         if (.not. associated(box)) return
+        call check_steps(box, 'gc_convolver_push', 1_int64, error)
+        if (allocated(error)) return
         call box%conv%push(force)
         status = 0
     end function gc_convolver_push
@@ -515,6 +525,27 @@ contains
         status = 0
     end function gc_convolver_describe
 
+    !> int gc_convolver_warnings(const gc_convolver *conv, char *text, size_t text_len): the
+    !> warnings of the identification the convolver's structure came from ("" when none).
+    function gc_convolver_warnings(conv, text, text_len) bind(c, name='gc_convolver_warnings') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Buffer for the warnings, "; " between them, or NULL.
+        type(c_ptr), value, intent(in) :: text
+        !> Size of the buffer [bytes].
+        integer(c_size_t), value, intent(in) :: text_len
+        integer(c_int) :: status
+
+        type(convolver_box), pointer :: box
+
+        box => box_of(conv)
+        status = stat_input
+        call to_c('', text, text_len)
+        if (.not. associated(box)) return
+        if (allocated(box%warning)) call to_c(box%warning, text, text_len)
+        status = 0
+    end function gc_convolver_warnings
+
     ! ---- dynamic contact --------------------------------------------------------------------
 
     !> int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road,
@@ -547,6 +578,7 @@ contains
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
         call check_contact_law(contact_law(k_c, p), preload, error)
+        if (.not. allocated(error)) call check_steps(box, 'gc_contact_step', 1_int64, error)
         if (allocated(error)) return
         call contact_step(box%conv, contact_law(k_c, p), road, preload, u, f, delta)
         call put(displacement, u)
@@ -755,10 +787,12 @@ contains
             call fatal_error(error, 'gc_contact_advance: no contact run is going on with this convolver: call ' &
                              //'gc_contact_start first (a fault or a reset ends a run)')
         else
-            call contact_block(box%conv, box%contact, [real(road, dp)], response, error)
+            call check_steps(box, 'gc_contact_advance', 1_int64, error)
+            if (.not. allocated(error)) call contact_block(box%conv, box%contact, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
-                error%message = 'gc_contact_advance: '//error%message
+                if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &
+                                                                                    //error%message
             else
                 u = response%displacement(0)
                 f = response%force(0)

@@ -8,6 +8,7 @@
 !> doors only convert arguments and messages. There is no module state.
 module greenconv_api_handle
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: lower_text, sci_text, int_text
@@ -18,6 +19,8 @@ module greenconv_api_handle
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
                                          structure_from_frf
     use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_direct, only: direct_convolver
+    use greenconv_conv_fft, only: fft_convolver
     use greenconv_conv_methods, only: method_needs_g
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, contact_state, run_contact, &
                                         copy_histories
@@ -27,7 +30,7 @@ module greenconv_api_handle
 
     public :: convolver_box, new_box, free_box
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: run_box, identify_file
+    public :: run_box, identify_file, check_steps
 
     !> What a foreign handle points to.
     type :: convolver_box
@@ -39,6 +42,9 @@ module greenconv_api_handle
         type(contact_state) :: contact
         !> True between a successful start of a stepped contact run and its first fault.
         logical :: stepping = .false.
+        !> Warnings of the identification the structure came from (wrap-around, a fit that
+        !> missed its target, dropped poles), '' when none.
+        character(len=:), allocatable :: warning
     end type convolver_box
 
 contains
@@ -68,7 +74,10 @@ contains
         if (allocated(error)) then
             deallocate (box)
             box => null()
+            return
         end if
+        box%warning = ''
+        if (structure%identified .and. allocated(structure%fit%warning)) box%warning = structure%fit%warning
     end subroutine new_box
 
     !> Free a box and its convolver (FFTW plans too); nothing for a null pointer. Null on return.
@@ -81,6 +90,34 @@ contains
         deallocate (box)
         box => null()
     end subroutine free_box
+
+    !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
+    !> was cut at the n_steps it was made for (g not decayed by then) would give a short,
+    !> wrong sum from there on. `steps` more steps from the current one must stay below it.
+    subroutine check_steps(box, caller, steps, error)
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Steps about to be taken from the current step (history or push of this step: 1).
+        integer(int64), intent(in) :: steps
+        !> Set (`stat_input`) when a step lies past the kernel's validity.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer(int64) :: valid
+
+        valid = huge(valid)
+        select type (conv => box%conv)
+        type is (direct_convolver)
+            valid = conv%valid_steps
+        type is (fft_convolver)
+            valid = conv%valid_steps
+        end select
+        if (box%conv%step + steps <= valid) return
+        call fatal_error(error, caller//': step '//int_text(max(box%conv%step, valid))//' is past the '//box%conv%name &
+                         //' kernel, cut at the '//int_text(valid)//' steps the convolver was made for (g has not ' &
+                         //'decayed by then): make it with n_steps >= the steps you run, or use a modal method')
+    end subroutine check_steps
 
     !> The structure of a damped mass-spring system, its arguments checked by name.
     subroutine sdof_structure(caller, mass, stiffness, damping_ratio, structure, error)
@@ -222,6 +259,16 @@ contains
 
         box%stepping = .false.
         call check_contact_law(law, preload, error)
+        if (.not. allocated(error)) then
+            call box%conv%reset()
+            call check_steps(box, 'a run of '//int_text(size(road))//' steps', int(size(road), int64), error)
+            if (allocated(error)) then
+                displacement(:) = 0.0_dp
+                force(:) = 0.0_dp
+                compression(:) = 0.0_dp
+                return
+            end if
+        end if
         if (.not. allocated(error)) call run_contact(box%conv, law, road, preload, response, options, error)
         call copy_histories(response, displacement, force, compression)
     end subroutine run_box

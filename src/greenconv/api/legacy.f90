@@ -29,12 +29,12 @@ module greenconv_legacy
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
     implicit none
     private
 
     public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
-    public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc
+    public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
     public :: gcstep, gccont, gcid, gcscen
 
     !> Status of a call that succeeded.
@@ -204,14 +204,21 @@ contains
         integer(int64), intent(in) :: handle
         !> u_h(n) [m]; 0 on failure.
         real(dp), intent(out) :: uh
-        !> Status: 0 success, 2 null handle.
+        !> Status: 0 success, 2 null handle or a step past a cut kernel's validity.
         integer, intent(out) :: ierr
 
         type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
 
         uh = 0.0_dp
         box => checked_box(handle, ierr)
-        if (associated(box)) uh = box%conv%history()
+        if (.not. associated(box)) return
+        call check_steps(box, 'gchist', 1_int64, error)
+        if (allocated(error)) then
+            ierr = error%stat
+            return
+        end if
+        uh = box%conv%history()
     end subroutine gchist
 
     !> Push the force q(t_n) [N] of the current step and advance to step n + 1.
@@ -224,9 +231,16 @@ contains
         integer, intent(out) :: ierr
 
         type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
 
         box => checked_box(handle, ierr)
-        if (associated(box)) call box%conv%push(q)
+        if (.not. associated(box)) return
+        call check_steps(box, 'gcpush', 1_int64, error)
+        if (allocated(error)) then
+            ierr = error%stat
+            return
+        end if
+        call box%conv%push(q)
     end subroutine gcpush
 
     !> Instantaneous weight w0 [m/N]: displacement per newton of the current step's own
@@ -276,6 +290,24 @@ contains
         if (associated(box)) call box%conv%model_size(nsize, label)
     end subroutine gcsize
 
+    !> The warnings of the identification the convolver's structure came from (wrap-around, a
+    !> fit that missed its target, dropped poles), "; " between them; blank when none.
+    subroutine gcwarn(handle, text, ierr)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> The warnings, truncated to fit; blank when none or on failure.
+        character(len=*), intent(out) :: text
+        !> Status: 0 success, 2 null handle.
+        integer, intent(out) :: ierr
+
+        type(convolver_box), pointer :: box
+
+        text = ' '
+        box => checked_box(handle, ierr)
+        if (.not. associated(box)) return
+        if (allocated(box%warning)) text = box%warning
+    end subroutine gcwarn
+
     !> The method's name, a colon and what its model neglects (for `auto`, what it chose).
     subroutine gcdesc(handle, text, ierr)
         !> The convolver's handle.
@@ -324,6 +356,7 @@ contains
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
         call check_contact_law(contact_law(kc, p), f0, error)
+        if (.not. allocated(error)) call check_steps(box, 'gcstep', 1_int64, error)
         if (allocated(error)) then
             ierr = error%stat
             return

@@ -4,7 +4,14 @@
 !> see greenconv_conv_kernel). Past forces sit in a doubled ring buffer, newest first, so
 !> that the history is one contiguous dot product of length min(n, N_g) per step, summed by
 !> `lane_dot` (greenconv_conv_kernel) in eight interleaved partial sums.
+!>
+!> A kernel cut at the length of the run it was made for (g not yet below the truncation
+!> level there) is wrong for any later step: such a convolver knows its `valid_steps`, and
+!> its history past them is NaN, never a silently short sum (the C and F77 doors refuse
+!> those steps with a message before they are taken).
 module greenconv_conv_direct
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_conv_convolver, only: convolver, capped_step
     use greenconv_conv_kernel, only: lane_dot
@@ -21,6 +28,8 @@ module greenconv_conv_direct
         real(dp), allocatable :: past(:)
         !> Position of the newest force in `past`.
         integer :: head = 1
+        !> Steps n whose history the kernel covers, n < valid_steps (huge: any run length).
+        integer(int64) :: valid_steps = huge(0_int64)
     contains
         procedure :: history => direct_history
         procedure :: push => direct_push
@@ -31,11 +40,14 @@ module greenconv_conv_direct
 contains
 
     !> A direct convolver from kernel samples g(t_j) [m/(N*s)], j = 0..N_g (N_g >= 1), step dt [s].
-    function new_direct_convolver(kernel, dt) result(conv)
+    function new_direct_convolver(kernel, dt, valid_steps) result(conv)
         !> Samples g(j*dt), j = 0..N_g, of the impulse response [m/(N*s)].
         real(dp), intent(in) :: kernel(0:)
         !> Time step [s].
         real(dp), intent(in) :: dt
+        !> Number of steps the kernel is valid for, when it was cut at a run's length (default:
+        !> any number).
+        integer(int64), intent(in), optional :: valid_steps
         type(direct_convolver) :: conv
 
         integer :: n_g
@@ -46,16 +58,22 @@ contains
         conv%weight0 = dt*kernel(0)
         conv%weight = dt*kernel(1:n_g)
         allocate (conv%past(2*n_g))
+        if (present(valid_steps)) conv%valid_steps = valid_steps
         call conv%reset()
     end function new_direct_convolver
 
-    !> Displacement from past forces: sum_{j=1..min(n,N_g)} w_j*q(t_{n-j}).
+    !> Displacement from past forces: sum_{j=1..min(n,N_g)} w_j*q(t_{n-j}); NaN from step
+    !> `valid_steps` on.
     function direct_history(self) result(u)
         class(direct_convolver), intent(in) :: self
         real(dp) :: u
 
         integer :: m
 
+        if (self%step >= self%valid_steps) then
+            u = ieee_value(u, ieee_quiet_nan)
+            return
+        end if
         m = capped_step(self%step, size(self%weight))
         u = lane_dot(m, self%weight, self%past(self%head:))
     end function direct_history

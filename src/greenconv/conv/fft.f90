@@ -58,6 +58,7 @@
 !> `greenconv_fftw_planner`).
 module greenconv_conv_fft
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_conv_convolver, only: convolver
     use greenconv_ext_fftw, only: fft_plan_set
@@ -120,6 +121,9 @@ module greenconv_conv_fft
         complex(dp), allocatable :: spectrum(:)
         !> The FFTW plans of this object's transforms, made on demand.
         type(fft_plan_set) :: plans
+        !> Steps n whose history the kernel covers, n < valid_steps (huge: any run length); the
+        !> history is NaN from then on (see greenconv_conv_direct).
+        integer(int64) :: valid_steps = huge(0_int64)
     contains
         procedure :: history => fft_history
         procedure :: push => fft_push
@@ -135,13 +139,16 @@ contains
 
     !> A partitioned-FFT convolver from kernel samples g(t_j) [m/(N*s)], j = 0..N_g, and step
     !> dt [s]: the kernel and the results of `new_direct_convolver(kernel, dt)`.
-    function new_fft_convolver(kernel, dt, head) result(conv)
+    function new_fft_convolver(kernel, dt, head, valid_steps) result(conv)
         !> Samples g(j*dt), j = 0..N_g, of the impulse response [m/(N*s)].
         real(dp), intent(in) :: kernel(0:)
         !> Time step [s].
         real(dp), intent(in) :: dt
         !> Number of taps H summed directly (default `default_head`; clipped to 1..N_g).
         integer, intent(in), optional :: head
+        !> Number of steps the kernel is valid for, when it was cut at a run's length (default:
+        !> any number).
+        integer(int64), intent(in), optional :: valid_steps
         type(fft_convolver) :: conv
 
         real(dp), allocatable :: weight(:)
@@ -157,6 +164,7 @@ contains
         conv%dt = dt
         conv%weight0 = dt*kernel(0)
         conv%n_g = n_g
+        if (present(valid_steps)) conv%valid_steps = valid_steps
         allocate (conv%head_weight(n_head), conv%head_past(2*n_head))
         conv%head_weight(:) = weight(1:n_head)
         call build_levels(conv, weight, n_head)
@@ -261,13 +269,18 @@ contains
         end do
     end subroutine build_level
 
-    !> History displacement u_h(n) [m]: the head's dot product plus the levels' pending sum.
+    !> History displacement u_h(n) [m]: the head's dot product plus the levels' pending sum;
+    !> NaN from step `valid_steps` on.
     function fft_history(self) result(u)
         class(fft_convolver), intent(in) :: self
         real(dp) :: u
 
         integer :: h
 
+        if (self%step >= self%valid_steps) then
+            u = ieee_value(u, ieee_quiet_nan)
+            return
+        end if
         h = size(self%head_weight)
         u = dot4(self%head_weight, self%head_past(self%head_position:self%head_position + h - 1)) &
             + self%pending(self%pending_position)

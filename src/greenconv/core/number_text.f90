@@ -5,7 +5,7 @@ module greenconv_core_number_text
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
-    use greenconv_core_text, only: lower_text
+    use greenconv_core_text, only: lower_text, sci_digits
     implicit none
     private
 
@@ -144,9 +144,9 @@ contains
             if (text(1:1) == '.') text = '0'//text
             if (text(1:2) == '-.') text = '-0'//text(2:)
         else
-            write (buffer, '(es13.5)') x
-            text = trim(adjustl(buffer))
+            text = sci_digits(x, 5)
             mark = index(text, 'E')
+            if (mark == 0) return
             last = mark - 1
             do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
                 last = last - 1

@@ -5,7 +5,7 @@ module greenconv_core_text
     implicit none
     private
 
-    public :: int_text, real_text, sci_text, lower_text, exact_text
+    public :: int_text, real_text, sci_text, lower_text, exact_text, sci_digits
 
     !> An integer (default or 64-bit) as text, without blanks.
     interface int_text
@@ -49,10 +49,10 @@ contains
 
         if (abs(x) < tiny(x) .or. (abs(x) >= 0.1_dp .and. abs(x) < 1.0e7_dp)) then
             write (buffer, '(f0.9)') x
+            text = trim(adjustl(buffer))
         else
-            write (buffer, '(es16.9)') x
+            text = sci_digits(x, 9)
         end if
-        text = trim(adjustl(buffer))
         if (text(1:1) == '.') text = '0'//text
         if (text(1:2) == '-.') text = '-0'//text(2:)
         mark = scan(text, 'E')
@@ -70,11 +70,32 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
 
-        character(len=16) :: buffer
-
-        write (buffer, '(es9.2)') x
-        text = trim(adjustl(buffer))
+        text = sci_digits(x, 2)
     end function sci_text
+
+    !> A real in scientific notation with `digits` digits after the point, without blanks,
+    !> its exponent of two digits or three when it needs them: `1.50E+09`, `1.00E-300`
+    !> (Fortran's `ESw.d` drops the `E` of a three-digit exponent: `1.00-300`). Non-finite
+    !> values are written as Fortran writes them.
+    pure function sci_digits(x, digits) result(text)
+        !> The real.
+        real(dp), intent(in) :: x
+        !> Digits after the decimal point (0 to 20).
+        integer, intent(in) :: digits
+        character(len=:), allocatable :: text
+
+        character(len=40) :: buffer
+        character(len=24) :: form
+        integer :: mark
+
+        write (form, '(a,i0,a,i0,a)') '(es', digits + 9, '.', digits, 'e3)'
+        write (buffer, form) x
+        text = trim(adjustl(buffer))
+        mark = index(text, 'E')
+        if (mark > 0 .and. mark + 2 <= len(text)) then
+            if (text(mark + 2:mark + 2) == '0') text = text(:mark + 1)//text(mark + 3:)
+        end if
+    end function sci_digits
 
     !> Text with the letters A-Z in lower case and trailing blanks removed.
     pure function lower_text(text) result(lower)
@@ -99,18 +120,14 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
 
-        character(len=32) :: buffer
-        character(len=16) :: form
         real(dp) :: back
         integer :: digits, status
 
         do digits = 1, 17
-            write (form, '(a,i0,a,i0,a)') '(es', digits + 8, '.', digits - 1, ')'
-            write (buffer, form) x
-            read (buffer, *, iostat=status) back
+            text = sci_digits(x, digits - 1)
+            read (text, *, iostat=status) back
             if (status == 0 .and. back == x) exit
         end do
-        text = trim(adjustl(buffer))
     end function exact_text
 
 end module greenconv_core_text

@@ -14,7 +14,19 @@ module greenconv_io_columns
     implicit none
     private
 
-    public :: read_columns, read_line
+    public :: read_columns, read_line, read_lines, max_line_length
+
+    !> Longest line the readers accept [characters]: a longer one is not a scene, receptance
+    !> or road file (a binary file, a file without line ends) and is refused at that line.
+    integer, parameter :: max_line_length = 1048576
+
+    !> Most bytes of a text file `read_lines` holds, as its lines padded to the longest one.
+    integer, parameter :: max_text_bytes = 64*1048576
+
+    !> One line of a text file.
+    type :: text_line
+        character(len=:), allocatable :: text
+    end type text_line
 
 contains
 
@@ -38,6 +50,7 @@ contains
         character(len=512) :: message
         real(dp) :: row(size(names))
         integer :: unit, stat, line_number, n
+        logical :: too_long
 
         allocate (table(64, size(names)), line_of(64))
         open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
@@ -48,7 +61,8 @@ contains
         n = 0
         line_number = 0
         do
-            call read_line(unit, line, stat)
+            call read_line(unit, line, stat, too_long)
+            if (too_long) call fatal_error(error, long_line(path, line_number + 1))
             if (stat /= 0) exit
             line_number = line_number + 1
             if (len_trim(line) == 0) cycle
@@ -187,32 +201,116 @@ contains
         if (inside .and. n_tokens <= n_max) last(n_tokens) = len(line)
     end subroutine split
 
-    !> Read one whole line of any length (stat: 0, or the iostat of the end of the file or a failure).
-    subroutine read_line(unit, line, stat)
+    !> Read one whole line (stat: 0, or the iostat of the end of the file or a failure) in
+    !> time linear in its length. A line longer than `max_line_length` is not read to its
+    !> end: stat is then nonzero and `too_long` true.
+    subroutine read_line(unit, line, stat, too_long)
         !> An open formatted sequential unit.
         integer, intent(in) :: unit
         !> The line, without its end.
         character(len=:), allocatable, intent(out) :: line
         !> 0 when a line was read.
         integer, intent(out) :: stat
+        !> Whether the line was longer than `max_line_length` (then stat is nonzero).
+        logical, intent(out), optional :: too_long
 
-        character(len=256) :: buffer
-        integer :: n_read
+        character(len=4096) :: buffer
+        character(len=:), allocatable :: work, longer
+        integer :: n_read, used
 
-        line = ''
+        if (present(too_long)) too_long = .false.
+        allocate (character(len=len(buffer)) :: work)
+        used = 0
         do
             read (unit, '(a)', advance='no', iostat=stat, size=n_read) buffer
-            line = line//buffer(1:n_read)
-            if (is_iostat_eor(stat)) then
-                stat = 0
-                return
+            if (used + n_read > len(work)) then
+                allocate (character(len=2*len(work)) :: longer)
+                longer(1:used) = work(1:used)
+                call move_alloc(longer, work)
             end if
-            if (is_iostat_end(stat) .and. len(line) > 0) then
+            work(used + 1:used + n_read) = buffer(1:n_read)
+            used = used + n_read
+            if (is_iostat_eor(stat) .or. (is_iostat_end(stat) .and. used > 0)) then
                 stat = 0
-                return
+                exit
             end if
-            if (stat /= 0) return
+            if (stat /= 0) exit
+            if (used > max_line_length) then
+                if (present(too_long)) too_long = .true.
+                stat = 1
+                exit
+            end if
         end do
+        line = work(1:used)
     end subroutine read_line
+
+    !> Read a whole text file once, from its start to its end, without rewinding or opening it
+    !> again (so a pipe, a FIFO or a process substitution works): its lines padded to the
+    !> longest, a UTF-8 byte-order mark at its start skipped. Lines may end with LF, CR LF or a
+    !> CR alone (old Mac text): gfortran's runtime ends a record at each. Refused with a
+    !> message: a file that cannot be opened, a line longer than `max_line_length`, more than
+    !> `max_text_bytes` in all.
+    subroutine read_lines(path, what, lines, error)
+        !> The file.
+        character(len=*), intent(in) :: path
+        !> What the file is, for messages (e.g. `scene file`).
+        character(len=*), intent(in) :: what
+        !> Its lines, without their ends, padded with blanks to the longest.
+        character(len=:), allocatable, intent(out) :: lines(:)
+        !> Set when the file cannot be read, naming it (and the line).
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: bom = achar(239)//achar(187)//achar(191)
+        type(text_line), allocatable :: list(:), longer(:)
+        character(len=512) :: message
+        integer :: unit, stat, n, longest
+        logical :: too_long
+
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call fatal_error(error, path//': cannot open the '//what//': '//trim(message))
+            return
+        end if
+        allocate (list(64))
+        n = 0
+        longest = 0
+        do
+            if (n == size(list)) then
+                allocate (longer(2*n))
+                longer(1:n) = list
+                call move_alloc(longer, list)
+            end if
+            call read_line(unit, list(n + 1)%text, stat, too_long)
+            if (too_long) then
+                call fatal_error(error, long_line(path, n + 1))
+                exit
+            end if
+            if (stat /= 0) exit
+            n = n + 1
+            if (n == 1 .and. index(list(1)%text, bom) == 1) list(1)%text = list(1)%text(len(bom) + 1:)
+            longest = max(longest, len(list(n)%text))
+            if (real(longest, dp)*real(n, dp) > real(max_text_bytes, dp)) then
+                call fatal_error(error, path//':'//int_text(n)//': expected a '//what//' of at most ' &
+                                 //int_text(max_text_bytes/1048576)//' MiB, found more')
+                exit
+            end if
+        end do
+        close (unit)
+        if (allocated(error)) return
+        allocate (character(len=max(longest, 1)) :: lines(n))
+        do n = 1, size(lines)
+            lines(n) = list(n)%text
+        end do
+    end subroutine read_lines
+
+    !> The message on a line longer than `max_line_length`.
+    function long_line(path, line_number) result(text)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: line_number
+        character(len=:), allocatable :: text
+
+        text = path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
+               //' characters, found a longer one (a binary file, or a file without line ends?)'
+    end function long_line
 
 end module greenconv_io_columns

@@ -3,15 +3,24 @@
 !> run streams its rows in blocks through a `column_writer`; when a numerical fault stops
 !> it, the caller closes the file with the rows written so far, and on bad input or a
 !> failed write it discards it.
+!>
+!> The temporary file is `<path>.<pid>.<n>.part` (the process id and a counter of the
+!> process), created exclusively: an existing file or symlink of that name is never opened,
+!> and two processes writing one output each write their own file; the last rename wins
+!> with a whole file. Rows are collected in a buffer and written with write(2) through
+!> io/part_files.c, every write and the close checked (gfortran's own I/O loses the error
+!> of a buffered write on a full disk); a failed one deletes the temporary file and says
+!> which file and why. `remove_parts_on_signals`
+!> (called by the driver) makes SIGINT and SIGTERM delete the temporary files in flight.
 module greenconv_io_files
-    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t, c_null_char
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     implicit none
     private
 
-    public :: write_columns, make_directory
+    public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals
     public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
     public :: block_rows
 
@@ -20,16 +29,30 @@ module greenconv_io_files
     !> holds of its histories, whatever its number of steps.
     integer, parameter :: block_rows = 16384
 
+    !> Temporary files this process has created (a counter for their unique names).
+    integer, save :: parts_made = 0
+
+    !> Bytes a writer collects before it writes them to its file.
+    integer, parameter :: buffer_bytes = 65536
+
     !> A column file written in blocks (`open_columns`, `append_rows`, `close_columns`): the
-    !> rows go to `path.part`, renamed to `path` when closed, so a reader never sees a file
-    !> that is still growing under the target name.
+    !> rows go to a temporary file `part`, renamed to `path` when closed, so a reader never
+    !> sees a file that is still growing under the target name.
     type :: column_writer
         !> Target file.
         character(len=:), allocatable :: path
-        !> Fortran unit of `path.part`.
-        integer :: unit = -1
-        !> Whether `path.part` is open.
+        !> Temporary file being written, `<path>.<pid>.<n>.part`.
+        character(len=:), allocatable :: part
+        !> File descriptor of `part` (-1: none).
+        integer(c_int) :: fd = -1
+        !> Text not yet written to `part`: its first `used` characters.
+        character(len=:), allocatable :: buffer
+        !> Characters of `buffer` in use.
+        integer :: used = 0
+        !> Whether `part` is open.
         logical :: opened = .false.
+        !> Slot of `part` in the table of files removed on a signal (-1: not recorded).
+        integer :: slot = -1
         !> Edit descriptor of one row.
         character(len=32) :: row_format = ''
         !> Number of rows written so far.
@@ -46,6 +69,14 @@ module greenconv_io_files
             integer(c_int) :: stat
         end function c_rename
 
+        !> C library unlink(2).
+        function c_unlink(path) bind(c, name='unlink') result(stat)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: stat
+        end function c_unlink
+
         !> C library mkdir(2).
         function c_mkdir(path, mode) bind(c, name='mkdir') result(stat)
             import :: c_char, c_int
@@ -54,6 +85,87 @@ module greenconv_io_files
             integer(c_int), value :: mode
             integer(c_int) :: stat
         end function c_mkdir
+
+        !> C library access(2).
+        function c_access(path, mode) bind(c, name='access') result(stat)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int), value :: mode
+            integer(c_int) :: stat
+        end function c_access
+
+        !> C library getpid(2).
+        function c_getpid() bind(c, name='getpid') result(pid)
+            import :: c_int
+            implicit none
+            integer(c_int) :: pid
+        end function c_getpid
+
+        !> Record a temporary file to delete on SIGINT/SIGTERM (io/signals.c); its slot or -1.
+        function c_part_register(path) bind(c, name='gc_part_register') result(slot)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: slot
+        end function c_part_register
+
+        !> Forget a slot of `c_part_register` (io/signals.c).
+        subroutine c_part_release(slot) bind(c, name='gc_part_release')
+            import :: c_int
+            implicit none
+            integer(c_int), value :: slot
+        end subroutine c_part_release
+
+        !> Create a file exclusively (io/part_files.c): a descriptor, or -errno.
+        function c_part_create(path) bind(c, name='gc_part_create') result(fd)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: fd
+        end function c_part_create
+
+        !> Whether a result of `c_part_create` says that the name exists (io/part_files.c): 1 or 0.
+        function c_part_name_taken(result) bind(c, name='gc_part_name_taken') result(taken)
+            import :: c_int
+            implicit none
+            integer(c_int), value :: result
+            integer(c_int) :: taken
+        end function c_part_name_taken
+
+        !> Write bytes to a descriptor (io/part_files.c): 0 or errno.
+        function c_part_write(fd, bytes, length) bind(c, name='gc_part_write') result(number)
+            import :: c_char, c_int, c_size_t
+            implicit none
+            integer(c_int), value :: fd
+            character(kind=c_char), intent(in) :: bytes(*)
+            integer(c_size_t), value :: length
+            integer(c_int) :: number
+        end function c_part_write
+
+        !> Close a descriptor (io/part_files.c): 0 or errno.
+        function c_part_close(fd) bind(c, name='gc_part_close') result(number)
+            import :: c_int
+            implicit none
+            integer(c_int), value :: fd
+            integer(c_int) :: number
+        end function c_part_close
+
+        !> The text of an errno value (io/part_files.c).
+        subroutine c_part_strerror(number, text, length) bind(c, name='gc_part_strerror')
+            import :: c_char, c_int, c_size_t
+            implicit none
+            integer(c_int), value :: number
+            character(kind=c_char), intent(out) :: text(*)
+            integer(c_size_t), value :: length
+        end subroutine c_part_strerror
+
+        !> Install the SIGINT/SIGTERM handler (io/signals.c); 0 or -1.
+        function c_part_remove_on_signals() bind(c, name='gc_part_remove_on_signals') result(stat)
+            import :: c_int
+            implicit none
+            integer(c_int) :: stat
+        end function c_part_remove_on_signals
     end interface
 
 contains
@@ -78,9 +190,9 @@ contains
         if (.not. allocated(error)) call close_columns(writer, error)
     end subroutine write_columns
 
-    !> Start a column file written in blocks: open `path.part` and write the `# ` header
-    !> lines (the last should name the columns). Then `append_rows` per block, and
-    !> `close_columns` to rename it to `path`.
+    !> Start a column file written in blocks: create its temporary file exclusively and write
+    !> the `# ` header lines (the last should name the columns). Then `append_rows` per block,
+    !> and `close_columns` to rename it to `path`.
     subroutine open_columns(writer, path, comments, n_columns, error)
         !> The file being written.
         type(column_writer), intent(out) :: writer
@@ -93,22 +205,37 @@ contains
         !> Set when the file cannot be written (nothing is left behind).
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=512) :: message
-        integer :: stat, i
+        character(len=40) :: suffix
+        integer(c_int) :: fd
+        integer, parameter :: max_attempts = 100000
+        integer :: i, attempt
 
         writer%path = path
-        open (newunit=writer%unit, file=path//'.part', status='replace', action='write', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot write: '//trim(message))
+        ! Created with O_EXCL: an existing name (a planted file or symlink, the part of a dead
+        ! process that had the same pid) is never opened: the next name is tried.
+        do attempt = 1, max_attempts
+            !$omp critical (greenconv_part_names)
+            parts_made = parts_made + 1
+            write (suffix, '(a,i0,a,i0,a)') '.', c_getpid(), '.', parts_made, '.part'
+            !$omp end critical (greenconv_part_names)
+            writer%part = path//trim(suffix)
+            fd = c_part_create(writer%part//c_null_char)
+            if (c_part_name_taken(fd) == 0) exit
+        end do
+        if (fd < 0) then
+            call fatal_error(error, path//': cannot write: '//error_text(-fd)//' (creating '//writer%part//')')
             return
         end if
+        writer%fd = fd
         writer%opened = .true.
+        writer%slot = c_part_register(writer%part//c_null_char)
+        allocate (character(len=buffer_bytes) :: writer%buffer)
+        writer%used = 0
         write (writer%row_format, '(a,i0,a)') '(', n_columns, '(es24.15e3))'
         do i = 1, size(comments)
-            write (writer%unit, '(a)', iostat=stat, iomsg=message) '# '//trim(comments(i))
-            if (stat /= 0) exit
+            call put_line(writer, '# '//trim(comments(i)), error)
+            if (allocated(error)) return
         end do
-        if (stat /= 0) call write_failed(writer, message, error)
     end subroutine open_columns
 
     !> Append rows to a column file opened by `open_columns`; on a write error the partial
@@ -121,35 +248,89 @@ contains
         !> Set when the rows cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=512) :: message
-        integer :: stat, i
+        character(len=24*size(table, 2)) :: row
+        integer :: i
 
-        stat = 0
         do i = 1, size(table, 1)
-            write (writer%unit, writer%row_format, iostat=stat, iomsg=message) table(i, :)
-            if (stat /= 0) exit
+            write (row, writer%row_format) table(i, :)
+            call put_line(writer, row, error)
+            if (allocated(error)) return
         end do
-        if (stat /= 0) then
-            call write_failed(writer, message, error)
-            return
-        end if
         writer%rows = writer%rows + size(table, 1)
     end subroutine append_rows
 
-    !> Finish a column file: close `path.part` and rename it to `path`.
+    !> Finish a column file: write what the buffer holds, close the temporary file and rename
+    !> it to `path`. When a write, the close or the rename fails, the temporary file is
+    !> deleted and `error` names the file and the reason.
     subroutine close_columns(writer, error)
         !> The file being written; closed on return.
         type(column_writer), intent(inout) :: writer
-        !> Set when the file cannot be renamed.
+        !> Set when the file cannot be completed.
         type(error_type), allocatable, intent(out) :: error
 
+        integer(c_int) :: number
+
         if (.not. writer%opened) return
-        close (writer%unit)
+        call flush_buffer(writer, error)
+        if (allocated(error)) return
+        number = c_part_close(writer%fd)
+        writer%fd = -1
         writer%opened = .false.
-        if (c_rename(writer%path//'.part'//c_null_char, writer%path//c_null_char) /= 0) then
-            call fatal_error(error, writer%path//': cannot rename '//writer%path//'.part to it')
+        if (number /= 0) then
+            call write_failed(writer, error_text(number), error)
+            return
         end if
+        if (c_rename(writer%part//c_null_char, writer%path//c_null_char) /= 0) then
+            call write_failed(writer, 'cannot rename '//writer%part//' to it', error)
+            return
+        end if
+        call forget_part(writer)
     end subroutine close_columns
+
+    !> Add one line (and its newline) to the writer's buffer, writing the buffer out when full.
+    subroutine put_line(writer, line, error)
+        type(column_writer), intent(inout) :: writer
+        character(len=*), intent(in) :: line
+        type(error_type), allocatable, intent(out) :: error
+
+        if (writer%used + len(line) + 1 > len(writer%buffer)) then
+            call flush_buffer(writer, error)
+            if (allocated(error)) return
+            if (len(line) + 1 > len(writer%buffer)) then
+                deallocate (writer%buffer)
+                allocate (character(len=len(line) + 1) :: writer%buffer)
+            end if
+        end if
+        writer%buffer(writer%used + 1:writer%used + len(line)) = line
+        writer%buffer(writer%used + len(line) + 1:writer%used + len(line) + 1) = new_line('a')
+        writer%used = writer%used + len(line) + 1
+    end subroutine put_line
+
+    !> Write the buffer to the temporary file; on failure delete it and say why.
+    subroutine flush_buffer(writer, error)
+        type(column_writer), intent(inout) :: writer
+        type(error_type), allocatable, intent(out) :: error
+
+        integer(c_int) :: number
+
+        if (writer%used == 0) return
+        number = c_part_write(writer%fd, writer%buffer, int(writer%used, c_size_t))
+        writer%used = 0
+        if (number /= 0) call write_failed(writer, error_text(number), error)
+    end subroutine flush_buffer
+
+    !> The system's text for an errno value.
+    function error_text(number) result(text)
+        integer(c_int), intent(in) :: number
+        character(len=:), allocatable :: text
+
+        character(len=200) :: buffer
+
+        buffer = ''
+        call c_part_strerror(number, buffer, int(len(buffer), c_size_t))
+        text = trim(buffer(1:max(index(buffer, c_null_char) - 1, 0)))
+        if (index(buffer, c_null_char) == 0) text = trim(buffer)
+    end function error_text
 
     !> End the file of a run streamed in blocks. After a failed write (`error` already set)
     !> there is nothing left to do: the partial file is gone. Otherwise the file is closed
@@ -172,25 +353,39 @@ contains
         error%message = prefix//error%message//' (rows up to then in '//writer%path//')'
     end subroutine close_run_file
 
-    !> Abandon a column file: close and delete `path.part` (for a run stopped by bad input).
+    !> Abandon a column file: close and delete its temporary file (for a run stopped by bad
+    !> input).
     subroutine discard_columns(writer)
         !> The file being written; closed on return.
         type(column_writer), intent(inout) :: writer
 
-        if (.not. writer%opened) return
-        close (writer%unit, status='delete')
+        integer(c_int) :: number
+
+        if (writer%opened) number = c_part_close(writer%fd)
+        writer%fd = -1
         writer%opened = .false.
+        writer%used = 0
+        if (allocated(writer%part)) number = c_unlink(writer%part//c_null_char)
+        call forget_part(writer)
     end subroutine discard_columns
 
-    !> A write failed: delete the partial file and say why.
+    !> A write failed: delete the temporary file and say which file and why.
     subroutine write_failed(writer, message, error)
         type(column_writer), intent(inout) :: writer
         character(len=*), intent(in) :: message
         type(error_type), allocatable, intent(out) :: error
 
         call discard_columns(writer)
-        call fatal_error(error, writer%path//': write failed: '//trim(message))
+        call fatal_error(error, writer%path//': write failed: '//trim(message)//'; nothing was left under that name')
     end subroutine write_failed
+
+    !> The temporary file is gone (renamed or deleted): take it off the signal table.
+    subroutine forget_part(writer)
+        type(column_writer), intent(inout) :: writer
+
+        if (writer%slot >= 0) call c_part_release(int(writer%slot, c_int))
+        writer%slot = -1
+    end subroutine forget_part
 
     !> Decimated output of a run streamed in blocks: the index j (from 0) of the first step
     !> n = first + j of a block that is a multiple of `every`, the first row it writes (then
@@ -221,5 +416,53 @@ contains
         inquire (file=path//'/.', exist=exists)
         if (.not. exists) call fatal_error(error, path//': cannot create the output directory')
     end subroutine make_directory
+
+    !> Check, without creating anything, that a run could write into directory `path`: it
+    !> exists and is writable, or its nearest existing parent is a writable directory (a run
+    !> creates the missing ones).
+    subroutine check_output_directory(path, error)
+        !> Directory path.
+        character(len=*), intent(in) :: path
+        !> Set when a run could not write there: which directory and why.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer(c_int), parameter :: w_ok = 2, x_ok = 1
+        character(len=:), allocatable :: parent
+        logical :: is_directory, exists
+        integer :: cut
+
+        parent = path
+        do
+            inquire (file=parent//'/.', exist=is_directory)
+            if (is_directory) exit
+            inquire (file=parent, exist=exists)
+            if (exists) then
+                call fatal_error(error, path//': cannot create the output directory: '//parent &
+                                 //' is a file, not a directory; choose another output_dir')
+                return
+            end if
+            cut = index(parent, '/', back=.true.)
+            if (cut == 0) then
+                parent = '.'
+            else if (cut == 1) then
+                parent = '/'
+            else
+                parent = parent(1:cut - 1)
+            end if
+        end do
+        if (c_access(parent//c_null_char, ior(w_ok, x_ok)) /= 0) then
+            call fatal_error(error, path//': cannot write the output directory: '//parent &
+                             //' is not writable; choose another output_dir')
+        end if
+    end subroutine check_output_directory
+
+    !> Make SIGINT and SIGTERM delete the temporary files of the column files being written,
+    !> then end the program by that signal (for a program such as the driver; a host program
+    !> that handles these signals itself keeps its handlers). Signals that are ignored stay so.
+    subroutine remove_parts_on_signals()
+        integer(c_int) :: stat
+
+        stat = c_part_remove_on_signals()
+    end subroutine remove_parts_on_signals
 
 end module greenconv_io_files

@@ -17,6 +17,7 @@ module greenconv_scene_input
     use greenconv_model_road_file, only: road_file, read_road_file, file_road, check_road_coverage
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default
+    use greenconv_io_columns, only: read_lines
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                       model_sdof, model_tyre, multi_point_model
     use greenconv_core_number_text, only: compact_real
@@ -146,7 +147,8 @@ contains
         text = place(scene, group, variable)//' '//variable
     end function input_place
 
-    !> Read and check a scene namelist file.
+    !> Read and check a scene namelist file. The file is read once, from start to end (a pipe,
+    !> a FIFO or a process substitution works), and scanned and parsed from memory.
     subroutine read_scene(path, scene, error)
         !> Path of the namelist file.
         character(len=*), intent(in) :: path
@@ -155,26 +157,22 @@ contains
         !> Set, naming the file, group and variable, when the input is unusable.
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: unit, stat
-        character(len=512) :: message
+        character(len=:), allocatable :: lines(:)
+        integer, parameter :: no_unit = -1
 
         scene%file = path
-        call scan_scene(path, scene%input, error)
+        call read_lines(path, 'scene file', lines, error)
         if (allocated(error)) return
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open the scene file: '//trim(message))
-            return
-        end if
-        call read_scene_group(unit, scene, error)
-        if (.not. allocated(error)) call read_structure_group(unit, scene, error)
-        if (.not. allocated(error)) call read_identification_group(unit, scene, error)
-        if (.not. allocated(error)) call read_road_group(unit, scene, error)
-        if (.not. allocated(error)) call read_contact_group(unit, scene, error)
-        if (.not. allocated(error)) call read_convolution_group(unit, scene, error)
+        call scan_scene(path, lines, scene%input, error)
+        if (allocated(error)) return
+        call read_scene_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_structure_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_identification_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_road_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_contact_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_convolution_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
-        close (unit)
     end subroutine read_scene
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
@@ -187,20 +185,22 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(scene_type) :: scene
+        character(len=1) :: no_lines(0)
 
         scene%file = 'scene template'
         call scene_default('scene', 'dt', scene%dt)
-        call read_scene_group(unit, scene, error, .true.)
-        if (.not. allocated(error)) call read_structure_group(unit, scene, error, .true.)
-        if (.not. allocated(error)) call read_identification_group(unit, scene, error, .true.)
-        if (.not. allocated(error)) call read_road_group(unit, scene, error, .true.)
-        if (.not. allocated(error)) call read_contact_group(unit, scene, error, .true.)
-        if (.not. allocated(error)) call read_convolution_group(unit, scene, error, .true.)
+        call read_scene_group(unit, no_lines, scene, error, .true.)
+        if (.not. allocated(error)) call read_structure_group(unit, no_lines, scene, error, .true.)
+        if (.not. allocated(error)) call read_identification_group(unit, no_lines, scene, error, .true.)
+        if (.not. allocated(error)) call read_road_group(unit, no_lines, scene, error, .true.)
+        if (.not. allocated(error)) call read_contact_group(unit, no_lines, scene, error, .true.)
+        if (.not. allocated(error)) call read_convolution_group(unit, no_lines, scene, error, .true.)
     end subroutine write_scene_template
 
     !> &scene: task, name, output_dir, dt [s], n_steps, output_every, progress.
-    subroutine read_scene_group(unit, this, error, template)
+    subroutine read_scene_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -224,8 +224,7 @@ contains
         if (present(template)) then
             write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=scene, iostat=stat, iomsg=message)
+            read (lines, nml=scene, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'scene', stat, message, error)
         if (allocated(error) .or. present(template)) return
@@ -248,8 +247,9 @@ contains
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
-    subroutine read_structure_group(unit, this, error, template)
+    subroutine read_structure_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -288,8 +288,7 @@ contains
         if (present(template)) then
             write (unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=structure, iostat=stat, iomsg=message)
+            read (lines, nml=structure, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'structure', stat, message, error)
         if (allocated(error) .or. present(template)) return
@@ -340,8 +339,9 @@ contains
     end subroutine read_structure_group
 
     !> &identification: frequency grid of the sampled G and LSCE options.
-    subroutine read_identification_group(unit, this, error, template)
+    subroutine read_identification_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -363,8 +363,7 @@ contains
         if (present(template)) then
             write (unit, nml=identification, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=identification, iostat=stat, iomsg=message)
+            read (lines, nml=identification, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'identification', stat, message, error)
         if (allocated(error) .or. present(template)) return
@@ -393,8 +392,9 @@ contains
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.
-    subroutine read_road_group(unit, this, error, template)
+    subroutine read_road_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -422,8 +422,7 @@ contains
         if (present(template)) then
             write (unit, nml=road, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=road, iostat=stat, iomsg=message)
+            read (lines, nml=road, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'road', stat, message, error)
         if (allocated(error) .or. present(template)) return
@@ -466,12 +465,20 @@ contains
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
 
+        type(file_road), allocatable :: road
+
         call read_road_file(path, this%road_data, error)
         if (allocated(error)) then
             error%message = input_place(this, 'road', 'road_file')//': '//error%message
             return
         end if
-        this%road = file_road(this%road_data, this%x_start, this%speed)
+        ! Built in place and moved: gfortran 12 loses the allocatable components of a
+        ! structure constructor assigned to a polymorphic variable (80 KB per road file).
+        allocate (road)
+        road%profile = this%road_data
+        road%x_start = this%x_start
+        road%speed = this%speed
+        call move_alloc(road, this%road)
     end subroutine read_file_road
 
     !> Profile 'file': every contact point stays on the road file for the whole run (a single
@@ -506,8 +513,9 @@ contains
     end subroutine check_multipoint_scene
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
-    subroutine read_contact_group(unit, this, error, template)
+    subroutine read_contact_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -532,8 +540,7 @@ contains
         if (present(template)) then
             write (unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=contact, iostat=stat, iomsg=message)
+            read (lines, nml=contact, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'contact', stat, message, error)
         if (allocated(error) .or. present(template)) return
@@ -571,8 +578,9 @@ contains
     end subroutine read_contact_group
 
     !> &convolution: methods (list of names), truncation_tol, accuracy.
-    subroutine read_convolution_group(unit, this, error, template)
+    subroutine read_convolution_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
+        character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
@@ -592,8 +600,7 @@ contains
         if (present(template)) then
             write (unit, nml=convolution, delim='quote', iostat=stat, iomsg=message)
         else
-            rewind (unit)
-            read (unit, nml=convolution, iostat=stat, iomsg=message)
+            read (lines, nml=convolution, iostat=stat, iomsg=message)
         end if
         call group_status(this, 'convolution', stat, message, error)
         if (allocated(error) .or. present(template)) return

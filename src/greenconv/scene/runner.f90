@@ -24,7 +24,7 @@ module greenconv_scene_runner
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, start_multi_contact, &
                                        multi_contact_block, newton_options
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept, block_rows, &
-                         make_directory
+                         make_directory, check_output_directory
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_road_file, only: sample_road_steps
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
@@ -186,6 +186,11 @@ contains
         character(len=:), allocatable :: line
         integer :: i
 
+        call check_output_directory(scene%output_dir, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'scene', 'output_dir')//': '//error%message
+            return
+        end if
         line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
         if (model_requires(find_model(scene%model), 'frf_file')) then
             call read_frf(scene%frf_file, frf, error, scene%frf_dataset)

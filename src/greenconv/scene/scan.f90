@@ -27,7 +27,6 @@ module greenconv_scene_scan
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text
     use greenconv_core_number_text, only: is_number, is_nan_or_inf, is_integer, read_real, read_integer
-    use greenconv_io_columns, only: read_line
     implicit none
     private
 
@@ -119,10 +118,12 @@ module greenconv_scene_scan
 
 contains
 
-    !> Scan a namelist file against the groups and variables it may hold.
-    subroutine scan_namelist(path, groups, scan, error)
-        !> The file.
+    !> Scan a namelist file, read into memory, against the groups and variables it may hold.
+    subroutine scan_namelist(path, lines, groups, scan, error)
+        !> The file (for messages).
         character(len=*), intent(in) :: path
+        !> Its lines (greenconv_io_columns's read_lines).
+        character(len=*), intent(in) :: lines(:)
         !> The groups a file may hold.
         type(namelist_group), intent(in) :: groups(:)
         !> The groups and assignments found, with their lines.
@@ -136,8 +137,7 @@ contains
         scan%file = path
         allocate (scan%entries(0))
         state%path = path
-        call tokenise(path, state%tokens, error)
-        if (allocated(error)) return
+        call tokenise(lines, state%tokens)
         do
             associate (token => state%tokens(state%next))
                 select case (token%kind)
@@ -607,33 +607,21 @@ contains
         call move_alloc(longer, scan%entries)
     end subroutine add_entry
 
-    !> Split a file into tokens, ending with one token_end (and a spare one for look-ahead).
-    subroutine tokenise(path, tokens, error)
-        character(len=*), intent(in) :: path
+    !> Split the lines of a file into tokens, ending with one token_end (and a spare one for
+    !> look-ahead).
+    pure subroutine tokenise(lines, tokens)
+        character(len=*), intent(in) :: lines(:)
         type(token_type), allocatable, intent(out) :: tokens(:)
-        type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: line
-        character(len=512) :: message
-        integer :: unit, stat, line_number, n
+        integer :: line_number, n
 
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open the scene file: '//trim(message))
-            return
-        end if
         allocate (tokens(64))
         n = 0
-        line_number = 0
-        do
-            call read_line(unit, line, stat)
-            if (stat /= 0) exit
-            line_number = line_number + 1
-            call tokenise_line(line, line_number, tokens, n)
+        do line_number = 1, size(lines)
+            call tokenise_line(trim(lines(line_number)), line_number, tokens, n)
         end do
-        close (unit)
-        call push(tokens, n, token_type(kind=token_end, text='', line=line_number))
-        call push(tokens, n, token_type(kind=token_end, text='', line=line_number))
+        call push(tokens, n, token_type(kind=token_end, text='', line=size(lines)))
+        call push(tokens, n, token_type(kind=token_end, text='', line=size(lines)))
         tokens = tokens(1:n)
     end subroutine tokenise
 

@@ -243,15 +243,17 @@ contains
     end function scene_groups
 
     !> Scan a scene file (greenconv_scene_scan), then check that it states every required value.
-    subroutine scan_scene(path, scan, error)
-        !> The scene file.
+    subroutine scan_scene(path, lines, scan, error)
+        !> The scene file (for messages).
         character(len=*), intent(in) :: path
+        !> Its lines, read once (greenconv_io_columns's read_lines).
+        character(len=*), intent(in) :: lines(:)
         !> Groups and assignments found, with their lines.
         type(namelist_scan), intent(out) :: scan
         !> Set, with one line naming the file, line, group and variable, when the file is unusable.
         type(error_type), allocatable, intent(out) :: error
 
-        call scan_namelist(path, scene_groups(), scan, error)
+        call scan_namelist(path, lines, scene_groups(), scan, error)
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
