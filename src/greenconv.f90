@@ -17,8 +17,9 @@ module greenconv
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
-                                         structure_from_samples
+                                         structure_from_samples, structure_from_frf_ml
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: new_multipoint_convolver => make_multipoint_convolver
@@ -38,8 +39,9 @@ module greenconv
     public :: frf_type, read_frf, frf_from_modes
     public :: road_profile, sine_road, random_road, new_random_road
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
+    public :: structure_from_frf_ml
     ! identification
-    public :: lsce_options, lsce_result, identify
+    public :: lsce_options, lsce_result, identify, ml_options, ml_result, identify_ml
     ! convolvers
     public :: convolver, new_convolver, free_convolver
     ! single-point contact: whole runs, single steps, streamed blocks
