@@ -221,6 +221,9 @@ module greenconv_ident_mlfit
     !> Levenberg-Marquardt iterations of a trial fit (a mode added or removed, a residual term)
     !> before the criterion decides; the kept model is then refined fully.
     integer, parameter :: trial_iterations = 3
+    !> Most Levenberg-Marquardt iterations of any fit during the order search (the final model
+    !> is then refined with up to ml_options%max_iterations).
+    integer, parameter :: search_iterations = 10
 
 contains
 
@@ -379,10 +382,15 @@ contains
         ! poles out of the band) and each is removed at its end when MDL prefers.
         model%upper = any(options%residual_terms == [character(len=8) :: 'upper', 'both', 'auto'])
         model%lower = allow_lower
+        ! The order search refines each model for at most search_iterations: a spurious start pole
+        ! can crawl along the band for hundreds of iterations, each lowering chi2 a little,
+        ! before the search drops it; only the model the search keeps is refined fully.
+        data%max_iterations = min(options%max_iterations, search_iterations)
         call fit(data, model, result, error)
         if (allocated(error)) return
         call choose_order(data, options, candidates, model, result, error)
         if (allocated(error)) return
+        data%max_iterations = options%max_iterations
         call reweight(data, model, result)
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
@@ -772,15 +780,14 @@ contains
         call refine(data, model, result, iterations)
     end subroutine fit
 
-    !> Relative noise model: weights 1/max(rho*|G_model|, floor) from the model rather than
-    !> from the noisy |G|, and the model refined with them.
+    !> The final refinement: for the relative noise model with the weights 1/max(rho*|G_model|,
+    !> floor) from the model rather than from the noisy |G|.
     subroutine reweight(data, model, result)
         type(data_type), intent(inout) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
 
-        if (.not. data%relative) return
-        data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        if (data%relative) data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
         call refine(data, model, result)
     end subroutine reweight
 
