@@ -354,6 +354,18 @@ bench-data:
 	@mv out/bench/tables.txt.part out/bench/tables.txt
 	@echo "greenconv: tables saved in out/bench/tables.txt"
 
+# Identification against a peer (issue 13): greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
+# noisy receptances at 0.1, 1 and 3 %, errors in Cramer-Rao standard deviations. The script
+# pip-installs sdypy-EMA into build/ident_peer/venv on its first run (needs python3 -m venv and
+# PyPI); the Markdown table goes to out/bench/ident_peer.md.
+.PHONY: bench-ident
+bench-ident: lib
+	@mkdir -p out/bench
+	@echo "greenconv: identification against sdypy-EMA (about a minute)"
+	@python3 bench/ident_peer.py > out/bench/ident_peer.md.part
+	@mv out/bench/ident_peer.md.part out/bench/ident_peer.md
+	@cat out/bench/ident_peer.md
+
 figures:
 	@mkdir -p $(FIGDIR)
 	@for script in $(PLOTS); do \
