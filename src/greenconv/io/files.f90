@@ -353,9 +353,13 @@ contains
 
         name = writer%path(index(writer%path, '/', back=.true.) + 1:)
         n = int_text(int(writer%n_columns, int64))
-        c = size(writer%comments)
-        allocate (lines(c + 7))
-        lines(1:c) = writer%comments
+        ! The header lines, the layout and readers, and last the column names (the last `#`
+        ! line names the columns, as in a text file).
+        c = max(size(writer%comments) - 1, 0)
+        allocate (lines(c + 8))
+        lines(1:c) = writer%comments(1:c)
+        lines(c + 8) = 'columns as numbered'
+        if (size(writer%comments) > 0) lines(c + 8) = writer%comments(c + 1)
         lines(c + 1) = 'binary column file '//name//': '//int_text(writer%rows)//' rows of '//n &
                    //' little-endian IEEE float64 values (8 bytes each), row after row, no header'
         lines(c + 2) = 'rows: '//int_text(writer%rows)
