@@ -20,7 +20,9 @@
 #                   then draw every plot/*.gp into out/figures/
 #   make bench      deps, build, run the benchmark example greenconv-bench: Tabs. 2-3 and the
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
-#                   data of the speed/accuracy and stability charts in out/bench/, then the figures
+#                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
+#                   time on Tab. 2's largest case (text, binary) against the C printf anchor
+#                   (bench/driver_output.sh, out/bench/driver_output.txt), then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
 #   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
 #                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
@@ -352,7 +354,11 @@ bench-data:
 	@$(CC) -O2 -std=c99 -Wall -Wextra -pedantic bench/anchor/printf_rows.c -o build/printf_rows -lm
 	@$(FPM) run --example greenconv-bench --profile $(FPM_PROFILE) | tee out/bench/tables.txt.part
 	@mv out/bench/tables.txt.part out/bench/tables.txt
-	@echo "greenconv: tables saved in out/bench/tables.txt"
+	@$(FPM) build --profile $(FPM_PROFILE) > /dev/null
+	@bash bench/driver_output.sh "$$($(FPM) run greenconv --profile $(FPM_PROFILE) --runner echo | tail -1)" \
+	    build/printf_rows | tee out/bench/driver_output.txt.part
+	@mv out/bench/driver_output.txt.part out/bench/driver_output.txt
+	@echo "greenconv: tables saved in out/bench/tables.txt and out/bench/driver_output.txt"
 
 # Identification against a peer (issue 13): greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
 # noisy receptances at 0.1, 1 and 3 %, errors in Cramer-Rao standard deviations. The script
