@@ -414,16 +414,19 @@ contains
         complex(dp), intent(in) :: g(:)
         real(dp) :: m(size(g))
 
-        real(dp), allocatable :: window(:)
-        real(dp) :: top
-        integer :: l, n
+        real(dp) :: window(5), top
+        integer :: l, n, first, last
 
         n = size(g)
         do l = 1, n
-            window = abs(g(max(1, l - 2):min(n, l + 2)))
-            window = min(window, 10.0_dp*median(window))
-            top = max(maxval(window), tiny(1.0_dp))
-            m(l) = top*sqrt(sum((window/top)**2)/size(window))
+            first = max(1, l - 2)
+            last = min(n, l + 2)
+            window(:last - first + 1) = abs(g(first:last))
+            associate (w => window(:last - first + 1))
+                w = min(w, 10.0_dp*median(w))
+                top = max(maxval(w), tiny(1.0_dp))
+                m(l) = top*sqrt(sum((w/top)**2)/size(w))
+            end associate
         end do
     end function smoothed_magnitude
 
@@ -597,25 +600,24 @@ contains
         type(ml_result), intent(inout) :: result
         type(data_type), intent(out) :: data
 
-        real(dp), allocatable :: sigma(:), floor(:)
-        logical, allocatable :: used(:)
+        real(dp) :: sigma(frf%n_freq()), floor(frf%n_freq())
+        logical :: used(frf%n_freq())
         integer :: l
 
-        floor = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
+        floor(:) = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
         result%noise_level = 1.0_dp
         result%noise_estimated = .not. allocated(options%sigma)
         if (allocated(options%sigma)) then
-            sigma = options%sigma
+            sigma(:) = options%sigma
         else
             result%noise_level = estimate_noise(frf%receptance, options%noise_model)
             if (options%noise_model == 'absolute') then
-                sigma = spread(result%noise_level, 1, frf%n_freq())
+                sigma(:) = result%noise_level
             else
-                sigma = result%noise_level*smoothed_magnitude(frf%receptance)
+                sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
             end if
         end if
-        sigma = max(sigma, floor)
-        allocate (used(frf%n_freq()))
+        sigma(:) = max(sigma, floor)
         used(:) = .true.
         if (skip_zero) used(1) = .false.
         used(outliers) = .false.
@@ -641,14 +643,12 @@ contains
         type(frf_type), intent(inout) :: frf
         type(ml_result), intent(inout) :: result
 
-        real(dp), allocatable :: magnitude(:)
-        real(dp) :: typical
+        real(dp) :: magnitude(frf%n_freq() - 1), typical
         integer :: l
 
-        magnitude = abs(frf%receptance(2:))
-        magnitude = pack(magnitude, magnitude > 0.0_dp)
-        if (size(magnitude) == 0) return
-        typical = median(magnitude)
+        magnitude(:) = abs(frf%receptance(2:))
+        if (.not. any(magnitude > 0.0_dp)) return
+        typical = median(pack(magnitude, magnitude > 0.0_dp))
         do l = 1, frf%n_freq()
             if (.not. (abs(frf%receptance(l)) > gross_ratio*typical)) cycle
             result%outlier_line = [result%outlier_line, l]
@@ -1727,7 +1727,7 @@ contains
 
         type(model_type) :: trial
         type(data_type) :: without
-        complex(dp), allocatable :: residual(:)
+        complex(dp) :: residual(size(data%g))
         real(dp) :: before
         integer :: k, near
         logical :: alone
@@ -1740,7 +1740,7 @@ contains
             trial%pole = [model%pole(:k - 1), model%pole(k + 1:)]
             call fit(data, trial, result, error)
             if (allocated(error)) return
-            residual = data%weight*(data%g - evaluate(trial, data%omega))
+            residual(:) = data%weight*(data%g - evaluate(trial, data%omega))
             near = minloc(abs(data%omega - aimag(model%pole(k))), 1)
             near = near - 2 + maxloc(abs(residual(max(1, near - 1):min(size(residual), near + 1))), 1) &
                    + merge(1, 0, near == 1)
