@@ -41,6 +41,7 @@
 !> segments overlapping by 50 %, about 1.06 for many segments), that is 10*log10(e)*s dB.
 !> A steady tone does not scatter.
 module greenconv_io_spectra
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_intptr_t
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_numerical
     use greenconv_core_text, only: int_text, real_text
@@ -104,10 +105,11 @@ module greenconv_io_spectra
         real(dp), allocatable :: buffer(:, :)
         !> Sums of |X_k|^2 over the segments, sums(k, channel), k = 0..N/2.
         real(dp), allocatable :: sums(:, :)
-        !> One windowed segment, transformed in place of the accumulator (FFTW plans keep
-        !> to the placement of their arrays).
+        !> Room for one windowed segment: N values from the first element on a 64-byte
+        !> boundary (`aligned_first`), so that FFTW gets the same plan, and the same bits, in
+        !> every run, wherever the heap puts the array.
         real(dp), allocatable :: segment(:)
-        !> Its lines X_k, k = 0..N/2.
+        !> Room for its lines X_k, k = 0..N/2, also from a 64-byte boundary.
         complex(dp), allocatable :: lines(:)
         !> The forward transform's plan.
         type(fft_plan_set) :: plans
@@ -257,7 +259,8 @@ contains
         welch%filled = 0
         welch%window = [(sin(pi*j/n)**2, j=0, n - 1)]
         if (allocated(welch%buffer)) deallocate (welch%buffer, welch%sums, welch%segment, welch%lines)
-        allocate (welch%buffer(n, n_channels), welch%sums(0:n/2, n_channels), welch%segment(n), welch%lines(n/2 + 1))
+        allocate (welch%buffer(n, n_channels), welch%sums(0:n/2, n_channels), welch%segment(n + 7), &
+                  welch%lines(n/2 + 4))
         welch%sums = 0.0_dp
     end subroutine start_welch
 
@@ -265,14 +268,16 @@ contains
     !> is windowed, transformed and added, and the next starts half a segment later.
     subroutine add_welch_samples(welch, samples)
         !> The accumulator.
-        type(welch_accumulator), intent(inout) :: welch
+        type(welch_accumulator), target, intent(inout) :: welch
         !> The next samples [N], as many rows as given, one column per channel.
         real(dp), intent(in) :: samples(:, :)
 
-        integer :: n, hop, first, count, c
+        integer :: n, hop, first, count, c, r, k
 
         n = welch%segment_length
         hop = n/2
+        r = aligned_first(c_loc(welch%segment), storage_size(welch%segment)/8)
+        k = aligned_first(c_loc(welch%lines), storage_size(welch%lines)/8)
         first = 1
         do while (first <= size(samples, 1))
             count = min(n - welch%filled, size(samples, 1) - first + 1)
@@ -281,15 +286,30 @@ contains
             first = first + count
             if (welch%filled < n) exit
             do c = 1, welch%n_channels
-                welch%segment = welch%window*(welch%buffer(:, c) - sum(welch%buffer(:, c))/n)
-                call welch%plans%forward(welch%segment, welch%lines)
-                welch%sums(:, c) = welch%sums(:, c) + abs(welch%lines)**2
+                welch%segment(r:r + n - 1) = welch%window*(welch%buffer(:, c) - sum(welch%buffer(:, c))/n)
+                call welch%plans%forward(welch%segment(r:r + n - 1), welch%lines(k:k + n/2))
+                welch%sums(:, c) = welch%sums(:, c) + abs(welch%lines(k:k + n/2))**2
             end do
             welch%n_segments = welch%n_segments + 1
             welch%buffer(1:n - hop, :) = welch%buffer(hop + 1:n, :)
             welch%filled = n - hop
         end do
     end subroutine add_welch_samples
+
+    !> Index of the first element of an array (its first element at `address`, `bytes` per
+    !> element, 8 or 16) that lies on a 64-byte boundary; within the first 8 elements when the
+    !> array is 8-byte aligned, as every allocated array is.
+    integer function aligned_first(address, bytes)
+        type(c_ptr), intent(in) :: address
+        integer, intent(in) :: bytes
+
+        integer(c_intptr_t) :: offset
+
+        offset = modulo(transfer(address, 0_c_intptr_t), 64_c_intptr_t)
+        aligned_first = 1
+        if (offset /= 0 .and. modulo(64 - offset, int(bytes, c_intptr_t)) == 0) &
+            aligned_first = 1 + int((64 - offset)/bytes)
+    end function aligned_first
 
     !> The one-sided PSD of each channel from the segments added so far (at least one), and
     !> the accumulator's FFTW plans released (a new `start_welch` makes them again).
