@@ -210,7 +210,7 @@ contains
 
         width = band_centre(x)*(10.0_dp**half_band - 10.0_dp**(-half_band))
         segment_for_band = 2
-        do while (1.0_dp/(segment_for_band*dt) > width/lines .and. segment_for_band < huge(0)/2)
+        do while (1.0_dp/(segment_for_band*dt) > width/lines .and. segment_for_band < 2**30)
             segment_for_band = 2*segment_for_band
         end do
     end function segment_for_band

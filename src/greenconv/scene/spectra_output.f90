@@ -78,8 +78,8 @@ contains
         n = segment_length(scene)
         line = 'force spectra '//compact_real(nominal_frequency(scene%spectra_f_low))//' Hz to ' &
                //compact_real(nominal_frequency(scene%spectra_f_high))//' Hz ('//int_text(size(centre)) &
-               //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segments of '//int_text(n) &
-               //' samples'
+               //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segment' &
+               //trim(merge('s', ' ', segments(int(scene%n_steps, int64), n) > 1))//' of '//int_text(n)//' samples'
     end function spectra_line
 
     !> Get ready for a method's run of `scene`.
