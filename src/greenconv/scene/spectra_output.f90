@@ -144,6 +144,7 @@ contains
 
         if (.not. spectra%active) return
         if (allocated(error) .or. .not. spectra%started) then
+            call spectra%welch%plans%release()
             open (newunit=unit, file=spectra_path(scene, method), status='old', iostat=stat)
             if (stat == 0) close (unit, status='delete', iostat=stat)
             return
