@@ -23,7 +23,10 @@
 #                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
 #                   time on Tab. 2's largest case (text, binary) against the C printf anchor
 #                   (bench/driver_output.sh, out/bench/driver_output.txt), then the figures
-#   make figures    only draw plot/*.gp from the existing out/*.dat
+#   make figures    only draw plot/*.gp from the existing out/*.dat (text or binary runs:
+#                   plot/lib/column_file.gp picks <name>_<method>.dat or .bin)
+#   make plot-test  the plot scripts that read contact runs draw the same figure from a text
+#                   and a binary run (tools/test_plot_formats.sh, about 10 s; run by make test)
 #   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
 #                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
 #                   Makefile-built driver writes the same output as the fpm-built one, build
@@ -128,7 +131,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz valgrind sanitize sanitize-builds
+        fuzz valgrind sanitize sanitize-builds plot-test
 
 all: lib
 
@@ -182,7 +185,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install fuzz ctest valgrind mpi sweep-test sweep-bench patch-green-check $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz ctest valgrind mpi sweep-test sweep-bench patch-green-check plot-test $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -384,6 +387,11 @@ figures:
 
 # ---- tests -----------------------------------------------------------------------------
 
+# The plot scripts on a text and a binary run of the shipped scenes: the same figure data
+# (gnuplot's `set table`) and the same PNG bytes.
+plot-test: $(BIN)
+	@bash tools/test_plot_formats.sh $(BIN)
+
 # The plain build and the make-vs-fpm comparison come first, so that the last line
 # printed is fpm test's "N passed, N failed" (the helper runs `fpm test` and, when it
 # fails, repeats that line after fpm's error messages).
@@ -394,6 +402,7 @@ test: deps
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
+	@$(MAKE) plot-test
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz FUZZ_CASES=$(TEST_FUZZ_CASES)

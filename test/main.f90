@@ -30,6 +30,7 @@ program greenconv_tests
     use test_writer_mod, only: collect_writer
     use test_plate_mod, only: collect_plate
     use test_spectra_mod, only: collect_spectra
+    use test_scenespectra_mod, only: collect_scenespectra
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
     use test_multidoors_mod, only: collect_multidoors
@@ -63,6 +64,7 @@ program greenconv_tests
                        new_testsuite('writer', collect_writer), &
                        new_testsuite('plate', collect_plate), &
                        new_testsuite('spectra', collect_spectra), &
+                       new_testsuite('scenespectra', collect_scenespectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('mlfit', collect_mlfit), &
                        new_testsuite('multidoors', collect_multidoors), &

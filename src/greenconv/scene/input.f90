@@ -24,7 +24,9 @@ module greenconv_scene_input
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
-                                max_contact_points, max_kernel_values, kernel_values
+                                max_contact_points, max_kernel_values, kernel_values, max_spectrum_values
+    use greenconv_io_spectra, only: band_centre, first_band, last_band, nominal_frequency, segment_for_band, &
+                                    lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
 
@@ -58,6 +60,14 @@ module greenconv_scene_input
         character(len=8) :: output_format = 'text'
         !> Show a progress line on standard error for long runs (only when it is a terminal).
         logical :: progress
+        !> Whether a contact run also writes the 1/3-octave spectrum of its contact force
+        !> (greenconv_scene_spectra_output).
+        logical :: spectra = .false.
+        !> Exact centre frequencies [Hz] of the lowest and highest band of the spectra, as
+        !> `check_spectra` resolved them from the file's values or the defaults.
+        real(dp) :: spectra_f_low = 0.0_dp, spectra_f_high = 0.0_dp
+        !> Whether the spectra of a multi-point run also give each point's level.
+        logical :: spectra_points = .false.
         !> Structure model: `sdof`, `random_modes` or `frf_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
@@ -178,6 +188,7 @@ contains
         if (.not. allocated(error)) call read_convolution_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
+        if (.not. allocated(error)) call check_spectra(scene, error)
     end subroutine read_scene
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
@@ -213,11 +224,12 @@ contains
 
         character(len=name_length) :: task, name, output_format
         character(len=path_length) :: output_dir
-        real(dp) :: dt
+        real(dp) :: dt, spectra_f_low, spectra_f_high
         integer :: n_steps, output_every, stat
-        logical :: progress
+        logical :: progress, spectra, spectra_points
         character(len=512) :: message
-        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress
+        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress, spectra, &
+            spectra_f_low, spectra_f_high, spectra_points
 
         call scene_default('scene', 'task', task)
         call scene_default('scene', 'name', name)
@@ -227,6 +239,10 @@ contains
         call scene_default('scene', 'output_every', output_every)
         call scene_default('scene', 'output_format', output_format)
         call scene_default('scene', 'progress', progress)
+        call scene_default('scene', 'spectra', spectra)
+        call scene_default('scene', 'spectra_f_low', spectra_f_low)
+        call scene_default('scene', 'spectra_f_high', spectra_f_high)
+        call scene_default('scene', 'spectra_points', spectra_points)
         if (present(template)) then
             write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
         else
@@ -245,6 +261,10 @@ contains
                      'a number of steps >= 1 between written rows', output_every), error)
         call require(any(trim(output_format) == [character(len=8) :: 'text', 'binary']), &
                      expected(this, 'scene', 'output_format', "'text' or 'binary'", output_format), error)
+        call require(spectra_f_low > 0.0_dp .and. spectra_f_low < huge(spectra_f_low), &
+                     expected(this, 'scene', 'spectra_f_low', 'a frequency > 0 Hz', spectra_f_low), error)
+        call require(spectra_f_high > 0.0_dp .and. spectra_f_high < huge(spectra_f_high), &
+                     expected(this, 'scene', 'spectra_f_high', 'a frequency > 0 Hz', spectra_f_high), error)
         this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
@@ -253,6 +273,10 @@ contains
         this%output_every = output_every
         this%output_format = trim(output_format)
         this%progress = progress
+        this%spectra = spectra
+        this%spectra_f_low = spectra_f_low
+        this%spectra_f_high = spectra_f_high
+        this%spectra_points = spectra_points
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
@@ -520,6 +544,89 @@ contains
                          //"&road profile = 'file' for model '"//this%model//"' (its contact points are spread " &
                          //"over a road file), found task '"//this%task//"'"//road)
     end subroutine check_multipoint_scene
+
+    !> The band range of the force spectra of a contact run (&scene spectra): every band must
+    !> lie below the Nyquist frequency 1/(2*dt), and the record (N_t steps) must hold a Welch
+    !> segment long enough for the lowest band (greenconv_io_spectra). A value the file gives
+    !> is refused when the run cannot resolve it; a default (20 Hz, 20 kHz, the audible range)
+    !> is narrowed to what the run resolves. The range is replaced by the exact centres of its
+    !> lowest and highest band.
+    subroutine check_spectra(this, error)
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: record
+        real(dp) :: nyquist, values
+        integer :: low, high, top, bottom, channels
+
+        if (.not. this%spectra .or. this%task /= 'contact') return
+        nyquist = 0.5_dp/this%dt
+        top = highest_band_below(nyquist)
+        bottom = huge(0)
+        if (this%n_steps >= 2) bottom = lowest_resolved_band(this%n_steps, this%dt, default_lines_per_band)
+        record = 'N_t = '//int_text(this%n_steps)//' steps of '//compact_real(this%dt)//' s ('//compact_real( &
+                 this%n_steps*this%dt)//' s)'
+        if (bottom > top) then
+            call fatal_error(error, expected(this, 'scene', 'spectra', 'a record that resolves a band below the ' &
+                //'Nyquist frequency '//compact_real(nyquist)//' Hz: '//record//' resolve none (at ' &
+                //int_text(default_lines_per_band)//' lines in a band); raise n_steps or set spectra = .false.'))
+            return
+        end if
+        low = max(first_band(this%spectra_f_low), bottom)
+        if (this%input%has_value('scene', 'spectra_f_low')) then
+            low = first_band(this%spectra_f_low)
+            if (low > top) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre below the ' &
+                    //'Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (the highest band below it is ' &
+                    //band_name(top)//'); lower spectra_f_low or dt', this%spectra_f_low))
+                return
+            end if
+            if (low < bottom) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre the record ' &
+                    //'resolves: '//record//' resolve bands from '//band_name(bottom)//' up (the '//band_name(low) &
+                    //' band needs '//int_text(segment_for_band(low, this%dt, default_lines_per_band)) &
+                    //' samples for '//int_text(default_lines_per_band)//' lines in it); raise spectra_f_low ' &
+                    //'or n_steps', this%spectra_f_low))
+                return
+            end if
+        end if
+        high = min(last_band(this%spectra_f_high), top)
+        if (this%input%has_value('scene', 'spectra_f_high')) then
+            high = last_band(this%spectra_f_high)
+            if (high > top) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre whose band ' &
+                    //'ends below the Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (at most ' &
+                    //band_name(top)//'); lower spectra_f_high or dt', this%spectra_f_high))
+                return
+            end if
+        end if
+        if (high < low) then
+            call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre at or above ' &
+                //'the lowest, '//band_name(low)//' (no 1/3-octave band between them; default 20 kHz)', &
+                this%spectra_f_high))
+            return
+        end if
+        channels = 1
+        if (this%spectra_points .and. multi_point_model(this%model)) channels = 1 + this%n_points
+        values = real(segment_for_band(low, this%dt, default_lines_per_band), dp)*channels
+        if (values > max_spectrum_values) then
+            call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'force spectra of at most ' &
+                //sci_text(real(max_spectrum_values, dp))//' values held (segment length times ' &
+                //int_text(channels)//' histories); raise spectra_f_low or turn spectra_points off, found ' &
+                //sci_text(values)//' values'))
+            return
+        end if
+        this%spectra_f_low = band_centre(low)
+        this%spectra_f_high = band_centre(high)
+    end subroutine check_spectra
+
+    !> "400 Hz", the nominal name of band x.
+    function band_name(x) result(text)
+        integer, intent(in) :: x
+        character(len=:), allocatable :: text
+
+        text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
+    end function band_name
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, lines, this, error, template)

@@ -36,6 +36,8 @@ module greenconv_scene_runner
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header, multi_contact_table
     use greenconv_scene_tyre, only: tyre_points
+    use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
+                                              finish_force_spectra, spectra_line, spectra_path
     implicit none
     private
 
@@ -58,6 +60,8 @@ module greenconv_scene_runner
         procedure(run_advance), deferred :: advance
         !> The rows of the block stepped last that are written.
         procedure(run_rows), deferred :: rows
+        !> The contact forces of the block stepped last, for the force spectra.
+        procedure(run_forces), deferred :: forces
     end type contact_run
 
     abstract interface
@@ -97,6 +101,15 @@ module greenconv_scene_runner
             integer, intent(in) :: every
             real(dp), allocatable, intent(out) :: table(:, :)
         end subroutine run_rows
+
+        !> The total contact force of each step of the last block and, for several points,
+        !> each point's, points(step, point) (no columns for one point).
+        subroutine run_forces(self, total, points)
+            import :: contact_run, dp
+            implicit none
+            class(contact_run), intent(in) :: self
+            real(dp), allocatable, intent(out) :: total(:), points(:, :)
+        end subroutine run_forces
     end interface
 
     !> A single-point run: one convolver, the road under one point.
@@ -110,6 +123,7 @@ module greenconv_scene_runner
         procedure :: sample => single_sample
         procedure :: advance => single_advance
         procedure :: rows => single_rows
+        procedure :: forces => single_forces
     end type single_run
 
     !> A multi-point run: a Green's matrix, the road under N_c points, the peak total force.
@@ -127,6 +141,7 @@ module greenconv_scene_runner
         procedure :: sample => multi_sample
         procedure :: advance => multi_advance
         procedure :: rows => multi_rows
+        procedure :: forces => multi_forces
     end type multi_run
 
 contains
@@ -213,6 +228,7 @@ contains
             do i = 1, size(scene%methods)
                 line = line//' '//trim(scene%methods(i))
             end do
+            if (scene%spectra) line = line//', '//spectra_line(scene)
         end if
         write (unit, '(a)') line
     end subroutine check_scene
@@ -230,6 +246,7 @@ contains
         integer :: i, n
 
         write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
+        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
@@ -265,6 +282,7 @@ contains
 
         call tyre_points(scene, unit, modes, run%positions, run%road_positions, error)
         if (allocated(error)) return
+        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
@@ -293,6 +311,8 @@ contains
     !> `<output_dir>/<name>_<method>.dat` with the lines `header` and rows of `n_columns`
     !> values. `seconds` is the CPU time of the contact loop alone. A numerical fault keeps
     !> the rows written before it: the file is completed and `error` names it after `prefix`.
+    !> With `&scene spectra`, every step's contact forces also feed the force spectra
+    !> (greenconv_scene_spectra_output), written when the run ends.
     subroutine stream_run(run, scene, method, header, n_columns, block, prefix, seconds, error)
         class(contact_run), intent(inout) :: run
         type(scene_type), intent(in) :: scene
@@ -303,8 +323,9 @@ contains
 
         type(column_writer) :: writer
         type(progress_meter) :: meter
+        type(force_spectra) :: spectra
         type(error_type), allocatable :: fault
-        real(dp), allocatable :: table(:, :)
+        real(dp), allocatable :: table(:, :), total(:), points(:, :)
         integer(int64) :: first
         real(dp) :: start, finish
         integer :: m
@@ -314,6 +335,7 @@ contains
                           binary=scene%output_format == 'binary')
         if (allocated(error)) return
         call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
+        call start_force_spectra(spectra, scene)
         do while (run%step() < scene%n_steps)
             first = run%step()
             m = int(min(int(block, int64), scene%n_steps - first))
@@ -322,6 +344,10 @@ contains
             call run%advance(fault)
             call cpu_time(finish)
             seconds = seconds + (finish - start)
+            if (spectra%active .and. .not. allocated(fault)) then
+                call run%forces(total, points)
+                call add_contact_forces(spectra, total, points)
+            end if
             call run%rows(first, scene%output_every, table)
             call append_rows(writer, table, error)
             if (allocated(error) .or. allocated(fault)) exit
@@ -329,6 +355,7 @@ contains
         end do
         call finish_progress(meter, run%step())
         call close_run_file(writer, fault, prefix, error)
+        call finish_force_spectra(spectra, scene, method, error)
     end subroutine stream_run
 
     !> The header of a method's column file: what ran, the units, the columns (t, u_road,
@@ -404,6 +431,15 @@ contains
         end associate
     end subroutine single_rows
 
+    !> The contact force of each step of the block.
+    subroutine single_forces(self, total, points)
+        class(single_run), intent(in) :: self
+        real(dp), allocatable, intent(out) :: total(:), points(:, :)
+
+        total = self%response%force
+        allocate (points(size(total), 0))
+    end subroutine single_forces
+
     function multi_step(self) result(step)
         class(multi_run), intent(in) :: self
         integer(int64) :: step
@@ -439,5 +475,14 @@ contains
         if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
         table = multi_contact_table(self%positions, self%response, first_kept(first, every), every)
     end subroutine multi_rows
+
+    !> The total force and each point's force of each step of the block.
+    subroutine multi_forces(self, total, points)
+        class(multi_run), intent(in) :: self
+        real(dp), allocatable, intent(out) :: total(:), points(:, :)
+
+        total = self%response%total_force
+        points = self%response%force
+    end subroutine multi_forces
 
 end module greenconv_scene_runner

@@ -74,7 +74,7 @@ contains
         !> The table.
         type(scene_variable), allocatable :: table(:)
 
-        type(scene_variable) :: rows(64)
+        type(scene_variable) :: rows(96)
         integer :: n
 
         n = 0
@@ -96,6 +96,17 @@ contains
             //"<name>_<method>.bin.txt)", '')
         call add(rows, n, 'scene', 'progress', value_logical, '.true.', '', &
             'whether to show a progress line on a terminal', '')
+        call add(rows, n, 'scene', 'spectra', value_logical, '.false.', '', &
+            "whether a contact run also writes the 1/3-octave spectrum of its contact force, " &
+            //"<name>_<method>_spectra.dat", '')
+        call add(rows, n, 'scene', 'spectra_f_low', value_real, '20.0', 'Hz', &
+            'the lowest band centre of the force spectra (default: 20 Hz or the lowest band the ' &
+            //'record resolves)', '')
+        call add(rows, n, 'scene', 'spectra_f_high', value_real, '20000.0', 'Hz', &
+            'the highest band centre of the force spectra (default: 20 kHz or the highest band below ' &
+            //'the Nyquist frequency 1/(2*dt))', '')
+        call add(rows, n, 'scene', 'spectra_points', value_logical, '.false.', '', &
+            'whether the force spectra of a multi-point run also give the level of each point', '')
         call add(rows, n, 'structure', 'model', value_text, '', '', &
             "the structure model, "//model_names(), 'always')
         call add(rows, n, 'structure', 'mass', value_real, '1.0', 'kg', &
