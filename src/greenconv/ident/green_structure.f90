@@ -32,7 +32,7 @@ module greenconv_ident_green_structure
     implicit none
     private
 
-    public :: green_options, green_structure, read_green_structure, read_green_layout, sampled_kernel
+    public :: green_options, green_structure, read_green_structure, read_green_layout, identify_green, sampled_kernel
     public :: worst_uncertainty
 
     real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
@@ -104,16 +104,29 @@ contains
         !> identification fails, the message naming the file.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: start, finish
-
         structure%path = path
         call read_green_layout(path, structure%matrix, error)
-        if (allocated(error) .or. structure%matrix%function_type /= 4) return
+        if (.not. allocated(error)) call identify_green(options, structure, error)
+    end subroutine read_green_structure
+
+    !> Identify the receptances of a structure whose `path` and `matrix` are set (by
+    !> `read_green_layout`) with shared poles; nothing to do for impulse responses.
+    subroutine identify_green(options, structure, error)
+        !> Settings of the identification.
+        type(green_options), intent(in) :: options
+        !> The structure: its matrix read, its identification and modes set here.
+        type(green_structure), intent(inout) :: structure
+        !> Set when the identification fails, the message naming the file.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: start, finish
+
+        if (structure%matrix%function_type /= 4) return
         call cpu_time(start)
         call identify_shared(structure%matrix%frequency, structure%matrix%g, structure%matrix%reciprocal, &
                              options%fit, structure%fit, error)
         if (allocated(error)) then
-            error%message = path//': '//error%message
+            error%message = structure%path//': '//error%message
             return
         end if
         call shared_point_modes(structure%fit, options%term_tol, structure%modes)
@@ -122,7 +135,7 @@ contains
         structure%identified = .true.
         call worst_uncertainty(structure%fit%pole_fit, structure%worst_sigma_f, structure%worst_sigma_xi)
         call modes_error(structure)
-    end subroutine read_green_structure
+    end subroutine identify_green
 
     !> Read the Green's matrix of a universal file without identifying it: its receptances, or
     !> its impulse responses (`matrix%function_type` 1) when it has no receptance, checked.

@@ -19,7 +19,7 @@ module greenconv_scene_points
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_green_matrix_file, only: green_matrix
-    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, read_green_layout
+    use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_conv_green_file, only: green_file_convolver
@@ -80,8 +80,8 @@ contains
             return
         end if
         points%from_file = .true.
-        options%fit%max_order = scene%max_order
-        call read_green_structure(scene%green_file, options, points%green, error)
+        points%green%path = scene%green_file
+        call read_green_layout(scene%green_file, points%green%matrix, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
             return
@@ -90,6 +90,12 @@ contains
         points%y = points%green%matrix%y
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
+        options%fit%max_order = scene%max_order
+        call identify_green(options, points%green, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            return
+        end if
         write (unit, '(a)') '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
             //int_text(points%n_points())//' contact points, '//run_text(scene)
         write (unit, '(a)') points%green%summary()
