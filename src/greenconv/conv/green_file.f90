@@ -6,15 +6,20 @@
 !>   method asked and say what it neglects. For several methods on one file, read it once
 !>   with `read_green_structure` and call `green_file_convolver` per method.
 !> - `green_file_convolver`: one method on a structure already read:
-!>   - `modal`/`recursive` (explicit) and `exact` (first-order hold, implicit) run on the
-!>     identified modes (greenconv_conv_builder's `make_multipoint_convolver`); their accuracy is
-!>     E of eq. (7) of the modes alone against the file's receptances, worst and mean;
+!>   - `modal`/`recursive` (the rectangle rule, explicit: W0 = 0) runs on the identified modes
+!>     alone (greenconv_conv_builder's `make_multipoint_convolver`); its accuracy is E of
+!>     eq. (7) of the modes alone against the file's receptances, worst and mean;
+!>   - `exact` (first-order hold, implicit) runs on the same modes and adds the fit's upper
+!>     residual U to its instant matrix W0: U, constant in frequency, is an impulse U*delta(t)
+!>     in g_ij, all of it in the current step's displacement. Its accuracy is E of the modes
+!>     with U. (A lower residual -L/omega^2 has no place in either and is left out.)
 !>   - `direct` and `fft` run on g_ij(t_m) from the file itself when the time step allows it
 !>     (the inverse FFT of the receptances, or the file's impulse responses: `sampled_kernel`),
 !>     truncated by the paper's rule; their accuracy says where g came from, the neglected tail,
-!>     and how far it is from the identified modes' g_ij (max |difference|/max |g_ij| over the
-!>     table). When dt does not fit the receptances' grid, g_ij is sampled from the identified
-!>     modes instead, and the accuracy says so and why.
+!>     and how far the identified model's g_ij by the same inverse FFT is from it (max
+!>     |difference|/max |g_ij| over the table: the fit's misfit, the band limit being the same).
+!>     When dt does not fit the receptances' grid, g_ij is sampled from the identified modes
+!>     instead, and the accuracy says so and why.
 module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text

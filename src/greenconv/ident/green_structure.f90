@@ -5,9 +5,10 @@
 !>   the poles are identified once for the whole matrix with a residue matrix per pole
 !>   (greenconv_ident_shared_poles: maximum likelihood on the summed driving points, the order
 !>   chosen by the noise, then refined over all receptances), and turned into modes with real
-!>   shapes at the points for the modal recursions (`shared_point_modes`). What the modal
-!>   methods run on is the modes alone: the residual terms U and L of the fit have no place in a
-!>   recursion, so E of eq. (7) is reported both for the fit and for the modes alone. For
+!>   shapes at the points for the modal recursions (`shared_point_modes`). The residual terms
+!>   U and L of the fit have no place in a recursion (greenconv_conv_green_file adds U to the
+!>   instant matrix of `exact`), so E of eq. (7) is reported for the fit, for the modes alone
+!>   (`e_modes`) and for the modes with U (`e_upper`). For
 !>   `direct` and `fft`, `sampled_kernel` gives g_ij(t_m) by the inverse FFT of the file's G_ij
 !>   when the time step suits the grid (see there).
 !> - **Impulse responses** g_ij(t) (datasets 58 of function type 1, time response, in
