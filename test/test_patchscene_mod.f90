@@ -22,7 +22,8 @@ module test_patchscene_mod
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_conv_green_file, only: green_file_convolver, new_green_file_convolver, green_file_report
     use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_core_text, only: int_text
     implicit none
     private
 
@@ -48,6 +49,8 @@ contains
                      new_unittest('shipped patch: modal, direct and fft agree with exact', test_shipped_methods), &
                      new_unittest('library entry on a file of g_ij(t): direct and fft equal the sampled modes', &
                                   test_impulse_file), &
+                     new_unittest('scene on a file of g_ij(t): --check refuses what the run refuses', &
+                                  test_impulse_scene), &
                      new_unittest('scene: a green_file scene''s bad values refused with their line', &
                                   test_scene_refusals), &
                      new_unittest('texture: each malformed file refused with file:line', test_texture_malformed), &
@@ -267,29 +270,16 @@ contains
         character(len=*), parameter :: methods(2) = ['direct', 'fft   ']
         type(point_modes) :: truth
         type(error_type), allocatable :: fail
-        type(uff_function) :: functions(4)
-        type(uff_node) :: nodes(2)
         type(green_file_report) :: report
         class(multipoint_convolver), allocatable :: conv
         type(multi_contact_response) :: reference, response
         character(len=:), allocatable :: accuracy
         real(dp), allocatable :: heights(:, :)
-        real(dp) :: x(2), y(2), t(1500), worst
-        integer :: i, j, m
+        real(dp) :: x(2), worst
+        integer :: i, m
 
-        call make_directory(scratch, fail)
-        call patch_points([0.9425_dp, 0.1_dp], [0.06_dp, 0.05_dp], 2, 1, x, y)
-        call plate_modes(tyre_plate(damping_ratio=0.02_dp), x, y, 300.0_dp, truth, fail)
-        t = [(2.0e-4_dp*m, m=0, 1499)]
-        do i = 1, 2
-            do j = 1, 2
-                functions(2*(i - 1) + j) = impulse_function([i, 3], [j, 3], 0.0_dp, 2.0e-4_dp, truth%green(i, j, t), &
-                                                            'g')
-            end do
-            nodes(i) = uff_node(label=i, position=[x(i), y(i), 0.0_dp])
-        end do
-        call write_uff(path, functions, nodes, fail, node_dataset=2411)
-        call check(error, .not. allocated(fail), 'write_uff failed: '//message_of(fail))
+        call impulse_file(path, truth, x, fail)
+        call check(error, .not. allocated(fail), 'the impulse file: '//message_of(fail))
         if (allocated(error)) return
         heights = reshape([((1.0e-3_dp*sin(2.0_dp*pi*30.0_dp*4.0e-4_dp*m + i), m=0, 499), i=1, 2)], [500, 2])
         call make_multipoint_convolver('direct', truth, 4.0e-4_dp, 0.01_dp, 500, conv, accuracy, fail)
@@ -321,6 +311,81 @@ contains
         call check(error, fail%stat == stat_input .and. index(fail%message, 'a whole multiple of it') > 0, &
                    'dt message: '//fail%message)
     end subroutine test_impulse_file
+
+    !> The file of test_impulse_file: g_ij(t) of a 2-point patch (0.06 m apart along x) of the
+    !> plate's modes to 300 Hz, every 0.2 ms for 0.3 s, as datasets 58 of function type 1.
+    subroutine impulse_file(path, truth, x, fail)
+        character(len=*), intent(in) :: path
+        type(point_modes), intent(out) :: truth
+        real(dp), intent(out) :: x(2)
+        type(error_type), allocatable, intent(out) :: fail
+
+        type(uff_function) :: functions(4)
+        type(uff_node) :: nodes(2)
+        real(dp) :: y(2), t(1500)
+        integer :: i, j, m
+
+        call make_directory(scratch, fail)
+        if (allocated(fail)) return
+        call patch_points([0.9425_dp, 0.1_dp], [0.06_dp, 0.05_dp], 2, 1, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.02_dp), x, y, 300.0_dp, truth, fail)
+        if (allocated(fail)) return
+        t = [(2.0e-4_dp*m, m=0, 1499)]
+        do i = 1, 2
+            do j = 1, 2
+                functions(2*(i - 1) + j) = impulse_function([i, 3], [j, 3], 0.0_dp, 2.0e-4_dp, truth%green(i, j, t), &
+                                                            'g')
+            end do
+            nodes(i) = uff_node(label=i, position=[x(i), y(i), 0.0_dp])
+        end do
+        call write_uff(path, functions, nodes, fail, node_dataset=2411)
+    end subroutine impulse_file
+
+    !> A green_file scene on a file of g_ij(t) runs direct; --check (check_scene) refuses modal
+    !> and a dt that is not a whole multiple of the file's step with the run's own message.
+    subroutine test_impulse_scene(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = scratch//'/impulses_scene.uff'
+        character(len=*), parameter :: cases(3) = [character(len=40) :: &
+            "dt = 4.0e-4 / x methods = 'direct'", "dt = 4.0e-4 / x methods = 'modal'", &
+            "dt = 3.0e-4 / x methods = 'fft'"]
+        type(point_modes) :: truth
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail, run_fail
+        character(len=:), allocatable :: text
+        real(dp) :: x(2)
+        integer :: k, unit, slash
+
+        call impulse_file(path, truth, x, fail)
+        call check(error, .not. allocated(fail), 'the impulse file: '//message_of(fail))
+        if (allocated(error)) return
+        do k = 1, size(cases)
+            slash = index(cases(k), ' x ')
+            text = "&scene name = 'impulses', output_dir = '"//scratch//"', n_steps = 200, "//cases(k)(:slash) &
+                   //"&structure model = 'green_file', green_file = '"//path//"' / &road profile = 'file', " &
+                   //"road_file = 'data/road_sample.dat', x_start = 1.0, speed = 5.0 / &contact stiffness = 5.0e4, " &
+                   //"exponent = 1.0, preload = 400.0 / &convolution "//trim(cases(k)(slash + 3:))//' /'
+            call read_scene_text(scratch, 'impulses.nml', text, scene, fail)
+            call check(error, .not. allocated(fail), 'case '//int_text(k)//': read: '//message_of(fail))
+            if (allocated(error)) return
+            open (newunit=unit, status='scratch', action='readwrite')
+            call check_scene(scene, unit, fail)
+            call run_scene(scene, unit, run_fail)
+            close (unit)
+            if (k == 1) then
+                call check(error, .not. (allocated(fail) .or. allocated(run_fail)), 'direct: checked and run: ' &
+                           //message_of(fail)//message_of(run_fail))
+            else
+                call check(error, allocated(fail) .and. allocated(run_fail), 'case '//int_text(k)//': accepted')
+                if (allocated(error)) return
+                call check(error, fail%message == run_fail%message .and. fail%stat == stat_input .and. &
+                           index(fail%message, 'impulses.nml:1: &convolution methods: ') > 0, &
+                           'case '//int_text(k)//': --check "'//fail%message//'", run "'//run_fail%message//'"')
+            end if
+            if (allocated(error)) return
+        end do
+    end subroutine test_impulse_scene
 
     ! ---- scene refusals ------------------------------------------------------------------------
 

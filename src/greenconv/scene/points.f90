@@ -18,8 +18,9 @@ module greenconv_scene_points
     use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_model_green_matrix_file, only: green_matrix
-    use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout
+    use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
+                                               sampled_kernel
+    use greenconv_conv_methods, only: check_method, method_needs_g
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_conv_green_file, only: green_file_convolver
@@ -127,30 +128,49 @@ contains
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its
     !> points stay on the road for the whole run, and append what was found to `line`.
-    subroutine check_green_scene(scene, line, error)
+    subroutine check_green_scene(scene, line, n_points, error)
         !> The scene (model 'green_file').
         type(scene_type), intent(in) :: scene
         !> The check's line, extended with the file's points and grid.
         character(len=:), allocatable, intent(inout) :: line
+        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        integer, intent(inout) :: n_points
         !> Set for a bad file or a road that does not cover the run.
         type(error_type), allocatable, intent(out) :: error
 
-        type(green_matrix) :: matrix
-        real(dp), allocatable :: road_x(:), road_y(:)
+        type(green_structure) :: green
+        real(dp), allocatable :: road_x(:), road_y(:), kernel(:, :, :)
+        character(len=:), allocatable :: source
+        integer :: i
 
-        call read_green_layout(scene%green_file, matrix, error)
+        green%path = scene%green_file
+        call read_green_layout(scene%green_file, green%matrix, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
             return
         end if
-        if (scene%task == 'contact') call place_patch(scene, matrix%x, matrix%y, road_x, road_y, error)
-        if (allocated(error)) return
-        line = line//' ('//scene%green_file//': '//int_text(matrix%n_points())//' points, '
-        if (matrix%function_type == 4) then
-            line = line//int_text(size(matrix%frequency))//' lines of G_ij)'
-        else
-            line = line//int_text(size(matrix%frequency))//' samples of g_ij(t))'
-        end if
+        associate (matrix => green%matrix)
+            n_points = matrix%n_points()
+            if (scene%task /= 'contact') return
+            call place_patch(scene, matrix%x, matrix%y, road_x, road_y, error)
+            if (allocated(error)) return
+            ! a file of impulse responses: no modes, and g_ij only at whole multiples of its step
+            do i = 1, size(scene%methods)
+                call check_method(trim(scene%methods(i)), .true., .true., matrix%function_type == 4, error)
+                if (.not. allocated(error) .and. matrix%function_type /= 4 .and. &
+                    method_needs_g(trim(scene%methods(i)))) call sampled_kernel(green, scene%dt, kernel, source, error)
+                if (allocated(error)) then
+                    error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
+                    return
+                end if
+            end do
+            line = line//' ('//scene%green_file//': '//int_text(matrix%n_points())//' points, '
+            if (matrix%function_type == 4) then
+                line = line//int_text(size(matrix%frequency))//' lines of G_ij)'
+            else
+                line = line//int_text(size(matrix%frequency))//' samples of g_ij(t))'
+            end if
+        end associate
     end subroutine check_green_scene
 
 end module greenconv_scene_points

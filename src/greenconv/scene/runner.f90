@@ -182,7 +182,7 @@ contains
 
         type(frf_type) :: frf
         character(len=:), allocatable :: line
-        integer :: i
+        integer :: i, n_c
 
         call check_output_directory(scene%output_dir, error)
         if (allocated(error)) then
@@ -199,11 +199,12 @@ contains
             line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
                    //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
         end if
-        if (model_requires(find_model(scene%model), 'green_file')) call check_green_scene(scene, line, error)
+        n_c = scene%n_points
+        if (model_requires(find_model(scene%model), 'green_file')) call check_green_scene(scene, line, n_c, error)
         if (allocated(error)) return
         if (scene%task == 'contact') then
             line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &
-                   //int_text(scene%n_points)//' contact point(s), '
+                   //int_text(n_c)//' contact point(s), '
             if (multi_point_model(scene%model)) then
                 line = line//'Newton on all points'
             else
