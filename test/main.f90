@@ -36,6 +36,7 @@ program greenconv_tests
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
+    use test_patchscene_mod, only: collect_patchscene
     use test_reliability_mod, only: collect_reliability
     implicit none
 
@@ -70,6 +71,7 @@ program greenconv_tests
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
+                       new_testsuite('patchscene', collect_patchscene), &
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.

@@ -12,6 +12,7 @@ module greenconv_scene_report
     use greenconv_io_files, only: write_columns
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
+    use greenconv_ident_green_structure, only: worst_uncertainty
     implicit none
     private
 
@@ -63,13 +64,7 @@ contains
 
         associate (ml => structure%ml)
             n = ml%modes%n_modes()
-            worst_f = 0.0_dp
-            worst_xi = 0.0_dp
-            do k = 1, n
-                worst_f = max(worst_f, two_pi*ml%sigma_frequency(k)/abs(ml%modes%pole(k)))
-                worst_xi = max(worst_xi, ml%sigma_damping(k)*abs(ml%modes%pole(k))/max(-real(ml%modes%pole(k), dp), &
-                                                                                         tiny(1.0_dp)))
-            end do
+            call worst_uncertainty(ml, worst_f, worst_xi)
             if (ml%noise_estimated) then
                 noise = 'noise '//sci_text(ml%noise_level_fit)//' of |G| (estimated from the data)'
             else

@@ -9,8 +9,10 @@
 !>
 !>     &scene                        always; dt and n_steps for task 'contact'
 !>     &structure model              always, and the variables its model requires
-!>                                   (mass, stiffness, damping_ratio for 'sdof'; frf_file for 'frf_file')
-!>     &road profile                 for task 'contact' (road_file for profile 'file')
+!>                                   (mass, stiffness, damping_ratio for 'sdof'; frf_file for 'frf_file';
+!>                                   green_file for 'green_file')
+!>     &road profile                 for task 'contact' (road_file for profile 'file', texture_file for
+!>                                   profile 'texture')
 !>     &contact stiffness, exponent  for task 'contact'
 !>     &convolution methods          for task 'contact'
 !>
@@ -147,6 +149,10 @@ contains
             'the tyre foundation stiffness', '')
         call add(rows, n, 'structure', 'f_modes', value_real, '0.0', 'Hz', &
             'the highest tyre mode kept (0: the band rule)', '')
+        call add(rows, n, 'structure', 'green_file', value_text, '', '', &
+            "a universal file of the Green's matrix between the contact points: receptances G_ij(f) " &
+            //'in m/N (datasets 58 of function type 4) or impulse responses g_ij(t) in m/(N*s) (type 1), ' &
+            //'the points at their node coordinates (dataset 15 or 2411, m)', '')
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '')
         call add(rows, n, 'identification', 'n_freq', value_integer, '20001', '', &
@@ -160,7 +166,7 @@ contains
         call add(rows, n, 'identification', 'method', value_text, '', '', &
             "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
-            "the road profile, 'sine', 'random' or 'file'", "task 'contact'")
+            "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'")
         call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &
             'the road amplitude', '')
         call add(rows, n, 'road', 'omega', value_real, '100.0', 'rad/s', &
@@ -177,6 +183,10 @@ contains
             'a road file', "profile 'file'")
         call add(rows, n, 'road', 'x_start', value_real, '0.0', 'm', &
             'the position on the road file at t = 0', '')
+        call add(rows, n, 'road', 'texture_file', value_text, '', '', &
+            'a road texture file (heights on an x-y grid)', "profile 'texture'")
+        call add(rows, n, 'road', 'y_start', value_real, '0.0', 'm', &
+            'the lateral position on the road texture of the patch centre', '')
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'")
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
