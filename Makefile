@@ -20,7 +20,9 @@
 #                   then draw every plot/*.gp into out/figures/
 #   make bench      deps, build, run the benchmark example greenconv-bench: Tabs. 2-3 and the
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
-#                   data of the speed/accuracy and stability charts in out/bench/, then the figures
+#                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
+#                   time on Tab. 2's largest case (text, binary) against the C printf anchor
+#                   (bench/driver_output.sh, out/bench/driver_output.txt), then the figures
 #   make figures    only draw plot/*.gp from the existing out/*.dat
 #   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
 #                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
@@ -28,7 +30,8 @@
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
-#                   (`make fuzz`), the sanitizer builds (`make sanitize`, about 6 minutes),
+#                   (`make fuzz` with TEST_FUZZ_CASES = 600 cases), the sanitizer builds
+#                   (`make sanitize-builds` with TEST_SANITIZE_FUZZ = 50 fuzz cases each, about 6 minutes),
 #                   the benchmark's smoke checks (`make bench-smoke`), then
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
@@ -49,7 +52,8 @@
 #                   memory "definitely lost" (tools/make_helpers.sh valgrind)
 #   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
 #                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
-#                   fuzz cases (default 200) on each; see the target below
+#                   fuzz cases (default 200) on each (`make sanitize-builds`), then `make valgrind`;
+#                   run before every submission; see the target below
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -124,7 +128,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz valgrind sanitize
+        fuzz valgrind sanitize sanitize-builds
 
 all: lib
 
@@ -267,6 +271,9 @@ $(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
 
 FUZZ := $(BUILD)/greenconv-fuzz
 FUZZ_CASES ?= 2000
+# make test runs fewer (each of the 12 damage kinds still about 50 times), to stay well under
+# 15 minutes; `make fuzz` alone runs FUZZ_CASES.
+TEST_FUZZ_CASES ?= 600
 FUZZ_SEED ?= 2011
 
 $(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
@@ -305,8 +312,17 @@ sweep-bench: $(MPI_BIN)
 # ---- sanitizers and valgrind ---------------------------------------------------------------
 
 SANITIZE_FUZZ ?= 200
+TEST_SANITIZE_FUZZ ?= 50
 
+# `make sanitize` is the whole routine run before every submission: both sanitizer builds
+# with SANITIZE_FUZZ fuzz cases each, then valgrind on every shipped scene, the examples and
+# the C tests (valgrind took 26 minutes on two shared cores). `make test` runs the sanitizer builds with
+# fewer fuzz cases and without valgrind (sanitize-builds), to stay well under 15 minutes.
 sanitize:
+	@$(MAKE) sanitize-builds
+	@$(MAKE) valgrind
+
+sanitize-builds:
 	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
 
 valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
@@ -352,7 +368,11 @@ bench-data:
 	@$(CC) -O2 -std=c99 -Wall -Wextra -pedantic bench/anchor/printf_rows.c -o build/printf_rows -lm
 	@$(FPM) run --example greenconv-bench --profile $(FPM_PROFILE) | tee out/bench/tables.txt.part
 	@mv out/bench/tables.txt.part out/bench/tables.txt
-	@echo "greenconv: tables saved in out/bench/tables.txt"
+	@$(FPM) build --profile $(FPM_PROFILE) > /dev/null
+	@bash bench/driver_output.sh "$$($(FPM) run greenconv --profile $(FPM_PROFILE) --runner echo | tail -1)" \
+	    build/printf_rows | tee out/bench/driver_output.txt.part
+	@mv out/bench/driver_output.txt.part out/bench/driver_output.txt
+	@echo "greenconv: tables saved in out/bench/tables.txt and out/bench/driver_output.txt"
 
 figures:
 	@mkdir -p $(FIGDIR)
@@ -376,8 +396,8 @@ test: deps
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
-	@$(MAKE) fuzz
-	@$(MAKE) sanitize
+	@$(MAKE) fuzz FUZZ_CASES=$(TEST_FUZZ_CASES)
+	@$(MAKE) sanitize-builds SANITIZE_FUZZ=$(TEST_SANITIZE_FUZZ)
 	@$(MAKE) bench-smoke
 	@$(MAKE) sweep-test
 	@$(MAKE) patch-green-check

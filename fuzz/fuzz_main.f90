@@ -46,8 +46,8 @@ program greenconv_fuzz
     integer, parameter :: statuses(3) = [0, 2, 3]
     type(target), parameter :: targets(n_targets) = [ &
         target('sdof scene', 'sdof_sine.nml', 'sdof_sine.nml', '', .true.), &
-        target('identify scene', 'identify_sample.nml', 'identify_sample.nml', '', .true.), &
-        target('FRF file', 'sample_receptance.frf', 'identify_sample.nml', 'data/sample_receptance.frf', .true.), &
+        target('identify scene', 'identify_clean.nml', 'identify_clean.nml', '', .true.), &
+        target('FRF file', 'sample_receptance.frf', 'identify_clean.nml', 'data/sample_receptance.frf', .true.), &
         target('mdof scene', 'mdof_random.nml', 'mdof_random.nml', '', .false.), &
         target('tyre scene', 'tyre_road.nml', 'tyre_road.nml', '', .false.), &
         target('road file', 'road_sample.dat', 'tyre_road.nml', 'data/road_sample.dat', .false.)]

@@ -27,6 +27,7 @@ program greenconv_tests
     use test_uff_mod, only: collect_uff
     use test_greenfft_mod, only: collect_greenfft
     use test_realtext_mod, only: collect_realtext
+    use test_writer_mod, only: collect_writer
     use test_plate_mod, only: collect_plate
     use test_spectra_mod, only: collect_spectra
     use test_uffwrite_mod, only: collect_uffwrite
@@ -59,6 +60,7 @@ program greenconv_tests
                        new_testsuite('uff', collect_uff), &
                        new_testsuite('greenfft', collect_greenfft), &
                        new_testsuite('realtext', collect_realtext), &
+                       new_testsuite('writer', collect_writer), &
                        new_testsuite('plate', collect_plate), &
                        new_testsuite('spectra', collect_spectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &

@@ -255,10 +255,14 @@ contains
         type(c_ptr), value, intent(in) :: conv
 
         type(c_ptr), pointer :: handle
+        type(c_ptr) :: object
 
         if (.not. c_associated(conv)) return
         call c_f_pointer(conv, handle)
-        call gc_multi_free(handle)
+        ! A copy, as in gc_convolver_delete: -fcheck=pointer takes a pointer to a C NULL for a
+        ! disassociated one.
+        object = handle
+        call gc_multi_free(object)
         handle = c_null_ptr
     end subroutine gc_multi_delete
 

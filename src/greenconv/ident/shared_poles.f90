@@ -13,6 +13,12 @@
 !>    a positive-definite weight (for real modes R_k,ii = r_k*phi_ik^2 adds up without
 !>    cancelling), its noise estimated from the data and the order chosen by MDL. A pair of
 !>    modes of one frequency (the cosine and sine modes of a ring) gives one pole there.
+!>    **Refinement** over all receptances together (`refine_poles`, variable projection): the
+!>    summed driving points weigh overlapping modes together and bias their poles; with the
+!>    residues eliminated by least squares, Levenberg-Marquardt moves the poles to minimise the
+!>    misfit of every receptance, each weighted by its own size. On the shipped patch (1 %
+!>    noise) it takes E worst from 0.026 to 0.013, at the noise; the number of poles stays the
+!>    pole fit's, so the fit's max_order must let it find the modes in band (60 there).
 !> 2. **Residue matrices**: for those poles, linear least squares on each receptance (the same
 !>    design matrix for all, unweighted, so that the fit minimises |G - G_model|^2 as E of
 !>    eq. (7) measures it), R_k general complex: a repeated pole gets the rank two its pair of
@@ -36,7 +42,7 @@ module greenconv_ident_shared_poles
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_frf, only: frf_type
-    use greenconv_ext_lapack, only: least_squares
+    use greenconv_ext_lapack, only: least_squares, solve_linear
     use greenconv_ident_lsce, only: error_e
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     implicit none
@@ -111,6 +117,7 @@ contains
         end if
         fit%pole = fit%pole_fit%modes%pole
         fit%symmetric = symmetric
+        call refine_poles(frequency, g, fit)
         call fit_residues(frequency, g, fit, error)
         if (allocated(error)) return
         call shared_receptance(fit, frequency, model)
@@ -125,9 +132,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: design(:, :), x(:), rhs(:)
-        complex(dp), allocatable :: columns(:, :), target(:)
+        complex(dp), allocatable :: target(:)
         integer, allocatable :: lines(:)
-        integer :: n_c, n_m, n_p, i, j, k, l, i_u, i_l
+        integer :: n_c, n_m, n_p, i, j, l, i_u, i_l
 
         n_c = size(g, 1)
         n_m = size(fit%pole)
@@ -149,18 +156,7 @@ contains
             n_p = n_p + 1
             i_l = n_p
         end if
-        allocate (columns(size(lines), n_p))
-        associate (s => i_unit*two_pi*frequency(lines))
-            do k = 1, n_m
-                columns(:, 2*k - 1) = 1.0_dp/(s - fit%pole(k)) + 1.0_dp/(s - conjg(fit%pole(k)))
-                columns(:, 2*k) = i_unit*(1.0_dp/(s - fit%pole(k)) - 1.0_dp/(s - conjg(fit%pole(k))))
-            end do
-            if (i_u > 0) columns(:, i_u) = 1.0_dp
-            if (i_l > 0) columns(:, i_l) = 1.0_dp/s**2
-        end associate
-        allocate (design(2*size(lines), n_p))
-        design(1:size(lines), :) = real(columns, kind=dp)
-        design(size(lines) + 1:, :) = aimag(columns)
+        design = pole_design(frequency(lines), fit%pole, i_u > 0, i_l > 0)
         allocate (fit%residue(n_c, n_c, n_m), fit%upper(n_c, n_c), fit%lower(n_c, n_c), x(n_p))
         fit%upper(:, :) = 0.0_dp
         fit%lower(:, :) = 0.0_dp
@@ -187,6 +183,163 @@ contains
             end do
         end do
     end subroutine fit_residues
+
+    !> The real design matrix of a shared-pole model on the given lines: rows the real then the
+    !> imaginary parts, columns per pole the responses to Re R_k and Im R_k,
+    !> 1/(s - lambda_k) + 1/(s - conj lambda_k) and i/(s - lambda_k) - i/(s - conj lambda_k)
+    !> [s], then 1 (upper residual) and 1/s^2 (lower residual) when kept.
+    pure function pole_design(frequency, pole, upper, lower) result(design)
+        !> Frequencies of the lines [Hz].
+        real(dp), intent(in) :: frequency(:)
+        !> Poles [rad/s].
+        complex(dp), intent(in) :: pole(:)
+        !> Whether to add the upper (constant) and the lower (1/s^2) residual column.
+        logical, intent(in) :: upper, lower
+        !> The design matrix (2*size(frequency) x 2*size(pole) + residual columns).
+        real(dp), allocatable :: design(:, :)
+
+        complex(dp), allocatable :: columns(:, :)
+        integer :: k, n_p
+
+        n_p = 2*size(pole) + merge(1, 0, upper) + merge(1, 0, lower)
+        allocate (columns(size(frequency), n_p))
+        associate (s => i_unit*two_pi*frequency)
+            do k = 1, size(pole)
+                columns(:, 2*k - 1) = 1.0_dp/(s - pole(k)) + 1.0_dp/(s - conjg(pole(k)))
+                columns(:, 2*k) = i_unit*(1.0_dp/(s - pole(k)) - 1.0_dp/(s - conjg(pole(k))))
+            end do
+            if (upper) columns(:, 2*size(pole) + 1) = 1.0_dp
+            if (lower) columns(:, n_p) = 1.0_dp/s**2
+        end associate
+        allocate (design(2*size(frequency), n_p))
+        design(1:size(frequency), :) = real(columns, kind=dp)
+        design(size(frequency) + 1:, :) = aimag(columns)
+    end function pole_design
+
+    !> Refine the poles over all receptances together (variable projection): the residues are
+    !> eliminated by least squares for given poles, and Levenberg-Marquardt moves the poles to
+    !> minimise sum_ij ||G_ij - G_ij,model||^2/||G_ij||_1^2 (each receptance weighted by its own
+    !> size, as E of eq. (7) is relative per receptance). The poles of the summed driving points
+    !> are biased where modes overlap; every receptance weighs the modes by its own shapes, which
+    !> separates them. Finite-difference Jacobian; a step is kept only when it lowers the cost
+    !> and leaves every pole stable, so the result is never worse than the start.
+    subroutine refine_poles(frequency, g, fit)
+        !> Frequency lines [Hz].
+        real(dp), intent(in) :: frequency(:)
+        !> Receptances g(i, j, l) [m/N].
+        complex(dp), intent(in) :: g(:, :, :)
+        !> The fit; its poles are replaced by the refined ones.
+        type(shared_fit), intent(inout) :: fit
+
+        integer, parameter :: max_iterations = 40, max_attempts = 8
+        real(dp), parameter :: h = 1.0e-7_dp
+        real(dp), allocatable :: targets(:, :), scale(:), p(:), trial(:), r(:), r_trial(:), jacobian(:, :)
+        real(dp), allocatable :: normal(:, :), gradient(:), step(:), lhs(:, :)
+        integer, allocatable :: lines(:)
+        type(error_type), allocatable :: failed
+        real(dp) :: cost, cost_trial, mu
+        integer :: n_c, n_m, n_t, n_l, i, j, q, l, iteration, attempt
+        logical :: accepted
+
+        n_c = size(g, 1)
+        n_m = size(fit%pole)
+        if (fit%pole_fit%has_lower) then
+            lines = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        else
+            lines = [(l, l=1, size(frequency))]
+        end if
+        n_l = size(lines)
+        n_t = merge(n_c*(n_c + 1)/2, n_c*n_c, fit%symmetric)
+        allocate (targets(2*n_l, n_t))
+        q = 0
+        do j = 1, n_c
+            do i = 1, n_c
+                if (fit%symmetric .and. i < j) cycle
+                q = q + 1
+                associate (t => merge(0.5_dp*(g(i, j, lines) + g(j, i, lines)), g(i, j, lines), fit%symmetric))
+                    targets(:, q) = [real(t, kind=dp), aimag(t)]/max(sum(abs(t)), tiny(1.0_dp))
+                end associate
+            end do
+        end do
+        scale = abs(fit%pole)
+        allocate (p(2*n_m))
+        p(1:2*n_m:2) = aimag(fit%pole)/scale
+        p(2:2*n_m:2) = real(fit%pole, kind=dp)/scale
+        r = projected(p)
+        cost = sum(r**2)
+        cost_trial = cost
+        mu = 1.0e-3_dp
+        allocate (jacobian(size(r), 2*n_m), r_trial(size(r)))
+        r_trial(:) = r
+        do iteration = 1, max_iterations
+            do q = 1, 2*n_m
+                trial = p
+                trial(q) = trial(q) + h
+                jacobian(:, q) = (projected(trial) - r)/h
+            end do
+            normal = matmul(transpose(jacobian), jacobian)
+            gradient = matmul(transpose(jacobian), r)
+            accepted = .false.
+            do attempt = 1, max_attempts
+                lhs = normal
+                do q = 1, 2*n_m
+                    lhs(q, q) = normal(q, q)*(1.0_dp + mu) + tiny(1.0_dp)
+                end do
+                allocate (step(2*n_m))
+                call solve_linear(lhs, -gradient, step, failed)
+                trial = p + step
+                deallocate (step)
+                if (.not. allocated(failed) .and. all(trial(2:2*n_m:2) < 0.0_dp) &
+                    .and. all(trial(1:2*n_m:2) > 0.0_dp)) then
+                    r_trial = projected(trial)
+                    cost_trial = sum(r_trial**2)
+                    if (cost_trial < cost) then
+                        accepted = .true.
+                        exit
+                    end if
+                end if
+                mu = 10.0_dp*mu
+            end do
+            if (.not. accepted) exit
+            p = trial
+            r = r_trial
+            mu = max(mu/3.0_dp, 1.0e-9_dp)
+            if (cost - cost_trial < 1.0e-8_dp*cost) then
+                cost = cost_trial
+                exit
+            end if
+            cost = cost_trial
+        end do
+        fit%pole = cmplx(p(2:2*n_m:2)*scale, p(1:2*n_m:2)*scale, kind=dp)
+
+    contains
+
+        !> The part of every target that the model of these (scaled) poles cannot fit, stacked.
+        function projected(parameters) result(residual)
+            real(dp), intent(in) :: parameters(:)
+            real(dp), allocatable :: residual(:)
+
+            real(dp), allocatable :: basis(:, :), rest(:, :)
+            integer :: k, pass
+
+            allocate (basis(2*n_l, 2*n_m + merge(1, 0, fit%pole_fit%has_upper) &
+                                    + merge(1, 0, fit%pole_fit%has_lower)))
+            basis(:, :) = pole_design(frequency(lines), cmplx(parameters(2:2*n_m:2)*scale, &
+                                      parameters(1:2*n_m:2)*scale, kind=dp), fit%pole_fit%has_upper, &
+                                      fit%pole_fit%has_lower)
+            ! orthonormal basis of the columns: Gram-Schmidt, twice for round-off
+            do k = 1, size(basis, 2)
+                do pass = 1, 2
+                    if (k > 1) basis(:, k) = basis(:, k) - matmul(basis(:, :k - 1), &
+                                                                  matmul(basis(:, k), basis(:, :k - 1)))
+                    if (norm2(basis(:, k)) > 0.0_dp) basis(:, k) = basis(:, k)/norm2(basis(:, k))
+                end do
+            end do
+            rest = targets - matmul(basis, matmul(transpose(basis), targets))
+            residual = reshape(rest, [size(rest)])
+        end function projected
+
+    end subroutine refine_poles
 
     !> The receptances of a shared-pole model, model(i, j, l) = G_ij(2*pi*f_l) [m/N]; a lower
     !> residual is left out at 0 Hz (infinite there).

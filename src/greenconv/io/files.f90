@@ -14,26 +14,33 @@
 !> (called by the driver) makes SIGINT and SIGTERM delete the temporary files in flight.
 module greenconv_io_files
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t, c_null_char
-    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_fortran_env, only: int32, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_core_real_text, only: real_rows_text, rows_text_length
     implicit none
     private
 
     public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals
     public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
-    public :: block_rows
+    public :: block_rows, binary_header
 
     !> Rows a run streamed in blocks computes and writes at a time (a block of this many steps
     !> of a single-point run, of block_rows/N_c steps of an N_c-point run): what a long run
     !> holds of its histories, whatever its number of steps.
     integer, parameter :: block_rows = 16384
 
+    !> Whether this machine stores numbers most significant byte first (binary files are
+    !> written little-endian everywhere).
+    logical, parameter :: big_endian = ichar(transfer(1_int32, 'a')) == 0
+
     !> Temporary files this process has created (a counter for their unique names).
     integer, save :: parts_made = 0
 
-    !> Bytes a writer collects before it writes them to its file.
-    integer, parameter :: buffer_bytes = 65536
+    !> Bytes a writer collects before it writes them to its file (a block of a thousand rows
+    !> and more of text, written by one write(2)).
+    integer, parameter :: buffer_bytes = 1048576
 
     !> A column file written in blocks (`open_columns`, `append_rows`, `close_columns`): the
     !> rows go to a temporary file `part`, renamed to `path` when closed, so a reader never
@@ -53,8 +60,13 @@ module greenconv_io_files
         logical :: opened = .false.
         !> Slot of `part` in the table of files removed on a signal (-1: not recorded).
         integer :: slot = -1
-        !> Edit descriptor of one row.
-        character(len=32) :: row_format = ''
+        !> Number of values of every row.
+        integer :: n_columns = 0
+        !> Whether rows are written as little-endian float64 (`binary_header` beside the file)
+        !> rather than text.
+        logical :: binary = .false.
+        !> Header lines, kept for the header file of a binary file.
+        character(len=:), allocatable :: comments(:)
         !> Number of rows written so far.
         integer(int64) :: rows = 0
     end type column_writer
@@ -173,7 +185,7 @@ contains
     !> Write a table of reals with `#` comment lines above it, atomically.
     !>
     !> `comments` are written as `# ` lines; the last one should name the columns.
-    subroutine write_columns(path, comments, table, error)
+    recursive subroutine write_columns(path, comments, table, error)
         !> Target file.
         character(len=*), intent(in) :: path
         !> Header lines, written after `# `.
@@ -193,17 +205,23 @@ contains
     !> Start a column file written in blocks: create its temporary file exclusively and write
     !> the `# ` header lines (the last should name the columns). Then `append_rows` per block,
     !> and `close_columns` to rename it to `path`.
-    subroutine open_columns(writer, path, comments, n_columns, error)
+    !>
+    !> With `binary` true, each row is written as n_columns little-endian IEEE float64 values
+    !> (8 bytes each, no header, no separators), and `close_columns` writes the text file
+    !> `binary_header(path)` beside it: the header lines, the row count and how to read it.
+    subroutine open_columns(writer, path, comments, n_columns, error, binary)
         !> The file being written.
         type(column_writer), intent(out) :: writer
         !> Target file.
         character(len=*), intent(in) :: path
-        !> Header lines, written after `# `.
+        !> Header lines, written after `# ` (for binary rows: into the header file).
         character(len=*), intent(in) :: comments(:)
         !> Number of columns of every row.
         integer, intent(in) :: n_columns
         !> Set when the file cannot be written (nothing is left behind).
         type(error_type), allocatable, intent(out) :: error
+        !> Whether the rows are written as binary float64 (default: text).
+        logical, intent(in), optional :: binary
 
         character(len=40) :: suffix
         integer(c_int) :: fd
@@ -231,7 +249,13 @@ contains
         writer%slot = c_part_register(writer%part//c_null_char)
         allocate (character(len=buffer_bytes) :: writer%buffer)
         writer%used = 0
-        write (writer%row_format, '(a,i0,a)') '(', n_columns, '(es24.15e3))'
+        writer%n_columns = n_columns
+        if (present(binary)) writer%binary = binary
+        if (writer%binary) then
+            allocate (character(len=max(len(comments), 1)) :: writer%comments(size(comments)))
+            writer%comments = comments
+            return
+        end if
         do i = 1, size(comments)
             call put_line(writer, '# '//trim(comments(i)), error)
             if (allocated(error)) return
@@ -248,21 +272,111 @@ contains
         !> Set when the rows cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=24*size(table, 2)) :: row
-        integer :: i
+        integer :: first, last, per_row, room, length
 
-        do i = 1, size(table, 1)
-            write (row, writer%row_format) table(i, :)
-            call put_line(writer, row, error)
+        ! Rows are laid out as exact text (greenconv_core_real_text) or as bytes straight into
+        ! the buffer, as many as fit, and the buffer is written out whole when full.
+        per_row = rows_text_length(1, size(table, 2))
+        if (writer%binary) per_row = 8*size(table, 2)
+        if (len(writer%buffer) < per_row) then
+            call flush_buffer(writer, error)
             if (allocated(error)) return
+            deallocate (writer%buffer)
+            allocate (character(len=per_row) :: writer%buffer)
+        end if
+        first = 1
+        do while (first <= size(table, 1))
+            room = (len(writer%buffer) - writer%used)/per_row
+            if (room == 0) then
+                call flush_buffer(writer, error)
+                if (allocated(error)) return
+                cycle
+            end if
+            last = min(size(table, 1), first + room - 1)
+            if (writer%binary) then
+                call put_binary_rows(table(first:last, :), writer%buffer(writer%used + 1:), length)
+            else
+                call real_rows_text(table(first:last, :), writer%buffer(writer%used + 1:), length)
+            end if
+            writer%used = writer%used + length
+            first = last + 1
         end do
         writer%rows = writer%rows + size(table, 1)
     end subroutine append_rows
 
+    !> The rows of a table as little-endian IEEE float64 bytes, row after row.
+    pure subroutine put_binary_rows(table, bytes, length)
+        !> Values table(row, column).
+        real(dp), intent(in) :: table(:, :)
+        !> At least 8*size(table) characters.
+        character(len=*), intent(inout) :: bytes
+        !> Number of characters set, bytes(1:length).
+        integer, intent(out) :: length
+
+        character(len=8) :: value
+        integer :: i, j, k
+
+        length = 0
+        do i = 1, size(table, 1)
+            do j = 1, size(table, 2)
+                value = transfer(table(i, j), value)
+                if (big_endian) then
+                    do k = 1, 8
+                        bytes(length + k:length + k) = value(9 - k:9 - k)
+                    end do
+                else
+                    bytes(length + 1:length + 8) = value
+                end if
+                length = length + 8
+            end do
+        end do
+    end subroutine put_binary_rows
+
+    !> Path of the text header file of a binary column file: `<path>.txt`.
+    pure function binary_header(path) result(header)
+        !> The binary column file.
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: header
+
+        header = path//'.txt'
+    end function binary_header
+
+    !> Write the header file of a binary column file: its header lines, then the layout, the
+    !> row count and one-line readers (gnuplot, numpy, MATLAB/Octave).
+    recursive subroutine write_binary_header(writer, error)
+        type(column_writer), intent(in) :: writer
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: name, n
+        character(len=400), allocatable :: lines(:)
+        real(dp) :: no_rows(0, writer%n_columns)
+        integer :: c
+
+        name = writer%path(index(writer%path, '/', back=.true.) + 1:)
+        n = int_text(int(writer%n_columns, int64))
+        ! The header lines, the layout and readers, and last the column names (the last `#`
+        ! line names the columns, as in a text file).
+        c = max(size(writer%comments) - 1, 0)
+        allocate (lines(c + 8))
+        lines(1:c) = writer%comments(1:c)
+        lines(c + 8) = 'columns as numbered'
+        if (size(writer%comments) > 0) lines(c + 8) = writer%comments(c + 1)
+        lines(c + 1) = 'binary column file '//name//': '//int_text(writer%rows)//' rows of '//n &
+                   //' little-endian IEEE float64 values (8 bytes each), row after row, no header'
+        lines(c + 2) = 'rows: '//int_text(writer%rows)
+        lines(c + 3) = 'columns: '//n//' (names and units in the lines above)'
+        lines(c + 4) = 'format: float64 little-endian'
+        lines(c + 5) = "gnuplot: plot '"//name//"' binary format='%"//n//"float64' using 1:2"
+        lines(c + 6) = "numpy: numpy.fromfile('"//name//"', dtype='<f8').reshape(-1, "//n//')'
+        lines(c + 7) = "MATLAB/Octave: fread(fopen('"//name//"'), ["//n//" Inf], 'float64', 0, 'ieee-le')'"
+        call write_columns(binary_header(writer%path), lines, no_rows, error)
+    end subroutine write_binary_header
+
     !> Finish a column file: write what the buffer holds, close the temporary file and rename
     !> it to `path`. When a write, the close or the rename fails, the temporary file is
     !> deleted and `error` names the file and the reason.
-    subroutine close_columns(writer, error)
+    !> Recursive: a binary file's header file is itself written as a (text) column file.
+    recursive subroutine close_columns(writer, error)
         !> The file being written; closed on return.
         type(column_writer), intent(inout) :: writer
         !> Set when the file cannot be completed.
@@ -280,7 +394,16 @@ contains
             call write_failed(writer, error_text(number), error)
             return
         end if
+        ! A binary file's header file is complete before the file appears under its name.
+        if (writer%binary) then
+            call write_binary_header(writer, error)
+            if (allocated(error)) then
+                call discard_columns(writer)
+                return
+            end if
+        end if
         if (c_rename(writer%part//c_null_char, writer%path//c_null_char) /= 0) then
+            if (writer%binary) number = c_unlink(binary_header(writer%path)//c_null_char)
             call write_failed(writer, 'cannot rename '//writer%part//' to it', error)
             return
         end if

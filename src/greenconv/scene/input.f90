@@ -53,6 +53,9 @@ module greenconv_scene_input
         integer :: n_steps
         !> Write every this many steps to the column files (1: every step), >= 1.
         integer :: output_every
+        !> How a contact run's rows are written: `text` (`.dat`) or `binary` (`.bin`, little-endian
+        !> float64, with the text header file `.bin.txt`).
+        character(len=8) :: output_format = 'text'
         !> Show a progress line on standard error for long runs (only when it is a terminal).
         logical :: progress
         !> Structure model: `sdof`, `random_modes` or `frf_file`.
@@ -122,7 +125,8 @@ module greenconv_scene_input
 
 contains
 
-    !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`.
+    !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`, or `.bin`
+    !> with `output_format = 'binary'`.
     function output_path(scene, method) result(path)
         !> The scene.
         type(scene_type), intent(in) :: scene
@@ -131,6 +135,7 @@ contains
         character(len=:), allocatable :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
+        if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
     end function output_path
 
     !> "file:line: &group variable" for messages about a value of the scene (the line of the
@@ -197,7 +202,7 @@ contains
         if (.not. allocated(error)) call read_convolution_group(unit, no_lines, scene, error, .true.)
     end subroutine write_scene_template
 
-    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, progress.
+    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, output_format, progress.
     subroutine read_scene_group(unit, lines, this, error, template)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: lines(:)
@@ -206,13 +211,13 @@ contains
         !> Present: write the group with its defaults on `unit` instead of reading it.
         logical, intent(in), optional :: template
 
-        character(len=name_length) :: task, name
+        character(len=name_length) :: task, name, output_format
         character(len=path_length) :: output_dir
         real(dp) :: dt
         integer :: n_steps, output_every, stat
         logical :: progress
         character(len=512) :: message
-        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, progress
+        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress
 
         call scene_default('scene', 'task', task)
         call scene_default('scene', 'name', name)
@@ -220,6 +225,7 @@ contains
         call scene_default('scene', 'dt', dt)
         call scene_default('scene', 'n_steps', n_steps)
         call scene_default('scene', 'output_every', output_every)
+        call scene_default('scene', 'output_format', output_format)
         call scene_default('scene', 'progress', progress)
         if (present(template)) then
             write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
@@ -237,12 +243,15 @@ contains
         call require(n_steps > 0, expected(this, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
         call require(output_every > 0, expected(this, 'scene', 'output_every', &
                      'a number of steps >= 1 between written rows', output_every), error)
+        call require(any(trim(output_format) == [character(len=8) :: 'text', 'binary']), &
+                     expected(this, 'scene', 'output_format', "'text' or 'binary'", output_format), error)
         this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
         this%dt = dt
         this%n_steps = n_steps
         this%output_every = output_every
+        this%output_format = trim(output_format)
         this%progress = progress
     end subroutine read_scene_group
 

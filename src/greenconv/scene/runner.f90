@@ -310,7 +310,8 @@ contains
         integer :: m
 
         seconds = 0.0_dp
-        call open_columns(writer, output_path(scene, method), header, n_columns, error)
+        call open_columns(writer, output_path(scene, method), header, n_columns, error, &
+                          binary=scene%output_format == 'binary')
         if (allocated(error)) return
         call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
         do while (run%step() < scene%n_steps)

@@ -90,6 +90,10 @@ contains
             'a number of steps', "task 'contact'")
         call add(rows, n, 'scene', 'output_every', value_integer, '1', '', &
             'the steps between written rows (1: every step)', '')
+        call add(rows, n, 'scene', 'output_format', value_text, 'text', '', &
+            "how a contact run's rows are written: 'text' (<name>_<method>.dat, exact 17-digit " &
+            //"columns) or 'binary' (<name>_<method>.bin, little-endian float64, described by " &
+            //"<name>_<method>.bin.txt)", '')
         call add(rows, n, 'scene', 'progress', value_logical, '.true.', '', &
             'whether to show a progress line on a terminal', '')
         call add(rows, n, 'structure', 'model', value_text, '', '', &
