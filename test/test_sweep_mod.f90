@@ -7,6 +7,7 @@
 !> named and decimated; the content key following an edited road file. The runs on 1 and
 !> 2 MPI ranks, resume and failures are checked by tools/test_sweep.sh (make sweep-test).
 module test_sweep_mod
+    use, intrinsic :: iso_fortran_env, only: int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
     use scene_text_mod, only: write_text
     use greenconv_core_error, only: error_type
@@ -286,6 +287,16 @@ contains
         title = first_line(scratch//'/out/hist_v2_direct.dat')
         call check(error, index(title, 'variant 2 (road.amplitude = 2.0e-3), method direct') > 0, title)
         if (allocated(error)) return
+        call run_fresh('histbin', replaced_all(text, "name = 'hist'", "name = 'histbin', output_format = 'binary'"), &
+                       failure)
+        call check(error, .not. allocated(failure), 'the sweep with binary histories runs')
+        if (allocated(error)) return
+        call check(error, same_rows(scratch//'/out/hist_v2_direct.dat', scratch//'/out/histbin_v2_direct.bin', 5), &
+                   'output_format = ''binary'': histbin_v2_direct.bin holds the text file''s rows bit for bit')
+        if (allocated(error)) return
+        inquire (file=scratch//'/out/histbin_v2_direct.bin.txt', exist=exists)
+        call check(error, exists, 'with its header file .bin.txt')
+        if (allocated(error)) return
         call run_fresh('nohist', replaced_all(text, 'histories = .true.', 'histories = .false.'), failure)
         call check(error, .not. allocated(failure), 'the sweep without histories runs')
         if (allocated(error)) return
@@ -300,8 +311,8 @@ contains
         title = first_line(scratch//'/out/hist_v1_direct.dat')
         call check(error, index(title, 'variant 1 (road.amplitude = 2.0e-3)') > 0, 'its file rewritten: '//title)
         if (allocated(error)) return
-        call write_text(scratch//'/nohist.nml', replaced_all(replaced_all(text, 'histories = .true.', 'histories = .false.'), &
-                        '1.0e-3, 2.0e-3', '2.0e-3'))
+        call write_text(scratch//'/nohist.nml', replaced_all(replaced_all(text, 'histories = .true.', &
+                        'histories = .false.'), '1.0e-3, 2.0e-3', '2.0e-3'))
         call check(error, skipped_line(scratch//'/nohist.nml') == '1 already done', &
                    'without histories, it is skipped')
     end subroutine test_histories
@@ -455,6 +466,32 @@ contains
         end do
         close (unit)
     end function history_column
+
+    !> Whether a binary column file (little-endian float64 rows of n values, as this machine
+    !> reads them) holds the rows of a text column file, bit for bit.
+    logical function same_rows(text_path, binary_path, n)
+        character(len=*), intent(in) :: text_path, binary_path
+        integer, intent(in) :: n
+
+        real(dp), allocatable :: text_rows(:, :), binary_rows(:, :)
+        integer :: unit, stat, j, bytes
+
+        same_rows = .false.
+        allocate (text_rows(size(history_column(text_path, 1)), n))
+        do j = 1, n
+            text_rows(:, j) = history_column(text_path, j)
+        end do
+        inquire (file=binary_path, size=bytes)
+        if (bytes /= 8*size(text_rows)) return
+        allocate (binary_rows(n, size(text_rows, 1)))
+        open (newunit=unit, file=binary_path, access='stream', form='unformatted', status='old', action='read', &
+              iostat=stat)
+        if (stat /= 0) return
+        read (unit, iostat=stat) binary_rows
+        close (unit)
+        same_rows = stat == 0 .and. all(transfer(binary_rows, 1_int64, size(binary_rows)) == &
+                                        transfer(transpose(text_rows), 1_int64, size(text_rows)))
+    end function same_rows
 
     !> The first line of a file ('' when it cannot be read).
     function first_line(path) result(line)

@@ -31,7 +31,8 @@
 !> its record be long enough for the lowest band (checked with the variants, so a variant
 !> that cannot give every column fails its check). With `histories`, each method of each
 !> variant streams its rows (every `output_every`-th step) to its own column file, as a
-!> contact scene writes `<name>_<method>.dat`; a numerical fault keeps the rows before it.
+!> contact scene writes `<name>_<method>.dat` (text or, with `output_format = 'binary'`,
+!> `.bin` and its header `.bin.txt`); a numerical fault keeps the rows before it.
 !>
 !> Results: `<output_dir>/<name>_sweep.dat`, one row per variant in variant order, the
 !> same byte for byte whatever runs the variants; CPU times, which vary from run to run,
@@ -533,8 +534,8 @@ contains
                          //' variants, rows in variant order')
         call append_text(table, '# per method: max, mean, rms of the total contact force [N], fraction of steps in ' &
                          //'contact, status (0 done, 2 bad input, 3 numerical fault), step of the fault (0: none)')
-        if (plan%spectra) call append_text(table, '# then per method and 1/3-octave band L<f_c>_<method>: level of the ' &
-            //'total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
+        if (plan%spectra) call append_text(table, '# then per method and 1/3-octave band L<f_c>_<method>: level of ' &
+            //'the total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
             //real_text(plan%f_high)//' Hz; Welch PSD, Hann window, 50 % overlap; nan: the method failed)')
         call append_text(table, names)
         call append_text(cpu, '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method')
@@ -690,7 +691,8 @@ contains
                 if (.not. allocated(error)) call start_contact(conv, scene%law, scene%preload, state, error, &
                                                                scene%contact)
                 if (.not. allocated(error) .and. plan%histories) call open_columns(writer, &
-                    history_path(plan, k, method), single_header(plan, scene, k, method), 5, error)
+                    history_path(plan, scene, k, method), single_header(plan, scene, k, method), 5, error, &
+                    binary(scene))
             end if
             do while (.not. (allocated(error) .or. allocated(fault)) .and. state%step < scene%n_steps)
                 first = state%step
@@ -761,8 +763,8 @@ contains
                     [(scene%preload/scene%n_points, n=1, scene%n_points)], state, error, &
                     newton_options(max_displacement=scene%contact%divergence_bound))
                 if (.not. allocated(error) .and. plan%histories) call open_columns(writer, &
-                    history_path(plan, k, method), multi_contact_header(history_title(plan, scene, k, method)), &
-                    7, error)
+                    history_path(plan, scene, k, method), multi_contact_header(history_title(plan, scene, k, &
+                    method)), 7, error, binary(scene))
             end if
             do while (.not. (allocated(error) .or. allocated(fault)) .and. step < scene%n_steps)
                 first = step
@@ -786,15 +788,25 @@ contains
         outcome%result = outcome%result//levels
     end subroutine run_multipoint_variant
 
-    !> The column file of variant k's method: `<output_dir>/<name>_v<k>_<method>.dat`.
-    function history_path(plan, k, method) result(path)
+    !> The column file of variant k's method: `<output_dir>/<name>_v<k>_<method>.dat`, or
+    !> `.bin` (with its header `.bin.txt`) for `output_format = 'binary'`, as a contact scene
+    !> names its files.
+    function history_path(plan, scene, k, method) result(path)
         type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
         integer, intent(in) :: k
         character(len=*), intent(in) :: method
         character(len=:), allocatable :: path
 
-        path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method//'.dat'
+        path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method//merge('.bin', '.dat', binary(scene))
     end function history_path
+
+    !> Whether a variant's history files are binary (`&scene output_format = 'binary'`).
+    logical function binary(scene)
+        type(scene_type), intent(in) :: scene
+
+        binary = scene%output_format == 'binary'
+    end function binary
 
     !> First header line of a variant's history file: the sweep, the variant and its values,
     !> the method, the steps; with `output_every` > 1, which steps the rows are.
