@@ -4,7 +4,8 @@
 # out/tyre_sweep_sweep.dat are found by name in its header; awk turns them into one line
 # per band: the centre, then the level of each variant with that stiffness (a failed
 # variant's 'nan' is not drawn). The levels fall steeply above V/lambda_min, lambda_min = 10 mm
-# the shortest wavelength of data/road_sample.dat: the road excites nothing higher.
+# the shortest wavelength of data/road_sample.dat; what rises near 5 kHz at 10 m/s is the
+# file's 2 mm sampling (linear between samples), passed at V/2 mm = 5 kHz.
 if (!exists("figdir")) figdir = 'out/figures'
 data = 'out/tyre_sweep_sweep.dat'
 stiffness = '2.0e5'
