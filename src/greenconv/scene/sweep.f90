@@ -314,17 +314,20 @@ contains
         type(scene_type), intent(in) :: scene
         character(len=16) :: key
 
-        type(sweep_text), allocatable :: extra(:)
+        type(sweep_text), allocatable :: lines(:)
 
-        allocate (extra(0))
-        if (plan%spectra) call append_text(extra, '&sweep spectra = .true., f_low = '//real_text(plan%f_low) &
+        ! allocated first: gfortran -O2 warns of an unset descriptor otherwise (an array
+        ! constructor around variant_lines instead leaks its texts)
+        allocate (lines(0))
+        lines = variant_lines(plan, k)
+        if (plan%spectra) call append_text(lines, '&sweep spectra = .true., f_low = '//real_text(plan%f_low) &
                                            //', f_high = '//real_text(plan%f_high)//' /')
-        if (plan%histories) call append_text(extra, '&sweep histories = .true. / ! variant '//int_text(k))
-        if (allocated(scene%road_data%path)) call append_file(extra, scene%road_data%path)
+        if (plan%histories) call append_text(lines, '&sweep histories = .true. / ! variant '//int_text(k))
+        if (allocated(scene%road_data%path)) call append_file(lines, scene%road_data%path)
         if (allocated(scene%frf_file)) then
-            if (len_trim(scene%frf_file) > 0) call append_file(extra, scene%frf_file)
+            if (len_trim(scene%frf_file) > 0) call append_file(lines, scene%frf_file)
         end if
-        key = variant_key([variant_lines(plan, k), extra])
+        key = variant_key(lines)
     end function content_key
 
     !> Append a file's name and its lines (or that it cannot be read) to the lines of a key.
