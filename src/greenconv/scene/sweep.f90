@@ -54,7 +54,8 @@ module greenconv_scene_sweep
     use greenconv_io_columns, only: read_line
     use greenconv_io_files, only: make_directory, block_rows, column_writer, open_columns, append_rows, &
                                   close_run_file, first_kept
-    use greenconv_io_spectra, only: band_spectrum, band_levels, third_octave_bands
+    use greenconv_io_spectra, only: segment_for_band, first_band, default_lines_per_band, band_spectrum, &
+                                    band_levels, third_octave_bands
     use greenconv_conv_convolver, only: convolver, free_convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver, make_multipoint_convolver
@@ -83,7 +84,7 @@ module greenconv_scene_sweep
     !> Options of the `&sweep` group that are not varied variables.
     character(len=*), parameter :: option_names(4) = [character(len=9) :: 'spectra', 'histories', 'f_low', 'f_high']
     !> Lines of the PSD the lowest band spans (greenconv_io_spectra's default): sets the record a variant needs.
-    integer, parameter :: lines_per_band = 8
+    integer, parameter :: lines_per_band = default_lines_per_band
     !> f_low and f_high name bands by their nominal centres (800 Hz for 794.3 Hz, 5000 Hz for
     !> 5011.9 Hz): a band counts when its exact centre is within this factor (2.3 %, a tenth of
     !> the distance to the next band) of the range; the nominal names differ from the exact by < 1 %.
@@ -358,7 +359,6 @@ contains
         type(scene_type), intent(in) :: scene
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: width
         integer(int64) :: n
         character(len=:), allocatable :: where
 
@@ -370,12 +370,8 @@ contains
                              //' Hz; lower f_high or dt')
             return
         end if
-        ! as band_levels: the width of the lowest band from its centre's edges
-        width = plan%band_centre(1)*10.0_dp**0.05_dp - plan%band_centre(1)*10.0_dp**(-0.05_dp)
-        n = 2
-        do while (1.0_dp/(n*scene%dt) > width/lines_per_band)
-            n = 2*n
-        end do
+        ! the segment band_levels takes for the lowest band
+        n = segment_for_band(first_band(plan%band_centre(1)), scene%dt, lines_per_band)
         if (n > scene%n_steps) call fatal_error(error, where//'expected a record of at least '//int_text(n) &
             //' steps for the band at '//real_text(plan%band_centre(1))//' Hz, found n_steps = ' &
             //int_text(scene%n_steps)//'; raise f_low or n_steps')
