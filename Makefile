@@ -115,7 +115,8 @@ SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
 EXDIR   := $(BUILD)/examples
-EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(EXDIR)/c_patch_file \
+            $(EXDIR)/legacy_patch_file $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
             $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
@@ -209,6 +210,14 @@ $(EXDIR)/c_patch: example/c_patch.c include/greenconv.h $(LIB)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
 
 $(EXDIR)/legacy_patch: example/legacy_patch.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+$(EXDIR)/c_patch_file: example/c_patch_file.c include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/legacy_patch_file: example/legacy_patch_file.f $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
