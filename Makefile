@@ -10,7 +10,9 @@
 #   make examples   the library examples against the plain build: example/c_contact.c (C),
 #                   example/cxx_header.cpp (C++, when $(CXX) exists), example/legacy_f77.f
 #                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads),
-#                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch)
+#                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch),
+#                   example/c_patch_file.c and example/legacy_patch_file.f (the shipped patch
+#                   from data/patch_green.uff, against the driver's run of data/patch_road.nml)
 #   make install    install the driver, both libraries, include/greenconv.h, the .mod files
 #                   and greenconv.pc (pkg-config) under PREFIX (default /usr/local; DESTDIR too)
 #   make doc        API documentation with FORD (installed with pip when missing) into
@@ -31,7 +33,7 @@
 #                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
 #                   Makefile-built driver writes the same output as the fpm-built one, build
 #                   and run the examples (each compares its results with the driver's output
-#                   for data/sdof_sine.nml), install into a temporary prefix and build the C
+#                   for data/sdof_sine.nml or data/patch_road.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
 #                   (`make fuzz` with TEST_FUZZ_CASES = 600 cases), the sanitizer builds
 #                   (`make sanitize-builds` with TEST_SANITIZE_FUZZ = 50 fuzz cases each, about 6 minutes),
@@ -115,7 +117,8 @@ SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
 EXDIR   := $(BUILD)/examples
-EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(EXDIR)/c_patch_file \
+            $(EXDIR)/legacy_patch_file $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
             $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
@@ -209,6 +212,14 @@ $(EXDIR)/c_patch: example/c_patch.c include/greenconv.h $(LIB)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
 
 $(EXDIR)/legacy_patch: example/legacy_patch.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+$(EXDIR)/c_patch_file: example/c_patch_file.c include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/legacy_patch_file: example/legacy_patch_file.f $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
