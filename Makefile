@@ -10,7 +10,9 @@
 #   make examples   the library examples against the plain build: example/c_contact.c (C),
 #                   example/cxx_header.cpp (C++, when $(CXX) exists), example/legacy_f77.f
 #                   (fixed-form Fortran 77 style), example/omp_threads.f90 (two OpenMP threads),
-#                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch)
+#                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch),
+#                   example/c_patch_file.c and example/legacy_patch_file.f (the shipped patch
+#                   from data/patch_green.uff, against the driver's run of data/patch_road.nml)
 #   make install    install the driver, both libraries, include/greenconv.h, the .mod files
 #                   and greenconv.pc (pkg-config) under PREFIX (default /usr/local; DESTDIR too)
 #   make doc        API documentation with FORD (installed with pip when missing) into
@@ -23,14 +25,18 @@
 #                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
 #                   time on Tab. 2's largest case (text, binary) against the C printf anchor
 #                   (bench/driver_output.sh, out/bench/driver_output.txt), then the figures
-#   make figures    only draw plot/*.gp from the existing out/*.dat
+#   make figures    only draw plot/*.gp from the existing out/*.dat (text or binary runs:
+#                   plot/lib/column_file.gp picks <name>_<method>.dat or .bin)
+#   make plot-test  the plot scripts that read contact runs draw the same figure from a text
+#                   and a binary run (tools/test_plot_formats.sh, about 10 s; run by make test)
 #   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
 #                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
 #                   Makefile-built driver writes the same output as the fpm-built one, build
 #                   and run the examples (each compares its results with the driver's output
-#                   for data/sdof_sine.nml), install into a temporary prefix and build the C
+#                   for data/sdof_sine.nml or data/patch_road.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
-#                   (`make fuzz`), the sanitizer builds (`make sanitize`, about 6 minutes),
+#                   (`make fuzz` with TEST_FUZZ_CASES = 600 cases), the sanitizer builds
+#                   (`make sanitize-builds` with TEST_SANITIZE_FUZZ = 50 fuzz cases each, about 6 minutes),
 #                   the benchmark's smoke checks (`make bench-smoke`), then
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
@@ -51,7 +57,8 @@
 #                   memory "definitely lost" (tools/make_helpers.sh valgrind)
 #   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
 #                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
-#                   fuzz cases (default 200) on each; see the target below
+#                   fuzz cases (default 200) on each (`make sanitize-builds`), then `make valgrind`;
+#                   run before every submission; see the target below
 #   make clean      remove build/ and out/
 #
 # The plain build takes its module order from the `use` statements of the sources
@@ -110,7 +117,8 @@ SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
 EXDIR   := $(BUILD)/examples
-EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(EXDIR)/c_patch_file \
+            $(EXDIR)/legacy_patch_file $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
             $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
@@ -126,7 +134,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz valgrind sanitize
+        fuzz valgrind sanitize sanitize-builds plot-test
 
 all: lib
 
@@ -180,7 +188,7 @@ $(MODDIR):
 # Module dependencies "a.o: b.o" (b.f90 defines a module that a.f90 uses). Regenerated
 # when a source changes, and also when a source was added or removed since the last time
 # (deps.mk records the list as DEPS_SRCS). Only read for goals that compile.
-ifneq ($(filter all lib examples install fuzz ctest valgrind mpi sweep-test sweep-bench patch-green-check $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(filter all lib examples install fuzz ctest valgrind mpi sweep-test sweep-bench patch-green-check plot-test $(BUILD)/%,$(or $(MAKECMDGOALS),all)),)
 -include $(DEPFILE)
 endif
 
@@ -204,6 +212,14 @@ $(EXDIR)/c_patch: example/c_patch.c include/greenconv.h $(LIB)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
 
 $(EXDIR)/legacy_patch: example/legacy_patch.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+$(EXDIR)/c_patch_file: example/c_patch_file.c include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+$(EXDIR)/legacy_patch_file: example/legacy_patch_file.f $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
@@ -269,6 +285,9 @@ $(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
 
 FUZZ := $(BUILD)/greenconv-fuzz
 FUZZ_CASES ?= 2000
+# make test runs fewer (each of the 12 damage kinds still about 50 times), to stay well under
+# 15 minutes; `make fuzz` alone runs FUZZ_CASES.
+TEST_FUZZ_CASES ?= 600
 FUZZ_SEED ?= 2011
 
 $(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
@@ -307,8 +326,17 @@ sweep-bench: $(MPI_BIN)
 # ---- sanitizers and valgrind ---------------------------------------------------------------
 
 SANITIZE_FUZZ ?= 200
+TEST_SANITIZE_FUZZ ?= 50
 
+# `make sanitize` is the whole routine run before every submission: both sanitizer builds
+# with SANITIZE_FUZZ fuzz cases each, then valgrind on every shipped scene, the examples and
+# the C tests (valgrind took 26 minutes on two shared cores). `make test` runs the sanitizer builds with
+# fewer fuzz cases and without valgrind (sanitize-builds), to stay well under 15 minutes.
 sanitize:
+	@$(MAKE) sanitize-builds
+	@$(MAKE) valgrind
+
+sanitize-builds:
 	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
 
 valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
@@ -382,6 +410,11 @@ figures:
 
 # ---- tests -----------------------------------------------------------------------------
 
+# The plot scripts on a text and a binary run of the shipped scenes: the same figure data
+# (gnuplot's `set table`) and the same PNG bytes.
+plot-test: $(BIN)
+	@bash tools/test_plot_formats.sh $(BIN)
+
 # The plain build and the make-vs-fpm comparison come first, so that the last line
 # printed is fpm test's "N passed, N failed" (the helper runs `fpm test` and, when it
 # fails, repeats that line after fpm's error messages).
@@ -392,10 +425,11 @@ test: deps
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
+	@$(MAKE) plot-test
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
-	@$(MAKE) fuzz
-	@$(MAKE) sanitize
+	@$(MAKE) fuzz FUZZ_CASES=$(TEST_FUZZ_CASES)
+	@$(MAKE) sanitize-builds SANITIZE_FUZZ=$(TEST_SANITIZE_FUZZ)
 	@$(MAKE) bench-smoke
 	@$(MAKE) sweep-test
 	@$(MAKE) patch-green-check

@@ -353,6 +353,54 @@ int gc_multi_new_samples(int n_points, int n_samples, const double *g, double dt
                          char *errmsg, size_t errmsg_len);
 
 /**
+ * A multi-point convolver on a universal file of a Green's matrix (path: nodes with their
+ * coordinates in dataset 15 or 2411, datasets 58 of the receptances G_ij(f) [m/N] or of the
+ * impulse responses g_ij(t) [m/(N*s)] between them; README's "Green's matrix files"). Its
+ * points are the file's nodes, in the file's order (gc_multi_points). Receptances are
+ * identified once with shared poles (a maximum-likelihood pole fit of the summed driving
+ * points, its stabilisation diagram up to max_order modes, 0 for the library's default 30,
+ * then every receptance's residue matrix): "modal"/"exact" run on the identified modes
+ * ("exact" with the fit's upper residual in W0), "direct"/"fft" on g_ij from the inverse FFT
+ * of the file's receptances when dt fits their grid (from the modes otherwise), as the
+ * driver's `&structure model = 'green_file'` does. The identification takes seconds for a
+ * dozen points; build further methods on the same file with gc_multi_new_method. What the
+ * model neglects: gc_multi_describe; the identification: gc_multi_file_summary.
+ * GC_ERROR_INPUT for an unreadable or malformed file (the message names the file and the
+ * line) or a method the file cannot serve (modes from impulse responses).
+ */
+int gc_multi_new_file(const char *path, const char *method, double dt, int n_steps,
+                      const gc_build_options *options, int max_order, gc_multi_convolver **conv,
+                      char *errmsg, size_t errmsg_len);
+
+/**
+ * Another method, time step or run length on the file that gc_multi_new_file read (and
+ * identified) into source, without reading or identifying it again: the same convolver as
+ * gc_multi_new_file with these arguments and source's max_order would make.
+ */
+int gc_multi_new_method(const gc_multi_convolver *source, const char *method, double dt, int n_steps,
+                        const gc_build_options *options, gc_multi_convolver **conv, char *errmsg,
+                        size_t errmsg_len);
+
+/**
+ * The points of a convolver made from a file: node labels, x_i [m] (along the travel) and
+ * y_i [m] (across) from the file's coordinates, in the convolver's order; any of node, x, y
+ * may be NULL. GC_ERROR_INPUT for a convolver made from modes or samples.
+ */
+int gc_multi_points(const gc_multi_convolver *conv, int n_points, int *node, double *x, double *y,
+                    char *errmsg, size_t errmsg_len);
+
+/**
+ * What gc_multi_new_file found in its file: E of eq. (7) of the identified modes alone against
+ * the file's receptances, worst and mean over the receptances, the number of shared poles (all
+ * 0 for a file of impulse responses), each output may be NULL; and into text (clamped as
+ * errmsg; the message on failure) the summary in lines starting "# " (the file and its points,
+ * the identification with E per receptance and per point and the worst pole uncertainty, the
+ * modes), as the driver prints it.
+ */
+int gc_multi_file_summary(const gc_multi_convolver *conv, double *e_worst, double *e_mean, int *n_poles,
+                          char *text, size_t text_len);
+
+/**
  * The modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
  * foundation, default parameters) up to f_max [Hz], seen at an n_x by n_y patch of length x
  * width [m] centred on the belt; point i = iy*n_x + ix at (x[i], y[i]) (x and y may be NULL).

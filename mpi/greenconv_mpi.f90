@@ -14,7 +14,11 @@
 program greenconv_mpi
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use, intrinsic :: iso_c_binding, only: c_ptr, c_f_pointer
-    use mpi_f08
+    use mpi_f08, only: MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Allreduce, &
+                       MPI_IN_PLACE, MPI_INTEGER, MPI_CHARACTER, MPI_MAX, MPI_SUM, MPI_Bcast, MPI_Barrier, MPI_Win, &
+                       MPI_ADDRESS_KIND, MPI_INFO_NULL, MPI_LOCK_SHARED, MPI_Win_allocate, MPI_Win_lock, &
+                       MPI_Fetch_and_op, MPI_Win_unlock, MPI_Win_free, MPI_Send, MPI_Recv, MPI_Probe, MPI_Get_count, &
+                       MPI_Status, MPI_ANY_SOURCE
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
     use greenconv_scene_sweep, only: sweep_plan, variant_outcome, is_sweep_file, read_sweep, check_sweep, &
                                      run_variant, save_record, outcome_text, outcome_from_text, report_check, &

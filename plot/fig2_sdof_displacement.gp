@@ -4,8 +4,8 @@
 #   gnuplot plot/fig2_sdof_displacement.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'" plot/fig2_sdof_displacement.gp
 #
-# Reads DATADIR/sdof_sine_direct.dat and DATADIR/sdof_sine_modal.dat (columns named by
-# the last '#' line: t u_road u f_contact delta, in s m m N m) and writes
+# Reads DATADIR/sdof_sine_direct and _modal, .dat or .bin (plot/lib/column_file.gp; columns
+# named by the last '#' line: t u_road u f_contact delta, in s m m N m) and writes
 # FIGDIR/fig2_sdof_displacement.png.
 #
 # The body moves by tens of micrometres while the road goes +-1 mm, so the figure has two
@@ -20,20 +20,20 @@ if (!exists("figname")) figname = 'fig2_sdof_displacement'
 if (!exists("figtitle")) figtitle = "Displacement of an SDOF system on a sinusoidal road\n(Meftah et al. 2011, Fig. 2)"
 if (!exists("thin")) thin = 40
 
-direct = sprintf('%s/%s_direct.dat', datadir, scene)
-modal = sprintf('%s/%s_modal.dat', datadir, scene)
 output = sprintf('%s/%s.png', figdir, figname)
 
-# Column number of NAME in FILE, from the last '#' line (the column names).
-header(file) = system(sprintf("grep '^#' '%s' | tail -n 1", file))
-column_of(file, name) = sum [i = 2:words(header(file))] (word(header(file), i) eq name ? i - 1 : 0)
-
-do for [file in direct.' '.modal] {
-    if (system(sprintf("test -r '%s' && echo yes", file)) ne 'yes') {
-        print sprintf('fig2: cannot read %s (run the scene first: make run)', file)
+# The runs' column files, text (.dat) or binary (.bin), and how gnuplot reads each.
+load 'plot/lib/column_file.gp'
+direct = column_file(sprintf('%s/%s_direct', datadir, scene))
+modal = column_file(sprintf('%s/%s_modal', datadir, scene))
+do for [method in 'direct modal'] {
+    if (column_file(sprintf('%s/%s_%s', datadir, scene, method)) eq '') {
+        print sprintf('fig2: %s', missing_file(sprintf('%s/%s_%s', datadir, scene, method)))
         exit status 1
     }
 }
+direct_opts = data_options(direct)
+modal_opts = data_options(modal)
 t = column_of(direct, 't')
 u_road = column_of(direct, 'u_road')
 u = column_of(direct, 'u')
@@ -62,22 +62,22 @@ set lmargin 12
 
 # Top: the paper's view.
 set ylabel 'displacement [mm]'
-plot direct using t:(column(u_road)*mm) with lines ls 1 title 'road profile u_{road}', \
-     direct using t:(column(u)*mm) with lines ls 2 notitle, \
-     direct using t:(column(u)*mm) every thin::0 with points ls 2 notitle, \
+plot direct @direct_opts using t:(column(u_road)*mm) with lines ls 1 title 'road profile u_{road}', \
+     direct @direct_opts using t:(column(u)*mm) with lines ls 2 notitle, \
+     direct @direct_opts using t:(column(u)*mm) every thin::0 with points ls 2 notitle, \
      keyentry with linespoints ls 2 title 'body u, standard convolution', \
-     modal using t:(column(u)*mm) with lines ls 3 notitle, \
-     modal using t:(column(u)*mm) every thin::(thin/2) with points ls 3 notitle, \
+     modal @modal_opts using t:(column(u)*mm) with lines ls 3 notitle, \
+     modal @modal_opts using t:(column(u)*mm) every thin::(thin/2) with points ls 3 notitle, \
      keyentry with linespoints ls 3 title 'body u, modal decomposition'
 
 # Bottom: the body alone.
 set ylabel 'body displacement u [mm]'
 set format y '%.3f'
-plot direct using t:(column(u)*mm) with lines ls 2 notitle, \
-     direct using t:(column(u)*mm) every thin::0 with points ls 2 notitle, \
+plot direct @direct_opts using t:(column(u)*mm) with lines ls 2 notitle, \
+     direct @direct_opts using t:(column(u)*mm) every thin::0 with points ls 2 notitle, \
      keyentry with linespoints ls 2 title 'standard convolution', \
-     modal using t:(column(u)*mm) with lines ls 3 notitle, \
-     modal using t:(column(u)*mm) every thin::(thin/2) with points ls 3 notitle, \
+     modal @modal_opts using t:(column(u)*mm) with lines ls 3 notitle, \
+     modal @modal_opts using t:(column(u)*mm) every thin::(thin/2) with points ls 3 notitle, \
      keyentry with linespoints ls 3 title 'modal decomposition'
 
 unset multiplot

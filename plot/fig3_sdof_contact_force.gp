@@ -4,8 +4,8 @@
 #   gnuplot plot/fig3_sdof_contact_force.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'" plot/fig3_sdof_contact_force.gp
 #
-# Reads DATADIR/sdof_sine_direct.dat and DATADIR/sdof_sine_modal.dat (columns named by
-# the last '#' line: t u_road u f_contact delta, in s m m N m) and writes
+# Reads DATADIR/sdof_sine_direct and _modal, .dat or .bin (plot/lib/column_file.gp; columns
+# named by the last '#' line: t u_road u f_contact delta, in s m m N m) and writes
 # FIGDIR/fig3_sdof_contact_force.png.
 
 if (!exists("datadir")) datadir = 'out'
@@ -16,20 +16,20 @@ if (!exists("figname")) figname = 'fig3_sdof_contact_force'
 if (!exists("figtitle")) figtitle = "Contact force of an SDOF system on a sinusoidal road\n(Meftah et al. 2011, Fig. 3)"
 if (!exists("thin")) thin = 40
 
-direct = sprintf('%s/%s_direct.dat', datadir, scene)
-modal = sprintf('%s/%s_modal.dat', datadir, scene)
 output = sprintf('%s/%s.png', figdir, figname)
 
-# Column number of NAME in FILE, from the last '#' line (the column names).
-header(file) = system(sprintf("grep '^#' '%s' | tail -n 1", file))
-column_of(file, name) = sum [i = 2:words(header(file))] (word(header(file), i) eq name ? i - 1 : 0)
-
-do for [file in direct.' '.modal] {
-    if (system(sprintf("test -r '%s' && echo yes", file)) ne 'yes') {
-        print sprintf('fig3: cannot read %s (run the scene first: make run)', file)
+# The runs' column files, text (.dat) or binary (.bin), and how gnuplot reads each.
+load 'plot/lib/column_file.gp'
+direct = column_file(sprintf('%s/%s_direct', datadir, scene))
+modal = column_file(sprintf('%s/%s_modal', datadir, scene))
+do for [method in 'direct modal'] {
+    if (column_file(sprintf('%s/%s_%s', datadir, scene, method)) eq '') {
+        print sprintf('fig3: %s', missing_file(sprintf('%s/%s_%s', datadir, scene, method)))
         exit status 1
     }
 }
+direct_opts = data_options(direct)
+modal_opts = data_options(modal)
 t = column_of(direct, 't')
 f = column_of(direct, 'f_contact')
 if (t == 0 || f == 0 || column_of(modal, 'f_contact') != f) {
@@ -53,11 +53,11 @@ set xlabel 't [s]'
 set ylabel 'contact force f_{contact} [N]'
 set format x '%.2f'
 
-plot direct using t:f with lines ls 2 notitle, \
-     direct using t:f every thin::0 with points ls 2 notitle, \
+plot direct @direct_opts using t:f with lines ls 2 notitle, \
+     direct @direct_opts using t:f every thin::0 with points ls 2 notitle, \
      keyentry with linespoints ls 2 title 'standard convolution', \
-     modal using t:f with lines ls 3 notitle, \
-     modal using t:f every thin::(thin/2) with points ls 3 notitle, \
+     modal @modal_opts using t:f with lines ls 3 notitle, \
+     modal @modal_opts using t:f every thin::(thin/2) with points ls 3 notitle, \
      keyentry with linespoints ls 3 title 'modal decomposition'
 
 set output

@@ -4,25 +4,32 @@
 #   gnuplot plot/tyre_force_map.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'" plot/tyre_force_map.gp
 #
-# Reads DATADIR/tyre_road_exact.dat, _modal.dat and _direct.dat (one row per step and point:
-# t x u_road u f_contact delta f_total, in s m m m N m N) and writes
+# Reads DATADIR/tyre_road_exact, _modal and _direct, .dat or .bin (plot/lib/column_file.gp;
+# one row per step and point: t x u_road u f_contact delta f_total, in s m m m N m N) and writes
 # FIGDIR/tyre_force_map.png.
 
 if (!exists("datadir")) datadir = 'out'
 if (!exists("figdir")) figdir = 'out/figures'
-exact = sprintf('%s/tyre_road_exact.dat', datadir)
-modal = sprintf('%s/tyre_road_modal.dat', datadir)
-direct = sprintf('%s/tyre_road_direct.dat', datadir)
 output = sprintf('%s/tyre_force_map.png', figdir)
-do for [file in exact.' '.modal.' '.direct] {
-    if (system(sprintf("test -r '%s' && echo yes", file)) ne 'yes') {
-        print sprintf('tyre_force_map: cannot read %s (run the scene first: make run)', file)
+# The runs' column files, text (.dat) or binary (.bin), and how gnuplot reads each.
+load 'plot/lib/column_file.gp'
+do for [method in 'exact modal direct'] {
+    if (column_file(sprintf('%s/tyre_road_%s', datadir, method)) eq '') {
+        print sprintf('tyre_force_map: %s', missing_file(sprintf('%s/tyre_road_%s', datadir, method)))
         exit status 1
     }
 }
-# The points of the patch: the distinct x of the first step.
-n_points = int(system(sprintf("awk '!/^#/ && NF {if ($1 != 0) exit; n++} END {print n}' '%s'", exact)))
-x_centre = real(system(sprintf("awk '!/^#/ && NF {if ($1 != 0) exit; s += $2; n++} END {print s/n}' '%s'", exact)))
+exact = column_file(sprintf('%s/tyre_road_exact', datadir))
+modal = column_file(sprintf('%s/tyre_road_modal', datadir))
+direct = column_file(sprintf('%s/tyre_road_direct', datadir))
+exact_opts = data_options(exact)
+modal_opts = data_options(modal)
+direct_opts = data_options(direct)
+# The points of the patch: the rows of the first step (t = 0), and their mean position.
+stats exact @exact_opts using ($1 == 0 ? 1 : 0) nooutput
+n_points = int(STATS_sum)
+stats exact @exact_opts every ::0::(n_points - 1) using 2 nooutput
+x_centre = STATS_mean
 
 system(sprintf("mkdir -p '%s'", figdir))
 set terminal pngcairo size 1000,900 enhanced font 'sans,11'
@@ -41,7 +48,7 @@ set lmargin 12
 set rmargin 14
 set title 'contact force over the patch, 40 ms of the run (exact engine, implicit step): road features cross the patch'
 set xrange [0.10:0.14]
-plot exact using 1:(($2 - x_centre)*1e3):5 with image notitle
+plot exact @exact_opts using 1:(($2 - x_centre)*1e3):5 with image notitle
 
 # Bottom: total force of the three methods.
 unset cblabel
@@ -53,9 +60,9 @@ set key top right box opaque
 set style line 1 lc rgb '#d62728' lw 2
 set style line 2 lc rgb '#1f77b4' lw 1.2 dt 2
 set style line 3 lc rgb '#2ca02c' lw 1.0 dt 3
-plot exact every n_points using 1:($7/1e3) with lines ls 1 title 'exact (modes, implicit step)', \
-     modal every n_points using 1:($7/1e3) with lines ls 2 title 'modal (modes, explicit step)', \
-     direct every n_points using 1:($7/1e3) with lines ls 3 title 'direct (sampled g_{ij}, explicit step)'
+plot exact @exact_opts every n_points using 1:($7/1e3) with lines ls 1 title 'exact (modes, implicit step)', \
+     modal @modal_opts every n_points using 1:($7/1e3) with lines ls 2 title 'modal (modes, explicit step)', \
+     direct @direct_opts every n_points using 1:($7/1e3) with lines ls 3 title 'direct (sampled g_{ij}, explicit step)'
 unset multiplot
 set output
 set print '-'

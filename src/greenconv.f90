@@ -3,7 +3,8 @@
 !> The public facade: `use greenconv` gives what a program calls, and only that: kinds, the
 !> error type and its statuses, structure models (modal sets, the mass-spring, receptances,
 !> roads), identification, convolvers built by `new_convolver`, single-point contact (whole
-!> runs, single steps, streamed blocks), multi-point contact, and scene files. Engines'
+!> runs, single steps, streamed blocks), multi-point contact (convolvers from modes, or from a
+!> universal file of a Green's matrix by `new_green_file_convolver`), and scene files. Engines'
 !> internals, test oracles and benchmarks are not here; the test suite reaches them through
 !> greenconv_api_all, whose extra names are not a supported API.
 !> Method: R. Meftah, D. Duhamel, J. Cesbron, H.P. Yin, "Une methode rapide pour calculer
@@ -23,6 +24,9 @@ module greenconv
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: new_multipoint_convolver => make_multipoint_convolver
+    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
+    use greenconv_conv_green_file, only: green_file_options, green_file_report, new_green_file_convolver, &
+                                         green_file_convolver
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact, contact_state, &
                                         start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
@@ -49,6 +53,9 @@ module greenconv
     public :: contact_state, start_contact, contact_block
     ! multi-point contact
     public :: point_modes, multipoint_convolver, new_multipoint_convolver
+    ! multi-point convolvers from a universal file of a Green's matrix (G_ij(f) or g_ij(t))
+    public :: new_green_file_convolver, green_file_options, green_file_report
+    public :: green_options, green_structure, read_green_structure, green_file_convolver
     public :: newton_options, multi_contact_response, run_multi_contact
     ! scene files
     public :: scene_type, read_scene, check_scene, run_scene, run_scene_file

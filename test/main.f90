@@ -30,11 +30,13 @@ program greenconv_tests
     use test_writer_mod, only: collect_writer
     use test_plate_mod, only: collect_plate
     use test_spectra_mod, only: collect_spectra
+    use test_scenespectra_mod, only: collect_scenespectra
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
+    use test_patchscene_mod, only: collect_patchscene
     use test_reliability_mod, only: collect_reliability
     implicit none
 
@@ -63,11 +65,13 @@ program greenconv_tests
                        new_testsuite('writer', collect_writer), &
                        new_testsuite('plate', collect_plate), &
                        new_testsuite('spectra', collect_spectra), &
+                       new_testsuite('scenespectra', collect_scenespectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('mlfit', collect_mlfit), &
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
+                       new_testsuite('patchscene', collect_patchscene), &
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.

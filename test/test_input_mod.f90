@@ -623,7 +623,7 @@ contains
         type(scene_variable), allocatable :: table(:)
         integer :: i, m, n
 
-        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file' or 'tyre'", model_names())
+        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'", model_names())
         if (allocated(error)) return
         models = structure_models()
         table = scene_table()

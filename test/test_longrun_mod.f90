@@ -539,7 +539,9 @@ contains
     !> the static state u = k_c*h/(K + k_c), F = F0 + K*u; (b) all 100 rows are finite and the
     !> last is at t = 9900 s; (c) the peak resident memory (VmHWM, reset through
     !> /proc/self/clear_refs) stays within 64 MB of the resident memory before the run, where
-    !> the histories of 1e8 steps would take 4 GB.
+    !> the histories of 1e8 steps would take 4 GB; with the force spectra on (20 Hz to 4 kHz:
+    !> Welch segments of 32768 steps), whose file must say that every step went into its
+    !> 1 + (1e8 - 32768)/16384 = 6102 segments.
     subroutine test_hundred_million(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -548,12 +550,13 @@ contains
         type(scene_type) :: scene
         type(error_type), allocatable :: failure
         real(dp), allocatable :: rows(:, :)
+        character(len=256), allocatable :: lines(:)
         real(dp) :: u_static, worst, seconds
         integer(int64) :: before_kb, peak_kb, clock_start, clock_end, clock_rate
         logical :: measured
 
         text = tab1_scene(scene="name = 'long', output_dir = '"//scratch//"', dt = 1.0e-4, n_steps = 100000000, " &
-                          //'output_every = 1000000', &
+                          //'output_every = 1000000, spectra = .true.', &
                           contact="stiffness = 1.0e6, exponent = 1.0, scheme = 'implicit'", &
                           convolution="methods = 'exact'")
         scene = scene_from_text('long.nml', text)
@@ -572,6 +575,13 @@ contains
         call check(error, size(rows, 2) == 100 .and. all(ieee_is_finite(rows)), '100 finite rows')
         if (allocated(error)) return
         call check(error, rows(1, 100), 9900.0_dp, 'time of the last row [s]', thr=1.0e-12_dp, rel=.true.)
+        if (allocated(error)) return
+        call read_lines(scratch//'/long_exact_spectra.dat', lines)
+        call check(error, size(lines) > 3, 'the spectra file is written')
+        if (allocated(error)) return
+        call check(error, index(lines(3), 'segments of 32768 samples') > 0 .and. &
+                   index(lines(3), ' '//trim(adjustl(int_label(1 + (100000000 - 32768)/16384)))//' segments averaged') &
+                   > 0, 'spectra: '//trim(lines(3)))
         if (allocated(error)) return
         u_static = k_c*h/(stiffness + k_c)
         worst = max(maxval(abs(rows(3, 2:) - u_static))/u_static, &

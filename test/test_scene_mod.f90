@@ -421,7 +421,8 @@ contains
         call check(error, allocated(run_error), 'a tyre on the sine road is refused when the scene is read')
         if (allocated(error)) return
         call check(error, index(run_error%message, "bad_tyre.nml:2: &structure model: expected task = 'contact' " &
-                                //"and &road profile = 'file' for model 'tyre'") > 0, 'message: '//run_error%message)
+                                //"and &road profile = 'file' or 'texture' for model 'tyre'") > 0, &
+                   'message: '//run_error%message)
         if (allocated(error)) return
         call scene_from_text('bad_road.nml', tab1_scene(road="profile = 'file', road_file = 'data/road_sample.dat', " &
                                                         //'speed = 1.0e4'), scene, run_error)

@@ -9,7 +9,10 @@ module test_spectra_mod
     use greenconv_core_error, only: error_type
     use greenconv_core_random, only: random_stream
     use greenconv_io_files, only: make_directory
-    use greenconv_io_spectra, only: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels
+    use greenconv_io_spectra, only: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels, &
+                                    welch_accumulator, start_welch, add_welch_samples, welch_average, band_centre, &
+                                    first_band, last_band, nominal_frequency, segment_for_band, lowest_resolved_band, &
+                                    highest_band_below
     implicit none
     private
 
@@ -31,7 +34,11 @@ contains
                                   test_white_noise), &
                      new_unittest('Parseval: bands add up to the mean square, PSD to the windowed one', &
                                   test_parseval), &
-                     new_unittest('a record too short for the lowest band is refused', test_too_short)]
+                     new_unittest('a record too short for the lowest band is refused', test_too_short), &
+                     new_unittest('nominal names; the lowest band a record resolves, the highest below Nyquist', &
+                                  test_band_limits), &
+                     new_unittest('Welch fed in uneven pieces, two channels: the one-piece PSD bit for bit', &
+                                  test_pieces)]
     end subroutine collect_spectra
 
     subroutine test_bands(error)
@@ -162,6 +169,87 @@ contains
         if (allocated(error)) return
         call check(error, index(fail%message, 'raise f_low to at least') > 0, 'unhelpful message: '//fail%message)
     end subroutine test_too_short
+
+    !> IEC 61260-1's nominal names 10 Hz .. 20 kHz; a range given by nominal names selects
+    !> those bands; the lowest band a record resolves is the first whose segment fits it; the
+    !> highest band below a Nyquist frequency is the last whose upper edge does.
+    subroutine test_band_limits(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: names(34) = [10.0_dp, 12.5_dp, 16.0_dp, 20.0_dp, 25.0_dp, 31.5_dp, 40.0_dp, 50.0_dp, &
+            63.0_dp, 80.0_dp, 100.0_dp, 125.0_dp, 160.0_dp, 200.0_dp, 250.0_dp, 315.0_dp, 400.0_dp, 500.0_dp, &
+            630.0_dp, 800.0_dp, 1000.0_dp, 1250.0_dp, 1600.0_dp, 2000.0_dp, 2500.0_dp, 3150.0_dp, 4000.0_dp, &
+            5000.0_dp, 6300.0_dp, 8000.0_dp, 10000.0_dp, 12500.0_dp, 16000.0_dp, 20000.0_dp]
+        integer, parameter :: records(4) = [2000, 6000, 10000, 100000000]
+        integer :: x, i, low, top
+        real(dp) :: nyquist
+
+        do x = -20, 13
+            call check(error, abs(nominal_frequency(band_centre(x)) - names(x + 21)) < 1.0e-9_dp*names(x + 21) &
+                       .and. first_band(names(x + 21)) == x .and. last_band(names(x + 21)) == x, &
+                       'band '//int_label(x)//': nominal name or the band its name selects')
+            if (allocated(error)) return
+        end do
+        do i = 1, size(records)
+            low = lowest_resolved_band(records(i), dt, 8)
+            call check(error, segment_for_band(low, dt, 8) <= records(i) .and. &
+                       segment_for_band(low - 1, dt, 8) > records(i), 'lowest band of '//int_label(records(i)) &
+                       //' samples')
+            if (allocated(error)) return
+        end do
+        call note('lowest band of 6000 samples at 20 kHz [Hz]', band_centre(lowest_resolved_band(6000, dt, 8)))
+        do i = 1, 50
+            nyquist = 10.0_dp**(1.0_dp + 0.077_dp*i)
+            top = highest_band_below(nyquist)
+            call check(error, band_centre(top)*10.0_dp**0.05_dp <= nyquist .and. &
+                       band_centre(top + 1)*10.0_dp**0.05_dp > nyquist, 'highest band below the Nyquist frequency')
+            if (allocated(error)) return
+        end do
+    end subroutine test_band_limits
+
+    !> Two channels (noise and a sine) fed to the accumulator in pieces of 1, 999, 4096 and
+    !> 3 samples and the rest give each channel's `welch_psd` bit for bit.
+    subroutine test_pieces(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(welch_accumulator) :: welch
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: samples(:, :), psd(:, :), whole(:)
+        integer, parameter :: cuts(5) = [0, 1, 1000, 5096, 5099]
+        real(dp) :: df, df_whole
+        integer :: j, c, n_segments
+
+        allocate (samples(30000, 2))
+        samples(:, 1) = gaussian_noise(30000, 1.0_dp, 7)
+        samples(:, 2) = [(2.0_dp*sin(2.0_dp*pi*440.0_dp*j*dt), j=0, 29999)]
+        call start_welch(welch, 2048, 2)
+        do j = 1, size(cuts) - 1
+            call add_welch_samples(welch, samples(cuts(j) + 1:cuts(j + 1), :))
+        end do
+        call add_welch_samples(welch, samples(cuts(size(cuts)) + 1:, :))
+        call welch_average(welch, dt, psd, df, fail)
+        call check(error, .not. allocated(fail) .and. lbound(psd, 1) == 0 .and. ubound(psd, 1) == 1024, &
+                   'welch_average: lines 0..N/2')
+        if (allocated(error)) return
+        do c = 1, 2
+            call welch_psd(samples(:, c), dt, 2048, whole, df_whole, n_segments, fail)
+            call check(error, .not. allocated(fail) .and. n_segments == welch%n_segments .and. df == df_whole .and. &
+                       all(psd(:, c) == whole), 'channel '//int_label(c)//' differs from welch_psd')
+            if (allocated(error)) return
+        end do
+        call note('segments', real(n_segments, dp))
+    end subroutine test_pieces
+
+    !> An integer as text.
+    pure function int_label(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+
+        character(len=12) :: buffer
+
+        write (buffer, '(i0)') i
+        text = trim(buffer)
+    end function int_label
 
     !> n samples of Gaussian noise of standard deviation sigma (Box-Muller on SplitMix64).
     function gaussian_noise(n, sigma, seed) result(x)

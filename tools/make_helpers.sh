@@ -22,7 +22,10 @@
 #       then each built example: c_contact and legacy_f77 compare their results with
 #       those files (the directory is c_contact's argument, with data/sample_receptance.frf,
 #       and legacy_f77's standard input); cxx_header, omp_threads, c_patch and
-#       legacy_patch check themselves.
+#       legacy_patch check themselves. When c_patch_file or legacy_patch_file is among
+#       them, DRIVER also runs data/patch_road.nml (the shipped 2D patch, into a folder
+#       patch/ beside the first), whose files those two compare their own time loops with
+#       (the folder is c_patch_file's argument and legacy_patch_file's standard input).
 #
 #   tools/make_helpers.sh install DESTDIR PREFIX VERSION BUILD LIBS_PRIVATE
 #       Install the driver, libgreenconv.a, libgreenconv.so.VERSION (with its soname and
@@ -35,7 +38,9 @@
 #       library, both with the flags of `pkg-config greenconv`, and run them against
 #       DRIVER's output for data/sdof_sine.nml; the same for example/c_patch.c and
 #       example/legacy_patch.f (the multi-point patch, checked against the library's whole
-#       run). Uses $MAKE, $CC and $FC.
+#       run) and example/c_patch_file.c and example/legacy_patch_file.f (the shipped 2D
+#       patch from its file, checked against DRIVER's output for data/patch_road.nml).
+#       Uses $MAKE, $CC and $FC.
 #
 #   tools/make_helpers.sh doc-check SOURCE...
 #       Check that every public entity of the sources (modules; types, procedures and
@@ -316,11 +321,35 @@ driver_reference() {
     "$1" "$2/scene.nml" >"$2/driver.log" 2>&1 || { cat "$2/driver.log" >&2; die "$1 failed on $EXAMPLE_SCENE"; }
 }
 
+# The shipped 2D patch from a Green's matrix file: c_patch_file and legacy_patch_file run it
+# with their own time loops and compare with the driver's files for it.
+PATCH_SCENE=data/patch_road.nml
+
+# patch_reference DRIVER DIR: DRIVER's output files for PATCH_SCENE, written into DIR/patch
+# (the scene identifies its file once, about 5 s).
+patch_reference() {
+    mkdir -p "$2/patch"
+    redirected_scene "$PATCH_SCENE" "$2/patch" >"$2/patch/scene.nml"
+    "$1" "$2/patch/scene.nml" >"$2/patch/driver.log" 2>&1 \
+        || { cat "$2/patch/driver.log" >&2; die "$1 failed on $PATCH_SCENE"; }
+}
+
+# needs_patch PROGRAM...: whether one of the programs compares with patch_reference's files.
+needs_patch() {
+    local program
+    for program in "$@"; do
+        case ${program##*/} in c_patch_file | legacy_patch_file) return 0 ;; esac
+    done
+    return 1
+}
+
 # run_example PROGRAM REFERENCE_DIR: run one example the way it takes its input.
 run_example() {
     case ${1##*/} in
         c_contact) "$1" "$2" data/sample_receptance.frf ;;
         legacy_f77) printf '%s\n' "$2" | "$1" ;;
+        c_patch_file) "$1" "$2/patch" ;;
+        legacy_patch_file) printf '%s\n' "$2/patch" | "$1" ;;
         *) "$1" ;;
     esac
 }
@@ -333,7 +362,8 @@ cmd_examples() {
     CHECK_TMP=$tmp
     trap 'rm -rf "$CHECK_TMP"' EXIT
     driver_reference "$driver" "$tmp/reference"
-    say "examples, against $driver's output for $EXAMPLE_SCENE"
+    if needs_patch "$@"; then patch_reference "$driver" "$tmp/reference"; fi
+    say "examples, against $driver's output for $EXAMPLE_SCENE (and $PATCH_SCENE)"
     for example in "$@"; do
         if ! run_example "$example" "$tmp/reference"; then
             say "FAIL: $example"
@@ -364,6 +394,7 @@ cmd_valgrind() {
     [ -x "$driver" ] || die "$driver not built (run make lib)"
     tmp=$(mktemp -d "${TMPDIR:-/tmp}/greenconv-valgrind.XXXXXX")
     driver_reference "$driver" "$tmp/reference"
+    if needs_patch "$@"; then patch_reference "$driver" "$tmp/reference"; fi
     for scene in data/*.nml; do
         name=${scene##*/}
         name=${name%.nml}
@@ -379,6 +410,8 @@ cmd_valgrind() {
         case ${program##*/} in
             c_contact) vg_run "$tmp/c_contact.log" "$program" "$tmp/reference" data/sample_receptance.frf || failed=1 ;;
             legacy_f77) vg_run "$tmp/legacy_f77.log" "$program" <<<"$tmp/reference" || failed=1 ;;
+            c_patch_file) vg_run "$tmp/c_patch_file.log" "$program" "$tmp/reference/patch" || failed=1 ;;
+            legacy_patch_file) vg_run "$tmp/legacy_patch_file.log" "$program" <<<"$tmp/reference/patch" || failed=1 ;;
             *) vg_run "$tmp/${program##*/}.log" "$program" || failed=1 ;;
         esac
     done
@@ -485,9 +518,22 @@ cmd_install_test() {
         "$prefix/lib/libgreenconv.a" $private \
         || die "building example/legacy_patch.f against the installed library failed"
     run_example "$tmp/legacy_patch" || die "the installed Fortran 77 patch example failed"
+    # The shipped 2D patch from its file, against the driver's run of the scene.
+    patch_reference "$driver" "$tmp/reference"
+    # shellcheck disable=SC2086
+    "${CC:-cc}" -O2 -o "$tmp/c_patch_file" example/c_patch_file.c $cflags $libs -lm \
+        || die "building example/c_patch_file.c against the installed library failed"
+    LD_LIBRARY_PATH=$prefix/lib run_example "$tmp/c_patch_file" "$tmp/reference" \
+        || die "the installed C patch-file example failed"
+    # shellcheck disable=SC2086
+    "${FC:-gfortran}" -O2 -ffixed-form -J"$tmp" -o "$tmp/legacy_patch_file" example/legacy_patch_file.f $cflags \
+        "$prefix/lib/libgreenconv.a" $private \
+        || die "building example/legacy_patch_file.f against the installed library failed"
+    run_example "$tmp/legacy_patch_file" "$tmp/reference" || die "the installed Fortran 77 patch-file example failed"
     say "ok: C examples (shared library) and Fortran 77 examples (static library), built with" \
-        "pkg-config from the installed prefix, match the driver (c_contact, legacy_f77) and the" \
-        "library's whole multi-point run (c_patch, legacy_patch)"
+        "pkg-config from the installed prefix, match the driver (c_contact, legacy_f77, and the" \
+        "shipped patch from its file: c_patch_file, legacy_patch_file) and the library's whole" \
+        "multi-point run (c_patch, legacy_patch)"
 }
 
 # ---------------------------------------------------------------------------------

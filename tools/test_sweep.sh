@@ -1,11 +1,15 @@
 #!/bin/bash
 # tools/test_sweep.sh SERIAL_DRIVER MPI_DRIVER -- the sweep checks of `make test` (issue 17).
-# Runs data/tyre_sweep.nml (15 variants) in scratch folders and checks that:
-#   the table is the same byte for byte on 1 rank, on 2 ranks and with the serial driver;
-#   its rows are in variant order (1..15);
-#   a rerun skips every finished variant, and an edited sweep reruns only what changed;
+# Runs data/tyre_sweep.nml (15 variants, with the 1/3-octave level columns) in scratch
+# folders and checks that:
+#   the table, level columns included, is the same byte for byte on 1 rank, on 2 ranks and
+#   with the serial driver; its rows are in variant order (1..15);
+#   `--check` checks every variant, prints the count and runs nothing;
+#   a rerun skips every finished variant; an edited sweep reruns only what changed, and an
+#   edited road file reruns every variant that reads it;
 #   a variant that diverges (status 3) or fails its check (status 2) is recorded in its
-#   row while the others complete, and `--check` exits 2 naming the bad variant.
+#   row (levels nan) while the others complete, with the same table and history files on
+#   1 and 2 ranks, and `--check` exits 2 naming the bad variant.
 # Prints "ok: ..." or "FAIL: ..." per check and ends with "sweep tests: N passed, N failed".
 set -u
 serial=$(realpath "$1"); mpi=$(realpath "$2"); top=$PWD
@@ -17,10 +21,18 @@ passed=0; failed=0
 check() { if eval "$2"; then echo "ok: $1"; passed=$((passed + 1)); else echo "FAIL: $1"; failed=$((failed + 1)); fi; }
 
 # One folder per run, each with the same scene file name, so the tables may be compared whole.
-for run in serial np1 np2; do
+for run in serial np1 np2 check; do
     mkdir -p "$work/$run"
     sed "s|'data/|'$top/data/|" "$top/data/tyre_sweep.nml" > "$work/$run/sweep.nml"
 done
+# np2 reads its own copy of the road file, edited below
+cp "$top/data/road_sample.dat" "$work/np2/road.dat"
+sed -i "s|'$top/data/road_sample.dat'|'road.dat'|" "$work/np2/sweep.nml"
+(cd "$work/check" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --check sweep.nml > log 2>&1); s=$?
+check "--check on 2 ranks: status 0, the count once, nothing run ($s)" \
+    '[ $s -eq 0 ] && [ "$(grep -c "15 variants of road.speed contact.stiffness, methods modal exact; 15 checked ok, 0 bad" \
+    "$work/check/log")" -eq 1 ] && [ ! -e "$work/check/out" ]'
+
 (cd "$work/serial" && "$serial" --quiet sweep.nml > log 2>&1); s1=$?
 (cd "$work/np1" && "$MPIRUN" -np 1 "$mpi" --quiet sweep.nml > log 2>&1); s2=$?
 (cd "$work/np2" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet sweep.nml > log 2>&1); s3=$?
@@ -32,6 +44,12 @@ check "rows are in variant order 1..15" \
     '[ "$(grep -v "^#" "$work/np2/$table" | awk "{print \$1}" | tr "\n" " ")" = "$(seq 1 15 | tr "\n" " ")" ]'
 check "every variant ended with status 0" \
     '[ "$(grep -v "^#" "$work/np2/$table" | awk "\$9 != 0 || \$15 != 0" | wc -l)" -eq 0 ]'
+bands="800 1000 1250 1600 2000 2500 3150 4000 5000"
+names=$(for m in modal exact; do for b in $bands; do printf 'L%s_%s ' "$b" "$m"; done; done)
+check "the level columns L800_modal .. L5000_exact end the header" \
+    '[ "$(grep "^# variant" "$work/np2/$table" | awk "{for (i = 17; i <= NF; i++) printf \"%s \", \$i}")" = "$names" ]'
+check "every row has 33 columns, its 18 levels numbers (dB re 1 N)" \
+    '[ "$(grep -v "^#" "$work/np2/$table" | awk "NF != 33 { bad++ } { for (i = 16; i <= 33; i++) if (\$i !~ /^-?[0-9]+\.[0-9][0-9][0-9][0-9]$/) bad++ } END { print bad + 0 }")" -eq 0 ]'
 
 # Resume: a rerun skips all 15; editing one speed (30 -> 35 m/s) reruns its 3 variants only.
 (cd "$work/np2" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet sweep.nml > log2 2>&1)
@@ -45,7 +63,17 @@ check "and runs the 3 edited ones (3 new records)" \
     '[ "$(ls "$work/np2/out/tyre_sweep_sweep.d" | wc -l)" -eq $((records + 3)) ]'
 check "the edited rows show 35.0" '[ "$(grep -c "^1[345] *35.0 " "$work/np2/$table")" -eq 3 ]'
 check "the unchanged rows are as before" \
-    'cmp -s <(head -n 15 "$work/np1/$table" | tail -n 12) <(head -n 15 "$work/np2/$table" | tail -n 12)'
+    'cmp -s <(grep -v "^#" "$work/np1/$table" | head -n 12) <(grep -v "^#" "$work/np2/$table" | head -n 12)'
+
+# An edited road file (heights doubled from x = 1.0 to 1.2 m, which every variant rolls
+# over) reruns all 15 variants, though the sweep file did not change.
+cp "$work/np2/$table" "$work/np2/before.dat"
+awk '!/^#/ && $1 >= 1.0 && $1 <= 1.2 { printf "%7.3f   %.7E\n", $1, 2*$2; next } { print }' "$top/data/road_sample.dat" \
+    > "$work/np2/road.dat"
+(cd "$work/np2" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet sweep.nml > log4 2>&1)
+check "an edited road file reruns every variant (none skipped)" 'grep -q "0 already done (skipped)" "$work/np2/log4"'
+check "and every row's rms force changed" \
+    '[ "$(paste <(grep -v "^#" "$work/np2/before.dat") <(grep -v "^#" "$work/np2/$table") | awk "\$6 != \$39" | wc -l)" -eq 15 ]'
 
 # Failures: a stiffness that makes the explicit step diverge (status 3 at its step) and a
 # damping ratio out of range (status 2, found by the check); the other variants complete.
@@ -76,15 +104,29 @@ cat > "$work/fail/fail.nml" <<'NML'
 &sweep
     contact.stiffness = 1.0e6, 1.0e14
     structure.damping_ratio = 0.02, 1.5
+    spectra = .true., f_low = 500.0, f_high = 2000.0, histories = .true.
 /
 NML
+mkdir -p "$work/fail1" && cp "$work/fail/fail.nml" "$work/fail1/"
 (cd "$work/fail" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet fail.nml > log 2>&1); s=$?
+(cd "$work/fail1" && "$MPIRUN" -np 1 "$mpi" --quiet fail.nml > log 2>&1)
 ftable="$work/fail/out/fail_sweep.dat"
 check "a sweep with failing variants ends with status 0 and writes its table ($s)" '[ $s -eq 0 ] && [ -f "$ftable" ]'
 row() { grep -v '^#' "$ftable" | sed -n "${1}p" | awk '{print $8, $9, $14, $15}'; }
-check "variant 1 completes (status 0)" '[ "$(row 1)" = "0 0 0 0" ]'
+levels() { grep -v '^#' "$ftable" | sed -n "${1}p" | awk '{for (i = 16; i <= NF; i++) printf "%s ", ($i == "nan" ? "nan" : "L")}'; }
+check "variant 1 completes (status 0), its 14 levels numbers" \
+    '[ "$(row 1)" = "0 0 0 0" ] && [ "$(levels 1)" = "$(printf "L %.0s" $(seq 14))" ]'
 check "variant 3 diverges: status 3 and its step" '[ "$(row 3 | awk "{print \$1, \$3}")" = "3 3" ] && [ "$(row 3 | awk "{print \$2}")" -gt 0 ]'
-check "variants 2 and 4 fail their check: status 2" '[ "$(row 2)" = "2 0 2 0" ] && [ "$(row 4)" = "2 0 2 0" ]'
+check "variant 3's levels: nan for both methods, which diverged" '[ "$(levels 3)" = "$(printf "nan %.0s" $(seq 14))" ]'
+check "variants 2 and 4 fail their check: status 2, levels nan" \
+    '[ "$(row 2)" = "2 0 2 0" ] && [ "$(row 4)" = "2 0 2 0" ] && [ "$(levels 2)" = "$(levels 3)" ] && [ "$(levels 4)" = "$(levels 3)" ]'
+check "1 and 2 ranks: the same table with failures, byte for byte" 'cmp -s "$ftable" "$work/fail1/out/fail_sweep.dat"'
+check "histories: fail_v{1,3}_{direct,modal}.dat only (none for variants that failed their check)" \
+    '[ "$(cd "$work/fail/out" && ls fail_v*)" = "$(printf "fail_v1_direct.dat\nfail_v1_modal.dat\nfail_v3_direct.dat\nfail_v3_modal.dat")" ]'
+same_histories() { for f in "$work"/fail/out/fail_v*; do cmp -s "$f" "$work/fail1/out/${f##*/}" || return 1; done; }
+check "histories: the same files on 1 and 2 ranks, byte for byte" same_histories
+check "the diverged variant's history stops at its fault step" \
+    '[ "$(grep -vc "^#" "$work/fail/out/fail_v3_direct.dat")" -le "$(row 3 | awk "{print \$2}")" ]'
 check "the bad variant is named with its line" 'grep -q "fail.nml (variant 2):[0-9]*: &structure damping_ratio" "$work/fail/log"'
 (cd "$work/fail" && "$serial" --check fail.nml > clog 2>&1); s=$?
 check "--check counts the variants and exits 2 on a bad one ($s)" '[ $s -eq 2 ] && grep -q "4 variants of .* 2 checked ok, 2 bad" "$work/fail/clog"'

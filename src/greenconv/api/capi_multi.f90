@@ -17,7 +17,8 @@ module greenconv_capi_multi
     use greenconv_api_library, only: default_truncation_tol
     use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
-                                          run_multi_box
+                                          run_multi_box, file_multi_box, method_multi_box, check_file_box, &
+                                          file_e_modes
     use greenconv_capi, only: gc_build_options, finish, from_c, to_c
     implicit none
     private
@@ -25,11 +26,11 @@ module greenconv_capi_multi
     public :: gc_multi_new_modes, gc_multi_new_samples, gc_multi_plate_patch, gc_multi_free, gc_multi_delete
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
-    public :: gc_multi_run_contact
+    public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
 
     !> What a NULL handle's message says.
-    character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes or ' &
-                                                 //'gc_multi_new_samples'
+    character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
+                                                 //'gc_multi_new_samples or gc_multi_new_file'
 
 contains
 
@@ -237,6 +238,183 @@ contains
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_plate_patch
+
+    !> int gc_multi_new_file(const char *path, const char *method, double dt, int n_steps,
+    !> const gc_build_options *options, int max_order, gc_multi_convolver **conv, char *errmsg,
+    !> size_t errmsg_len): a convolver on a universal file of a Green's matrix, its receptances
+    !> identified with shared poles (greenconv_conv_green_file).
+    function gc_multi_new_file(path, method, dt, n_steps, options, max_order, conv, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_new_file') result(status)
+        !> Path of the universal file (NUL-terminated).
+        type(c_ptr), value, intent(in) :: path
+        !> Method: "modal" (= "recursive"), "exact", "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options (truncation_tol; accuracy is not used), or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Largest order of the pole fit's stabilisation diagram, or 0 for the library's default (30).
+        integer(c_int), value, intent(in) :: max_order
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_new_file'
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => null()
+        call start_handle(caller, conv, method, error)
+        if (allocated(error)) then
+            continue
+        else if (.not. c_associated(path)) then
+            call fatal_error(error, caller//': path is NULL: pass the name of a universal file')
+        else
+            call file_multi_box(caller, from_c(path), from_c(method), dt, tolerance_of(options), int(n_steps), &
+                                int(max_order), box, error)
+        end if
+        status = made(box, conv, error, errmsg, errmsg_len)
+    end function gc_multi_new_file
+
+    !> int gc_multi_new_method(const gc_multi_convolver *source, const char *method, double dt,
+    !> int n_steps, const gc_build_options *options, gc_multi_convolver **conv, char *errmsg,
+    !> size_t errmsg_len): another method (or time step) on the file gc_multi_new_file read
+    !> into source, without identifying it again.
+    function gc_multi_new_method(source, method, dt, n_steps, options, conv, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_new_method') result(status)
+        !> A convolver made by gc_multi_new_file (or by this function).
+        type(c_ptr), value, intent(in) :: source
+        !> Method: "modal" (= "recursive"), "exact", "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options (truncation_tol; accuracy is not used), or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_new_method'
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box, from
+
+        box => null()
+        call start_handle(caller, conv, method, error)
+        if (.not. allocated(error)) then
+            from => box_of(source)
+            call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, -1, error)
+            if (.not. allocated(error)) call method_multi_box(caller, from, from_c(method), dt, &
+                                                              tolerance_of(options), int(n_steps), box, error)
+        end if
+        status = made(box, conv, error, errmsg, errmsg_len)
+    end function gc_multi_new_method
+
+    !> int gc_multi_points(const gc_multi_convolver *conv, int n_points, int *node, double *x,
+    !> double *y, char *errmsg, size_t errmsg_len): the node labels and positions of the points
+    !> of a convolver made from a file, in the convolver's order (any output may be NULL).
+    function gc_multi_points(conv, n_points, node, x, y, errmsg, errmsg_len) bind(c, name='gc_multi_points') &
+        result(status)
+        !> A convolver made by gc_multi_new_file or gc_multi_new_method.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Where the node labels go (n_points values), or NULL.
+        type(c_ptr), value, intent(in) :: node
+        !> Where x_i [m] (along the travel) goes (n_points values), or NULL.
+        type(c_ptr), value, intent(in) :: x
+        !> Where y_i [m] (across) goes (n_points values), or NULL.
+        type(c_ptr), value, intent(in) :: y
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        integer(c_int), pointer :: labels(:)
+        real(c_double), pointer :: out(:)
+
+        box => box_of(conv)
+        call check_box('gc_multi_points', null_handle, box, int(n_points), error)
+        if (.not. allocated(error)) call check_file_box('gc_multi_points', box, error)
+        if (.not. allocated(error)) then
+            if (c_associated(node)) then
+                call c_f_pointer(node, labels, [n_points])
+                labels(:) = int(box%green%matrix%node, c_int)
+            end if
+            if (c_associated(x)) then
+                call c_f_pointer(x, out, [n_points])
+                out(:) = box%green%matrix%x
+            end if
+            if (c_associated(y)) then
+                call c_f_pointer(y, out, [n_points])
+                out(:) = box%green%matrix%y
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_points
+
+    !> int gc_multi_file_summary(const gc_multi_convolver *conv, double *e_worst, double *e_mean,
+    !> int *n_poles, char *text, size_t text_len): what gc_multi_new_file found in its file: E of
+    !> eq. (7) of the identified modes alone, worst and mean over the receptances, the number of
+    !> shared poles (all 0 for a file of impulse responses), and the summary in "# " lines
+    !> (the file, its points, the identification, the modes) into text (the message on failure).
+    function gc_multi_file_summary(conv, e_worst, e_mean, n_poles, text, text_len) &
+        bind(c, name='gc_multi_file_summary') result(status)
+        !> A convolver made by gc_multi_new_file or gc_multi_new_method.
+        type(c_ptr), value, intent(in) :: conv
+        !> Where the worst E goes, or NULL.
+        type(c_ptr), value, intent(in) :: e_worst
+        !> Where the mean E goes, or NULL.
+        type(c_ptr), value, intent(in) :: e_mean
+        !> Where the number of shared poles goes, or NULL.
+        type(c_ptr), value, intent(in) :: n_poles
+        !> Buffer for the summary, or NULL.
+        type(c_ptr), value, intent(in) :: text
+        !> Size of the buffer [bytes].
+        integer(c_size_t), value, intent(in) :: text_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+        real(c_double), pointer :: value_out
+        integer(c_int), pointer :: count_out
+        real(dp) :: worst, mean
+        integer :: poles
+
+        box => box_of(conv)
+        call check_box('gc_multi_file_summary', null_handle, box, -1, error)
+        if (.not. allocated(error)) call check_file_box('gc_multi_file_summary', box, error)
+        status = finish(error, text, text_len)
+        if (allocated(error)) return
+        call file_e_modes(box%green, worst, mean, poles)
+        if (c_associated(e_worst)) then
+            call c_f_pointer(e_worst, value_out)
+            value_out = worst
+        end if
+        if (c_associated(e_mean)) then
+            call c_f_pointer(e_mean, value_out)
+            value_out = mean
+        end if
+        if (c_associated(n_poles)) then
+            call c_f_pointer(n_poles, count_out)
+            count_out = int(poles, c_int)
+        end if
+        call to_c(box%green%summary(), text, text_len)
+    end function gc_multi_file_summary
 
     !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing).
     subroutine gc_multi_free(conv) bind(c, name='gc_multi_free')

@@ -3,8 +3,9 @@
 !> greenconv_api_multi_handle.
 !>
 !> A multi-point convolver is an `INTEGER*8` handle (0: none), made by `GCMMOD` (poles,
-!> residues and mode shapes at the points) or `GCMSMP` (samples g_ij(m*dt)), freed by
-!> `GCMFRE`. Every routine returns `IERR` (0 success, 2 bad input or a 0 handle, 3 a step
+!> residues and mode shapes at the points), `GCMSMP` (samples g_ij(m*dt)) or `GCMFIL` (a
+!> universal file of a Green's matrix; `GCMMTH` another method on the file already read),
+!> freed by `GCMFRE`. Every routine returns `IERR` (0 success, 2 bad input or a 0 handle, 3 a step
 !> that diverged or did not converge) and a message `ERRMSG` (blank on success). Arrays are
 !> Fortran's: SHAPE(NC, NMODE), G(NSAMP, NC, NC) with G(M+1, I, J) = g_ij(M*DT),
 !> ROAD(NSTEP, NC), W0(NC, NC). SI units: poles [rad/s], g [m/(N*s)], k_c [N/m^p], forces [N],
@@ -18,15 +19,16 @@ module greenconv_legacy_multi
     use greenconv_model_point_modes, only: point_modes
     use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
-                                          run_multi_box
+                                          run_multi_box, file_multi_box, method_multi_box, check_file_box, &
+                                          file_e_modes
     implicit none
     private
 
     public :: gcmmod, gcmsmp, gcmplt, gcmfre, gcmnpt, gcmhis, gcmpsh, gcmw0, gcmrst, gcmdsc
-    public :: gcmopt, gcmbeg, gcmstp, gcmrun
+    public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum
 
     !> What a 0 handle's message says.
-    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD or GCMSMP'
+    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP or GCMFIL'
 
 contains
 
@@ -111,6 +113,124 @@ contains
         end if
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmsmp
+
+    !> Multi-point convolver on a universal file of a Green's matrix: its receptances identified
+    !> with shared poles (or its impulse responses, 'direct' and 'fft' only), at its nodes.
+    subroutine gcmfil(path, method, dt, nstep, tol, maxord, handle, ierr, errmsg)
+        !> Path of the universal file (trailing blanks ignored).
+        character(len=*), intent(in) :: path
+        !> Method: 'modal' (= 'recursive'), 'exact', 'direct' or 'fft' (any case).
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Truncation fraction of max |g_ij| for 'direct' and 'fft', in [0, 1) (0.01: the paper's).
+        real(dp), intent(in) :: tol
+        !> Largest order of the pole fit's stabilisation diagram, or 0 for the library's default (30).
+        integer, intent(in) :: maxord
+        !> The new handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input or file, 3 a failed identification.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        call file_multi_box('gcmfil', trim(path), trim(method), dt, tol, nstep, maxord, box, error)
+        call new_handle(box, handle, error, ierr, errmsg)
+    end subroutine gcmfil
+
+    !> Another method (or time step) on the file GCMFIL read into HFROM, without a second identification.
+    subroutine gcmmth(hfrom, method, dt, nstep, tol, handle, ierr, errmsg)
+        !> A handle made by GCMFIL (or GCMMTH).
+        integer(int64), intent(in) :: hfrom
+        !> Method: 'modal' (= 'recursive'), 'exact', 'direct' or 'fft' (any case).
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Truncation fraction of max |g_ij| for 'direct' and 'fft', in [0, 1).
+        real(dp), intent(in) :: tol
+        !> The new handle; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input or a source not made by GCMFIL.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box, from
+
+        box => null()
+        from => checked('gcmmth', hfrom, -1, error)
+        if (.not. allocated(error)) call method_multi_box('gcmmth', from, trim(method), dt, tol, nstep, box, error)
+        call new_handle(box, handle, error, ierr, errmsg)
+    end subroutine gcmmth
+
+    !> Node labels and positions of the NC points of a convolver made by GCMFIL or GCMMTH.
+    subroutine gcmpts(handle, nc, node, x, y, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Node labels of the points (NC).
+        integer, intent(out) :: node(*)
+        !> x_i [m], along the travel (NC).
+        real(dp), intent(out) :: x(*)
+        !> y_i [m], across (NC).
+        real(dp), intent(out) :: y(*)
+        !> Status: 0, or 2 for a 0 handle, a wrong NC or a convolver not made from a file.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        box => checked('gcmpts', handle, nc, error)
+        if (.not. allocated(error)) call check_file_box('gcmpts', box, error)
+        if (.not. allocated(error)) then
+            node(1:nc) = box%green%matrix%node
+            x(1:nc) = box%green%matrix%x
+            y(1:nc) = box%green%matrix%y
+        end if
+        call report(error, ierr, errmsg)
+    end subroutine gcmpts
+
+    !> What GCMFIL found in its file: E of eq. (7) of the identified modes alone, worst and mean
+    !> over the receptances, the number of shared poles (0 for impulse responses), and the
+    !> summary in "# " lines separated by line ends (the file, points, identification, modes).
+    subroutine gcmsum(handle, eworst, emean, npole, text, ierr)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Worst E (0 on failure).
+        real(dp), intent(out) :: eworst
+        !> Mean E (0 on failure).
+        real(dp), intent(out) :: emean
+        !> Number of shared poles (0 on failure).
+        integer, intent(out) :: npole
+        !> The summary; the message on failure.
+        character(len=*), intent(out) :: text
+        !> Status: 0, or 2 for a 0 handle or a convolver not made from a file.
+        integer, intent(out) :: ierr
+
+        type(error_type), allocatable :: error
+        type(multi_box), pointer :: box
+
+        eworst = 0.0_dp
+        emean = 0.0_dp
+        npole = 0
+        box => checked('gcmsum', handle, -1, error)
+        if (.not. allocated(error)) call check_file_box('gcmsum', box, error)
+        call report(error, ierr, text)
+        if (allocated(error)) return
+        call file_e_modes(box%green, eworst, emean, npole)
+        text = box%green%summary()
+    end subroutine gcmsum
 
     !> Modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
     !> foundation, greenconv_model_plate) up to FMAX at an NX by NY patch of XLEN by YLEN

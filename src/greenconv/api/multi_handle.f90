@@ -10,6 +10,9 @@
 !>   r_k*phi_k*phi_k^T per mode; no engine takes a general residue matrix), for every method
 !>   of the registry that serves multi-point contact;
 !> - samples g_ij(m*dt) [m/(N*s)], for `direct` and `fft`, truncated by the paper's rule;
+!> - a universal file of a Green's matrix (greenconv_conv_green_file: its receptances
+!>   identified with shared poles, or its impulse responses), kept read and identified in the
+!>   box, so that another method or time step on the same file costs no second identification;
 !>
 !> with what its model neglects, the Newton and divergence settings of its contact runs and
 !> the state of a run stepped one call at a time. The arrays the doors pass are laid out as
@@ -28,6 +31,8 @@ module greenconv_api_multi_handle
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
     use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_conv_green_file, only: green_file_convolver
+    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_state, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
@@ -35,7 +40,8 @@ module greenconv_api_multi_handle
     implicit none
     private
 
-    public :: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes
+    public :: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, file_multi_box
+    public :: method_multi_box, check_file_box, file_e_modes
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
 
     !> What a foreign multi-point handle points to.
@@ -50,6 +56,9 @@ module greenconv_api_multi_handle
         type(multi_contact_state) :: contact
         !> True between a successful start of a stepped run and its first fault or reset.
         logical :: stepping = .false.
+        !> The Green's matrix file the convolver was built from, read and identified (its points:
+        !> node labels, x_i, y_i [m]); unallocated for a convolver made from modes or samples.
+        type(green_structure), allocatable :: green
     end type multi_box
 
 contains
@@ -185,6 +194,133 @@ contains
         box%description = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         call keep_or_drop(caller, box, error)
     end subroutine samples_multi_box
+
+    !> A new box on a universal file of a Green's matrix (greenconv_conv_green_file): the file
+    !> read, its receptances identified with shared poles (up to `max_order` modes in the
+    !> stabilisation diagram), and `method` built on it; null on failure.
+    subroutine file_multi_box(caller, path, method, dt, truncation_tol, n_steps, max_order, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The universal file (nodes in dataset 15 or 2411, datasets 58 of receptances or impulse responses).
+        character(len=*), intent(in) :: path
+        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> Largest order of the pole fit's stabilisation diagram, >= 1, or 0 for the library's default.
+        integer, intent(in) :: max_order
+        !> The new box; null when `error` is set.
+        type(multi_box), pointer, intent(out) :: box
+        !> Set (`stat_input`) for a bad argument or file, naming it; (`stat_numerical`) when the
+        !> identification fails.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(green_options) :: options
+
+        box => null()
+        call check_run(caller, dt, truncation_tol, n_steps, error)
+        if (.not. allocated(error) .and. max_order < 0) then
+            call fatal_error(error, caller//': max_order = '//int_text(max_order) &
+                             //': give the largest order of the pole fit (>= 1), or 0 for the default')
+        end if
+        if (allocated(error)) return
+        ! A method no file serves is refused before the identification, which takes seconds.
+        call check_method(lower_text(method), .true., .true., .true., error)
+        if (allocated(error)) then
+            error%message = caller//': '//error%message
+            return
+        end if
+        if (max_order > 0) options%fit%max_order = max_order
+        allocate (box)
+        allocate (box%green)
+        call read_green_structure(path, options, box%green, error)
+        if (.not. allocated(error)) call build_on_file(lower_text(method), dt, truncation_tol, n_steps, box, error)
+        call keep_or_drop(caller, box, error)
+    end subroutine file_multi_box
+
+    !> A new box for another method, time step or run length on the file a box made by
+    !> `file_multi_box` read and identified (no second identification); null on failure.
+    subroutine method_multi_box(caller, source, method, dt, truncation_tol, n_steps, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> A box made by `file_multi_box`.
+        type(multi_box), intent(in) :: source
+        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1).
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> The new box; null when `error` is set.
+        type(multi_box), pointer, intent(out) :: box
+        !> Set (`stat_input`) for a bad argument or a source not made from a file.
+        type(error_type), allocatable, intent(out) :: error
+
+        box => null()
+        call check_run(caller, dt, truncation_tol, n_steps, error)
+        if (allocated(error)) return
+        if (.not. allocated(source%green)) then
+            call fatal_error(error, caller//': the source convolver was not made from a file: make it with ' &
+                             //'gc_multi_new_file (GCMFIL)')
+            return
+        end if
+        allocate (box)
+        allocate (box%green, source=source%green)
+        call build_on_file(lower_text(method), dt, truncation_tol, n_steps, box, error)
+        call keep_or_drop(caller, box, error)
+    end subroutine method_multi_box
+
+    !> Check that a box was made from a file (after `check_box`).
+    subroutine check_file_box(caller, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box (checked by `check_box`).
+        type(multi_box), intent(in) :: box
+        !> Set (`stat_input`) when the box holds no file.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. allocated(box%green)) call fatal_error(error, caller//': the convolver was not made from a ' &
+                                                         //'file (gc_multi_new_file, GCMFIL): it has no nodes ' &
+                                                         //'and no identification')
+    end subroutine check_file_box
+
+    !> E of eq. (7) of the identified modes alone against the file's receptances, worst and
+    !> mean over the receptances, and the number of shared poles (all 0 for impulse responses).
+    subroutine file_e_modes(green, e_worst, e_mean, n_poles)
+        !> The file read (and identified when it held receptances).
+        type(green_structure), intent(in) :: green
+        !> Worst E over the receptances.
+        real(dp), intent(out) :: e_worst
+        !> Mean E over the receptances.
+        real(dp), intent(out) :: e_mean
+        !> Number of shared poles.
+        integer, intent(out) :: n_poles
+
+        e_worst = 0.0_dp
+        e_mean = 0.0_dp
+        n_poles = 0
+        if (.not. green%identified) return
+        e_worst = maxval(green%e_modes)
+        e_mean = sum(green%e_modes)/size(green%e_modes)
+        n_poles = size(green%fit%pole)
+    end subroutine file_e_modes
+
+    !> The convolver of a box whose file is read, and its description.
+    subroutine build_on_file(method, dt, truncation_tol, n_steps, box, error)
+        character(len=*), intent(in) :: method
+        real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
+        type(multi_box), intent(inout) :: box
+        type(error_type), allocatable, intent(out) :: error
+
+        call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error)
+    end subroutine build_on_file
 
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
     !> to f_max at an n_x by n_y patch centred on the belt (`patch_points`, x fastest), in the

@@ -14,7 +14,7 @@ module greenconv_io_columns
     implicit none
     private
 
-    public :: read_columns, read_line, read_lines, max_line_length
+    public :: read_columns, read_line, read_lines, max_line_length, parse_row, count_tokens
 
     !> Longest line the readers accept [characters]: a longer one is not a scene, receptance
     !> or road file (a binary file, a file without line ends) and is refused at that line.
@@ -121,12 +121,20 @@ contains
         call move_alloc(longer, line_of)
     end subroutine grow
 
-    !> Parse one data line: exactly N finite numbers. `prefix` is `path:line: `.
+    !> Parse one data line: exactly N finite numbers, N = size(names), each refused with its
+    !> column's name when it is not a finite number.
     subroutine parse_row(prefix, names, units, line, row, error)
+        !> Start of every message, `path:line: `.
         character(len=*), intent(in) :: prefix
-        character(len=*), intent(in) :: names(:), units(:)
+        !> Short name of each column, for messages.
+        character(len=*), intent(in) :: names(:)
+        !> Unit of each column, for messages.
+        character(len=*), intent(in) :: units(:)
+        !> The data line.
         character(len=*), intent(in) :: line
+        !> Its numbers.
         real(dp), intent(out) :: row(:)
+        !> Set when the line does not hold N finite numbers.
         type(error_type), allocatable, intent(out) :: error
 
         integer :: first(size(names)), last(size(names)), n_tokens, i, stat
@@ -171,6 +179,16 @@ contains
             text = text//trim(names(i))//' ['//trim(units(i))//']'
         end do
     end function column_list
+
+    !> Number of blank- or tab-separated tokens of a line.
+    pure integer function count_tokens(line)
+        !> The line.
+        character(len=*), intent(in) :: line
+
+        integer :: first(0), last(0)
+
+        call split(line, first, last, count_tokens)
+    end function count_tokens
 
     !> Positions of the blank- or tab-separated tokens of a line (at most size(first)
     !> recorded, all counted).

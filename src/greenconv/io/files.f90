@@ -17,6 +17,7 @@ module greenconv_io_files
     use, intrinsic :: iso_fortran_env, only: int32, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
     use greenconv_core_real_text, only: real_rows_text, rows_text_length
     implicit none
     private
@@ -184,7 +185,7 @@ contains
     !> Write a table of reals with `#` comment lines above it, atomically.
     !>
     !> `comments` are written as `# ` lines; the last one should name the columns.
-    subroutine write_columns(path, comments, table, error)
+    recursive subroutine write_columns(path, comments, table, error)
         !> Target file.
         character(len=*), intent(in) :: path
         !> Header lines, written after `# `.
@@ -342,7 +343,7 @@ contains
 
     !> Write the header file of a binary column file: its header lines, then the layout, the
     !> row count and one-line readers (gnuplot, numpy, MATLAB/Octave).
-    subroutine write_binary_header(writer, error)
+    recursive subroutine write_binary_header(writer, error)
         type(column_writer), intent(in) :: writer
         type(error_type), allocatable, intent(out) :: error
 
@@ -371,21 +372,11 @@ contains
         call write_columns(binary_header(writer%path), lines, no_rows, error)
     end subroutine write_binary_header
 
-    !> Decimal text of an integer.
-    pure function int_text(value) result(text)
-        integer(int64), intent(in) :: value
-        character(len=:), allocatable :: text
-
-        character(len=24) :: buffer
-
-        write (buffer, '(i0)') value
-        text = trim(buffer)
-    end function int_text
-
     !> Finish a column file: write what the buffer holds, close the temporary file and rename
     !> it to `path`. When a write, the close or the rename fails, the temporary file is
     !> deleted and `error` names the file and the reason.
-    subroutine close_columns(writer, error)
+    !> Recursive: a binary file's header file is itself written as a (text) column file.
+    recursive subroutine close_columns(writer, error)
         !> The file being written; closed on return.
         type(column_writer), intent(inout) :: writer
         !> Set when the file cannot be completed.

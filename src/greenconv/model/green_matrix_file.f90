@@ -3,6 +3,8 @@
 !>
 !> - **Points**: the nodes that appear both as a response and as a reference node of a
 !>   receptance (dataset 58, function type 4), sorted by label; point i is the i-th of them.
+!>   The same reader takes impulse responses g_ij(t) instead (function type 1, time response,
+!>   `function_type = 1`): the abscissa is then time [s] and the ordinate g_ij [m/(N*s)].
 !> - **Geometry**: each point's coordinates from dataset 15 or 2411; x is the direction of
 !>   travel, y across the patch (z is ignored).
 !> - **Checks**, each a message naming the file and what to do: no receptance; a response or
@@ -40,10 +42,13 @@ module greenconv_model_green_matrix_file
         real(dp), allocatable :: x(:)
         !> Position across y_i [m] of each point.
         real(dp), allocatable :: y(:)
-        !> Frequency lines [Hz].
+        !> Frequency lines [Hz]; for impulse responses (function type 1) the sample times [s].
         real(dp), allocatable :: frequency(:)
-        !> Receptances g(i, j, l) = G_ij(2*pi*frequency(l)) [m/N], displacement at i per force at j.
+        !> Receptances g(i, j, l) = G_ij(2*pi*frequency(l)) [m/N], displacement at i per force at j;
+        !> for impulse responses g_ij(frequency(l)) [m/(N*s)] (imaginary part zero).
         complex(dp), allocatable :: g(:, :, :)
+        !> Function type of the datasets read: 4 (receptances) or 1 (impulse responses).
+        integer :: function_type = 4
         !> Whether no pair failed the reciprocity check.
         logical :: reciprocal = .true.
         !> Largest reciprocity ratio (rms of G_ij - G_ji over the rms of its 4th difference) and its pair.
@@ -69,38 +74,51 @@ contains
     end function matrix_n_points
 
     !> Read a Green's matrix from a universal file and check it (see the module description).
-    subroutine read_green_matrix(path, matrix, error)
+    subroutine read_green_matrix(path, matrix, error, function_type)
         !> The universal file.
         character(len=*), intent(in) :: path
         !> The matrix, its points and their layout.
         type(green_matrix), intent(out) :: matrix
         !> Set (status 2) when the file cannot be read or does not hold a complete Green's matrix.
         type(error_type), allocatable, intent(out) :: error
+        !> Function type of the datasets 58 that make the matrix: 4 (receptances, the default)
+        !> or 1 (impulse responses).
+        integer, intent(in), optional :: function_type
 
         type(uff_file) :: file
 
         call read_uff(path, file, error)
         if (allocated(error)) return
-        call check_green_matrix(file, matrix, error)
+        call check_green_matrix(file, matrix, error, function_type)
     end subroutine read_green_matrix
 
     !> The Green's matrix held by a universal file already read (see the module description).
-    subroutine check_green_matrix(file, matrix, error)
+    subroutine check_green_matrix(file, matrix, error, function_type)
         !> The file as `read_uff` returned it.
         type(uff_file), intent(in) :: file
         !> The matrix, its points and their layout.
         type(green_matrix), intent(out) :: matrix
         !> Set (status 2) when the file does not hold a complete Green's matrix.
         type(error_type), allocatable, intent(out) :: error
+        !> Function type of the datasets 58 that make the matrix: 4 (receptances, the default)
+        !> or 1 (impulse responses).
+        integer, intent(in), optional :: function_type
 
         integer, allocatable :: frfs(:), found(:, :)
         integer :: f, first, i, j, k, n_c, n_f
-        character(len=:), allocatable :: place
+        character(len=:), allocatable :: place, functions, grid
 
-        frfs = pack([(f, f=1, size(file%functions))], file%functions%function_type == 4)
+        if (present(function_type)) matrix%function_type = function_type
+        functions = 'receptances G_ij (datasets 58 of function type 4)'
+        grid = 'frequency grid'
+        if (matrix%function_type /= 4) then
+            functions = 'impulse responses g_ij(t) (datasets 58 of function type '//int_text(matrix%function_type)//')'
+            grid = 'time grid'
+        end if
+        frfs = pack([(f, f=1, size(file%functions))], file%functions%function_type == matrix%function_type)
         if (size(frfs) == 0) then
-            call fatal_error(error, file%path//': expected receptances G_ij (datasets 58 of function type 4), ' &
-                             //'found none; write one dataset per response and reference point')
+            call fatal_error(error, file%path//': expected '//functions//', found none; write one dataset per ' &
+                             //'response and reference point')
             return
         end if
         first = frfs(1)
@@ -111,14 +129,15 @@ contains
                     fun%reference_direction /= file%functions(first)%reference_direction) then
                     call fatal_error(error, place//': mixed directions: response '//int_text(fun%response_direction) &
                                      //', reference '//int_text(fun%reference_direction)//', where the first ' &
-                                     //'receptance has '//int_text(file%functions(first)%response_direction)//', ' &
+                                     //'dataset (line '//int_text(file%functions(first)%line)//') has ' &
+                                     //int_text(file%functions(first)%response_direction)//', ' &
                                      //int_text(file%functions(first)%reference_direction) &
                                      //'; give every G_ij in the one direction of contact')
                     return
                 end if
                 if (.not. same_grid(fun%abscissa, file%functions(first)%abscissa)) then
-                    call fatal_error(error, place//': its frequency grid ('//int_text(size(fun%abscissa)) &
-                                     //' lines) differs from the first receptance''s (' &
+                    call fatal_error(error, place//': its '//grid//' ('//int_text(size(fun%abscissa)) &
+                                     //' lines) differs from the first dataset''s (' &
                                      //int_text(size(file%functions(first)%abscissa))//' lines, line ' &
                                      //int_text(file%functions(first)%line)//'); resample every G_ij on one grid')
                     return

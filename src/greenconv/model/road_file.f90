@@ -20,6 +20,7 @@ module greenconv_model_road_file
     private
 
     public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
+    public :: travel_span, locate
 
     !> A road profile: heights at increasing positions, linear in between.
     type :: road_file
@@ -104,30 +105,49 @@ contains
         !> Position [m].
         real(dp), intent(in) :: x
 
-        integer :: low, high, middle
+        integer :: low
         real(dp) :: weight
 
+        call locate(self%x, x, low, weight)
+        height_at = (1.0_dp - weight)*self%height(low) + weight*self%height(low + 1)
+    end function height_at
+
+    !> The interval of a grid that holds v and where v lies in it: grid(low) <= v <= grid(low + 1),
+    !> v = (1 - weight)*grid(low) + weight*grid(low + 1); beyond the grid the end interval with
+    !> weight 0 or 1, so that an interpolation gives the end value there.
+    pure subroutine locate(grid, v, low, weight)
+        !> Strictly increasing positions, at least two.
+        real(dp), intent(in) :: grid(:)
+        !> The position.
+        real(dp), intent(in) :: v
+        !> Index of the interval's left end, 1..size(grid) - 1.
+        integer, intent(out) :: low
+        !> Fraction of the interval, in [0, 1].
+        real(dp), intent(out) :: weight
+
+        integer :: high, middle
+
         low = 1
-        high = size(self%x)
-        if (x <= self%x(low)) then
-            height_at = self%height(low)
+        high = size(grid)
+        if (v <= grid(1)) then
+            weight = 0.0_dp
             return
         end if
-        if (x >= self%x(high)) then
-            height_at = self%height(high)
+        if (v >= grid(high)) then
+            low = high - 1
+            weight = 1.0_dp
             return
         end if
         do while (high - low > 1)
             middle = (low + high)/2
-            if (self%x(middle) <= x) then
+            if (grid(middle) <= v) then
                 low = middle
             else
                 high = middle
             end if
         end do
-        weight = (x - self%x(low))/(self%x(high) - self%x(low))
-        height_at = (1.0_dp - weight)*self%height(low) + weight*self%height(high)
-    end function height_at
+        weight = (v - grid(low))/(grid(low + 1) - grid(low))
+    end subroutine locate
 
     !> Whether the file spans [x_low, x_high] [m].
     elemental logical function covers(self, x_low, x_high)
@@ -179,17 +199,38 @@ contains
         !> Set when some x_i + V*t_n lies outside the file.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: x_first, x_last, travel
+        real(dp) :: span(2), x_first, x_last
 
-        travel = speed*(n_steps - 1)*dt
-        x_first = min(minval(positions), minval(positions) + travel)
-        x_last = max(maxval(positions), maxval(positions) + travel)
+        span = travel_span(positions, speed, dt, n_steps)
+        x_first = span(1)
+        x_last = span(2)
         if (.not. road%covers(x_first, x_last)) then
             call fatal_error(error, road%path//': expected a road from x = '//real_text(x_first)//' m to ' &
                              //real_text(x_last)//' m (the run), found '//real_text(road%x(1))//' m to ' &
                              //real_text(road%x(size(road%x)))//' m')
         end if
     end subroutine check_road_coverage
+
+    !> The positions [m] a run of n_steps steps visits: [min, max] of x_i + V*t_n over the
+    !> points and n = 0..n_steps-1.
+    pure function travel_span(positions, speed, dt, n_steps) result(span)
+        !> Positions x_i [m] of the points on the road at t = 0.
+        real(dp), intent(in) :: positions(:)
+        !> Travel speed V [m/s].
+        real(dp), intent(in) :: speed
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Smallest and largest position [m].
+        real(dp) :: span(2)
+
+        real(dp) :: travel
+
+        travel = speed*(n_steps - 1)*dt
+        span(1) = min(minval(positions), minval(positions) + travel)
+        span(2) = max(maxval(positions), maxval(positions) + travel)
+    end function travel_span
 
     !> Heights under N_c points for the steps n = first..first+count-1 of a run (one block of
     !> a streamed run): heights(j, i) = height(x_i + V*t_n), n = first + j; beyond the file

@@ -15,6 +15,7 @@ module greenconv_scene_input
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, file_road, check_road_coverage
+    use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default
     use greenconv_io_columns, only: read_lines
@@ -24,7 +25,9 @@ module greenconv_scene_input
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
-                                max_contact_points, max_kernel_values, kernel_values
+                                max_contact_points, max_kernel_values, kernel_values, max_spectrum_values
+    use greenconv_io_spectra, only: band_centre, first_band, last_band, nominal_frequency, segment_for_band, &
+                                    lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
 
@@ -58,7 +61,15 @@ module greenconv_scene_input
         character(len=8) :: output_format = 'text'
         !> Show a progress line on standard error for long runs (only when it is a terminal).
         logical :: progress
-        !> Structure model: `sdof`, `random_modes` or `frf_file`.
+        !> Whether a contact run also writes the 1/3-octave spectrum of its contact force
+        !> (greenconv_scene_spectra_output).
+        logical :: spectra = .false.
+        !> Exact centre frequencies [Hz] of the lowest and highest band of the spectra, as
+        !> `check_spectra` resolved them from the file's values or the defaults.
+        real(dp) :: spectra_f_low = 0.0_dp, spectra_f_high = 0.0_dp
+        !> Whether the spectra of a multi-point run also give each point's level.
+        logical :: spectra_points = .false.
+        !> Structure model: `sdof`, `random_modes`, `frf_file`, `tyre` or `green_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
         real(dp) :: mass
@@ -80,6 +91,8 @@ module greenconv_scene_input
         character(len=:), allocatable :: frf_file
         !> Which dataset 58 of a universal frf_file to read (0: the file must hold one).
         integer :: frf_dataset = 0
+        !> Universal file of the Green's matrix between the contact points (model `green_file`).
+        character(len=:), allocatable :: green_file
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
@@ -100,8 +113,12 @@ module greenconv_scene_input
         class(road_profile), allocatable :: road
         !> The road file of profile 'file' (heights over x), for the multi-point scene.
         type(road_file) :: road_data
+        !> The road texture of profile 'texture' (heights over x and y), for the multi-point scene.
+        type(road_texture) :: texture
         !> Position [m] on the road file of the body (the patch centre) at t = 0.
         real(dp) :: x_start
+        !> Lateral position [m] on the road texture of the patch centre (mean y of its points).
+        real(dp) :: y_start
         !> Travel speed V [m/s] over the road.
         real(dp) :: speed
         !> Number of contact points N_c (tyre model; 1 otherwise).
@@ -178,6 +195,7 @@ contains
         if (.not. allocated(error)) call read_convolution_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
+        if (.not. allocated(error)) call check_spectra(scene, error)
     end subroutine read_scene
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
@@ -213,11 +231,12 @@ contains
 
         character(len=name_length) :: task, name, output_format
         character(len=path_length) :: output_dir
-        real(dp) :: dt
+        real(dp) :: dt, spectra_f_low, spectra_f_high
         integer :: n_steps, output_every, stat
-        logical :: progress
+        logical :: progress, spectra, spectra_points
         character(len=512) :: message
-        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress
+        namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress, spectra, &
+            spectra_f_low, spectra_f_high, spectra_points
 
         call scene_default('scene', 'task', task)
         call scene_default('scene', 'name', name)
@@ -227,6 +246,10 @@ contains
         call scene_default('scene', 'output_every', output_every)
         call scene_default('scene', 'output_format', output_format)
         call scene_default('scene', 'progress', progress)
+        call scene_default('scene', 'spectra', spectra)
+        call scene_default('scene', 'spectra_f_low', spectra_f_low)
+        call scene_default('scene', 'spectra_f_high', spectra_f_high)
+        call scene_default('scene', 'spectra_points', spectra_points)
         if (present(template)) then
             write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
         else
@@ -245,6 +268,10 @@ contains
                      'a number of steps >= 1 between written rows', output_every), error)
         call require(any(trim(output_format) == [character(len=8) :: 'text', 'binary']), &
                      expected(this, 'scene', 'output_format', "'text' or 'binary'", output_format), error)
+        call require(spectra_f_low > 0.0_dp .and. spectra_f_low < huge(spectra_f_low), &
+                     expected(this, 'scene', 'spectra_f_low', 'a frequency > 0 Hz', spectra_f_low), error)
+        call require(spectra_f_high > 0.0_dp .and. spectra_f_high < huge(spectra_f_high), &
+                     expected(this, 'scene', 'spectra_f_high', 'a frequency > 0 Hz', spectra_f_high), error)
         this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
@@ -253,6 +280,10 @@ contains
         this%output_every = output_every
         this%output_format = trim(output_format)
         this%progress = progress
+        this%spectra = spectra
+        this%spectra_f_low = spectra_f_low
+        this%spectra_f_high = spectra_f_high
+        this%spectra_points = spectra_points
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
@@ -265,14 +296,14 @@ contains
         logical, intent(in), optional :: template
 
         character(len=name_length) :: model
-        character(len=path_length) :: frf_file
+        character(len=path_length) :: frf_file, green_file
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
         integer :: n_modes, seed, stat, frf_dataset
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
-            belt_tension, belt_foundation, f_modes
+            belt_tension, belt_foundation, f_modes, green_file
 
         call scene_default('structure', 'model', model)
         call scene_default('structure', 'mass', mass)
@@ -294,6 +325,7 @@ contains
         call scene_default('structure', 'belt_tension', belt_tension)
         call scene_default('structure', 'belt_foundation', belt_foundation)
         call scene_default('structure', 'f_modes', f_modes)
+        call scene_default('structure', 'green_file', green_file)
         if (present(template)) then
             write (unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
         else
@@ -318,6 +350,9 @@ contains
                      expected(this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
         call require(.not. model_requires(find_model(trim(model)), 'frf_file') .or. len_trim(frf_file) > 0, &
                      expected(this, 'structure', 'frf_file', "a receptance file for model '"//trim(model)//"'"), error)
+        call require(.not. model_requires(find_model(trim(model)), 'green_file') .or. len_trim(green_file) > 0, &
+                     expected(this, 'structure', 'green_file', "a universal file of the Green's matrix for model '" &
+                              //trim(model)//"'"), error)
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
@@ -341,6 +376,7 @@ contains
                      'a dataset 58 number >= 1 of the universal file (0: its only one)', frf_dataset), error)
         this%frf_file = trim(frf_file)
         this%frf_dataset = frf_dataset
+        this%green_file = trim(green_file)
         this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
                               tension=belt_tension, foundation_stiffness=belt_foundation, &
                               damping_ratio=damping_ratio)
@@ -392,7 +428,11 @@ contains
         this%max_order = max_order
         call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), expected(this, 'identification', 'method', &
                      "'ml' (maximum likelihood) or 'lsce'", method), error)
-        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file')
+        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', expected(this, 'identification', &
+                     'method', "'ml' for model 'green_file' (its shared poles are fitted by maximum likelihood)", &
+                     method), error)
+        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file' .or. &
+                                                  this%model == 'green_file')
         call require(order == 0 .or. trim(method) == 'lsce', expected(this, 'identification', 'order', &
                      "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
                      //"method = 'lsce')", order), error)
@@ -411,11 +451,12 @@ contains
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
-        character(len=path_length) :: road_file, path
-        real(dp) :: amplitude, omega, wavelength, speed, x_start
+        character(len=path_length) :: road_file, path, texture_file
+        real(dp) :: amplitude, omega, wavelength, speed, x_start, y_start
         integer :: n_terms, seed, stat
         character(len=512) :: message
-        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start
+        namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start, &
+            texture_file, y_start
 
         call scene_default('road', 'profile', profile)
         call scene_default('road', 'amplitude', amplitude)
@@ -428,6 +469,8 @@ contains
         call scene_default('road', 'road_file', path)
         road_file = path
         call scene_default('road', 'x_start', x_start)
+        call scene_default('road', 'texture_file', texture_file)
+        call scene_default('road', 'y_start', y_start)
         if (present(template)) then
             write (unit, nml=road, delim='quote', iostat=stat, iomsg=message)
         else
@@ -435,13 +478,18 @@ contains
         end if
         call group_status(this, 'road', stat, message, error)
         if (allocated(error) .or. present(template)) return
-        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file']), &
-                     expected(this, 'road', 'profile', "'sine', 'random' or 'file'", profile), error)
+        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file', 'texture']), &
+                     expected(this, 'road', 'profile', "'sine', 'random', 'file' or 'texture'", profile), error)
         call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
                      expected(this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
                      error)
+        call require(trim(profile) /= 'texture' .or. len_trim(texture_file) > 0, &
+                     expected(this, 'road', 'texture_file', "a road texture file (heights [m] on an x-y grid) " &
+                              //"for profile 'texture'"), error)
         call require(abs(x_start) < huge(x_start), &
                      expected(this, 'road', 'x_start', 'a finite position in m', x_start), error)
+        call require(abs(y_start) < huge(y_start), &
+                     expected(this, 'road', 'y_start', 'a finite position in m', y_start), error)
         call require(abs(amplitude) < huge(amplitude), &
                      expected(this, 'road', 'amplitude', 'a finite height in m', amplitude), error)
         call require(abs(omega) < huge(omega), &
@@ -455,6 +503,7 @@ contains
         if (allocated(error)) return
         this%speed = speed
         this%x_start = x_start
+        this%y_start = y_start
         select case (trim(profile))
         case ('sine')
             sine%amplitude = amplitude
@@ -462,6 +511,9 @@ contains
             this%road = sine
         case ('random')
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
+        case ('texture')
+            call read_road_texture(trim(texture_file), this%texture, error)
+            if (allocated(error)) error%message = input_place(this, 'road', 'texture_file')//': '//error%message
         case default
             call read_file_road(this, trim(road_file), error)
         end select
@@ -490,36 +542,134 @@ contains
         call move_alloc(road, this%road)
     end subroutine read_file_road
 
-    !> Profile 'file': every contact point stays on the road file for the whole run (a single
-    !> point at x_start + V*t; the tyre's points spread over the patch around it), so that
-    !> `--check` finds a road too short as a run would.
+    !> Profile 'file' or 'texture': every contact point stays on the road for the whole run (a
+    !> single point at x_start + V*t; the tyre's points spread over the patch around it, at
+    !> y_start across a texture), so that `--check` finds a road too short as a run would. A
+    !> Green's matrix file's points are known once the file is read (greenconv_scene_points).
     subroutine check_scene_road(this, error)
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(inout) :: error
 
+        real(dp), allocatable :: x(:)
+
         if (allocated(error)) return
-        if (.not. allocated(this%road_data%x) .or. this%task /= 'contact') return
-        call check_road_coverage(this%road_data, this%x_start + contact_positions(0.0_dp, this%patch_length, &
-                                 this%n_points), this%speed, this%dt, this%n_steps, error)
+        if (this%task /= 'contact' .or. model_requires(find_model(this%model), 'green_file')) return
+        x = this%x_start + contact_positions(0.0_dp, this%patch_length, this%n_points)
+        if (allocated(this%road_data%x)) then
+            call check_road_coverage(this%road_data, x, this%speed, this%dt, this%n_steps, error)
+        else if (allocated(this%texture%x)) then
+            call check_texture_coverage(this%texture, x, [this%y_start], this%speed, this%dt, this%n_steps, error)
+        end if
         if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
     end subroutine check_scene_road
 
-    !> A multi-point model (the tyre) runs a contact over a road file: anything else is
-    !> refused here, with the scene's line, as the run would refuse it.
+    !> A multi-point model (the tyre, a Green's matrix file) runs a contact over a road file or
+    !> texture; a texture needs a multi-point model: anything else is refused here, with the
+    !> scene's line, as the run would refuse it.
     subroutine check_multipoint_scene(this, error)
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: road
+        logical :: on_file
 
-        if (.not. multi_point_model(this%model)) return
-        if (this%task == 'contact' .and. allocated(this%road_data%x)) return
+        on_file = allocated(this%road_data%x) .or. allocated(this%texture%x)
+        if (.not. multi_point_model(this%model)) then
+            if (allocated(this%texture%x)) call fatal_error(error, input_place(this, 'road', 'profile') &
+                //": expected 'sine', 'random' or 'file' for model '"//this%model//"' (one contact point), found " &
+                //"'texture' (a texture needs a patch of points: model 'tyre' or 'green_file')")
+            return
+        end if
+        if (this%task == 'contact' .and. on_file) return
         road = ' and no road file'
-        if (allocated(this%road_data%x)) road = ' with a road file'
+        if (on_file) road = ' with a road file'
         call fatal_error(error, input_place(this, 'structure', 'model')//": expected task = 'contact' and " &
-                         //"&road profile = 'file' for model '"//this%model//"' (its contact points are spread " &
-                         //"over a road file), found task '"//this%task//"'"//road)
+                         //"&road profile = 'file' or 'texture' for model '"//this%model//"' (its contact points " &
+                         //"are spread over a road file), found task '"//this%task//"'"//road)
     end subroutine check_multipoint_scene
+
+    !> The band range of the force spectra of a contact run (&scene spectra): every band must
+    !> lie below the Nyquist frequency 1/(2*dt), and the record (N_t steps) must hold a Welch
+    !> segment long enough for the lowest band (greenconv_io_spectra). A value the file gives
+    !> is refused when the run cannot resolve it; a default (20 Hz, 20 kHz, the audible range)
+    !> is narrowed to what the run resolves. The range is replaced by the exact centres of its
+    !> lowest and highest band.
+    subroutine check_spectra(this, error)
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: record
+        real(dp) :: nyquist, values
+        integer :: low, high, top, bottom, channels
+
+        if (.not. this%spectra .or. this%task /= 'contact') return
+        nyquist = 0.5_dp/this%dt
+        top = highest_band_below(nyquist)
+        bottom = huge(0)
+        if (this%n_steps >= 2) bottom = lowest_resolved_band(this%n_steps, this%dt, default_lines_per_band)
+        record = 'N_t = '//int_text(this%n_steps)//' steps of '//compact_real(this%dt)//' s ('//compact_real( &
+                 this%n_steps*this%dt)//' s)'
+        if (bottom > top) then
+            call fatal_error(error, expected(this, 'scene', 'spectra', 'a record that resolves a band below the ' &
+                //'Nyquist frequency '//compact_real(nyquist)//' Hz: '//record//' resolve none (at ' &
+                //int_text(default_lines_per_band)//' lines in a band); raise n_steps or set spectra = .false.'))
+            return
+        end if
+        low = max(first_band(this%spectra_f_low), bottom)
+        if (this%input%has_value('scene', 'spectra_f_low')) then
+            low = first_band(this%spectra_f_low)
+            if (low > top) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre below the ' &
+                    //'Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (the highest band below it is ' &
+                    //band_name(top)//'); lower spectra_f_low or dt', this%spectra_f_low))
+                return
+            end if
+            if (low < bottom) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre the record ' &
+                    //'resolves: '//record//' resolve bands from '//band_name(bottom)//' up (the '//band_name(low) &
+                    //' band needs '//int_text(segment_for_band(low, this%dt, default_lines_per_band)) &
+                    //' samples for '//int_text(default_lines_per_band)//' lines in it); raise spectra_f_low ' &
+                    //'or n_steps', this%spectra_f_low))
+                return
+            end if
+        end if
+        high = min(last_band(this%spectra_f_high), top)
+        if (this%input%has_value('scene', 'spectra_f_high')) then
+            high = last_band(this%spectra_f_high)
+            if (high > top) then
+                call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre whose band ' &
+                    //'ends below the Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (at most ' &
+                    //band_name(top)//'); lower spectra_f_high or dt', this%spectra_f_high))
+                return
+            end if
+        end if
+        if (high < low) then
+            call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre at or above ' &
+                //'the lowest, '//band_name(low)//' (no 1/3-octave band between them; default 20 kHz)', &
+                this%spectra_f_high))
+            return
+        end if
+        channels = 1
+        if (this%spectra_points .and. multi_point_model(this%model)) channels = 1 + this%n_points
+        values = real(segment_for_band(low, this%dt, default_lines_per_band), dp)*channels
+        if (values > max_spectrum_values) then
+            call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'force spectra of at most ' &
+                //sci_text(real(max_spectrum_values, dp))//' values held (segment length times ' &
+                //int_text(channels)//' histories); raise spectra_f_low or turn spectra_points off, found ' &
+                //sci_text(values)//' values'))
+            return
+        end if
+        this%spectra_f_low = band_centre(low)
+        this%spectra_f_high = band_centre(high)
+    end subroutine check_spectra
+
+    !> "400 Hz", the nominal name of band x.
+    function band_name(x) result(text)
+        integer, intent(in) :: x
+        character(len=:), allocatable :: text
+
+        text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
+    end function band_name
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(unit, lines, this, error, template)
@@ -570,6 +720,12 @@ contains
         call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point), &
                      expected(this, 'contact', 'n_points', &
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
+        call require(.not. (model_requires(model, 'green_file') .and. this%input%has_value('contact', 'n_points')), &
+                     expected(this, 'contact', 'n_points', "no value for model '"//this%model//"' (its contact " &
+                              //'points are the nodes of the file)'), error)
+        call require(.not. (model_requires(model, 'green_file') .and. this%input%has_value('contact', &
+                     'patch_length')), expected(this, 'contact', 'patch_length', "no value for model '" &
+                     //this%model//"' (the file's node coordinates place its points)"), error)
         call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
                      'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
         call require(any(trim(scheme) == [character(len=8) :: 'explicit', 'implicit']), &

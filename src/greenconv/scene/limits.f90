@@ -7,7 +7,7 @@ module greenconv_scene_limits
     private
 
     public :: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, max_contact_points
-    public :: max_kernel_values, kernel_values
+    public :: max_kernel_values, kernel_values, max_spectrum_values
 
     !> Largest number of random modes (&structure n_modes).
     integer, parameter :: max_random_modes = 1000
@@ -24,6 +24,10 @@ module greenconv_scene_limits
     !> Largest number of stored values of a sampled kernel: N_g*N_c^2 weights and 2*N_g*N_c
     !> past forces, 8 bytes each (10^8: 0.8 GB).
     integer, parameter :: max_kernel_values = 100000000
+    !> Largest number of force samples the spectra of a run hold (&scene spectra): one Welch
+    !> segment of the total force, and of each point with spectra_points; the sums of |X_k|^2
+    !> and the scratch add about as much again (2^25: 0.27 GB of segments).
+    integer, parameter :: max_spectrum_values = 2**25
 
 contains
 

@@ -11,7 +11,7 @@ module greenconv_scene_models
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
     public :: multi_point_model
-    public :: model_sdof, model_random_modes, model_frf_file, model_tyre
+    public :: model_sdof, model_random_modes, model_frf_file, model_tyre, model_green_file
 
     !> Identifier of the single-degree-of-freedom oscillator (M, K, xi) of Tab. 1.
     integer, parameter :: model_sdof = 1
@@ -21,6 +21,9 @@ module greenconv_scene_models
     integer, parameter :: model_frf_file = 3
     !> Identifier of the tyre belt on an elastic foundation, contact over a patch of points.
     integer, parameter :: model_tyre = 4
+    !> Identifier of a Green's matrix read from a universal file (shared poles identified, g_ij
+    !> by inverse FFT or from the file), contact at its nodes.
+    integer, parameter :: model_green_file = 5
 
     !> One structure model and what it requires and provides.
     type :: structure_kind
@@ -44,11 +47,13 @@ module greenconv_scene_models
     end type structure_kind
 
     !> The registry, in the order messages list the names.
-    type(structure_kind), parameter :: registry(4) = [ &
+    type(structure_kind), parameter :: registry(5) = [ &
         structure_kind(model_sdof, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true.), &
         structure_kind(model_random_modes, 'random_modes', '', exact_modes=.true., identified_modes=.true.), &
         structure_kind(model_frf_file, 'frf_file', 'frf_file', identified_modes=.true., sampled_g=.true.), &
-        structure_kind(model_tyre, 'tyre', '', exact_modes=.true., multi_point=.true.)]
+        structure_kind(model_tyre, 'tyre', '', exact_modes=.true., multi_point=.true.), &
+        structure_kind(model_green_file, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
+                       multi_point=.true.)]
 
 contains
 
@@ -88,7 +93,7 @@ contains
         model_id = model%id
     end function model_id
 
-    !> The model names for messages: `'sdof', 'random_modes', 'frf_file' or 'tyre'`.
+    !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
     pure function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
         character(len=:), allocatable :: text

@@ -1,5 +1,6 @@
 !> Column files of the contact runs: the layout of a multi-point run's histories (one row
-!> per step and point) that the tyre scene streams and `write_multi_contact` writes whole.
+!> per step and point) that the multi-point scenes stream and `write_multi_contact` writes
+!> whole; a 2D patch (a Green's matrix file's points) adds the column y [m] last.
 module greenconv_scene_output
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -31,19 +32,28 @@ contains
     end subroutine write_multi_contact
 
     !> The header lines of `write_multi_contact`'s files: the title, the units, the columns.
-    pure function multi_contact_header(title) result(comments)
+    pure function multi_contact_header(title, with_y) result(comments)
         !> First header line, e.g. the scene and method.
         character(len=*), intent(in) :: title
+        !> Whether the rows end with the column y [m] (`multi_contact_table` given `across`).
+        logical, intent(in), optional :: with_y
         character(len=200) :: comments(3)
 
         comments(1) = title
         comments(2) = 'units: s m m m N m N'
         comments(3) = 't x u_road u f_contact delta f_total'
+        if (present(with_y)) then
+            if (with_y) then
+                comments(2) = trim(comments(2))//' m'
+                comments(3) = trim(comments(3))//' y'
+            end if
+        end if
     end function multi_contact_header
 
     !> The rows of `write_multi_contact` for the steps j = first, first + stride, ... of
-    !> `response` (N_c rows per step: t, x, u_road, u, f_contact, delta, f_total).
-    pure function multi_contact_table(positions, response, first, stride) result(table)
+    !> `response` (N_c rows per step: t, x, u_road, u, f_contact, delta, f_total, and y when
+    !> `across` is given).
+    pure function multi_contact_table(positions, response, first, stride, across) result(table)
         !> Position x_i [m] of each point, for the second column.
         real(dp), intent(in) :: positions(:)
         !> Histories (of a run or of one block).
@@ -52,12 +62,14 @@ contains
         integer, intent(in) :: first
         !> Steps between two rows written, >= 1.
         integer, intent(in) :: stride
+        !> Position y_i [m] of each point across, for an eighth column.
+        real(dp), intent(in), optional :: across(:)
         real(dp), allocatable :: table(:, :)
 
         integer :: n_c, n, row
 
         n_c = size(positions)
-        allocate (table(n_c*size(response%time(first::stride)), 7))
+        allocate (table(n_c*size(response%time(first::stride)), merge(8, 7, present(across))))
         row = 0
         do n = first, size(response%time) - 1, stride
             table(row + 1:row + n_c, 1) = response%time(n)
@@ -67,6 +79,7 @@ contains
             table(row + 1:row + n_c, 5) = response%force(n, :)
             table(row + 1:row + n_c, 6) = response%compression(n, :)
             table(row + 1:row + n_c, 7) = response%total_force(n)
+            if (present(across)) table(row + 1:row + n_c, 8) = across
             row = row + n_c
         end do
     end function multi_contact_table

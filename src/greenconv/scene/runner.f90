@@ -2,7 +2,8 @@
 !> write the identification (task `identify`) or run the contact loop with one convolver
 !> per method (task `contact`), writing column files and a summary line per method.
 !>
-!> Single- and multi-point runs (the tyre scene, greenconv_scene_tyre) share one streaming
+!> Single- and multi-point runs (the tyre scene, greenconv_scene_tyre; a Green's matrix file,
+!> greenconv_scene_points) share one streaming
 !> loop, `stream_run`: a run is streamed in blocks of greenconv_io_files's `block_rows` steps
 !> (divided by N_c for several points): the road is sampled per block, the contact loop
 !> continues from the convolver's state (greenconv_contact_single's `contact_block`,
@@ -19,14 +20,12 @@ module greenconv_scene_runner
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver, free_convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_builder, only: make_convolver, make_multipoint_convolver
+    use greenconv_conv_builder, only: make_convolver
     use greenconv_contact_single, only: contact_response, contact_state, start_contact, contact_block
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, start_multi_contact, &
                                        multi_contact_block, newton_options
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept, block_rows, &
                          make_directory, check_output_directory
-    use greenconv_model_point_modes, only: point_modes
-    use greenconv_model_road_file, only: sample_road_steps
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type, output_path, input_place
     use greenconv_scene_models, only: find_model, model_requires, multi_point_model
@@ -35,7 +34,10 @@ module greenconv_scene_runner
     use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header, multi_contact_table
-    use greenconv_scene_tyre, only: tyre_points
+    use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
+                                              finish_force_spectra, spectra_line, spectra_path
+    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver, check_green_scene
+    use greenconv_scene_patch, only: sample_patch_road
     implicit none
     private
 
@@ -58,6 +60,8 @@ module greenconv_scene_runner
         procedure(run_advance), deferred :: advance
         !> The rows of the block stepped last that are written.
         procedure(run_rows), deferred :: rows
+        !> The contact forces of the block stepped last, for the force spectra.
+        procedure(run_forces), deferred :: forces
     end type contact_run
 
     abstract interface
@@ -97,6 +101,15 @@ module greenconv_scene_runner
             integer, intent(in) :: every
             real(dp), allocatable, intent(out) :: table(:, :)
         end subroutine run_rows
+
+        !> The total contact force of each step of the last block and, for several points,
+        !> each point's, points(step, point) (no columns for one point).
+        subroutine run_forces(self, total, points)
+            import :: contact_run, dp
+            implicit none
+            class(contact_run), intent(in) :: self
+            real(dp), allocatable, intent(out) :: total(:), points(:, :)
+        end subroutine run_forces
     end interface
 
     !> A single-point run: one convolver, the road under one point.
@@ -110,6 +123,7 @@ module greenconv_scene_runner
         procedure :: sample => single_sample
         procedure :: advance => single_advance
         procedure :: rows => single_rows
+        procedure :: forces => single_forces
     end type single_run
 
     !> A multi-point run: a Green's matrix, the road under N_c points, the peak total force.
@@ -118,8 +132,8 @@ module greenconv_scene_runner
         type(multi_contact_state) :: state
         type(multi_contact_response) :: response
         real(dp), allocatable :: heights(:, :)
-        !> Positions [m] of the points on the belt and on the road at t = 0.
-        real(dp), allocatable :: positions(:), road_positions(:)
+        !> The points: on the body (x, y) and on the road (greenconv_scene_points).
+        type(scene_points) :: points
         !> Largest total force [N] so far.
         real(dp) :: peak = -huge(1.0_dp)
     contains
@@ -127,6 +141,7 @@ module greenconv_scene_runner
         procedure :: sample => multi_sample
         procedure :: advance => multi_advance
         procedure :: rows => multi_rows
+        procedure :: forces => multi_forces
     end type multi_run
 
 contains
@@ -142,17 +157,15 @@ contains
         !> Set when the structure cannot be built or a file cannot be written.
         type(error_type), allocatable, intent(out) :: error
         !> Steps per block of the streamed run (>= 1); by default greenconv_io_files's `block_rows`
-        !> (divided by N_c for the tyre scene, at least 1). The files do not depend on it.
+        !> (divided by N_c for a multi-point scene, at least 1). The files do not depend on it.
         integer, intent(in), optional :: block
 
         type(structure_model) :: structure
         integer :: block_size
 
         if (multi_point_model(scene%model)) then
-            block_size = max(block_rows/scene%n_points, 1)
-            if (present(block)) block_size = max(block, 1)
             call make_directory(scene%output_dir, error)
-            if (.not. allocated(error)) call run_multipoint_methods(scene, unit, block_size, error)
+            if (.not. allocated(error)) call run_multipoint_methods(scene, unit, error, block)
             return
         end if
         block_size = block_rows
@@ -184,7 +197,7 @@ contains
 
         type(frf_type) :: frf
         character(len=:), allocatable :: line
-        integer :: i
+        integer :: i, n_c
 
         call check_output_directory(scene%output_dir, error)
         if (allocated(error)) then
@@ -201,9 +214,12 @@ contains
             line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
                    //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
         end if
+        n_c = scene%n_points
+        if (model_requires(find_model(scene%model), 'green_file')) call check_green_scene(scene, line, n_c, error)
+        if (allocated(error)) return
         if (scene%task == 'contact') then
             line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &
-                   //int_text(scene%n_points)//' contact point(s), '
+                   //int_text(n_c)//' contact point(s), '
             if (multi_point_model(scene%model)) then
                 line = line//'Newton on all points'
             else
@@ -213,6 +229,7 @@ contains
             do i = 1, size(scene%methods)
                 line = line//' '//trim(scene%methods(i))
             end do
+            if (scene%spectra) line = line//', '//spectra_line(scene)
         end if
         write (unit, '(a)') line
     end subroutine check_scene
@@ -230,6 +247,7 @@ contains
         integer :: i, n
 
         write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
+        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
@@ -251,36 +269,40 @@ contains
         end do
     end subroutine run_methods
 
-    !> The contact loop once per method of a multi-point (tyre) scene.
-    subroutine run_multipoint_methods(scene, unit, block, error)
+    !> The contact loop once per method of a multi-point scene (the tyre, a Green's matrix
+    !> file), in blocks of `block` steps (default greenconv_io_files's `block_rows`/N_c).
+    subroutine run_multipoint_methods(scene, unit, error, block)
         type(scene_type), intent(in) :: scene
-        integer, intent(in) :: unit, block
+        integer, intent(in) :: unit
         type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: block
 
         type(multi_run) :: run
-        type(point_modes) :: modes
         character(len=:), allocatable :: method, accuracy, label
         real(dp) :: seconds
-        integer :: i, n
+        integer :: i, n, n_c, block_size
 
-        call tyre_points(scene, unit, modes, run%positions, run%road_positions, error)
+        call find_scene_points(scene, unit, run%points, error)
         if (allocated(error)) return
+        n_c = run%points%n_points()
+        block_size = max(block_rows/n_c, 1)
+        if (present(block)) block_size = max(block, 1)
+        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
-            call make_multipoint_convolver(method, modes, scene%dt, scene%truncation_tol, scene%n_steps, run%conv, &
-                                           accuracy, error)
+            call points_convolver(run%points, scene, method, run%conv, accuracy, error)
             if (allocated(error)) then
                 error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
                 return
             end if
-            call start_multi_contact(run%conv, [(scene%law, n=1, scene%n_points)], &
-                                     [(scene%preload/scene%n_points, n=1, scene%n_points)], run%state, error, &
-                                     newton_options(max_displacement=scene%contact%divergence_bound))
+            call start_multi_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], run%state, &
+                                     error, newton_options(max_displacement=scene%contact%divergence_bound))
             if (allocated(error)) return
             run%peak = -huge(1.0_dp)
-            call stream_run(run, scene, method, multi_contact_header(title(scene, method)), 7, block, &
-                            scene%file//': '//method//': ', seconds, error)
+            call stream_run(run, scene, method, multi_contact_header(title(scene, method), run%points%from_file), &
+                            merge(8, 7, run%points%from_file), block_size, scene%file//': '//method//': ', seconds, &
+                            error)
             call run%conv%release()
             if (allocated(error)) return
             call run%conv%model_size(n, label)
@@ -293,6 +315,8 @@ contains
     !> `<output_dir>/<name>_<method>.dat` with the lines `header` and rows of `n_columns`
     !> values. `seconds` is the CPU time of the contact loop alone. A numerical fault keeps
     !> the rows written before it: the file is completed and `error` names it after `prefix`.
+    !> With `&scene spectra`, every step's contact forces also feed the force spectra
+    !> (greenconv_scene_spectra_output), written when the run ends.
     subroutine stream_run(run, scene, method, header, n_columns, block, prefix, seconds, error)
         class(contact_run), intent(inout) :: run
         type(scene_type), intent(in) :: scene
@@ -303,8 +327,9 @@ contains
 
         type(column_writer) :: writer
         type(progress_meter) :: meter
+        type(force_spectra) :: spectra
         type(error_type), allocatable :: fault
-        real(dp), allocatable :: table(:, :)
+        real(dp), allocatable :: table(:, :), total(:), points(:, :)
         integer(int64) :: first
         real(dp) :: start, finish
         integer :: m
@@ -314,6 +339,7 @@ contains
                           binary=scene%output_format == 'binary')
         if (allocated(error)) return
         call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
+        call start_force_spectra(spectra, scene)
         do while (run%step() < scene%n_steps)
             first = run%step()
             m = int(min(int(block, int64), scene%n_steps - first))
@@ -322,6 +348,10 @@ contains
             call run%advance(fault)
             call cpu_time(finish)
             seconds = seconds + (finish - start)
+            if (spectra%active .and. .not. allocated(fault)) then
+                call run%forces(total, points)
+                call add_contact_forces(spectra, total, points)
+            end if
             call run%rows(first, scene%output_every, table)
             call append_rows(writer, table, error)
             if (allocated(error) .or. allocated(fault)) exit
@@ -329,6 +359,7 @@ contains
         end do
         call finish_progress(meter, run%step())
         call close_run_file(writer, fault, prefix, error)
+        call finish_force_spectra(spectra, scene, method, error)
     end subroutine stream_run
 
     !> The header of a method's column file: what ran, the units, the columns (t, u_road,
@@ -358,6 +389,8 @@ contains
         character(len=:), allocatable :: line
 
         line = 'greenconv tyre/road scene '//scene%name//', method '//method
+        if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
+                                          //method
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
@@ -404,6 +437,15 @@ contains
         end associate
     end subroutine single_rows
 
+    !> The contact force of each step of the block.
+    subroutine single_forces(self, total, points)
+        class(single_run), intent(in) :: self
+        real(dp), allocatable, intent(out) :: total(:), points(:, :)
+
+        total = self%response%force
+        allocate (points(size(total), 0))
+    end subroutine single_forces
+
     function multi_step(self) result(step)
         class(multi_run), intent(in) :: self
         integer(int64) :: step
@@ -418,7 +460,7 @@ contains
         integer(int64), intent(in) :: first
         integer, intent(in) :: count
 
-        call sample_road_steps(scene%road_data, self%road_positions, scene%speed, scene%dt, first, count, self%heights)
+        call sample_patch_road(scene, self%points%road_x, self%points%road_y, first, count, self%heights)
     end subroutine multi_sample
 
     subroutine multi_advance(self, fault)
@@ -428,8 +470,8 @@ contains
         call multi_contact_block(self%conv, self%state, self%heights, self%response, fault)
     end subroutine multi_advance
 
-    !> N_c rows per kept step (greenconv_scene_output's `multi_contact_table`); the peak total
-    !> force of the block is noted.
+    !> N_c rows per kept step (greenconv_scene_output's `multi_contact_table`, with the column y
+    !> for a Green's matrix file's points); the peak total force of the block is noted.
     subroutine multi_rows(self, first, every, table)
         class(multi_run), intent(inout) :: self
         integer(int64), intent(in) :: first
@@ -437,7 +479,20 @@ contains
         real(dp), allocatable, intent(out) :: table(:, :)
 
         if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
-        table = multi_contact_table(self%positions, self%response, first_kept(first, every), every)
+        if (self%points%from_file) then
+            table = multi_contact_table(self%points%x, self%response, first_kept(first, every), every, self%points%y)
+        else
+            table = multi_contact_table(self%points%x, self%response, first_kept(first, every), every)
+        end if
     end subroutine multi_rows
+
+    !> The total force and each point's force of each step of the block.
+    subroutine multi_forces(self, total, points)
+        class(multi_run), intent(in) :: self
+        real(dp), allocatable, intent(out) :: total(:), points(:, :)
+
+        total = self%response%total_force
+        points = self%response%force
+    end subroutine multi_forces
 
 end module greenconv_scene_runner

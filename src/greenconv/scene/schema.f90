@@ -9,8 +9,10 @@
 !>
 !>     &scene                        always; dt and n_steps for task 'contact'
 !>     &structure model              always, and the variables its model requires
-!>                                   (mass, stiffness, damping_ratio for 'sdof'; frf_file for 'frf_file')
-!>     &road profile                 for task 'contact' (road_file for profile 'file')
+!>                                   (mass, stiffness, damping_ratio for 'sdof'; frf_file for 'frf_file';
+!>                                   green_file for 'green_file')
+!>     &road profile                 for task 'contact' (road_file for profile 'file', texture_file for
+!>                                   profile 'texture')
 !>     &contact stiffness, exponent  for task 'contact'
 !>     &convolution methods          for task 'contact'
 !>
@@ -74,7 +76,7 @@ contains
         !> The table.
         type(scene_variable), allocatable :: table(:)
 
-        type(scene_variable) :: rows(64)
+        type(scene_variable) :: rows(96)
         integer :: n
 
         n = 0
@@ -96,6 +98,17 @@ contains
             //"<name>_<method>.bin.txt)", '')
         call add(rows, n, 'scene', 'progress', value_logical, '.true.', '', &
             'whether to show a progress line on a terminal', '')
+        call add(rows, n, 'scene', 'spectra', value_logical, '.false.', '', &
+            "whether a contact run also writes the 1/3-octave spectrum of its contact force, " &
+            //"<name>_<method>_spectra.dat", '')
+        call add(rows, n, 'scene', 'spectra_f_low', value_real, '20.0', 'Hz', &
+            'the lowest band centre of the force spectra (default: 20 Hz or the lowest band the ' &
+            //'record resolves)', '')
+        call add(rows, n, 'scene', 'spectra_f_high', value_real, '20000.0', 'Hz', &
+            'the highest band centre of the force spectra (default: 20 kHz or the highest band below ' &
+            //'the Nyquist frequency 1/(2*dt))', '')
+        call add(rows, n, 'scene', 'spectra_points', value_logical, '.false.', '', &
+            'whether the force spectra of a multi-point run also give the level of each point', '')
         call add(rows, n, 'structure', 'model', value_text, '', '', &
             "the structure model, "//model_names(), 'always')
         call add(rows, n, 'structure', 'mass', value_real, '1.0', 'kg', &
@@ -136,6 +149,10 @@ contains
             'the tyre foundation stiffness', '')
         call add(rows, n, 'structure', 'f_modes', value_real, '0.0', 'Hz', &
             'the highest tyre mode kept (0: the band rule)', '')
+        call add(rows, n, 'structure', 'green_file', value_text, '', '', &
+            "a universal file of the Green's matrix between the contact points: receptances G_ij(f) " &
+            //'in m/N (datasets 58 of function type 4) or impulse responses g_ij(t) in m/(N*s) (type 1), ' &
+            //'the points at their node coordinates (dataset 15 or 2411, m)', '')
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '')
         call add(rows, n, 'identification', 'n_freq', value_integer, '20001', '', &
@@ -149,7 +166,7 @@ contains
         call add(rows, n, 'identification', 'method', value_text, '', '', &
             "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
-            "the road profile, 'sine', 'random' or 'file'", "task 'contact'")
+            "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'")
         call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &
             'the road amplitude', '')
         call add(rows, n, 'road', 'omega', value_real, '100.0', 'rad/s', &
@@ -166,6 +183,10 @@ contains
             'a road file', "profile 'file'")
         call add(rows, n, 'road', 'x_start', value_real, '0.0', 'm', &
             'the position on the road file at t = 0', '')
+        call add(rows, n, 'road', 'texture_file', value_text, '', '', &
+            'a road texture file (heights on an x-y grid)', "profile 'texture'")
+        call add(rows, n, 'road', 'y_start', value_real, '0.0', 'm', &
+            'the lateral position on the road texture of the patch centre', '')
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'")
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &

@@ -14,13 +14,34 @@
 !> the scene through the library's contact loop (greenconv_contact_single or _multi, in
 !> blocks as the runner does), keeping only a summary of the total contact force: max,
 !> mean, rms, the fraction of steps in contact, the status (0, 2 bad input, 3 numerical
-!> fault) and the step of a fault, with its CPU time. No per-variant history is written.
+!> fault) and the step of a fault, with its CPU time.
+!>
+!> Options of the `&sweep` group besides the varied variables:
+!>
+!>     spectra = .true.     ! 1/3-octave band levels of each method's total contact force
+!>     f_low = 100.0        ! [Hz] lowest nominal band centre (default 100 Hz)
+!>     f_high = 5000.0      ! [Hz] highest nominal band centre (default 5000 Hz)
+!>     histories = .true.   ! each variant's column files <name>_v<k>_<method>.dat (default off)
+!>
+!> With `spectra`, the table gets, after the methods' summaries, one column `L<fc>_<method>`
+!> per band and method: the band level in dB re 1 N of the variant's total-force history
+!> (greenconv_io_spectra's `band_levels`: IEC 61260-1 bands, Welch PSD with a Hann window),
+!> printed to 1e-4 dB, `fc` the band's nominal centre (800 for the band at 794.3 Hz); `nan`
+!> for a method that failed. Every band must lie below each variant's Nyquist frequency and
+!> its record be long enough for the lowest band (checked with the variants, so a variant
+!> that cannot give every column fails its check). With `histories`, each method of each
+!> variant streams its rows (every `output_every`-th step) to its own column file, as a
+!> contact scene writes `<name>_<method>.dat` (text or, with `output_format = 'binary'`,
+!> `.bin` and its header `.bin.txt`); a numerical fault keeps the rows before it.
 !>
 !> Results: `<output_dir>/<name>_sweep.dat`, one row per variant in variant order, the
 !> same byte for byte whatever runs the variants; CPU times, which vary from run to run,
 !> go to `<name>_sweep_cpu.dat`. Each finished variant is recorded at once (atomically) in
-!> `<output_dir>/<name>_sweep.d/<key>.rec`, keyed by a hash of the variant's text, so a
-!> rerun skips what is done and reruns what was edited.
+!> `<output_dir>/<name>_sweep.d/<key>.rec`, keyed by a hash of the variant's text, of the
+!> contents of the files it names (road file, receptance file) and of the options that change
+!> what a variant gives (spectra and their band range, histories with the variant's number,
+!> which names its files), so a rerun skips what is done and reruns what was edited, also
+!> through the files.
 !>
 !> This module holds the pieces (read, check, run one variant, record, write the table)
 !> and the serial run `run_sweep`; the MPI driver (mpi/) shares them among ranks.
@@ -29,9 +50,12 @@ module greenconv_scene_sweep
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
-    use greenconv_core_text, only: int_text, lower_text
+    use greenconv_core_text, only: int_text, lower_text, real_text
     use greenconv_io_columns, only: read_line
-    use greenconv_io_files, only: make_directory, block_rows
+    use greenconv_io_files, only: make_directory, block_rows, column_writer, open_columns, append_rows, &
+                                  close_run_file, first_kept
+    use greenconv_io_spectra, only: segment_for_band, first_band, default_lines_per_band, band_spectrum, &
+                                    band_levels, third_octave_bands
     use greenconv_conv_convolver, only: convolver, free_convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver, make_multipoint_convolver
@@ -46,14 +70,27 @@ module greenconv_scene_sweep
     use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_tyre, only: tyre_points
+    use greenconv_scene_output, only: multi_contact_header, multi_contact_table
     use greenconv_scene_runner, only: check_scene
     implicit none
     private
 
     public :: sweep_text, sweep_plan, variant_outcome
-    public :: is_sweep_file, read_sweep, variant_lines, variant_key, read_variant, check_sweep, run_variant
+    public :: is_sweep_file, read_sweep, variant_lines, variant_key, content_key, read_variant, check_sweep, &
+              run_variant
     public :: save_record, summary_row, write_sweep_table, outcome_text, outcome_from_text, run_sweep
-    public :: report_check, report_variant, finish_report
+    public :: report_check, report_variant, finish_report, replaced_all
+
+    !> Options of the `&sweep` group that are not varied variables.
+    character(len=*), parameter :: option_names(4) = [character(len=9) :: 'spectra', 'histories', 'f_low', 'f_high']
+    !> Lines of the PSD the lowest band spans (greenconv_io_spectra's default): sets the record a variant needs.
+    integer, parameter :: lines_per_band = default_lines_per_band
+    !> f_low and f_high name bands by their nominal centres (800 Hz for 794.3 Hz, 5000 Hz for
+    !> 5011.9 Hz): a band counts when its exact centre is within this factor (2.3 %, a tenth of
+    !> the distance to the next band) of the range; the nominal names differ from the exact by < 1 %.
+    real(dp), parameter :: nominal_margin = 10.0_dp**(-0.01_dp)
+    !> Width of a band level's column.
+    integer, parameter :: level_width = 11
 
     !> Scene variables a sweep may not vary: they name the sweep and its columns.
     character(len=*), parameter :: fixed_variables(4) = [character(len=19) :: 'scene.task', 'scene.name', &
@@ -83,6 +120,14 @@ module greenconv_scene_sweep
         integer, allocatable :: value_line(:), group_line(:)
         !> Start of the names of the temporary variant files (a directory and a unique prefix).
         character(len=:), allocatable :: temp_prefix
+        !> Whether the table has the 1/3-octave band levels of each method's total contact force.
+        logical :: spectra = .false.
+        !> Lowest and highest band centre [Hz] of the levels.
+        real(dp) :: f_low = 100.0_dp, f_high = 5000.0_dp
+        !> Exact centres [Hz] and upper edges [Hz] of the bands of the levels (none without `spectra`).
+        real(dp), allocatable :: band_centre(:), band_upper(:)
+        !> Whether each variant writes its per-method column files `<name>_v<k>_<method>.dat`.
+        logical :: histories = .false.
     end type sweep_plan
 
     !> What one variant gave: its summary per method, the CPU times, the worst status.
@@ -96,6 +141,9 @@ module greenconv_scene_sweep
         integer :: status = 0
         !> The first failure's message ('' when none).
         character(len=:), allocatable :: message
+        !> The variant's content key (`content_key`), set when it ran; its record's name. Not
+        !> part of the outcome's text: unset, the outcome is not recorded.
+        character(len=:), allocatable :: key
     end type variant_outcome
 
     !> Running summary of a force history.
@@ -249,7 +297,85 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call read_text_scene(plan, variant_lines(plan, k), 'variant '//int_text(k), scene, error)
+        if (.not. allocated(error)) call check_spectra(plan, k, scene, error)
     end subroutine read_variant
+
+    !> The content key of variant k, its record's name: `variant_key` of its lines, followed
+    !> by a line of the options that change its result (spectra and their bands, histories)
+    !> when set, and by each file the scene names (road file, receptance file): its name and
+    !> every line of it. An edited road file so changes the key of every variant that reads it.
+    !> With histories the key also holds k, which names the variant's files: a variant whose
+    !> number an edit of the lists changed runs again and rewrites the files of its number.
+    function content_key(plan, k, scene) result(key)
+        !> The sweep.
+        type(sweep_plan), intent(in) :: plan
+        !> Variant number.
+        integer, intent(in) :: k
+        !> The variant's scene, as `read_variant` gave it.
+        type(scene_type), intent(in) :: scene
+        character(len=16) :: key
+
+        type(sweep_text), allocatable :: lines(:)
+
+        ! allocated first: gfortran -O2 warns of an unset descriptor otherwise (an array
+        ! constructor around variant_lines instead leaks its texts)
+        allocate (lines(0))
+        lines = variant_lines(plan, k)
+        if (plan%spectra) call append_text(lines, '&sweep spectra = .true., f_low = '//real_text(plan%f_low) &
+                                           //', f_high = '//real_text(plan%f_high)//' /')
+        if (plan%histories) call append_text(lines, '&sweep histories = .true. / ! variant '//int_text(k))
+        if (allocated(scene%road_data%path)) call append_file(lines, scene%road_data%path)
+        if (allocated(scene%frf_file)) then
+            if (len_trim(scene%frf_file) > 0) call append_file(lines, scene%frf_file)
+        end if
+        key = variant_key(lines)
+    end function content_key
+
+    !> Append a file's name and its lines (or that it cannot be read) to the lines of a key.
+    subroutine append_file(lines, path)
+        type(sweep_text), allocatable, intent(inout) :: lines(:)
+        character(len=*), intent(in) :: path
+
+        type(sweep_text), allocatable :: content(:)
+        type(error_type), allocatable :: error
+        integer :: i
+
+        call append_text(lines, '! file '//path)
+        call read_lines(path, content, error)
+        if (allocated(error)) then
+            call append_text(lines, '! unreadable')
+            return
+        end if
+        do i = 1, size(content)
+            call append_text(lines, content(i)%text)
+        end do
+    end subroutine append_file
+
+    !> With spectra, every band must lie below the variant's Nyquist frequency and its record
+    !> hold a Welch segment of the lowest band (as greenconv_io_spectra's `band_levels` needs).
+    subroutine check_spectra(plan, k, scene, error)
+        type(sweep_plan), intent(in) :: plan
+        integer, intent(in) :: k
+        type(scene_type), intent(in) :: scene
+        type(error_type), allocatable, intent(out) :: error
+
+        integer(int64) :: n
+        character(len=:), allocatable :: where
+
+        if (size(plan%band_centre) == 0) return
+        where = plan%file//' (variant '//int_text(k)//'): &sweep spectra: '
+        if (plan%band_upper(size(plan%band_upper)) > 0.5_dp/scene%dt) then
+            call fatal_error(error, where//'expected every band up to f_high = '//real_text(plan%f_high) &
+                             //' Hz below the Nyquist frequency 1/(2 dt) = '//real_text(0.5_dp/scene%dt) &
+                             //' Hz; lower f_high or dt')
+            return
+        end if
+        ! the segment band_levels takes for the lowest band
+        n = segment_for_band(first_band(plan%band_centre(1)), scene%dt, lines_per_band)
+        if (n > scene%n_steps) call fatal_error(error, where//'expected a record of at least '//int_text(n) &
+            //' steps for the band at '//real_text(plan%band_centre(1))//' Hz, found n_steps = ' &
+            //int_text(scene%n_steps)//'; raise f_low or n_steps')
+    end subroutine check_spectra
 
     !> Check every variant and find those a previous run finished (their records). On return
     !> `pending` lists the variants to run; `outcomes` holds those done (from their records)
@@ -284,7 +410,7 @@ contains
                 write (unit, '(a)') 'greenconv: '//error%message
                 cycle
             end if
-            call load_record(record_path(plan, k), outcomes(k), found)
+            call load_record(record_path(plan, content_key(plan, k, scene)), outcomes(k), found)
             if (found) then
                 n_done = n_done + 1
             else
@@ -315,14 +441,21 @@ contains
         outcome%cpu = ''
         outcome%message = ''
         scene%progress = .false.
-        if (multi_point_model(scene%model)) then
-            call run_multipoint_variant(scene, 'variant '//int_text(k)//': ', outcome)
-        else
-            call run_single_variant(scene, 'variant '//int_text(k)//': ', outcome)
+        if (plan%histories) call make_directory(plan%output_dir, error)
+        if (allocated(error)) then
+            outcome = failed_outcome(plan, error)
+            return
         end if
+        if (multi_point_model(scene%model)) then
+            call run_multipoint_variant(plan, k, scene, outcome)
+        else
+            call run_single_variant(plan, k, scene, outcome)
+        end if
+        outcome%key = content_key(plan, k, scene)
     end subroutine run_variant
 
-    !> Record variant k's outcome, atomically, under its content key.
+    !> Record variant k's outcome, atomically, under its content key (nothing when the
+    !> outcome has none: the variant failed its check, a fixed file reruns it).
     subroutine save_record(plan, k, outcome, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -335,11 +468,13 @@ contains
 
         type(sweep_text), allocatable :: lines(:)
 
+        if (.not. allocated(outcome%key)) return
         call make_directory(record_directory(plan), error)
         if (allocated(error)) return
         allocate (lines(0))
         call append_text(lines, outcome_text(outcome))
-        call write_atomically(record_path(plan, k), lines, error)
+        call write_atomically(record_path(plan, outcome%key), lines, error)
+        if (allocated(error)) error%message = 'variant '//int_text(k)//': '//error%message
     end subroutine save_record
 
     !> The row of variant k in the table: its number, its values, its result.
@@ -373,7 +508,7 @@ contains
 
         type(sweep_text), allocatable :: table(:), cpu(:)
         character(len=:), allocatable :: names, cpu_names
-        integer :: j, k
+        integer :: j, k, b
 
         names = '# variant'
         do j = 1, size(plan%variables)
@@ -387,11 +522,20 @@ contains
                 cpu_names = cpu_names//' cpu_s_'//m
             end associate
         end do
+        do j = 1, size(plan%methods)
+            do b = 1, size(plan%band_centre)
+                names = names//' '//padded('L'//nominal_text(plan%band_centre(b))//'_'//plan%methods(j)%text, &
+                                           level_width)
+            end do
+        end do
         allocate (table(0), cpu(0))
         call append_text(table, '# greenconv sweep '//plan%name//' of '//plan%file//': '//int_text(size(outcomes)) &
                          //' variants, rows in variant order')
         call append_text(table, '# per method: max, mean, rms of the total contact force [N], fraction of steps in ' &
                          //'contact, status (0 done, 2 bad input, 3 numerical fault), step of the fault (0: none)')
+        if (plan%spectra) call append_text(table, '# then per method and 1/3-octave band L<f_c>_<method>: level of ' &
+            //'the total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
+            //real_text(plan%f_high)//' Hz; Welch PSD, Hann window, 50 % overlap; nan: the method failed)')
         call append_text(table, names)
         call append_text(cpu, '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method')
         call append_text(cpu, cpu_names)
@@ -508,98 +652,241 @@ contains
 
     ! ---- running one variant ------------------------------------------------------------
 
-    !> Each method of a single-point variant, summarised.
-    subroutine run_single_variant(scene, prefix, outcome)
+    !> Each method of a single-point variant, summarised (with its band levels and history
+    !> file when the sweep asks for them).
+    subroutine run_single_variant(plan, k, scene, outcome)
+        type(sweep_plan), intent(in) :: plan
+        integer, intent(in) :: k
         type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: prefix
         type(variant_outcome), intent(inout) :: outcome
 
         type(structure_model) :: structure
         class(convolver), allocatable :: conv
         type(contact_state) :: state
         type(contact_response) :: response
-        type(error_type), allocatable :: failure, error
+        type(error_type), allocatable :: failure, error, fault
         type(force_summary) :: summary
-        character(len=:), allocatable :: accuracy
+        type(column_writer) :: writer
+        character(len=:), allocatable :: accuracy, levels, prefix, method
+        real(dp), allocatable :: history(:), table(:, :)
         real(dp) :: start, finish, seconds
-        integer :: i, m
+        integer(int64) :: first
+        integer :: i, m, j
 
+        prefix = 'variant '//int_text(k)//': '
+        levels = ''
+        if (plan%spectra) allocate (history(scene%n_steps))
         call build_structure(scene, structure, failure)
         do i = 1, size(scene%methods)
+            method = trim(scene%methods(i))
             summary = force_summary()
             seconds = 0.0_dp
             state%step = 0
             if (allocated(failure)) then
                 error = failure
             else
-                call make_convolver(trim(scene%methods(i)), structure, scene%dt, scene%truncation_tol, scene%n_steps, &
+                call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, &
                                     conv, accuracy, error, scene%accuracy)
                 if (.not. allocated(error)) call start_contact(conv, scene%law, scene%preload, state, error, &
                                                                scene%contact)
+                if (.not. allocated(error) .and. plan%histories) call open_columns(writer, &
+                    history_path(plan, scene, k, method), single_header(plan, scene, k, method), 5, error, &
+                    binary(scene))
             end if
-            do while (.not. allocated(error) .and. state%step < scene%n_steps)
-                m = int(min(int(block_rows, int64), scene%n_steps - state%step))
+            do while (.not. (allocated(error) .or. allocated(fault)) .and. state%step < scene%n_steps)
+                first = state%step
+                m = int(min(int(block_rows, int64), scene%n_steps - first))
                 call cpu_time(start)
-                call contact_block(conv, state, scene%road%sample_steps(scene%dt, state%step, m), response, error)
+                call contact_block(conv, state, scene%road%sample_steps(scene%dt, first, m), response, fault)
                 call cpu_time(finish)
                 seconds = seconds + (finish - start)
                 call add_forces(summary, response%force)
+                if (plan%spectra) history(first + 1:first + size(response%force)) = response%force
+                if (plan%histories) then
+                    j = first_kept(first, scene%output_every)
+                    associate (r => response, every => scene%output_every)
+                        table = reshape([r%time(j::every), r%road(j::every), r%displacement(j::every), &
+                                         r%force(j::every), r%compression(j::every)], [size(r%time(j::every)), 5])
+                    end associate
+                    call append_rows(writer, table, error)
+                end if
             end do
-            call add_method(outcome, summary, seconds, error, state%step, prefix//trim(scene%methods(i))//': ')
+            call end_method(plan, writer, fault, error)
+            call add_method(outcome, summary, seconds, error, state%step, prefix//method//': ')
+            levels = levels//band_text(plan, history, scene, .not. allocated(error))
             call free_convolver(conv)
             if (allocated(error)) deallocate (error)
         end do
+        outcome%result = outcome%result//levels
     end subroutine run_single_variant
 
-    !> Each method of a multi-point (tyre) variant, summarised on the total force.
-    subroutine run_multipoint_variant(scene, prefix, outcome)
+    !> Each method of a multi-point (tyre) variant, summarised on the total force (with its
+    !> band levels and history file when the sweep asks for them).
+    subroutine run_multipoint_variant(plan, k, scene, outcome)
+        type(sweep_plan), intent(in) :: plan
+        integer, intent(in) :: k
         type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: prefix
         type(variant_outcome), intent(inout) :: outcome
 
         type(point_modes) :: modes
         class(multipoint_convolver), allocatable :: conv
         type(multi_contact_state) :: state
         type(multi_contact_response) :: response
-        type(error_type), allocatable :: failure, error
+        type(error_type), allocatable :: failure, error, fault
         type(force_summary) :: summary
-        real(dp), allocatable :: positions(:), road_positions(:), heights(:, :)
-        character(len=:), allocatable :: accuracy
+        type(column_writer) :: writer
+        real(dp), allocatable :: positions(:), road_positions(:), heights(:, :), history(:)
+        character(len=:), allocatable :: accuracy, levels, prefix, method
         real(dp) :: start, finish, seconds
         integer :: i, m, n, scratch, block
-        integer(int64) :: step
+        integer(int64) :: step, first
 
+        prefix = 'variant '//int_text(k)//': '
+        levels = ''
+        if (plan%spectra) allocate (history(scene%n_steps))
         open (newunit=scratch, status='scratch', action='readwrite')
         call tyre_points(scene, scratch, modes, positions, road_positions, failure)
         close (scratch)
         block = max(block_rows/scene%n_points, 1)
         do i = 1, size(scene%methods)
+            method = trim(scene%methods(i))
             summary = force_summary()
             seconds = 0.0_dp
             step = 0
             if (allocated(failure)) then
                 error = failure
             else
-                call make_multipoint_convolver(trim(scene%methods(i)), modes, scene%dt, scene%truncation_tol, &
+                call make_multipoint_convolver(method, modes, scene%dt, scene%truncation_tol, &
                                                scene%n_steps, conv, accuracy, error)
                 if (.not. allocated(error)) call start_multi_contact(conv, [(scene%law, n=1, scene%n_points)], &
                     [(scene%preload/scene%n_points, n=1, scene%n_points)], state, error, &
                     newton_options(max_displacement=scene%contact%divergence_bound))
+                if (.not. allocated(error) .and. plan%histories) call open_columns(writer, &
+                    history_path(plan, scene, k, method), multi_contact_header(history_title(plan, scene, k, &
+                    method)), 7, error, binary(scene))
             end if
-            do while (.not. allocated(error) .and. step < scene%n_steps)
+            do while (.not. (allocated(error) .or. allocated(fault)) .and. step < scene%n_steps)
+                first = step
                 m = int(min(int(block, int64), scene%n_steps - step))
                 call sample_road_steps(scene%road_data, road_positions, scene%speed, scene%dt, step, m, heights)
                 call cpu_time(start)
-                call multi_contact_block(conv, state, heights, response, error)
+                call multi_contact_block(conv, state, heights, response, fault)
                 call cpu_time(finish)
                 seconds = seconds + (finish - start)
                 step = state%step
                 call add_forces(summary, response%total_force)
+                if (plan%spectra) history(first + 1:first + size(response%total_force)) = response%total_force
+                if (plan%histories) call append_rows(writer, multi_contact_table(positions, response, &
+                    first_kept(first, scene%output_every), scene%output_every), error)
             end do
-            call add_method(outcome, summary, seconds, error, step, prefix//trim(scene%methods(i))//': ')
+            call end_method(plan, writer, fault, error)
+            call add_method(outcome, summary, seconds, error, step, prefix//method//': ')
+            levels = levels//band_text(plan, history, scene, .not. allocated(error))
             if (allocated(error)) deallocate (error)
         end do
+        outcome%result = outcome%result//levels
     end subroutine run_multipoint_variant
+
+    !> The column file of variant k's method: `<output_dir>/<name>_v<k>_<method>.dat`, or
+    !> `.bin` (with its header `.bin.txt`) for `output_format = 'binary'`, as a contact scene
+    !> names its files.
+    function history_path(plan, scene, k, method) result(path)
+        type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: path
+
+        path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method//merge('.bin', '.dat', binary(scene))
+    end function history_path
+
+    !> Whether a variant's history files are binary (`&scene output_format = 'binary'`).
+    logical function binary(scene)
+        type(scene_type), intent(in) :: scene
+
+        binary = scene%output_format == 'binary'
+    end function binary
+
+    !> First header line of a variant's history file: the sweep, the variant and its values,
+    !> the method, the steps; with `output_every` > 1, which steps the rows are.
+    function history_title(plan, scene, k, method) result(line)
+        type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: line
+
+        integer :: j
+
+        line = 'greenconv sweep '//plan%name//', variant '//int_text(k)//' ('
+        do j = 1, size(plan%variables)
+            if (j > 1) line = line//', '
+            line = line//plan%variables(j)%text//' = '//plan%values(k, j)%text
+        end do
+        line = line//'), method '//method//', '//int_text(scene%n_steps)//' steps of '//real_text(scene%dt)//' s'
+        if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
+                                           //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
+                                           //', ...)'
+    end function history_title
+
+    !> The header of a single-point variant's history file: title, units, columns (those of a
+    !> contact scene's file).
+    function single_header(plan, scene, k, method) result(comments)
+        type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: comments(:)
+
+        character(len=:), allocatable :: title
+
+        title = history_title(plan, scene, k, method)
+        allocate (character(len=max(len(title), 40)) :: comments(3))
+        comments(1) = title
+        comments(2) = 'units: s m m N m'
+        comments(3) = 't u_road u f_contact delta'
+    end function single_header
+
+    !> End a method: close its history file (when written) and make its failure `error`. A
+    !> numerical fault keeps the rows before it (the file is completed and named in the
+    !> message); a failed write (its file then gone) is the error instead.
+    subroutine end_method(plan, writer, fault, error)
+        type(sweep_plan), intent(in) :: plan
+        type(column_writer), intent(inout) :: writer
+        type(error_type), allocatable, intent(inout) :: fault, error
+
+        if (plan%histories .and. writer%opened) call close_run_file(writer, fault, '', error)
+        if (.not. allocated(error) .and. allocated(fault)) call move_alloc(fault, error)
+        if (allocated(fault)) deallocate (fault)
+    end subroutine end_method
+
+    !> One method's band levels as table columns: ' ' and the level [dB re 1 N] per band of
+    !> the sweep; 'nan' for a method that failed (its history is not whole). Empty without spectra.
+    function band_text(plan, history, scene, ok) result(text)
+        type(sweep_plan), intent(in) :: plan
+        real(dp), allocatable, intent(in) :: history(:)
+        type(scene_type), intent(in) :: scene
+        logical, intent(in) :: ok
+        character(len=:), allocatable :: text
+
+        type(band_spectrum) :: spectrum
+        type(error_type), allocatable :: error
+        character(len=level_width) :: level
+        integer :: b
+
+        text = ''
+        if (size(plan%band_centre) == 0) return
+        if (ok) call band_levels(history, scene%dt, plan%f_low*nominal_margin, plan%f_high/nominal_margin, spectrum, &
+                                 error, lines_per_band)
+        if (ok .and. .not. allocated(error)) then
+            if (size(spectrum%level) /= size(plan%band_centre)) allocate (error)
+        end if
+        do b = 1, size(plan%band_centre)
+            level = padded('nan', level_width)
+            if (ok .and. .not. allocated(error)) write (level, '(f11.4)') spectrum%level(b)
+            text = text//' '//level
+        end do
+    end function band_text
 
     !> Add a block's forces to a summary.
     pure subroutine add_forces(summary, force)
@@ -666,7 +953,39 @@ contains
         do j = 1, size(plan%methods)
             call add_method(outcome, force_summary(), 0.0_dp, failure, 0_int64, '')
         end do
+        do j = 1, size(plan%methods)*size(plan%band_centre)
+            outcome%result = outcome%result//' '//padded('nan', level_width)
+        end do
     end function failed_outcome
+
+    !> The nominal name of a 1/3-octave band (100, 125, 160, ..., 1000, 1250, ...) from its
+    !> exact centre 1000*10^(x/10) Hz: the preferred numbers of IEC 61260-1, three digits.
+    function nominal_text(centre) result(text)
+        real(dp), intent(in) :: centre
+        character(len=:), allocatable :: text
+
+        real(dp), parameter :: preferred(0:9) = [1.0_dp, 1.25_dp, 1.6_dp, 2.0_dp, 2.5_dp, 3.15_dp, 4.0_dp, 5.0_dp, &
+                                                 6.3_dp, 8.0_dp]
+        character(len=32) :: buffer
+        real(dp) :: nominal
+        integer :: x
+
+        x = nint(10.0_dp*log10(centre/1000.0_dp))
+        nominal = preferred(modulo(x, 10))*10.0_dp**(3 + floor(x/10.0_dp))
+        if (nominal >= 100.0_dp) then
+            write (buffer, '(i0)') nint(nominal)
+        else
+            write (buffer, '(f0.3)') nominal
+        end if
+        text = trim(buffer)
+        if (index(text, '.') > 0) then
+            do while (text(len(text):len(text)) == '0')
+                text = text(:len(text) - 1)
+            end do
+            if (text(len(text):len(text)) == '.') text = text(:len(text) - 1)
+        end if
+        if (text(1:1) == '.') text = '0'//text
+    end function nominal_text
 
     !> CPU seconds as the CPU file shows them.
     function cpu_text(seconds) result(text)
@@ -727,13 +1046,13 @@ contains
         path = plan%output_dir//'/'//plan%name//'_sweep.d'
     end function record_directory
 
-    !> The record of variant k, named by its content key.
-    function record_path(plan, k) result(path)
+    !> The record of a variant, named by its content key.
+    function record_path(plan, key) result(path)
         type(sweep_plan), intent(in) :: plan
-        integer, intent(in) :: k
+        character(len=*), intent(in) :: key
         character(len=:), allocatable :: path
 
-        path = record_directory(plan)//'/'//variant_key(variant_lines(plan, k))//'.rec'
+        path = record_directory(plan)//'/'//key//'.rec'
     end function record_path
 
     !> Read a record; `found` is .false. when there is none (or it is not one).
@@ -958,6 +1277,8 @@ contains
             if (name == 'table_file') then
                 table_file = unquoted(values(1)%text)
                 call read_design(plan%file, token_lines(i - 1), table_file, table_names, table, error)
+            else if (any(option_names == name)) then
+                call set_option(plan, name, values, where, error)
             else
                 call check_variable(where, name, names, table_names, error)
                 if (.not. allocated(error)) then
@@ -975,6 +1296,8 @@ contains
             if (allocated(error)) return
         end do
         plan%variables = [table_names, names]
+        call set_bands(plan, first, error)
+        if (allocated(error)) return
         if (size(plan%variables) == 0) then
             call fatal_error(error, plan%file//':'//int_text(first)//': &sweep: expected at least one varied ' &
                              //"variable ('road.speed = 10.0, 20.0' or 'table_file = ''design.txt'''), found none")
@@ -986,6 +1309,59 @@ contains
             call variant_values(i, table, lists, counts, plan%values(i, :))
         end do
     end subroutine parse_sweep
+
+    !> An option of the `&sweep` group (`spectra`, `histories`: a logical; `f_low`, `f_high`: Hz).
+    subroutine set_option(plan, name, values, where, error)
+        type(sweep_plan), intent(inout) :: plan
+        character(len=*), intent(in) :: name, where
+        type(sweep_text), intent(in) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        logical :: flag
+        real(dp) :: x
+        integer :: stat
+
+        if (size(values) /= 1) then
+            call fatal_error(error, where//'expected one value, found '//int_text(size(values)))
+            return
+        end if
+        select case (name)
+        case ('spectra', 'histories')
+            read (values(1)%text, *, iostat=stat) flag
+            if (stat /= 0) then
+                call fatal_error(error, where//"expected .true. or .false., found '"//values(1)%text//"'")
+                return
+            end if
+            if (name == 'spectra') plan%spectra = flag
+            if (name == 'histories') plan%histories = flag
+        case default
+            read (values(1)%text, *, iostat=stat) x
+            if (stat /= 0 .or. .not. (x > 0.0_dp .and. x < huge(x))) then
+                call fatal_error(error, where//"expected a band centre frequency > 0 in Hz, found '" &
+                                 //values(1)%text//"'")
+                return
+            end if
+            if (name == 'f_low') plan%f_low = x
+            if (name == 'f_high') plan%f_high = x
+        end select
+    end subroutine set_option
+
+    !> The bands of the levels, from f_low and f_high, when the sweep asks for spectra.
+    subroutine set_bands(plan, first, error)
+        type(sweep_plan), intent(inout) :: plan
+        integer, intent(in) :: first
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: lower(:)
+
+        allocate (plan%band_centre(0), plan%band_upper(0))
+        if (.not. plan%spectra) return
+        call third_octave_bands(plan%f_low*nominal_margin, plan%f_high/nominal_margin, huge(1.0_dp), &
+                                plan%band_centre, lower, plan%band_upper)
+        if (size(plan%band_centre) == 0) call fatal_error(error, plan%file//':'//int_text(first) &
+            //': &sweep f_low, f_high: expected a range holding a 1/3-octave band centre (e.g. f_low = 100.0, ' &
+            //'f_high = 5000.0), found '//real_text(plan%f_low)//' to '//real_text(plan%f_high)//' Hz')
+    end subroutine set_bands
 
     !> The values of variant i: table row slowest, then the lists, the last one fastest.
     subroutine variant_values(i, table, lists, counts, values)
@@ -1051,6 +1427,7 @@ contains
                 cycle
             end if
             if (text(1:1) == '#') cycle
+            if (allocated(row)) deallocate (row)
             row = without_commas(split_tokens(text))
             if (size(row) /= size(names)) then
                 call fatal_error(error, path//':'//int_text(i)//': expected '//int_text(size(names)) &
@@ -1322,16 +1699,22 @@ contains
         end do
     end function added_group_line
 
-    !> Every occurrence of `old` in `text` replaced by `new`.
+    !> Every occurrence of `old` in `text` replaced by `new` (left to right, each once: `new`
+    !> may hold `old`).
     function replaced_all(text, old, new) result(changed)
-        character(len=*), intent(in) :: text, old, new
+        !> The text.
+        character(len=*), intent(in) :: text
+        !> What to replace (not empty).
+        character(len=*), intent(in) :: old
+        !> What replaces it.
+        character(len=*), intent(in) :: new
         character(len=:), allocatable :: changed
 
         integer :: at, from
 
         changed = ''
         from = 1
-        do
+        do while (len(old) > 0)
             at = index(text(from:), old)
             if (at == 0) exit
             changed = changed//text(from:from + at - 2)//new

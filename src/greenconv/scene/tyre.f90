@@ -1,6 +1,7 @@
 !> The tyre/road scene: a line of N_c contact points under the tyre belt of
 !> greenconv_model_tyre, rolling over a road read from a file, all forces solved together at each
-!> step (greenconv_contact_multi). This module turns the scene into what a multi-point run
+!> step (greenconv_contact_multi), with the conventions of greenconv_scene_patch (the points at
+!> y = 0 on the belt). This module turns the scene into what a multi-point run
 !> needs (the points, the belt's modes at them, where each point meets the road) and the
 !> scene's summary line; greenconv_scene_runner streams each method's run into
 !> `<output_dir>/<name>_<method>.dat`, one row per step and point (t x u_road u f_contact
@@ -13,8 +14,8 @@ module greenconv_scene_tyre
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_scene_input, only: scene_type
     use greenconv_model_tyre, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
-    use greenconv_model_road_file, only: check_road_coverage
     use greenconv_model_point_modes, only: point_modes
+    use greenconv_scene_patch, only: place_patch, run_text, road_step
     implicit none
     private
 
@@ -26,8 +27,11 @@ contains
 
     !> The contact points of a tyre scene, the belt's modes at them and where they meet the
     !> road; the scene's line is printed on `unit` ("# scene NAME: tyre belt, ...").
-    subroutine tyre_points(scene, unit, modes, positions, road_positions, error)
-        !> The scene (model 'tyre', road profile 'file').
+    !>
+    !> Without `across` (as the sweep, greenconv_scene_sweep, calls it), the caller samples the
+    !> road file itself: a scene on a road texture, or of another model, is refused then.
+    subroutine tyre_points(scene, unit, modes, positions, road_positions, error, across)
+        !> The scene (model 'tyre', road profile 'file' or 'texture').
         type(scene_type), intent(in) :: scene
         !> Unit of the summary.
         integer, intent(in) :: unit
@@ -39,28 +43,37 @@ contains
         real(dp), allocatable, intent(out) :: road_positions(:)
         !> Set for an unusable scene: not a contact run on a road file, no modes, a road too short.
         type(error_type), allocatable, intent(out) :: error
+        !> Position Y_i [m] of each point across the road (y_start: the belt's points lie at y = 0).
+        real(dp), allocatable, intent(out), optional :: across(:)
 
+        real(dp), allocatable :: road_y(:)
         real(dp) :: f_max
+        integer :: i
 
-        if (scene%task /= 'contact' .or. .not. allocated(scene%road_data%x)) then
-            call fatal_error(error, scene%file//": &structure model: 'tyre' needs task = 'contact' and " &
-                             //"&road profile = 'file'")
+        if (scene%model /= 'tyre' .or. scene%task /= 'contact' .or. .not. (allocated(scene%road_data%x) .or. &
+                                                                             allocated(scene%texture%x))) then
+            call fatal_error(error, scene%file//": &structure model: tyre points need model 'tyre', task = " &
+                             //"'contact' and &road profile = 'file' or 'texture', found model '"//scene%model//"'")
+            return
+        end if
+        if (allocated(scene%texture%x) .and. .not. present(across)) then
+            call fatal_error(error, scene%file//": &road profile: 'texture' is not run by this caller (a sweep " &
+                             //"samples a road file): use profile 'file'")
             return
         end if
         positions = contact_positions(0.5_dp*scene%tyre%length, scene%patch_length, scene%n_points)
         f_max = scene%f_modes
-        if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*minval(scene%road_data%x(2:) &
-                                               - scene%road_data%x(:size(scene%road_data%x) - 1)), scene%dt)
+        if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
         call tyre_modes(scene%tyre, positions, f_max, modes, error)
         if (allocated(error)) return
-        road_positions = scene%x_start + positions - 0.5_dp*scene%tyre%length
-        call check_road_coverage(scene%road_data, road_positions, scene%speed, scene%dt, scene%n_steps, error)
+        call place_patch(scene, positions, [(0.0_dp, i=1, size(positions))], road_positions, road_y, error)
         if (allocated(error)) return
-        write (unit, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a,i0,a,es9.2,a,f0.1,a)') &
+        if (present(across)) call move_alloc(road_y, across)
+        write (unit, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') &
             '# scene '//scene%name//': tyre belt, ', scene%n_points, ' contact points over ', scene%patch_length, &
             ' m, ', modes%modes%n_modes(), &
-            ' modes from ', tyre_frequency(scene%tyre, 1)/(2.0_dp*pi), ' Hz to f_max = ', f_max, ' Hz, ', &
-            scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
+            ' modes from ', tyre_frequency(scene%tyre, 1)/(2.0_dp*pi), ' Hz to f_max = ', f_max, ' Hz, ' &
+            //run_text(scene)
     end subroutine tyre_points
 
 end module greenconv_scene_tyre

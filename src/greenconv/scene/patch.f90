@@ -1,0 +1,109 @@
+!> The conventions of a multi-point scene, written once for every model whose body touches the
+!> road at several points (the tyre belt's line of points, greenconv_scene_tyre; the nodes of a
+!> Green's matrix file, greenconv_scene_points):
+!>
+!> - the body rests in static equilibrium under the total preload F0 (`&contact preload`)
+!>   shared evenly by its N_c points, F0_i = F0/N_c, each compressed by delta0_i = the law's
+!>   compression under F0_i; its displacements u_i are measured from that state;
+!> - point i at (x_i, y_i) on the body sees the road at
+!>
+!>       X_i(t) = x_start + (x_i - x_mean) + V*t   along it,   Y_i = y_start + (y_i - y_mean)   across,
+!>
+!>   x_mean, y_mean the mean position of the points (the patch centre sits at x_start + V*t,
+!>   y_start): u_r,i(t) = h(X_i(t)) for a road profile file (the same for every y), or
+!>   h(X_i(t), Y_i) for a road texture (greenconv_model_road_texture, bilinear);
+!> - compression delta_i = delta0_i + u_r,i - u_i, force F_i from the law, and the body is
+!>   loaded by F_i - F0_i (greenconv_contact_multi).
+module greenconv_scene_patch
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_model_road_file, only: check_road_coverage, sample_road_steps
+    use greenconv_model_road_texture, only: check_texture_coverage, sample_texture_steps
+    use greenconv_scene_input, only: scene_type, input_place
+    implicit none
+    private
+
+    public :: place_patch, sample_patch_road, run_text, road_step
+
+contains
+
+    !> Where the points of a body meet the road at t = 0 (see the module description), checked
+    !> against the road for the whole run.
+    subroutine place_patch(scene, x, y, road_x, road_y, error)
+        !> The scene (road profile 'file' or 'texture').
+        type(scene_type), intent(in) :: scene
+        !> Positions x_i [m] of the points on the body, along the travel.
+        real(dp), intent(in) :: x(:)
+        !> Positions y_i [m] of the points on the body, across.
+        real(dp), intent(in) :: y(:)
+        !> Position X_i(0) [m] of each point along the road.
+        real(dp), allocatable, intent(out) :: road_x(:)
+        !> Position Y_i [m] of each point across the road (used by a texture).
+        real(dp), allocatable, intent(out) :: road_y(:)
+        !> Set (status 2) when the run leaves the road, naming the road file and the scene's x_start.
+        type(error_type), allocatable, intent(out) :: error
+
+        road_x = scene%x_start + (x - sum(x)/size(x))
+        road_y = scene%y_start + (y - sum(y)/size(y))
+        if (allocated(scene%texture%x)) then
+            call check_texture_coverage(scene%texture, road_x, road_y, scene%speed, scene%dt, scene%n_steps, error)
+        else
+            call check_road_coverage(scene%road_data, road_x, scene%speed, scene%dt, scene%n_steps, error)
+        end if
+        if (allocated(error)) error%message = input_place(scene, 'road', 'x_start')//': '//error%message
+    end subroutine place_patch
+
+    !> Road heights u_r,i [m] under the points at steps first..first + count - 1,
+    !> heights(j, i) for step first + j.
+    subroutine sample_patch_road(scene, road_x, road_y, first, count, heights)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Positions X_i(0) [m] along the road (`place_patch`).
+        real(dp), intent(in) :: road_x(:)
+        !> Positions Y_i [m] across the road (`place_patch`).
+        real(dp), intent(in) :: road_y(:)
+        !> First step.
+        integer(int64), intent(in) :: first
+        !> Number of steps.
+        integer, intent(in) :: count
+        !> Heights (0:count - 1, N_c) [m].
+        real(dp), allocatable, intent(out) :: heights(:, :)
+
+        if (allocated(scene%texture%x)) then
+            call sample_texture_steps(scene%texture, road_x, road_y, scene%speed, scene%dt, first, count, heights)
+        else
+            call sample_road_steps(scene%road_data, road_x, scene%speed, scene%dt, first, count, heights)
+        end if
+    end subroutine sample_patch_road
+
+    !> The smallest step [m] between the positions x of the scene's road file or texture.
+    pure real(dp) function road_step(scene)
+        !> The scene (road profile 'file' or 'texture').
+        type(scene_type), intent(in) :: scene
+
+        if (allocated(scene%texture%x)) then
+            road_step = minval(scene%texture%x(2:) - scene%texture%x(:size(scene%texture%x) - 1))
+        else
+            road_step = minval(scene%road_data%x(2:) - scene%road_data%x(:size(scene%road_data%x) - 1))
+        end if
+    end function road_step
+
+    !> The end of a multi-point scene's summary line: "N steps of dt s at V m/s over <road>".
+    function run_text(scene) result(text)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        character(len=:), allocatable :: text
+
+        character(len=80) :: numbers
+
+        write (numbers, '(i0,a,es9.2,a,f0.1,a)') scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
+        text = trim(numbers)
+        if (allocated(scene%texture%x)) then
+            text = text//' over the texture '//scene%texture%path
+        else if (allocated(scene%road_data%path)) then
+            text = text//' over '//scene%road_data%path
+        end if
+    end function run_text
+
+end module greenconv_scene_patch

@@ -1,0 +1,243 @@
+!> Force spectra of the contact runs (`&scene spectra = .true.`): each method's run also
+!> writes `<output_dir>/<name>_<method>_spectra.dat`, the 1/3-octave band levels of its
+!> total contact force in dB re 1 N (greenconv_io_spectra: IEC 61260-1 bands, Welch's PSD
+!> with a Hann window and 50 % overlap), and with `spectra_points` those of each contact
+!> point of a multi-point run.
+!>
+!> The force of every step is analysed (not only the rows `output_every` keeps), as the run
+!> streams: each block's forces go into a Welch accumulator that holds one segment per
+!> history, so the memory stays that of one segment, whatever N_t, and the file is the same
+!> whatever the block size. The band range was resolved and checked when the scene was read
+!> (greenconv_scene_input's `check_spectra`). The file is always text, written atomically
+!> when the run ends; a run stopped by a numerical fault writes none (and removes one left
+!> by an earlier run, which would no longer match the column file).
+!>
+!> Columns: f_nominal, f_centre, f_lower, f_upper [Hz], power [N^2], level [dB re 1 N],
+!> spread_db [dB] (the statistical standard deviation of the level for a random force), then
+!> level_1 .. level_Nc [dB re 1 N] of the points. The header states the window, the segment
+!> length and count, the overlap and the spread.
+module greenconv_scene_spectra_output
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_core_number_text, only: compact_real
+    use greenconv_io_files, only: write_columns
+    use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, &
+                                    third_octave_bands, first_band, segment_for_band, nominal_frequency, band_powers, &
+                                    level_spread, default_lines_per_band
+    use greenconv_scene_input, only: scene_type
+    implicit none
+    private
+
+    public :: force_spectra, start_force_spectra, add_contact_forces, finish_force_spectra, spectra_path
+    public :: spectra_line
+
+    !> The spectra of one method's run, built block by block.
+    type :: force_spectra
+        !> Whether the scene asks for spectra.
+        logical :: active = .false.
+        !> Whether the accumulator has been started (at the first block, which gives N_c).
+        logical :: started = .false.
+        !> Whether each point's level is written too.
+        logical :: per_point = .false.
+        !> Segment length N [samples].
+        integer :: segment_length = 0
+        !> Steps analysed so far.
+        integer(int64) :: steps = 0
+        !> Welch's average of the total force (channel 1) and of each point.
+        type(welch_accumulator) :: welch
+    end type force_spectra
+
+contains
+
+    !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`.
+    function spectra_path(scene, method) result(path)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Method name.
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: path
+
+        path = scene%output_dir//'/'//scene%name//'_'//method//'_spectra.dat'
+    end function spectra_path
+
+    !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
+    !> e.g. "force spectra 400 Hz to 4000 Hz (11 bands), 2 Hann segments of 1024 samples".
+    function spectra_line(scene) result(line)
+        !> The scene, read by `read_scene`.
+        type(scene_type), intent(in) :: scene
+        character(len=:), allocatable :: line
+
+        real(dp), allocatable :: centre(:), lower(:), upper(:)
+        integer :: n
+
+        line = ''
+        if (.not. scene%spectra .or. scene%task /= 'contact') return
+        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
+        n = segment_length(scene)
+        line = 'force spectra '//compact_real(nominal_frequency(scene%spectra_f_low))//' Hz to ' &
+               //compact_real(nominal_frequency(scene%spectra_f_high))//' Hz ('//int_text(size(centre)) &
+               //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segment' &
+               //trim(merge('s', ' ', segments(int(scene%n_steps, int64), n) > 1))//' of '//int_text(n)//' samples'
+    end function spectra_line
+
+    !> Get ready for a method's run of `scene`.
+    subroutine start_force_spectra(spectra, scene)
+        !> The spectra, emptied.
+        type(force_spectra), intent(inout) :: spectra
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+
+        spectra%active = scene%spectra .and. scene%task == 'contact'
+        spectra%started = .false.
+        spectra%per_point = scene%spectra_points
+        spectra%steps = 0
+        if (spectra%active) spectra%segment_length = segment_length(scene)
+    end subroutine start_force_spectra
+
+    !> Add a block's forces: the total contact force of each step and, for several points,
+    !> each point's force.
+    subroutine add_contact_forces(spectra, total, points)
+        !> The spectra.
+        type(force_spectra), intent(inout) :: spectra
+        !> Total contact force [N] of each step of the block.
+        real(dp), intent(in) :: total(:)
+        !> Force [N] of each point, points(step, point); no columns for a single point.
+        real(dp), intent(in) :: points(:, :)
+
+        integer :: n_points
+
+        if (.not. spectra%active) return
+        n_points = 0
+        if (spectra%per_point .and. size(points, 2) > 1) n_points = size(points, 2)
+        if (.not. spectra%started) then
+            call start_welch(spectra%welch, spectra%segment_length, 1 + n_points)
+            spectra%started = .true.
+        end if
+        if (n_points > 0) then
+            call add_welch_samples(spectra%welch, reshape([total, reshape(points, [size(points)])], &
+                                                          [size(total), 1 + n_points]))
+        else
+            call add_welch_samples(spectra%welch, reshape(total, [size(total), 1]))
+        end if
+        spectra%steps = spectra%steps + size(total)
+    end subroutine add_contact_forces
+
+    !> End a method's spectra. When the run succeeded (`error` not set), write the file;
+    !> otherwise remove a spectra file of that name left by an earlier run (the run's own
+    !> error is kept).
+    subroutine finish_force_spectra(spectra, scene, method, error)
+        !> The spectra of the run.
+        type(force_spectra), intent(inout) :: spectra
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Method name.
+        character(len=*), intent(in) :: method
+        !> The run's error on entry (a fault, a failed write); a failed spectra file on return.
+        type(error_type), allocatable, intent(inout) :: error
+
+        real(dp), allocatable :: psd(:, :), centre(:), lower(:), upper(:), table(:, :), power(:)
+        character(len=:), allocatable :: comments(:)
+        real(dp) :: df
+        integer :: c, n_bands, n_channels, unit, stat
+
+        if (.not. spectra%active) return
+        if (allocated(error) .or. .not. spectra%started) then
+            call spectra%welch%plans%release()
+            open (newunit=unit, file=spectra_path(scene, method), status='old', iostat=stat)
+            if (stat == 0) close (unit, status='delete', iostat=stat)
+            return
+        end if
+        call welch_average(spectra%welch, scene%dt, psd, df, error)
+        if (allocated(error)) then
+            error%message = scene%file//': '//method//': '//error%message
+            return
+        end if
+        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
+        n_bands = size(centre)
+        n_channels = size(psd, 2)
+        allocate (table(n_bands, 6 + n_channels))
+        table(:, 1) = [(nominal_frequency(centre(c)), c=1, n_bands)]
+        table(:, 2) = centre
+        table(:, 3) = lower
+        table(:, 4) = upper
+        do c = 1, n_channels
+            power = band_powers(psd(:, c), df, lower, upper)
+            if (c == 1) then
+                table(:, 5) = power
+                table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+            else
+                table(:, 6 + c) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+            end if
+        end do
+        table(:, 7) = level_spread(lower, upper, df, spectra%welch%n_segments)
+        call spectra_header(scene, method, spectra, df, n_channels - 1, table(:, 7), comments)
+        call write_columns(spectra_path(scene, method), comments, table, error)
+    end subroutine finish_force_spectra
+
+    !> The header lines of a spectra file.
+    subroutine spectra_header(scene, method, spectra, df, n_points, spread, comments)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        type(force_spectra), intent(in) :: spectra
+        real(dp), intent(in) :: df, spread(:)
+        integer, intent(in) :: n_points
+        character(len=:), allocatable, intent(out) :: comments(:)
+
+        character(len=:), allocatable :: lines(:), names, units, what
+        integer :: n, k, unused, i
+
+        n = spectra%segment_length
+        k = spectra%welch%n_segments
+        unused = int(spectra%steps - (int(k - 1, int64)*(n/2) + n))
+        what = 'the total contact force'
+        if (n_points > 0) what = what//' and of each of the '//int_text(n_points)//' points (level_i: the i-th ' &
+                                 //'point of the column file)'
+        names = 'f_nominal f_centre f_lower f_upper power level spread_db'
+        units = 'Hz Hz Hz Hz N^2 dB_re_1N dB'
+        do i = 1, n_points
+            names = names//' level_'//int_text(i)
+            units = units//' dB_re_1N'
+        end do
+        allocate (character(len=max(400, len(names) + 8)) :: lines(8))
+        lines(1) = 'greenconv scene '//scene%name//', method '//method//': 1/3-octave band levels of '//what &
+                   //', every step of the run ('//int_text(int(spectra%steps))//' steps of '//sci_text(scene%dt) &
+                   //' s, f_s = '//compact_real(1.0_dp/scene%dt)//' Hz)'
+        lines(2) = 'bands: IEC 61260-1 base 10, exact centres f_centre = 1000*10^(x/10) Hz, f_nominal their ' &
+                   //'preferred-number names, edges f_centre*10^(+-1/20); level = 10*log10(power/1 N^2) dB re 1 N'
+        lines(3) = 'PSD: Welch, Hann window (periodic, sin^2), segments of '//int_text(n)//' samples (' &
+                   //compact_real(n*scene%dt)//' s, line spacing df = '//compact_real(df)//' Hz, at least ' &
+                   //int_text(default_lines_per_band)//' lines in the lowest band), 50 % overlap, ' &
+                   //int_text(k)//' segments averaged, each segment''s mean removed; the last ' &
+                   //int_text(unused)//' steps fill no whole segment and are not used'
+        lines(4) = 'power: the PSD integrated over the band edges (lines split at the edges), so adjacent bands ' &
+                   //'add up; a sine of amplitude A gives A^2/2'
+        lines(5) = 'spread_db: statistical standard deviation of a level for a random, noise-like force, ' &
+                   //'4.34*sqrt(1.5*r/(n_lines*K)) (Hann: 1.5 lines of noise bandwidth, r = 1 + 2*(1 - 1/K)*0.028 ' &
+                   //'for 50 % overlap); '//compact_real(maxval(spread))//' dB in the lowest band, ' &
+                   //compact_real(minval(spread))//' dB in the highest; a steady tone does not scatter'
+        lines(6) = 'window leakage: a tone at a band centre comes out within 1e-4 dB, a band above or below ' &
+                   //'a tone reads at least 57 dB under it (greenconv_io_spectra, suite spectra)'
+        lines(7) = 'units: '//units
+        lines(8) = names
+        call move_alloc(lines, comments)
+    end subroutine spectra_header
+
+    !> Segment length of the scene's lowest band.
+    integer function segment_length(scene)
+        type(scene_type), intent(in) :: scene
+
+        segment_length = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+    end function segment_length
+
+    !> Whole segments of n samples, overlapping by half, in a record of `steps` samples.
+    pure integer function segments(steps, n)
+        integer(int64), intent(in) :: steps
+        integer, intent(in) :: n
+
+        segments = 0
+        if (steps >= n) segments = int(1 + (steps - n)/(n/2))
+    end function segments
+
+end module greenconv_scene_spectra_output
