@@ -371,6 +371,7 @@ run: build
 
 bench: build
 	@$(MAKE) bench-data
+	@$(MAKE) bench-ident
 	@$(MAKE) sweep-bench
 	@$(MAKE) figures
 
