@@ -371,6 +371,7 @@ run: build
 
 bench: build
 	@$(MAKE) bench-data
+	@$(MAKE) bench-ident
 	@$(MAKE) sweep-bench
 	@$(MAKE) figures
 
@@ -387,6 +388,18 @@ bench-data:
 	    build/printf_rows | tee out/bench/driver_output.txt.part
 	@mv out/bench/driver_output.txt.part out/bench/driver_output.txt
 	@echo "greenconv: tables saved in out/bench/tables.txt and out/bench/driver_output.txt"
+
+# Identification against a peer (issue 13): greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
+# noisy receptances at 0.1, 1 and 3 %, errors in Cramer-Rao standard deviations. The script
+# pip-installs sdypy-EMA into build/ident_peer/venv on its first run (needs python3 -m venv and
+# PyPI); the Markdown table goes to out/bench/ident_peer.md.
+.PHONY: bench-ident
+bench-ident: lib
+	@mkdir -p out/bench
+	@echo "greenconv: identification against sdypy-EMA (about a minute)"
+	@python3 bench/ident_peer.py > out/bench/ident_peer.md.part
+	@mv out/bench/ident_peer.md.part out/bench/ident_peer.md
+	@cat out/bench/ident_peer.md
 
 figures:
 	@mkdir -p $(FIGDIR)

@@ -6,6 +6,7 @@
 !>     greenconv-bench --smoke
 !>     greenconv-bench --fft
 !>     greenconv-bench --output [ANCHOR]
+!>     greenconv-bench --ident
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
 !> directory: `make bench`). `--smoke` runs only the smoke checks of the benchmark's code
@@ -13,7 +14,8 @@
 !> `N passed, N failed`; the exit status is 1 when a check failed. `--fft` runs only the
 !> multi-point fft part (bench_greenfft_mod: its cost table and the tyre scene); `--output`
 !> only the output benchmark (bench_output_mod), with the C anchor ANCHOR (default
-!> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist).
+!> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist);
+!> `--ident` only the identification's cost (bench_ident_mod).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -26,6 +28,7 @@ program greenconv_bench
     use bench_smoke_mod, only: run_smoke_checks
     use greenconv_io_files, only: make_directory
     use bench_accuracy_mod, only: accuracy_charts
+    use bench_ident_mod, only: identification_table
     implicit none
 
     type(error_type), allocatable :: error
@@ -45,6 +48,14 @@ program greenconv_bench
         stop
     end if
     select case (argument(1, ''))
+    case ('--ident')
+        ! The identification's cost alone.
+        call identification_table(output_unit, error)
+        if (allocated(error)) then
+            write (error_unit, '(a)') 'greenconv-bench: '//error%message
+            stop 2, quiet=.true.
+        end if
+        stop
     case ('--fft', '--output')
         ! One part alone: the multi-point fft (cost table, tyre scene) or the output benchmark.
         call make_directory(output_dir, error)
@@ -73,6 +84,7 @@ program greenconv_bench
     if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
     if (.not. allocated(error)) call output_table(output_unit, output_dir, error, anchor=anchor(''))
     if (.not. allocated(error)) call accuracy_charts(output_unit, output_dir, sdof_file, mdof_file, error)
+    if (.not. allocated(error)) call identification_table(output_unit, error)
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv-bench: '//error%message
         stop 2, quiet=.true.

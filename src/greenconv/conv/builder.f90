@@ -201,6 +201,10 @@ contains
         call choose_method(structure, dt, truncation_tol, n_steps, target, chosen, reason)
         call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy)
         conv%name = 'auto'
+        ! A kernel method on an identified structure: the identification is quoted all the same.
+        if (structure%identified .and. .not. method_needs_modes(chosen)) then
+            accuracy = accuracy//'; '//structure%fit_brief()
+        end if
         accuracy = 'chose '//chosen//': '//reason//'; '//accuracy
     end subroutine make_convolver
 
@@ -236,8 +240,7 @@ contains
                      //' modes are the structure''s own'
         else if (structure%fit_e() <= requested .and. structure%method == 'ml') then
             chosen = 'exact'
-            reason = int_text(structure%model%n_modes())//' modes of the maximum-likelihood model, E = ' &
-                     //sci_text(structure%fit_e())//' <= '//sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
+            reason = 'the maximum-likelihood model''s E <= '//sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
         else if (structure%fit_e() <= requested) then
             chosen = 'exact'
             reason = int_text(structure%model%n_modes())//' modes, the smallest LSCE model with E <= ' &
@@ -293,8 +296,7 @@ contains
         end select
         if (method_needs_modes(method)) then
             accuracy = 'exact: the modes are the structure''s own'
-            if (structure%identified) accuracy = trim(merge('ML  ', 'LSCE', structure%method == 'ml')) &
-                                                 //' fit of G: E = '//sci_text(structure%fit_e())//' (eq. 7)'
+            if (structure%identified) accuracy = structure%fit_brief()
         end if
     end subroutine build_method
 

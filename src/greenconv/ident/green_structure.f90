@@ -34,7 +34,6 @@ module greenconv_ident_green_structure
     private
 
     public :: green_options, green_structure, read_green_structure, read_green_layout, identify_green, sampled_kernel
-    public :: worst_uncertainty
 
     real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
     !> Relative tolerance on a time step that must fit a grid (record 7 of a universal file
@@ -134,7 +133,8 @@ contains
         call cpu_time(finish)
         structure%cpu_time = finish - start
         structure%identified = .true.
-        call worst_uncertainty(structure%fit%pole_fit, structure%worst_sigma_f, structure%worst_sigma_xi)
+        structure%worst_sigma_f = structure%fit%pole_fit%worst_frequency_spread()
+        structure%worst_sigma_xi = structure%fit%pole_fit%worst_damping_spread()
         call modes_error(structure)
     end subroutine identify_green
 
@@ -183,28 +183,6 @@ contains
                              //' (or uneven)')
         end if
     end subroutine check_time_grid
-
-    !> The worst relative standard deviations of a maximum-likelihood fit's poles: sigma_f/f of
-    !> the natural frequency and sigma_xi/xi of the damping ratio (0 without modes).
-    pure subroutine worst_uncertainty(fit, worst_f, worst_xi)
-        !> The fit (greenconv_ident_mlfit).
-        type(ml_result), intent(in) :: fit
-        !> Largest sigma_f/f.
-        real(dp), intent(out) :: worst_f
-        !> Largest sigma_xi/xi.
-        real(dp), intent(out) :: worst_xi
-
-        integer :: k
-
-        worst_f = 0.0_dp
-        worst_xi = 0.0_dp
-        if (.not. (allocated(fit%sigma_frequency) .and. allocated(fit%sigma_damping))) return
-        do k = 1, fit%modes%n_modes()
-            worst_f = max(worst_f, two_pi*fit%sigma_frequency(k)/abs(fit%modes%pole(k)))
-            worst_xi = max(worst_xi, fit%sigma_damping(k)*abs(fit%modes%pole(k))/max(-real(fit%modes%pole(k), dp), &
-                                                                                    tiny(1.0_dp)))
-        end do
-    end subroutine worst_uncertainty
 
     !> E of eq. (7) of the modes alone, and of the modes with the upper residual U, against
     !> every receptance of the file.

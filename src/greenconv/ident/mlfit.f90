@@ -24,25 +24,32 @@
 !>    models, so it depends on the level only through its scale; the uncertainties use the
 !>    level refitted from the final residual (noise_level_fit, unbiased for the right model).
 !>    Weights of the relative model: during the order search rho times the rms of |G| over 5
-!>    lines (the noise of |G| in the weight reduced by sqrt(5), independent of any model, so
-!>    the chi2 of different models stay comparable without a refit after each change); for
-!>    the final fit and the uncertainty rho*|G_model|.
+!>    lines, each |G| clipped at ten times their median (the noise of |G| in the weight reduced
+!>    by sqrt(5), independent of any model, so the chi2 of different models stay comparable
+!>    without a refit after each change; one outlier line moves no weight); for the final fit
+!>    and the uncertainty rho*|G_model|.
 !> 2. **Stabilisation diagram** with the linear LSCE step only (greenconv_ident_lsce's
 !>    lsce_poles, no out-of-band correction, no residues, no polish) at N = 1..max_order modes:
 !>    each physical pole is flagged 2 (its f within stable_frequency and its xi within
-!>    stable_damping of the pole of order N - 1 nearest in f), 1 (f only) or 0.
+!>    stable_damping of the pole of order N - 1 nearest in f), 1 (f only) or 0. When no pole
+!>    has been flagged 2 for stable_orders orders in a row by max_order (the poles of a
+!>    band-limited G settle a few orders above the number of modes: the 4 modes of
+!>    data/sample_receptance.frf at N = 8 to 10), the diagram goes on until the number of
+!>    such poles has not grown for stable_orders orders, at most to 2*max_order + stable_orders.
 !> 3. **Start poles**: going down from the highest order, every pole flagged 2 along a chain
 !>    of at least stable_orders orders (nearest-frequency links), one per stable_frequency
-!>    band. The other poles of the highest order (wandering: n_wandering) are only candidates
-!>    for step 5; roots with |z| >= 1 (unstable) or real roots (xi >= 1) never become poles
-!>    (counted per order in unstable_by_order and real_by_order).
+!>    band (none: the poles of the highest order flagged 1 or 2). The other poles of the
+!>    highest order (wandering: n_wandering) are only candidates for step 5; roots with
+!>    |z| >= 1 (unstable) or real roots (xi >= 1) never become poles (counted per order in
+!>    unstable_by_order and real_by_order).
 !> 4. **Maximum likelihood**: residues and residual terms by weighted linear least squares for
 !>    the poles, then Levenberg-Marquardt on all parameters (Re, Im of poles and residues, R_u,
 !>    R_l) with the analytic Jacobian, Marquardt's diagonal scaling and a Cholesky solve; a
-!>    step that would make a pole unstable or move it to Im <= 0 is refused like one that
-!>    raises chi2, so a returned pole always has Re < 0 < Im (0 < xi < 1). Poles the fit moves
-!>    above f_max are dropped (their effect belongs to R_u), poles it pushes to xi < 1e-8 (a
-!>    spike between two lines fitting noise) too; the result lists each with its reason.
+!>    step that would make a pole unstable, narrower than narrow_band = 1e-3 of a line
+!>    (-Re lambda < pi*1e-3*df) or move it to Im <= 0 is refused like one that raises chi2, so
+!>    a returned pole always has Re < 0 < Im (0 < xi < 1). Poles the fit moves above f_max are
+!>    dropped (their effect belongs to R_u), poles it pushes to the narrowest band (a spike on
+!>    one line fitting noise) go first in the drop step; the result lists each with its reason.
 !> 5. **Order from the data, by MDL** (Rissanen; the BIC of a Gaussian likelihood): minimise
 !>    chi2 + P*ln(2L), 4*ln(2L) per mode (39 for 8193 lines, 33 for 2049). AIC's 8 per mode
 !>    is too weak: a spurious mode on the largest noise bump, its pole free, lowers chi2 by
@@ -52,18 +59,47 @@
 !>    model and the three largest peaks of the weighted residual (a damping grid at each),
 !>    ranked by the drop of chi2 their two residue columns alone would give; the best three
 !>    are fitted in turn (3 LM iterations: a true mode gains hundreds at once) and the first
-!>    that lowers the criterion is kept and refined. Modes are dropped while, of the three
-!>    with the smallest Wald statistic for r_k = 0 (the residue against its covariance: the
-!>    chi2 rise its removal would cause) below 4*ln(2L), one whose removal, fully refitted,
-!>    lowers the criterion. R_u and R_l ('auto') take part in the whole search (a static offset
-!>    would otherwise drag poles out of the band) and each is removed at its end when the residues
-!>    and other term refitted for the current poles lower the criterion without it. The chi2
+!>    that lowers the criterion is kept and refined. When several candidates are strong (each
+!>    worth more than a tenth of the best and ten times a mode's price) and far apart (1 % and
+!>    three half-power bandwidths), they are first tried together in one trial fit: a diagram
+!>    that settled only part of 30 modes then costs a few rounds instead of one round per mode.
+!>    Modes are dropped while, of the three with the smallest Wald statistic for r_k = 0 (the
+!>    residue against its covariance: the chi2 rise its removal would cause) below 4*ln(2L),
+!>    one whose removal, fully refitted, lowers the criterion. The model never has more than
+!>    max_order modes (fewer when the lines cannot give 6 impulse samples per mode), and the
+!>    search makes at most max_changes changes: its cost is bounded whatever the data. R_u and
+!>    R_l ('auto') take part in the whole search (a static offset would otherwise drag poles
+!>    out of the band) and each is removed at its end when the residues and other term
+!>    refitted for the current poles lower the criterion without it. The chi2
 !>    test of the final model (chi2/nu against 1 + 3*sqrt(2/nu)) is reported, not used to stop:
 !>    with an estimated level its own error (~1.4/sqrt(L) on rho^2) is as large as its width.
-!> 6. **Uncertainty**: the covariance of the parameters is the inverse of the Fisher
+!> 6. **Outlier lines** (a line of a measured file damaged by a transfer, a glitch, a typing
+!>    error: the fuzz test's huge, negated and zero numbers). The likelihood has a fourth move
+!>    beside adding and dropping modes: leave one line out, its two values then free (2*ln(2L)
+!>    of MDL). The candidate is the line whose weighted residual departs most from the cubic
+!>    through the residuals of its two neighbours on each side (a model bent towards the line
+!>    is smooth across lines, so the departure keeps the outlier's size), when that exceeds
+!>    outlier_sigma (6). It is confirmed when, against the model refitted without it, it
+!>    stands above outlier_sigma and its |e_w|^2 above ten times the sum over the two lines on
+!>    each side: a mode, even an under-resolved one, lifts the lines beside its peak through
+!>    its tails r/(i*(omega - omega_k)), one wrong line does not. The candidate is left
+!>    out when no trial mode lowers the criterion below what the model refitted without it
+!>    gives (as many LM iterations for both); and a mode narrower than a line that only takes
+!>    up such a line (without it, refitted without the line, the criterion is lower) is
+!>    dropped with the line left out.
+!>    Lines beyond 1e100 times the median |G| are left out before anything (sums of squares
+!>    would overflow). An outlier whose undamped sinusoid in g stands above the noise of g
+!>    (|e_w| > sqrt(L)) has bent the diagram and the noise weights: the noise estimate, the
+!>    diagram and the search start again with the line replaced by the cubic through its
+!>    neighbours (at most outlier_restarts times; later ones are only left out). Each outlier
+!>    is reported with its line, frequency and |G_l - G_model|/sigma_l.
+!> 7. **Uncertainty**: the covariance of the parameters is the inverse of the Fisher
 !>    information 2*Re(J^H*W*J), W = diag(1/sigma_l^2), at the optimum; with an estimated level
 !>    it is scaled by chi2/nu. sigma_f [Hz], sigma_xi and sigma_r = sqrt(var Re r + var Im r)
-!>    follow by linearisation of f = |lambda|/(2*pi), xi = -Re lambda/|lambda|.
+!>    follow by linearisation of f = |lambda|/(2*pi), xi = -Re lambda/|lambda|. While the
+!>    information of the final model is singular (two poles merged, a residue the data do not
+!>    see) the mode `merged` names is dropped and the model refitted, so every mode returned has
+!>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 !>
@@ -72,12 +108,15 @@
 !> 0.8 % and 98.5 % of the band; 3 modes) at 0.1, 1 and 3 % noise: no mode missed or invented,
 !> the worst error 3.8 CRB standard deviations in f and 3.3 in xi. The reported sigma against
 !> the spread of 50 draws: ratios 0.82 to 1.09. Clean data: round-off (2e-16). One fit of 8193
-!> lines, 12 modes, max_order 30: 42 LM iterations, 0.75 s CPU (release; 0.84 s debug), the diagram 0.17 s.
+!> lines, 12 modes, max_order 30: 32 LM iterations, 0.64 s CPU (release), the diagram 0.17 s; the
+!> shipped scene's file (a spurious start pole that crawls along the band while it is kept): 39
+!> iterations, 0.96 s (175 and 2.7-3.1 s before the fits of the search were capped at 10 iterations
+!> and stopped at a chi2 fall below 1).
 module greenconv_ident_mlfit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text, real_text
+    use greenconv_core_text, only: int_text, real_text, sci_text
     use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
     use greenconv_model_frf, only: frf_type, min_frf_lines
     use greenconv_ext_lapack, only: least_squares
@@ -98,21 +137,40 @@ module greenconv_ident_mlfit
     integer, parameter :: dropped_left_band = 2
     !> Reason code of a dropped mode: its Fisher information was singular (e.g. two poles merged).
     integer, parameter :: dropped_degenerate = 3
-    !> Reason code of a dropped mode: the fit pushed it onto the stability boundary
-    !> (xi < boundary_damping: a line-wide spike fitting noise, not a mode).
+    !> Reason code of a dropped mode: the fit pushed it to the narrowest band allowed
+    !> (narrow_band of a line: a spike on one line, noise or an outlier, not a mode).
     integer, parameter :: dropped_boundary = 4
 
-    !> Damping ratio below which a fitted pole counts as on the stability boundary.
-    real(dp), parameter :: boundary_damping = 1.0e-8_dp
+    !> Narrowest half-power band 2*xi*f of a pole, as a fraction of the line spacing df: a
+    !> narrower pole acts on a single line only (its peak), which is what a spike of noise or
+    !> an outlier line does; no sampled FRF can show such a mode. The fit keeps every pole at
+    !> least this wide, and a pole it pushes below twice this is dropped first.
+    real(dp), parameter :: narrow_band = 1.0e-3_dp
+    !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
+    real(dp), parameter :: gross_ratio = 1.0e100_dp
 
     !> Damping ratios tried for a mode started at a residual peak.
     real(dp), parameter :: trial_damping(6) = [0.001_dp, 0.003_dp, 0.01_dp, 0.03_dp, 0.1_dp, 0.3_dp]
     !> Candidates refitted per attempt to add a mode.
     integer, parameter :: tries_per_add = 3
 
+    !> Levenberg-Marquardt iterations of a trial fit (a mode added or removed, a residual term)
+    !> before the criterion decides; the kept model is then refined fully.
+    integer, parameter :: trial_iterations = 3
+    !> Most Levenberg-Marquardt iterations of any fit during the order search (the final model
+    !> is then refined with up to ml_options%max_iterations).
+    integer, parameter :: search_iterations = 10
+    !> Fall of chi2 in one iteration below which a fit of the order search stops: a fortieth of
+    !> a mode's MDL price 4*ln(2L), too little to change a decision.
+    real(dp), parameter :: search_tolerance = 1.0_dp
+    !> The same for the final model: a parameter change of a few hundredths of its standard deviation.
+    real(dp), parameter :: final_tolerance = 1.0e-3_dp
+
     !> Settings of identify_ml (every field has a default).
     type :: ml_options
-        !> Largest number of modes N of the stabilisation diagram (LSCE order 2N).
+        !> Largest number of modes N of the stabilisation diagram (LSCE order 2N) and of the model.
+        !> The diagram goes on beyond it (to at most 2*max_order + stable_orders) only when no pole
+        !> has been stable over stable_orders orders by then.
         integer :: max_order = 30
         !> Noise standard deviation per line [m/N] (E|n_l|^2 = sigma_l^2); estimated when not allocated.
         real(dp), allocatable :: sigma(:)
@@ -136,6 +194,13 @@ module greenconv_ident_mlfit
         integer :: max_changes = 40
         !> A mode is reported as under-resolved when its half-power band 2*xi*f holds fewer lines.
         real(dp) :: min_band_lines = 2.0_dp
+        !> A line whose weighted residual |G_l - G_model|/sigma_l exceeds this, alone among its
+        !> neighbours, is a candidate outlier (left out when MDL prefers that to a mode); 0 turns
+        !> the detection off.
+        real(dp) :: outlier_sigma = 6.0_dp
+        !> Most outlier lines after each of which the noise, the diagram and the search start again
+        !> from the repaired receptance (later ones are only left out).
+        integer :: outlier_restarts = 4
     end type ml_options
 
     !> Outcome of identify_ml.
@@ -194,11 +259,26 @@ module greenconv_ident_mlfit
         complex(dp), allocatable :: dropped_pole(:)
         !> Why each was removed: dropped_by_criterion, dropped_left_band, dropped_degenerate or dropped_boundary.
         integer, allocatable :: dropped_reason(:)
+        !> Lines of the FRF left out as outliers (indices into frf%frequency), in the order found.
+        integer, allocatable :: outlier_line(:)
+        !> Their frequencies [Hz].
+        real(dp), allocatable :: outlier_frequency(:)
+        !> Their weighted residual |G_l - G_model|/sigma_l against the model when each was found.
+        real(dp), allocatable :: outlier_excess(:)
+        !> Largest number of modes the order search could reach: max_order, or less when the
+        !> diagram's top order is lower (few lines or samples).
+        integer :: max_modes = 0
         !> Warnings for the user ('' when none).
         character(len=:), allocatable :: warning
     contains
         !> Receptance [m/N] of the model (modes and residual terms) at omega [rad/s].
         procedure :: receptance => ml_receptance
+        !> Largest sigma_f/f over the modes (huge when the information was singular, 0 without modes).
+        procedure :: worst_frequency_spread => ml_worst_frequency_spread
+        !> Largest sigma_xi/xi over the modes (huge when the information was singular, 0 without modes).
+        procedure :: worst_damping_spread => ml_worst_damping_spread
+        !> One phrase for a summary line: order, noise, worst uncertainty, outliers.
+        procedure :: brief => ml_brief
     end type ml_result
 
     !> A model under fit.
@@ -213,14 +293,23 @@ module greenconv_ident_mlfit
     type :: data_type
         real(dp), allocatable :: omega(:), weight(:), floor(:)
         complex(dp), allocatable :: g(:)
+        !> Index of each used line in the FRF.
+        integer, allocatable :: line(:)
         real(dp) :: penalty = 0.0_dp, f_max = 0.0_dp, level = 0.0_dp
+        !> Smallest -Re(lambda) [1/s] of a pole: pi*narrow_band*df (a half-power band of narrow_band lines).
+        real(dp) :: min_decay = 0.0_dp
+        !> Line spacing of the FRF [Hz].
+        real(dp) :: df = 0.0_dp
         logical :: relative = .false.
         integer :: max_iterations = 60
+        !> Most modes of a model in the order search.
+        integer :: max_modes = 0
+        !> Outlier threshold on |e_l|/sigma_l (0: no detection).
+        real(dp) :: outlier_sigma = 0.0_dp
+        !> A Levenberg-Marquardt fit stops when chi2 falls by less than this (plus 1e-10*chi2) in an iteration.
+        real(dp) :: tolerance = final_tolerance
     end type data_type
 
-    !> Levenberg-Marquardt iterations of a trial fit (a mode added or removed, a residual term)
-    !> before the criterion decides; the kept model is then refined fully.
-    integer, parameter :: trial_iterations = 3
 
 contains
 
@@ -236,6 +325,59 @@ contains
         if (self%has_lower) ml_receptance = ml_receptance - self%lower_residual/omega**2
     end function ml_receptance
 
+    !> Largest relative standard deviation of a natural frequency, sigma_f/f.
+    pure real(dp) function ml_worst_frequency_spread(self) result(worst)
+        !> The result.
+        class(ml_result), intent(in) :: self
+
+        worst = 0.0_dp
+        if (self%modes%n_modes() > 0) worst = worst_ratio(self%sigma_frequency, natural_frequency(self%modes%pole)/two_pi)
+    end function ml_worst_frequency_spread
+
+    !> Largest relative standard deviation of a damping ratio, sigma_xi/xi.
+    pure real(dp) function ml_worst_damping_spread(self) result(worst)
+        !> The result.
+        class(ml_result), intent(in) :: self
+
+        worst = 0.0_dp
+        if (self%modes%n_modes() > 0) worst = worst_ratio(self%sigma_damping, damping_ratio(self%modes%pole))
+    end function ml_worst_damping_spread
+
+    !> max(sigma/value), huge when a sigma is huge (not available).
+    pure real(dp) function worst_ratio(sigma, value) result(worst)
+        real(dp), intent(in) :: sigma(:), value(:)
+
+        worst = huge(1.0_dp)
+        if (any(sigma >= huge(1.0_dp))) return
+        worst = maxval(sigma/value)
+    end function worst_ratio
+
+    !> The identification in one phrase, e.g. "12 modes (order by MDL), noise 1.01E-02 of |G|
+    !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
+    !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
+    !> and the outlier lines left out.
+    pure function ml_brief(self) result(text)
+        !> The result.
+        class(ml_result), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
+        if (self%noise_estimated) then
+            text = text//' of |G| (estimated from the data)'
+        else
+            text = text//' times the sigma given'
+        end if
+        if (self%worst_frequency_spread() >= huge(1.0_dp) .or. self%worst_damping_spread() >= huge(1.0_dp)) then
+            text = text//', uncertainty not available (singular Fisher information)'
+        else
+            text = text//', worst sigma_f/f = '//sci_text(self%worst_frequency_spread())//', worst sigma_xi/xi = ' &
+                   //sci_text(self%worst_damping_spread())
+        end if
+        if (.not. allocated(self%outlier_line)) return
+        if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
+                                                //' outlier line(s) left out'
+    end function ml_brief
+
     !> Noise level of a receptance from the smoothness of G (see the module description):
     !> rho with sigma_l = rho*|G_l| for 'relative', sigma [m/N] for 'absolute'.
     pure real(dp) function estimate_noise(receptance, noise_model) result(level)
@@ -245,7 +387,7 @@ contains
         character(len=*), intent(in) :: noise_model
 
         real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
-        real(dp) :: q(size(receptance) - 4)
+        real(dp) :: q(size(receptance) - 4), m
         complex(dp) :: d
         integer :: l
 
@@ -254,7 +396,9 @@ contains
             if (noise_model == 'absolute') then
                 q(l) = abs(d)**2
             else
-                q(l) = abs(d)**2/max(sum(c**2*abs(receptance(l:l + 4))**2), tiny(1.0_dp))
+                ! Scaled by the largest |G| of the five lines: no overflow for any finite G.
+                m = max(maxval(abs(receptance(l:l + 4))), tiny(1.0_dp))
+                q(l) = abs(d/m)**2/max(sum(c**2*abs(receptance(l:l + 4)/m)**2), tiny(1.0_dp))
             end if
         end do
         level = sqrt(median(q)/log(2.0_dp))
@@ -263,16 +407,26 @@ contains
     !> sqrt of the mean of |G|^2 over each line and its two neighbours on each side: the scale
     !> of the relative noise model during the order search, with the noise of |G| in the
     !> weights reduced by sqrt(5) and no dependence on a model (a model-based weight would
-    !> have to be refitted after every change of the model).
+    !> have to be refitted after every change of the model). Each |G| is first clipped at ten
+    !> times the median of the five, so that one outlier line neither hides among its
+    !> neighbours' weights nor takes their weight away.
     pure function smoothed_magnitude(g) result(m)
         complex(dp), intent(in) :: g(:)
         real(dp) :: m(size(g))
 
-        integer :: l, n
+        real(dp) :: window(5), top
+        integer :: l, n, first, last
 
         n = size(g)
         do l = 1, n
-            m(l) = sqrt(sum(abs(g(max(1, l - 2):min(n, l + 2)))**2)/(min(n, l + 2) - max(1, l - 2) + 1))
+            first = max(1, l - 2)
+            last = min(n, l + 2)
+            window(:last - first + 1) = abs(g(first:last))
+            associate (w => window(:last - first + 1))
+                w = min(w, 10.0_dp*median(w))
+                top = max(maxval(w), tiny(1.0_dp))
+                m(l) = top*sqrt(sum((w/top)**2)/size(w))
+            end associate
         end do
     end function smoothed_magnitude
 
@@ -343,48 +497,56 @@ contains
 
         type(data_type) :: data
         type(model_type) :: model
+        type(frf_type) :: repaired
         complex(dp), allocatable :: start(:), candidates(:)
-        real(dp), allocatable :: sigma(:), floor(:)
+        integer :: outlier, pass
         logical :: allow_lower
 
         call check_input(frf, options, error)
         if (allocated(error)) return
-        allocate (result%dropped_pole(0), result%dropped_reason(0))
-        result%warning = ''
+        allocate (result%outlier_line(0), result%outlier_frequency(0), result%outlier_excess(0))
         allow_lower = any(options%residual_terms == [character(len=8) :: 'auto', 'lower', 'both'])
-        ! Noise standard deviation per line.
-        floor = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
-        result%noise_level = 1.0_dp
-        if (allocated(options%sigma)) then
-            sigma = options%sigma
-        else
-            result%noise_estimated = .true.
-            result%noise_level = estimate_noise(frf%receptance, options%noise_model)
-            if (options%noise_model == 'absolute') then
-                sigma = spread(result%noise_level, 1, frf%n_freq())
-            else
-                sigma = result%noise_level*smoothed_magnitude(frf%receptance)
-            end if
-        end if
-        call make_data(frf, max(sigma, floor), floor, allow_lower, options, data)
-        data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
-        data%level = result%noise_level
-
-        call build_diagram(frf, options, result, start, candidates, error)
-        if (allocated(error)) return
-        result%n_start = size(start)
-
-        model%pole = start
-        ! With 'auto' both terms take part in the search (so that a static offset does not drag
-        ! poles out of the band) and each is removed at its end when MDL prefers.
-        model%upper = any(options%residual_terms == [character(len=8) :: 'upper', 'both', 'auto'])
-        model%lower = allow_lower
-        call fit(data, model, result, error)
-        if (allocated(error)) return
-        call choose_order(data, options, candidates, model, result, error)
-        if (allocated(error)) return
+        repaired = frf
+        call gross_outliers(repaired, result)
+        ! One pass per outlier found (up to outlier_restarts): an outlier line corrupts the noise
+        ! weights of its neighbours and, through g, every order of the diagram, so the search
+        ! starts again from the receptance with the line replaced by its neighbours' interpolation
+        ! (for the diagram and the weights) and left out of the fit. Later outliers are only left out.
+        do pass = 1, max(options%outlier_restarts, 0) + 1
+            if (allocated(result%dropped_pole)) deallocate (result%dropped_pole, result%dropped_reason)
+            allocate (result%dropped_pole(0), result%dropped_reason(0))
+            result%warning = ''
+            call prepare_data(repaired, result%outlier_line, allow_lower, options, result, data)
+            call build_diagram(repaired, options, result, start, candidates, error)
+            if (allocated(error)) return
+            result%n_start = size(start)
+            data%max_modes = result%max_modes
+            data%outlier_sigma = options%outlier_sigma
+            model = model_type()
+            model%pole = widened(start, data%min_decay)
+            ! With 'auto' both terms take part in the search (so that a static offset does not drag
+            ! poles out of the band) and each is removed at its end when MDL prefers.
+            model%upper = any(options%residual_terms == [character(len=8) :: 'upper', 'both', 'auto'])
+            model%lower = allow_lower
+            ! The order search refines each model for at most search_iterations: a spurious start pole
+            ! can crawl along the band for hundreds of iterations, each lowering chi2 a little,
+            ! before the search drops it; only the model the search keeps is refined fully.
+            data%max_iterations = min(options%max_iterations, search_iterations)
+            data%tolerance = search_tolerance
+            call fit(data, model, result, error)
+            if (allocated(error)) return
+            call choose_order(data, options, candidates, model, result, outlier, pass > options%outlier_restarts, &
+                              error)
+            if (allocated(error)) return
+            if (outlier == 0) exit
+            repaired%receptance(outlier) = interpolated(repaired%receptance, result%outlier_line, outlier)
+        end do
+        data%max_iterations = options%max_iterations
+        data%tolerance = final_tolerance
         call reweight(data, model, result)
         call drop_outside(data, model, result, error)
+        if (allocated(error)) return
+        call drop_undetermined(data, model, result, error)
         if (allocated(error)) return
         call finish(frf, data, options, model, result)
     end subroutine identify_ml
@@ -425,30 +587,112 @@ contains
         end if
     end subroutine check_input
 
-    !> The lines used (the 0 Hz line is left out when a lower residual may be fitted), their
-    !> weights 1/sigma_l and the MDL price per parameter ln(2L).
-    subroutine make_data(frf, sigma, floor, skip_zero, options, data)
+    !> The weighted data: the noise standard deviation per line (given, or estimated from the
+    !> receptance), the lines used (the 0 Hz line is left out when a lower residual may be
+    !> fitted, outlier lines always), their weights 1/sigma_l and the MDL price per parameter ln(2L).
+    subroutine prepare_data(frf, outliers, skip_zero, options, result, data)
+        !> The receptance, outlier lines already replaced by their neighbours' interpolation.
         type(frf_type), intent(in) :: frf
-        real(dp), intent(in) :: sigma(:), floor(:)
+        !> Lines left out.
+        integer, intent(in) :: outliers(:)
         logical, intent(in) :: skip_zero
         type(ml_options), intent(in) :: options
+        type(ml_result), intent(inout) :: result
         type(data_type), intent(out) :: data
 
-        integer :: first
+        real(dp) :: sigma(frf%n_freq()), floor(frf%n_freq())
+        logical :: used(frf%n_freq())
+        integer :: l
 
-        first = merge(2, 1, skip_zero)
-        data%omega = two_pi*frf%frequency(first:)
-        data%g = frf%receptance(first:)
-        data%weight = 1.0_dp/sigma(first:)
-        data%floor = floor(first:)
+        floor(:) = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
+        result%noise_level = 1.0_dp
+        result%noise_estimated = .not. allocated(options%sigma)
+        if (allocated(options%sigma)) then
+            sigma(:) = options%sigma
+        else
+            result%noise_level = estimate_noise(frf%receptance, options%noise_model)
+            if (options%noise_model == 'absolute') then
+                sigma(:) = result%noise_level
+            else
+                sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
+            end if
+        end if
+        sigma(:) = max(sigma, floor)
+        used(:) = .true.
+        if (skip_zero) used(1) = .false.
+        used(outliers) = .false.
+        data%line = pack([(l, l=1, frf%n_freq())], used)
+        data%omega = two_pi*frf%frequency(data%line)
+        data%g = frf%receptance(data%line)
+        data%weight = 1.0_dp/sigma(data%line)
+        data%floor = floor(data%line)
         data%penalty = log(2.0_dp*size(data%g))
         data%f_max = frf%f_max()
+        data%df = frf%df()
+        data%min_decay = pi*narrow_band*data%df
         data%max_iterations = options%max_iterations
-    end subroutine make_data
+        data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
+        data%level = result%noise_level
+    end subroutine prepare_data
 
-    !> The stabilisation diagram (LSCE step only at N = 1..max_order), the start poles (run
-    !> of stable_orders or more at the highest order) and the other poles of the highest
-    !> order as candidates.
+    !> Lines whose |G| exceeds the median |G| of the nonzero lines above 0 Hz by more than
+    !> gross_ratio: no receptance spans that many decades, and the sums of squares of the
+    !> diagram and the fit would overflow on them. They are recorded as outliers and replaced by
+    !> their neighbours' interpolation before anything else.
+    subroutine gross_outliers(frf, result)
+        type(frf_type), intent(inout) :: frf
+        type(ml_result), intent(inout) :: result
+
+        real(dp) :: magnitude(frf%n_freq() - 1), typical
+        integer :: l
+
+        magnitude(:) = abs(frf%receptance(2:))
+        if (.not. any(magnitude > 0.0_dp)) return
+        typical = median(pack(magnitude, magnitude > 0.0_dp))
+        do l = 1, frf%n_freq()
+            if (.not. (abs(frf%receptance(l)) > gross_ratio*typical)) cycle
+            result%outlier_line = [result%outlier_line, l]
+            result%outlier_frequency = [result%outlier_frequency, frf%frequency(l)]
+            result%outlier_excess = [result%outlier_excess, 0.0_dp]
+        end do
+        do l = 1, size(result%outlier_line)
+            frf%receptance(result%outlier_line(l)) = interpolated(frf%receptance, result%outlier_line, &
+                                                                  result%outlier_line(l))
+        end do
+    end subroutine gross_outliers
+
+    !> The value of an outlier line from its neighbours: the cubic through the two lines on
+    !> each side, (-G(l-2) + 4*G(l-1) + 4*G(l+1) - G(l+2))/6, or the mean of the nearest good
+    !> lines when the cubic's are not all available (an edge, another outlier).
+    pure complex(dp) function interpolated(g, outliers, l) result(value)
+        complex(dp), intent(in) :: g(:)
+        integer, intent(in) :: outliers(:), l
+
+        integer :: j, n_good
+        logical :: good(-2:2)
+
+        do j = -2, 2
+            good(j) = l + j >= 1 .and. l + j <= size(g)
+            if (good(j)) good(j) = .not. any(outliers == l + j)
+        end do
+        good(0) = .false.
+        if (all(good([-2, -1, 1, 2]))) then
+            value = (-g(l - 2) + 4.0_dp*g(l - 1) + 4.0_dp*g(l + 1) - g(l + 2))/6.0_dp
+            return
+        end if
+        value = (0.0_dp, 0.0_dp)
+        n_good = 0
+        do j = -2, 2
+            if (.not. good(j)) cycle
+            value = value + g(l + j)
+            n_good = n_good + 1
+        end do
+        if (n_good > 0) value = value/n_good
+    end function interpolated
+
+    !> The stabilisation diagram (LSCE step only at N = 1..max_order, further when no pole is
+    !> stable by then), the start poles (run of stable_orders or more at the highest order)
+    !> and the other poles of the highest order as candidates.
     subroutine build_diagram(frf, options, result, start, candidates, error)
         type(frf_type), intent(in) :: frf
         type(ml_options), intent(in) :: options
@@ -460,17 +704,31 @@ contains
         integer, allocatable :: run(:), run_prev(:), flag(:)
         complex(dp), allocatable :: poles(:)
         real(dp) :: dt
-        integer :: n, n_max, k, j
+        integer :: n, n_data, n_max, k, j
+        integer, allocatable :: unstable(:), real_roots(:), settled(:)
 
         call impulse_from_frf(frf, g, dt, error)
         if (allocated(error)) return
-        n_max = min(options%max_order, min(size(g) - 1, options%max_samples)/6)
+        n_data = min(size(g) - 1, options%max_samples)/6
+        result%max_modes = min(options%max_order, n_data)
+        ! Beyond max_order only when no pole has been stable over stable_orders orders by then: the
+        ! poles of a band-limited G settle a few orders above the number of modes, and a max_order
+        ! close to it would leave the fit without start poles. The diagram then goes on until the
+        ! number of such poles has not grown for stable_orders orders.
+        n_max = min(2*options%max_order + options%stable_orders, n_data)
+        if (allocated(result%diagram_order)) deallocate (result%diagram_order, result%diagram_frequency, &
+                                                         result%diagram_damping, result%diagram_flag, &
+                                                         result%unstable_by_order, result%real_by_order)
         allocate (result%diagram_order(0), result%diagram_frequency(0), result%diagram_damping(0), &
-                  result%diagram_flag(0), result%unstable_by_order(n_max), result%real_by_order(n_max))
-        allocate (f_prev(0), xi_prev(0), run_prev(0), poles(0))
+                  result%diagram_flag(0), unstable(n_max), real_roots(n_max))
+        allocate (f_prev(0), xi_prev(0), run_prev(0), poles(0), settled(0:n_max))
+        settled = 0
         do n = 1, n_max
-            call lsce_poles(g, dt, 2*n, options%max_samples, poles, result%unstable_by_order(n), &
-                            result%real_by_order(n), error)
+            if (n > result%max_modes) then
+                if (settled(result%max_modes) > 0) exit
+                if (settled(n - 1) > 0 .and. settled(n - 1) == settled(max(n - 1 - options%stable_orders, 0))) exit
+            end if
+            call lsce_poles(g, dt, 2*n, options%max_samples, poles, unstable(n), real_roots(n), error)
             if (allocated(error)) return
             f = natural_frequency(poles)/two_pi
             xi = damping_ratio(poles)
@@ -492,9 +750,13 @@ contains
             result%diagram_flag = [result%diagram_flag, flag]
             call move_alloc(f, f_prev)
             call move_alloc(xi, xi_prev)
+            settled(n) = count(run >= options%stable_orders)
             call move_alloc(run, run_prev)
             deallocate (flag)
         end do
+        n = maxval([0, result%diagram_order])
+        result%unstable_by_order = unstable(:n)
+        result%real_by_order = real_roots(:n)
         candidates = pack(poles, .not. (run_prev >= options%stable_orders) .and. f_prev < frf%f_max())
         result%n_wandering = size(candidates)
         call start_poles(result, options, frf%f_max(), start)
@@ -502,7 +764,8 @@ contains
 
     !> Start poles from the diagram: going down from the highest order, every pole stable in
     !> f and xi for stable_orders orders in a row (flag 2 that many times along its chain)
-    !> whose frequency is not within stable_frequency of one already taken.
+    !> whose frequency is not within stable_frequency of one already taken; when there is
+    !> none, the poles of the highest order flagged 1 or 2.
     pure subroutine start_poles(result, options, f_max, start)
         type(ml_result), intent(in) :: result
         type(ml_options), intent(in) :: options
@@ -511,7 +774,8 @@ contains
 
         integer :: run(size(result%diagram_order))
         real(dp), allocatable :: taken(:)
-        integer :: i, j, n
+        integer, allocatable :: length(:)
+        integer :: i, j, n, needed
 
         ! run(i): orders in a row ending at pole i stable in f and xi, along nearest-frequency links.
         run = 0
@@ -521,16 +785,32 @@ contains
             j = nearest_pole(result%diagram_frequency, result%diagram_order, n - 1, result%diagram_frequency(i))
             if (j > 0) run(i) = run(j) + 1
         end do
-        allocate (start(0), taken(0))
+        ! When no chain is that long (max_order hardly above the number of modes: the poles of
+        ! a band-limited G settle only a few orders above it), the poles of the highest order
+        ! stable in f against the order below start the fit instead.
+        needed = options%stable_orders
+        if (.not. any(run >= needed)) then
+            needed = 1
+            run = 0
+            where (result%diagram_order == maxval([0, result%diagram_order]) .and. result%diagram_flag >= 1) run = 1
+        end if
+        allocate (start(0), taken(0), length(0))
         do i = size(run), 1, -1
-            if (run(i) < options%stable_orders .or. result%diagram_frequency(i) >= f_max) cycle
+            if (run(i) < needed .or. result%diagram_frequency(i) >= f_max) cycle
             if (size(taken) > 0) then
                 if (minval(abs(taken - result%diagram_frequency(i))) <= options%stable_frequency &
                     *result%diagram_frequency(i)) cycle
             end if
             taken = [taken, result%diagram_frequency(i)]
+            length = [length, run(i)]
             start = [start, two_pi*result%diagram_frequency(i)*cmplx(-result%diagram_damping(i), &
                                                                      sqrt(1.0_dp - result%diagram_damping(i)**2), dp)]
+        end do
+        ! No more than the model may hold (a diagram gone beyond max_order): the longest chains.
+        do while (size(start) > result%max_modes)
+            i = minloc(length, 1, back=.true.)
+            start = [start(:i - 1), start(i + 1:)]
+            length = [length(:i - 1), length(i + 1:)]
         end do
     end subroutine start_poles
 
@@ -772,22 +1052,22 @@ contains
         call refine(data, model, result, iterations)
     end subroutine fit
 
-    !> Relative noise model: weights 1/max(rho*|G_model|, floor) from the model rather than
-    !> from the noisy |G|, and the model refined with them.
+    !> The final refinement: for the relative noise model with the weights 1/max(rho*|G_model|,
+    !> floor) from the model rather than from the noisy |G|.
     subroutine reweight(data, model, result)
         type(data_type), intent(inout) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
 
-        if (.not. data%relative) return
-        data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        if (data%relative) data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
         call refine(data, model, result)
     end subroutine reweight
 
     !> Levenberg-Marquardt on all parameters: the Gauss-Newton system scaled to unit diagonal,
     !> damped by mu*I, solved by Cholesky; a step is kept when chi2 falls and every pole stays
     !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than
-    !> 1e-3 + 1e-10*chi2 (a parameter change of a few hundredths of its standard deviation).
+    !> data%tolerance + 1e-10*chi2 in an iteration (search_tolerance during the order search,
+    !> final_tolerance for the final model).
     subroutine refine(data, model, result, iterations)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
@@ -823,13 +1103,13 @@ contains
                 chi_trial = huge(1.0_dp)
                 if (ok) then
                     trial = stepped(model, y/scale)
-                    if (physical(trial)) chi_trial = chi_square(data, trial)
+                    if (physical(trial, data%min_decay)) chi_trial = chi_square(data, trial)
                 end if
                 if (chi_trial < chi) exit
                 mu = 10.0_dp*mu
                 if (mu > 1.0e12_dp) return
             end do
-            small = merge(1, 0, chi - chi_trial <= 1.0e-3_dp + 1.0e-10_dp*chi)
+            small = merge(1, 0, chi - chi_trial <= data%tolerance + 1.0e-10_dp*chi)
             model = trial
             chi = chi_trial
             mu = max(0.1_dp*mu, 1.0e-12_dp)
@@ -837,12 +1117,30 @@ contains
         end do
     end subroutine refine
 
-    !> Every pole with Re < 0 < Im.
-    pure logical function physical(model)
+    !> Every pole with Re <= -min_decay < 0 < Im.
+    pure logical function physical(model, min_decay)
         type(model_type), intent(in) :: model
+        !> Smallest -Re(lambda) [1/s] (> 0).
+        real(dp), intent(in) :: min_decay
 
-        physical = all(real(model%pole, dp) < 0.0_dp .and. aimag(model%pole) > 0.0_dp)
+        physical = all(real(model%pole, dp) <= -min_decay .and. aimag(model%pole) > 0.0_dp)
     end function physical
+
+    !> Poles moved, when needed, to the narrowest band allowed: Re(lambda) <= -min_decay.
+    elemental complex(dp) function widened(pole, min_decay)
+        complex(dp), intent(in) :: pole
+        real(dp), intent(in) :: min_decay
+
+        widened = cmplx(min(real(pole, dp), -min_decay), aimag(pole), dp)
+    end function widened
+
+    !> Whether a pole sits within a factor 2 of the narrowest band allowed.
+    elemental logical function narrowest(pole, min_decay)
+        complex(dp), intent(in) :: pole
+        real(dp), intent(in) :: min_decay
+
+        narrowest = -real(pole, dp) < 2.0_dp*min_decay
+    end function narrowest
 
     !> Identity matrix of order n.
     pure function identity(n) result(m)
@@ -927,17 +1225,23 @@ contains
 
     !> Add modes while MDL accepts one, then drop modes while MDL accepts their removal;
     !> repeat until neither changes the model, then decide the residual terms ('auto').
-    subroutine choose_order(data, options, candidates, model, result, error)
+    !> An outlier line MDL prefers to leave out is recorded in the result; unless `keep_going`,
+    !> the search then stops and returns its FRF index in `outlier` (for a fresh start without
+    !> it), otherwise the line is left out of the data and the search goes on.
+    subroutine choose_order(data, options, candidates, model, result, outlier, keep_going, error)
         type(data_type), intent(inout) :: data
         type(ml_options), intent(in) :: options
         complex(dp), intent(in) :: candidates(:)
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
+        integer, intent(out) :: outlier
+        logical, intent(in) :: keep_going
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: changes
+        integer :: changes, line
         logical :: added, removed
 
+        outlier = 0
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
         changes = 0
@@ -945,18 +1249,26 @@ contains
         ! worth trying (the residual changed), so the rounds end with a round that removes nothing.
         do
             do while (changes < options%max_changes)
-                call add_mode(data, candidates, model, result, added, error)
+                call add_mode(data, candidates, model, result, added, line, error)
                 if (allocated(error)) return
                 if (.not. added) exit
                 changes = changes + 1
+                if (line > 0) then
+                    call take_outlier(data, model, result, line, keep_going, outlier, error)
+                    if (allocated(error) .or. outlier > 0) return
+                end if
             end do
             removed = .false.
             do while (changes < options%max_changes)
-                call drop_mode(data, model, result, added, error)
+                call drop_mode(data, model, result, added, line, error)
                 if (allocated(error)) return
                 if (.not. added) exit
                 removed = .true.
                 changes = changes + 1
+                if (line > 0) then
+                    call take_outlier(data, model, result, line, keep_going, outlier, error)
+                    if (allocated(error) .or. outlier > 0) return
+                end if
             end do
             if (.not. removed .or. changes >= options%max_changes) exit
         end do
@@ -966,6 +1278,61 @@ contains
             call drop_term(data, model, result, .false., error)
         end if
     end subroutine choose_order
+
+    !> An outlier line (index in data) the search found: recorded, then either left out of the
+    !> data and the model refitted, or, when its effect on the diagram outweighs the noise
+    !> (|e_w| > sqrt(L): the undamped sinusoid it adds to g stands above the noise of each
+    !> sample of g) and `keep_going` is false, returned in `outlier` (FRF index) for a fresh start.
+    subroutine take_outlier(data, model, result, line, keep_going, outlier, error)
+        type(data_type), intent(inout) :: data
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        integer, intent(in) :: line
+        logical, intent(in) :: keep_going
+        integer, intent(out) :: outlier
+        type(error_type), allocatable, intent(out) :: error
+
+        complex(dp) :: g_model(1)
+
+        outlier = 0
+        call record_outlier(data, line, result)
+        g_model = evaluate(model, data%omega(line:line))
+        if (.not. keep_going .and. data%weight(line)*abs(data%g(line) - g_model(1)) > sqrt(real(size(data%g), dp))) then
+            outlier = data%line(line)
+            return
+        end if
+        call leave_out(data, line)
+        call fit(data, model, result, error)
+    end subroutine take_outlier
+
+    !> Append an outlier line (index in data) to the result (FRF line, frequency; its excess
+    !> over the final model is filled in by `finish`).
+    pure subroutine record_outlier(data, line, result)
+        type(data_type), intent(in) :: data
+        integer, intent(in) :: line
+        type(ml_result), intent(inout) :: result
+
+        result%outlier_line = [result%outlier_line, data%line(line)]
+        result%outlier_frequency = [result%outlier_frequency, data%omega(line)/two_pi]
+        result%outlier_excess = [result%outlier_excess, 0.0_dp]
+    end subroutine record_outlier
+
+    !> Remove one line (index in data) from the data.
+    pure subroutine leave_out(data, line)
+        type(data_type), intent(inout) :: data
+        integer, intent(in) :: line
+
+        logical :: keep(size(data%g))
+
+        keep = .true.
+        keep(line) = .false.
+        data%line = pack(data%line, keep)
+        data%omega = pack(data%omega, keep)
+        data%g = pack(data%g, keep)
+        data%weight = pack(data%weight, keep)
+        data%floor = pack(data%floor, keep)
+        data%penalty = log(2.0_dp*size(data%g))
+    end subroutine leave_out
 
     !> Remove poles the fit moved above f_max (their effect belongs to R_u) and refit.
     subroutine drop_outside(data, model, result, error)
@@ -988,6 +1355,31 @@ contains
         end do
     end subroutine drop_outside
 
+    !> Remove the modes the data do not determine: while the Fisher information of the final
+    !> model is singular (two poles merged, a residue the data cannot see), drop the mode
+    !> `merged` names and refit, so that every mode returned has a finite uncertainty.
+    subroutine drop_undetermined(data, model, result, error)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :), jac_t(:, :)
+        integer :: worst
+        logical :: ok
+
+        do while (size(model%pole) > 0)
+            call information(data, model, fisher, gradient, jac, jac_t)
+            call covariance(fisher, cov, ok)
+            if (ok) return
+            worst = merged(model)
+            call record_drop(result, [model%pole(worst)], dropped_degenerate)
+            model%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
+            call fit(data, model, result, error)
+            if (allocated(error)) return
+        end do
+    end subroutine drop_undetermined
+
     !> Append dropped poles to the result.
     pure subroutine record_drop(result, poles, reason)
         type(ml_result), intent(inout) :: result
@@ -1002,31 +1394,59 @@ contains
     !> three largest peaks of the smoothed weighted residual (at each, the best of a grid of
     !> damping ratios), ranked by the chi2 drop of their two residue columns alone; the best
     !> tries_per_add are refitted in turn and the first that lowers the MDL criterion is kept.
-    subroutine add_mode(data, candidates, model, result, added, error)
+    !> No mode is added to a model of data%max_modes. The alternative to a mode is an outlier
+    !> line (`outlier_candidate`): when no mode trial lowers the criterion below what leaving
+    !> that line out gives, `outlier` returns its index in data (0 otherwise).
+    subroutine add_mode(data, candidates, model, result, added, outlier, error)
         type(data_type), intent(in) :: data
         complex(dp), intent(in) :: candidates(:)
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
         logical, intent(out) :: added
+        integer, intent(out) :: outlier
         type(error_type), allocatable, intent(out) :: error
 
         complex(dp), allocatable :: pool(:), residual(:)
         real(dp), allocatable :: score(:), power(:)
         type(model_type) :: trial
-        real(dp) :: best_score, s, before
+        type(data_type) :: without
+        real(dp) :: best_score, s, before, target
         complex(dp) :: best_pole, p
         integer :: k, j, try, peak, l, h
+        integer, allocatable :: batch(:)
+        logical :: alone
 
         added = .false.
         l = size(data%g)
         allocate (residual(l))
         residual(:) = data%weight*(data%g - evaluate(model, data%omega))
+        before = criterion(data, model, chi_square(data, model))
+        ! Leaving a line out frees its two values (2*ln(2L)); the model is refitted without it as
+        ! long as a trial mode is (a mode's trial also moves the other poles: a model not yet
+        ! converged would otherwise always favour the mode).
+        outlier = outlier_candidate(data, residual)
+        target = before
+        if (outlier > 0) then
+            trial = model
+            call without_line(data, outlier, trial_iterations, trial, result, without, alone, error)
+            if (allocated(error)) return
+            if (alone) then
+                target = min(before, criterion(without, trial, chi_square(without, trial)) + 2.0_dp*data%penalty)
+            else
+                outlier = 0
+            end if
+        end if
+        if (size(model%pole) >= data%max_modes) then
+            added = target < before
+            if (.not. added) outlier = 0
+            return
+        end if
         allocate (pool(0), power(l))
         do k = 1, size(candidates)
             if (size(model%pole) > 0) then
                 if (minval(abs(model%pole - candidates(k))) < 0.01_dp*abs(candidates(k))) cycle
             end if
-            pool = [pool, candidates(k)]
+            pool = [pool, widened(candidates(k), data%min_decay)]
         end do
         ! Residual peaks: the largest local maxima of |e_w|^2 summed over 5 lines.
         h = 2
@@ -1047,7 +1467,7 @@ contains
                     best_pole = p
                 end if
             end do
-            if (best_score > 0.0_dp) pool = [pool, best_pole]
+            if (best_score > 0.0_dp) pool = [pool, widened(best_pole, data%min_decay)]
             ! Clear the neighbourhood of this peak (about one percent of its frequency, 3 lines at least).
             j = max(3, nint(0.01_dp*peak))
             power(max(1, peak - j):min(l, peak + j)) = 0.0_dp
@@ -1057,12 +1477,28 @@ contains
             pool = pack(pool, [(minval(abs(result%dropped_pole - pool(k))) >= 0.01_dp*abs(pool(k)), &
                                 k=1, size(pool))])
         end if
-        if (size(pool) == 0) return
         allocate (score(size(pool)))
         do k = 1, size(pool)
             score(k) = column_score(data, residual, pool(k))
         end do
-        before = criterion(data, model, chi_square(data, model))
+        ! Many modes missing (a diagram that settled only part of them): the strong candidates
+        ! far apart go in together, each worth more than a tenth of the best and ten times a
+        ! mode's price; one trial fit judges them all, else they are tried one by one below.
+        batch = strong_candidates(data, pool, score, size(model%pole))
+        if (size(batch) > 1) then
+            trial = model
+            trial%pole = [model%pole, pool(batch)]
+            call fit(data, trial, result, error, trial_iterations)
+            if (allocated(error)) return
+            if (all(natural_frequency(trial%pole) <= two_pi*data%f_max) .and. &
+                criterion(data, trial, chi_square(data, trial)) < target) then
+                model = trial
+                call refine(data, model, result)
+                added = .true.
+                outlier = 0
+                return
+            end if
+        end if
         do try = 1, min(tries_per_add, size(pool))
             k = maxloc(score, 1)
             score(k) = -huge(1.0_dp)
@@ -1071,14 +1507,120 @@ contains
             call fit(data, trial, result, error, trial_iterations)
             if (allocated(error)) return
             if (.not. all(natural_frequency(trial%pole) <= two_pi*data%f_max)) cycle
-            if (criterion(data, trial, chi_square(data, trial)) < before) then
+            if (criterion(data, trial, chi_square(data, trial)) < target) then
                 model = trial
                 call refine(data, model, result)
                 added = .true.
+                outlier = 0
                 return
             end if
         end do
+        added = target < before
+        if (.not. added) outlier = 0
     end subroutine add_mode
+
+    !> Indices into pool of the candidates to add together, best first: the best, then each
+    !> whose score exceeds a tenth of the best's and ten times a mode's MDL price and whose
+    !> pole lies more than 1 % and more than three half-power bandwidths from those taken,
+    !> as long as the model stays within data%max_modes.
+    pure function strong_candidates(data, pool, score, n_model) result(batch)
+        type(data_type), intent(in) :: data
+        complex(dp), intent(in) :: pool(:)
+        real(dp), intent(in) :: score(:)
+        integer, intent(in) :: n_model
+        integer, allocatable :: batch(:)
+
+        real(dp) :: left(size(score))
+        integer :: k, j
+        logical :: apart
+
+        allocate (batch(0))
+        if (size(score) == 0) return
+        left = score
+        do while (n_model + size(batch) < data%max_modes)
+            k = maxloc(left, 1)
+            if (size(batch) > 0) then
+                if (.not. (left(k) > 0.1_dp*score(batch(1)) .and. left(k) > 40.0_dp*data%penalty)) exit
+            end if
+            left(k) = -huge(1.0_dp)
+            apart = .true.
+            do j = 1, size(batch)
+                associate (p => pool(k), q => pool(batch(j)))
+                    apart = apart .and. abs(p - q) > max(0.01_dp*abs(p), -3.0_dp*(real(p, dp) + real(q, dp)))
+                end associate
+            end do
+            if (apart) batch = [batch, k]
+            if (all(left < -0.5_dp*huge(1.0_dp))) exit
+        end do
+    end function strong_candidates
+
+    !> The line (index in data) that may be an outlier, to be confirmed by `without_line`: the
+    !> one whose weighted residual departs most from the cubic through the residuals of the two
+    !> lines on each side, (-e(l-2) + 4*e(l-1) + 4*e(l+1) - e(l+2))/6, when that departure
+    !> exceeds data%outlier_sigma. A model bent towards an outlier is smooth across the lines,
+    !> so the departure keeps the outlier's size where the residual itself may not; a mode the
+    !> model lacks is smooth as well unless it is narrower than a few lines. Noise alone gives
+    !> departures of standard deviation sqrt(70)/6 = 1.39 times that of e. 0 when there is none.
+    pure integer function outlier_candidate(data, residual) result(line)
+        type(data_type), intent(in) :: data
+        complex(dp), intent(in) :: residual(:)
+
+        real(dp) :: departure(size(residual))
+        integer :: l, n
+
+        line = 0
+        n = size(residual)
+        if (.not. (data%outlier_sigma > 0.0_dp) .or. n < 5) return
+        departure = 0.0_dp
+        do l = 3, n - 2
+            departure(l) = abs(residual(l) - (-residual(l - 2) + 4.0_dp*residual(l - 1) + 4.0_dp*residual(l + 1) &
+                                              - residual(l + 2))/6.0_dp)
+        end do
+        line = maxloc(departure, 1)
+        if (.not. (departure(line) > data%outlier_sigma)) line = 0
+    end function outlier_candidate
+
+    !> Whether line l's weighted residual is above data%outlier_sigma and alone: |e_w(l)|^2 more
+    !> than ten times the sum over the two lines on each side (false when detection is off).
+    pure logical function lone_line(data, residual, l)
+        type(data_type), intent(in) :: data
+        complex(dp), intent(in) :: residual(:)
+        integer, intent(in) :: l
+
+        real(dp) :: power
+        integer :: n
+
+        n = size(residual)
+        lone_line = .false.
+        if (.not. (data%outlier_sigma > 0.0_dp) .or. n < 5) return
+        power = abs(residual(l))**2
+        if (.not. (power > data%outlier_sigma**2)) return
+        lone_line = power > 10.0_dp*(sum(abs(residual(max(1, l - 2):min(n, l + 2)))**2) - power)
+    end function lone_line
+
+    !> The model refitted (at most `iterations` LM iterations) on the data without line l, and
+    !> whether, against it, line l stands alone far off: |e_w| above data%outlier_sigma and
+    !> |e_w|^2 more than ten times the sum over the two lines on each side. A mode, even one
+    !> narrower than the grid, also lifts the lines beside its peak (its tails
+    !> r/(i*(omega - omega_k))); one wrong line does not, once the model no longer bends to it.
+    subroutine without_line(data, l, iterations, model, result, without, alone, error)
+        type(data_type), intent(in) :: data
+        integer, intent(in) :: l, iterations
+        !> In: the model to start from; out: refitted without line l.
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        !> The data without line l.
+        type(data_type), intent(out) :: without
+        logical, intent(out) :: alone
+        type(error_type), allocatable, intent(out) :: error
+
+        alone = .false.
+        without = data
+        call leave_out(without, l)
+        call fit(without, model, result, error, iterations)
+        if (allocated(error)) return
+        alone = lone_line(data, data%weight*(data%g - evaluate(model, data%omega)), l)
+    end subroutine without_line
 
     !> The chi2 drop the two residue columns of one pole would give alone against a residual.
     pure real(dp) function column_score(data, residual, pole) result(score)
@@ -1102,25 +1644,34 @@ contains
         if (det > 0.0_dp) score = 2.0_dp*(g22*b1**2 - 2.0_dp*g12*b1*b2 + g11*b2**2)/det
     end function column_score
 
-    !> Try to drop one of the three modes with the smallest Wald statistic for r_k = 0 below
-    !> the MDL price of a mode (poles on the stability boundary first); a removal is kept when
-    !> the fully refitted model lowers the criterion. A singular information drops the mode
-    !> `merged` names.
-    subroutine drop_mode(data, model, result, removed, error)
+    !> First a mode that only takes up an outlier line goes (`spike_mode`, the line returned in
+    !> `outlier`, index in data). Otherwise try to drop one of the three modes with the smallest
+    !> Wald statistic for r_k = 0 below the MDL price of a mode (poles at the narrowest band
+    !> first); a removal is kept when the fully refitted model lowers the criterion. A
+    !> singular information drops the mode `merged` names.
+    subroutine drop_mode(data, model, result, removed, outlier, error)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
         type(ml_result), intent(inout) :: result
         logical, intent(out) :: removed
+        integer, intent(out) :: outlier
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), jac_t(:, :)
-        real(dp) :: block2(2, 2)
+        real(dp) :: block2(2, 2), before
         type(model_type) :: trial
         logical :: ok
         integer :: k, c, worst, try
 
         removed = .false.
+        outlier = 0
         if (size(model%pole) == 0) return
+        call spike_mode(data, model, result, outlier, error)
+        if (allocated(error)) return
+        if (outlier > 0) then
+            removed = .true.
+            return
+        end if
         call information(data, model, fisher, gradient, jac, jac_t)
         call covariance(fisher, cov, ok)
         allocate (wald(size(model%pole)))
@@ -1137,8 +1688,8 @@ contains
             block2 = cov(c + 3:c + 4, c + 3:c + 4)
             wald(k) = quadratic(block2, [real(model%residue(k), dp), aimag(model%residue(k))])
         end do
-        ! Poles the fit pushed onto the stability boundary go first, whatever their statistic.
-        where (damping_ratio(model%pole) < boundary_damping) wald = -1.0_dp
+        ! Poles the fit pushed to the narrowest band go first, whatever their statistic.
+        where (narrowest(model%pole, data%min_decay)) wald = -1.0_dp
         do try = 1, tries_per_add
             worst = minloc(wald, 1)
             if (.not. (wald(worst) < 4.0_dp*data%penalty)) return
@@ -1148,16 +1699,62 @@ contains
             ! A full refit: with several noise poles the others move when one goes.
             call fit(data, trial, result, error)
             if (allocated(error)) return
-            if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
+            before = criterion(data, model, chi_square(data, model))
+            if (criterion(data, trial, chi_square(data, trial)) < before) then
                 call record_drop(result, [model%pole(worst)], &
-                                 merge(dropped_boundary, dropped_by_criterion, damping_ratio(model%pole(worst)) &
-                                                                               < boundary_damping))
+                                 merge(dropped_boundary, dropped_by_criterion, narrowest(model%pole(worst), &
+                                                                                         data%min_decay)))
                 model = trial
                 removed = .true.
                 return
             end if
         end do
     end subroutine drop_mode
+
+    !> Whether a mode narrower than one line (2*xi*f < df) only takes up an outlier line: the
+    !> model without it, refitted without the line of largest residual next to its frequency,
+    !> leaves that line alone far off (`without_line`), and has, with the line's 2 values
+    !> freed, a lower MDL criterion than with the mode (4 parameters). A real under-resolved
+    !> mode also lifts the lines beside its peak (its tails r/(i*(omega - omega_k))), so its
+    !> removal leaves no lone line. Then the model becomes the one without the mode, `line`
+    !> the outlier (index in data), else 0.
+    subroutine spike_mode(data, model, result, line, error)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        integer, intent(out) :: line
+        type(error_type), allocatable, intent(out) :: error
+
+        type(model_type) :: trial
+        type(data_type) :: without
+        complex(dp) :: residual(size(data%g))
+        real(dp) :: before
+        integer :: k, near
+        logical :: alone
+
+        line = 0
+        before = criterion(data, model, chi_square(data, model))
+        do k = 1, size(model%pole)
+            if (-real(model%pole(k), dp) >= pi*data%df) cycle
+            trial = model
+            trial%pole = [model%pole(:k - 1), model%pole(k + 1:)]
+            call fit(data, trial, result, error)
+            if (allocated(error)) return
+            residual(:) = data%weight*(data%g - evaluate(trial, data%omega))
+            near = minloc(abs(data%omega - aimag(model%pole(k))), 1)
+            near = near - 2 + maxloc(abs(residual(max(1, near - 1):min(size(residual), near + 1))), 1) &
+                   + merge(1, 0, near == 1)
+            call without_line(data, near, data%max_iterations, trial, result, without, alone, error)
+            if (allocated(error)) return
+            if (.not. alone) cycle
+            if (criterion(without, trial, chi_square(without, trial)) + 2.0_dp*data%penalty < before) then
+                call record_drop(result, [model%pole(k)], dropped_boundary)
+                model = trial
+                line = near
+                return
+            end if
+        end do
+    end subroutine spike_mode
 
     !> The mode to drop when the information is singular: of the two closest poles the one
     !> with the smaller residue, or the smallest residue when no two poles are within 0.1 %.
@@ -1236,6 +1833,7 @@ contains
         integer, allocatable :: index(:)
         logical :: ok
         type(modal_set) :: unsorted
+        character(len=:), allocatable :: excess
 
         n = size(model%pole)
         result%chi_square = chi_square(data, model)
@@ -1277,8 +1875,8 @@ contains
                 result%sigma_residue(k) = sqrt(cov(c + 3, c + 3) + cov(c + 4, c + 4))
             end do
         else
-            call add_warning(result, 'the Fisher information of the final model is singular: ' &
-                             //'uncertainties not available (set to huge)')
+            call add_warning(result, 'the Fisher information of the final model is singular (a residual ' &
+                             //'term the data do not determine): uncertainties not available (written as huge)')
         end if
         result%e = error_e(data%g, evaluate(model, data%omega))
         do k = 1, n
@@ -1291,12 +1889,53 @@ contains
                                  //'on the few lines near the peak: use a finer frequency step')
             end if
         end do
+        call outlier_excess(frf, data, options, model, result)
+        do k = 1, size(result%outlier_line)
+            excess = real_text(result%outlier_excess(k))
+            if (result%outlier_excess(k) >= 1.0e300_dp) excess = 'more than 1e300'
+            call add_warning(result, 'line '//int_text(result%outlier_line(k))//' at ' &
+                             //real_text(result%outlier_frequency(k))//' Hz left out as an outlier (|G - model| = ' &
+                             //excess//' sigma, its neighbours within the noise)')
+        end do
         if (.not. result%explained) then
             call add_warning(result, 'the residual is not explained by the noise (chi2/nu = ' &
                              //real_text(result%chi_square/result%dof)//'): a mode may be missing or the ' &
                              //'noise model may not fit; check the residual')
         end if
     end subroutine finish
+
+    !> |G_l - G_model|/sigma_l of each outlier line against the final model (sigma_l as the
+    !> fit's weights take it: given, absolute, or level*|G_model|), at most huge.
+    pure subroutine outlier_excess(frf, data, options, model, result)
+        type(frf_type), intent(in) :: frf
+        type(data_type), intent(in) :: data
+        type(ml_options), intent(in) :: options
+        type(model_type), intent(in) :: model
+        type(ml_result), intent(inout) :: result
+
+        complex(dp) :: g_model(1)
+        real(dp) :: sigma, misfit
+        integer :: k, l
+
+        do k = 1, size(result%outlier_line)
+            l = result%outlier_line(k)
+            g_model = evaluate(model, [two_pi*frf%frequency(l)])
+            if (allocated(options%sigma)) then
+                sigma = options%sigma(l)
+            else if (data%relative) then
+                sigma = max(data%level, options%noise_floor)*abs(g_model(1))
+            else
+                sigma = data%level
+            end if
+            misfit = abs(frf%receptance(l) - g_model(1))
+            result%outlier_excess(k) = huge(1.0_dp)
+            if (sigma > 0.0_dp .and. misfit > 0.0_dp) then
+                result%outlier_excess(k) = exp(min(log(misfit) - log(sigma), log(huge(1.0_dp))))
+            else if (sigma > 0.0_dp) then
+                result%outlier_excess(k) = 0.0_dp
+            end if
+        end do
+    end subroutine outlier_excess
 
     !> Append a warning ('; ' between warnings).
     pure subroutine add_warning(result, text)

@@ -10,6 +10,7 @@
 module greenconv_ident_structure
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: sci_text
     use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
@@ -49,6 +50,8 @@ module greenconv_ident_structure
     contains
         !> E of eq. (7) of the identified model (1 when not identified).
         procedure :: fit_e => structure_fit_e
+        !> The identification in one phrase for a method's summary line ('' when not identified).
+        procedure :: fit_brief => structure_fit_brief
         !> Receptance [m/N] of the identified model, residual terms included, at omega [rad/s].
         procedure :: fitted => structure_fitted
     end type structure_model
@@ -104,7 +107,7 @@ contains
         structure%method = 'lsce'
         structure%model = sorted_by_frequency(structure%fit%modes)
         structure%identified = .true.
-        if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
+        if (dt > 0.0_dp) call sample_from_frf(structure%frf, dt, structure, error)
     end subroutine structure_from_frf
 
     !> A structure known by its sampled receptance G, possibly measured with noise: modes
@@ -123,7 +126,9 @@ contains
         !> Set when the identification fails or dt does not fit the FRF grid.
         type(error_type), allocatable, intent(out) :: error
 
+        type(frf_type) :: repaired
         real(dp) :: start, finish
+        integer :: l
 
         structure%frf = frf
         call cpu_time(start)
@@ -134,7 +139,16 @@ contains
         structure%method = 'ml'
         structure%model = structure%ml%modes
         structure%identified = .true.
-        if (dt > 0.0_dp) call sample_from_frf(dt, structure, error)
+        if (dt <= 0.0_dp) return
+        ! g from G with the outlier lines the fit left out replaced by the model's value (one
+        ! such line adds an undamped sinusoid to the whole of g).
+        repaired = frf
+        do l = 1, size(structure%ml%outlier_line)
+            associate (line => structure%ml%outlier_line(l))
+                repaired%receptance(line) = structure%ml%receptance(2.0_dp*acos(-1.0_dp)*frf%frequency(line))
+            end associate
+        end do
+        call sample_from_frf(repaired, dt, structure, error)
     end subroutine structure_from_frf_ml
 
     !> E of eq. (7) of the identified model; 1 when the structure was not identified.
@@ -151,6 +165,24 @@ contains
             structure_fit_e = 1.0_dp
         end select
     end function structure_fit_e
+
+    !> The identification in one phrase, e.g. "ML fit of G: 12 modes (order by MDL), noise 1.01E-02
+    !> of |G| (estimated from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02,
+    !> E = 8.95E-03 (eq. 7)" or "LSCE fit of G: E = 1.00E-06 (eq. 7)"; '' when not identified.
+    pure function structure_fit_brief(self) result(text)
+        !> The structure.
+        class(structure_model), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        select case (self%method)
+        case ('lsce')
+            text = 'LSCE fit of G: E = '//sci_text(self%fit%e)//' (eq. 7)'
+        case ('ml')
+            text = 'ML fit of G: '//self%ml%brief()//', E = '//sci_text(self%ml%e)//' (eq. 7)'
+        case default
+            text = ''
+        end select
+    end function structure_fit_brief
 
     !> Receptance of the identified model [m/N] at omega [rad/s] (0 when not identified).
     elemental complex(dp) function structure_fitted(self, omega)
@@ -169,9 +201,10 @@ contains
         end select
     end function structure_fitted
 
-    !> g at the time step dt from the FRF: the inverse FFT gives it at 1/(2*f_max); dt must
+    !> g at the time step dt from a receptance: the inverse FFT gives it at 1/(2*f_max); dt must
     !> be that step or a whole multiple of it.
-    subroutine sample_from_frf(dt, structure, error)
+    subroutine sample_from_frf(frf, dt, structure, error)
+        type(frf_type), intent(in) :: frf
         real(dp), intent(in) :: dt
         type(structure_model), intent(inout) :: structure
         type(error_type), allocatable, intent(out) :: error
@@ -181,7 +214,7 @@ contains
         integer :: stride
         character(len=64) :: text
 
-        call impulse_from_frf(structure%frf, g, dt_frf, error)
+        call impulse_from_frf(frf, g, dt_frf, error)
         if (allocated(error)) return
         stride = nint(dt/dt_frf)
         if (stride < 1 .or. abs(stride*dt_frf - dt) > 1.0e-9_dp*dt) then

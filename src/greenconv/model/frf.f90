@@ -29,6 +29,7 @@ module greenconv_model_frf
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, real_text
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_random, only: random_stream
     use greenconv_model_modal_set, only: modal_set
     use greenconv_io_files, only: write_columns
     use greenconv_io_columns, only: read_columns
@@ -38,6 +39,7 @@ module greenconv_model_frf
     private
 
     public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
+    public :: add_relative_noise
 
     !> Fewest data lines read_frf accepts: n lines give 2*(n - 1) impulse samples, and 8
     !> lines (14 samples) is the least for an overdetermined order-2 linear prediction
@@ -407,5 +409,31 @@ contains
             end if
         end do
     end subroutine check_grid
+
+    !> Add complex Gaussian noise of standard deviation level*|G_l| to each line, as a measured
+    !> receptance has it: Re and Im independent, each of variance (level*|G_l|)^2/2 (Box-Muller on
+    !> greenconv_core_random's portable stream, so a seed gives the same draws everywhere). For
+    !> tests and benchmarks of the identification.
+    subroutine add_relative_noise(frf, level, seed)
+        !> The receptance, changed in place.
+        type(frf_type), intent(inout) :: frf
+        !> Noise standard deviation as a fraction of |G| on each line.
+        real(dp), intent(in) :: level
+        !> Seed of the random stream.
+        integer, intent(in) :: seed
+
+        real(dp), parameter :: two_pi = 2.0_dp*acos(-1.0_dp)
+        type(random_stream) :: stream
+        real(dp) :: radius, angle
+        integer :: l
+
+        stream = random_stream(seed)
+        do l = 1, size(frf%receptance)
+            radius = sqrt(-2.0_dp*log(1.0_dp - stream%uniform()))
+            angle = two_pi*stream%uniform()
+            frf%receptance(l) = frf%receptance(l) + level*abs(frf%receptance(l))*sqrt(0.5_dp) &
+                                *cmplx(radius*cos(angle), radius*sin(angle), dp)
+        end do
+    end subroutine add_relative_noise
 
 end module greenconv_model_frf

@@ -12,7 +12,6 @@ module greenconv_scene_report
     use greenconv_io_files, only: write_columns
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
-    use greenconv_ident_green_structure, only: worst_uncertainty
     implicit none
     private
 
@@ -50,31 +49,22 @@ contains
         end associate
     end subroutine identification_summary
 
-    !> The maximum-likelihood fit in three to five lines, e.g.
+    !> The maximum-likelihood fit in two to four lines, e.g.
     !>
-    !>     # identification: maximum likelihood, 12 modes (order by MDL, diagram to N = 30), noise 1.00E-02
-    !>     #   of |G| (estimated), worst sigma_f/f 1.2E-04, worst sigma_xi/xi 6.9E-02, E = 1.0E-04 (eq. 7), 0.74 s CPU
+    !>     # identification: maximum likelihood, 12 modes (order by MDL), noise 1.01E-02 of |G| (estimated
+    !>     #   from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02, diagram to N = 30,
+    !>     #   E = 8.95E-03 (eq. 7), CPU 9.70E-01 s
     subroutine ml_summary(structure, unit)
         type(structure_model), intent(in) :: structure
         integer, intent(in) :: unit
 
-        character(len=:), allocatable :: line, noise
-        real(dp) :: worst_f, worst_xi
-        integer :: k, n
+        character(len=:), allocatable :: line
+        integer :: k
 
         associate (ml => structure%ml)
-            n = ml%modes%n_modes()
-            call worst_uncertainty(ml, worst_f, worst_xi)
-            if (ml%noise_estimated) then
-                noise = 'noise '//sci_text(ml%noise_level_fit)//' of |G| (estimated from the data)'
-            else
-                noise = 'noise given per line (the residual asks '//sci_text(ml%noise_level_fit)//' times it)'
-            end if
-            line = '# identification: maximum likelihood, '//int_text(n)//' modes (order by MDL, diagram to N = ' &
-                   //int_text(maxval([0, ml%diagram_order]))//'), '//noise//', worst sigma_f/f = ' &
-                   //sci_text(worst_f)//', worst sigma_xi/xi = '//sci_text(worst_xi)//', E = '//sci_text(ml%e) &
-                   //' (eq. 7), CPU '//sci_text(structure%cpu_time)//' s'
-            write (unit, '(a)') line
+            write (unit, '(a)') '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
+                //int_text(maxval([0, ml%diagram_order]))//', E = '//sci_text(ml%e)//' (eq. 7), CPU ' &
+                //sci_text(structure%cpu_time)//' s'
             write (unit, '(a)') '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
                 trim(merge('explained by the noise    ', 'larger than the noise asks', ml%explained))//'), ' &
                 //int_text(ml%n_start)//' start poles from the stabilisation diagram, '//int_text(ml%n_wandering) &
@@ -107,7 +97,7 @@ contains
             case (dropped_degenerate)
                 text = 'singular information, merged'
             case (dropped_boundary)
-                text = 'pushed to xi = 0, a noise spike'
+                text = 'narrowed to a single line, a spike'
             case default
                 text = 'code '//int_text(code)
             end select
