@@ -1,7 +1,7 @@
 !> The multi-point scene on a user's Green's matrix (issue 14): `&structure model = 'green_file'`
 !> against the same structure given as modes, the methods against each other on the shipped
 !> patch, the library entry on a file of impulse responses, the road texture reader on each
-!> malformed case and its bilinear interpolation against closed forms.
+!> malformed case and its bilinear interpolation against closed forms, a sweep of such a scene.
 module test_patchscene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
@@ -23,6 +23,7 @@ module test_patchscene_mod
     use greenconv_conv_green_file, only: green_file_convolver, new_green_file_convolver, green_file_report
     use greenconv_scene_input, only: scene_type
     use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_scene_sweep, only: run_sweep
     use greenconv_core_text, only: int_text
     implicit none
     private
@@ -56,7 +57,9 @@ contains
                      new_unittest('texture: each malformed file refused with file:line', test_texture_malformed), &
                      new_unittest('texture: bilinear gives back a plane and a bilinear surface, x^2 its closed form', &
                                   test_texture_bilinear), &
-                     new_unittest('texture scene: rows across the patch see their own heights', test_texture_scene)]
+                     new_unittest('texture scene: rows across the patch see their own heights', test_texture_scene), &
+                     new_unittest('sweep of a green_file scene on a texture: each row equals the scene run alone', &
+                                  test_sweep_green_file)]
     end subroutine collect_patchscene
 
     ! ---- the scene against the same structure given as modes ------------------------------------
@@ -598,6 +601,112 @@ contains
         call check(error, all(rows(4*19 + 3:4*19 + 4, 5) > maxval(rows(4*19 + 1:4*19 + 2, 5))), &
                    'the row on the higher side (y = 0.125 m) carries more force')
     end subroutine test_texture_scene
+
+    !> A sweep (`&scene task = 'sweep'`) of a green_file scene (the 2 x 2 patch) on a texture
+    !> over road.speed = 4 and 6 m/s, methods exact and fft: each row of the table, read back,
+    !> gives the max, mean and rms of the total force that the same scene run alone at that
+    !> speed writes in its output (its column f_total), to the table's 8 significant digits
+    !> (relative 1e-7), with status 0 and every step in contact.
+    subroutine test_sweep_green_file(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: patch = scratch//'/plate_2x2_sweep.uff', texture = scratch//'/bumps.dat'
+        character(len=*), parameter :: methods(2) = ['exact', 'fft  ']
+        character(len=:), allocatable :: base
+        type(point_modes) :: truth
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: rows(:, :), table(:, :), total(:)
+        real(dp) :: x(4), y(4), expected(3), worst
+        character(len=8) :: names(14)
+        integer, allocatable :: line_of(:)
+        integer :: unit, v, m, k
+
+        call small_patch(patch, truth, x, y, fail)
+        call check(error, .not. allocated(fail), 'the 2 x 2 patch file: '//message_of(fail))
+        if (allocated(error)) return
+        ! heights varying along x and across y: 1 mm bumps 0.05 m apart, 0.5 mm higher on one side
+        call write_file(texture, '# bumps'//new_line('a')//'  -0.1  0.1'//new_line('a') &
+                        //bump_rows(0.0_dp, 12.0_dp, 0.01_dp))
+        base = " &structure model = 'green_file', green_file = '"//patch//"' /" &
+               //" &road profile = 'texture', texture_file = '"//texture &
+               //"', x_start = 1.0, speed = 5.0 / &contact stiffness = 5.0e4, exponent = 1.0, preload = 1000.0 / " &
+               //"&convolution methods = 'exact', 'fft' /"
+        call write_file(scratch//'/sweep_green.nml', "&scene task = 'sweep', name = 'sweep_green', output_dir = '" &
+                        //scratch//"', dt = 5.0e-4, n_steps = 400 /"//base//new_line('a')//"&sweep"//new_line('a') &
+                        //"    road.speed = 4.0, 6.0"//new_line('a')//"/")
+        call execute_command_line('rm -rf '//scratch//'/sweep_green_sweep.d')
+        open (newunit=unit, status='scratch', action='readwrite')
+        call run_sweep(scratch//'/sweep_green.nml', unit, .false., fail)
+        close (unit)
+        call check(error, .not. allocated(fail), 'the sweep runs: '//message_of(fail))
+        if (allocated(error)) return
+        do k = 1, size(names)
+            write (names(k), '(a,i0)') 'c', k
+        end do
+        call read_columns(scratch//'/sweep_green_sweep.dat', names, [(' ', k=1, size(names))], table, line_of, fail)
+        call check(error, .not. allocated(fail), 'the table reads back with 2 + 2*6 columns: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, size(table, 1) == 2 .and. all(table(:, 2) == [4.0_dp, 6.0_dp]), &
+                   'two rows, in the order of the variants')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do v = 1, 2
+            call run_scene_text('sweep_alone.nml', "&scene name = 'sweep_alone', output_dir = '"//scratch &
+                                //"', dt = 5.0e-4, n_steps = 400 /"//replace_speed(base, table(v, 2)), fail)
+            call check(error, .not. allocated(fail), 'the scene alone runs: '//message_of(fail))
+            if (allocated(error)) return
+            do m = 1, size(methods)
+                call read_table(scratch//'/sweep_alone_'//trim(methods(m))//'.dat', 8, rows, fail)
+                call check(error, .not. allocated(fail) .and. size(rows, 1) == 4*400, 'rows of the scene alone')
+                if (allocated(error)) return
+                total = rows(1::4, 7)
+                expected = [maxval(total), sum(total)/size(total), sqrt(sum(total**2)/size(total))]
+                associate (got => table(v, 3 + 6*(m - 1):5 + 6*(m - 1)))
+                    worst = max(worst, maxval(abs(got - expected)/abs(expected)))
+                    call check(error, all(abs(got - expected) <= 1.0e-7_dp*abs(expected)), trim(methods(m)) &
+                               //' at '//int_text(nint(table(v, 2)))//' m/s: max, mean, rms of the total force')
+                end associate
+                if (allocated(error)) return
+                call check(error, table(v, 6 + 6*(m - 1)) == 1.0_dp .and. table(v, 7 + 6*(m - 1)) == 0.0_dp, &
+                           trim(methods(m))//': in contact at every step, status 0')
+                if (allocated(error)) return
+            end do
+        end do
+        call note('worst relative difference, table against the scene alone', worst)
+    end subroutine test_sweep_green_file
+
+    !> Rows x, h(x, y = -0.1), h(x, y = 0.1) of a texture from x0 to x1 by dx: bumps of 1 mm
+    !> every 0.05 m, 0.5 mm higher at y = 0.1 m.
+    function bump_rows(x0, x1, dx) result(text)
+        real(dp), intent(in) :: x0, x1, dx
+        character(len=:), allocatable :: text
+
+        character(len=80) :: row
+        real(dp) :: x, h
+        integer :: k
+
+        text = ''
+        do k = 0, nint((x1 - x0)/dx)
+            x = x0 + k*dx
+            h = 1.0e-3_dp*sin(2.0_dp*pi*x/0.05_dp)**2
+            write (row, '(3es24.16)') x, h, h + 5.0e-4_dp
+            text = text//trim(row)//new_line('a')
+        end do
+    end function bump_rows
+
+    !> The scene's groups with `speed = 5.0` replaced by the given speed [m/s].
+    function replace_speed(text, speed) result(changed)
+        character(len=*), intent(in) :: text
+        real(dp), intent(in) :: speed
+        character(len=:), allocatable :: changed
+
+        character(len=32) :: value
+        integer :: at
+
+        write (value, '(f0.1)') speed
+        at = index(text, 'speed = 5.0')
+        changed = text(:at - 1)//'speed = '//trim(value)//text(at + len('speed = 5.0'):)
+    end function replace_speed
 
     ! ---- helpers -------------------------------------------------------------------------------
 

@@ -14,7 +14,10 @@
 !> the scene through the library's contact loop (greenconv_contact_single or _multi, in
 !> blocks as the runner does), keeping only a summary of the total contact force: max,
 !> mean, rms, the fraction of steps in contact, the status (0, 2 bad input, 3 numerical
-!> fault) and the step of a fault, with its CPU time.
+!> fault) and the step of a fault, with its CPU time. Every model of a contact scene can be
+!> swept: one point (sdof, random_modes, frf_file), the tyre's line of points, and the nodes
+!> of a Green's matrix file (`green_file`, identified once per variant) on a road file or a
+!> 2D texture.
 !>
 !> Options of the `&sweep` group besides the varied variables:
 !>
@@ -38,7 +41,8 @@
 !> same byte for byte whatever runs the variants; CPU times, which vary from run to run,
 !> go to `<name>_sweep_cpu.dat`. Each finished variant is recorded at once (atomically) in
 !> `<output_dir>/<name>_sweep.d/<key>.rec`, keyed by a hash of the variant's text, of the
-!> contents of the files it names (road file, receptance file) and of the options that change
+!> contents of the files it names (road file or texture, receptance or Green's matrix file)
+!> and of the options that change
 !> what a variant gives (spectra and their band range, histories with the variant's number,
 !> which names its files), so a rerun skips what is done and reruns what was edited, also
 !> through the files.
@@ -58,18 +62,17 @@ module greenconv_scene_sweep
                                     band_levels, third_octave_bands
     use greenconv_conv_convolver, only: convolver, free_convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_builder, only: make_convolver, make_multipoint_convolver
+    use greenconv_conv_builder, only: make_convolver
     use greenconv_contact_single, only: contact_response, contact_state, start_contact, contact_block
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, start_multi_contact, &
                                        multi_contact_block, newton_options
-    use greenconv_model_point_modes, only: point_modes
-    use greenconv_model_road_file, only: sample_road_steps
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_schema, only: scene_table, scene_variable
     use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_tyre, only: tyre_points
+    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver
+    use greenconv_scene_patch, only: sample_patch_road
     use greenconv_scene_output, only: multi_contact_header, multi_contact_table
     use greenconv_scene_runner, only: check_scene
     implicit none
@@ -302,7 +305,8 @@ contains
 
     !> The content key of variant k, its record's name: `variant_key` of its lines, followed
     !> by a line of the options that change its result (spectra and their bands, histories)
-    !> when set, and by each file the scene names (road file, receptance file): its name and
+    !> when set, and by each file the scene names (road file or texture, receptance file, Green's
+    !> matrix file): its name and
     !> every line of it. An edited road file so changes the key of every variant that reads it.
     !> With histories the key also holds k, which names the variant's files: a variant whose
     !> number an edit of the lists changed runs again and rewrites the files of its number.
@@ -325,8 +329,12 @@ contains
                                            //', f_high = '//real_text(plan%f_high)//' /')
         if (plan%histories) call append_text(lines, '&sweep histories = .true. / ! variant '//int_text(k))
         if (allocated(scene%road_data%path)) call append_file(lines, scene%road_data%path)
+        if (allocated(scene%texture%path)) call append_file(lines, scene%texture%path)
         if (allocated(scene%frf_file)) then
             if (len_trim(scene%frf_file) > 0) call append_file(lines, scene%frf_file)
+        end if
+        if (allocated(scene%green_file)) then
+            if (len_trim(scene%green_file) > 0) call append_file(lines, scene%green_file)
         end if
         key = variant_key(lines)
     end function content_key
@@ -720,34 +728,38 @@ contains
         outcome%result = outcome%result//levels
     end subroutine run_single_variant
 
-    !> Each method of a multi-point (tyre) variant, summarised on the total force (with its
-    !> band levels and history file when the sweep asks for them).
+    !> Each method of a multi-point variant (the tyre's line of points or the nodes of a Green's
+    !> matrix file, on a road file or a texture), summarised on the total force (with its band
+    !> levels and history file when the sweep asks for them). The points and their convolvers
+    !> are those of a contact scene (greenconv_scene_points): a file's receptances are
+    !> identified once per variant.
     subroutine run_multipoint_variant(plan, k, scene, outcome)
         type(sweep_plan), intent(in) :: plan
         integer, intent(in) :: k
         type(scene_type), intent(in) :: scene
         type(variant_outcome), intent(inout) :: outcome
 
-        type(point_modes) :: modes
+        type(scene_points) :: points
         class(multipoint_convolver), allocatable :: conv
         type(multi_contact_state) :: state
         type(multi_contact_response) :: response
         type(error_type), allocatable :: failure, error, fault
         type(force_summary) :: summary
         type(column_writer) :: writer
-        real(dp), allocatable :: positions(:), road_positions(:), heights(:, :), history(:)
+        real(dp), allocatable :: heights(:, :), history(:)
         character(len=:), allocatable :: accuracy, levels, prefix, method
         real(dp) :: start, finish, seconds
-        integer :: i, m, n, scratch, block
+        integer :: i, m, n, n_c, scratch, block
         integer(int64) :: step, first
 
         prefix = 'variant '//int_text(k)//': '
         levels = ''
         if (plan%spectra) allocate (history(scene%n_steps))
         open (newunit=scratch, status='scratch', action='readwrite')
-        call tyre_points(scene, scratch, modes, positions, road_positions, failure)
+        call find_scene_points(scene, scratch, points, failure)
         close (scratch)
-        block = max(block_rows/scene%n_points, 1)
+        n_c = max(points%n_points(), 1)
+        block = max(block_rows/n_c, 1)
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
             summary = force_summary()
@@ -756,19 +768,18 @@ contains
             if (allocated(failure)) then
                 error = failure
             else
-                call make_multipoint_convolver(method, modes, scene%dt, scene%truncation_tol, &
-                                               scene%n_steps, conv, accuracy, error)
-                if (.not. allocated(error)) call start_multi_contact(conv, [(scene%law, n=1, scene%n_points)], &
-                    [(scene%preload/scene%n_points, n=1, scene%n_points)], state, error, &
+                call points_convolver(points, scene, method, conv, accuracy, error)
+                if (.not. allocated(error)) call start_multi_contact(conv, [(scene%law, n=1, n_c)], &
+                    [(scene%preload/n_c, n=1, n_c)], state, error, &
                     newton_options(max_displacement=scene%contact%divergence_bound))
                 if (.not. allocated(error) .and. plan%histories) call open_columns(writer, &
                     history_path(plan, scene, k, method), multi_contact_header(history_title(plan, scene, k, &
-                    method)), 7, error, binary(scene))
+                    method), points%from_file), merge(8, 7, points%from_file), error, binary(scene))
             end if
             do while (.not. (allocated(error) .or. allocated(fault)) .and. step < scene%n_steps)
                 first = step
                 m = int(min(int(block, int64), scene%n_steps - step))
-                call sample_road_steps(scene%road_data, road_positions, scene%speed, scene%dt, step, m, heights)
+                call sample_patch_road(scene, points%road_x, points%road_y, step, m, heights)
                 call cpu_time(start)
                 call multi_contact_block(conv, state, heights, response, fault)
                 call cpu_time(finish)
@@ -776,16 +787,36 @@ contains
                 step = state%step
                 call add_forces(summary, response%total_force)
                 if (plan%spectra) history(first + 1:first + size(response%total_force)) = response%total_force
-                if (plan%histories) call append_rows(writer, multi_contact_table(positions, response, &
+                if (plan%histories) call append_rows(writer, history_table(points, response, &
                     first_kept(first, scene%output_every), scene%output_every), error)
             end do
             call end_method(plan, writer, fault, error)
             call add_method(outcome, summary, seconds, error, step, prefix//method//': ')
             levels = levels//band_text(plan, history, scene, .not. allocated(error))
+            if (allocated(conv)) then
+                call conv%release()
+                deallocate (conv)
+            end if
             if (allocated(error)) deallocate (error)
+            if (allocated(fault)) deallocate (fault)
         end do
         outcome%result = outcome%result//levels
     end subroutine run_multipoint_variant
+
+    !> Rows of a multi-point variant's history file: those of a contact scene, with the column y
+    !> for a file's points.
+    function history_table(points, response, first, every) result(table)
+        type(scene_points), intent(in) :: points
+        type(multi_contact_response), intent(in) :: response
+        integer, intent(in) :: first, every
+        real(dp), allocatable :: table(:, :)
+
+        if (points%from_file) then
+            table = multi_contact_table(points%x, response, first, every, points%y)
+        else
+            table = multi_contact_table(points%x, response, first, every)
+        end if
+    end function history_table
 
     !> The column file of variant k's method: `<output_dir>/<name>_v<k>_<method>.dat`, or
     !> `.bin` (with its header `.bin.txt`) for `output_format = 'binary'`, as a contact scene
