@@ -35,9 +35,8 @@
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml or data/patch_road.nml), install into a temporary prefix and build the C
 #                   and Fortran 77 examples against it with pkg-config, run the fuzz test
-#                   (`make fuzz` with TEST_FUZZ_CASES = 600 cases), the sanitizer builds
-#                   (`make sanitize-builds` with TEST_SANITIZE_FUZZ = 50 fuzz cases each, about 6 minutes),
-#                   the benchmark's smoke checks (`make bench-smoke`), then
+#                   (`make fuzz` with TEST_FUZZ_CASES = 600 cases), the benchmark's smoke
+#                   checks (`make bench-smoke`), the sweep and patch-file checks, then
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
 #                   follow their paths), then its self-test tools/test_check_layers.sh
@@ -134,7 +133,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
-        fuzz valgrind sanitize sanitize-builds plot-test
+        fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test
 
 all: lib
 
@@ -330,14 +329,18 @@ TEST_SANITIZE_FUZZ ?= 50
 
 # `make sanitize` is the whole routine run before every submission: both sanitizer builds
 # with SANITIZE_FUZZ fuzz cases each, then valgrind on every shipped scene, the examples and
-# the C tests (valgrind took 26 minutes on two shared cores). `make test` runs the sanitizer builds with
-# fewer fuzz cases and without valgrind (sanitize-builds), to stay well under 15 minutes.
+# the C tests (valgrind took 26 minutes on two shared cores). CI (.ci/run) runs the sanitizer
+# builds with TEST_SANITIZE_FUZZ fuzz cases (`make sanitize-ci`, about 10 minutes) before
+# `make test`, which stays at about 5 minutes without them.
 sanitize:
 	@$(MAKE) sanitize-builds
 	@$(MAKE) valgrind
 
 sanitize-builds:
 	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
+
+sanitize-ci: deps
+	@$(MAKE) sanitize-builds SANITIZE_FUZZ=$(TEST_SANITIZE_FUZZ)
 
 valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
 	@$(HELPER) valgrind $(BIN) $(EXAMPLES) $(CTESTS)
@@ -430,7 +433,6 @@ test: deps
 	@$(MAKE) ctest
 	@MAKE="$(MAKE)" CC="$(CC)" FC="$(FC)" $(HELPER) install-test $(BIN)
 	@$(MAKE) fuzz FUZZ_CASES=$(TEST_FUZZ_CASES)
-	@$(MAKE) sanitize-builds SANITIZE_FUZZ=$(TEST_SANITIZE_FUZZ)
 	@$(MAKE) bench-smoke
 	@$(MAKE) sweep-test
 	@$(MAKE) patch-green-check
