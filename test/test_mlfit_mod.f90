@@ -30,7 +30,7 @@ module test_mlfit_mod
     implicit none
     private
 
-    public :: collect_mlfit, cramer_rao, structure
+    public :: collect_mlfit, cramer_rao, structure, fit_draw_on
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -188,7 +188,21 @@ contains
         type(test_error), allocatable, intent(out) :: error
         type(ml_result), intent(out), optional :: result
 
-        type(frf_type) :: clean, noisy
+        call fit_draw_on(truth, frf_from_modes(truth, f_max, n_freq), level, seed, worst_f, worst_xi, error, result)
+    end subroutine fit_draw
+
+    !> `fit_draw` on a clean receptance of `truth` given on any grid: noise level*|G| added
+    !> (seed), fitted, and the CRB computed on the same lines.
+    subroutine fit_draw_on(truth, clean, level, seed, worst_f, worst_xi, error, result)
+        type(modal_set), intent(in) :: truth
+        type(frf_type), intent(in) :: clean
+        real(dp), intent(in) :: level
+        integer, intent(in) :: seed
+        real(dp), intent(out) :: worst_f, worst_xi
+        type(test_error), allocatable, intent(out) :: error
+        type(ml_result), intent(out), optional :: result
+
+        type(frf_type) :: noisy
         type(ml_options) :: options
         type(ml_result) :: fitted
         real(dp), allocatable :: sigma_f(:), sigma_xi(:)
@@ -198,7 +212,6 @@ contains
 
         worst_f = huge(1.0_dp)
         worst_xi = huge(1.0_dp)
-        clean = frf_from_modes(truth, f_max, n_freq)
         noisy = clean
         call add_relative_noise(noisy, level, seed)
         call fit_ok(noisy, options, fitted, error)
@@ -228,7 +241,7 @@ contains
             end associate
         end do
         if (present(result)) result = fitted
-    end subroutine fit_draw
+    end subroutine fit_draw_on
 
     !> Every noise level with `seeds` draws: no mode missed or invented, every error within
     !> crb_limit CRB standard deviations; the worst per level is noted.
