@@ -33,6 +33,7 @@ program greenconv_tests
     use test_scenespectra_mod, only: collect_scenespectra
     use test_uffwrite_mod, only: collect_uffwrite
     use test_mlfit_mod, only: collect_mlfit
+    use test_identgrid_mod, only: collect_identgrid
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
@@ -68,6 +69,7 @@ program greenconv_tests
                        new_testsuite('scenespectra', collect_scenespectra), &
                        new_testsuite('uffwrite', collect_uffwrite), &
                        new_testsuite('mlfit', collect_mlfit), &
+                       new_testsuite('identgrid', collect_identgrid), &
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &

@@ -392,11 +392,8 @@ contains
         call frf_case(error, 'empty.frf', '# only a comment', [character(len=piece) :: where//'/empty.frf: ' &
                       //'expected data lines f [Hz], Re G [m/N], Im G [m/N], found none'])
         if (allocated(error)) return
-        call frf_case(error, 'uneven.frf', head//'4.5 1e-6 0;'//tail, [character(len=piece) :: &
-                      where//'/uneven.frf:6: expected a uniform grid, f = 4', 'found 4.5'])
-        if (allocated(error)) return
-        call frf_case(error, 'shifted.frf', '1 1e-6 0;2 1e-6 0;3 1e-6 0;4 1e-6 0;5 1e-6 0;6 1e-6 0;7 1e-6 0;8 1e-6 0', &
-                      [character(len=piece) :: where//'/shifted.frf:1: expected the grid to start at 0 Hz, found 1'])
+        call frf_case(error, 'negative.frf', '-1 1e-6 0;2 1e-6 0;3 1e-6 0;4 1e-6 0;5 1e-6 0;6 1e-6 0;7 1e-6 0;8 1e-6 0', &
+                      [character(len=piece) :: where//'/negative.frf:1: expected frequencies >= 0 Hz, found -1'])
         if (allocated(error)) return
         call frf_case(error, 'columns.frf', head//'4 1e-6;'//tail, [character(len=piece) :: where//'/columns.frf:6: ' &
                       //'expected 3 columns (f [Hz], Re G [m/N], Im G [m/N]), found 2'])

@@ -608,11 +608,11 @@ contains
         call expect(error, path, [character(len=40) :: '# too short', good(1:5)], &
                     'expected at least 8 data lines (a uniform grid from 0 Hz), found 5')
         if (allocated(error)) return
-        call expect(error, path, [character(len=40) :: '# shifted', ' 5.0 1.0 0.0', good(2:8)], &
-                    path//':2: expected the grid to start at 0 Hz, found 5.0')
+        call expect(error, path, [character(len=40) :: '# negative', ' -5.0 1.0 0.0', good(2:8)], &
+                    path//':2: expected frequencies >= 0 Hz, found -5.0')
         if (allocated(error)) return
-        call expect(error, path, [character(len=40) :: '# gap', good(1:4), ' 41.0 1.0 0.0', good(6:8)], &
-                    path//':6: expected a uniform grid, f = 40.0')
+        call expect(error, path, [character(len=40) :: '# repeated', good(1:4), ' 30.0 1.0 0.0', good(6:8)], &
+                    path//':6: expected a frequency above 30.0 Hz (increasing), found 30.0')
         if (allocated(error)) return
         call expect(error, path, [character(len=40) :: good(1:3), ' 30.0 NaN 0.0', good(5:8)], &
                     path//':4: column 2 (Re G): expected a finite number, found "NaN"')

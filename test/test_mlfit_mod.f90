@@ -30,7 +30,7 @@ module test_mlfit_mod
     implicit none
     private
 
-    public :: collect_mlfit
+    public :: collect_mlfit, cramer_rao, structure, fit_draw_on
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -188,7 +188,21 @@ contains
         type(test_error), allocatable, intent(out) :: error
         type(ml_result), intent(out), optional :: result
 
-        type(frf_type) :: clean, noisy
+        call fit_draw_on(truth, frf_from_modes(truth, f_max, n_freq), level, seed, worst_f, worst_xi, error, result)
+    end subroutine fit_draw
+
+    !> `fit_draw` on a clean receptance of `truth` given on any grid: noise level*|G| added
+    !> (seed), fitted, and the CRB computed on the same lines.
+    subroutine fit_draw_on(truth, clean, level, seed, worst_f, worst_xi, error, result)
+        type(modal_set), intent(in) :: truth
+        type(frf_type), intent(in) :: clean
+        real(dp), intent(in) :: level
+        integer, intent(in) :: seed
+        real(dp), intent(out) :: worst_f, worst_xi
+        type(test_error), allocatable, intent(out) :: error
+        type(ml_result), intent(out), optional :: result
+
+        type(frf_type) :: noisy
         type(ml_options) :: options
         type(ml_result) :: fitted
         real(dp), allocatable :: sigma_f(:), sigma_xi(:)
@@ -198,7 +212,6 @@ contains
 
         worst_f = huge(1.0_dp)
         worst_xi = huge(1.0_dp)
-        clean = frf_from_modes(truth, f_max, n_freq)
         noisy = clean
         call add_relative_noise(noisy, level, seed)
         call fit_ok(noisy, options, fitted, error)
@@ -228,7 +241,7 @@ contains
             end associate
         end do
         if (present(result)) result = fitted
-    end subroutine fit_draw
+    end subroutine fit_draw_on
 
     !> Every noise level with `seeds` draws: no mode missed or invented, every error within
     !> crb_limit CRB standard deviations; the worst per level is noted.
@@ -919,7 +932,8 @@ contains
 
     !> Universal files that cannot give a receptance, each refused with the file, the line and
     !> what to do: two datasets 58 without frf_dataset (both listed), frf_dataset too large, a
-    !> time response (function type 1), an uneven grid that is not uniform, a grid not from 0 Hz.
+    !> time response (function type 1), a negative frequency; an uneven abscissa off the uniform
+    !> grid is accepted and kept as read.
     subroutine test_uff_refused(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -955,12 +969,15 @@ contains
         first%abscissa = [(exact%frequency(j) + merge(0.3_dp, 0.0_dp, j == 9), j=1, exact%n_freq())]
         call write_uff(path, [first], nodes, failure)
         call read_frf(path, read_back, failure)
-        call expect_refusal(error, failure, path//':1: expected a uniform grid', 'resample the FRF')
+        call check(error, .not. allocated(failure), 'an uneven abscissa off the uniform grid is accepted')
         if (allocated(error)) return
-        first%abscissa = exact%frequency + exact%frequency(2)
+        call check(error, .not. read_back%uniform_from_zero() .and. read_back%frequency(9) == first%abscissa(9), &
+                   'and kept as read')
+        if (allocated(error)) return
+        first%abscissa = exact%frequency - exact%frequency(2)
         call write_uff(path, [first], nodes, failure)
         call read_frf(path, read_back, failure)
-        call expect_refusal(error, failure, path//':1: expected the grid to start at 0 Hz', 'uneven')
+        call expect_refusal(error, failure, path//':1: expected frequencies >= 0 Hz', 'uneven')
         if (allocated(error)) return
         first%abscissa = exact%frequency
         first%abscissa(9) = first%abscissa(9) + 1.0e-9_dp*exact%frequency(2)

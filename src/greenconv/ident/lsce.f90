@@ -450,8 +450,10 @@ contains
 
         if (frf%n_freq() < min_frf_lines) then
             call fatal_error(error, 'identify: the FRF has fewer than the minimum number of lines')
-        else if (abs(frf%frequency(1)) > 0.0_dp .or. .not. (frf%df() > 0.0_dp)) then
-            call fatal_error(error, 'identify: the FRF grid must start at 0 Hz and increase')
+        else if (.not. frf%uniform_from_zero()) then
+            ! The impulse response is the inverse FFT of the lines: any other grid would give a wrong g.
+            call fatal_error(error, 'identify: '//frf%fft_grid_problem()//' (LSCE works on the inverse FFT of G); ' &
+                             //'the maximum-likelihood fit (identify_ml) takes any increasing grid')
         else if (size(frf%receptance) /= frf%n_freq()) then
             call fatal_error(error, 'identify: the FRF has not one receptance per frequency')
         else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then

@@ -4,13 +4,15 @@
 !> uses, which are either the exact ones or an LSCE fit of G.
 !>
 !> Library callers build one without a scene: `structure_from_modes` (known modes),
-!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT), `structure_from_frf_ml`
-!> (the same with the maximum-likelihood fit of greenconv_ident_mlfit, for measured G) or
-!> `structure_from_samples` (g sampled at the time step: `direct` and `fft` only).
+!> `structure_from_frf` (a sampled G: LSCE modes and g by inverse FFT; the uniform grid from
+!> 0 Hz only), `structure_from_frf_ml` (the maximum-likelihood fit of greenconv_ident_mlfit,
+!> for measured G on any increasing grid: g by inverse FFT on the uniform grid from 0 Hz,
+!> else sampled from the identified modes) or `structure_from_samples` (g sampled at the time
+!> step: `direct` and `fft` only).
 module greenconv_ident_structure
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: sci_text
+    use greenconv_core_text, only: sci_text, int_text
     use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
@@ -20,6 +22,12 @@ module greenconv_ident_structure
 
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
     public :: structure_from_frf_ml
+
+    !> g sampled from modes reaches until the modal envelope has fallen to this fraction of its
+    !> value at t = 0 (far below any truncation a run asks, 1e-2 in the paper) ...
+    real(dp), parameter :: modal_g_decay = 1.0e-8_dp
+    !> ... or this many samples (32 MB), whichever comes first.
+    integer, parameter :: max_modal_g = 4194304
 
     !> A structure ready for the convolvers.
     type :: structure_model
@@ -83,7 +91,9 @@ contains
 
     !> A structure known by its sampled receptance G: modes fitted by LSCE (`identify`) for
     !> the modal methods and, when dt > 0, g sampled at dt from the inverse FFT of G for
-    !> `direct` and `fft` (dt must then be a whole multiple of 1/(2*f_max)).
+    !> `direct` and `fft` (dt must then be a whole multiple of 1/(2*f_max)). Both need the
+    !> uniform grid from 0 Hz; another grid is refused (status 2) naming the line, with the
+    !> way out: the maximum-likelihood fit (`structure_from_frf_ml`, `method = 'ml'`).
     subroutine structure_from_frf(frf, options, dt, structure, error)
         !> The receptance G [m/N] on a uniform grid from 0 Hz.
         type(frf_type), intent(in) :: frf
@@ -98,6 +108,12 @@ contains
 
         real(dp) :: start, finish
 
+        if (.not. frf%uniform_from_zero()) then
+            call fatal_error(error, frf%fft_grid_problem()//': the LSCE identification and g by inverse FFT need ' &
+                             //'it; use the maximum-likelihood fit (&identification method = ''ml'', the default ' &
+                             //'for a file), which takes any increasing grid, or resample G onto that grid')
+            return
+        end if
         structure%frf = frf
         call cpu_time(start)
         call identify(structure%frf, options, structure%fit, error)
@@ -113,9 +129,12 @@ contains
     !> A structure known by its sampled receptance G, possibly measured with noise: modes
     !> fitted by maximum likelihood (`identify_ml`: the noise level, the order and each
     !> mode's uncertainty from the data) for the modal methods and, when dt > 0, g sampled
-    !> at dt from the inverse FFT of G for `direct` and `fft`, as `structure_from_frf`.
+    !> at dt for `direct` and `fft`: on the uniform grid from 0 Hz from the inverse FFT of G,
+    !> as `structure_from_frf`; on any other grid (no inverse FFT) from the identified modes
+    !> (their residual terms left out: R_u would be an impulse at t = 0, R_l a rigid drift),
+    !> until their envelope falls to modal_g_decay of its start, and the fit's warning says so.
     subroutine structure_from_frf_ml(frf, options, dt, structure, error)
-        !> The receptance G [m/N] on a uniform grid from 0 Hz.
+        !> The receptance G [m/N] on increasing frequencies >= 0 Hz.
         type(frf_type), intent(in) :: frf
         !> Identification settings.
         type(ml_options), intent(in) :: options
@@ -140,6 +159,10 @@ contains
         structure%model = structure%ml%modes
         structure%identified = .true.
         if (dt <= 0.0_dp) return
+        if (.not. frf%uniform_from_zero()) then
+            call sample_from_modes(dt, structure)
+            return
+        end if
         ! g from G with the outlier lines the fit left out replaced by the model's value (one
         ! such line adds an undamped sinusoid to the whole of g).
         repaired = frf
@@ -200,6 +223,42 @@ contains
             structure_fitted = (0.0_dp, 0.0_dp)
         end select
     end function structure_fitted
+
+    !> g at the time step dt from the identified modes (a receptance off the uniform grid from
+    !> 0 Hz): t_j = j*dt until the modal envelope falls to modal_g_decay of its value at 0, the
+    !> slowest mode deciding (at most max_modal_g samples; what is left then is in the warning).
+    subroutine sample_from_modes(dt, structure)
+        real(dp), intent(in) :: dt
+        type(structure_model), intent(inout) :: structure
+
+        character(len=:), allocatable :: note
+        real(dp) :: decay, span, left
+        integer :: n, j
+
+        associate (modes => structure%model, ml => structure%ml)
+            n = 2
+            if (modes%n_modes() > 0) then
+                decay = minval(-real(modes%pole, dp))
+                span = huge(1.0_dp)
+                if (decay > 0.0_dp) span = log(1.0_dp/modal_g_decay)/decay
+                n = int(min(span/dt + 2.0_dp, real(max_modal_g, dp)))
+            end if
+            structure%sampled_g = [(0.0_dp, j=1, n)]
+            if (modes%n_modes() > 0) structure%sampled_g = modes%impulse([(j*dt, j=0, n - 1)])
+            structure%sampled_step = dt
+            note = 'the grid is not the uniform grid from 0 Hz ('//structure%frf%fft_grid_problem()//'): g for ' &
+                   //'direct and fft is sampled from the '//int_text(modes%n_modes())//' identified modes (' &
+                   //int_text(n)//' samples), the residual terms left out, not by inverse FFT of G'
+            if (modes%n_modes() > 0) then
+                left = modes%envelope((n - 1)*dt)/modes%envelope(0.0_dp)
+                if (left > 2.0_dp*modal_g_decay) note = note//'; cut at '//int_text(max_modal_g) &
+                                                         //' samples, the modal envelope still at '//sci_text(left) &
+                                                         //' of its start'
+            end if
+            if (len(ml%warning) > 0) ml%warning = ml%warning//'; '
+            ml%warning = ml%warning//note
+        end associate
+    end subroutine sample_from_modes
 
     !> g at the time step dt from a receptance: the inverse FFT gives it at 1/(2*f_max); dt must
     !> be that step or a whole multiple of it.

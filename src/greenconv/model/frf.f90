@@ -1,30 +1,37 @@
-!> A receptance G(omega) sampled on a uniform frequency grid from 0 Hz, as a user
-!> with a measured or computed frequency response function (FRF) has it.
+!> A receptance G(omega) sampled on an increasing grid of frequencies f >= 0, as a user
+!> with a measured or computed frequency response function (FRF) has it: the uniform grid
+!> from 0 Hz an FFT gives, or what an analyser exports (a uniform grid from the first line
+!> above 0 Hz, a band f_min..f_max, uneven or log-spaced lines).
 !>
 !> File format (read_frf, write_frf): any number of lines starting with `#` (comments)
 !> and blank lines, and data lines of exactly three numbers
 !>
 !>     f [Hz]   Re G [m/N]   Im G [m/N]
 !>
-!> with f_j = j*df, j = 0..n-1, n >= `min_frf_lines`, df > 0. A spacing is accepted when
-!> every f_j is within 1e-6*df of j*df (df = f_{n-1}/(n - 1)); the grid is then stored
-!> exactly as j*df. G must be finite. Each kind of bad file gets one message naming the
-!> file, the line and what was expected and found.
+!> with 0 <= f_1 < f_2 < ... < f_n, n >= `min_frf_lines`. When the grid is the uniform grid
+!> from 0 Hz (f_j = (j - 1)*df, every f_j within 1e-6*df of it, df = f_n/(n - 1)) it is
+!> stored exactly as (j - 1)*df, as the inverse FFT wants it (`uniform_from_zero`); any other
+!> grid is stored as read. G must be finite. Each kind of bad file (a negative, repeated or
+!> decreasing frequency, too few lines, a non-number) gets one message naming the file, the
+!> line and what was expected and found.
+!>
+!> What needs which grid: the maximum-likelihood identification (greenconv_ident_mlfit) fits
+!> the lines given, any grid; LSCE and the impulse response g by inverse FFT (`direct`, `fft`
+!> on g from G) need the uniform grid from 0 Hz, and `fft_grid_problem` says, naming the file
+!> line, why a grid is not it.
 !>
 !> A universal file (recognised by its content, a first non-blank line holding `-1` in
 !> columns 1-6, or by the extension .uff or .unv) is read too (greenconv_io_uff): one
 !> dataset 58 of function type 4 (FRF) with a frequency abscissa, or the one `dataset`
-!> names when the file holds several. Its ordinate is converted to a receptance:
+!> names when the file holds several; its abscissa even or uneven, the same grids as a
+!> column file. Its ordinate is converted to a receptance:
 !> - receptance (displacement over force): taken as it is [m/N];
 !> - mobility (velocity over force): G = Y/(i*omega);
 !> - accelerance (acceleration over force): G = A/(i*omega)^2 = -A/omega^2;
-!> and for the two converted kinds the 0 Hz line, where the division is 0/0, is the real
-!> part of the linear extrapolation 2*G(df) - G(2*df) (G(0) of a real impulse response is
-!> real). Other kinds (e.g. a coherence, or units the file does not say) are refused. The
-!> abscissa must be the uniform grid from 0 Hz read_frf asks of a column file: an uneven
-!> abscissa is accepted when its values are that grid within the tolerance, and refused
-!> otherwise, since every identification here (LSCE, and identify_ml's linear step) and
-!> the impulse response g of `direct` and `fft` go through the inverse FFT of the grid.
+!> and for the two converted kinds a 0 Hz line, where the division is 0/0, is the real
+!> part of the linear extrapolation from the next two lines (2*G(df) - G(2*df) on a uniform
+!> grid; G(0) of a real impulse response is real). Other kinds (e.g. a coherence, or units
+!> the file does not say) are refused.
 module greenconv_model_frf
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, real_text
@@ -51,22 +58,30 @@ module greenconv_model_frf
 
     real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 
-    !> Receptance samples G(2*pi*f_j) [m/N] on the uniform grid f_j = j*df, j = 0..n-1 [Hz].
+    !> Receptance samples G(2*pi*f_j) [m/N] on increasing frequencies f_j >= 0 [Hz] (the
+    !> uniform grid f_j = j*df, j = 0..n-1, for the inverse FFT).
     type :: frf_type
-        !> Frequencies f_j = j*df [Hz], f_0 = 0.
+        !> Frequencies [Hz], increasing, >= 0 (f_j = j*df from f_0 = 0 on the uniform grid).
         real(dp), allocatable :: frequency(:)
         !> Receptance G [m/N] at each frequency.
         complex(dp), allocatable :: receptance(:)
         !> Where G came from, in words, for a summary (set for a universal file: the dataset,
         !> its kind and conversion, response and reference node and direction); '' otherwise.
         character(len=:), allocatable :: source
+        !> Line of the file each frequency was read from (the dataset's first line for a
+        !> universal file), for messages; not allocated when G was not read from a file.
+        integer, allocatable :: line(:)
     contains
         !> Number of frequency lines n.
         procedure :: n_freq => frf_n_freq
-        !> Frequency step df [Hz].
+        !> Frequency step df [Hz] (of the first two lines).
         procedure :: df => frf_df
         !> Highest frequency f_max = (n - 1)*df [Hz].
         procedure :: f_max => frf_f_max
+        !> Whether the grid is the uniform grid from 0 Hz the inverse FFT needs.
+        procedure :: uniform_from_zero => frf_uniform_from_zero
+        !> Why the grid is not the uniform grid from 0 Hz, naming the file line ('' when it is).
+        procedure :: fft_grid_problem => frf_fft_grid_problem
     end type frf_type
 
 contains
@@ -95,6 +110,62 @@ contains
 
         frf_f_max = self%frequency(size(self%frequency))
     end function frf_f_max
+
+    !> Whether the frequencies are the uniform grid f_j = j*df from 0 Hz, each within
+    !> 1e-6*df of it (df = f_max/(n - 1)): what the inverse FFT of G needs.
+    elemental logical function frf_uniform_from_zero(self)
+        !> The FRF.
+        class(frf_type), intent(in) :: self
+
+        frf_uniform_from_zero = .false.
+        if (self%n_freq() < 2) return
+        frf_uniform_from_zero = off_grid(self%frequency) == 0
+    end function frf_uniform_from_zero
+
+    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
+    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
+    pure function frf_fft_grid_problem(self) result(text)
+        !> The FRF.
+        class(frf_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        real(dp) :: df
+        integer :: j, n
+
+        text = ''
+        n = self%n_freq()
+        if (n < 2) then
+            text = 'expected the uniform grid from 0 Hz, found '//int_text(n)//' line(s)'
+            return
+        end if
+        j = off_grid(self%frequency)
+        if (j == 0) return
+        df = self%frequency(n)/(n - 1)
+        if (allocated(self%line)) then
+            text = 'line '//int_text(self%line(j))//': '
+        else
+            text = 'grid line '//int_text(j)//': '
+        end if
+        text = text//'expected the uniform grid from 0 Hz (f = '//real_text((j - 1)*df)//' Hz there, step ' &
+               //real_text(df)//' Hz), found '//real_text(self%frequency(j))//' Hz'
+    end function frf_fft_grid_problem
+
+    !> First index j whose frequency is off the uniform grid (j - 1)*df from 0 Hz by more than
+    !> grid_tolerance*df (df = f(n)/(n - 1)); 0 when none is.
+    pure integer function off_grid(f) result(first)
+        real(dp), intent(in) :: f(:)
+
+        real(dp) :: df
+        integer :: n
+
+        n = size(f)
+        df = f(n)/(n - 1)
+        do first = 1, n
+            if (.not. (abs(f(first) - (first - 1)*df) <= grid_tolerance*df)) return
+        end do
+        first = 0
+        if (.not. (df > 0.0_dp)) first = 1
+    end function off_grid
 
     !> Receptance of a modal set on n_freq lines from 0 to f_max [Hz] (eq. 6 for paper modes).
     pure function frf_from_modes(modes, f_max, n_freq) result(frf)
@@ -185,9 +256,10 @@ contains
         end if
         call check_grid(path, table(:, 1), line_of, error)
         if (allocated(error)) return
-        allocate (frf%frequency(n), frf%receptance(n))
-        frf%frequency(:) = grid(table(n, 1), n)
+        allocate (frf%receptance(n))
+        frf%frequency = stored_grid(table(:, 1))
         frf%receptance(:) = cmplx(table(:, 2), table(:, 3), kind=dp)
+        frf%line = line_of
         frf%source = ''
     end subroutine read_frf
 
@@ -308,7 +380,7 @@ contains
         character(len=:), allocatable :: place
         real(dp), allocatable :: omega(:)
         integer, allocatable :: line_of(:)
-        integer :: n
+        integer :: n, first
 
         place = path//':'//int_text(function%line)//': dataset 58'
         n = 0
@@ -326,8 +398,8 @@ contains
                              //'types '//int_text(function%numerator%data_type)//' over ' &
                              //int_text(function%denominator%data_type))
         else if (n < min_frf_lines) then
-            call fatal_error(error, place//': expected at least '//int_text(min_frf_lines)//' points (a uniform ' &
-                             //'grid from 0 Hz), found '//int_text(n))
+            call fatal_error(error, place//': expected at least '//int_text(min_frf_lines)//' points, found ' &
+                             //int_text(n))
         end if
         if (allocated(error)) return
         allocate (line_of(n))
@@ -335,76 +407,83 @@ contains
         call check_grid(path, function%abscissa, line_of, error)
         if (allocated(error)) then
             error%message = error%message//' (dataset 58 abscissa, '//trim(merge('even  ', 'uneven', function%even)) &
-                            //' spacing); identification and the impulse response need the uniform grid from ' &
-                            //'0 Hz (they use its inverse FFT): resample the FRF onto one'
+                            //' spacing)'
             return
         end if
-        allocate (frf%frequency(n), frf%receptance(n))
-        frf%frequency(:) = grid(function%abscissa(n), n)
+        allocate (frf%receptance(n))
+        frf%frequency = stored_grid(function%abscissa)
+        frf%line = line_of
         omega = two_pi*frf%frequency
+        ! Above 0 Hz the conversion divides; a 0 Hz line (the first, if any) is extrapolated below.
+        first = 1
+        if (frf%frequency(1) == 0.0_dp) first = 2
         frf%source = uff_kind_name(function%kind)
         select case (function%kind)
         case (uff_receptance)
             frf%receptance(:) = function%ordinate
         case (uff_mobility)
-            frf%receptance(2:) = function%ordinate(2:)/cmplx(0.0_dp, omega(2:), dp)
+            frf%receptance(first:) = function%ordinate(first:)/cmplx(0.0_dp, omega(first:), dp)
             frf%source = frf%source//' converted by G = Y/(i*omega)'
         case (uff_accelerance)
-            frf%receptance(2:) = -function%ordinate(2:)/omega(2:)**2
+            frf%receptance(first:) = -function%ordinate(first:)/omega(first:)**2
             frf%source = frf%source//' converted by G = -A/omega^2'
         end select
-        if (function%kind /= uff_receptance) then
-            frf%receptance(1) = real(2.0_dp*frf%receptance(2) - frf%receptance(3), dp)
+        if (function%kind /= uff_receptance .and. first == 2) then
+            if (frf%uniform_from_zero()) then
+                frf%receptance(1) = real(2.0_dp*frf%receptance(2) - frf%receptance(3), dp)
+            else
+                ! The line through the next two lines, at 0 Hz.
+                associate (f => frf%frequency, g => frf%receptance)
+                    g(1) = real(g(2) - f(2)*(g(3) - g(2))/(f(3) - f(2)), dp)
+                end associate
+            end if
             frf%source = frf%source//' (0 Hz line extrapolated)'
         end if
         frf%source = frf%source//', response '//dof_text(function%response_node, function%response_direction) &
                      //', reference '//dof_text(function%reference_node, function%reference_direction)
     end subroutine frf_from_uff
 
-    !> The uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max.
-    pure function grid(f_max, n) result(f)
-        real(dp), intent(in) :: f_max
-        integer, intent(in) :: n
-        real(dp) :: f(n)
+    !> The grid to store: the uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max,
+    !> when the frequencies read are that grid within the tolerance; else the frequencies read.
+    pure function stored_grid(read) result(f)
+        real(dp), intent(in) :: read(:)
+        real(dp) :: f(size(read))
 
-        integer :: j
+        integer :: j, n
 
-        f = [(j*(f_max/(n - 1)), j=0, n - 1)]
-        f(n) = f_max
-    end function grid
+        n = size(read)
+        if (off_grid(read) /= 0) then
+            f = read
+            return
+        end if
+        f = [(j*(read(n)/(n - 1)), j=0, n - 1)]
+        f(n) = read(n)
+    end function stored_grid
 
-    !> Check that the frequencies start at 0 and are uniformly spaced.
+    !> Check that the frequencies are >= 0 and increase (a grid from 0 Hz within the tolerance
+    !> counts as starting at 0).
     subroutine check_grid(path, f, line_of, error)
         character(len=*), intent(in) :: path
         real(dp), intent(in) :: f(:)
         integer, intent(in) :: line_of(:)
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: df
-        integer :: j, n
+        integer :: j
 
-        n = size(f)
-        df = f(n)/(n - 1)
-        if (.not. (df > 0.0_dp) .or. f(2) <= f(1)) then
+        if (.not. (f(2) > f(1))) then
             call fatal_error(error, path//':'//int_text(line_of(2))//': expected frequencies increasing from 0 Hz, ' &
                              //'found '//real_text(f(1))//' Hz then '//real_text(f(2))//' Hz')
             return
         end if
-        if (abs(f(1)) > grid_tolerance*df) then
-            call fatal_error(error, path//':'//int_text(line_of(1))//': expected the grid to start at 0 Hz, found ' &
+        if (f(1) < 0.0_dp .and. off_grid(f) /= 0) then
+            call fatal_error(error, path//':'//int_text(line_of(1))//': expected frequencies >= 0 Hz, found ' &
                              //real_text(f(1))//' Hz')
             return
         end if
-        do j = 2, n
-            if (f(j) <= f(j - 1)) then
+        do j = 2, size(f)
+            if (.not. (f(j) > f(j - 1))) then
                 call fatal_error(error, path//':'//int_text(line_of(j))//': expected a frequency above ' &
                                  //real_text(f(j - 1))//' Hz (increasing), found '//real_text(f(j))//' Hz')
-                return
-            end if
-            if (abs(f(j) - (j - 1)*df) > grid_tolerance*df) then
-                call fatal_error(error, path//':'//int_text(line_of(j))//': expected a uniform grid, f = ' &
-                                 //real_text((j - 1)*df)//' Hz (step '//real_text(df)//' Hz, relative tolerance ' &
-                                 //'1e-6), found '//real_text(f(j))//' Hz')
                 return
             end if
         end do
