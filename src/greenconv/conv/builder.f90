@@ -280,10 +280,17 @@ contains
             end if
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
-            if (.not. structure%has_exact) then
-                misfit = maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)])))
-                accuracy = accuracy//'; g by FFT of the band-limited G is off the identified modes'' g by ' &
-                           //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
+            if (structure%identified .and. .not. structure%has_exact) then
+                if (.not. structure%frf%uniform_from_zero()) then
+                    ! No inverse FFT on this grid: g is the modes' own (structure_from_frf_ml).
+                    accuracy = accuracy//'; g sampled from the '//int_text(structure%model%n_modes()) &
+                               //' identified modes (the grid has no inverse FFT), their residual terms left out, E = ' &
+                               //sci_text(structure%fit_e())//' (eq. 7)'
+                else
+                    misfit = maxval(abs(kernel - structure%model%impulse([(j*dt, j=0, size(kernel) - 1)])))
+                    accuracy = accuracy//'; g by FFT of the band-limited G is off the identified modes'' g by ' &
+                               //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
+                end if
             end if
         case ('paper')
             conv = new_paper_convolver(structure%model, dt)
