@@ -366,7 +366,7 @@ contains
             text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles (maximum ' &
                    //'likelihood on the summed driving points, order by MDL, diagram to N = ' &
                    //int_text(maxval([0, ml%diagram_order]))//', refined over all receptances), noise ' &
-                   //sci_text(ml%noise_level_fit)//' of |G|, worst sigma_f/f = '//sci_text(self%worst_sigma_f) &
+                   //sci_text(fit%noise_level)//' of |G|, worst sigma_f/f = '//sci_text(self%worst_sigma_f) &
                    //', worst sigma_xi/xi = '//sci_text(self%worst_sigma_xi)//'; E (eq. 7) per receptance worst ' &
                    //sci_text(fit%e_worst)//', mean '//sci_text(fit%e_mean)//'; per point worst ' &
                    //sci_text(fit%e_point(worst))//' (node '//int_text(self%matrix%node(worst))//'), mean ' &

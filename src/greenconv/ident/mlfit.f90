@@ -139,7 +139,7 @@ module greenconv_ident_mlfit
     implicit none
     private
 
-    public :: ml_options, ml_result, identify_ml, estimate_noise
+    public :: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
     public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
@@ -434,7 +434,9 @@ contains
     !> times the median of the five, so that one outlier line neither hides among its
     !> neighbours' weights nor takes their weight away.
     pure function smoothed_magnitude(g) result(m)
+        !> Receptance lines [m/N].
         complex(dp), intent(in) :: g(:)
+        !> Smoothed |G| per line [m/N].
         real(dp) :: m(size(g))
 
         real(dp) :: window(5), top
@@ -569,10 +571,34 @@ contains
         call reweight(data, model, result)
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
+        call drop_needles(data, model, result, error)
+        if (allocated(error)) return
         call drop_undetermined(data, model, result, error)
         if (allocated(error)) return
         call finish(frf, data, options, model, result)
     end subroutine identify_ml
+
+    !> Poles the final fit left at the narrowest band allowed (within a factor 2 of min_decay):
+    !> no sampled receptance can show such a mode (its peak is narrower than a thousandth of
+    !> the line spacing); it stands for noise on a line or two, e.g. near an anti-resonance
+    !> where the relative noise model underestimates the noise. Dropped one at a time, the
+    !> narrowest first, the model refitted after each.
+    subroutine drop_needles(data, model, result, error)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: k
+
+        do while (any(narrowest(model%pole, data%min_decay)))
+            k = maxloc(real(model%pole, dp), 1, narrowest(model%pole, data%min_decay))
+            call record_drop(result, [model%pole(k)], dropped_boundary)
+            model%pole = [model%pole(:k - 1), model%pole(k + 1:)]
+            call fit(data, model, result, error)
+            if (allocated(error)) return
+        end do
+    end subroutine drop_needles
 
     !> Reject inputs that cannot be used.
     subroutine check_input(frf, options, error)

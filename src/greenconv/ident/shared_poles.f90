@@ -44,7 +44,7 @@ module greenconv_ident_shared_poles
     use greenconv_model_frf, only: frf_type
     use greenconv_ext_lapack, only: least_squares, solve_linear
     use greenconv_ident_lsce, only: error_e
-    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
     implicit none
     private
 
@@ -57,6 +57,9 @@ module greenconv_ident_shared_poles
     type :: shared_fit
         !> The fit of the summed driving points that gave the poles (order, noise, warnings).
         type(ml_result) :: pole_fit
+        !> Noise level of the summed driving points relative to their |sum G_ii| (estimated
+        !> from the sum's smoothness, times the factor the pole fit's residual asks).
+        real(dp) :: noise_level = 0.0_dp
         !> Poles lambda_k [rad/s] (Re < 0 < Im), by frequency.
         complex(dp), allocatable :: pole(:)
         !> Residue matrices residue(i, j, k) = R_k,ij [m/(N*s)].
@@ -95,7 +98,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(frf_type) :: summed
+        type(ml_options) :: pole_options
         complex(dp), allocatable :: model(:, :, :)
+        real(dp), allocatable :: variance(:)
+        real(dp) :: level
         integer :: i, n_c
 
         n_c = size(g, 1)
@@ -105,7 +111,22 @@ contains
         do i = 1, n_c
             summed%receptance = summed%receptance + g(i, i, :)
         end do
-        call identify_ml(summed, options, fit%pole_fit, error)
+        ! The sum's noise, sigma_l = rho*|sum G_ii| with rho from the sum's smoothness, is at
+        ! least the driving points' own added in quadrature, sqrt(sum_i (rho_i*|G_ii,l|)^2):
+        ! near an anti-resonance of the sum its |G| is far below the noise of its terms, and
+        ! a noise taken relative to the sum alone lets the fit put spurious poles there.
+        pole_options = options
+        level = 1.0_dp
+        if (.not. allocated(options%sigma)) then
+            level = estimate_noise(summed%receptance, 'relative')
+            allocate (variance(size(frequency)))
+            variance(:) = 0.0_dp
+            do i = 1, n_c
+                variance = variance + (estimate_noise(g(i, i, :), 'relative')*smoothed_magnitude(g(i, i, :)))**2
+            end do
+            pole_options%sigma = max(level*smoothed_magnitude(summed%receptance), sqrt(variance))
+        end if
+        call identify_ml(summed, pole_options, fit%pole_fit, error)
         if (allocated(error)) then
             error%message = 'shared poles: the sum of the driving-point receptances: '//error%message
             return
@@ -115,6 +136,7 @@ contains
                              //'check the file''s units and band')
             return
         end if
+        fit%noise_level = level*fit%pole_fit%noise_level_fit
         fit%pole = fit%pole_fit%modes%pole
         fit%symmetric = symmetric
         call refine_poles(frequency, g, fit)
