@@ -329,7 +329,7 @@ TEST_SANITIZE_FUZZ ?= 50
 
 # `make sanitize` is the whole routine run before every submission: both sanitizer builds
 # with SANITIZE_FUZZ fuzz cases each, then valgrind on every shipped scene, the examples and
-# the C tests (valgrind took 26 minutes on two shared cores). CI (.ci/run) runs the sanitizer
+# the C tests (valgrind takes about an hour on two shared cores). CI (.ci/run) runs the sanitizer
 # builds with TEST_SANITIZE_FUZZ fuzz cases (`make sanitize-ci`, about 10 minutes) before
 # `make test`, which stays at about 5 minutes without them.
 sanitize:
