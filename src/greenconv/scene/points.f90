@@ -28,10 +28,12 @@ module greenconv_scene_points
     use greenconv_scene_models, only: model_requires, find_model
     use greenconv_scene_patch, only: place_patch, run_text
     use greenconv_scene_tyre, only: tyre_points
+    use greenconv_scene_output, only: multi_contact_table
+    use greenconv_contact_multi, only: multi_contact_response
     implicit none
     private
 
-    public :: scene_points, find_scene_points, points_convolver, check_green_scene
+    public :: scene_points, find_scene_points, points_convolver, check_green_scene, point_rows
 
     !> The points of a multi-point scene and what their convolvers are built from.
     type :: scene_points
@@ -125,6 +127,27 @@ contains
                                            accuracy, error)
         end if
     end subroutine points_convolver
+
+    !> Output rows of a multi-point run (greenconv_scene_output's `multi_contact_table`): N_c
+    !> rows per kept step, with the column y [m] for a Green's matrix file's points.
+    function point_rows(points, response, first, every) result(table)
+        !> The points.
+        type(scene_points), intent(in) :: points
+        !> A block of the run.
+        type(multi_contact_response), intent(in) :: response
+        !> Index in the block of the first step kept.
+        integer, intent(in) :: first
+        !> Keep every `every`-th step.
+        integer, intent(in) :: every
+        !> Rows (t, x, u_road, u, F, delta, F_total[, y]).
+        real(dp), allocatable :: table(:, :)
+
+        if (points%from_file) then
+            table = multi_contact_table(points%x, response, first, every, points%y)
+        else
+            table = multi_contact_table(points%x, response, first, every)
+        end if
+    end function point_rows
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its
     !> points stay on the road for the whole run, and append what was found to `line`.

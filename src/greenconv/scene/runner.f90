@@ -33,10 +33,11 @@ module greenconv_scene_runner
     use greenconv_scene_structure, only: build_structure
     use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_scene_report, only: write_identification, identification_summary
-    use greenconv_scene_output, only: multi_contact_header, multi_contact_table
+    use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
                                               finish_force_spectra, spectra_line, spectra_path
-    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver, check_green_scene
+    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver, check_green_scene, &
+                                      point_rows
     use greenconv_scene_patch, only: sample_patch_road
     implicit none
     private
@@ -470,7 +471,7 @@ contains
         call multi_contact_block(self%conv, self%state, self%heights, self%response, fault)
     end subroutine multi_advance
 
-    !> N_c rows per kept step (greenconv_scene_output's `multi_contact_table`, with the column y
+    !> N_c rows per kept step (greenconv_scene_points's `point_rows`, with the column y
     !> for a Green's matrix file's points); the peak total force of the block is noted.
     subroutine multi_rows(self, first, every, table)
         class(multi_run), intent(inout) :: self
@@ -479,11 +480,7 @@ contains
         real(dp), allocatable, intent(out) :: table(:, :)
 
         if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
-        if (self%points%from_file) then
-            table = multi_contact_table(self%points%x, self%response, first_kept(first, every), every, self%points%y)
-        else
-            table = multi_contact_table(self%points%x, self%response, first_kept(first, every), every)
-        end if
+        table = point_rows(self%points, self%response, first_kept(first, every), every)
     end subroutine multi_rows
 
     !> The total force and each point's force of each step of the block.

@@ -71,9 +71,9 @@ module greenconv_scene_sweep
     use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver
+    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver, point_rows
     use greenconv_scene_patch, only: sample_patch_road
-    use greenconv_scene_output, only: multi_contact_header, multi_contact_table
+    use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_runner, only: check_scene
     implicit none
     private
@@ -787,7 +787,7 @@ contains
                 step = state%step
                 call add_forces(summary, response%total_force)
                 if (plan%spectra) history(first + 1:first + size(response%total_force)) = response%total_force
-                if (plan%histories) call append_rows(writer, history_table(points, response, &
+                if (plan%histories) call append_rows(writer, point_rows(points, response, &
                     first_kept(first, scene%output_every), scene%output_every), error)
             end do
             call end_method(plan, writer, fault, error)
@@ -802,21 +802,6 @@ contains
         end do
         outcome%result = outcome%result//levels
     end subroutine run_multipoint_variant
-
-    !> Rows of a multi-point variant's history file: those of a contact scene, with the column y
-    !> for a file's points.
-    function history_table(points, response, first, every) result(table)
-        type(scene_points), intent(in) :: points
-        type(multi_contact_response), intent(in) :: response
-        integer, intent(in) :: first, every
-        real(dp), allocatable :: table(:, :)
-
-        if (points%from_file) then
-            table = multi_contact_table(points%x, response, first, every, points%y)
-        else
-            table = multi_contact_table(points%x, response, first, every)
-        end if
-    end function history_table
 
     !> The column file of variant k's method: `<output_dir>/<name>_v<k>_<method>.dat`, or
     !> `.bin` (with its header `.bin.txt`) for `output_format = 'binary'`, as a contact scene
@@ -1044,7 +1029,10 @@ contains
             //' failed (status '//int_text(outcome%status)//', recorded in its row): '//outcome%message
     end subroutine report_variant
 
-    !> Write the table and say where it is and how many variants failed.
+    !> Write the table and say where it is and how many variants failed. A sweep with failed
+    !> variants is not a success even though every other variant completed and the table is
+    !> whole: `error` then says how many failed, with the worst status of theirs (3 when one
+    !> met a numerical fault, else 2), which the drivers return.
     subroutine finish_report(plan, outcomes, unit, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -1052,19 +1040,20 @@ contains
         type(variant_outcome), intent(in) :: outcomes(:)
         !> Unit of the line.
         integer, intent(in) :: unit
-        !> Set when the table cannot be written.
+        !> Set when the table cannot be written, or when a variant failed.
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: k, n_failed
+        integer :: n_failed
 
         call write_sweep_table(plan, outcomes, error)
         if (allocated(error)) return
-        n_failed = 0
-        do k = 1, size(outcomes)
-            if (outcomes(k)%status /= 0) n_failed = n_failed + 1
-        end do
+        n_failed = count(outcomes%status /= 0)
         write (unit, '(a)') 'greenconv: sweep '//plan%name//': '//int_text(size(outcomes))//' variants, ' &
             //int_text(n_failed)//' failed; table '//plan%output_dir//'/'//plan%name//'_sweep.dat'
+        if (n_failed > 0) call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_failed)//' of ' &
+                                           //int_text(size(outcomes))//' variants failed (each named above, its ' &
+                                           //'status and step in its row of the table); the others are done', &
+                                           maxval(outcomes%status))
     end subroutine finish_report
 
     ! ---- records ------------------------------------------------------------------------
