@@ -1208,7 +1208,11 @@ contains
         character(len=:), allocatable :: text
 
         text = lower_text(adjustl(line))
-        starts_sweep = index(text, '&sweep') == 1 .and. (len(text) == 6 .or. verify(text(7:7), ' !/') == 0)
+        starts_sweep = .false.
+        if (index(text, '&sweep') /= 1) return
+        ! (Fortran does not short-circuit .or.: text(7:7) is read only when it exists)
+        starts_sweep = len_trim(text) == 6
+        if (.not. starts_sweep) starts_sweep = verify(text(7:7), ' !/') == 0
     end function starts_sweep
 
     !> Find the `&sweep` group, take its tokens (with their lines) and blank its lines in the base.
