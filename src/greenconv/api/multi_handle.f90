@@ -25,15 +25,12 @@ module greenconv_api_multi_handle
     use greenconv_core_text, only: lower_text, sci_text, int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
-    use greenconv_conv_methods, only: check_method, canonical_method
-    use greenconv_conv_kernel, only: truncation_length
+    use greenconv_conv_methods, only: check_method
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
-    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
-    use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
-    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_state, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
     use greenconv_api_library, only: check_contact_law
@@ -155,12 +152,6 @@ contains
         !> Set (`stat_input`) naming the argument out of range.
         type(error_type), allocatable, intent(out) :: error
 
-        type(sampled_green_matrix) :: sampled
-        type(fft_green_matrix) :: partitioned
-        real(dp), allocatable :: row_max(:)
-        real(dp) :: tail
-        integer :: last, n_g, m
-
         box => null()
         if (size(g, 2) < 1) then
             call fatal_error(error, caller//': n_points = '//int_text(size(g, 2))//': give at least 1 point')
@@ -177,21 +168,8 @@ contains
             if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
             return
         end if
-        last = max(min(n_steps, size(g, 1)) - 1, 1)
-        row_max = [(maxval(abs(g(m, :, :))), m=0, last)]
-        n_g = last
-        if (truncation_tol > 0.0_dp) n_g = truncation_length(row_max, truncation_tol)
-        tail = 0.0_dp
-        if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
         allocate (box)
-        if (canonical_method(lower_text(method)) == 'direct') then
-            call new_sampled_green_matrix(g(0:n_g, :, :), dt, sampled, error)
-            if (.not. allocated(error)) allocate (box%conv, source=sampled)
-        else
-            call new_fft_green_matrix(g(0:n_g, :, :), dt, partitioned, error)
-            if (.not. allocated(error)) allocate (box%conv, source=partitioned)
-        end if
-        box%description = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
     end subroutine samples_multi_box
 

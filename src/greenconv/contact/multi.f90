@@ -34,7 +34,7 @@ module greenconv_contact_multi
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_ext_lapack, only: solve_linear
-    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_law, only: contact_law
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
