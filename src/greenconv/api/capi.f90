@@ -14,8 +14,8 @@
 !> are checked: NULL gives status 2 (with a message where the function takes a buffer), never
 !> a crash. SI units throughout.
 module greenconv_capi
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_null_char, &
-                                           c_associated, c_f_pointer, c_loc
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_null_ptr, c_associated, c_f_pointer, &
+                                           c_loc
     use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
@@ -27,6 +27,7 @@ module greenconv_capi
                                      default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps
+    use greenconv_api_doors, only: finish, from_c, to_c, put
     implicit none
     private
 
@@ -40,7 +41,8 @@ module greenconv_capi
     public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
-    !> The message and string conversions, shared with greenconv_capi_multi.
+    !> The message and string conversions of greenconv_api_doors, named here too for the
+    !> callers that took them from this module.
     public :: finish, from_c, to_c
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
@@ -68,15 +70,6 @@ module greenconv_capi
         real(c_double) :: accuracy
     end type gc_build_options
 
-    interface
-        !> size_t strlen(const char *s)
-        pure function c_strlen(text) bind(c, name='strlen') result(length)
-            import :: c_ptr, c_size_t
-            implicit none
-            type(c_ptr), value, intent(in) :: text
-            integer(c_size_t) :: length
-        end function c_strlen
-    end interface
 
 contains
 
@@ -953,78 +946,5 @@ contains
         box => null()
         if (c_associated(conv)) call c_f_pointer(conv, box)
     end function box_of
-
-    !> Store a value at a C `double *` (not NULL).
-    subroutine put(address, value)
-        type(c_ptr), intent(in) :: address
-        real(dp), intent(in) :: value
-
-        real(c_double), pointer :: target_value
-
-        call c_f_pointer(address, target_value)
-        target_value = value
-    end subroutine put
-
-    !> The status of an error (0 when none), its message copied to the caller's buffer ("" when none).
-    function finish(error, errmsg, errmsg_len) result(status)
-        !> The error, or unallocated for success.
-        type(error_type), allocatable, intent(in) :: error
-        !> Message buffer, or NULL.
-        type(c_ptr), intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = 0
-        if (allocated(error)) then
-            status = int(error%stat, c_int)
-            call to_c(error%message, errmsg, errmsg_len)
-        else
-            call to_c('', errmsg, errmsg_len)
-        end if
-    end function finish
-
-    !> A NUL-terminated C string as Fortran text (empty for NULL).
-    function from_c(text) result(fortran_text)
-        !> A NUL-terminated C string, or NULL.
-        type(c_ptr), intent(in) :: text
-        character(len=:), allocatable :: fortran_text
-
-        character(kind=c_char), pointer :: chars(:)
-        integer :: i, n
-
-        n = 0
-        if (c_associated(text)) n = int(c_strlen(text))
-        allocate (character(len=n) :: fortran_text)
-        if (n == 0) return
-        call c_f_pointer(text, chars, [n])
-        do i = 1, n
-            fortran_text(i:i) = chars(i)
-        end do
-    end function from_c
-
-    !> Copy text into a C buffer of `length` bytes: all of it when it fits, else its first
-    !> length - 1 bytes, then a NUL. Nothing for a NULL buffer or length 0. A length that does
-    !> not fit a signed size (negative here) is as good as unlimited.
-    subroutine to_c(text, buffer, length)
-        !> The text.
-        character(len=*), intent(in) :: text
-        !> The C buffer, or NULL.
-        type(c_ptr), intent(in) :: buffer
-        !> Size of the buffer [bytes].
-        integer(c_size_t), intent(in) :: length
-
-        character(kind=c_char), pointer :: chars(:)
-        integer(c_size_t) :: i, n
-
-        if (.not. c_associated(buffer) .or. length == 0) return
-        n = len(text, kind=c_size_t)
-        if (length > 0) n = min(n, length - 1)
-        call c_f_pointer(buffer, chars, [n + 1])
-        do i = 1, n
-            chars(i) = text(i:i)
-        end do
-        chars(n + 1) = c_null_char
-    end subroutine to_c
 
 end module greenconv_capi

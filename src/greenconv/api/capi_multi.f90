@@ -19,7 +19,8 @@ module greenconv_capi_multi
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
-    use greenconv_capi, only: gc_build_options, finish, from_c, to_c
+    use greenconv_capi, only: gc_build_options
+    use greenconv_api_doors, only: finish, from_c, to_c
     implicit none
     private
 

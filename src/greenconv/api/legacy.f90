@@ -20,7 +20,7 @@
 !> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
 !> impulse-response samples g [m/(N*s)], frequencies [Hz].
 module greenconv_legacy
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
@@ -30,6 +30,7 @@ module greenconv_legacy
     use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps
+    use greenconv_api_doors, only: report, handle_address, address_handle
     implicit none
     private
 
@@ -183,7 +184,7 @@ contains
         if (.not. allocated(error)) call new_box(method, structure, dt, nstep, box, error)
         call report(error, ierr, errmsg)
         if (allocated(error)) return
-        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+        handle = address_handle(c_loc(box))
     end subroutine new_handle
 
     !> Free a convolver (its FFTW plans too) and set its handle to 0; nothing for handle 0.
@@ -478,12 +479,8 @@ contains
         integer(int64), intent(in) :: handle
         type(convolver_box), pointer :: box
 
-        type(c_ptr) :: address
-
         box => null()
-        if (handle == 0_int64) return
-        address = transfer(int(handle, c_intptr_t), c_null_ptr)
-        call c_f_pointer(address, box)
+        if (handle /= 0_int64) call c_f_pointer(handle_address(handle), box)
     end function box_of
 
     !> The object a handle points to, with status 0, or null with status `stat_input`.
@@ -496,18 +493,5 @@ contains
         ierr = stat_ok
         if (.not. associated(box)) ierr = stat_input
     end function checked_box
-
-    !> Status and message of an error, or 0 and a blank message when there is none.
-    subroutine report(error, ierr, errmsg)
-        type(error_type), allocatable, intent(in) :: error
-        integer, intent(out) :: ierr
-        character(len=*), intent(out) :: errmsg
-
-        ierr = stat_ok
-        errmsg = ' '
-        if (.not. allocated(error)) return
-        ierr = error%stat
-        errmsg = error%message
-    end subroutine report
 
 end module greenconv_legacy

@@ -11,7 +11,7 @@
 !> ROAD(NSTEP, NC), W0(NC, NC). SI units: poles [rad/s], g [m/(N*s)], k_c [N/m^p], forces [N],
 !> displacements and heights [m].
 module greenconv_legacy_multi
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -21,6 +21,7 @@ module greenconv_legacy_multi
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
+    use greenconv_api_doors, only: report, handle_address, address_handle
     implicit none
     private
 
@@ -565,7 +566,7 @@ contains
         handle = 0_int64
         call report(error, ierr, errmsg)
         if (allocated(error) .or. .not. associated(box)) return
-        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+        handle = address_handle(c_loc(box))
     end subroutine new_handle
 
     !> The box a handle points to; null for handle 0.
@@ -573,12 +574,8 @@ contains
         integer(int64), intent(in) :: handle
         type(multi_box), pointer :: box
 
-        type(c_ptr) :: address
-
         box => null()
-        if (handle == 0_int64) return
-        address = transfer(int(handle, c_intptr_t), c_null_ptr)
-        call c_f_pointer(address, box)
+        if (handle /= 0_int64) call c_f_pointer(handle_address(handle), box)
     end function box_of
 
     !> The box of a handle, checked (with NC when >= 0).
@@ -592,18 +589,5 @@ contains
         box => box_of(handle)
         call check_box(caller, null_handle, box, nc, error)
     end function checked
-
-    !> Status and message of an error, or 0 and a blank message.
-    subroutine report(error, ierr, errmsg)
-        type(error_type), allocatable, intent(in) :: error
-        integer, intent(out) :: ierr
-        character(len=*), intent(out) :: errmsg
-
-        ierr = 0
-        errmsg = ' '
-        if (.not. allocated(error)) return
-        ierr = error%stat
-        errmsg = error%message
-    end subroutine report
 
 end module greenconv_legacy_multi
