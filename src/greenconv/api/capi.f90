@@ -22,11 +22,11 @@ module greenconv_capi
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_law, contact_options, contact_response, start_contact, contact_block
-    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file, default_truncation_tol, &
-                                     default_accuracy
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response
+    use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    step_box, start_point_box, advance_point_box, point_history, point_push
     use greenconv_api_doors, only: finish, from_c, to_c, put
     implicit none
     private
@@ -411,13 +411,14 @@ contains
 
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
+        real(dp) :: u
 
         box => box_of(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement))) return
-        call check_steps(box, 'gc_convolver_history', 1_int64, error)
+        call point_history('gc_convolver_history', box, u, error)
         if (allocated(error)) return
-        call put(displacement, box%conv%history())
+        call put(displacement, u)
         status = 0
     end function gc_convolver_history
 
@@ -435,9 +436,8 @@ contains
         box => box_of(conv)
         status = stat_input
         if (.not. associated(box)) return
-        call check_steps(box, 'gc_convolver_push', 1_int64, error)
+        call point_push('gc_convolver_push', box, force, error)
         if (allocated(error)) return
-        call box%conv%push(force)
         status = 0
     end function gc_convolver_push
 
@@ -454,7 +454,7 @@ contains
         box => box_of(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(weight))) return
-        call put(weight, box%conv%instant_weight())
+        call put(weight, box%conv%weight0(1, 1))
         status = 0
     end function gc_convolver_instant_weight
 
@@ -570,10 +570,8 @@ contains
         box => box_of(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
-        call check_contact_law(contact_law(k_c, p), preload, error)
-        if (.not. allocated(error)) call check_steps(box, 'gc_contact_step', 1_int64, error)
+        call step_box('gc_contact_step', box, contact_law(k_c, p), preload, road, u, f, delta, error)
         if (allocated(error)) return
-        call contact_step(box%conv, contact_law(k_c, p), road, preload, u, f, delta)
         call put(displacement, u)
         call put(force, f)
         if (c_associated(compression)) call put(compression, delta)
@@ -735,9 +733,7 @@ contains
             box%stepping = .false.
             call check_contact_law(contact_law(k_c, p), preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
-            if (.not. allocated(error)) call start_contact(box%conv, contact_law(k_c, p), preload, box%contact, &
-                                                           error, settings)
-            box%stepping = .not. allocated(error)
+            if (.not. allocated(error)) call start_point_box(box, contact_law(k_c, p), preload, settings, error)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_contact_start
@@ -781,7 +777,7 @@ contains
                              //'gc_contact_start first (a fault or a reset ends a run)')
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
-            if (.not. allocated(error)) call contact_block(box%conv, box%contact, [real(road, dp)], response, error)
+            if (.not. allocated(error)) call advance_point_box(box, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
                 if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &

@@ -1,7 +1,7 @@
 !> The C interface of multi-point contact: `bind(c)` functions `gc_multi_*` declared in the
 !> multi-point section of include/greenconv.h, on the shared layer greenconv_api_multi_handle.
 !>
-!> A `gc_multi_convolver *` is the C address of a `multi_box`. Conventions are those of
+!> A `gc_multi_convolver *` is the C address of a `convolver_box`. Conventions are those of
 !> greenconv_capi: every function returns 0, 2 (bad input, NULL pointer) or 3 (numerical
 !> failure) and writes its message into `errmsg` (`errmsg_len` bytes as a `size_t`, clamped,
 !> always NUL-terminated, "" on success). Arrays are C arrays laid out as Fortran stores them
@@ -15,12 +15,13 @@ module greenconv_capi_multi
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_api_library, only: default_truncation_tol
-    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+    use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
     use greenconv_capi, only: gc_build_options
     use greenconv_api_doors, only: finish, from_c, to_c
+    use greenconv_api_handle, only: convolver_box, free_box
     implicit none
     private
 
@@ -74,7 +75,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_modes'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :)
 
         box => null()
@@ -130,7 +131,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_samples'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: samples(:, :, :)
 
         box => null()
@@ -268,7 +269,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_file'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         call start_handle(caller, conv, method, error)
@@ -309,7 +310,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_method'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box, from
+        type(convolver_box), pointer :: box, from
 
         box => null()
         call start_handle(caller, conv, method, error)
@@ -344,7 +345,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: labels(:)
         real(c_double), pointer :: out(:)
 
@@ -390,7 +391,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: value_out
         integer(c_int), pointer :: count_out
         real(dp) :: worst, mean
@@ -422,10 +423,10 @@ contains
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
 
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => box_of(conv)
-        call free_multi_box(box)
+        call free_box(box)
     end subroutine gc_multi_free
 
     !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL.
@@ -458,7 +459,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: count
 
         box => box_of(conv)
@@ -490,7 +491,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: u(:)
 
         box => checked('gc_multi_history', conv, n_points, [displacement], 'displacement', error)
@@ -517,7 +518,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: q(:)
 
         box => checked('gc_multi_push', conv, n_points, [force], 'force', error)
@@ -545,7 +546,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: matrix(:, :)
 
         box => checked('gc_multi_instant_matrix', conv, n_points, [w0], 'w0', error)
@@ -568,7 +569,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => box_of(conv)
         call check_box('gc_multi_reset', null_handle, box, -1, error)
@@ -594,7 +595,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
         character(len=:), allocatable :: label
         integer :: n
@@ -630,7 +631,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => box_of(conv)
         call check_box('gc_multi_set_newton', null_handle, box, -1, error)
@@ -661,7 +662,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: stiffness(:), exponent(:), load(:)
 
         box => checked('gc_multi_contact_start', conv, n_points, [k_c, p, preload], 'k_c, p and preload', error)
@@ -700,7 +701,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
         real(dp), allocatable :: delta(:)
 
@@ -754,7 +755,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_run_contact'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: stiffness(:), exponent(:), load(:), heights(:, :), u(:, :), f(:, :), &
                                    delta_out(:, :)
         real(dp), allocatable :: delta(:, :)
@@ -786,7 +787,7 @@ contains
     !> The box behind a C handle; null for NULL.
     function box_of(conv) result(box)
         type(c_ptr), intent(in) :: conv
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         if (c_associated(conv)) call c_f_pointer(conv, box)
@@ -798,7 +799,7 @@ contains
         type(c_ptr), intent(in) :: conv, arrays(:)
         integer(c_int), intent(in) :: n_points
         type(error_type), allocatable, intent(out) :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         integer :: i
 
@@ -848,7 +849,7 @@ contains
 
     !> Store a new box at *conv (when made) and return the status with the message.
     function made(box, conv, error, errmsg, errmsg_len) result(status)
-        type(multi_box), pointer, intent(in) :: box
+        type(convolver_box), pointer, intent(in) :: box
         type(c_ptr), intent(in) :: conv, errmsg
         type(error_type), allocatable, intent(in) :: error
         integer(c_size_t), intent(in) :: errmsg_len

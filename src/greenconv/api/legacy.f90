@@ -27,9 +27,10 @@ module greenconv_legacy
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
+    use greenconv_api_library, only: check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    point_history, point_push, step_box
     use greenconv_api_doors, only: report, handle_address, address_handle
     implicit none
     private
@@ -214,12 +215,8 @@ contains
         uh = 0.0_dp
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_steps(box, 'gchist', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        uh = box%conv%history()
+        call point_history('gchist', box, uh, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gchist
 
     !> Push the force q(t_n) [N] of the current step and advance to step n + 1.
@@ -236,12 +233,8 @@ contains
 
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_steps(box, 'gcpush', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        call box%conv%push(q)
+        call point_push('gcpush', box, q, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gcpush
 
     !> Instantaneous weight w0 [m/N]: displacement per newton of the current step's own
@@ -258,7 +251,7 @@ contains
 
         w0 = 0.0_dp
         box => checked_box(handle, ierr)
-        if (associated(box)) w0 = box%conv%instant_weight()
+        if (associated(box)) w0 = box%conv%weight0(1, 1)
     end subroutine gcw0
 
     !> Forget every force pushed: back to step 0 (the structure at rest).
@@ -356,13 +349,8 @@ contains
         delta = 0.0_dp
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_contact_law(contact_law(kc, p), f0, error)
-        if (.not. allocated(error)) call check_steps(box, 'gcstep', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        call contact_step(box%conv, contact_law(kc, p), road, f0, u, f, delta)
+        call step_box('gcstep', box, contact_law(kc, p), f0, road, u, f, delta, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gcstep
 
     !> A whole contact run of nstep steps on a road profile (the convolver is reset first),

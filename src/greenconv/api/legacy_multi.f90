@@ -17,11 +17,12 @@ module greenconv_legacy_multi
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+    use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
     use greenconv_api_doors, only: report, handle_address, address_handle
+    use greenconv_api_handle, only: convolver_box, free_box
     implicit none
     private
 
@@ -66,7 +67,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer :: n_m
 
         box => null()
@@ -104,7 +105,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         if (nc < 1) then
@@ -138,7 +139,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         call file_multi_box('gcmfil', trim(path), trim(method), dt, tol, nstep, maxord, box, error)
         call new_handle(box, handle, error, ierr, errmsg)
@@ -164,7 +165,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box, from
+        type(convolver_box), pointer :: box, from
 
         box => null()
         from => checked('gcmmth', hfrom, -1, error)
@@ -190,7 +191,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmpts', handle, nc, error)
         if (.not. allocated(error)) call check_file_box('gcmpts', box, error)
@@ -220,7 +221,7 @@ contains
         integer, intent(out) :: ierr
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         eworst = 0.0_dp
         emean = 0.0_dp
@@ -301,10 +302,10 @@ contains
         !> The handle (0: nothing).
         integer(int64), intent(inout) :: handle
 
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => box_of(handle)
-        call free_multi_box(box)
+        call free_box(box)
         handle = 0_int64
     end subroutine gcmfre
 
@@ -320,7 +321,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         nc = 0
         box => checked('gcmnpt', handle, -1, error)
@@ -342,7 +343,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmhis', handle, nc, error)
         if (.not. allocated(error)) call box%conv%history(uh(1:nc))
@@ -363,7 +364,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmpsh', handle, nc, error)
         if (.not. allocated(error)) call box%conv%push(q(1:nc))
@@ -384,7 +385,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmw0', handle, nc, error)
         if (.not. allocated(error)) w0(:, 1:nc) = box%conv%weight0
@@ -401,7 +402,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmrst', handle, -1, error)
         if (.not. allocated(error)) then
@@ -423,7 +424,7 @@ contains
         integer, intent(out) :: ierr
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         character(len=:), allocatable :: label
 
         nsize = 0
@@ -450,7 +451,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmopt', handle, -1, error)
         if (.not. allocated(error)) call set_multi_options('gcmopt', box, tol, maxit, bound, error)
@@ -475,7 +476,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmbeg', handle, nc, error)
         if (.not. allocated(error)) then
@@ -506,7 +507,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmstp', handle, nc, error)
         if (.not. allocated(error)) call advance_multi_box('gcmstp', box, road(1:nc), u(1:nc), f(1:nc), &
@@ -542,7 +543,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmrun', handle, nc, error)
         if (.not. allocated(error) .and. nstep < 1) then
@@ -557,7 +558,7 @@ contains
 
     !> The handle of a new box (0 when it was not made), with status and message.
     subroutine new_handle(box, handle, error, ierr, errmsg)
-        type(multi_box), pointer, intent(in) :: box
+        type(convolver_box), pointer, intent(in) :: box
         integer(int64), intent(out) :: handle
         type(error_type), allocatable, intent(in) :: error
         integer, intent(out) :: ierr
@@ -572,7 +573,7 @@ contains
     !> The box a handle points to; null for handle 0.
     function box_of(handle) result(box)
         integer(int64), intent(in) :: handle
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         if (handle /= 0_int64) call c_f_pointer(handle_address(handle), box)
@@ -584,7 +585,7 @@ contains
         integer(int64), intent(in) :: handle
         integer, intent(in) :: nc
         type(error_type), allocatable, intent(out) :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => box_of(handle)
         call check_box(caller, null_handle, box, nc, error)
