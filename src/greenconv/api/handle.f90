@@ -257,10 +257,8 @@ contains
         type(lsce_options) :: options
         real(dp) :: dt_g
 
-        call read_frf(path, frf, error)
+        call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
-        options%tol_e = tol_e
-        options%max_modes = max_modes
         dt_g = 0.0_dp
         if (method_needs_g(lower_text(method))) dt_g = dt
         call structure_from_frf(frf, options, dt_g, structure, error)
@@ -447,14 +445,26 @@ contains
         type(lsce_result) :: fit
 
         e = 0.0_dp
-        call read_frf(path, frf, error)
+        call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
-        options%tol_e = tol_e
-        options%max_modes = max_modes
         call identify(frf, options, fit, error)
         if (allocated(error)) return
         modes = sorted_by_frequency(fit%modes)
         e = fit%e
     end subroutine identify_file
+
+    !> A receptance file read, and the LSCE settings its identification runs with.
+    subroutine read_receptance(path, tol_e, max_modes, frf, options, error)
+        character(len=*), intent(in) :: path
+        real(dp), intent(in) :: tol_e
+        integer, intent(in) :: max_modes
+        type(frf_type), intent(out) :: frf
+        type(lsce_options), intent(out) :: options
+        type(error_type), allocatable, intent(out) :: error
+
+        call read_frf(path, frf, error)
+        options%tol_e = tol_e
+        options%max_modes = max_modes
+    end subroutine read_receptance
 
 end module greenconv_api_handle

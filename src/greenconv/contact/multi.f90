@@ -35,6 +35,7 @@ module greenconv_contact_multi
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_ext_lapack, only: solve_linear
     use greenconv_contact_law, only: contact_law
+    use greenconv_contact_rows, only: keep_first
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
@@ -356,30 +357,13 @@ contains
         type(multi_contact_response), intent(inout) :: response
         integer, intent(in) :: n_done
 
-        type(multi_contact_response) :: done
-
-        call allocate_response(done, n_done, size(response%force, 2))
-        done%time(:) = response%time(0:n_done - 1)
-        done%total_force(:) = response%total_force(0:n_done - 1)
-        done%iterations(:) = response%iterations(0:n_done - 1)
-        done%road(:, :) = response%road(0:n_done - 1, :)
-        done%displacement(:, :) = response%displacement(0:n_done - 1, :)
-        done%force(:, :) = response%force(0:n_done - 1, :)
-        done%compression(:, :) = response%compression(0:n_done - 1, :)
-        call move_response(done, response)
+        call keep_first(response%time, n_done)
+        call keep_first(response%total_force, n_done)
+        call keep_first(response%iterations, n_done)
+        call keep_first(response%road, n_done)
+        call keep_first(response%displacement, n_done)
+        call keep_first(response%force, n_done)
+        call keep_first(response%compression, n_done)
     end subroutine keep_rows
-
-    !> Move every history from `source` to `target`.
-    subroutine move_response(source, target)
-        type(multi_contact_response), intent(inout) :: source, target
-
-        call move_alloc(source%time, target%time)
-        call move_alloc(source%total_force, target%total_force)
-        call move_alloc(source%iterations, target%iterations)
-        call move_alloc(source%road, target%road)
-        call move_alloc(source%displacement, target%displacement)
-        call move_alloc(source%force, target%force)
-        call move_alloc(source%compression, target%compression)
-    end subroutine move_response
 
 end module greenconv_contact_multi

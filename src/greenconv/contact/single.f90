@@ -63,6 +63,7 @@ module greenconv_contact_single
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_conv_convolver, only: convolver
     use greenconv_contact_law, only: contact_law
+    use greenconv_contact_rows, only: keep_first
     implicit none
     private
 
@@ -452,20 +453,5 @@ contains
         call keep_first(response%force, n_done)
         call keep_first(response%compression, n_done)
     end subroutine keep_rows
-
-    !> values(0:n-1), reallocated only when it is not that already.
-    subroutine keep_first(values, n)
-        real(dp), allocatable, intent(inout) :: values(:)
-        integer, intent(in) :: n
-
-        real(dp), allocatable :: kept(:)
-
-        if (allocated(values)) then
-            if (size(values) == n) return
-        end if
-        allocate (kept(0:n - 1))
-        if (n > 0) kept(:) = values(0:n - 1)
-        call move_alloc(kept, values)
-    end subroutine keep_first
 
 end module greenconv_contact_single
