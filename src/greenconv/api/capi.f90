@@ -24,7 +24,7 @@ module greenconv_capi
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options, contact_response
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
-    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
                                     step_box, start_point_box, advance_point_box, point_history, point_push
     use greenconv_api_doors, only: finish, from_c, to_c, put
@@ -378,7 +378,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call free_box(box)
     end subroutine gc_convolver_free
 
@@ -413,7 +413,7 @@ contains
         type(error_type), allocatable :: error
         real(dp) :: u
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement))) return
         call point_history('gc_convolver_history', box, u, error)
@@ -433,7 +433,7 @@ contains
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) return
         call point_push('gc_convolver_push', box, force, error)
@@ -451,7 +451,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(weight))) return
         call put(weight, box%conv%weight0(1, 1))
@@ -466,7 +466,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) return
         call box%conv%reset()
@@ -487,7 +487,7 @@ contains
         character(len=:), allocatable :: label
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(size))) return
         call box%conv%model_size(n, label)
@@ -508,7 +508,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) then
             call to_c('', text, text_len)
@@ -531,7 +531,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         call to_c('', text, text_len)
         if (.not. associated(box)) return
@@ -567,7 +567,7 @@ contains
         type(error_type), allocatable :: error
         real(dp) :: u, f, delta
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
         call step_box('gc_contact_step', box, contact_law(k_c, p), preload, road, u, f, delta, error)
@@ -670,7 +670,7 @@ contains
         real(dp), allocatable :: delta(:)
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
@@ -726,7 +726,7 @@ contains
         type(error_type), allocatable :: error
         type(contact_options) :: settings
 
-        box => box_of(conv)
+        box => box_at(conv)
         if (.not. associated(box)) then
             call fatal_error(error, 'gc_contact_start: conv is NULL: make a convolver with gc_convolver_new_*')
         else
@@ -764,7 +764,7 @@ contains
         type(contact_response) :: response
         real(dp) :: u, f, delta
 
-        box => box_of(conv)
+        box => box_at(conv)
         u = 0.0_dp
         f = 0.0_dp
         delta = 0.0_dp
@@ -934,13 +934,5 @@ contains
         settings%tolerance = given%tolerance
     end subroutine options_from_c
 
-    !> The box behind a C handle; null for NULL.
-    function box_of(conv) result(box)
-        type(c_ptr), intent(in) :: conv
-        type(convolver_box), pointer :: box
-
-        box => null()
-        if (c_associated(conv)) call c_f_pointer(conv, box)
-    end function box_of
 
 end module greenconv_capi

@@ -19,9 +19,9 @@ module greenconv_capi_multi
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
-    use greenconv_capi, only: gc_build_options
+    use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
-    use greenconv_api_handle, only: convolver_box, free_box
+    use greenconv_api_handle, only: convolver_box, box_at
     implicit none
     private
 
@@ -315,7 +315,7 @@ contains
         box => null()
         call start_handle(caller, conv, method, error)
         if (.not. allocated(error)) then
-            from => box_of(source)
+            from => box_at(source)
             call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, -1, error)
             if (.not. allocated(error)) call method_multi_box(caller, from, from_c(method), dt, &
                                                               tolerance_of(options), int(n_steps), box, error)
@@ -349,7 +349,7 @@ contains
         integer(c_int), pointer :: labels(:)
         real(c_double), pointer :: out(:)
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_points', null_handle, box, int(n_points), error)
         if (.not. allocated(error)) call check_file_box('gc_multi_points', box, error)
         if (.not. allocated(error)) then
@@ -397,7 +397,7 @@ contains
         real(dp) :: worst, mean
         integer :: poles
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_file_summary', null_handle, box, -1, error)
         if (.not. allocated(error)) call check_file_box('gc_multi_file_summary', box, error)
         status = finish(error, text, text_len)
@@ -418,32 +418,22 @@ contains
         call to_c(box%green%summary(), text, text_len)
     end function gc_multi_file_summary
 
-    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing).
+    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing); the one
+    !> box behind every handle is freed as greenconv_capi's `gc_convolver_free` does.
     subroutine gc_multi_free(conv) bind(c, name='gc_multi_free')
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
 
-        type(convolver_box), pointer :: box
-
-        box => box_of(conv)
-        call free_box(box)
+        call gc_convolver_free(conv)
     end subroutine gc_multi_free
 
-    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL.
+    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL, as
+    !> `gc_convolver_delete` does.
     subroutine gc_multi_delete(conv) bind(c, name='gc_multi_delete')
         !> Address of the caller's handle (NULL, or *conv NULL: nothing).
         type(c_ptr), value, intent(in) :: conv
 
-        type(c_ptr), pointer :: handle
-        type(c_ptr) :: object
-
-        if (.not. c_associated(conv)) return
-        call c_f_pointer(conv, handle)
-        ! A copy, as in gc_convolver_delete: -fcheck=pointer takes a pointer to a C NULL for a
-        ! disassociated one.
-        object = handle
-        call gc_multi_free(object)
-        handle = c_null_ptr
+        call gc_convolver_delete(conv)
     end subroutine gc_multi_delete
 
     !> int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len)
@@ -462,7 +452,7 @@ contains
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: count
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_n_points', null_handle, box, -1, error)
         if (.not. allocated(error) .and. .not. c_associated(n_points)) then
             call fatal_error(error, 'gc_multi_n_points: n_points is NULL: pass the address of an int')
@@ -571,7 +561,7 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_reset', null_handle, box, -1, error)
         if (.not. allocated(error)) then
             call box%conv%reset()
@@ -600,7 +590,7 @@ contains
         character(len=:), allocatable :: label
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, -1, error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
@@ -633,7 +623,7 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_set_newton', null_handle, box, -1, error)
         if (.not. allocated(error)) call set_multi_options('gc_multi_set_newton', box, tolerance, &
                                                            int(max_iterations), divergence_bound, error)
@@ -784,14 +774,6 @@ contains
 
     ! ---- conversions -------------------------------------------------------------------------
 
-    !> The box behind a C handle; null for NULL.
-    function box_of(conv) result(box)
-        type(c_ptr), intent(in) :: conv
-        type(convolver_box), pointer :: box
-
-        box => null()
-        if (c_associated(conv)) call c_f_pointer(conv, box)
-    end function box_of
 
     !> The box behind a handle, checked with its count of points and the arrays it needs.
     function checked(caller, conv, n_points, arrays, names, error) result(box)
@@ -803,7 +785,7 @@ contains
 
         integer :: i
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box(caller, null_handle, box, int(n_points), error)
         if (allocated(error)) return
         do i = 1, size(arrays)

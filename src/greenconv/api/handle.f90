@@ -11,6 +11,7 @@
 module greenconv_api_handle
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_associated, c_f_pointer
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: lower_text, sci_text, int_text
@@ -35,7 +36,7 @@ module greenconv_api_handle
     implicit none
     private
 
-    public :: convolver_box, new_box, free_box
+    public :: convolver_box, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
     public :: run_box, identify_file, check_steps, step_box, start_point_box, advance_point_box
     public :: point_history, point_push
@@ -118,6 +119,17 @@ contains
         deallocate (box)
         box => null()
     end subroutine free_box
+
+    !> The box at a C address: a C handle, or the address a Fortran 77 handle stands for
+    !> (greenconv_api_doors's `handle_address`); null for C NULL.
+    function box_at(address) result(box)
+        !> The address of a box made by `new_box` or greenconv_api_multi_handle, or C NULL.
+        type(c_ptr), intent(in) :: address
+        type(convolver_box), pointer :: box
+
+        box => null()
+        if (c_associated(address)) call c_f_pointer(address, box)
+    end function box_at
 
     !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
     !> was cut at the n_steps it was made for (g not decayed by then) would give a short,

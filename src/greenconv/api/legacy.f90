@@ -28,7 +28,7 @@ module greenconv_legacy
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_api_library, only: check_contact_law, run_scene_file
-    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
                                     point_history, point_push, step_box
     use greenconv_api_doors, only: report, handle_address, address_handle
@@ -195,7 +195,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         call free_box(box)
         handle = 0_int64
     end subroutine gcfree
@@ -383,7 +383,7 @@ contains
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         if (.not. associated(box)) then
             call fatal_error(error, 'gccont: null convolver handle: make one with GCSDOF, GCMODE, GCSAMP or GCFRF')
         else if (nstep < 1) then
@@ -462,14 +462,6 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcscen
 
-    !> The object a handle points to; null for handle 0.
-    function box_of(handle) result(box)
-        integer(int64), intent(in) :: handle
-        type(convolver_box), pointer :: box
-
-        box => null()
-        if (handle /= 0_int64) call c_f_pointer(handle_address(handle), box)
-    end function box_of
 
     !> The object a handle points to, with status 0, or null with status `stat_input`.
     function checked_box(handle, ierr) result(box)
@@ -477,7 +469,7 @@ contains
         integer, intent(out) :: ierr
         type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         ierr = stat_ok
         if (.not. associated(box)) ierr = stat_input
     end function checked_box

@@ -22,7 +22,8 @@ module greenconv_legacy_multi
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
     use greenconv_api_doors, only: report, handle_address, address_handle
-    use greenconv_api_handle, only: convolver_box, free_box
+    use greenconv_api_handle, only: convolver_box, box_at
+    use greenconv_legacy, only: gcfree
     implicit none
     private
 
@@ -297,16 +298,13 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcmplt
 
-    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return.
+    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return. The one
+    !> box behind every handle is freed as greenconv_legacy's `GCFREE` does.
     subroutine gcmfre(handle)
         !> The handle (0: nothing).
         integer(int64), intent(inout) :: handle
 
-        type(convolver_box), pointer :: box
-
-        box => box_of(handle)
-        call free_box(box)
-        handle = 0_int64
+        call gcfree(handle)
     end subroutine gcmfre
 
     !> Number of points N_c of a multi-point convolver.
@@ -570,14 +568,6 @@ contains
         handle = address_handle(c_loc(box))
     end subroutine new_handle
 
-    !> The box a handle points to; null for handle 0.
-    function box_of(handle) result(box)
-        integer(int64), intent(in) :: handle
-        type(convolver_box), pointer :: box
-
-        box => null()
-        if (handle /= 0_int64) call c_f_pointer(handle_address(handle), box)
-    end function box_of
 
     !> The box of a handle, checked (with NC when >= 0).
     function checked(caller, handle, nc, error) result(box)
@@ -587,7 +577,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         call check_box(caller, null_handle, box, nc, error)
     end function checked
 
