@@ -2,9 +2,12 @@
 !> from C and C++, written directly on the Fortran API (greenconv_api_library and
 !> greenconv_api_handle), as minpack's C API and dftd4's api.f90 are.
 !>
-!> A `gc_convolver *` is an opaque handle: the C address of a Fortran `convolver_box` that
-!> holds the `class(convolver)` object, what its model neglects and the state of a contact run
-!> stepped one call at a time. No function keeps state outside the handles it is given.
+!> A `gc_convolver *` is an opaque handle: the C address of greenconv_api_handle's
+!> `convolver_box`, the one object behind every handle, single- or multi-point; a single-point
+!> structure's convolver sits in it as the 1 x 1 case of a Green's matrix, with what its model
+!> neglects and the state of a contact run stepped one call at a time. The work is done by
+!> greenconv_api_handle's procedures, shared with the Fortran 77 layer; these functions only
+!> convert arguments and messages. No function keeps state outside the handles it is given.
 !>
 !> Conventions (see the header): functions return a status, 0 (`GC_OK`), 2 (`GC_ERROR_INPUT`)
 !> or 3 (`GC_ERROR_NUMERICAL`), the codes of greenconv_core_error. A message buffer `errmsg`

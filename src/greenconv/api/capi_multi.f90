@@ -1,7 +1,8 @@
 !> The C interface of multi-point contact: `bind(c)` functions `gc_multi_*` declared in the
 !> multi-point section of include/greenconv.h, on the shared layer greenconv_api_multi_handle.
 !>
-!> A `gc_multi_convolver *` is the C address of a `convolver_box`. Conventions are those of
+!> A `gc_multi_convolver *` is the C address of the one `convolver_box` (greenconv_api_handle)
+!> behind every handle. Conventions are those of
 !> greenconv_capi: every function returns 0, 2 (bad input, NULL pointer) or 3 (numerical
 !> failure) and writes its message into `errmsg` (`errmsg_len` bytes as a `size_t`, clamped,
 !> always NUL-terminated, "" on success). Arrays are C arrays laid out as Fortran stores them

@@ -2,8 +2,8 @@
 !> contact alike (greenconv_contact_single, greenconv_contact_multi): the force it carries at a
 !> compression, the compression that carries a force, and its tangent stiffness.
 !>
-!> The contact steppers call only these three type-bound procedures, so a new contact law is
-!> a new type with them (and its rows in the scene schema).
+!> The contact steppers call only these three type-bound procedures: a new contact law is
+!> written here, in them, and nowhere in the steppers (plus its rows in the scene schema).
 module greenconv_contact_law
     use greenconv_core_kinds, only: dp
     implicit none
