@@ -116,11 +116,7 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: z(modes%n_modes()), none(modes%n_modes())
-
-        z = exp(modes%pole*dt)
-        none(:) = (0.0_dp, 0.0_dp)
-        call set_up(conv, 'recursive', dt, z, 2.0_dp*modes%residue*dt*z, none)
+        conv = new_modal_engine(scheme_rectangle, modes, dt)
     end function new_recursive_convolver
 
     !> The first-order-hold convolution named `exact`: the force linear within each step,
@@ -132,10 +128,7 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: phi1(modes%n_modes()), phi2(modes%n_modes())
-
-        call hold_functions(modes%pole*dt, phi1, phi2)
-        call set_up(conv, 'exact', dt, exp(modes%pole*dt), 2.0_dp*modes%residue*dt*phi1**2, modes%residue*dt*phi2)
+        conv = new_modal_engine(scheme_first_order, modes, dt)
     end function new_exact_convolver
 
     !> The backward-zero-order-hold convolution named `backward`: the force constant over the
@@ -148,12 +141,40 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: phi1(modes%n_modes()), phi2(modes%n_modes()), z(modes%n_modes())
-
-        call hold_functions(modes%pole*dt, phi1, phi2)
-        z = exp(modes%pole*dt)
-        call set_up(conv, 'backward', dt, z, 2.0_dp*modes%residue*dt*phi1*z, modes%residue*dt*phi1)
+        conv = new_modal_engine(scheme_backward, modes, dt)
     end function new_backward_convolver
+
+    !> The decaying recursion of a scheme of the registry (greenconv_conv_methods's
+    !> `method_scheme`): `scheme_rectangle` (`recursive`: c_k = 2*r_k*dt*z_k, w0 = 0),
+    !> `scheme_first_order` (`exact`: c_k = 2*r_k*dt*phi1^2, w0_k = 2*Re(r_k*dt*phi2)) or
+    !> `scheme_backward` (`backward`: c_k = 2*r_k*dt*phi1*z_k, w0_k = 2*Re(r_k*dt*phi1)), with
+    !> z_k = exp(lambda_k*dt) and phi1, phi2 of lambda_k*dt (`hold_functions`). The one place
+    !> these three are told apart, for single- and multi-point contact alike; any other scheme
+    !> gives the rectangle rule.
+    function new_modal_engine(scheme, modes, dt) result(conv)
+        !> The scheme.
+        integer, intent(in) :: scheme
+        !> The Green's function as modes (Re lambda_k <= 0).
+        type(modal_set), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        type(recursive_convolver) :: conv
+
+        complex(dp), dimension(modes%n_modes()) :: z, phi1, phi2, none
+
+        z = exp(modes%pole*dt)
+        select case (scheme)
+        case (scheme_first_order)
+            call hold_functions(modes%pole*dt, phi1, phi2)
+            call set_up(conv, 'exact', dt, z, 2.0_dp*modes%residue*dt*phi1**2, modes%residue*dt*phi2)
+        case (scheme_backward)
+            call hold_functions(modes%pole*dt, phi1, phi2)
+            call set_up(conv, 'backward', dt, z, 2.0_dp*modes%residue*dt*phi1*z, modes%residue*dt*phi1)
+        case default
+            none(:) = (0.0_dp, 0.0_dp)
+            call set_up(conv, 'recursive', dt, z, 2.0_dp*modes%residue*dt*z, none)
+        end select
+    end function new_modal_engine
 
     !> phi1(x) = (exp(x) - 1)/x and phi2(x) = (exp(x) - 1 - x)/x^2 (1 and 1/2 at x = 0),
     !> from their Taylor series when |x| < 1 and in closed form otherwise.
@@ -186,29 +207,6 @@ contains
             phi2 = (phi1 - 1.0_dp)/x
         end if
     end subroutine hold_functions
-
-    !> The decaying recursion of a scheme of the registry (greenconv_conv_methods's
-    !> `method_scheme`): `scheme_rectangle` (`recursive`), `scheme_first_order` (`exact`) or
-    !> `scheme_backward` (`backward`); the one place these three are told apart, for single-
-    !> and multi-point contact alike. Any other scheme gives the rectangle rule.
-    function new_modal_engine(scheme, modes, dt) result(conv)
-        !> The scheme.
-        integer, intent(in) :: scheme
-        !> The Green's function as modes (Re lambda_k <= 0).
-        type(modal_set), intent(in) :: modes
-        !> Time step [s].
-        real(dp), intent(in) :: dt
-        type(recursive_convolver) :: conv
-
-        select case (scheme)
-        case (scheme_first_order)
-            conv = new_exact_convolver(modes, dt)
-        case (scheme_backward)
-            conv = new_backward_convolver(modes, dt)
-        case default
-            conv = new_recursive_convolver(modes, dt)
-        end select
-    end function new_modal_engine
 
     !> Fill a convolver from its decay factors z_k, input coefficients c_k and the halves
     !> v_k of each mode's share in w0, 2*Re(v_k) [m/N] (w0 = sum_k 2*Re(v_k)).
