@@ -29,7 +29,8 @@ module greenconv_capi
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
-                                    step_box, start_point_box, advance_point_box, point_history, point_push
+                                    step_box, start_point_box, advance_point_box, point_history, point_push, &
+                                    reset_box, describe_box
     use greenconv_api_doors, only: finish, from_c, to_c, put
     implicit none
     private
@@ -472,8 +473,7 @@ contains
         box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) return
-        call box%conv%reset()
-        box%stepping = .false.
+        call reset_box(box)
         status = 0
     end function gc_convolver_reset
 
@@ -517,7 +517,7 @@ contains
             call to_c('', text, text_len)
             return
         end if
-        call to_c(box%conv%name//': '//box%description, text, text_len)
+        call to_c(describe_box(box), text, text_len)
         status = 0
     end function gc_convolver_describe
 

@@ -22,7 +22,7 @@ module greenconv_capi_multi
                                           file_e_modes
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
-    use greenconv_api_handle, only: convolver_box, box_at
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     implicit none
     private
 
@@ -565,8 +565,7 @@ contains
         box => box_at(conv)
         call check_box('gc_multi_reset', null_handle, box, -1, error)
         if (.not. allocated(error)) then
-            call box%conv%reset()
-            box%stepping = .false.
+            call reset_box(box)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_reset
@@ -588,19 +587,17 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
-        character(len=:), allocatable :: label
         integer :: n
 
         box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, -1, error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call box%conv%model_size(n, label)
+        call to_c(describe_box(box, n), text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)
             size_out = int(n, c_int)
         end if
-        call to_c(box%conv%name//': '//box%description//', '//label//' = '//int_text(n), text, text_len)
     end function gc_multi_describe
 
     !> int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iterations,

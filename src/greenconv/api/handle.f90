@@ -39,7 +39,7 @@ module greenconv_api_handle
     public :: convolver_box, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
     public :: run_box, identify_file, check_steps, step_box, start_point_box, advance_point_box
-    public :: point_history, point_push
+    public :: point_history, point_push, reset_box, describe_box
 
     !> What a foreign handle points to.
     type :: convolver_box
@@ -130,6 +130,32 @@ contains
         box => null()
         if (c_associated(address)) call c_f_pointer(address, box)
     end function box_at
+
+    !> Back to step 0 with no force history, ending a contact run stepped one call at a time.
+    subroutine reset_box(box)
+        !> The box.
+        type(convolver_box), intent(inout) :: box
+
+        call box%conv%reset()
+        box%stepping = .false.
+    end subroutine reset_box
+
+    !> "method: what the model neglects", and with `n` present ", N_g = n" (or N_m): the model's
+    !> size, returned in `n` too.
+    function describe_box(box, n) result(text)
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> The model's size (N_g kernel samples or N_m modes); absent: not in the text.
+        integer, intent(out), optional :: n
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: label
+
+        text = box%conv%name//': '//box%description
+        if (.not. present(n)) return
+        call box%conv%model_size(n, label)
+        text = text//', '//label//' = '//int_text(n)
+    end function describe_box
 
     !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
     !> was cut at the n_steps it was made for (g not decayed by then) would give a short,

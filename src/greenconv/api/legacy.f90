@@ -30,7 +30,7 @@ module greenconv_legacy
     use greenconv_api_library, only: check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
-                                    point_history, point_push, step_box
+                                    point_history, point_push, step_box, reset_box, describe_box
     use greenconv_api_doors, only: report, handle_address, address_handle
     implicit none
     private
@@ -264,7 +264,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => checked_box(handle, ierr)
-        if (associated(box)) call box%conv%reset()
+        if (associated(box)) call reset_box(box)
     end subroutine gcrset
 
     !> Size of the convolver's model: N_g kernel samples ('direct', 'fft') or N_m modes.
@@ -315,7 +315,7 @@ contains
 
         text = ' '
         box => checked_box(handle, ierr)
-        if (associated(box)) text = box%conv%name//': '//box%description
+        if (associated(box)) text = describe_box(box)
     end subroutine gcdesc
 
     !> One explicit step of the contact loop (eqs. 20-24), as the driver takes it: from the

@@ -22,7 +22,7 @@ module greenconv_legacy_multi
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
     use greenconv_api_doors, only: report, handle_address, address_handle
-    use greenconv_api_handle, only: convolver_box, box_at
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     use greenconv_legacy, only: gcfree
     implicit none
     private
@@ -404,8 +404,7 @@ contains
 
         box => checked('gcmrst', handle, -1, error)
         if (.not. allocated(error)) then
-            call box%conv%reset()
-            box%stepping = .false.
+            call reset_box(box)
         end if
         call report(error, ierr, errmsg)
     end subroutine gcmrst
@@ -423,14 +422,12 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        character(len=:), allocatable :: label
 
         nsize = 0
         box => checked('gcmdsc', handle, -1, error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        call box%conv%model_size(nsize, label)
-        text = box%conv%name//': '//box%description//', '//label//' = '//int_text(nsize)
+        text = describe_box(box, nsize)
     end subroutine gcmdsc
 
     !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).
