@@ -30,12 +30,14 @@ module greenconv_legacy
     use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps
+    use greenconv_api_version, only: gcvers
     implicit none
     private
 
     public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
     public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
     public :: gcstep, gccont, gcid, gcscen
+    public :: gcvers
 
     !> Status of a call that succeeded.
     integer, parameter :: stat_ok = 0
