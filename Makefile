@@ -29,8 +29,10 @@
 #                   plot/lib/column_file.gp picks <name>_<method>.dat or .bin)
 #   make plot-test  the plot scripts that read contact runs draw the same figure from a text
 #                   and a binary run (tools/test_plot_formats.sh, about 10 s; run by make test)
-#   make test       deps, the layer check (`make layers`), `make lib` and its symbol check
-#                   (tools/check_symbols.sh: no global symbol outside greenconv's prefixes), check that the
+#   make test       deps, the layer check (`make layers`), the link check (`make links`), `make lib`
+#                   and its symbol check (tools/check_symbols.sh: no global symbol outside greenconv's
+#                   prefixes), the version check (tools/check_version.sh: fpm.toml's version in the
+#                   header, doc/greenconv.md, CHANGELOG.md and `greenconv --version`), check that the
 #                   Makefile-built driver writes the same output as the fpm-built one, build
 #                   and run the examples (each compares its results with the driver's output
 #                   for data/sdof_sine.nml or data/patch_road.nml), install into a temporary prefix and build the C
@@ -40,6 +42,8 @@
 #                   `fpm test` (its "N passed, N failed" line is the last line printed)
 #   make layers     tools/check_layers.sh (no module uses one of a higher layer; module names
 #                   follow their paths), then its self-test tools/test_check_layers.sh
+#   make links      tools/check_links.sh (every relative link and #anchor of README.md,
+#                   CHANGELOG.md and doc/*.md exists), then its self-test tools/test_check_links.sh
 #   make bench-smoke  the benchmark's smoke checks: `fpm run --example greenconv-bench -- --smoke`
 #                   (the stability map and the multi-point cost table on small cases)
 #
@@ -111,6 +115,12 @@ LIB     := $(BUILD)/libgreenconv.a
 # The shared library: real name libgreenconv.so.VERSION (fpm.toml's version), soname
 # libgreenconv.so.MAJOR, and the link name libgreenconv.so.
 VERSION := $(shell sed -n 's/^version *= *"\(.*\)"/\1/p' fpm.toml)
+# The version's only source; src/greenconv/core/version.F90 gets it as GREENCONV_VERSION (fpm
+# passes the same macro from [preprocess.cpp]). No version line, no build: nothing is guessed.
+ifeq ($(VERSION),)
+$(error fpm.toml has no line 'version = "x.y.z"': the build takes greenconv's version from it)
+endif
+VERSION_DEFINE := -DGREENCONV_VERSION=$(VERSION)
 SOMAJOR := $(firstword $(subst ., ,$(VERSION)))
 SHLIB   := $(BUILD)/libgreenconv.so.$(VERSION)
 BIN     := $(BUILD)/greenconv
@@ -132,7 +142,7 @@ FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run bench bench-data bench-smoke figures test layers clean examples install doc doc-check \
+.PHONY: all lib deps build run bench bench-data bench-smoke figures test layers links clean examples install doc doc-check \
         fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test
 
 all: lib
@@ -163,7 +173,10 @@ $(BUILD)/%.o: %.f90 $(BUILD)/compile.cmd | $(MODDIR)
 
 $(BUILD)/%.o: %.F90 $(BUILD)/compile.cmd | $(MODDIR)
 	@mkdir -p $(@D)
-	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) -J$(MODDIR) -c $< -o $@
+	$(FC) $(FFLAGS) $(PICFLAGS) $(OMPFLAGS) $(VERSION_DEFINE) -J$(MODDIR) -c $< -o $@
+
+# A new version in fpm.toml rebuilds the module that holds it.
+$(BUILD)/src/greenconv/core/version.o: fpm.toml
 
 $(BUILD)/%.c.o: %.c $(BUILD)/compile.cmd
 	@mkdir -p $(@D)
@@ -424,8 +437,10 @@ plot-test: $(BIN)
 # fails, repeats that line after fpm's error messages).
 test: deps
 	@$(MAKE) layers
+	@$(MAKE) links
 	@$(MAKE) lib
 	@bash tools/check_symbols.sh $(LIB) $(SHLIB)
+	@bash tools/check_version.sh $(BIN)
 	@$(HELPER) same-output $(BIN) $(CHECK_SCENES)
 	@$(MAKE) examples
 	@$(HELPER) examples $(BIN) $(EXAMPLES)
@@ -445,6 +460,13 @@ layers:
 	@echo "greenconv: layer check (tools/check_layers.sh)"
 	@bash tools/check_layers.sh
 	@bash tools/test_check_layers.sh
+
+# The Markdown pages' relative links and anchors (README.md, CHANGELOG.md, doc/*.md; a second),
+# and proof that the check fails on planted dead links.
+links:
+	@echo "greenconv: link check (tools/check_links.sh)"
+	@bash tools/check_links.sh
+	@bash tools/test_check_links.sh
 
 # The benchmark's code lives in bench/, which `fpm test` cannot see: its checks run through
 # the benchmark program (fpm's default profile, the build `fpm test` uses).

@@ -1,11 +1,14 @@
 !> greenconv driver: run the contact scene of a namelist file.
 !>
 !>     greenconv [--check] [--quiet] SCENE.nml
+!>     greenconv --version | --help
 !>
 !> Writes one column file per method into the scene's output directory and a summary
 !> per method on standard output. `--check` reads and checks the scene and the files it
 !> names, prints one line saying what a run would do, and writes nothing. `--quiet` turns
 !> the progress line off (it is shown on standard error only when that is a terminal).
+!> `--version` prints "greenconv x.y.z" (fpm.toml's version) and `--help` the usage line, both
+!> on standard output with status 0.
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
 !> variable, or an output file that could not be written, which is then absent); 3 a
 !> numerical fault (one line saying where; the rows before it are written). SIGINT and
@@ -15,13 +18,14 @@
 !> among MPI ranks); it must be a regular file, as it is read once per variant.
 program greenconv_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-    use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
+    use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type, greenconv_version
     use greenconv_io_files, only: remove_parts_on_signals
     use greenconv_scene_sweep, only: is_sweep_file, run_sweep
     implicit none
 
     character(len=*), parameter :: usage = 'usage: greenconv [--check] [--quiet] SCENE.nml   ' &
-                                           //'(for example: greenconv data/sdof_sine.nml)'
+                                           //'(for example: greenconv data/sdof_sine.nml), ' &
+                                           //'or greenconv --version'
     type(scene_type) :: scene
     type(error_type), allocatable :: error
     character(len=:), allocatable :: path, argument
@@ -43,6 +47,9 @@ program greenconv_driver
             quiet = .true.
         case ('-h', '--help')
             write (output_unit, '(a)') usage
+            stop
+        case ('--version')
+            write (output_unit, '(a)') 'greenconv '//greenconv_version()
             stop
         case default
             if (index(argument, '-') == 1 .or. len(path) > 0) call usage_error('unexpected argument '//argument)

@@ -58,8 +58,17 @@
 extern "C" {
 #endif
 
-/** Version of the library this header describes. */
+/** Version of the library this header describes (fpm.toml's `version`; `make ctest` checks
+ *  that it equals what gc_version reports). */
 #define GREENCONV_VERSION "0.1.0"
+
+/**
+ * The version of the library linked, "major.minor.patch" (fpm.toml's `version`), written to
+ * text (at most text_len bytes, NUL-terminated, as every message). Returns GC_OK when all of
+ * it fitted (16 bytes are plenty), GC_ERROR_INPUT when text is NULL or too short. Keeps no
+ * state: safe from any thread.
+ */
+int gc_version(char *text, size_t text_len);
 
 /** Status codes returned by the functions below. */
 enum gc_status {

@@ -12,6 +12,7 @@
 module greenconv
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, stat_input, stat_numerical
+    use greenconv_core_version, only: greenconv_version
     use greenconv_model_modal_set, only: modal_set, modes_from_paper, random_modes
     use greenconv_model_sdof, only: sdof_modes, sdof_receptance
     use greenconv_model_frf, only: frf_type, read_frf, frf_from_modes
@@ -38,6 +39,8 @@ module greenconv
 
     ! kinds and errors
     public :: dp, error_type, stat_input, stat_numerical
+    ! the version, "major.minor.patch" as fpm.toml states it
+    public :: greenconv_version
     ! structure models and roads
     public :: modal_set, modes_from_paper, random_modes, sdof_modes, sdof_receptance
     public :: frf_type, read_frf, frf_from_modes

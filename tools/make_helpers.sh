@@ -561,7 +561,8 @@ cmd_doc() {
         pip_install ford
         command -v ford >/dev/null 2>&1 || die "ford was installed but is not on PATH ($PATH)"
     fi
-    ford --quiet doc/greenconv.md
+    # src/greenconv/core/version.F90 needs fpm.toml's version as GREENCONV_VERSION, as in a build
+    ford --quiet --macro "GREENCONV_VERSION=$(sed -n 's/^version *= *"\(.*\)"/\1/p' fpm.toml)" doc/greenconv.md
     say "API documentation: build/doc/index.html"
 }
 

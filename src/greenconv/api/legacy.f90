@@ -32,12 +32,14 @@ module greenconv_legacy
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
                                     point_history, point_push, step_box, reset_box, describe_box
     use greenconv_api_doors, only: report, handle_address, address_handle
+    use greenconv_api_version, only: gcvers
     implicit none
     private
 
     public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
     public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
     public :: gcstep, gccont, gcid, gcscen
+    public :: gcvers
 
     !> Status of a call that succeeded.
     integer, parameter :: stat_ok = 0

@@ -109,6 +109,7 @@ module greenconv_ident_lsce
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
+    use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_frf, only: frf_type, min_frf_lines
     use greenconv_ext_fftw, only: inverse_real_fft
@@ -119,7 +120,7 @@ module greenconv_ident_lsce
     public :: lsce_options, lsce_result, identify
     public :: impulse_from_frf, fit_residues, error_e, paper_form
     public :: natural_frequency, damping_ratio
-    public :: lsce_poles
+    public :: lsce_poles, receptance_problem, stack, add_parameter_step
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -407,7 +408,9 @@ contains
 
     !> Real and imaginary parts stacked: [Re z; Im z].
     pure function stack(z) result(v)
+        !> Complex values (any units).
         complex(dp), intent(in) :: z(:)
+        !> Their real parts, then their imaginary parts (the same units).
         real(dp) :: v(2*size(z))
 
         v(1:size(z)) = real(z, dp)
@@ -442,22 +445,46 @@ contains
         call finish(frf, g_raw, options, result, error)
     end subroutine identify
 
+    !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
+    !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
+    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
+    pure function receptance_problem(frf) result(problem)
+        !> The sampled receptance.
+        type(frf_type), intent(in) :: frf
+        !> The problem in a phrase ('' when none).
+        character(len=:), allocatable :: problem
+
+        problem = ''
+        if (frf%n_freq() < min_frf_lines) then
+            problem = 'the FRF has fewer than '//int_text(min_frf_lines)//' lines'
+        else if (.not. (frf%frequency(1) >= 0.0_dp .and. all(frf%frequency(2:) > frf%frequency(:frf%n_freq() - 1)) &
+                        .and. ieee_is_finite(frf%f_max()))) then
+            problem = 'the FRF frequencies must be finite, >= 0 Hz and increasing'
+        else if (size(frf%receptance) /= frf%n_freq()) then
+            problem = 'the FRF has not one receptance per frequency'
+        else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
+            problem = 'the FRF holds a NaN or infinite receptance; remove or repair those lines'
+        end if
+    end function receptance_problem
+
     !> Reject inputs the identification cannot use.
     subroutine check_input(frf, options, error)
+        !> The receptance (the uniform grid from 0 Hz is needed).
         type(frf_type), intent(in) :: frf
+        !> LSCE settings.
         type(lsce_options), intent(in) :: options
+        !> Set, naming the first problem found, when the input cannot be used.
         type(error_type), allocatable, intent(out) :: error
 
-        if (frf%n_freq() < min_frf_lines) then
-            call fatal_error(error, 'identify: the FRF has fewer than the minimum number of lines')
+        character(len=:), allocatable :: problem
+
+        problem = receptance_problem(frf)
+        if (len(problem) > 0) then
+            call fatal_error(error, 'identify: '//problem)
         else if (.not. frf%uniform_from_zero()) then
             ! The impulse response is the inverse FFT of the lines: any other grid would give a wrong g.
             call fatal_error(error, 'identify: '//frf%fft_grid_problem()//' (LSCE works on the inverse FFT of G); ' &
                              //'the maximum-likelihood fit (identify_ml) takes any increasing grid')
-        else if (size(frf%receptance) /= frf%n_freq()) then
-            call fatal_error(error, 'identify: the FRF has not one receptance per frequency')
-        else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
-            call fatal_error(error, 'identify: the FRF holds a NaN or infinite receptance')
         else if (options%fixed_modes < 0 .or. options%max_modes < max(1, options%fixed_modes)) then
             call fatal_error(error, 'identify: need fixed_modes >= 0 and max_modes >= max(1, fixed_modes)')
         else if (.not. (options%tol_e > 0.0_dp)) then
@@ -638,7 +665,8 @@ contains
             trial_misfit = huge(1.0_dp)
             do halving = 0, 30
                 trial = result
-                call apply_step(trial, factor*step, options)
+                call add_parameter_step(factor*step, options%upper_residual, options%lower_residual, trial%modes%pole, &
+                                        trial%modes%residue, trial%upper_residual, trial%lower_residual)
                 trial_misfit = norm2(stack(measured - trial%receptance(omega)))
                 if (trial_misfit < misfit) exit
                 factor = 0.5_dp*factor
@@ -684,26 +712,40 @@ contains
         if (options%lower_residual) jacobian(:, col + 1) = stack(cmplx(-1.0_dp/omega**2, 0.0_dp, dp))
     end subroutine polish_jacobian
 
-    !> Add a parameter step laid out as in polish_jacobian.
-    pure subroutine apply_step(result, step, options)
-        type(lsce_result), intent(inout) :: result
+    !> Add a parameter step laid out per mode as (Re lambda, Im lambda, Re r, Im r), then R_u
+    !> and R_l when present (the layout of polish_jacobian here and of the ML fit's Jacobian).
+    pure subroutine add_parameter_step(step, upper, lower, pole, residue, upper_residual, lower_residual)
+        !> The step: [rad/s] for the poles, [m/(N*s)] for the residues, [m/N] for R_u, [1/kg] for R_l.
         real(dp), intent(in) :: step(:)
-        type(lsce_options), intent(in) :: options
+        !> Whether the step holds R_u.
+        logical, intent(in) :: upper
+        !> Whether the step holds R_l.
+        logical, intent(in) :: lower
+        !> Poles [rad/s], moved by the step (none when not allocated).
+        complex(dp), allocatable, intent(inout) :: pole(:)
+        !> Residues [m/(N*s)], one per pole, moved by the step.
+        complex(dp), allocatable, intent(inout) :: residue(:)
+        !> Upper residual R_u [m/N], moved when `upper`.
+        real(dp), intent(inout) :: upper_residual
+        !> Lower residual R_l [1/kg], moved when `lower`.
+        real(dp), intent(inout) :: lower_residual
 
-        integer :: k, col
+        integer :: k, col, n
 
-        do k = 1, result%modes%n_modes()
+        n = 0
+        if (allocated(pole)) n = size(pole)
+        do k = 1, n
             col = 4*(k - 1)
-            result%modes%pole(k) = result%modes%pole(k) + cmplx(step(col + 1), step(col + 2), dp)
-            result%modes%residue(k) = result%modes%residue(k) + cmplx(step(col + 3), step(col + 4), dp)
+            pole(k) = pole(k) + cmplx(step(col + 1), step(col + 2), dp)
+            residue(k) = residue(k) + cmplx(step(col + 3), step(col + 4), dp)
         end do
-        col = 4*result%modes%n_modes()
-        if (options%upper_residual) then
+        col = 4*n
+        if (upper) then
             col = col + 1
-            result%upper_residual = result%upper_residual + step(col)
+            upper_residual = upper_residual + step(col)
         end if
-        if (options%lower_residual) result%lower_residual = result%lower_residual + step(col + 1)
-    end subroutine apply_step
+        if (lower) lower_residual = lower_residual + step(col + 1)
+    end subroutine add_parameter_step
 
     !> LSCE at order 2*n_modes with the out-of-band correction iterated to convergence:
     !> returns the physical poles and fills the drop counts of `result`.

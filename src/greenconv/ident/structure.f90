@@ -97,16 +97,15 @@ contains
     subroutine structure_from_frf(frf, options, dt, structure, error)
         !> The receptance G [m/N] on a uniform grid from 0 Hz.
         type(frf_type), intent(in) :: frf
-        !> Identification settings.
+        !> LSCE settings.
         type(lsce_options), intent(in) :: options
-        !> Time step [s] of the convolvers; 0 for the modes alone.
+        !> Time step [s] of the convolvers (a whole multiple of 1/(2*f_max)); 0 for the modes alone.
         real(dp), intent(in) :: dt
-        !> The structure.
+        !> The structure: the LSCE modes and their fit, g when dt > 0.
         type(structure_model), intent(out) :: structure
-        !> Set when the identification fails or dt does not fit the FRF grid.
+        !> Set when the grid is not the uniform grid from 0 Hz, the identification fails or dt
+        !> does not fit the grid.
         type(error_type), allocatable, intent(out) :: error
-
-        real(dp) :: start, finish
 
         if (.not. frf%uniform_from_zero()) then
             call fatal_error(error, frf%fft_grid_problem()//': the LSCE identification and g by inverse FFT need ' &
@@ -114,15 +113,8 @@ contains
                              //'for a file), which takes any increasing grid, or resample G onto that grid')
             return
         end if
-        structure%frf = frf
-        call cpu_time(start)
-        call identify(structure%frf, options, structure%fit, error)
+        call identify_timed(frf, structure, error, lsce=options)
         if (allocated(error)) return
-        call cpu_time(finish)
-        structure%cpu_time = finish - start
-        structure%method = 'lsce'
-        structure%model = sorted_by_frequency(structure%fit%modes)
-        structure%identified = .true.
         if (dt > 0.0_dp) call sample_from_frf(structure%frf, dt, structure, error)
     end subroutine structure_from_frf
 
@@ -136,28 +128,21 @@ contains
     subroutine structure_from_frf_ml(frf, options, dt, structure, error)
         !> The receptance G [m/N] on increasing frequencies >= 0 Hz.
         type(frf_type), intent(in) :: frf
-        !> Identification settings.
+        !> Maximum-likelihood settings.
         type(ml_options), intent(in) :: options
         !> Time step [s] of the convolvers; 0 for the modes alone.
         real(dp), intent(in) :: dt
-        !> The structure.
+        !> The structure: the modes with their uncertainty and the fit's diagnostics, g when dt > 0.
         type(structure_model), intent(out) :: structure
-        !> Set when the identification fails or dt does not fit the FRF grid.
+        !> Set when the identification fails or, on the uniform grid from 0 Hz, dt is not a whole
+        !> multiple of 1/(2*f_max).
         type(error_type), allocatable, intent(out) :: error
 
         type(frf_type) :: repaired
-        real(dp) :: start, finish
         integer :: l
 
-        structure%frf = frf
-        call cpu_time(start)
-        call identify_ml(structure%frf, options, structure%ml, error)
+        call identify_timed(frf, structure, error, ml=options)
         if (allocated(error)) return
-        call cpu_time(finish)
-        structure%cpu_time = finish - start
-        structure%method = 'ml'
-        structure%model = structure%ml%modes
-        structure%identified = .true.
         if (dt <= 0.0_dp) return
         if (.not. frf%uniform_from_zero()) then
             call sample_from_modes(dt, structure)
@@ -173,6 +158,43 @@ contains
         end do
         call sample_from_frf(repaired, dt, structure, error)
     end subroutine structure_from_frf_ml
+
+    !> The identification of G into a structure, by LSCE (`lsce` given) or by maximum likelihood
+    !> (`ml` given), timed: sets frf, fit or ml, method, model (sorted by frequency), identified
+    !> and cpu_time.
+    subroutine identify_timed(frf, structure, error, lsce, ml)
+        !> The receptance G [m/N].
+        type(frf_type), intent(in) :: frf
+        !> The structure to fill.
+        type(structure_model), intent(inout) :: structure
+        !> Set when the identification fails.
+        type(error_type), allocatable, intent(out) :: error
+        !> LSCE settings (LSCE fit).
+        type(lsce_options), intent(in), optional :: lsce
+        !> Maximum-likelihood settings (ML fit, when lsce is absent).
+        type(ml_options), intent(in), optional :: ml
+
+        real(dp) :: start, finish
+
+        structure%frf = frf
+        call cpu_time(start)
+        if (present(lsce)) then
+            call identify(structure%frf, lsce, structure%fit, error)
+        else
+            call identify_ml(structure%frf, ml, structure%ml, error)
+        end if
+        if (allocated(error)) return
+        call cpu_time(finish)
+        structure%cpu_time = finish - start
+        if (present(lsce)) then
+            structure%method = 'lsce'
+            structure%model = sorted_by_frequency(structure%fit%modes)
+        else
+            structure%method = 'ml'
+            structure%model = structure%ml%modes
+        end if
+        structure%identified = .true.
+    end subroutine identify_timed
 
     !> E of eq. (7) of the identified model; 1 when the structure was not identified.
     elemental real(dp) function structure_fit_e(self)

@@ -1,0 +1,521 @@
+!> Levenberg-Marquardt fit of a modal model to a weighted receptance (step 4 of
+!> greenconv_ident_mlfit's description): the model and the weighted data, the receptance of a
+!> model, chi2 and the MDL criterion, the residues by weighted linear least squares, the
+!> analytic Jacobian, the Fisher information and the covariance, and the damped Gauss-Newton
+!> iteration that keeps every pole physical (Re < 0 < Im, no narrower than narrow_band of a line).
+module greenconv_ident_lm_fit
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_ext_lapack, only: least_squares
+    use greenconv_ident_lsce, only: stack, add_parameter_step
+    implicit none
+    private
+
+    public :: model_type, data_type, narrow_band, final_tolerance
+    public :: evaluate, chi_square, n_parameters, criterion, fit, refine, reweight, information, covariance
+    public :: widened, narrowest, leave_out
+
+    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
+
+    !> Narrowest half-power band 2*xi*f of a pole, as a fraction of the line spacing df: a
+    !> narrower pole acts on a single line only (its peak), which is what a spike of noise or
+    !> an outlier line does; no sampled FRF can show such a mode. The fit keeps every pole at
+    !> least this wide, and a pole it pushes below twice this is dropped first.
+    real(dp), parameter :: narrow_band = 1.0e-3_dp
+    !> Fall of chi2 in one iteration below which the fit of the final model stops: a parameter
+    !> change of a few hundredths of its standard deviation.
+    real(dp), parameter :: final_tolerance = 1.0e-3_dp
+
+    !> A model under fit: G(omega) = sum_k [r_k/(i*omega - lambda_k) + conj(r_k)/(i*omega -
+    !> conj(lambda_k))] + R_u - R_l/omega^2.
+    type :: model_type
+        !> Poles lambda_k [rad/s] (Re < 0 < Im).
+        complex(dp), allocatable :: pole(:)
+        !> Residues r_k [m/(N*s)], one per pole.
+        complex(dp), allocatable :: residue(:)
+        !> Whether the upper residual R_u is part of the model.
+        logical :: upper = .false.
+        !> Whether the lower residual R_l is part of the model.
+        logical :: lower = .false.
+        !> Upper residual R_u [m/N].
+        real(dp) :: r_u = 0.0_dp
+        !> Lower residual R_l [1/kg] of the term -R_l/omega^2.
+        real(dp) :: r_l = 0.0_dp
+    end type model_type
+
+    !> The weighted data: lines used, G and 1/sigma on them; for the relative noise model the
+    !> level rho and the floor of sigma, to take the weights from a model's |G|.
+    type :: data_type
+        !> Angular frequency of each line used [rad/s].
+        real(dp), allocatable :: omega(:)
+        !> Weight 1/sigma_l of each line used [N/m].
+        real(dp), allocatable :: weight(:)
+        !> Smallest sigma_l of each line used [m/N] (noise_floor*|G_l|).
+        real(dp), allocatable :: floor(:)
+        !> Receptance of each line used [m/N].
+        complex(dp), allocatable :: g(:)
+        !> Index of each used line in the FRF.
+        integer, allocatable :: line(:)
+        !> MDL price of one real parameter, ln(2L) for L lines.
+        real(dp) :: penalty = 0.0_dp
+        !> Highest frequency of the FRF [Hz].
+        real(dp) :: f_max = 0.0_dp
+        !> Noise level rho of the relative noise model (sigma_l = rho*|G_l|).
+        real(dp) :: level = 0.0_dp
+        !> Smallest -Re(lambda) [1/s] of a pole: pi*narrow_band*df (a half-power band of narrow_band lines).
+        real(dp) :: min_decay = 0.0_dp
+        !> Line spacing of the FRF [Hz].
+        real(dp) :: df = 0.0_dp
+        !> Whether the weights follow the relative noise model (estimated level times |G|).
+        logical :: relative = .false.
+        !> Most Levenberg-Marquardt iterations of a fit.
+        integer :: max_iterations = 60
+        !> Most modes of a model in the order search.
+        integer :: max_modes = 0
+        !> Outlier threshold on |e_l|/sigma_l (0: no detection).
+        real(dp) :: outlier_sigma = 0.0_dp
+        !> A Levenberg-Marquardt fit stops when chi2 falls by less than this (plus 1e-10*chi2) in an iteration.
+        real(dp) :: tolerance = final_tolerance
+    end type data_type
+
+contains
+
+    !> Receptance of a model on omega [rad/s].
+    pure function evaluate(model, omega) result(g)
+        !> The model.
+        type(model_type), intent(in) :: model
+        !> Angular frequencies [rad/s].
+        real(dp), intent(in) :: omega(:)
+        !> Receptance [m/N] at each.
+        complex(dp) :: g(size(omega))
+
+        complex(dp) :: s(size(omega))
+        integer :: k
+
+        s = cmplx(0.0_dp, omega, dp)
+        g = model%r_u
+        do k = 1, size(model%pole)
+            g = g + model%residue(k)/(s - model%pole(k)) + conjg(model%residue(k))/(s - conjg(model%pole(k)))
+        end do
+        if (model%lower) g = g - model%r_l/omega**2
+    end function evaluate
+
+    !> chi2 = sum 2*|w*(G - G_model)|^2.
+    pure real(dp) function chi_square(data, model)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> The model.
+        type(model_type), intent(in) :: model
+
+        chi_square = 2.0_dp*sum(abs(data%weight*(data%g - evaluate(model, data%omega)))**2)
+    end function chi_square
+
+    !> Number of real parameters of a model.
+    elemental integer function n_parameters(model)
+        !> The model.
+        type(model_type), intent(in) :: model
+
+        n_parameters = 4*size(model%pole) + merge(1, 0, model%upper) + merge(1, 0, model%lower)
+    end function n_parameters
+
+    !> MDL criterion chi2 + P*ln(2L).
+    pure real(dp) function criterion(data, model, chi)
+        !> The weighted data (its penalty ln(2L)).
+        type(data_type), intent(in) :: data
+        !> The model (its number of parameters P).
+        type(model_type), intent(in) :: model
+        !> chi2 of the model on the data.
+        real(dp), intent(in) :: chi
+
+        criterion = chi + data%penalty*n_parameters(model)
+    end function criterion
+
+    !> Weighted linear least squares for the residues and residual terms of the model's poles.
+    subroutine fit_linear(data, model, error)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a(:, :), a_t(:, :), b(:), x(:), norms(:), gram(:, :), low(:, :)
+        complex(dp), allocatable :: column(:, :)
+        integer :: k, n, col
+        logical :: ok
+
+        n = size(model%pole)
+        allocate (column(size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
+        call linear_columns(data, model, column)
+        if (size(column, 2) == 0) then
+            if (allocated(model%residue)) deallocate (model%residue)
+            allocate (model%residue(0))
+            return
+        end if
+        a = stacked(column)
+        allocate (norms(size(a, 2)))
+        norms(:) = sqrt(sum(a**2, dim=1))
+        where (.not. (norms > 0.0_dp)) norms = 1.0_dp
+        do col = 1, size(a, 2)
+            a(:, col) = a(:, col)/norms(col)
+        end do
+        b = stack(data%weight*data%g)
+        ! Normal equations of the unit-norm columns by Cholesky (a tenth of the SVD's time);
+        ! the SVD when a pivot shows a condition beyond 1e8 (near-duplicate poles).
+        a_t = transpose(a)
+        gram = matmul(a_t, a)
+        allocate (low(size(gram, 1), size(gram, 1)))
+        call cholesky(gram, low, ok)
+        if (ok) ok = minval([(low(col, col), col=1, size(gram, 1))])**2 > 1.0e-8_dp
+        if (ok) then
+            call cholesky_solve(gram, matmul(a_t, b), x, ok)
+        end if
+        if (.not. ok) then
+            if (allocated(x)) deallocate (x)
+            allocate (x(size(a, 2)))
+            call least_squares(a, b, x, error, rcond=1.0e-13_dp)
+            if (allocated(error)) return
+        end if
+        x = x/norms
+        model%residue = [(cmplx(x(2*k - 1), x(2*k), dp), k=1, n)]
+        col = 2*n
+        if (model%upper) then
+            col = col + 1
+            model%r_u = x(col)
+        end if
+        if (model%lower) model%r_l = x(col + 1)
+    end subroutine fit_linear
+
+    !> Weighted columns of the linear part: per pole the responses to r = 1 and r = i, then
+    !> R_u and R_l.
+    pure subroutine linear_columns(data, model, column)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(in) :: model
+        complex(dp), intent(out) :: column(:, :)
+
+        complex(dp) :: s(size(data%omega)), direct(size(data%omega)), mirror(size(data%omega))
+        integer :: k, col
+
+        s = cmplx(0.0_dp, data%omega, dp)
+        do k = 1, size(model%pole)
+            direct = 1.0_dp/(s - model%pole(k))
+            mirror = 1.0_dp/(s - conjg(model%pole(k)))
+            column(:, 2*k - 1) = data%weight*(direct + mirror)
+            column(:, 2*k) = data%weight*i_unit*(direct - mirror)
+        end do
+        col = 2*size(model%pole)
+        if (model%upper) then
+            col = col + 1
+            column(:, col) = data%weight
+        end if
+        if (model%lower) column(:, col + 1) = -data%weight/data%omega**2
+    end subroutine linear_columns
+
+    !> Weighted Jacobian of G_model, columns per mode (Re lambda, Im lambda, Re r, Im r), then
+    !> R_u, R_l; real parts in rows 1..L, imaginary parts below.
+    pure subroutine jacobian(data, model, jac)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(in) :: model
+        real(dp), intent(inout) :: jac(:, :)
+
+        complex(dp) :: s(size(data%omega)), direct(size(data%omega)), mirror(size(data%omega)), r
+        integer :: k, col
+
+        s = cmplx(0.0_dp, data%omega, dp)
+        do k = 1, size(model%pole)
+            r = model%residue(k)
+            direct = data%weight/(s - model%pole(k))
+            mirror = data%weight/(s - conjg(model%pole(k)))
+            col = 4*(k - 1)
+            call put(jac, col + 1, (r*direct**2 + conjg(r)*mirror**2)/data%weight)
+            call put(jac, col + 2, i_unit*(r*direct**2 - conjg(r)*mirror**2)/data%weight)
+            call put(jac, col + 3, direct + mirror)
+            call put(jac, col + 4, i_unit*(direct - mirror))
+        end do
+        col = 4*size(model%pole)
+        if (model%upper) then
+            col = col + 1
+            call put(jac, col, cmplx(data%weight, 0.0_dp, dp))
+        end if
+        if (model%lower) call put(jac, col + 1, cmplx(-data%weight/data%omega**2, 0.0_dp, dp))
+    end subroutine jacobian
+
+    !> Column c of a stacked real matrix from complex values: [Re z; Im z].
+    pure subroutine put(jac, c, z)
+        real(dp), intent(inout) :: jac(:, :)
+        integer, intent(in) :: c
+        complex(dp), intent(in) :: z(:)
+
+        jac(1:size(z), c) = real(z, dp)
+        jac(size(z) + 1:, c) = aimag(z)
+    end subroutine put
+
+    !> A model plus a parameter step laid out as in `jacobian`.
+    pure function stepped(model, step) result(trial)
+        type(model_type), intent(in) :: model
+        real(dp), intent(in) :: step(:)
+        type(model_type) :: trial
+
+        trial = model
+        call add_parameter_step(step, model%upper, model%lower, trial%pole, trial%residue, trial%r_u, trial%r_l)
+    end function stepped
+
+    !> Fisher information 2*Re(J^H W J) and the gradient 2*Re(J^H W e) of -chi2/2.
+    subroutine information(data, model, fisher, gradient, jac, jac_t)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> The model.
+        type(model_type), intent(in) :: model
+        !> Fisher information, P x P, parameters laid out as in `jacobian` (units of 1/parameter^2).
+        real(dp), allocatable, intent(out) :: fisher(:, :)
+        !> Gradient of -chi2/2 with respect to each parameter (units of 1/parameter).
+        real(dp), allocatable, intent(out) :: gradient(:)
+        !> Work arrays for the Jacobian and its transpose, kept between calls of one fit (their
+        !> fresh allocation at every iteration cost 15 % of the time in page faults).
+        real(dp), allocatable, intent(inout) :: jac(:, :), jac_t(:, :)
+
+        real(dp), allocatable :: residual(:)
+        integer :: m, p
+
+        m = 2*size(data%g)
+        p = n_parameters(model)
+        if (allocated(jac)) then
+            if (size(jac, 1) /= m .or. size(jac, 2) /= p) deallocate (jac, jac_t)
+        end if
+        if (.not. allocated(jac)) allocate (jac(m, p), jac_t(p, m))
+        call jacobian(data, model, jac)
+        residual = stack(data%weight*(data%g - evaluate(model, data%omega)))
+        ! An explicit transposed copy: matmul(transpose(jac), jac) is three times slower (measured).
+        jac_t(:, :) = transpose(jac)
+        fisher = 2.0_dp*matmul(jac_t, jac)
+        gradient = 2.0_dp*matmul(jac_t, residual)
+    end subroutine information
+
+    !> Residues for the model's poles, then Levenberg-Marquardt (at most `iterations`).
+    subroutine fit(data, model, lm_iterations, error, iterations)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> In: the poles (and residues to start from); out: the fitted model.
+        type(model_type), intent(inout) :: model
+        !> Count of Levenberg-Marquardt iterations, increased by those of this fit.
+        integer, intent(inout) :: lm_iterations
+        !> Set when the linear least squares fail.
+        type(error_type), allocatable, intent(out) :: error
+        !> Most iterations (data%max_iterations when absent).
+        integer, intent(in), optional :: iterations
+
+        call fit_linear(data, model, error)
+        if (allocated(error)) return
+        call refine(data, model, lm_iterations, iterations)
+    end subroutine fit
+
+    !> The final refinement: for the relative noise model with the weights 1/max(rho*|G_model|,
+    !> floor) from the model rather than from the noisy |G|.
+    subroutine reweight(data, model, lm_iterations)
+        !> The weighted data (its weights replaced for the relative noise model).
+        type(data_type), intent(inout) :: data
+        !> The model, refined.
+        type(model_type), intent(inout) :: model
+        !> Count of Levenberg-Marquardt iterations, increased by those of this refinement.
+        integer, intent(inout) :: lm_iterations
+
+        if (data%relative) data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        call refine(data, model, lm_iterations)
+    end subroutine reweight
+
+    !> Levenberg-Marquardt on all parameters: the Gauss-Newton system scaled to unit diagonal,
+    !> damped by mu*I, solved by Cholesky; a step is kept when chi2 falls and every pole stays
+    !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than
+    !> data%tolerance + 1e-10*chi2 in an iteration (search_tolerance during the order search,
+    !> final_tolerance for the final model).
+    subroutine refine(data, model, lm_iterations, iterations)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> The model, refined in place.
+        type(model_type), intent(inout) :: model
+        !> Count of Levenberg-Marquardt iterations, increased by those of this refinement.
+        integer, intent(inout) :: lm_iterations
+        !> Most iterations (data%max_iterations when absent).
+        integer, intent(in), optional :: iterations
+
+        type(model_type) :: trial
+        real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:), jac(:, :), jac_t(:, :)
+        real(dp) :: chi, chi_trial, mu
+        integer :: iteration, p, small, i, last
+        logical :: ok
+
+        if (n_parameters(model) == 0) return
+        chi = chi_square(data, model)
+        mu = 1.0e-4_dp
+        small = 0
+        last = data%max_iterations
+        if (present(iterations)) last = iterations
+        do iteration = 1, last
+            call information(data, model, fisher, gradient, jac, jac_t)
+            lm_iterations = lm_iterations + 1
+            p = size(gradient)
+            if (.not. allocated(scale)) allocate (scale(p))
+            do i = 1, p
+                scale(i) = sqrt(fisher(i, i))
+            end do
+            where (.not. (scale > 0.0_dp)) scale = 1.0_dp
+            do
+                a = fisher/spread(scale, 1, p)/spread(scale, 2, p)
+                a = a + mu*identity(p)
+                call cholesky_solve(a, gradient/scale, y, ok)
+                chi_trial = huge(1.0_dp)
+                if (ok) then
+                    trial = stepped(model, y/scale)
+                    if (physical(trial, data%min_decay)) chi_trial = chi_square(data, trial)
+                end if
+                if (chi_trial < chi) exit
+                mu = 10.0_dp*mu
+                if (mu > 1.0e12_dp) return
+            end do
+            small = merge(1, 0, chi - chi_trial <= data%tolerance + 1.0e-10_dp*chi)
+            model = trial
+            chi = chi_trial
+            mu = max(0.1_dp*mu, 1.0e-12_dp)
+            if (small >= 1) exit
+        end do
+    end subroutine refine
+
+    !> Every pole with Re <= -min_decay < 0 < Im.
+    pure logical function physical(model, min_decay)
+        type(model_type), intent(in) :: model
+        !> Smallest -Re(lambda) [1/s] (> 0).
+        real(dp), intent(in) :: min_decay
+
+        physical = all(real(model%pole, dp) <= -min_decay .and. aimag(model%pole) > 0.0_dp)
+    end function physical
+
+    !> Poles moved, when needed, to the narrowest band allowed: Re(lambda) <= -min_decay.
+    elemental complex(dp) function widened(pole, min_decay)
+        !> Pole [rad/s].
+        complex(dp), intent(in) :: pole
+        !> Smallest -Re(lambda) [1/s] (> 0).
+        real(dp), intent(in) :: min_decay
+
+        widened = cmplx(min(real(pole, dp), -min_decay), aimag(pole), dp)
+    end function widened
+
+    !> Whether a pole sits within a factor 2 of the narrowest band allowed.
+    elemental logical function narrowest(pole, min_decay)
+        !> Pole [rad/s].
+        complex(dp), intent(in) :: pole
+        !> Smallest -Re(lambda) [1/s] (> 0).
+        real(dp), intent(in) :: min_decay
+
+        narrowest = -real(pole, dp) < 2.0_dp*min_decay
+    end function narrowest
+
+    !> Identity matrix of order n.
+    pure function identity(n) result(m)
+        integer, intent(in) :: n
+        real(dp) :: m(n, n)
+
+        integer :: i
+
+        m = 0.0_dp
+        do i = 1, n
+            m(i, i) = 1.0_dp
+        end do
+    end function identity
+
+    !> Cholesky factor L (lower) of a symmetric positive definite matrix; ok = .false. if it is not.
+    pure subroutine cholesky(a, low, ok)
+        real(dp), intent(in) :: a(:, :)
+        real(dp), intent(out) :: low(:, :)
+        logical, intent(out) :: ok
+
+        integer :: j, n
+        real(dp) :: d
+
+        n = size(a, 1)
+        low = 0.0_dp
+        ok = .false.
+        do j = 1, n
+            d = a(j, j) - sum(low(j, 1:j - 1)**2)
+            if (.not. (d > 0.0_dp)) return
+            low(j, j) = sqrt(d)
+            low(j + 1:n, j) = (a(j + 1:n, j) - matmul(low(j + 1:n, 1:j - 1), low(j, 1:j - 1)))/low(j, j)
+        end do
+        ok = .true.
+    end subroutine cholesky
+
+    !> Solution of A x = b for symmetric positive definite A by Cholesky.
+    pure subroutine cholesky_solve(a, b, x, ok)
+        real(dp), intent(in) :: a(:, :), b(:)
+        real(dp), allocatable, intent(out) :: x(:)
+        logical, intent(out) :: ok
+
+        real(dp) :: low(size(a, 1), size(a, 1))
+        integer :: i, n
+
+        n = size(b)
+        allocate (x(n))
+        call cholesky(a, low, ok)
+        if (.not. ok) return
+        do i = 1, n
+            x(i) = (b(i) - dot_product(low(i, 1:i - 1), x(1:i - 1)))/low(i, i)
+        end do
+        do i = n, 1, -1
+            x(i) = (x(i) - dot_product(low(i + 1:n, i), x(i + 1:n)))/low(i, i)
+        end do
+    end subroutine cholesky_solve
+
+    !> Covariance inv(F) of a symmetric positive definite F (scaled to unit diagonal first).
+    pure subroutine covariance(fisher, cov, ok)
+        !> Fisher information (units of 1/parameter^2).
+        real(dp), intent(in) :: fisher(:, :)
+        !> Its inverse, the covariance of the parameters (units of parameter^2; 0 when n = 0).
+        real(dp), allocatable, intent(out) :: cov(:, :)
+        !> False when F is not positive definite (cov then incomplete).
+        logical, intent(out) :: ok
+
+        real(dp), allocatable :: x(:)
+        real(dp) :: scale(size(fisher, 1)), a(size(fisher, 1), size(fisher, 1)), e(size(fisher, 1))
+        integer :: j, n
+
+        n = size(fisher, 1)
+        allocate (cov(n, n))
+        cov = 0.0_dp
+        ok = .true.
+        if (n == 0) return
+        scale = [(sqrt(max(fisher(j, j), tiny(1.0_dp))), j=1, n)]
+        a = fisher/spread(scale, 1, n)/spread(scale, 2, n)
+        do j = 1, n
+            e = 0.0_dp
+            e(j) = 1.0_dp
+            call cholesky_solve(a, e, x, ok)
+            if (.not. ok) return
+            cov(:, j) = x/scale/scale(j)
+        end do
+    end subroutine covariance
+
+    !> Remove one line (index in data) from the data.
+    pure subroutine leave_out(data, line)
+        !> The weighted data, without the line on return (its penalty ln(2L) updated).
+        type(data_type), intent(inout) :: data
+        !> Index of the line in data.
+        integer, intent(in) :: line
+
+        logical :: keep(size(data%g))
+
+        keep = .true.
+        keep(line) = .false.
+        data%line = pack(data%line, keep)
+        data%omega = pack(data%omega, keep)
+        data%g = pack(data%g, keep)
+        data%weight = pack(data%weight, keep)
+        data%floor = pack(data%floor, keep)
+        data%penalty = log(2.0_dp*size(data%g))
+    end subroutine leave_out
+
+    !> Real and imaginary parts of each column stacked: [Re; Im].
+    pure function stacked(z) result(a)
+        complex(dp), intent(in) :: z(:, :)
+        real(dp) :: a(2*size(z, 1), size(z, 2))
+
+        a(1:size(z, 1), :) = real(z, dp)
+        a(size(z, 1) + 1:, :) = aimag(z)
+    end function stacked
+
+end module greenconv_ident_lm_fit

@@ -1,0 +1,222 @@
+!> The noise of a receptance and the weighted data of the maximum-likelihood fit (step 1 of
+!> greenconv_ident_mlfit's description): the noise level from the smoothness of G, the smoothed
+!> |G| of the relative noise model's weights, the lines left out (0 Hz with a lower residual,
+!> outliers) and their weights 1/sigma_l; also the lines that are gross outliers before any fit
+!> (repaired by their neighbours' cubic) and the line spacing of a grid.
+module greenconv_ident_noise_model
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_sorting, only: median
+    use greenconv_model_frf, only: frf_type
+    use greenconv_ident_ml_types, only: ml_options, ml_result
+    use greenconv_ident_lm_fit, only: data_type, narrow_band
+    implicit none
+    private
+
+    public :: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, interpolated
+    public :: line_spacing, spacing_at
+
+    real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
+    real(dp), parameter :: two_pi = 2.0_dp*pi
+
+    !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
+    real(dp), parameter :: gross_ratio = 1.0e100_dp
+
+contains
+
+    !> Noise level of a receptance from the smoothness of G (step 1 of greenconv_ident_mlfit's description):
+    !> rho with sigma_l = rho*|G_l| for 'relative', sigma [m/N] for 'absolute'.
+    pure real(dp) function estimate_noise(receptance, noise_model) result(level)
+        !> Receptance lines [m/N] on a uniform grid (at least 5).
+        complex(dp), intent(in) :: receptance(:)
+        !> 'relative' or 'absolute'.
+        character(len=*), intent(in) :: noise_model
+
+        real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
+        real(dp) :: q(size(receptance) - 4), m
+        complex(dp) :: d
+        integer :: l
+
+        do l = 1, size(q)
+            d = sum(c*receptance(l:l + 4))
+            if (noise_model == 'absolute') then
+                q(l) = abs(d)**2
+            else
+                ! Scaled by the largest |G| of the five lines: no overflow for any finite G.
+                m = max(maxval(abs(receptance(l:l + 4))), tiny(1.0_dp))
+                q(l) = abs(d/m)**2/max(sum(c**2*abs(receptance(l:l + 4)/m)**2), tiny(1.0_dp))
+            end if
+        end do
+        level = sqrt(median(q)/log(2.0_dp))
+    end function estimate_noise
+
+    !> sqrt of the mean of |G|^2 over each line and its two neighbours on each side: the scale
+    !> of the relative noise model during the order search, with the noise of |G| in the
+    !> weights reduced by sqrt(5) and no dependence on a model (a model-based weight would
+    !> have to be refitted after every change of the model). Each |G| is first clipped at ten
+    !> times the median of the five, so that one outlier line neither hides among its
+    !> neighbours' weights nor takes their weight away.
+    pure function smoothed_magnitude(g) result(m)
+        !> Receptance lines [m/N].
+        complex(dp), intent(in) :: g(:)
+        !> Smoothed |G| per line [m/N].
+        real(dp) :: m(size(g))
+
+        real(dp) :: window(5), top
+        integer :: l, n, first, last
+
+        n = size(g)
+        do l = 1, n
+            first = max(1, l - 2)
+            last = min(n, l + 2)
+            window(:last - first + 1) = abs(g(first:last))
+            associate (w => window(:last - first + 1))
+                w = min(w, 10.0_dp*median(w))
+                top = max(maxval(w), tiny(1.0_dp))
+                m(l) = top*sqrt(sum((w/top)**2)/size(w))
+            end associate
+        end do
+    end function smoothed_magnitude
+
+    !> The weighted data: the noise standard deviation per line (given, or estimated from the
+    !> receptance), the lines used (a 0 Hz line is left out when a lower residual may be
+    !> fitted, outlier lines always), their weights 1/sigma_l and the MDL price per parameter ln(2L).
+    subroutine prepare_data(frf, outliers, skip_zero, options, result, data)
+        !> The receptance, outlier lines already replaced by their neighbours' interpolation.
+        type(frf_type), intent(in) :: frf
+        !> Lines left out (indices into frf%frequency).
+        integer, intent(in) :: outliers(:)
+        !> Whether a 0 Hz line is left out (a lower residual may be fitted).
+        logical, intent(in) :: skip_zero
+        !> Settings: the noise given or its model, the floor, max_iterations.
+        type(ml_options), intent(in) :: options
+        !> The result: noise_level and noise_estimated are set.
+        type(ml_result), intent(inout) :: result
+        !> The weighted data.
+        type(data_type), intent(out) :: data
+
+        real(dp) :: sigma(frf%n_freq()), floor(frf%n_freq())
+        logical :: used(frf%n_freq())
+        integer :: l
+
+        floor(:) = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
+        result%noise_level = 1.0_dp
+        result%noise_estimated = .not. allocated(options%sigma)
+        if (allocated(options%sigma)) then
+            sigma(:) = options%sigma
+        else
+            result%noise_level = estimate_noise(frf%receptance, options%noise_model)
+            if (options%noise_model == 'absolute') then
+                sigma(:) = result%noise_level
+            else
+                sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
+            end if
+        end if
+        sigma(:) = max(sigma, floor)
+        used(:) = .true.
+        if (skip_zero .and. frf%frequency(1) == 0.0_dp) used(1) = .false.
+        used(outliers) = .false.
+        data%line = pack([(l, l=1, frf%n_freq())], used)
+        data%omega = two_pi*frf%frequency(data%line)
+        data%g = frf%receptance(data%line)
+        data%weight = 1.0_dp/sigma(data%line)
+        data%floor = floor(data%line)
+        data%penalty = log(2.0_dp*size(data%g))
+        data%f_max = frf%f_max()
+        data%df = line_spacing(frf)
+        data%min_decay = pi*narrow_band*data%df
+        data%max_iterations = options%max_iterations
+        data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
+        data%level = result%noise_level
+    end subroutine prepare_data
+
+    !> Lines whose |G| exceeds the median |G| of the nonzero lines above 0 Hz by more than
+    !> gross_ratio: no receptance spans that many decades, and the sums of squares of the
+    !> diagram and the fit would overflow on them. They are recorded as outliers and replaced by
+    !> their neighbours' interpolation before anything else.
+    subroutine gross_outliers(frf, result)
+        !> The receptance, its gross outliers replaced on return.
+        type(frf_type), intent(inout) :: frf
+        !> The result: the outliers are appended to outlier_line, outlier_frequency, outlier_excess.
+        type(ml_result), intent(inout) :: result
+
+        real(dp) :: magnitude(frf%n_freq() - 1), typical
+        integer :: l
+
+        magnitude(:) = abs(frf%receptance(2:))
+        if (.not. any(magnitude > 0.0_dp)) return
+        typical = median(pack(magnitude, magnitude > 0.0_dp))
+        do l = 1, frf%n_freq()
+            if (.not. (abs(frf%receptance(l)) > gross_ratio*typical)) cycle
+            result%outlier_line = [result%outlier_line, l]
+            result%outlier_frequency = [result%outlier_frequency, frf%frequency(l)]
+            result%outlier_excess = [result%outlier_excess, 0.0_dp]
+        end do
+        do l = 1, size(result%outlier_line)
+            frf%receptance(result%outlier_line(l)) = interpolated(frf%receptance, result%outlier_line, &
+                                                                  result%outlier_line(l))
+        end do
+    end subroutine gross_outliers
+
+    !> The value of an outlier line from its neighbours: the cubic through the two lines on
+    !> each side, (-G(l-2) + 4*G(l-1) + 4*G(l+1) - G(l+2))/6, or the mean of the nearest good
+    !> lines when the cubic's are not all available (an edge, another outlier).
+    pure complex(dp) function interpolated(g, outliers, l) result(value)
+        !> Receptance lines [m/N].
+        complex(dp), intent(in) :: g(:)
+        !> Lines that are outliers (not used for the value).
+        integer, intent(in) :: outliers(:)
+        !> The line whose value [m/N] is wanted.
+        integer, intent(in) :: l
+
+        integer :: j, n_good
+        logical :: good(-2:2)
+
+        do j = -2, 2
+            good(j) = l + j >= 1 .and. l + j <= size(g)
+            if (good(j)) good(j) = .not. any(outliers == l + j)
+        end do
+        good(0) = .false.
+        if (all(good([-2, -1, 1, 2]))) then
+            value = (-g(l - 2) + 4.0_dp*g(l - 1) + 4.0_dp*g(l + 1) - g(l + 2))/6.0_dp
+            return
+        end if
+        value = (0.0_dp, 0.0_dp)
+        n_good = 0
+        do j = -2, 2
+            if (.not. good(j)) cycle
+            value = value + g(l + j)
+            n_good = n_good + 1
+        end do
+        if (n_good > 0) value = value/n_good
+    end function interpolated
+
+    !> Line spacing of the data [Hz]: df on the uniform grid from 0 Hz, else the smallest
+    !> spacing between two lines (the narrowest pole a line can still see is set by it).
+    pure real(dp) function line_spacing(frf)
+        !> The receptance's grid.
+        type(frf_type), intent(in) :: frf
+
+        if (frf%uniform_from_zero()) then
+            line_spacing = frf%df()
+        else
+            line_spacing = minval(frf%frequency(2:) - frf%frequency(:frf%n_freq() - 1))
+        end if
+    end function line_spacing
+
+    !> Spacing of the lines around frequency f [Hz]: the mean of the two intervals beside
+    !> the line nearest f (the one interval at an end of the grid).
+    pure real(dp) function spacing_at(frf, f)
+        !> The receptance's grid.
+        type(frf_type), intent(in) :: frf
+        !> Frequency [Hz].
+        real(dp), intent(in) :: f
+
+        integer :: l, low, high
+
+        l = minloc(abs(frf%frequency - f), 1)
+        low = max(l - 1, 1)
+        high = min(l + 1, frf%n_freq())
+        spacing_at = (frf%frequency(high) - frf%frequency(low))/(high - low)
+    end function spacing_at
+
+end module greenconv_ident_noise_model
