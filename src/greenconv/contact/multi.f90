@@ -35,7 +35,7 @@ module greenconv_contact_multi
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_ext_lapack, only: solve_linear
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_rows, only: keep_first
+    use greenconv_contact_rows, only: keep_first, keep_all
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
@@ -191,7 +191,9 @@ contains
             if (.not. allocated(error)) call divergence_guard(u, response%force(j, :), state%settings, error)
             if (allocated(error)) then
                 error%message = error%message//' at step '//int_text(n)//' (t = '//sci_text(n*conv%dt)//' s)'
-                call keep_rows(response, j)
+                call keep_all(j, response%time, response%total_force)
+                call keep_first(response%iterations, j)
+                call keep_all(j, response%road, response%displacement, response%force, response%compression)
                 state%step = n
                 return
             end if
@@ -351,19 +353,5 @@ contains
         allocate (response%road(0:n_t - 1, n_c), response%displacement(0:n_t - 1, n_c), &
                   response%force(0:n_t - 1, n_c), response%compression(0:n_t - 1, n_c))
     end subroutine allocate_response
-
-    !> Shrink the histories to their first n_done steps.
-    subroutine keep_rows(response, n_done)
-        type(multi_contact_response), intent(inout) :: response
-        integer, intent(in) :: n_done
-
-        call keep_first(response%time, n_done)
-        call keep_first(response%total_force, n_done)
-        call keep_first(response%iterations, n_done)
-        call keep_first(response%road, n_done)
-        call keep_first(response%displacement, n_done)
-        call keep_first(response%force, n_done)
-        call keep_first(response%compression, n_done)
-    end subroutine keep_rows
 
 end module greenconv_contact_multi

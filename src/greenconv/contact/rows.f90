@@ -6,7 +6,7 @@ module greenconv_contact_rows
     implicit none
     private
 
-    public :: keep_first
+    public :: keep_first, keep_all
 
     !> values(0:n-1) (a history per step) or values(0:n-1, :) (per step and point), reallocated
     !> only when it is not that already; an unallocated history gets n = 0 rows.
@@ -14,7 +14,43 @@ module greenconv_contact_rows
         module procedure keep_first_real, keep_first_table, keep_first_count
     end interface keep_first
 
+    !> The first n rows of several histories of one response at once, all per step or all
+    !> per step and point (those absent skipped).
+    interface keep_all
+        module procedure keep_all_real, keep_all_table
+    end interface keep_all
+
 contains
+
+    !> keep_first on up to four histories per step.
+    subroutine keep_all_real(n, first, second, third, fourth)
+        !> Rows to keep, >= 0.
+        integer, intent(in) :: n
+        !> A history per step [any unit].
+        real(dp), allocatable, intent(inout) :: first(:)
+        !> More histories per step, or absent.
+        real(dp), allocatable, intent(inout), optional :: second(:), third(:), fourth(:)
+
+        call keep_first(first, n)
+        if (present(second)) call keep_first(second, n)
+        if (present(third)) call keep_first(third, n)
+        if (present(fourth)) call keep_first(fourth, n)
+    end subroutine keep_all_real
+
+    !> keep_first on up to four histories per step and point.
+    subroutine keep_all_table(n, first, second, third, fourth)
+        !> Rows to keep, >= 0.
+        integer, intent(in) :: n
+        !> A history per step and point [any unit].
+        real(dp), allocatable, intent(inout) :: first(:, :)
+        !> More histories per step and point, or absent.
+        real(dp), allocatable, intent(inout), optional :: second(:, :), third(:, :), fourth(:, :)
+
+        call keep_first(first, n)
+        if (present(second)) call keep_first(second, n)
+        if (present(third)) call keep_first(third, n)
+        if (present(fourth)) call keep_first(fourth, n)
+    end subroutine keep_all_table
 
     !> The first n values of a real history [any unit].
     subroutine keep_first_real(values, n)

@@ -63,7 +63,7 @@ module greenconv_contact_single
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_conv_convolver, only: convolver
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_rows, only: keep_first
+    use greenconv_contact_rows, only: keep_first, keep_all
     implicit none
     private
 
@@ -447,10 +447,7 @@ contains
         type(contact_response), intent(inout) :: response
         integer, intent(in) :: n_done
 
-        call keep_first(response%time, n_done)
-        call keep_first(response%road, n_done)
-        call keep_first(response%displacement, n_done)
-        call keep_first(response%force, n_done)
+        call keep_all(n_done, response%time, response%road, response%displacement, response%force)
         call keep_first(response%compression, n_done)
     end subroutine keep_rows
 
