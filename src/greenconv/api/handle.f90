@@ -475,7 +475,7 @@ contains
         type(modal_set), intent(out) :: modes
         !> Error E of eq. (7) of the fit; 0 on failure.
         real(dp), intent(out) :: e
-        !> Set when the file is unusable (`stat_input`) or the fit fails (`stat_numerical`).
+        !> Set for a file that cannot be read (`stat_input`) or a fit that fails (`stat_numerical`).
         type(error_type), allocatable, intent(out) :: error
 
         type(frf_type) :: frf

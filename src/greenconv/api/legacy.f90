@@ -334,11 +334,11 @@ contains
         real(dp), intent(in) :: f0
         !> Road height u_r(t_n) [m].
         real(dp), intent(in) :: road
-        !> Body displacement u(t_n) [m] from static equilibrium.
+        !> The body's displacement u(t_n) [m] from static equilibrium; 0 on failure.
         real(dp), intent(out) :: u
-        !> Contact force F(t_n) [N], >= 0.
+        !> The contact force F(t_n) [N], >= 0; 0 on failure.
         real(dp), intent(out) :: f
-        !> Compression delta(t_n) [m] of the contact spring (<= 0: no contact).
+        !> The spring's compression delta(t_n) [m] (<= 0: no contact); 0 on failure.
         real(dp), intent(out) :: delta
         !> Status: 0 success, 2 null handle or bad contact law.
         integer, intent(out) :: ierr
