@@ -135,16 +135,11 @@ contains
         integer, intent(in) :: kind
         character(len=:), allocatable :: name
 
-        select case (kind)
-        case (uff_receptance)
-            name = 'receptance'
-        case (uff_mobility)
-            name = 'mobility'
-        case (uff_accelerance)
-            name = 'accelerance'
-        case default
-            name = 'other'
-        end select
+        character(len=*), parameter :: names(uff_other:uff_accelerance) = [character(len=11) :: 'other', &
+            'receptance', 'mobility', 'accelerance']
+
+        name = 'other'
+        if (kind >= lbound(names, 1) .and. kind <= ubound(names, 1)) name = trim(names(kind))
     end function uff_kind_name
 
     !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
