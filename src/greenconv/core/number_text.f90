@@ -5,7 +5,7 @@ module greenconv_core_number_text
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
-    use greenconv_core_text, only: lower_text, sci_digits
+    use greenconv_core_text, only: lower_text, trimmed_real_text
     implicit none
     private
 
@@ -129,30 +129,7 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
 
-        character(len=32) :: buffer
-        integer :: mark, last
-
-        if (abs(x) < tiny(x) .or. (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp)) then
-            write (buffer, '(f0.6)') x
-            text = trim(buffer)
-            last = len(text)
-            do while (text(last:last) == '0')
-                last = last - 1
-            end do
-            if (text(last:last) == '.') last = last + 1
-            text = text(:last)
-            if (text(1:1) == '.') text = '0'//text
-            if (text(1:2) == '-.') text = '-0'//text(2:)
-        else
-            text = sci_digits(x, 5)
-            mark = index(text, 'E')
-            if (mark == 0) return
-            last = mark - 1
-            do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
-                last = last - 1
-            end do
-            text = text(:last)//text(mark:)
-        end if
+        text = trimmed_real_text(x, 1.0e-3_dp, 1.0e6_dp, 6, 5)
     end function compact_real
 
 end module greenconv_core_number_text

@@ -5,7 +5,7 @@ module greenconv_core_text
     implicit none
     private
 
-    public :: int_text, real_text, sci_text, lower_text, exact_text, sci_digits
+    public :: int_text, real_text, sci_text, lower_text, exact_text, sci_digits, trimmed_real_text
 
     !> An integer (default or 64-bit) as text, without blanks.
     interface int_text
@@ -44,14 +44,36 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
 
+        text = trimmed_real_text(x, 0.1_dp, 1.0e7_dp, 9, 9)
+    end function real_text
+
+    !> A real without blanks, its digits without trailing zeros (one kept after the point):
+    !> in plain notation with `plain_digits` decimals when it is zero or low <= |x| < high
+    !> (`10.0`, `0.02`), else in scientific notation with `science_digits` digits after the
+    !> point (`1.5E+09`). Non-finite values are written as Fortran writes them.
+    pure function trimmed_real_text(x, low, high, plain_digits, science_digits) result(text)
+        !> The real.
+        real(dp), intent(in) :: x
+        !> Smallest magnitude written plainly (zero aside), in the unit of x.
+        real(dp), intent(in) :: low
+        !> Magnitude from which on x is written in scientific notation, in the unit of x.
+        real(dp), intent(in) :: high
+        !> Decimals of the plain notation before the zeros are removed (0 to 20).
+        integer, intent(in) :: plain_digits
+        !> Digits after the point of the scientific notation before the zeros are removed.
+        integer, intent(in) :: science_digits
+        character(len=:), allocatable :: text
+
         character(len=32) :: buffer
+        character(len=12) :: form
         integer :: mark, last
 
-        if (abs(x) < tiny(x) .or. (abs(x) >= 0.1_dp .and. abs(x) < 1.0e7_dp)) then
-            write (buffer, '(f0.9)') x
+        if (abs(x) < tiny(x) .or. (abs(x) >= low .and. abs(x) < high)) then
+            write (form, '(a,i0,a)') '(f0.', plain_digits, ')'
+            write (buffer, form) x
             text = trim(adjustl(buffer))
         else
-            text = sci_digits(x, 9)
+            text = sci_digits(x, science_digits)
         end if
         if (text(1:1) == '.') text = '0'//text
         if (text(1:2) == '-.') text = '-0'//text(2:)
@@ -62,7 +84,7 @@ contains
             last = last - 1
         end do
         text = text(:last)//text(mark:)
-    end function real_text
+    end function trimmed_real_text
 
     !> A real in short scientific notation (three significant digits), without blanks.
     pure function sci_text(x) result(text)

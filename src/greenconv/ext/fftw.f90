@@ -13,9 +13,10 @@
 !>
 !> so inverse(forward(y)) = n*y. Scaling to physical units is the caller's business.
 !>
-!> One-shot transforms (`forward_real_fft`, `inverse_real_fft`): each call creates its
-!> plan with FFTW_ESTIMATE (which never overwrites the arrays while planning), executes it
-!> on private contiguous copies and destroys it. Simple and correct for occasional use.
+!> One-shot transforms (`forward_real_fft`, `inverse_real_fft`): each call copies its data
+!> to private contiguous arrays, makes the plan pair of a plan set for arrays placed as
+!> these are (FFTW_ESTIMATE, see below), executes the plan it needs and destroys both.
+!> Simple and correct for occasional use.
 !>
 !> Repeated transforms (`fft_plan_set`, used by the partitioned FFT convolver): an object
 !> owns the plans it executes, applied to the caller's arrays with FFTW's new-array
@@ -175,27 +176,15 @@ contains
         !> Set on a size mismatch or when FFTW cannot plan the transform.
         type(error_type), allocatable, intent(out) :: error
 
-        real(c_double), allocatable :: input(:)
-        complex(c_double_complex), allocatable :: output(:)
-        type(c_ptr) :: plan
-        integer :: n
+        real(c_double), allocatable, target :: input(:)
+        complex(c_double_complex), allocatable, target :: output(:)
+        type(plan_pair) :: plans
 
-        n = size(samples)
-        if (n < 1 .or. size(spectrum) /= n/2 + 1) then
-            call fatal_error(error, 'forward_real_fft: expected n/2 + 1 spectrum lines for n samples', stat_numerical)
-            return
-        end if
-        allocate (input(n), output(n/2 + 1))
-        !$omp critical (greenconv_fftw_planner)
-        plan = fftw_plan_dft_r2c_1d(int(n, c_int), input, output, fftw_estimate)
-        !$omp end critical (greenconv_fftw_planner)
-        if (.not. c_associated(plan)) then
-            call fatal_error(error, 'forward_real_fft: FFTW could not plan the transform', stat_numerical)
-            return
-        end if
+        call plan_once('forward_real_fft', size(samples), size(spectrum), input, output, plans, error)
+        if (allocated(error)) return
         input(:) = samples
-        call fftw_execute_dft_r2c(plan, input, output)
-        call destroy_plan(plan)
+        call fftw_execute_dft_r2c(plans%forward, input, output)
+        call destroy_pair(plans)
         spectrum(:) = output
     end subroutine forward_real_fft
 
@@ -209,29 +198,40 @@ contains
         !> Set on a size mismatch or when FFTW cannot plan the transform.
         type(error_type), allocatable, intent(out) :: error
 
-        complex(c_double_complex), allocatable :: input(:)
-        real(c_double), allocatable :: output(:)
-        type(c_ptr) :: plan
-        integer :: n
+        complex(c_double_complex), allocatable, target :: input(:)
+        real(c_double), allocatable, target :: output(:)
+        type(plan_pair) :: plans
 
-        n = size(samples)
-        if (n < 1 .or. size(spectrum) /= n/2 + 1) then
-            call fatal_error(error, 'inverse_real_fft: expected n/2 + 1 spectrum lines for n samples', stat_numerical)
-            return
-        end if
-        allocate (input(n/2 + 1), output(n))
-        !$omp critical (greenconv_fftw_planner)
-        plan = fftw_plan_dft_c2r_1d(int(n, c_int), input, output, fftw_estimate)
-        !$omp end critical (greenconv_fftw_planner)
-        if (.not. c_associated(plan)) then
-            call fatal_error(error, 'inverse_real_fft: FFTW could not plan the transform', stat_numerical)
-            return
-        end if
+        call plan_once('inverse_real_fft', size(samples), size(spectrum), output, input, plans, error)
+        if (allocated(error)) return
         input(:) = spectrum
-        call fftw_execute_dft_c2r(plan, input, output)
-        call destroy_plan(plan)
+        call fftw_execute_dft_c2r(plans%inverse, input, output)
+        call destroy_pair(plans)
         samples(:) = output
     end subroutine inverse_real_fft
+
+    !> For a one-shot transform (`name`, for messages) of n real samples and m lines: check
+    !> m = n/2 + 1, allocate the private contiguous copies `real_array` (n) and
+    !> `complex_array` (m), and plan both transforms for arrays placed as they are.
+    subroutine plan_once(name, n, m, real_array, complex_array, plans, error)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: n, m
+        real(c_double), allocatable, target, intent(out) :: real_array(:)
+        complex(c_double_complex), allocatable, target, intent(out) :: complex_array(:)
+        type(plan_pair), intent(out) :: plans
+        type(error_type), allocatable, intent(out) :: error
+
+        if (n < 1 .or. m /= n/2 + 1) then
+            call fatal_error(error, name//': expected n/2 + 1 spectrum lines for n samples', stat_numerical)
+            return
+        end if
+        allocate (real_array(n), complex_array(m))
+        call make_plans(n, offset_of(c_loc(real_array)), offset_of(c_loc(complex_array)), plans)
+        if (.not. (c_associated(plans%forward) .and. c_associated(plans%inverse))) then
+            call destroy_pair(plans)
+            call fatal_error(error, name//': FFTW could not plan the transform', stat_numerical)
+        end if
+    end subroutine plan_once
 
     !> Forward real DFT by this set's plan, out-of-place, n = size(samples):
     !> spectrum(k+1) = sum_j samples(j+1)*exp(-2*pi*i*j*k/n), k = 0..n/2.
@@ -296,8 +296,7 @@ contains
 
         if (owns_plans(self)) then
             do i = 1, self%count
-                call destroy_plan(self%pairs(i)%forward)
-                call destroy_plan(self%pairs(i)%inverse)
+                call destroy_pair(self%pairs(i))
             end do
         end if
         self%pairs(:) = plan_pair()
@@ -353,8 +352,7 @@ contains
         if (self%count == max_pairs) return
         call make_plans(n, real_offset, complex_offset, entry)
         if (.not. (c_associated(entry%forward) .and. c_associated(entry%inverse))) then
-            call destroy_plan(entry%forward)
-            call destroy_plan(entry%inverse)
+            call destroy_pair(entry)
             return
         end if
         call append(self, entry)
@@ -371,6 +369,14 @@ contains
         !$omp end critical (greenconv_fftw_planner)
         plan = c_null_ptr
     end subroutine destroy_plan
+
+    !> Destroy both plans of a pair (nothing for a null one).
+    subroutine destroy_pair(pair)
+        type(plan_pair), intent(inout) :: pair
+
+        call destroy_plan(pair%forward)
+        call destroy_plan(pair%inverse)
+    end subroutine destroy_pair
 
     !> Byte offset of an address modulo `period`.
     function offset_of(address) result(offset)

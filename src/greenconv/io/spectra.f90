@@ -131,9 +131,7 @@ contains
         !> Frequency [Hz].
         real(dp), intent(in) :: f
 
-        first_band = ceiling(10.0_dp*log10(f/1000.0_dp) - 1.0e-9_dp)
-        ! the nominal names round the exact centres by up to 1.5 %
-        if (nominal_frequency(band_centre(first_band - 1)) >= f) first_band = first_band - 1
+        first_band = edge_band(f, -1)
     end function first_band
 
     !> The highest band whose centre is at or below f [Hz] (> 0); a centre given by its
@@ -142,9 +140,21 @@ contains
         !> Frequency [Hz].
         real(dp), intent(in) :: f
 
-        last_band = floor(10.0_dp*log10(f/1000.0_dp) + 1.0e-9_dp)
-        if (nominal_frequency(band_centre(last_band + 1)) <= f) last_band = last_band + 1
+        last_band = edge_band(f, 1)
     end function last_band
+
+    !> The band nearest f [Hz] (> 0) on the side `side` of it: -1 the lowest band whose centre
+    !> is at or above f, +1 the highest at or below f; a centre given by its nominal, rounded
+    !> value counts as that band. With side = -1, side*floor(side*y + 1e-9) is
+    !> ceiling(y - 1e-9) exactly (negation is exact, so is rounding of a negated sum).
+    pure integer function edge_band(f, side)
+        real(dp), intent(in) :: f
+        integer, intent(in) :: side
+
+        edge_band = side*floor(side*(10.0_dp*log10(f/1000.0_dp)) + 1.0e-9_dp)
+        ! the nominal names round the exact centres by up to 1.5 %
+        if (side*nominal_frequency(band_centre(edge_band + side)) <= side*f) edge_band = edge_band + side
+    end function edge_band
 
     !> The nominal centre frequency [Hz] of a band (IEC 61260-1, annex E): its exact centre
     !> rounded to the preferred numbers 1, 1.25, 1.6, 2, 2.5, 3.15, 4, 5, 6.3, 8 times a power

@@ -23,6 +23,7 @@ module greenconv_model_green_matrix_file
     use greenconv_core_text, only: int_text, real_text
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_io_uff, only: uff_file, read_uff
+    use greenconv_model_modal_set, only: sorted_order
     implicit none
     private
 
@@ -223,26 +224,9 @@ contains
             label = responses(k)
             if (any(references == label) .and. .not. any(nodes == label)) nodes = [nodes, label]
         end do
-        call sort_labels(nodes)
+        ! the labels are integers, exact as reals
+        nodes = nodes(sorted_order(real(nodes, dp)))
     end subroutine contact_nodes
-
-    !> Ascending insertion sort of node labels.
-    pure subroutine sort_labels(labels)
-        integer, intent(inout) :: labels(:)
-
-        integer :: i, j, t
-
-        do i = 2, size(labels)
-            t = labels(i)
-            j = i - 1
-            do while (j >= 1)
-                if (labels(j) <= t) exit
-                labels(j + 1) = labels(j)
-                j = j - 1
-            end do
-            labels(j + 1) = t
-        end do
-    end subroutine sort_labels
 
     !> x_i, y_i of every point from the file's nodes.
     subroutine point_layout(file, matrix, error)

@@ -15,7 +15,7 @@ module greenconv_model_modal_set
     implicit none
     private
 
-    public :: modal_set, modes_from_paper, random_modes, sorted_by_frequency
+    public :: modal_set, modes_from_paper, random_modes, sorted_by_frequency, sorted_order
 
     !> A set of modes in pole-residue form (see the module description for the convention).
     type :: modal_set
@@ -101,9 +101,12 @@ contains
         sorted%residue = modes%residue(order)
     end function sorted_by_frequency
 
-    !> Indices that sort `values` ascending (insertion sort: the sets are small).
+    !> Indices that sort `values` ascending, equal values in their order (a stable insertion
+    !> sort: the sets are small).
     pure function sorted_order(values) result(order)
+        !> The values to sort (any unit).
         real(dp), intent(in) :: values(:)
+        !> values(order) is ascending.
         integer :: order(size(values))
 
         integer :: i, j, item

@@ -67,7 +67,7 @@ module greenconv_model_plate
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text, int_text
     use greenconv_model_modal_set, only: modes_from_paper
-    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_point_modes, only: point_modes, check_on_belt
     use greenconv_model_tyre, only: contact_positions
     implicit none
     private
@@ -333,13 +333,10 @@ contains
         if (allocated(error)) return
         if (size(x) < 1 .or. size(y) /= size(x)) then
             call fatal_error(error, 'plate model: expected at least one contact point and as many y as x positions')
-        else if (any(x < 0.0_dp .or. x > plate%length)) then
-            call fatal_error(error, 'plate model: contact points must lie on the belt, 0 <= x <= L = ' &
-                             //real_text(plate%length)//' m')
-        else if (any(y < 0.0_dp .or. y > plate%width)) then
-            call fatal_error(error, 'plate model: contact points must lie on the belt, 0 <= y <= b = ' &
-                             //real_text(plate%width)//' m')
+            return
         end if
+        call check_on_belt('plate', 'x', 'L', x, plate%length, error)
+        if (.not. allocated(error)) call check_on_belt('plate', 'y', 'b', y, plate%width, error)
     end subroutine check_points
 
 end module greenconv_model_plate

@@ -7,11 +7,13 @@
 !> a mode of unit modal mass, r_k = 1/(2i*omega_k^d) [1/(kg*s)] and phi_ik is in 1/sqrt(kg).
 module greenconv_model_point_modes
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: real_text
     use greenconv_model_modal_set, only: modal_set
     implicit none
     private
 
-    public :: point_modes
+    public :: point_modes, check_on_belt
 
     !> Modes shared by N_c points: g_ij(t) = sum_k phi_ik*phi_jk*2*Re(r_k*exp(lambda_k*t)).
     type :: point_modes
@@ -55,5 +57,27 @@ contains
                                  *real(self%modes%residue*exp(self%modes%pole*t), kind=dp))
     end function modes_green
 
+    !> An error unless every contact point lies on the belt of an analytic model in one
+    !> coordinate, 0 <= value <= extent; the message names the model, the coordinate and
+    !> the symbol of the extent (`tyre`, `x`, `L`).
+    pure subroutine check_on_belt(model, coordinate, symbol, values, extent, error)
+        !> Name of the model (`tyre`, `plate`).
+        character(len=*), intent(in) :: model
+        !> Name of the coordinate (`x`, `y`).
+        character(len=*), intent(in) :: coordinate
+        !> Symbol of the belt's extent in that coordinate (`L`, `b`).
+        character(len=*), intent(in) :: symbol
+        !> The coordinate of every contact point [m].
+        real(dp), intent(in) :: values(:)
+        !> The belt's extent in that coordinate [m].
+        real(dp), intent(in) :: extent
+        !> Set (status 2) when a point lies off the belt.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (any(values < 0.0_dp .or. values > extent)) then
+            call fatal_error(error, model//' model: contact points must lie on the belt, 0 <= '//coordinate//' <= ' &
+                             //symbol//' = '//real_text(extent)//' m')
+        end if
+    end subroutine check_on_belt
 
 end module greenconv_model_point_modes

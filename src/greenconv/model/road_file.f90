@@ -20,7 +20,7 @@ module greenconv_model_road_file
     private
 
     public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
-    public :: travel_span, locate
+    public :: travel_span, locate, check_run_span
 
     !> A road profile: heights at increasing positions, linear in between.
     type :: road_file
@@ -199,17 +199,29 @@ contains
         !> Set when some x_i + V*t_n lies outside the file.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: span(2), x_first, x_last
-
-        span = travel_span(positions, speed, dt, n_steps)
-        x_first = span(1)
-        x_last = span(2)
-        if (.not. road%covers(x_first, x_last)) then
-            call fatal_error(error, road%path//': expected a road from x = '//real_text(x_first)//' m to ' &
-                             //real_text(x_last)//' m (the run), found '//real_text(road%x(1))//' m to ' &
-                             //real_text(road%x(size(road%x)))//' m')
-        end if
+        call check_run_span(road%path, 'road', road%x, travel_span(positions, speed, dt, n_steps), error)
     end subroutine check_road_coverage
+
+    !> An error when a run visits positions beyond the data along the road: `what` (`road`,
+    !> `texture`) of file `path` spans grid(1) to grid(n) [m], the run `span` [m].
+    subroutine check_run_span(path, what, grid, span, error)
+        !> File of the data (for the message).
+        character(len=*), intent(in) :: path
+        !> Name of the data in the message.
+        character(len=*), intent(in) :: what
+        !> Positions x [m] of the data, increasing.
+        real(dp), intent(in) :: grid(:)
+        !> Smallest and largest position [m] the run visits (`travel_span`).
+        real(dp), intent(in) :: span(2)
+        !> Set when span is not within [grid(1), grid(n)].
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (span(1) >= grid(1) .and. span(2) <= grid(size(grid)))) then
+            call fatal_error(error, path//': expected a '//what//' from x = '//real_text(span(1))//' m to ' &
+                             //real_text(span(2))//' m (the run), found '//real_text(grid(1))//' m to ' &
+                             //real_text(grid(size(grid)))//' m')
+        end if
+    end subroutine check_run_span
 
     !> The positions [m] a run of n_steps steps visits: [min, max] of x_i + V*t_n over the
     !> points and n = 0..n_steps-1.

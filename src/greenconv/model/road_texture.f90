@@ -26,7 +26,7 @@ module greenconv_model_road_texture
     use greenconv_core_text, only: int_text, real_text
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_io_columns, only: read_lines, parse_row, count_tokens
-    use greenconv_model_road_file, only: travel_span, locate
+    use greenconv_model_road_file, only: travel_span, locate, check_run_span
     implicit none
     private
 
@@ -193,14 +193,9 @@ contains
         !> Set when the run needs heights beyond the grid.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: span(2)
-
-        span = travel_span(x, speed, dt, n_steps)
-        if (span(1) < texture%x(1) .or. span(2) > texture%x(size(texture%x))) then
-            call fatal_error(error, texture%path//': expected a texture from x = '//real_text(span(1))//' m to ' &
-                             //real_text(span(2))//' m (the run), found '//real_text(texture%x(1))//' m to ' &
-                             //real_text(texture%x(size(texture%x)))//' m')
-        else if (minval(y) < texture%y(1) .or. maxval(y) > texture%y(size(texture%y))) then
+        call check_run_span(texture%path, 'texture', texture%x, travel_span(x, speed, dt, n_steps), error)
+        if (allocated(error)) return
+        if (minval(y) < texture%y(1) .or. maxval(y) > texture%y(size(texture%y))) then
             call fatal_error(error, texture%path//': expected a texture from y = '//real_text(minval(y))//' m to ' &
                              //real_text(maxval(y))//' m (the patch), found '//real_text(texture%y(1))//' m to ' &
                              //real_text(texture%y(size(texture%y)))//' m')

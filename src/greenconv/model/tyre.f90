@@ -41,7 +41,7 @@ module greenconv_model_tyre
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text
     use greenconv_model_modal_set, only: modes_from_paper
-    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_point_modes, only: point_modes, check_on_belt
     implicit none
     private
 
@@ -188,10 +188,8 @@ contains
                              //real_text(tyre%damping_ratio))
         else if (size(positions) < 1) then
             call fatal_error(error, 'tyre model: expected at least one contact point')
-        else if (any(positions < 0.0_dp .or. positions > tyre%length)) then
-            call fatal_error(error, 'tyre model: contact points must lie on the belt, 0 <= x <= L = ' &
-                             //real_text(tyre%length)//' m')
         end if
+        if (.not. allocated(error)) call check_on_belt('tyre', 'x', 'L', positions, tyre%length, error)
     end subroutine check_tyre
 
 end module greenconv_model_tyre
