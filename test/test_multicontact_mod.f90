@@ -35,6 +35,10 @@ module test_multicontact_mod
     use greenconv_model_road, only: sine_road, random_road, new_random_road
     use greenconv_io_columns, only: read_columns
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_point_matrix, only: point_matrix, wrap_point
+    use greenconv_conv_methods, only: method_scheme, scheme_first_order
+    use greenconv_conv_recursive, only: new_modal_engine
     use greenconv_model_point_modes, only: point_modes
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
@@ -68,6 +72,9 @@ contains
                      new_unittest('one point, modal: equals run_contact with recursive', test_one_point_modal), &
                      new_unittest('one point, sampled: equals run_contact with direct', test_one_point_sampled), &
                      new_unittest('one point, exact: W0 and history equal the exact engine', test_one_point_exact), &
+                     new_unittest('one point as the 1 x 1 case: a wrapped engine equals run_contact', &
+                                  test_wrapped_point), &
+                     new_unittest('modal Green''s matrix: W0 from the engine''s per-mode shares', test_mode_shares), &
                      new_unittest('tyre driving point equals run_contact on phi^2 r_k modes', test_driving_point), &
                      new_unittest('modal and sampled Green''s matrices agree (same modes)', test_modal_sampled), &
                      new_unittest('symmetric tyre, symmetric road: mirrored forces equal', test_symmetry), &
@@ -226,6 +233,70 @@ contains
         if (allocated(error)) return
         call check(error, count(multi%force(:, 1) == 0.0_dp) > 100, 'the scene loses contact')
     end subroutine test_one_point_modal
+
+    !> A single-point engine wrapped as a 1 x 1 Green's matrix (greenconv_conv_point_matrix)
+    !> runs the multi-point loop with the engine's own numbers: the explicit step on `recursive`
+    !> and on `direct` gives u, F and delta of run_contact bit for bit.
+    subroutine test_wrapped_point(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        class(convolver), allocatable :: engine
+        type(point_matrix) :: wrapped
+        type(recursive_convolver) :: single_conv
+        type(multi_contact_response) :: multi
+        type(contact_response) :: single
+        real(dp), allocatable :: kernel(:)
+        real(dp) :: road(0:n_steps - 1, 1), tail
+
+        road = sine_column()
+        engine = new_recursive_convolver(sdof_modes(mass, stiffness, xi), dt)
+        call wrap_point(engine, wrapped)
+        call check(error, wrapped%n_points() == 1 .and. wrapped%is_explicit() .and. wrapped%name == 'recursive' &
+                   .and. .not. allocated(engine), 'the engine moved into a 1 x 1 matrix, W0 = 0, its name kept')
+        if (allocated(error)) return
+        call run_or_stop(wrapped, [contact_law(k_contact, exponent)], road, [preload], multi)
+        single_conv = new_recursive_convolver(sdof_modes(mass, stiffness, xi), dt)
+        call run_contact(single_conv, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call check(error, worst_difference(single, multi) == 0.0_dp .and. wrapped%step == n_steps, &
+                   'recursive: u, F, delta bit for bit, the steps counted')
+        if (allocated(error)) return
+        call sample_kernel(sdof_modes(mass, stiffness, xi), dt, 0.01_dp, n_steps, kernel, tail)
+        engine = new_direct_convolver(kernel, dt)
+        call wrap_point(engine, wrapped)
+        call run_or_stop(wrapped, [contact_law(k_contact, exponent)], road, [preload], multi)
+        engine = new_direct_convolver(kernel, dt)
+        call run_contact(engine, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call check(error, worst_difference(single, multi) == 0.0_dp, 'direct: u, F, delta bit for bit')
+    end subroutine test_wrapped_point
+
+    !> The exact scheme's W0 on the points is the engine's per-mode shares of w0 weighed by the
+    !> mode shapes: one point of unit shape gives the engine's own w0 (their sum); the scheme
+    !> comes from the registry, `modal` being `recursive`.
+    subroutine test_mode_shares(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(point_modes) :: description
+        type(modal_green_matrix) :: multi_conv
+        type(recursive_convolver) :: engine
+        type(error_type), allocatable :: failure
+
+        description = sdof_description()
+        call new_modal_green_matrix(description, dt, 'exact', multi_conv, failure)
+        call check(error, .not. allocated(failure), 'new_modal_green_matrix failed')
+        if (allocated(error)) return
+        engine = new_modal_engine(method_scheme('exact'), description%modes, dt)
+        call check(error, method_scheme('exact') == scheme_first_order .and. engine%name == 'exact' .and. &
+                   multi_conv%name == 'exact', 'exact: the first-order hold, by the registry''s scheme')
+        if (allocated(error)) return
+        call check(error, multi_conv%weight0(1, 1), engine%instant_weight(), 'W0 = w0 of the engine', &
+                   thr=1.0e-15_dp*abs(engine%instant_weight()))
+        if (allocated(error)) return
+        call check(error, sum(engine%mode_weight) == engine%instant_weight(), 'w0 is the sum of the per-mode shares')
+        if (allocated(error)) return
+        engine = new_modal_engine(method_scheme('modal'), description%modes, dt)
+        call check(error, method_scheme('modal') == method_scheme('recursive') .and. engine%name == 'recursive', &
+                   'modal is the rectangle rule of recursive')
+    end subroutine test_mode_shares
 
     !> The same scene with sampled tables from the same mode: multi-point against direct.
     subroutine test_one_point_sampled(error)

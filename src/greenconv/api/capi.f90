@@ -2,9 +2,12 @@
 !> from C and C++, written directly on the Fortran API (greenconv_api_library and
 !> greenconv_api_handle), as minpack's C API and dftd4's api.f90 are.
 !>
-!> A `gc_convolver *` is an opaque handle: the C address of a Fortran `convolver_box` that
-!> holds the `class(convolver)` object, what its model neglects and the state of a contact run
-!> stepped one call at a time. No function keeps state outside the handles it is given.
+!> A `gc_convolver *` is an opaque handle: the C address of greenconv_api_handle's
+!> `convolver_box`, the one object behind every handle, single- or multi-point; a single-point
+!> structure's convolver sits in it as the 1 x 1 case of a Green's matrix, with what its model
+!> neglects and the state of a contact run stepped one call at a time. The work is done by
+!> greenconv_api_handle's procedures, shared with the Fortran 77 layer; these functions only
+!> convert arguments and messages. No function keeps state outside the handles it is given.
 !>
 !> Conventions (see the header): functions return a status, 0 (`GC_OK`), 2 (`GC_ERROR_INPUT`)
 !> or 3 (`GC_ERROR_NUMERICAL`), the codes of greenconv_core_error. A message buffer `errmsg`
@@ -14,19 +17,21 @@
 !> are checked: NULL gives status 2 (with a message where the function takes a buffer), never
 !> a crash. SI units throughout.
 module greenconv_capi
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_null_char, &
-                                           c_associated, c_f_pointer, c_loc
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_null_ptr, c_associated, c_f_pointer, &
+                                           c_loc
     use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_law, contact_options, contact_response, start_contact, contact_block
-    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file, default_truncation_tol, &
-                                     default_accuracy
-    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response
+    use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    step_box, start_point_box, advance_point_box, point_history, point_push, &
+                                    reset_box, describe_box
+    use greenconv_api_doors, only: finish, from_c, to_c, put
     implicit none
     private
 
@@ -40,7 +45,8 @@ module greenconv_capi
     public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
-    !> The message and string conversions, shared with greenconv_capi_multi.
+    !> The message and string conversions of greenconv_api_doors, named here too for the
+    !> callers that took them from this module.
     public :: finish, from_c, to_c
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
@@ -68,15 +74,6 @@ module greenconv_capi
         real(c_double) :: accuracy
     end type gc_build_options
 
-    interface
-        !> size_t strlen(const char *s)
-        pure function c_strlen(text) bind(c, name='strlen') result(length)
-            import :: c_ptr, c_size_t
-            implicit none
-            type(c_ptr), value, intent(in) :: text
-            integer(c_size_t) :: length
-        end function c_strlen
-    end interface
 
 contains
 
@@ -385,7 +382,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call free_box(box)
     end subroutine gc_convolver_free
 
@@ -418,13 +415,14 @@ contains
 
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
+        real(dp) :: u
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement))) return
-        call check_steps(box, 'gc_convolver_history', 1_int64, error)
+        call point_history('gc_convolver_history', box, u, error)
         if (allocated(error)) return
-        call put(displacement, box%conv%history())
+        call put(displacement, u)
         status = 0
     end function gc_convolver_history
 
@@ -439,12 +437,11 @@ contains
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) return
-        call check_steps(box, 'gc_convolver_push', 1_int64, error)
+        call point_push('gc_convolver_push', box, force, error)
         if (allocated(error)) return
-        call box%conv%push(force)
         status = 0
     end function gc_convolver_push
 
@@ -458,10 +455,10 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(weight))) return
-        call put(weight, box%conv%instant_weight())
+        call put(weight, box%conv%weight0(1, 1))
         status = 0
     end function gc_convolver_instant_weight
 
@@ -473,11 +470,10 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) return
-        call box%conv%reset()
-        box%stepping = .false.
+        call reset_box(box)
         status = 0
     end function gc_convolver_reset
 
@@ -494,7 +490,7 @@ contains
         character(len=:), allocatable :: label
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(size))) return
         call box%conv%model_size(n, label)
@@ -515,13 +511,13 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. associated(box)) then
             call to_c('', text, text_len)
             return
         end if
-        call to_c(box%conv%name//': '//box%description, text, text_len)
+        call to_c(describe_box(box), text, text_len)
         status = 0
     end function gc_convolver_describe
 
@@ -538,7 +534,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         call to_c('', text, text_len)
         if (.not. associated(box)) return
@@ -574,13 +570,11 @@ contains
         type(error_type), allocatable :: error
         real(dp) :: u, f, delta
 
-        box => box_of(conv)
+        box => box_at(conv)
         status = stat_input
         if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
-        call check_contact_law(contact_law(k_c, p), preload, error)
-        if (.not. allocated(error)) call check_steps(box, 'gc_contact_step', 1_int64, error)
+        call step_box('gc_contact_step', box, contact_law(k_c, p), preload, road, u, f, delta, error)
         if (allocated(error)) return
-        call contact_step(box%conv, contact_law(k_c, p), road, preload, u, f, delta)
         call put(displacement, u)
         call put(force, f)
         if (c_associated(compression)) call put(compression, delta)
@@ -679,7 +673,7 @@ contains
         real(dp), allocatable :: delta(:)
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
@@ -735,16 +729,14 @@ contains
         type(error_type), allocatable :: error
         type(contact_options) :: settings
 
-        box => box_of(conv)
+        box => box_at(conv)
         if (.not. associated(box)) then
             call fatal_error(error, 'gc_contact_start: conv is NULL: make a convolver with gc_convolver_new_*')
         else
             box%stepping = .false.
             call check_contact_law(contact_law(k_c, p), preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
-            if (.not. allocated(error)) call start_contact(box%conv, contact_law(k_c, p), preload, box%contact, &
-                                                           error, settings)
-            box%stepping = .not. allocated(error)
+            if (.not. allocated(error)) call start_point_box(box, contact_law(k_c, p), preload, settings, error)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_contact_start
@@ -775,7 +767,7 @@ contains
         type(contact_response) :: response
         real(dp) :: u, f, delta
 
-        box => box_of(conv)
+        box => box_at(conv)
         u = 0.0_dp
         f = 0.0_dp
         delta = 0.0_dp
@@ -788,7 +780,7 @@ contains
                              //'gc_contact_start first (a fault or a reset ends a run)')
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
-            if (.not. allocated(error)) call contact_block(box%conv, box%contact, [real(road, dp)], response, error)
+            if (.not. allocated(error)) call advance_point_box(box, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
                 if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &
@@ -945,86 +937,5 @@ contains
         settings%tolerance = given%tolerance
     end subroutine options_from_c
 
-    !> The box behind a C handle; null for NULL.
-    function box_of(conv) result(box)
-        type(c_ptr), intent(in) :: conv
-        type(convolver_box), pointer :: box
-
-        box => null()
-        if (c_associated(conv)) call c_f_pointer(conv, box)
-    end function box_of
-
-    !> Store a value at a C `double *` (not NULL).
-    subroutine put(address, value)
-        type(c_ptr), intent(in) :: address
-        real(dp), intent(in) :: value
-
-        real(c_double), pointer :: target_value
-
-        call c_f_pointer(address, target_value)
-        target_value = value
-    end subroutine put
-
-    !> The status of an error (0 when none), its message copied to the caller's buffer ("" when none).
-    function finish(error, errmsg, errmsg_len) result(status)
-        !> The error, or unallocated for success.
-        type(error_type), allocatable, intent(in) :: error
-        !> Message buffer, or NULL.
-        type(c_ptr), intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = 0
-        if (allocated(error)) then
-            status = int(error%stat, c_int)
-            call to_c(error%message, errmsg, errmsg_len)
-        else
-            call to_c('', errmsg, errmsg_len)
-        end if
-    end function finish
-
-    !> A NUL-terminated C string as Fortran text (empty for NULL).
-    function from_c(text) result(fortran_text)
-        !> A NUL-terminated C string, or NULL.
-        type(c_ptr), intent(in) :: text
-        character(len=:), allocatable :: fortran_text
-
-        character(kind=c_char), pointer :: chars(:)
-        integer :: i, n
-
-        n = 0
-        if (c_associated(text)) n = int(c_strlen(text))
-        allocate (character(len=n) :: fortran_text)
-        if (n == 0) return
-        call c_f_pointer(text, chars, [n])
-        do i = 1, n
-            fortran_text(i:i) = chars(i)
-        end do
-    end function from_c
-
-    !> Copy text into a C buffer of `length` bytes: all of it when it fits, else its first
-    !> length - 1 bytes, then a NUL. Nothing for a NULL buffer or length 0. A length that does
-    !> not fit a signed size (negative here) is as good as unlimited.
-    subroutine to_c(text, buffer, length)
-        !> The text.
-        character(len=*), intent(in) :: text
-        !> The C buffer, or NULL.
-        type(c_ptr), intent(in) :: buffer
-        !> Size of the buffer [bytes].
-        integer(c_size_t), intent(in) :: length
-
-        character(kind=c_char), pointer :: chars(:)
-        integer(c_size_t) :: i, n
-
-        if (.not. c_associated(buffer) .or. length == 0) return
-        n = len(text, kind=c_size_t)
-        if (length > 0) n = min(n, length - 1)
-        call c_f_pointer(buffer, chars, [n + 1])
-        do i = 1, n
-            chars(i) = text(i:i)
-        end do
-        chars(n + 1) = c_null_char
-    end subroutine to_c
 
 end module greenconv_capi

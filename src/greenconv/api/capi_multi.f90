@@ -1,7 +1,8 @@
 !> The C interface of multi-point contact: `bind(c)` functions `gc_multi_*` declared in the
 !> multi-point section of include/greenconv.h, on the shared layer greenconv_api_multi_handle.
 !>
-!> A `gc_multi_convolver *` is the C address of a `multi_box`. Conventions are those of
+!> A `gc_multi_convolver *` is the C address of the one `convolver_box` (greenconv_api_handle)
+!> behind every handle. Conventions are those of
 !> greenconv_capi: every function returns 0, 2 (bad input, NULL pointer) or 3 (numerical
 !> failure) and writes its message into `errmsg` (`errmsg_len` bytes as a `size_t`, clamped,
 !> always NUL-terminated, "" on success). Arrays are C arrays laid out as Fortran stores them
@@ -15,11 +16,13 @@ module greenconv_capi_multi
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_api_library, only: default_truncation_tol
-    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+    use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
-    use greenconv_capi, only: gc_build_options, finish, from_c, to_c
+    use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
+    use greenconv_api_doors, only: finish, from_c, to_c
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     implicit none
     private
 
@@ -73,7 +76,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_modes'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :)
 
         box => null()
@@ -129,7 +132,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_samples'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: samples(:, :, :)
 
         box => null()
@@ -267,7 +270,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_file'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         call start_handle(caller, conv, method, error)
@@ -308,12 +311,12 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_new_method'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box, from
+        type(convolver_box), pointer :: box, from
 
         box => null()
         call start_handle(caller, conv, method, error)
         if (.not. allocated(error)) then
-            from => box_of(source)
+            from => box_at(source)
             call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, -1, error)
             if (.not. allocated(error)) call method_multi_box(caller, from, from_c(method), dt, &
                                                               tolerance_of(options), int(n_steps), box, error)
@@ -343,11 +346,11 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: labels(:)
         real(c_double), pointer :: out(:)
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_points', null_handle, box, int(n_points), error)
         if (.not. allocated(error)) call check_file_box('gc_multi_points', box, error)
         if (.not. allocated(error)) then
@@ -389,13 +392,13 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: value_out
         integer(c_int), pointer :: count_out
         real(dp) :: worst, mean
         integer :: poles
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_file_summary', null_handle, box, -1, error)
         if (.not. allocated(error)) call check_file_box('gc_multi_file_summary', box, error)
         status = finish(error, text, text_len)
@@ -416,32 +419,22 @@ contains
         call to_c(box%green%summary(), text, text_len)
     end function gc_multi_file_summary
 
-    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing).
+    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing); the one
+    !> box behind every handle is freed as greenconv_capi's `gc_convolver_free` does.
     subroutine gc_multi_free(conv) bind(c, name='gc_multi_free')
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
 
-        type(multi_box), pointer :: box
-
-        box => box_of(conv)
-        call free_multi_box(box)
+        call gc_convolver_free(conv)
     end subroutine gc_multi_free
 
-    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL.
+    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL, as
+    !> `gc_convolver_delete` does.
     subroutine gc_multi_delete(conv) bind(c, name='gc_multi_delete')
         !> Address of the caller's handle (NULL, or *conv NULL: nothing).
         type(c_ptr), value, intent(in) :: conv
 
-        type(c_ptr), pointer :: handle
-        type(c_ptr) :: object
-
-        if (.not. c_associated(conv)) return
-        call c_f_pointer(conv, handle)
-        ! A copy, as in gc_convolver_delete: -fcheck=pointer takes a pointer to a C NULL for a
-        ! disassociated one.
-        object = handle
-        call gc_multi_free(object)
-        handle = c_null_ptr
+        call gc_convolver_delete(conv)
     end subroutine gc_multi_delete
 
     !> int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len)
@@ -457,10 +450,10 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: count
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_n_points', null_handle, box, -1, error)
         if (.not. allocated(error) .and. .not. c_associated(n_points)) then
             call fatal_error(error, 'gc_multi_n_points: n_points is NULL: pass the address of an int')
@@ -489,7 +482,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: u(:)
 
         box => checked('gc_multi_history', conv, n_points, [displacement], 'displacement', error)
@@ -516,7 +509,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: q(:)
 
         box => checked('gc_multi_push', conv, n_points, [force], 'force', error)
@@ -544,7 +537,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: matrix(:, :)
 
         box => checked('gc_multi_instant_matrix', conv, n_points, [w0], 'w0', error)
@@ -567,13 +560,12 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_reset', null_handle, box, -1, error)
         if (.not. allocated(error)) then
-            call box%conv%reset()
-            box%stepping = .false.
+            call reset_box(box)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_reset
@@ -593,21 +585,19 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
-        character(len=:), allocatable :: label
         integer :: n
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, -1, error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call box%conv%model_size(n, label)
+        call to_c(describe_box(box, n), text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)
             size_out = int(n, c_int)
         end if
-        call to_c(box%conv%name//': '//box%description//', '//label//' = '//int_text(n), text, text_len)
     end function gc_multi_describe
 
     !> int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iterations,
@@ -629,9 +619,9 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box('gc_multi_set_newton', null_handle, box, -1, error)
         if (.not. allocated(error)) call set_multi_options('gc_multi_set_newton', box, tolerance, &
                                                            int(max_iterations), divergence_bound, error)
@@ -660,7 +650,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: stiffness(:), exponent(:), load(:)
 
         box => checked('gc_multi_contact_start', conv, n_points, [k_c, p, preload], 'k_c, p and preload', error)
@@ -699,7 +689,7 @@ contains
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
         real(dp), allocatable :: delta(:)
 
@@ -753,7 +743,7 @@ contains
 
         character(len=*), parameter :: caller = 'gc_multi_run_contact'
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         real(c_double), pointer :: stiffness(:), exponent(:), load(:), heights(:, :), u(:, :), f(:, :), &
                                    delta_out(:, :)
         real(dp), allocatable :: delta(:, :)
@@ -782,14 +772,6 @@ contains
 
     ! ---- conversions -------------------------------------------------------------------------
 
-    !> The box behind a C handle; null for NULL.
-    function box_of(conv) result(box)
-        type(c_ptr), intent(in) :: conv
-        type(multi_box), pointer :: box
-
-        box => null()
-        if (c_associated(conv)) call c_f_pointer(conv, box)
-    end function box_of
 
     !> The box behind a handle, checked with its count of points and the arrays it needs.
     function checked(caller, conv, n_points, arrays, names, error) result(box)
@@ -797,11 +779,11 @@ contains
         type(c_ptr), intent(in) :: conv, arrays(:)
         integer(c_int), intent(in) :: n_points
         type(error_type), allocatable, intent(out) :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         integer :: i
 
-        box => box_of(conv)
+        box => box_at(conv)
         call check_box(caller, null_handle, box, int(n_points), error)
         if (allocated(error)) return
         do i = 1, size(arrays)
@@ -847,7 +829,7 @@ contains
 
     !> Store a new box at *conv (when made) and return the status with the message.
     function made(box, conv, error, errmsg, errmsg_len) result(status)
-        type(multi_box), pointer, intent(in) :: box
+        type(convolver_box), pointer, intent(in) :: box
         type(c_ptr), intent(in) :: conv, errmsg
         type(error_type), allocatable, intent(in) :: error
         integer(c_size_t), intent(in) :: errmsg_len

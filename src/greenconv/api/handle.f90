@@ -1,14 +1,17 @@
-!> What the two foreign front doors share: the object behind a handle, the checks of the
-!> constructors' plain arguments, and a contact run into caller-sized arrays.
+!> The one object behind every foreign handle, single- and multi-point alike, and what the
+!> single-point front doors share: the checks of the constructors' plain arguments, and
+!> contact runs into caller-sized arrays.
 !>
-!> The C API (greenconv_capi, opaque `gc_convolver *`) and the Fortran 77 layer
-!> (greenconv_legacy, `INTEGER*8` handles) both point at a `convolver_box`: a convolver built
-!> by `new_convolver` (greenconv_api_library), what its model neglects, and the state of a
-!> contact run stepped one call at a time. Everything here works on the Fortran API; the two
-!> doors only convert arguments and messages. There is no module state.
+!> The C API (greenconv_capi, greenconv_capi_multi) and the Fortran 77 layer (greenconv_legacy,
+!> greenconv_legacy_multi) all point at a `convolver_box`: a multi-point convolver, a
+!> single-point structure's convolver being its 1 x 1 case (greenconv_conv_point_matrix), what
+!> its model neglects, and the state of a contact run stepped one call at a time.
+!> Multi-point handles are made and run by greenconv_api_multi_handle. Everything here works on
+!> the Fortran API; the doors only convert arguments and messages. There is no module state.
 module greenconv_api_handle
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_associated, c_f_pointer
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: lower_text, sci_text, int_text
@@ -18,33 +21,48 @@ module greenconv_api_handle
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
                                          structure_from_frf
+    use greenconv_ident_green_structure, only: green_structure
     use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_conv_point_matrix, only: point_matrix, wrap_point
     use greenconv_conv_direct, only: direct_convolver
     use greenconv_conv_fft, only: fft_convolver
     use greenconv_conv_methods, only: method_needs_g
-    use greenconv_contact_single, only: contact_law, contact_options, contact_response, contact_state, run_contact, &
-                                        copy_histories
-    use greenconv_api_library, only: new_convolver, free_convolver, check_contact_law
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_single, only: contact_options, contact_response, contact_state, run_contact, &
+                                        copy_histories, start_contact, contact_block
+    use greenconv_contact_multi, only: newton_options, multi_contact_state
+    use greenconv_api_library, only: new_convolver, check_contact_law, contact_step
     implicit none
     private
 
-    public :: convolver_box, new_box, free_box
+    public :: convolver_box, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: run_box, identify_file, check_steps
+    public :: run_box, identify_file, check_steps, step_box, start_point_box, advance_point_box
+    public :: point_history, point_push, reset_box, describe_box
 
     !> What a foreign handle points to.
     type :: convolver_box
-        !> The convolver.
-        class(convolver), allocatable :: conv
-        !> What the model neglects, in words (from `new_convolver`).
+        !> The convolver: a Green's matrix of N_c points, or the 1 x 1 `point_matrix` of a
+        !> single-point structure.
+        class(multipoint_convolver), allocatable :: conv
+        !> What the model neglects, in words.
         character(len=:), allocatable :: description
-        !> The contact run stepped one call at a time (C: `gc_contact_start`, `gc_contact_advance`).
-        type(contact_state) :: contact
-        !> True between a successful start of a stepped contact run and its first fault.
-        logical :: stepping = .false.
         !> Warnings of the identification the structure came from (wrap-around, a fit that
         !> missed its target, dropped poles), '' when none.
         character(len=:), allocatable :: warning
+        !> Newton and divergence settings of the multi-point contact runs on this convolver.
+        type(newton_options) :: settings
+        !> The multi-point contact run stepped one call at a time.
+        type(multi_contact_state) :: contact
+        !> The single-point contact run stepped one call at a time (C: `gc_contact_start`,
+        !> `gc_contact_advance`), with the single-point scheme (explicit, or the scalar implicit step).
+        type(contact_state) :: point_contact
+        !> True between a successful start of a stepped contact run and its first fault or reset.
+        logical :: stepping = .false.
+        !> The Green's matrix file the convolver was built from, read and identified (its points:
+        !> node labels, x_i, y_i [m]); unallocated for a convolver made otherwise.
+        type(green_structure), allocatable :: green
     end type convolver_box
 
 contains
@@ -68,28 +86,76 @@ contains
         !> Relative accuracy `auto` must meet, > 0; the library's default when absent.
         real(dp), intent(in), optional :: accuracy
 
+        class(convolver), allocatable :: point
+
         allocate (box)
-        call new_convolver(lower_text(method), structure, dt, n_steps, box%conv, error, truncation_tol, accuracy, &
+        call new_convolver(lower_text(method), structure, dt, n_steps, point, error, truncation_tol, accuracy, &
                            box%description)
         if (allocated(error)) then
             deallocate (box)
             box => null()
             return
         end if
+        allocate (point_matrix :: box%conv)
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call wrap_point(point, matrix)
+        end select
         box%warning = ''
         if (structure%identified .and. allocated(structure%fit%warning)) box%warning = structure%fit%warning
     end subroutine new_box
 
-    !> Free a box and its convolver (FFTW plans too); nothing for a null pointer. Null on return.
+    !> Free a box and its convolver (FFTW plans too), single- or multi-point; nothing for a null
+    !> pointer. Null on return.
     subroutine free_box(box)
         !> The box.
         type(convolver_box), pointer, intent(inout) :: box
 
         if (.not. associated(box)) return
-        if (allocated(box%conv)) call free_convolver(box%conv)
+        if (allocated(box%conv)) then
+            call box%conv%release()
+            deallocate (box%conv)
+        end if
         deallocate (box)
         box => null()
     end subroutine free_box
+
+    !> The box at a C address: a C handle, or the address a Fortran 77 handle stands for
+    !> (greenconv_api_doors's `handle_address`); null for C NULL.
+    function box_at(address) result(box)
+        !> The address of a box made by `new_box` or greenconv_api_multi_handle, or C NULL.
+        type(c_ptr), intent(in) :: address
+        type(convolver_box), pointer :: box
+
+        box => null()
+        if (c_associated(address)) call c_f_pointer(address, box)
+    end function box_at
+
+    !> Back to step 0 with no force history, ending a contact run stepped one call at a time.
+    subroutine reset_box(box)
+        !> The box.
+        type(convolver_box), intent(inout) :: box
+
+        call box%conv%reset()
+        box%stepping = .false.
+    end subroutine reset_box
+
+    !> "method: what the model neglects", and with `n` present ", N_g = n" (or N_m): the model's
+    !> size, returned in `n` too.
+    function describe_box(box, n) result(text)
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> The model's size (N_g kernel samples or N_m modes); absent: not in the text.
+        integer, intent(out), optional :: n
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: label
+
+        text = box%conv%name//': '//box%description
+        if (.not. present(n)) return
+        call box%conv%model_size(n, label)
+        text = text//', '//label//' = '//int_text(n)
+    end function describe_box
 
     !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
     !> was cut at the n_steps it was made for (g not decayed by then) would give a short,
@@ -104,17 +170,22 @@ contains
         !> Set (`stat_input`) when a step lies past the kernel's validity.
         type(error_type), allocatable, intent(out) :: error
 
-        integer(int64) :: valid
+        integer(int64) :: valid, step
 
         valid = huge(valid)
-        select type (conv => box%conv)
-        type is (direct_convolver)
-            valid = conv%valid_steps
-        type is (fft_convolver)
-            valid = conv%valid_steps
+        step = box%conv%step
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            step = matrix%point%step
+            select type (conv => matrix%point)
+            type is (direct_convolver)
+                valid = conv%valid_steps
+            type is (fft_convolver)
+                valid = conv%valid_steps
+            end select
         end select
-        if (box%conv%step + steps <= valid) return
-        call fatal_error(error, caller//': step '//int_text(max(box%conv%step, valid))//' is past the '//box%conv%name &
+        if (step + steps <= valid) return
+        call fatal_error(error, caller//': step '//int_text(max(step, valid))//' is past the '//box%conv%name &
                          //' kernel, cut at the '//int_text(valid)//' steps the convolver was made for (g has not ' &
                          //'decayed by then): make it with n_steps >= the steps you run, or use a modal method')
     end subroutine check_steps
@@ -224,10 +295,8 @@ contains
         type(lsce_options) :: options
         real(dp) :: dt_g
 
-        call read_frf(path, frf, error)
+        call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
-        options%tol_e = tol_e
-        options%max_modes = max_modes
         dt_g = 0.0_dp
         if (method_needs_g(lower_text(method))) dt_g = dt
         call structure_from_frf(frf, options, dt_g, structure, error)
@@ -269,9 +338,130 @@ contains
                 return
             end if
         end if
-        if (.not. allocated(error)) call run_contact(box%conv, law, road, preload, response, options, error)
+        if (.not. allocated(error)) then
+            select type (matrix => box%conv)
+            type is (point_matrix)
+                call run_contact(matrix%point, law, road, preload, response, options, error)
+                matrix%step = matrix%point%step
+            end select
+        end if
         call copy_histories(response, displacement, force, compression)
     end subroutine run_box
+
+    !> u_h(n) [m] of a single-point box, the history displacement at the current step; 0 and
+    !> `error` when the step lies past the kernel's validity (`check_steps`).
+    subroutine point_history(caller, box, displacement, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box of a single-point structure.
+        type(convolver_box), intent(in) :: box
+        !> u_h(n) [m].
+        real(dp), intent(out) :: displacement
+        !> Set (`stat_input`) for a step past the kernel.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: values(1)
+
+        displacement = 0.0_dp
+        call check_steps(box, caller, 1_int64, error)
+        if (allocated(error)) return
+        call box%conv%history(values)
+        displacement = values(1)
+    end subroutine point_history
+
+    !> Push the force q(t_n) [N] of the current step into a single-point box and advance,
+    !> unless the step lies past the kernel's validity (`check_steps`).
+    subroutine point_push(caller, box, force, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box of a single-point structure.
+        type(convolver_box), intent(inout) :: box
+        !> Force q(t_n) [N].
+        real(dp), intent(in) :: force
+        !> Set (`stat_input`) for a step past the kernel.
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_steps(box, caller, 1_int64, error)
+        if (allocated(error)) return
+        call box%conv%push([force])
+    end subroutine point_push
+
+    !> One explicit step of the single-point contact loop on a box (the law and the kernel's
+    !> validity checked first): u, F and delta of this step, the convolver advanced; all zero
+    !> and the convolver untouched on bad input.
+    subroutine step_box(caller, box, law, preload, road, displacement, force, compression, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box of a single-point structure.
+        type(convolver_box), intent(inout) :: box
+        !> The spring F = k_c*delta^p between body and road, checked here.
+        type(contact_law), intent(in) :: law
+        !> F0 [N] pressing the body onto the road at rest, checked here (>= 0).
+        real(dp), intent(in) :: preload
+        !> u_r(t_n) [m] under the contact at this step.
+        real(dp), intent(in) :: road
+        !> u(t_n) [m] of this step (0 on bad input).
+        real(dp), intent(out) :: displacement
+        !> F(t_n) [N] of this step (0 on bad input).
+        real(dp), intent(out) :: force
+        !> delta(t_n) [m] of this step (0 on bad input).
+        real(dp), intent(out) :: compression
+        !> Set (`stat_input`) for a bad law or a step past the kernel.
+        type(error_type), allocatable, intent(out) :: error
+
+        displacement = 0.0_dp
+        force = 0.0_dp
+        compression = 0.0_dp
+        call check_contact_law(law, preload, error)
+        if (.not. allocated(error)) call check_steps(box, caller, 1_int64, error)
+        if (allocated(error)) return
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call contact_step(matrix%point, law, road, preload, displacement, force, compression)
+            matrix%step = matrix%point%step
+        end select
+    end subroutine step_box
+
+    !> Start a single-point contact run stepped one call at a time (`advance_point_box`): the
+    !> options checked against the convolver, the convolver reset.
+    subroutine start_point_box(box, law, preload, options, error)
+        !> The box of a single-point structure.
+        type(convolver_box), intent(inout) :: box
+        !> The contact law (checked by the caller).
+        type(contact_law), intent(in) :: law
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: preload
+        !> Scheme, divergence bound and Newton settings.
+        type(contact_options), intent(in) :: options
+        !> Set (`stat_input`) when the options are unusable with this convolver.
+        type(error_type), allocatable, intent(out) :: error
+
+        box%stepping = .false.
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call start_contact(matrix%point, law, preload, box%point_contact, error, options)
+            matrix%step = matrix%point%step
+            box%stepping = .not. allocated(error)
+        end select
+    end subroutine start_point_box
+
+    !> The next steps of the run `start_point_box` began, as `run_contact` takes them.
+    subroutine advance_point_box(box, road, response, error)
+        !> The box of a single-point structure.
+        type(convolver_box), intent(inout) :: box
+        !> Road heights u_r(t_n) [m] of these steps.
+        real(dp), intent(in) :: road(:)
+        !> Histories of these steps, shortened to those done when a fault stops the run.
+        type(contact_response), intent(out) :: response
+        !> Set on a numerical fault (divergence, an implicit step that did not converge).
+        type(error_type), allocatable, intent(out) :: error
+
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call contact_block(matrix%point, box%point_contact, road, response, error)
+            matrix%step = matrix%point%step
+        end select
+    end subroutine advance_point_box
 
     !> Modes identified by LSCE from a receptance file, lowest natural frequency first.
     subroutine identify_file(path, tol_e, max_modes, modes, e, error)
@@ -285,7 +475,7 @@ contains
         type(modal_set), intent(out) :: modes
         !> Error E of eq. (7) of the fit; 0 on failure.
         real(dp), intent(out) :: e
-        !> Set when the file is unusable (`stat_input`) or the fit fails (`stat_numerical`).
+        !> Set for a file that cannot be read (`stat_input`) or a fit that fails (`stat_numerical`).
         type(error_type), allocatable, intent(out) :: error
 
         type(frf_type) :: frf
@@ -293,14 +483,26 @@ contains
         type(lsce_result) :: fit
 
         e = 0.0_dp
-        call read_frf(path, frf, error)
+        call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
-        options%tol_e = tol_e
-        options%max_modes = max_modes
         call identify(frf, options, fit, error)
         if (allocated(error)) return
         modes = sorted_by_frequency(fit%modes)
         e = fit%e
     end subroutine identify_file
+
+    !> A receptance file read, and the LSCE settings its identification runs with.
+    subroutine read_receptance(path, tol_e, max_modes, frf, options, error)
+        character(len=*), intent(in) :: path
+        real(dp), intent(in) :: tol_e
+        integer, intent(in) :: max_modes
+        type(frf_type), intent(out) :: frf
+        type(lsce_options), intent(out) :: options
+        type(error_type), allocatable, intent(out) :: error
+
+        call read_frf(path, frf, error)
+        options%tol_e = tol_e
+        options%max_modes = max_modes
+    end subroutine read_receptance
 
 end module greenconv_api_handle

@@ -20,16 +20,18 @@
 !> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
 !> impulse-response samples g [m/(N*s)], frequencies [Hz].
 module greenconv_legacy
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_api_library, only: contact_step, check_contact_law, run_scene_file
-    use greenconv_api_handle, only: convolver_box, new_box, free_box, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps
+    use greenconv_api_library, only: check_contact_law, run_scene_file
+    use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
+                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    point_history, point_push, step_box, reset_box, describe_box
+    use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
     implicit none
     private
@@ -185,7 +187,7 @@ contains
         if (.not. allocated(error)) call new_box(method, structure, dt, nstep, box, error)
         call report(error, ierr, errmsg)
         if (allocated(error)) return
-        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+        handle = address_handle(c_loc(box))
     end subroutine new_handle
 
     !> Free a convolver (its FFTW plans too) and set its handle to 0; nothing for handle 0.
@@ -195,7 +197,7 @@ contains
 
         type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         call free_box(box)
         handle = 0_int64
     end subroutine gcfree
@@ -215,12 +217,8 @@ contains
         uh = 0.0_dp
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_steps(box, 'gchist', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        uh = box%conv%history()
+        call point_history('gchist', box, uh, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gchist
 
     !> Push the force q(t_n) [N] of the current step and advance to step n + 1.
@@ -237,12 +235,8 @@ contains
 
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_steps(box, 'gcpush', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        call box%conv%push(q)
+        call point_push('gcpush', box, q, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gcpush
 
     !> Instantaneous weight w0 [m/N]: displacement per newton of the current step's own
@@ -259,7 +253,7 @@ contains
 
         w0 = 0.0_dp
         box => checked_box(handle, ierr)
-        if (associated(box)) w0 = box%conv%instant_weight()
+        if (associated(box)) w0 = box%conv%weight0(1, 1)
     end subroutine gcw0
 
     !> Forget every force pushed: back to step 0 (the structure at rest).
@@ -272,7 +266,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => checked_box(handle, ierr)
-        if (associated(box)) call box%conv%reset()
+        if (associated(box)) call reset_box(box)
     end subroutine gcrset
 
     !> Size of the convolver's model: N_g kernel samples ('direct', 'fft') or N_m modes.
@@ -323,7 +317,7 @@ contains
 
         text = ' '
         box => checked_box(handle, ierr)
-        if (associated(box)) text = box%conv%name//': '//box%description
+        if (associated(box)) text = describe_box(box)
     end subroutine gcdesc
 
     !> One explicit step of the contact loop (eqs. 20-24), as the driver takes it: from the
@@ -340,11 +334,11 @@ contains
         real(dp), intent(in) :: f0
         !> Road height u_r(t_n) [m].
         real(dp), intent(in) :: road
-        !> Body displacement u(t_n) [m] from static equilibrium.
+        !> The body's displacement u(t_n) [m] from static equilibrium; 0 on failure.
         real(dp), intent(out) :: u
-        !> Contact force F(t_n) [N], >= 0.
+        !> The contact force F(t_n) [N], >= 0; 0 on failure.
         real(dp), intent(out) :: f
-        !> Compression delta(t_n) [m] of the contact spring (<= 0: no contact).
+        !> The spring's compression delta(t_n) [m] (<= 0: no contact); 0 on failure.
         real(dp), intent(out) :: delta
         !> Status: 0 success, 2 null handle or bad contact law.
         integer, intent(out) :: ierr
@@ -357,13 +351,8 @@ contains
         delta = 0.0_dp
         box => checked_box(handle, ierr)
         if (.not. associated(box)) return
-        call check_contact_law(contact_law(kc, p), f0, error)
-        if (.not. allocated(error)) call check_steps(box, 'gcstep', 1_int64, error)
-        if (allocated(error)) then
-            ierr = error%stat
-            return
-        end if
-        call contact_step(box%conv, contact_law(kc, p), road, f0, u, f, delta)
+        call step_box('gcstep', box, contact_law(kc, p), f0, road, u, f, delta, error)
+        if (allocated(error)) ierr = error%stat
     end subroutine gcstep
 
     !> A whole contact run of nstep steps on a road profile (the convolver is reset first),
@@ -396,7 +385,7 @@ contains
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         if (.not. associated(box)) then
             call fatal_error(error, 'gccont: null convolver handle: make one with GCSDOF, GCMODE, GCSAMP or GCFRF')
         else if (nstep < 1) then
@@ -475,18 +464,6 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcscen
 
-    !> The object a handle points to; null for handle 0.
-    function box_of(handle) result(box)
-        integer(int64), intent(in) :: handle
-        type(convolver_box), pointer :: box
-
-        type(c_ptr) :: address
-
-        box => null()
-        if (handle == 0_int64) return
-        address = transfer(int(handle, c_intptr_t), c_null_ptr)
-        call c_f_pointer(address, box)
-    end function box_of
 
     !> The object a handle points to, with status 0, or null with status `stat_input`.
     function checked_box(handle, ierr) result(box)
@@ -494,22 +471,9 @@ contains
         integer, intent(out) :: ierr
         type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         ierr = stat_ok
         if (.not. associated(box)) ierr = stat_input
     end function checked_box
-
-    !> Status and message of an error, or 0 and a blank message when there is none.
-    subroutine report(error, ierr, errmsg)
-        type(error_type), allocatable, intent(in) :: error
-        integer, intent(out) :: ierr
-        character(len=*), intent(out) :: errmsg
-
-        ierr = stat_ok
-        errmsg = ' '
-        if (.not. allocated(error)) return
-        ierr = error%stat
-        errmsg = error%message
-    end subroutine report
 
 end module greenconv_legacy

@@ -11,16 +11,19 @@
 !> ROAD(NSTEP, NC), W0(NC, NC). SI units: poles [rad/s], g [m/(N*s)], k_c [N/m^p], forces [N],
 !> displacements and heights [m].
 module greenconv_legacy_multi
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_f_pointer, c_intptr_t
+    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_api_multi_handle, only: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, &
+    use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes
+    use greenconv_api_doors, only: report, handle_address, address_handle
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_legacy, only: gcfree
     implicit none
     private
 
@@ -65,7 +68,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
         integer :: n_m
 
         box => null()
@@ -103,7 +106,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => null()
         if (nc < 1) then
@@ -137,7 +140,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         call file_multi_box('gcmfil', trim(path), trim(method), dt, tol, nstep, maxord, box, error)
         call new_handle(box, handle, error, ierr, errmsg)
@@ -163,7 +166,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box, from
+        type(convolver_box), pointer :: box, from
 
         box => null()
         from => checked('gcmmth', hfrom, -1, error)
@@ -189,7 +192,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmpts', handle, nc, error)
         if (.not. allocated(error)) call check_file_box('gcmpts', box, error)
@@ -219,7 +222,7 @@ contains
         integer, intent(out) :: ierr
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         eworst = 0.0_dp
         emean = 0.0_dp
@@ -295,16 +298,13 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcmplt
 
-    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return.
+    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return. The one
+    !> box behind every handle is freed as greenconv_legacy's `GCFREE` does.
     subroutine gcmfre(handle)
         !> The handle (0: nothing).
         integer(int64), intent(inout) :: handle
 
-        type(multi_box), pointer :: box
-
-        box => box_of(handle)
-        call free_multi_box(box)
-        handle = 0_int64
+        call gcfree(handle)
     end subroutine gcmfre
 
     !> Number of points N_c of a multi-point convolver.
@@ -319,7 +319,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         nc = 0
         box => checked('gcmnpt', handle, -1, error)
@@ -341,7 +341,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmhis', handle, nc, error)
         if (.not. allocated(error)) call box%conv%history(uh(1:nc))
@@ -362,7 +362,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmpsh', handle, nc, error)
         if (.not. allocated(error)) call box%conv%push(q(1:nc))
@@ -383,7 +383,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmw0', handle, nc, error)
         if (.not. allocated(error)) w0(:, 1:nc) = box%conv%weight0
@@ -400,12 +400,11 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmrst', handle, -1, error)
         if (.not. allocated(error)) then
-            call box%conv%reset()
-            box%stepping = .false.
+            call reset_box(box)
         end if
         call report(error, ierr, errmsg)
     end subroutine gcmrst
@@ -422,15 +421,13 @@ contains
         integer, intent(out) :: ierr
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
-        character(len=:), allocatable :: label
+        type(convolver_box), pointer :: box
 
         nsize = 0
         box => checked('gcmdsc', handle, -1, error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        call box%conv%model_size(nsize, label)
-        text = box%conv%name//': '//box%description//', '//label//' = '//int_text(nsize)
+        text = describe_box(box, nsize)
     end subroutine gcmdsc
 
     !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).
@@ -449,7 +446,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmopt', handle, -1, error)
         if (.not. allocated(error)) call set_multi_options('gcmopt', box, tol, maxit, bound, error)
@@ -474,7 +471,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmbeg', handle, nc, error)
         if (.not. allocated(error)) then
@@ -505,7 +502,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmstp', handle, nc, error)
         if (.not. allocated(error)) call advance_multi_box('gcmstp', box, road(1:nc), u(1:nc), f(1:nc), &
@@ -541,7 +538,7 @@ contains
         character(len=*), intent(out) :: errmsg
 
         type(error_type), allocatable :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
         box => checked('gcmrun', handle, nc, error)
         if (.not. allocated(error) .and. nstep < 1) then
@@ -556,7 +553,7 @@ contains
 
     !> The handle of a new box (0 when it was not made), with status and message.
     subroutine new_handle(box, handle, error, ierr, errmsg)
-        type(multi_box), pointer, intent(in) :: box
+        type(convolver_box), pointer, intent(in) :: box
         integer(int64), intent(out) :: handle
         type(error_type), allocatable, intent(in) :: error
         integer, intent(out) :: ierr
@@ -565,21 +562,9 @@ contains
         handle = 0_int64
         call report(error, ierr, errmsg)
         if (allocated(error) .or. .not. associated(box)) return
-        handle = int(transfer(c_loc(box), 0_c_intptr_t), int64)
+        handle = address_handle(c_loc(box))
     end subroutine new_handle
 
-    !> The box a handle points to; null for handle 0.
-    function box_of(handle) result(box)
-        integer(int64), intent(in) :: handle
-        type(multi_box), pointer :: box
-
-        type(c_ptr) :: address
-
-        box => null()
-        if (handle == 0_int64) return
-        address = transfer(int(handle, c_intptr_t), c_null_ptr)
-        call c_f_pointer(address, box)
-    end function box_of
 
     !> The box of a handle, checked (with NC when >= 0).
     function checked(caller, handle, nc, error) result(box)
@@ -587,23 +572,10 @@ contains
         integer(int64), intent(in) :: handle
         integer, intent(in) :: nc
         type(error_type), allocatable, intent(out) :: error
-        type(multi_box), pointer :: box
+        type(convolver_box), pointer :: box
 
-        box => box_of(handle)
+        box => box_at(handle_address(handle))
         call check_box(caller, null_handle, box, nc, error)
     end function checked
-
-    !> Status and message of an error, or 0 and a blank message.
-    subroutine report(error, ierr, errmsg)
-        type(error_type), allocatable, intent(in) :: error
-        integer, intent(out) :: ierr
-        character(len=*), intent(out) :: errmsg
-
-        ierr = 0
-        errmsg = ' '
-        if (.not. allocated(error)) return
-        ierr = error%stat
-        errmsg = error%message
-    end subroutine report
 
 end module greenconv_legacy_multi

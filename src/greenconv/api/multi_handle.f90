@@ -1,8 +1,8 @@
-!> What the C and Fortran 77 front doors share for multi-point contact: the object behind a
-!> multi-point handle, the checks of the constructors' plain arrays, and contact runs into
-!> caller-sized arrays.
+!> What the C and Fortran 77 front doors share for multi-point contact: the checks of the
+!> constructors' plain arrays, and contact runs into caller-sized arrays, on the one object
+!> behind every handle, greenconv_api_handle's `convolver_box`.
 !>
-!> A `multi_box` holds a multi-point convolver (greenconv_conv_multipoint) built from one of
+!> A multi-point box holds a convolver (greenconv_conv_multipoint) built from one of
 !>
 !> - modes shared by the N_c points in the form of greenconv_model_point_modes: poles lambda_k
 !>   [rad/s], residues r_k of the unit modal impulse responses and mode shapes phi_ik, so that
@@ -25,57 +25,24 @@ module greenconv_api_multi_handle
     use greenconv_core_text, only: lower_text, sci_text, int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
-    use greenconv_conv_methods, only: check_method, canonical_method
-    use greenconv_conv_kernel, only: truncation_length
+    use greenconv_conv_methods, only: check_method
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
-    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
-    use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
-    use greenconv_contact_single, only: contact_law
-    use greenconv_contact_multi, only: newton_options, multi_contact_state, multi_contact_response, &
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
     use greenconv_api_library, only: check_contact_law
+    use greenconv_api_handle, only: convolver_box, free_box
     implicit none
     private
 
-    public :: multi_box, free_multi_box, modes_multi_box, samples_multi_box, patch_modes, file_multi_box
+    public :: modes_multi_box, samples_multi_box, patch_modes, file_multi_box
     public :: method_multi_box, check_file_box, file_e_modes
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
 
-    !> What a foreign multi-point handle points to.
-    type :: multi_box
-        !> The multi-point convolver (Green's matrix of the N_c points).
-        class(multipoint_convolver), allocatable :: conv
-        !> What the model neglects, in words.
-        character(len=:), allocatable :: description
-        !> Newton and divergence settings of the contact runs on this convolver.
-        type(newton_options) :: settings
-        !> The contact run stepped one call at a time.
-        type(multi_contact_state) :: contact
-        !> True between a successful start of a stepped run and its first fault or reset.
-        logical :: stepping = .false.
-        !> The Green's matrix file the convolver was built from, read and identified (its points:
-        !> node labels, x_i, y_i [m]); unallocated for a convolver made from modes or samples.
-        type(green_structure), allocatable :: green
-    end type multi_box
-
 contains
-
-    !> Free a box and its convolver (FFTW plans too); nothing for a null pointer. Null on return.
-    subroutine free_multi_box(box)
-        !> The box.
-        type(multi_box), pointer, intent(inout) :: box
-
-        if (.not. associated(box)) return
-        if (allocated(box%conv)) then
-            call box%conv%release()
-            deallocate (box%conv)
-        end if
-        deallocate (box)
-        box => null()
-    end subroutine free_multi_box
 
     !> A new box for modes shared by the points (poles, residues, mode shapes), the arrays
     !> checked by name; null on failure.
@@ -102,7 +69,7 @@ contains
         !> Number of steps N_t of the run, >= 1.
         integer, intent(in) :: n_steps
         !> The new box; null when `error` is set.
-        type(multi_box), pointer, intent(out) :: box
+        type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) naming the argument out of range.
         type(error_type), allocatable, intent(out) :: error
 
@@ -151,15 +118,9 @@ contains
         !> Number of steps N_t of the run, >= 1.
         integer, intent(in) :: n_steps
         !> The new box; null when `error` is set.
-        type(multi_box), pointer, intent(out) :: box
+        type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) naming the argument out of range.
         type(error_type), allocatable, intent(out) :: error
-
-        type(sampled_green_matrix) :: sampled
-        type(fft_green_matrix) :: partitioned
-        real(dp), allocatable :: row_max(:)
-        real(dp) :: tail
-        integer :: last, n_g, m
 
         box => null()
         if (size(g, 2) < 1) then
@@ -177,21 +138,8 @@ contains
             if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
             return
         end if
-        last = max(min(n_steps, size(g, 1)) - 1, 1)
-        row_max = [(maxval(abs(g(m, :, :))), m=0, last)]
-        n_g = last
-        if (truncation_tol > 0.0_dp) n_g = truncation_length(row_max, truncation_tol)
-        tail = 0.0_dp
-        if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
         allocate (box)
-        if (canonical_method(lower_text(method)) == 'direct') then
-            call new_sampled_green_matrix(g(0:n_g, :, :), dt, sampled, error)
-            if (.not. allocated(error)) allocate (box%conv, source=sampled)
-        else
-            call new_fft_green_matrix(g(0:n_g, :, :), dt, partitioned, error)
-            if (.not. allocated(error)) allocate (box%conv, source=partitioned)
-        end if
-        box%description = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
     end subroutine samples_multi_box
 
@@ -214,7 +162,7 @@ contains
         !> Largest order of the pole fit's stabilisation diagram, >= 1, or 0 for the library's default.
         integer, intent(in) :: max_order
         !> The new box; null when `error` is set.
-        type(multi_box), pointer, intent(out) :: box
+        type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) for a bad argument or file, naming it; (`stat_numerical`) when the
         !> identification fails.
         type(error_type), allocatable, intent(out) :: error
@@ -248,7 +196,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> A box made by `file_multi_box`.
-        type(multi_box), intent(in) :: source
+        type(convolver_box), intent(in) :: source
         !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
         character(len=*), intent(in) :: method
         !> Time step dt [s], > 0.
@@ -258,7 +206,7 @@ contains
         !> Number of steps N_t of the run, >= 1.
         integer, intent(in) :: n_steps
         !> The new box; null when `error` is set.
-        type(multi_box), pointer, intent(out) :: box
+        type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) for a bad argument or a source not made from a file.
         type(error_type), allocatable, intent(out) :: error
 
@@ -281,7 +229,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box (checked by `check_box`).
-        type(multi_box), intent(in) :: box
+        type(convolver_box), intent(in) :: box
         !> Set (`stat_input`) when the box holds no file.
         type(error_type), allocatable, intent(out) :: error
 
@@ -316,7 +264,7 @@ contains
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: dt, truncation_tol
         integer, intent(in) :: n_steps
-        type(multi_box), intent(inout) :: box
+        type(convolver_box), intent(inout) :: box
         type(error_type), allocatable, intent(out) :: error
 
         call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error)
@@ -373,7 +321,7 @@ contains
         !> What to say of a null handle, e.g. "conv is NULL: make one with gc_multi_new_modes".
         character(len=*), intent(in) :: missing
         !> The box, or null.
-        type(multi_box), pointer, intent(in) :: box
+        type(convolver_box), pointer, intent(in) :: box
         !> Number of points the caller's arrays hold; < 0: not checked.
         integer, intent(in) :: n_points
         !> Set (`stat_input`) for a null handle or a count that differs.
@@ -392,7 +340,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
-        type(multi_box), intent(inout) :: box
+        type(convolver_box), intent(inout) :: box
         !> Relative tolerance of the step's residual (dimensionless), > 0.
         real(dp), intent(in) :: tolerance
         !> Most Newton iterations per step, >= 1.
@@ -420,7 +368,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
-        type(multi_box), intent(inout) :: box
+        type(convolver_box), intent(inout) :: box
         !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
         real(dp), intent(in) :: stiffness(:)
         !> Contact exponent p_i of each point, > 0.
@@ -444,7 +392,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
-        type(multi_box), intent(inout) :: box
+        type(convolver_box), intent(inout) :: box
         !> Road heights u_r,i(t_n) [m] under the points.
         real(dp), intent(in) :: road(:)
         !> Displacements u_i(t_n) [m].
@@ -485,7 +433,7 @@ contains
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
-        type(multi_box), intent(inout) :: box
+        type(convolver_box), intent(inout) :: box
         !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
         real(dp), intent(in) :: stiffness(:)
         !> Contact exponent p_i of each point, > 0.
@@ -569,12 +517,12 @@ contains
     !> Keep a box whose convolver was made; otherwise free it and put the caller's name in front.
     subroutine keep_or_drop(caller, box, error)
         character(len=*), intent(in) :: caller
-        type(multi_box), pointer, intent(inout) :: box
+        type(convolver_box), pointer, intent(inout) :: box
         type(error_type), allocatable, intent(inout) :: error
 
         if (.not. allocated(error)) return
         error%message = caller//': '//error%message
-        call free_multi_box(box)
+        call free_box(box)
     end subroutine keep_or_drop
 
 end module greenconv_api_multi_handle

@@ -34,7 +34,8 @@ module greenconv_contact_multi
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_ext_lapack, only: solve_linear
-    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_rows, only: keep_first, keep_all
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
@@ -190,7 +191,9 @@ contains
             if (.not. allocated(error)) call divergence_guard(u, response%force(j, :), state%settings, error)
             if (allocated(error)) then
                 error%message = error%message//' at step '//int_text(n)//' (t = '//sci_text(n*conv%dt)//' s)'
-                call keep_rows(response, j)
+                call keep_all(j, response%time, response%total_force)
+                call keep_first(response%iterations, j)
+                call keep_all(j, response%road, response%displacement, response%force, response%compression)
                 state%step = n
                 return
             end if
@@ -350,36 +353,5 @@ contains
         allocate (response%road(0:n_t - 1, n_c), response%displacement(0:n_t - 1, n_c), &
                   response%force(0:n_t - 1, n_c), response%compression(0:n_t - 1, n_c))
     end subroutine allocate_response
-
-    !> Shrink the histories to their first n_done steps.
-    subroutine keep_rows(response, n_done)
-        type(multi_contact_response), intent(inout) :: response
-        integer, intent(in) :: n_done
-
-        type(multi_contact_response) :: done
-
-        call allocate_response(done, n_done, size(response%force, 2))
-        done%time(:) = response%time(0:n_done - 1)
-        done%total_force(:) = response%total_force(0:n_done - 1)
-        done%iterations(:) = response%iterations(0:n_done - 1)
-        done%road(:, :) = response%road(0:n_done - 1, :)
-        done%displacement(:, :) = response%displacement(0:n_done - 1, :)
-        done%force(:, :) = response%force(0:n_done - 1, :)
-        done%compression(:, :) = response%compression(0:n_done - 1, :)
-        call move_response(done, response)
-    end subroutine keep_rows
-
-    !> Move every history from `source` to `target`.
-    subroutine move_response(source, target)
-        type(multi_contact_response), intent(inout) :: source, target
-
-        call move_alloc(source%time, target%time)
-        call move_alloc(source%total_force, target%total_force)
-        call move_alloc(source%iterations, target%iterations)
-        call move_alloc(source%road, target%road)
-        call move_alloc(source%displacement, target%displacement)
-        call move_alloc(source%force, target%force)
-        call move_alloc(source%compression, target%compression)
-    end subroutine move_response
 
 end module greenconv_contact_multi

@@ -62,26 +62,15 @@ module greenconv_contact_single
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_conv_convolver, only: convolver
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_rows, only: keep_first, keep_all
     implicit none
     private
 
-    public :: contact_law, contact_response, contact_options, run_contact
+    !> The contact law, greenconv_contact_law's, named here too for the callers that take it from this module.
+    public :: contact_law
+    public :: contact_response, contact_options, run_contact
     public :: contact_state, start_contact, contact_block, copy_histories
-
-    !> Power-law contact spring F = k_c*delta^p, active in compression only.
-    type :: contact_law
-        !> Contact stiffness k_c [N/m^p], > 0.
-        real(dp) :: stiffness = 1.0e6_dp
-        !> Exponent p (3/2 for Hertz, 1 for a linear spring), > 0.
-        real(dp) :: exponent = 1.5_dp
-    contains
-        !> Contact force F(delta) [N] for a compression delta [m].
-        procedure :: force => law_force
-        !> Compression delta [m] that carries a force F >= 0 [N].
-        procedure :: compression => law_compression
-        !> Tangent stiffness dF/d(delta) [N/m] at a compression delta > 0 [m].
-        procedure :: tangent => law_tangent
-    end type contact_law
 
     !> Time histories of a contact run, sampled at t_n = n*dt, n = 0..N-1, where N is the
     !> number of road samples, or fewer when the run was stopped by a fault.
@@ -138,47 +127,6 @@ module greenconv_contact_single
     end type contact_state
 
 contains
-
-    !> Contact force [N]: k_c*delta^p when delta > 0, exactly zero otherwise.
-    elemental real(dp) function law_force(self, delta)
-        !> The contact law.
-        class(contact_law), intent(in) :: self
-        !> Compression [m].
-        real(dp), intent(in) :: delta
-
-        law_force = 0.0_dp
-        if (delta <= 0.0_dp) return
-        ! Hertz and linear springs without the general power (a pow call costs more than a
-        ! whole step of the modal recursion); the same value to the last bit or two.
-        if (abs(self%exponent - 1.5_dp) < epsilon(1.0_dp)) then
-            law_force = self%stiffness*delta*sqrt(delta)
-        else if (abs(self%exponent - 1.0_dp) < epsilon(1.0_dp)) then
-            law_force = self%stiffness*delta
-        else
-            law_force = self%stiffness*delta**self%exponent
-        end if
-    end function law_force
-
-    !> Compression [m] at which the spring carries a force F >= 0 [N]: (F/k_c)^(1/p).
-    elemental real(dp) function law_compression(self, force)
-        !> The contact law.
-        class(contact_law), intent(in) :: self
-        !> Force [N], >= 0.
-        real(dp), intent(in) :: force
-
-        law_compression = (force/self%stiffness)**(1.0_dp/self%exponent)
-    end function law_compression
-
-    !> Tangent stiffness [N/m] p*k_c*delta^(p-1) at a compression delta > 0 [m]; at the
-    !> static compression delta0 it is k_c' of the contact frequency sqrt(k_c'/M).
-    elemental real(dp) function law_tangent(self, delta)
-        !> The contact law.
-        class(contact_law), intent(in) :: self
-        !> Compression [m], > 0.
-        real(dp), intent(in) :: delta
-
-        law_tangent = self%exponent*self%stiffness*delta**(self%exponent - 1.0_dp)
-    end function law_tangent
 
     !> Run the contact loop over size(road) steps with any convolver.
     !>
@@ -499,26 +447,8 @@ contains
         type(contact_response), intent(inout) :: response
         integer, intent(in) :: n_done
 
-        call keep_first(response%time, n_done)
-        call keep_first(response%road, n_done)
-        call keep_first(response%displacement, n_done)
-        call keep_first(response%force, n_done)
+        call keep_all(n_done, response%time, response%road, response%displacement, response%force)
         call keep_first(response%compression, n_done)
     end subroutine keep_rows
-
-    !> values(0:n-1), reallocated only when it is not that already.
-    subroutine keep_first(values, n)
-        real(dp), allocatable, intent(inout) :: values(:)
-        integer, intent(in) :: n
-
-        real(dp), allocatable :: kept(:)
-
-        if (allocated(values)) then
-            if (size(values) == n) return
-        end if
-        allocate (kept(0:n - 1))
-        if (n > 0) kept(:) = values(0:n - 1)
-        call move_alloc(kept, values)
-    end subroutine keep_first
 
 end module greenconv_contact_single

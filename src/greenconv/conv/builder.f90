@@ -8,7 +8,13 @@
 !> - `make_convolver`: the same without the value checks (the scene runner, whose scene was
 !>   checked when it was read);
 !> - `make_multipoint_convolver`: a multi-point convolver (a Green's matrix) from modes and
-!>   mode shapes at the contact points.
+!>   mode shapes at the contact points;
+!> - `table_convolver`: a multi-point `direct` or `fft` convolver on a table g_ij(t_m) (from a
+!>   file, or given by a caller), truncated by the paper's rule.
+!>
+!> Methods are told apart by their registry scheme (`method_scheme`), never by name: the kernel
+!> engines here (`new_kernel_engine`, `new_table_engine`), the decaying recursions in
+!> greenconv_conv_recursive's `new_modal_engine`.
 module greenconv_conv_builder
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -18,14 +24,15 @@ module greenconv_conv_builder
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_structure, only: structure_model
-    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, canonical_method, &
-                                      method_needs_modes, check_method
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method, &
+                                      method_scheme, scheme_direct, scheme_fft, scheme_paper, scheme_first_order, &
+                                      scheme_auto
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_direct, only: new_direct_convolver
     use greenconv_conv_kernel, only: sample_kernel, truncation_length
     use greenconv_conv_fft, only: new_fft_convolver
     use greenconv_conv_paper, only: new_paper_convolver
-    use greenconv_conv_recursive, only: new_recursive_convolver, new_exact_convolver, new_backward_convolver
+    use greenconv_conv_recursive, only: new_modal_engine
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
@@ -33,7 +40,7 @@ module greenconv_conv_builder
     implicit none
     private
 
-    public :: new_convolver, make_convolver, make_multipoint_convolver
+    public :: new_convolver, make_convolver, make_multipoint_convolver, table_convolver
 
     !> `auto` runs the direct sum when N_t*N_g is at most this many multiply-adds (about
     !> 2 ms at the measured 6-7 GMAC/s): then no model is worth building.
@@ -190,10 +197,10 @@ contains
         if (allocated(error)) return
         call check_sample_step(structure, dt, error)
         if (allocated(error)) return
-        call check_wrapped_g(canonical_method(method), structure, error)
+        call check_wrapped_g(method, structure, error)
         if (allocated(error)) return
-        if (canonical_method(method) /= 'auto') then
-            call build_method(canonical_method(method), structure, dt, truncation_tol, n_steps, conv, accuracy)
+        if (method_scheme(method) /= scheme_auto) then
+            call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
             return
         end if
         target = default_accuracy
@@ -252,7 +259,7 @@ contains
         end if
     end subroutine choose_method
 
-    !> Build one method the registry accepted for this structure, by its canonical name (not `auto`).
+    !> Build one method the registry accepted for this structure (not `auto`).
     subroutine build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
         character(len=*), intent(in) :: method
         type(structure_model), intent(in) :: structure
@@ -267,17 +274,13 @@ contains
         integer(int64) :: valid
         integer :: j
 
-        select case (method)
-        case ('direct', 'fft')
+        select case (method_scheme(method))
+        case (scheme_direct, scheme_fft)
             call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
             ! A kernel that reaches the run's end was cut there: it is valid for n_steps steps.
             valid = huge(valid)
             if (size(kernel) >= n_steps) valid = n_steps
-            if (method == 'direct') then
-                conv = new_direct_convolver(kernel, dt, valid)
-            else
-                conv = new_fft_convolver(kernel, dt, valid_steps=valid)
-            end if
+            call new_kernel_engine(method_scheme(method), kernel, dt, valid, conv)
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
             if (structure%identified .and. .not. structure%has_exact) then
@@ -292,14 +295,10 @@ contains
                                //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
                 end if
             end if
-        case ('paper')
+        case (scheme_paper)
             conv = new_paper_convolver(structure%model, dt)
-        case ('recursive')
-            conv = new_recursive_convolver(structure%model, dt)
-        case ('exact')
-            conv = new_exact_convolver(structure%model, dt)
-        case ('backward')
-            conv = new_backward_convolver(structure%model, dt)
+        case default
+            conv = new_modal_engine(method_scheme(method), structure%model, dt)
         end select
         if (method_needs_modes(method)) then
             accuracy = 'exact: the modes are the structure''s own'
@@ -348,13 +347,15 @@ contains
         if (.not. wrapped_g(structure)) return
         why = 'g from the receptance has not decayed within the period 1/df of its frequency grid (wrap-around: ' &
               //sci_text(structure%fit%tail_level)//' of max|g| left at its end), so a convolution with it is wrong'
-        if (method == 'direct' .or. method == 'fft') then
+        select case (method_scheme(method))
+        case (scheme_direct, scheme_fft)
             call fatal_error(error, 'method '//method//': '//why//': use a modal method (''modal'', ''exact'') on ' &
                              //'the identified modes, or a receptance on a finer frequency grid')
-        else if (method == 'auto' .and. structure%model%n_modes() == 0) then
-            call fatal_error(error, 'method auto: '//why//', and the identification kept no modes: give a ' &
-                             //'receptance on a finer frequency grid')
-        end if
+        case (scheme_auto)
+            if (structure%model%n_modes() == 0) call fatal_error(error, 'method auto: '//why//', and the ' &
+                                                                 //'identification kept no modes: give a ' &
+                                                                 //'receptance on a finer frequency grid')
+        end select
     end subroutine check_wrapped_g
 
     !> The truncated kernel of the structure's own g and the largest neglected sample.
@@ -404,34 +405,104 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(modal_green_matrix) :: modal
-        type(sampled_green_matrix) :: sampled
-        type(fft_green_matrix) :: partitioned
         real(dp), allocatable :: kernel(:, :, :)
         real(dp) :: tail
 
         accuracy = ''
         call check_method(method, .true., modes%modes%n_modes() > 0, modes%modes%n_modes() > 0, error)
         if (allocated(error)) return
-        select case (canonical_method(method))
-        case ('recursive', 'exact')
-            call new_modal_green_matrix(modes, dt, canonical_method(method), modal, error)
+        select case (method_scheme(method))
+        case (scheme_direct, scheme_fft)
+            call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
+            call new_table_engine(method_scheme(method), kernel, dt, conv, error)
+            if (allocated(error)) return
+            accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        case default
+            call new_modal_green_matrix(modes, dt, method, modal, error)
             if (allocated(error)) return
             allocate (conv, source=modal)
             accuracy = 'exact on the model''s modes (explicit step)'
-            if (modal%name == 'exact') accuracy = 'first-order hold, implicit step (Newton, all points)'
-        case ('direct', 'fft')
-            call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
-            if (canonical_method(method) == 'direct') then
-                call new_sampled_green_matrix(kernel, dt, sampled, error)
-                if (allocated(error)) return
-                allocate (conv, source=sampled)
-            else
-                call new_fft_green_matrix(kernel, dt, partitioned, error)
-                if (allocated(error)) return
-                allocate (conv, source=partitioned)
-            end if
-            accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+            if (method_scheme(method) == scheme_first_order) &
+                accuracy = 'first-order hold, implicit step (Newton, all points)'
         end select
     end subroutine make_multipoint_convolver
+
+    !> `direct` or `fft` on a table g_ij(t_m), truncated by the paper's rule: the last m at
+    !> which some |g_ij| reaches tol*max|g| (tol = 0 keeps it all), within the run
+    !> (m <= n_steps - 1). With `fitted` (an identified model's g_ij by the same inverse FFT),
+    !> the accuracy also says how far the table is from it.
+    subroutine table_convolver(method, kernel, dt, tol, n_steps, conv, accuracy, error, fitted)
+        !> Method, `direct` or `fft` (the registry's check is the caller's).
+        character(len=*), intent(in) :: method
+        !> kernel(m, i, j) = g_ij(m*dt) [m/(N*s)], m = 0..N_s-1, N_s >= 2.
+        real(dp), intent(in) :: kernel(0:, :, :)
+        !> Time step dt [s] of the table and of the run.
+        real(dp), intent(in) :: dt
+        !> Fraction of max |g_ij| below which the table's tail is cut, in [0, 1).
+        real(dp), intent(in) :: tol
+        !> Number of steps N_t of the run; the table is never used past it.
+        integer, intent(in) :: n_steps
+        !> The multi-point convolver on the truncated table, at step 0.
+        class(multipoint_convolver), allocatable, intent(out) :: conv
+        !> The neglected tail (and the misfit to `fitted`), in words.
+        character(len=:), allocatable, intent(out) :: accuracy
+        !> Set when the table does not make a convolver.
+        type(error_type), allocatable, intent(out) :: error
+        !> The identified model's g_ij(m*dt) on the same samples [m/(N*s)].
+        real(dp), intent(in), optional :: fitted(0:, :, :)
+
+        real(dp), allocatable :: row_max(:)
+        real(dp) :: tail, misfit
+        integer :: last, n_g, m
+
+        last = min(ubound(kernel, 1), max(n_steps - 1, 1))
+        allocate (row_max(0:last))
+        do m = 0, last
+            row_max(m) = maxval(abs(kernel(m, :, :)))
+        end do
+        n_g = truncation_length(row_max, tol)
+        tail = 0.0_dp
+        if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
+        call new_table_engine(method_scheme(method), kernel(0:n_g, :, :), dt, conv, error)
+        if (allocated(error)) return
+        accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
+        if (.not. present(fitted)) return
+        misfit = maxval(abs(kernel(0:n_g, :, :) - fitted(0:n_g, :, :)))/maxval(row_max)
+        accuracy = accuracy//'; the identified model''s g_ij by the same FFT differs by '//sci_text(misfit) &
+                   //' of max|g_ij|'
+    end subroutine table_convolver
+
+    !> The single-point kernel engine of a scheme: `scheme_direct` or `scheme_fft`.
+    subroutine new_kernel_engine(scheme, kernel, dt, valid, conv)
+        integer, intent(in) :: scheme
+        real(dp), intent(in) :: kernel(:), dt
+        integer(int64), intent(in) :: valid
+        class(convolver), allocatable, intent(out) :: conv
+
+        if (scheme == scheme_direct) then
+            conv = new_direct_convolver(kernel, dt, valid)
+        else
+            conv = new_fft_convolver(kernel, dt, valid_steps=valid)
+        end if
+    end subroutine new_kernel_engine
+
+    !> The multi-point table engine of a scheme: `scheme_direct` or `scheme_fft`.
+    subroutine new_table_engine(scheme, kernel, dt, conv, error)
+        integer, intent(in) :: scheme
+        real(dp), intent(in) :: kernel(0:, :, :), dt
+        class(multipoint_convolver), allocatable, intent(out) :: conv
+        type(error_type), allocatable, intent(out) :: error
+
+        type(sampled_green_matrix) :: sampled
+        type(fft_green_matrix) :: partitioned
+
+        if (scheme == scheme_direct) then
+            call new_sampled_green_matrix(kernel, dt, sampled, error)
+            if (.not. allocated(error)) allocate (conv, source=sampled)
+        else
+            call new_fft_green_matrix(kernel, dt, partitioned, error)
+            if (.not. allocated(error)) allocate (conv, source=partitioned)
+        end if
+    end subroutine new_table_engine
 
 end module greenconv_conv_builder

@@ -24,12 +24,10 @@ module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_conv_methods, only: canonical_method, check_method, default_truncation_tol
+    use greenconv_conv_methods, only: check_method, default_truncation_tol, method_scheme, scheme_direct, scheme_fft, &
+                                      scheme_first_order
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_kernel, only: truncation_length
-    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
-    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
-    use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
     implicit none
     private
@@ -146,13 +144,11 @@ contains
         accuracy = ''
         call check_method(method, .true., .true., structure%identified, error)
         if (allocated(error)) return
-        select case (canonical_method(method))
-        case ('direct', 'fft')
+        if (any(method_scheme(method) == [scheme_direct, scheme_fft])) then
             call sampled_kernel(structure, dt, kernel, source, error, fitted)
             if (allocated(error)) return
             if (allocated(kernel)) then
-                call table_convolver(canonical_method(method), kernel, dt, truncation_tol, n_steps, conv, text, &
-                                     error, fitted)
+                call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
                 if (allocated(error)) return
                 accuracy = source//'; '//text
                 return
@@ -161,19 +157,17 @@ contains
             if (allocated(error)) return
             accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; ' &
                        //modes_accuracy(structure, .false.)
-        case ('exact')
-            call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
-            if (allocated(error)) return
-            accuracy = text//'; '//modes_accuracy(structure, .false.)
-            if (structure%fit%pole_fit%has_upper) then
-                call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
-                accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
-            end if
-        case default
-            call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
-            if (allocated(error)) return
-            accuracy = text//'; '//modes_accuracy(structure, .false.)
-        end select
+            return
+        end if
+        call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
+        if (allocated(error)) return
+        accuracy = text//'; '//modes_accuracy(structure, .false.)
+        ! The fit's upper residual U is an impulse U*delta(t) in g_ij: the first-order hold puts
+        ! all of it in the current step's displacement, W0.
+        if (method_scheme(method) == scheme_first_order .and. structure%fit%pole_fit%has_upper) then
+            call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
+            accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
+        end if
     end subroutine green_file_convolver
 
     !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
@@ -191,49 +185,5 @@ contains
                    //' shared poles and U, E worst '//sci_text(maxval(structure%e_upper))//', mean ' &
                    //sci_text(sum(structure%e_upper)/size(structure%e_upper))//' (eq. 7)'
     end function modes_accuracy
-
-    !> `direct` or `fft` on a table g_ij(t_m) from the file, truncated by the paper's rule: the
-    !> last m at which some |g_ij| reaches tol*max|g|, within the run (m <= n_steps - 1). With
-    !> `fitted` (the identified model's g_ij by the same inverse FFT), the accuracy also says
-    !> how far the table is from it.
-    subroutine table_convolver(method, kernel, dt, tol, n_steps, conv, accuracy, error, fitted)
-        character(len=*), intent(in) :: method
-        real(dp), intent(in) :: kernel(0:, :, :)
-        real(dp), intent(in) :: dt, tol
-        integer, intent(in) :: n_steps
-        class(multipoint_convolver), allocatable, intent(out) :: conv
-        character(len=:), allocatable, intent(out) :: accuracy
-        type(error_type), allocatable, intent(out) :: error
-        real(dp), intent(in), optional :: fitted(0:, :, :)
-
-        type(sampled_green_matrix) :: sampled
-        type(fft_green_matrix) :: partitioned
-        real(dp), allocatable :: row_max(:)
-        real(dp) :: tail, misfit
-        integer :: last, n_g, m
-
-        last = min(ubound(kernel, 1), max(n_steps - 1, 1))
-        allocate (row_max(0:last))
-        do m = 0, last
-            row_max(m) = maxval(abs(kernel(m, :, :)))
-        end do
-        n_g = truncation_length(row_max, tol)
-        tail = 0.0_dp
-        if (n_g < last) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
-        if (method == 'direct') then
-            call new_sampled_green_matrix(kernel(0:n_g, :, :), dt, sampled, error)
-            if (allocated(error)) return
-            allocate (conv, source=sampled)
-        else
-            call new_fft_green_matrix(kernel(0:n_g, :, :), dt, partitioned, error)
-            if (allocated(error)) return
-            allocate (conv, source=partitioned)
-        end if
-        accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
-        if (.not. present(fitted)) return
-        misfit = maxval(abs(kernel(0:n_g, :, :) - fitted(0:n_g, :, :)))/maxval(row_max)
-        accuracy = accuracy//'; the identified model''s g_ij by the same FFT differs by '//sci_text(misfit) &
-                   //' of max|g_ij|'
-    end subroutine table_convolver
 
 end module greenconv_conv_green_file

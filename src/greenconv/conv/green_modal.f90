@@ -21,9 +21,8 @@ module greenconv_conv_green_modal
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_conv_recursive, only: recursive_convolver, new_recursive_convolver, new_exact_convolver, &
-                                  new_backward_convolver, hold_functions
-    use greenconv_conv_methods, only: canonical_method, method_engine, method_list
+    use greenconv_conv_recursive, only: recursive_convolver, new_modal_engine
+    use greenconv_conv_methods, only: method_scheme, is_modal_recursion, method_list
     implicit none
     private
 
@@ -62,8 +61,7 @@ contains
         !> Set for an unknown scheme or mode shapes that do not match the modes.
         type(error_type), allocatable, intent(out) :: error
 
-        complex(dp), allocatable :: phi1(:), phi2(:)
-        real(dp), allocatable :: w0(:), weight0(:, :)
+        real(dp), allocatable :: weight0(:, :)
         integer :: n_c, n_m, k
 
         n_c = description%n_points()
@@ -73,32 +71,22 @@ contains
                              //'one column per mode')
             return
         end if
-        if (method_engine(scheme) /= 'recursive') then
+        if (.not. is_modal_recursion(scheme)) then
             call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme//''': expected ' &
                              //method_list(engine='recursive'))
             return
         end if
-        allocate (w0(n_m), phi1(n_m), phi2(n_m))
-        select case (canonical_method(scheme))
-        case ('recursive')
-            conv%engine = new_recursive_convolver(description%modes, dt)
-            w0(:) = 0.0_dp
-        case ('exact')
-            conv%engine = new_exact_convolver(description%modes, dt)
-            call hold_functions(description%modes%pole*dt, phi1, phi2)
-            w0(:) = 2.0_dp*real(description%modes%residue*dt*phi2, kind=dp)
-        case ('backward')
-            conv%engine = new_backward_convolver(description%modes, dt)
-            call hold_functions(description%modes%pole*dt, phi1, phi2)
-            w0(:) = 2.0_dp*real(description%modes%residue*dt*phi1, kind=dp)
-        end select
-        conv%name = canonical_method(scheme)
+        ! The single-point engine of the same scheme on the same modes: its states are the p_k,
+        ! and its per-mode shares of w0 weigh the mode shapes into W0.
+        conv%engine = new_modal_engine(method_scheme(scheme), description%modes, dt)
+        conv%name = conv%engine%name
         conv%dt = dt
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape
         weight0(:, :) = 0.0_dp
         do k = 1, n_m
-            weight0(:, :) = weight0 + w0(k)*spread(conv%shape(:, k), 2, n_c)*spread(conv%shape(:, k), 1, n_c)
+            weight0(:, :) = weight0 + conv%engine%mode_weight(k)*spread(conv%shape(:, k), 2, n_c) &
+                            *spread(conv%shape(:, k), 1, n_c)
         end do
         call conv%set_instant_matrix(weight0)
         call conv%reset()

@@ -3,8 +3,11 @@
 !> multi-point contact, and a one-line description; the defaults of the methods' options too.
 !>
 !> The scene check, the builder (greenconv_conv_builder), the runner and the library ask it,
-!> so a scene `--check` refuses exactly what a run refuses. Adding an engine: one row in
-!> `registry` and its `case` in the builder.
+!> so a scene `--check` refuses exactly what a run refuses. This is the only place a method's
+!> name is compared: everyone else asks for its `scheme` (`method_scheme`), an integer the
+!> constructors dispatch on once (the builder for the kernel engines, greenconv_conv_recursive's
+!> `new_modal_engine` for the decaying recursions). Adding an engine: its module, one row in
+!> `registry` with a new scheme, and its `case` in the builder.
 module greenconv_conv_methods
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -14,7 +17,24 @@ module greenconv_conv_methods
     public :: default_truncation_tol, default_accuracy
     public :: method_name_length, n_methods
     public :: is_method, canonical_method, method_engine, method_names, method_list, method_summary
-    public :: method_needs_g, method_needs_modes, check_method
+    public :: method_needs_g, method_needs_modes, check_method, method_scheme, is_modal_recursion
+
+    !> Scheme of no method (an unknown name).
+    integer, parameter, public :: scheme_none = 0
+    !> `direct`: the truncated direct sum over sampled g.
+    integer, parameter, public :: scheme_direct = 1
+    !> `fft`: the same sum by partitioned FFT convolution.
+    integer, parameter, public :: scheme_fft = 2
+    !> `paper`: the modal recursion as eqs. (15)-(17) write it.
+    integer, parameter, public :: scheme_paper = 3
+    !> `recursive` (`modal`): the decaying recursion, rectangle rule, explicit.
+    integer, parameter, public :: scheme_rectangle = 4
+    !> `exact`: the decaying recursion with the force linear within a step (first-order hold).
+    integer, parameter, public :: scheme_first_order = 5
+    !> `backward`: the decaying recursion with the force constant over the step ending at its sample.
+    integer, parameter, public :: scheme_backward = 6
+    !> `auto`: picks one of the others.
+    integer, parameter, public :: scheme_auto = 7
 
     !> Truncation of g for `direct` and `fft` when none is given: the paper's 1 % of max |g|.
     real(dp), parameter :: default_truncation_tol = 0.01_dp
@@ -34,6 +54,8 @@ module greenconv_conv_methods
         !> recursion of greenconv_conv_recursive, single-point, and greenconv_conv_green_modal,
         !> multi-point); '' for `auto`, which picks another method.
         character(len=method_name_length) :: engine
+        !> The scheme the constructors dispatch on (`scheme_direct`, ...).
+        integer :: scheme
         !> Whether it convolves with the sampled impulse response g (or samples it to weigh a choice).
         logical :: needs_g
         !> Whether it recurs on modes (poles and residues).
@@ -48,21 +70,21 @@ module greenconv_conv_methods
 
     !> The methods, in the order messages list them.
     type(method_entry), parameter :: registry(*) = [ &
-        method_entry('direct', 'direct', 'direct', .true., .false., .true., .true., &
+        method_entry('direct', 'direct', 'direct', scheme_direct, .true., .false., .true., .true., &
                      'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)'), &
-        method_entry('fft', 'fft', 'fft', .true., .false., .true., .true., &
+        method_entry('fft', 'fft', 'fft', scheme_fft, .true., .false., .true., .true., &
                      'the same truncated sum by partitioned FFT convolution'), &
-        method_entry('modal', 'recursive', 'recursive', .false., .true., .true., .true., &
+        method_entry('modal', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., &
                      'the modal recursion of the paper with decaying factors (an alias of recursive)'), &
-        method_entry('paper', 'paper', 'paper', .false., .true., .true., .false., &
+        method_entry('paper', 'paper', 'paper', scheme_paper, .false., .true., .true., .false., &
                      'the modal recursion as eqs. (15)-(17) write it'), &
-        method_entry('recursive', 'recursive', 'recursive', .false., .true., .true., .true., &
+        method_entry('recursive', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., &
                      'the modal recursion (rectangle rule) with decaying factors, explicit'), &
-        method_entry('exact', 'exact', 'recursive', .false., .true., .true., .true., &
+        method_entry('exact', 'exact', 'recursive', scheme_first_order, .false., .true., .true., .true., &
                      'the modal recursion with the force linear within a step (first-order hold)'), &
-        method_entry('backward', 'backward', 'recursive', .false., .true., .true., .false., &
+        method_entry('backward', 'backward', 'recursive', scheme_backward, .false., .true., .true., .false., &
                      'the modal recursion with the force constant over the step ending at its sample'), &
-        method_entry('auto', 'auto', '', .true., .true., .true., .false., &
+        method_entry('auto', 'auto', '', scheme_auto, .true., .true., .true., .false., &
                      'the cheapest of direct, exact and fft that meets the requested accuracy')]
 
     !> Number of methods in the registry.
@@ -127,6 +149,28 @@ contains
         entry = entry_of(name)
         engine = trim(entry%engine)
     end function method_engine
+
+    !> The scheme a method's constructor dispatches on (`scheme_direct`, ..., `scheme_auto`),
+    !> aliases resolved (`modal` gives `scheme_rectangle`); `scheme_none` for an unknown name.
+    elemental integer function method_scheme(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        integer :: i
+
+        method_scheme = scheme_none
+        i = find(name)
+        if (i > 0) method_scheme = registry(i)%scheme
+    end function method_scheme
+
+    !> Whether a method is stepped by the decaying modal recursion of greenconv_conv_recursive
+    !> (`recursive`, `modal`, `exact`, `backward`).
+    logical function is_modal_recursion(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        is_modal_recursion = method_engine(name) == 'recursive'
+    end function is_modal_recursion
 
     !> What a method computes, in one line; '' for an unknown name.
     function method_summary(name) result(text)
@@ -213,7 +257,7 @@ contains
         if (i > 0) then
             entry = registry(i)
         else
-            entry = method_entry('', '', '', .false., .false., .false., .false., '')
+            entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., '')
         end if
     end function entry_of
 

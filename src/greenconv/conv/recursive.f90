@@ -69,10 +69,12 @@ module greenconv_conv_recursive
     use greenconv_core_kinds, only: dp
     use greenconv_conv_convolver, only: convolver
     use greenconv_model_modal_set, only: modal_set
+    use greenconv_conv_methods, only: scheme_rectangle, scheme_first_order, scheme_backward
     implicit none
     private
 
     public :: recursive_convolver, new_recursive_convolver, new_exact_convolver, new_backward_convolver
+    public :: new_modal_engine
     public :: hold_functions
 
     !> A decaying modal recursion: `recursive` (rectangle rule), `exact` (first-order hold)
@@ -90,6 +92,9 @@ module greenconv_conv_recursive
         real(dp), allocatable :: state_re(:)
         !> Imaginary part of the states p_k [m].
         real(dp), allocatable :: state_im(:)
+        !> Share of each mode in w0 [m/N] (zero for the rectangle rule); their sum is w0. The
+        !> multi-point engine (greenconv_conv_green_modal) weighs them with the mode shapes.
+        real(dp), allocatable :: mode_weight(:)
     contains
         procedure :: history => recursive_history
         procedure :: push => recursive_push
@@ -111,10 +116,7 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: z(modes%n_modes())
-
-        z = exp(modes%pole*dt)
-        call set_up(conv, 'recursive', dt, z, 2.0_dp*modes%residue*dt*z, 0.0_dp)
+        conv = new_modal_engine(scheme_rectangle, modes, dt)
     end function new_recursive_convolver
 
     !> The first-order-hold convolution named `exact`: the force linear within each step,
@@ -126,11 +128,7 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: phi1(modes%n_modes()), phi2(modes%n_modes())
-
-        call hold_functions(modes%pole*dt, phi1, phi2)
-        call set_up(conv, 'exact', dt, exp(modes%pole*dt), 2.0_dp*modes%residue*dt*phi1**2, &
-                    2.0_dp*sum(real(modes%residue*dt*phi2, kind=dp)))
+        conv = new_modal_engine(scheme_first_order, modes, dt)
     end function new_exact_convolver
 
     !> The backward-zero-order-hold convolution named `backward`: the force constant over the
@@ -143,13 +141,40 @@ contains
         real(dp), intent(in) :: dt
         type(recursive_convolver) :: conv
 
-        complex(dp) :: phi1(modes%n_modes()), phi2(modes%n_modes()), z(modes%n_modes())
-
-        call hold_functions(modes%pole*dt, phi1, phi2)
-        z = exp(modes%pole*dt)
-        call set_up(conv, 'backward', dt, z, 2.0_dp*modes%residue*dt*phi1*z, &
-                    2.0_dp*sum(real(modes%residue*dt*phi1, kind=dp)))
+        conv = new_modal_engine(scheme_backward, modes, dt)
     end function new_backward_convolver
+
+    !> The decaying recursion of a scheme of the registry (greenconv_conv_methods's
+    !> `method_scheme`): `scheme_rectangle` (`recursive`: c_k = 2*r_k*dt*z_k, w0 = 0),
+    !> `scheme_first_order` (`exact`: c_k = 2*r_k*dt*phi1^2, w0_k = 2*Re(r_k*dt*phi2)) or
+    !> `scheme_backward` (`backward`: c_k = 2*r_k*dt*phi1*z_k, w0_k = 2*Re(r_k*dt*phi1)), with
+    !> z_k = exp(lambda_k*dt) and phi1, phi2 of lambda_k*dt (`hold_functions`). The one place
+    !> these three are told apart, for single- and multi-point contact alike; any other scheme
+    !> gives the rectangle rule.
+    function new_modal_engine(scheme, modes, dt) result(conv)
+        !> The scheme.
+        integer, intent(in) :: scheme
+        !> The Green's function as modes (Re lambda_k <= 0).
+        type(modal_set), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        type(recursive_convolver) :: conv
+
+        complex(dp), dimension(modes%n_modes()) :: z, phi1, phi2, none
+
+        z = exp(modes%pole*dt)
+        select case (scheme)
+        case (scheme_first_order)
+            call hold_functions(modes%pole*dt, phi1, phi2)
+            call set_up(conv, 'exact', dt, z, 2.0_dp*modes%residue*dt*phi1**2, modes%residue*dt*phi2)
+        case (scheme_backward)
+            call hold_functions(modes%pole*dt, phi1, phi2)
+            call set_up(conv, 'backward', dt, z, 2.0_dp*modes%residue*dt*phi1*z, modes%residue*dt*phi1)
+        case default
+            none(:) = (0.0_dp, 0.0_dp)
+            call set_up(conv, 'recursive', dt, z, 2.0_dp*modes%residue*dt*z, none)
+        end select
+    end function new_modal_engine
 
     !> phi1(x) = (exp(x) - 1)/x and phi2(x) = (exp(x) - 1 - x)/x^2 (1 and 1/2 at x = 0),
     !> from their Taylor series when |x| < 1 and in closed form otherwise.
@@ -183,17 +208,18 @@ contains
         end if
     end subroutine hold_functions
 
-    !> Fill a convolver from its decay factors z_k, input coefficients c_k and w0.
-    subroutine set_up(conv, name, dt, z, c, w0)
+    !> Fill a convolver from its decay factors z_k, input coefficients c_k and the halves
+    !> v_k of each mode's share in w0, 2*Re(v_k) [m/N] (w0 = sum_k 2*Re(v_k)).
+    subroutine set_up(conv, name, dt, z, c, v)
         type(recursive_convolver), intent(inout) :: conv
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: dt
-        complex(dp), intent(in) :: z(:), c(:)
-        real(dp), intent(in) :: w0
+        complex(dp), intent(in) :: z(:), c(:), v(:)
 
         conv%name = name
         conv%dt = dt
-        conv%weight0 = w0
+        conv%weight0 = 2.0_dp*sum(real(v, kind=dp))
+        conv%mode_weight = 2.0_dp*real(v, kind=dp)
         conv%decay_re = real(z, kind=dp)
         conv%decay_im = aimag(z)
         conv%input_re = real(c, kind=dp)

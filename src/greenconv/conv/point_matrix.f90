@@ -1,0 +1,88 @@
+!> One contact point as the 1 x 1 case of a Green's matrix: a single-point `convolver`
+!> (greenconv_conv_convolver) seen as a `multipoint_convolver` (greenconv_conv_multipoint).
+!>
+!> The wrapped engine does all the arithmetic: `history` hands on its u_h(n), `push` its
+!> force, and W0 is the 1 x 1 matrix of its w0. So a front door or a loop written for N_c
+!> points serves a single-point structure unchanged, with the single-point engine's numbers to
+!> the last bit. The engine stays reachable (`point`) for what only single-point contact does
+!> (its scalar implicit step, the explicit step with w0 > 0 of the paper's scheme).
+module greenconv_conv_point_matrix
+    use greenconv_core_kinds, only: dp
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver
+    implicit none
+    private
+
+    public :: point_matrix, wrap_point
+
+    !> A single-point convolver as a 1 x 1 Green's matrix.
+    type, extends(multipoint_convolver) :: point_matrix
+        !> The single-point engine.
+        class(convolver), allocatable :: point
+    contains
+        procedure :: history => point_history
+        procedure :: push => point_push
+        procedure :: reset => point_reset
+        procedure :: model_size => point_size
+        procedure :: release => point_release
+    end type point_matrix
+
+contains
+
+    !> Wrap a single-point convolver (moved in, unallocated on return) as a 1 x 1 matrix
+    !> with its name, step, dt and W0 = [w0].
+    subroutine wrap_point(point, matrix)
+        !> The single-point convolver; moved into `matrix`.
+        class(convolver), allocatable, intent(inout) :: point
+        !> The 1 x 1 convolver.
+        type(point_matrix), intent(out) :: matrix
+
+        matrix%name = point%name
+        matrix%dt = point%dt
+        matrix%step = point%step
+        call matrix%set_instant_matrix(reshape([point%instant_weight()], [1, 1]))
+        call move_alloc(point, matrix%point)
+    end subroutine wrap_point
+
+    !> u_h(n) [m] of the engine, at the one point.
+    subroutine point_history(self, u)
+        class(point_matrix), intent(in) :: self
+        real(dp), intent(out) :: u(:)
+
+        u(1) = self%point%history()
+    end subroutine point_history
+
+    !> Push the force [N] of the one point and advance.
+    subroutine point_push(self, forces)
+        class(point_matrix), intent(inout) :: self
+        real(dp), intent(in) :: forces(:)
+
+        call self%point%push(forces(1))
+        self%step = self%point%step
+    end subroutine point_push
+
+    !> Back to step 0.
+    subroutine point_reset(self)
+        class(point_matrix), intent(inout) :: self
+
+        call self%point%reset()
+        self%step = self%point%step
+    end subroutine point_reset
+
+    !> The engine's model size and label.
+    subroutine point_size(self, n, label)
+        class(point_matrix), intent(in) :: self
+        integer, intent(out) :: n
+        character(len=:), allocatable, intent(out) :: label
+
+        call self%point%model_size(n, label)
+    end subroutine point_size
+
+    !> Release what the engine holds outside Fortran (FFTW plans).
+    subroutine point_release(self)
+        class(point_matrix), intent(inout) :: self
+
+        if (allocated(self%point)) call self%point%release()
+    end subroutine point_release
+
+end module greenconv_conv_point_matrix
