@@ -31,7 +31,7 @@ module greenconv_scene_input
     implicit none
     private
 
-    public :: scene_type, read_scene, output_path, input_place, write_scene_template
+    public :: scene_type, read_scene, read_scene_lines, output_path, input_place, write_scene_template
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -180,12 +180,29 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: lines(:)
-        integer, parameter :: no_unit = -1
 
         scene%file = path
         call read_lines(path, 'scene file', lines, error)
         if (allocated(error)) return
-        call scan_scene(path, lines, scene%input, error)
+        call read_scene_lines(path, lines, scene, error)
+    end subroutine read_scene
+
+    !> Read and check a scene from its lines in memory (as `read_scene` does a file's; a
+    !> sweep's variant is read so). `name` stands for the file in the scene and its messages.
+    subroutine read_scene_lines(name, lines, scene, error)
+        !> What the messages call the scene (a path, or a sweep file and its variant).
+        character(len=*), intent(in) :: name
+        !> The scene's lines, each padded with blanks to the longest.
+        character(len=*), intent(in) :: lines(:)
+        !> The scene, with defaults where the lines are silent.
+        type(scene_type), intent(out) :: scene
+        !> Set, naming `name`, the group and the variable, when the input is unusable.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer, parameter :: no_unit = -1
+
+        scene%file = name
+        call scan_scene(name, lines, scene%input, error)
         if (allocated(error)) return
         call read_scene_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call read_structure_group(no_unit, lines, scene, error)
@@ -196,7 +213,7 @@ contains
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
         if (.not. allocated(error)) call check_spectra(scene, error)
-    end subroutine read_scene
+    end subroutine read_scene_lines
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
     !> scene template; `preload` shows -1 for its default M*g). Written by the same namelists

@@ -755,9 +755,7 @@ contains
         prefix = 'variant '//int_text(k)//': '
         levels = ''
         if (plan%spectra) allocate (history(scene%n_steps))
-        open (newunit=scratch, status='scratch', action='readwrite')
-        call find_scene_points(scene, scratch, points, failure)
-        close (scratch)
+        call find_scene_points(scene, points, failure)
         n_c = max(points%n_points(), 1)
         block = max(block_rows/n_c, 1)
         do i = 1, size(scene%methods)
