@@ -2,27 +2,28 @@
 !>
 !>     mpirun -np N greenconv-mpi [--check] [--quiet] SWEEP.nml
 !>
-!> Every rank reads the sweep; rank 0 checks every variant, finds those a previous run
-!> recorded, and says so. The variants still to run are then taken one at a time by
-!> whichever rank is free: a counter on rank 0 that each rank advances with an atomic
-!> MPI_Fetch_and_op (one-sided), so rank 0 works too and a cheap variant never waits for
-!> an expensive one. Each rank records each variant it finishes (greenconv_scene_sweep's
-!> `save_record`, atomic); at the end the outcomes are sent to rank 0, which writes the
-!> table in variant order, so the table does not depend on the number of ranks.
+!> Every rank reads the sweep. The variants are then taken one at a time by whichever rank
+!> is free: a counter on rank 0 that each rank advances with an atomic MPI_Fetch_and_op
+!> (one-sided), so rank 0 works too and a cheap variant never waits for an expensive one.
+!> The rank that takes a variant checks it, finds its record when a previous run finished
+!> it (then it costs only its key) or runs it and records it at once (greenconv_scene_sweep's
+!> `take_variant`, `report_taken`): no serial phase grows with the number of variants. Each
+!> outcome is sent to rank 0 as it is done; at the end rank 0 prints the count of variants
+!> and writes the table in variant order, so the table does not depend on the number of ranks.
 !> A scene that is not a sweep runs on rank 0 as the serial driver runs it.
 !> Exit status as the serial driver's: 0 done (failed variants are in the table), 2 bad input.
 program greenconv_mpi
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use, intrinsic :: iso_c_binding, only: c_ptr, c_f_pointer
     use mpi_f08, only: MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Allreduce, &
-                       MPI_IN_PLACE, MPI_INTEGER, MPI_CHARACTER, MPI_MAX, MPI_SUM, MPI_Bcast, MPI_Barrier, MPI_Win, &
+                       MPI_IN_PLACE, MPI_INTEGER, MPI_CHARACTER, MPI_MAX, MPI_SUM, MPI_Barrier, MPI_Win, &
                        MPI_ADDRESS_KIND, MPI_INFO_NULL, MPI_LOCK_SHARED, MPI_Win_allocate, MPI_Win_lock, &
                        MPI_Fetch_and_op, MPI_Win_unlock, MPI_Win_free, MPI_Send, MPI_Recv, MPI_Probe, MPI_Get_count, &
                        MPI_Status, MPI_ANY_SOURCE
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
-    use greenconv_scene_sweep, only: sweep_plan, variant_outcome, is_sweep_file, read_sweep, check_sweep, &
-                                     run_variant, save_record, outcome_text, outcome_from_text, report_check, &
-                                     report_variant, finish_report
+    use greenconv_scene_sweep, only: sweep_plan, scene_files, variant_outcome, is_sweep_file, read_sweep, &
+                                     take_variant, report_taken, outcome_text, outcome_from_text, report_check, &
+                                     finish_report
     use greenconv_core_text, only: int_text
     implicit none
 
@@ -98,33 +99,25 @@ contains
         type(sweep_plan) :: plan
         type(variant_outcome), allocatable :: outcomes(:)
         type(variant_outcome) :: outcome
+        type(scene_files) :: files
         type(error_type), allocatable :: error
-        integer, allocatable :: pending(:)
-        integer :: n_done, n_bad, n_pending, next, k
+        integer :: n, next, k, what, counts(2)
         type(MPI_Win) :: window
         type(c_ptr) :: base
         integer, pointer :: counter(:)
         integer(MPI_ADDRESS_KIND) :: bytes
 
         status = 0
-        call read_sweep(path, plan, error, 'rank'//int_text(rank))
+        ! every rank reads the same file and meets the same error: rank 0 says it
+        call read_sweep(path, plan, error)
         if (allocated(error)) then
             if (rank /= 0) deallocate (error)
             call give_up(error, status)
             status = 2
             return
         end if
-        if (rank == 0) then
-            call check_sweep(plan, output_unit, pending, outcomes, n_done, n_bad)
-            call report_check(plan, output_unit, n_done, n_bad, check_only, error)
-            call give_up(error, status)
-            n_pending = size(pending)
-        end if
-        call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
-        if (check_only .or. status /= 0) return
-        call MPI_Bcast(n_pending, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
-        if (rank /= 0) allocate (pending(n_pending))
-        call MPI_Bcast(pending, n_pending, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        n = size(plan%values, 1)
+        if (rank == 0) allocate (outcomes(n))
 
         bytes = 0
         if (rank == 0) bytes = storage_size(0)/8
@@ -134,19 +127,20 @@ contains
             counter(1) = 0
         end if
         call MPI_Barrier(MPI_COMM_WORLD)
+        counts = 0
         do
             call MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window)
             call MPI_Fetch_and_op(1, next, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, MPI_SUM, window)
             call MPI_Win_unlock(0, window)
-            if (next >= n_pending) exit
-            k = pending(next + 1)
-            call run_variant(plan, k, outcome)
-            call report_variant(plan, k, outcome, output_unit)
-            call save_record(plan, k, outcome, error)
+            if (next >= n) exit
+            k = next + 1
+            call take_variant(plan, k, check_only, outcome, what, files)
+            call report_taken(plan, k, outcome, what, output_unit, counts(1), counts(2), error)
             if (allocated(error)) then
                 write (error_unit, '(a)') 'greenconv: '//error%message
                 deallocate (error)
             end if
+            if (check_only) cycle
             if (rank == 0) then
                 outcomes(k) = outcome
             else
@@ -154,12 +148,17 @@ contains
             end if
         end do
         call MPI_Win_free(window)
-        if (rank /= 0) then
-            call MPI_Send(0, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
-            return
+        if (.not. check_only) then
+            if (rank == 0) then
+                call gather_outcomes(outcomes)
+            else
+                call MPI_Send(0, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+            end if
         end if
-        call gather_outcomes(outcomes)
-        call finish_report(plan, outcomes, output_unit, error)
+        call MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INTEGER, MPI_SUM, MPI_COMM_WORLD)
+        if (rank /= 0) return
+        call report_check(plan, output_unit, counts(1), counts(2), check_only, error)
+        if (.not. (check_only .or. allocated(error))) call finish_report(plan, outcomes, output_unit, error)
         call give_up(error, status)
     end subroutine run_on_ranks
 
