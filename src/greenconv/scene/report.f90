@@ -225,7 +225,6 @@ contains
 
         complex(dp), allocatable :: fitted(:)
         character(len=100) :: comments(4)
-        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
 
         allocate (fitted(structure%frf%n_freq()))
         associate (f => structure%frf%frequency, g => structure%frf%receptance)
@@ -239,11 +238,7 @@ contains
             comments(2) = 'phase in degrees, in (-180, 180]'
             comments(3) = 'units: Hz m/N m/N m/N deg m/N m/N m/N deg'
             comments(4) = 'f re_g im_g abs_g phase_g re_fit im_fit abs_fit phase_fit'
-            call write_columns(path, comments, reshape([f, real(g, dp), aimag(g), abs(g), &
-                                                        degrees*atan2(aimag(g), real(g, dp)), real(fitted, dp), &
-                                                        aimag(fitted), abs(fitted), &
-                                                        degrees*atan2(aimag(fitted), real(fitted, dp))], &
-                                                       [size(f), 9]), error)
+            call write_columns(path, comments, fit_columns(f, g, fitted), error)
         end associate
     end subroutine write_fit
 
@@ -257,7 +252,6 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=120) :: comments(4)
-        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
         integer :: first
 
         first = merge(2, 1, structure%ml%has_lower)
@@ -268,13 +262,22 @@ contains
             comments(2) = 'phase in degrees, in (-180, 180]; sigma: noise standard deviation of the line'
             comments(3) = 'units: Hz m/N m/N m/N deg m/N m/N m/N deg m/N m/N'
             comments(4) = 'f re_g im_g abs_g phase_g re_fit im_fit abs_fit phase_fit abs_residual sigma'
-            call write_columns(path, comments, reshape([f, real(g, dp), aimag(g), abs(g), &
-                                                        degrees*atan2(aimag(g), real(g, dp)), real(model, dp), &
-                                                        aimag(model), abs(model), &
-                                                        degrees*atan2(aimag(model), real(model, dp)), &
-                                                        abs(g - model), ml%noise_level_fit*abs(model)], &
-                                                       [size(f), 11]), error)
+            call write_columns(path, comments, reshape([fit_columns(f, g, model), abs(g - model), &
+                                                        ml%noise_level_fit*abs(model)], [size(f), 11]), error)
         end associate
     end subroutine write_ml_fit
+
+    !> The columns f, Re G, Im G, |G|, phase of G [deg], then the same four of a model of G,
+    !> one row per frequency line.
+    pure function fit_columns(f, g, model) result(table)
+        real(dp), intent(in) :: f(:)
+        complex(dp), intent(in) :: g(:), model(:)
+        real(dp), allocatable :: table(:, :)
+
+        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
+
+        table = reshape([f, real(g, dp), aimag(g), abs(g), degrees*atan2(aimag(g), real(g, dp)), real(model, dp), &
+                         aimag(model), abs(model), degrees*atan2(aimag(model), real(model, dp))], [size(f), 9])
+    end function fit_columns
 
 end module greenconv_scene_report

@@ -95,8 +95,8 @@ contains
         if (.not. allocated(error)) call write_text(plan%output_dir//'/'//plan%name//'_sweep_cpu.dat', cpu, error)
     end subroutine write_sweep_table
 
-    !> The line after the check: the count of variants, done and bad; with `check_only`,
-    !> an error (status 2) when a variant is bad.
+    !> The count of variants, done (skipped) and bad, once every variant was taken; with
+    !> `check_only`, an error (status 2) when a variant is bad.
     subroutine report_check(plan, unit, n_done, n_bad, check_only, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -173,11 +173,17 @@ contains
 
     !> Append one method's columns (and CPU time) to an outcome; a failure sets the status.
     subroutine add_method(outcome, summary, seconds, error, step, prefix)
+        !> The variant's outcome so far.
         type(variant_outcome), intent(inout) :: outcome
+        !> The method's summary of the total contact force (greenconv_scene_stream).
         type(force_summary), intent(in) :: summary
+        !> CPU seconds of its contact loop.
         real(dp), intent(in) :: seconds
+        !> Its failure, if any (its status is the method's).
         type(error_type), allocatable, intent(in) :: error
+        !> Steps it did (the fault's step when it failed).
         integer(int64), intent(in) :: step
+        !> Text put before the failure's message (the variant and the method).
         character(len=*), intent(in) :: prefix
 
         character(len=16) :: mean, rms, fraction, peak
@@ -205,8 +211,11 @@ contains
 
     !> An outcome whose every method failed before running (the variant's check).
     function failed_outcome(plan, error) result(outcome)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
+        !> Why the variant failed.
         type(error_type), intent(in) :: error
+        !> Every method failed with its status, the levels nan, the message the error's.
         type(variant_outcome) :: outcome
 
         type(error_type), allocatable :: failure
@@ -227,10 +236,15 @@ contains
     !> One method's band levels as table columns: ' ' and the level [dB re 1 N] per band of
     !> the sweep; 'nan' for a method that failed (its history is not whole). Empty without spectra.
     function band_text(plan, history, scene, ok) result(text)
+        !> The sweep (its bands).
         type(sweep_plan), intent(in) :: plan
+        !> The method's total contact force [N] at every step (allocated with `spectra`).
         real(dp), allocatable, intent(in) :: history(:)
+        !> The variant's scene (dt).
         type(scene_type), intent(in) :: scene
+        !> Whether the method completed (else every level is nan).
         logical, intent(in) :: ok
+        !> The columns, each after a blank.
         character(len=:), allocatable :: text
 
         type(band_spectrum) :: spectrum

@@ -171,7 +171,8 @@ contains
         if (plan%spectra) allocate (sinks%history(scene%n_steps))
         if (.not. plan%histories) return
         sinks%binary = scene%output_format == 'binary'
-        sinks%path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method//merge('.bin', '.dat', sinks%binary)
+        sinks%path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method &
+                     //merge('.bin', '.dat', sinks%binary)
         title = history_title(plan, scene, k, method)
         if (several) then
             sinks%header = multi_contact_header(title, from_file)
