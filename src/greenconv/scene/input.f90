@@ -557,14 +557,12 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(scene_files), intent(inout), optional :: files
 
-        integer :: i
+        integer :: i, k
 
         i = 0
         if (present(files)) then
             if (.not. allocated(files%textures)) allocate (files%textures(0))
-            do i = size(files%textures), 1, -1
-                if (files%textures(i)%path == path) exit
-            end do
+            i = findloc([(files%textures(k)%path == path, k=1, size(files%textures))], .true., 1)
         end if
         if (i > 0) then
             texture = files%textures(i)
@@ -583,14 +581,12 @@ contains
         type(scene_files), intent(inout), optional :: files
 
         type(file_road), allocatable :: road
-        integer :: i
+        integer :: i, k
 
         i = 0
         if (present(files)) then
             if (.not. allocated(files%roads)) allocate (files%roads(0))
-            do i = size(files%roads), 1, -1
-                if (files%roads(i)%path == path) exit
-            end do
+            i = findloc([(files%roads(k)%path == path, k=1, size(files%roads))], .true., 1)
         end if
         if (i > 0) then
             this%road_data = files%roads(i)
