@@ -37,6 +37,14 @@ for ranks in 1 2; do
     printf '%-8s %6s %10s %10s %12s\n' scratch "$ranks" "$n" "${wall[np$ranks]}" "${rate[$ranks]}"
 done
 run rerun 1
+# Control: two 1-rank runs at once, each in its own folder. On an idle 2-core machine they
+# take the time of one (capacity 2.0); other work on the machine lowers the capacity, and the
+# speed-up of 2 ranks can be no better than it.
+for copy in a b; do mkdir -p "$work/$copy"; cp "$work/sweep.nml" "$work/$copy/"; done
+start=$(date +%s.%N)
+for copy in a b; do (cd "$work/$copy" && "$MPIRUN" -np 1 "$mpi" --quiet sweep.nml > log 2>&1) & done
+wait
+both=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
 # MPI's start-up, which every run above includes: one rank checking a one-line-summary scene
 start=$(date +%s.%N)
 "$MPIRUN" -np 1 "$mpi" --check "$top/data/sdof_sine.nml" > /dev/null 2>&1
@@ -45,5 +53,7 @@ grep -q "$n already done (skipped)" "$work/log_rerun" || { echo "bench_sweep: th
 printf '%-8s %6s %10s %10s %12s\n' rerun 1 "$n" "${wall[rerun]}" -
 awk -v a="${rate[1]}" -v b="${rate[2]}" -v c="$(nproc)" -v l="$load" \
     'BEGIN { printf "speed-up 2 ranks / 1 rank = %.2f (%s variants of %s steps at %s points; cores: %s, load average before: %s)\n", b/a, "'"$n"'", "'"$steps"'", "'"$points"'", c, l }'
+awk -v t="${wall[np1]}" -v b="$both" -v a="${rate[1]}" -v c="${rate[2]}" \
+    'BEGIN { printf "control: two 1-rank runs at once took %.2f s, capacity 2 x %.2f / %.2f = %.2f; speed-up / capacity = %.2f\n", b, t, b, 2*t/b, (c/a)/(2*t/b) }'
 awk -v r="${wall[rerun]}" -v s="${wall[np1]}" \
     -v u="$startup" 'BEGIN { printf "rerun of a complete sweep = %.3f of a run (%.2f s against %.2f s on 1 rank, every variant skipped; of which MPI start-up about %.2f s)\n", r/s, r, s, u }'
