@@ -188,7 +188,7 @@ contains
         real(dp) :: seconds
         integer :: i, n, n_c, block_size
 
-        call find_scene_points(scene, run%points, error, summary)
+        call find_scene_points(scene, run%points, summary, error)
         if (allocated(error)) return
         write (unit, '(a)') summary
         n_c = run%points%n_points()

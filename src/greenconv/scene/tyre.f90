@@ -30,7 +30,7 @@ contains
     !>
     !> Without `across` (as the sweep, greenconv_scene_sweep, calls it), the caller samples the
     !> road file itself: a scene on a road texture, or of another model, is refused then.
-    subroutine tyre_points(scene, modes, positions, road_positions, error, across, summary)
+    subroutine tyre_points(scene, modes, positions, road_positions, summary, error, across)
         !> The scene (model 'tyre', road profile 'file' or 'texture').
         type(scene_type), intent(in) :: scene
         !> Modes of the belt up to the scene's f_max and their shapes at the points.
@@ -39,12 +39,12 @@ contains
         real(dp), allocatable, intent(out) :: positions(:)
         !> Position [m] of each point on the road file at t = 0.
         real(dp), allocatable, intent(out) :: road_positions(:)
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
         !> Set for an unusable scene: not a contact run on a road file, no modes, a road too short.
         type(error_type), allocatable, intent(out) :: error
         !> Position Y_i [m] of each point across the road (y_start: the belt's points lie at y = 0).
         real(dp), allocatable, intent(out), optional :: across(:)
-        !> The scene's summary line.
-        character(len=:), allocatable, intent(out), optional :: summary
 
         real(dp), allocatable :: road_y(:)
         character(len=:), allocatable :: line
@@ -70,7 +70,6 @@ contains
         call place_patch(scene, positions, [(0.0_dp, i=1, size(positions))], road_positions, road_y, error)
         if (allocated(error)) return
         if (present(across)) call move_alloc(road_y, across)
-        if (.not. present(summary)) return
         allocate (character(len=1000) :: line)
         write (line, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') &
             '# scene '//scene%name//': tyre belt, ', scene%n_points, ' contact points over ', scene%patch_length, &

@@ -96,7 +96,7 @@ contains
         type(multi_run) :: multi
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
-        character(len=:), allocatable :: accuracy, levels, method
+        character(len=:), allocatable :: accuracy, levels, method, summary
         real(dp) :: seconds
         integer(int64) :: step
         integer :: i, n, n_c, block
@@ -108,7 +108,7 @@ contains
         scene%progress = .false.
         several = multi_point_model(scene%model)
         if (several) then
-            call find_scene_points(scene, multi%points, failure)
+            call find_scene_points(scene, multi%points, summary, failure)
             n_c = max(multi%points%n_points(), 1)
             block = max(block_rows/n_c, 1)
         else
