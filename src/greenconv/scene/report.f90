@@ -22,55 +22,70 @@ module greenconv_scene_report
 
 contains
 
-    !> Print the identification in a few `#` lines: where G came from (a universal file), the
-    !> order, noise, worst uncertainty, E and CPU time, dropped poles, warnings.
-    subroutine identification_summary(structure, unit)
+    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
+    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
+    !> CPU time, dropped poles, warnings.
+    function identification_summary(structure) result(text)
         !> The identified structure.
         type(structure_model), intent(in) :: structure
-        !> Unit to print on.
-        integer, intent(in) :: unit
+        !> The lines.
+        character(len=:), allocatable :: text
 
+        character(len=400) :: buffer
+
+        text = ''
         if (allocated(structure%frf%source)) then
-            if (len(structure%frf%source) > 0) write (unit, '(a)') '# receptance: '//structure%frf%source
+            if (len(structure%frf%source) > 0) call add_line(text, '# receptance: '//structure%frf%source)
         end if
         if (structure%method == 'ml') then
-            call ml_summary(structure, unit)
+            call ml_summary(structure, text)
             return
         end if
         associate (fit => structure%fit)
-            write (unit, '(a,i0,a,i0,a,i0,a,es9.2,a,l1)') '# identification: LSCE order 2N = ', 2*fit%order_modes, &
+            write (buffer, '(a,i0,a,i0,a,i0,a,es9.2,a,l1)') '# identification: LSCE order 2N = ', 2*fit%order_modes, &
                 ' (N = ', fit%order_modes, '), ', fit%modes%n_modes(), ' modes, E = ', fit%e, &
                 ' (eq. 7), target met: ', fit%tolerance_met
-            write (unit, '(a,i0,a,i0,a,i0,a)') '# poles dropped: ', fit%n_unstable, ' unstable (Re lambda >= 0), ', &
+            call add_line(text, trim(buffer))
+            write (buffer, '(a,i0,a,i0,a,i0,a)') '# poles dropped: ', fit%n_unstable, ' unstable (Re lambda >= 0), ', &
                 fit%n_real, ' real, ', fit%n_not_stable, ' not stable across orders'
+            call add_line(text, trim(buffer))
             if (allocated(fit%warning)) then
-                if (len(fit%warning) > 0) write (unit, '(a)') '# warning: '//fit%warning
+                if (len(fit%warning) > 0) call add_line(text, '# warning: '//fit%warning)
             end if
         end associate
-    end subroutine identification_summary
+    end function identification_summary
+
+    !> Append a line to a text of lines.
+    subroutine add_line(text, line)
+        character(len=:), allocatable, intent(inout) :: text
+        character(len=*), intent(in) :: line
+
+        if (len(text) > 0) text = text//new_line('a')
+        text = text//line
+    end subroutine add_line
 
     !> The maximum-likelihood fit in two to four lines, e.g.
     !>
     !>     # identification: maximum likelihood, 12 modes (order by MDL), noise 1.01E-02 of |G| (estimated
     !>     #   from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02, diagram to N = 30,
     !>     #   E = 8.95E-03 (eq. 7), CPU 9.70E-01 s
-    subroutine ml_summary(structure, unit)
+    subroutine ml_summary(structure, text)
         type(structure_model), intent(in) :: structure
-        integer, intent(in) :: unit
+        character(len=:), allocatable, intent(inout) :: text
 
         character(len=:), allocatable :: line
         integer :: k
 
         associate (ml => structure%ml)
-            write (unit, '(a)') '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
+            call add_line(text, '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
                 //int_text(maxval([0, ml%diagram_order]))//', E = '//sci_text(ml%e)//' (eq. 7), CPU ' &
-                //sci_text(structure%cpu_time)//' s'
-            write (unit, '(a)') '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
+                //sci_text(structure%cpu_time)//' s')
+            call add_line(text, '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
                 trim(merge('explained by the noise    ', 'larger than the noise asks', ml%explained))//'), ' &
                 //int_text(ml%n_start)//' start poles from the stabilisation diagram, '//int_text(ml%n_wandering) &
                 //' wandering, '//int_text(ml%iterations)//' Levenberg-Marquardt iterations' &
                 //trim(merge(', upper residual kept', '                     ', ml%has_upper)) &
-                //trim(merge(', lower residual kept', '                     ', ml%has_lower))
+                //trim(merge(', lower residual kept', '                     ', ml%has_lower)))
             if (size(ml%dropped_pole) > 0) then
                 line = '# dropped:'
                 do k = 1, size(ml%dropped_pole)
@@ -78,10 +93,10 @@ contains
                     line = line//' '//sci_text(abs(ml%dropped_pole(k))/two_pi)//' Hz ('//reason(ml%dropped_reason(k)) &
                            //')'
                 end do
-                write (unit, '(a)') line
+                call add_line(text, line)
             end if
             if (allocated(ml%warning)) then
-                if (len(ml%warning) > 0) write (unit, '(a)') '# warning: '//ml%warning
+                if (len(ml%warning) > 0) call add_line(text, '# warning: '//ml%warning)
             end if
         end associate
     contains

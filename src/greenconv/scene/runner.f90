@@ -66,7 +66,7 @@ contains
         call make_directory(scene%output_dir, error)
         if (allocated(error)) return
         if (structure%identified) then
-            call identification_summary(structure, unit)
+            write (unit, '(a)') identification_summary(structure)
             call write_identification(scene, structure, error)
             if (allocated(error)) return
         end if
