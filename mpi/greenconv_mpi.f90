@@ -7,9 +7,11 @@
 !> (one-sided), so rank 0 works too and a cheap variant never waits for an expensive one.
 !> The rank that takes a variant checks it, finds its record when a previous run finished
 !> it (then it costs only its key) or runs it and records it at once (greenconv_scene_sweep's
-!> `take_variant`, `report_taken`): no serial phase grows with the number of variants. Each
-!> outcome is sent to rank 0 as it is done; at the end rank 0 prints the count of variants
-!> and writes the table in variant order, so the table does not depend on the number of ranks.
+!> `take_variant`, `report_taken`): no serial phase grows with the number of variants. The
+!> outcomes are sent to rank 0 at the end, each rank's in one go (a send per variant could
+!> wait for rank 0 to finish its own variant: MPI progresses only inside MPI calls); rank 0
+!> then prints the count of variants and writes the table in variant order, so the table
+!> does not depend on the number of ranks.
 !> A scene that is not a sweep runs on rank 0 as the serial driver runs it.
 !> Exit status as the serial driver's: 0 done (failed variants are in the table), 2 bad input.
 program greenconv_mpi
@@ -102,6 +104,8 @@ contains
         type(scene_files) :: files
         type(error_type), allocatable :: error
         integer :: n, next, k, what, counts(2)
+        integer, allocatable :: taken(:), lengths(:)
+        character(len=:), allocatable :: texts
         type(MPI_Win) :: window
         type(c_ptr) :: base
         integer, pointer :: counter(:)
@@ -128,6 +132,8 @@ contains
         end if
         call MPI_Barrier(MPI_COMM_WORLD)
         counts = 0
+        allocate (taken(0), lengths(0))
+        texts = ''
         do
             call MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window)
             call MPI_Fetch_and_op(1, next, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, MPI_SUM, window)
@@ -144,7 +150,10 @@ contains
             if (rank == 0) then
                 outcomes(k) = outcome
             else
-                call send_outcome(k, outcome)
+                ! kept until the end: a send now could wait for rank 0, busy with a variant
+                taken = [taken, k]
+                texts = texts//outcome_text(outcome)
+                lengths = [lengths, len(outcome_text(outcome))]
             end if
         end do
         call MPI_Win_free(window)
@@ -152,7 +161,7 @@ contains
             if (rank == 0) then
                 call gather_outcomes(outcomes)
             else
-                call MPI_Send(0, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+                call send_outcomes(taken, lengths, texts)
             end if
         end if
         call MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INTEGER, MPI_SUM, MPI_COMM_WORLD)
@@ -162,40 +171,45 @@ contains
         call give_up(error, status)
     end subroutine run_on_ranks
 
-    !> Send an outcome to rank 0: the variant's number (tag 1), then its text (tag 2).
-    subroutine send_outcome(k, outcome)
-        integer, intent(in) :: k
-        type(variant_outcome), intent(in) :: outcome
+    !> Send this rank's outcomes to rank 0 in three messages: their count (tag 1), then the
+    !> variants' numbers and the lengths of their texts (tag 2), then the texts one after
+    !> another (tag 3).
+    subroutine send_outcomes(taken, lengths, texts)
+        integer, intent(in) :: taken(:), lengths(:)
+        character(len=*), intent(in) :: texts
 
-        character(len=:), allocatable :: text
+        call MPI_Send(size(taken), 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+        if (size(taken) == 0) return
+        call MPI_Send([taken, lengths], 2*size(taken), MPI_INTEGER, 0, 2, MPI_COMM_WORLD)
+        call MPI_Send(texts, len(texts), MPI_CHARACTER, 0, 3, MPI_COMM_WORLD)
+    end subroutine send_outcomes
 
-        text = outcome_text(outcome)
-        call MPI_Send(k, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
-        call MPI_Send(text, len(text), MPI_CHARACTER, 0, 2, MPI_COMM_WORLD)
-    end subroutine send_outcome
-
-    !> On rank 0: every other rank's outcomes, until each has sent 0 (its end).
+    !> On rank 0: every other rank's outcomes (`send_outcomes`).
     subroutine gather_outcomes(outcomes)
         type(variant_outcome), intent(inout) :: outcomes(:)
 
         type(MPI_Status) :: state
-        character(len=:), allocatable :: text
-        integer :: k, n, finished
+        character(len=:), allocatable :: texts
+        integer, allocatable :: numbers(:)
+        integer :: i, m, n, from, at
         logical :: ok
 
-        finished = 0
-        do while (finished < ranks - 1)
-            call MPI_Recv(k, 1, MPI_INTEGER, MPI_ANY_SOURCE, 1, MPI_COMM_WORLD, state)
-            if (k == 0) then
-                finished = finished + 1
-                cycle
-            end if
-            call MPI_Probe(state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
+        do i = 1, ranks - 1
+            call MPI_Recv(m, 1, MPI_INTEGER, MPI_ANY_SOURCE, 1, MPI_COMM_WORLD, state)
+            if (m == 0) cycle
+            from = state%MPI_SOURCE
+            allocate (numbers(2*m))
+            call MPI_Recv(numbers, 2*m, MPI_INTEGER, from, 2, MPI_COMM_WORLD, state)
+            call MPI_Probe(from, 3, MPI_COMM_WORLD, state)
             call MPI_Get_count(state, MPI_CHARACTER, n)
-            allocate (character(len=n) :: text)
-            call MPI_Recv(text, n, MPI_CHARACTER, state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
-            call outcome_from_text(text, outcomes(k), ok)
-            deallocate (text)
+            allocate (character(len=n) :: texts)
+            call MPI_Recv(texts, n, MPI_CHARACTER, from, 3, MPI_COMM_WORLD, state)
+            at = 0
+            do n = 1, m
+                call outcome_from_text(texts(at + 1:at + numbers(m + n)), outcomes(numbers(n)), ok)
+                at = at + numbers(m + n)
+            end do
+            deallocate (numbers, texts)
         end do
     end subroutine gather_outcomes
 
