@@ -16,8 +16,9 @@
 !>     &contact stiffness, exponent  for task 'contact'
 !>     &convolution methods          for task 'contact'
 !>
-!> Adding a scene variable: one `row` in `scene_table`, the variable in its group's namelist
-!> and a component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
+!> Adding a scene variable: one `row` in `scene_table` (with its range and message, when a
+!> value can be wrong), the variable in its group's namelist, its `check_value` and a
+!> component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
 !> when a namelist and the table disagree.
 module greenconv_scene_schema
     use greenconv_core_error, only: error_type, fatal_error
@@ -312,20 +313,22 @@ contains
         !> The value: real(dp), integer or text (trailing blanks ignored).
         class(*), intent(in) :: value
 
-        real(dp) :: x
-
         admits = .true.
         select type (value)
         type is (character(len=*))
             if (allocated(variable%choices)) admits = any(variable%choices == value)
-            return
         type is (integer)
-            x = real(value, dp)
+            admits = in_range(real(value, dp))
         type is (real(dp))
-            x = value
+            admits = in_range(value)
         end select
-        admits = (x > variable%low .or. (variable%low_in .and. x == variable%low)) .and. &
-                 (x < variable%high .or. (variable%high_in .and. x == variable%high))
+    contains
+        logical function in_range(x)
+            real(dp), intent(in) :: x
+
+            in_range = merge(x >= variable%low, x > variable%low, variable%low_in) .and. &
+                       merge(x <= variable%high, x < variable%high, variable%high_in)
+        end function in_range
     end function admits
 
     !> The group names of a scene file, in file order.
