@@ -314,7 +314,9 @@ fuzz: $(BIN) $(FUZZ)
 # build/make/greenconv-mpi: mpi/greenconv_mpi.f90 compiled with Debian's OpenMPI (mpif90)
 # against the plain build's library, which itself needs no MPI. `make sweep-test` runs the
 # sweep checks (tools/test_sweep.sh: 1 and 2 ranks and the serial driver give the same table,
-# resume, a failing variant, variant order); `make sweep-bench` the throughput on 1 and 2 ranks.
+# resume, a failing variant, variant order); `make sweep-bench` the throughput on 1 and 2 ranks
+# ("speed-up 2 ranks / 1 rank = X", beside a control of the machine's capacity) and the cost of
+# rerunning a complete sweep ("rerun of a complete sweep = Y of a run").
 # As root (CI), mpirun needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM), which the scripts set.
 
 MPIFC ?= mpif90

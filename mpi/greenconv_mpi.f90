@@ -2,27 +2,30 @@
 !>
 !>     mpirun -np N greenconv-mpi [--check] [--quiet] SWEEP.nml
 !>
-!> Every rank reads the sweep; rank 0 checks every variant, finds those a previous run
-!> recorded, and says so. The variants still to run are then taken one at a time by
-!> whichever rank is free: a counter on rank 0 that each rank advances with an atomic
-!> MPI_Fetch_and_op (one-sided), so rank 0 works too and a cheap variant never waits for
-!> an expensive one. Each rank records each variant it finishes (greenconv_scene_sweep's
-!> `save_record`, atomic); at the end the outcomes are sent to rank 0, which writes the
-!> table in variant order, so the table does not depend on the number of ranks.
+!> Every rank reads the sweep. The variants are then taken one at a time by whichever rank
+!> is free: a counter on rank 0 that each rank advances with an atomic MPI_Fetch_and_op
+!> (one-sided), so rank 0 works too and a cheap variant never waits for an expensive one.
+!> The rank that takes a variant checks it, finds its record when a previous run finished
+!> it (then it costs only its key) or runs it and records it at once (greenconv_scene_sweep's
+!> `take_variant`, `report_taken`): no serial phase grows with the number of variants. The
+!> outcomes are sent to rank 0 at the end, each rank's in one go (a send per variant could
+!> wait for rank 0 to finish its own variant: MPI progresses only inside MPI calls); rank 0
+!> then prints the count of variants and writes the table in variant order, so the table
+!> does not depend on the number of ranks.
 !> A scene that is not a sweep runs on rank 0 as the serial driver runs it.
 !> Exit status as the serial driver's: 0 done (failed variants are in the table), 2 bad input.
 program greenconv_mpi
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use, intrinsic :: iso_c_binding, only: c_ptr, c_f_pointer
     use mpi_f08, only: MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Allreduce, &
-                       MPI_IN_PLACE, MPI_INTEGER, MPI_CHARACTER, MPI_MAX, MPI_SUM, MPI_Bcast, MPI_Barrier, MPI_Win, &
+                       MPI_IN_PLACE, MPI_INTEGER, MPI_CHARACTER, MPI_MAX, MPI_SUM, MPI_Barrier, MPI_Win, &
                        MPI_ADDRESS_KIND, MPI_INFO_NULL, MPI_LOCK_SHARED, MPI_Win_allocate, MPI_Win_lock, &
                        MPI_Fetch_and_op, MPI_Win_unlock, MPI_Win_free, MPI_Send, MPI_Recv, MPI_Probe, MPI_Get_count, &
                        MPI_Status, MPI_ANY_SOURCE
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type
-    use greenconv_scene_sweep, only: sweep_plan, variant_outcome, is_sweep_file, read_sweep, check_sweep, &
-                                     run_variant, save_record, outcome_text, outcome_from_text, report_check, &
-                                     report_variant, finish_report
+    use greenconv_scene_sweep, only: sweep_plan, scene_files, variant_outcome, is_sweep_file, read_sweep, &
+                                     take_variant, report_taken, outcome_text, outcome_from_text, report_check, &
+                                     finish_report
     use greenconv_core_text, only: int_text
     implicit none
 
@@ -98,33 +101,27 @@ contains
         type(sweep_plan) :: plan
         type(variant_outcome), allocatable :: outcomes(:)
         type(variant_outcome) :: outcome
+        type(scene_files) :: files
         type(error_type), allocatable :: error
-        integer, allocatable :: pending(:)
-        integer :: n_done, n_bad, n_pending, next, k
+        integer :: n, next, k, what, counts(2)
+        integer, allocatable :: taken(:), lengths(:)
+        character(len=:), allocatable :: texts
         type(MPI_Win) :: window
         type(c_ptr) :: base
         integer, pointer :: counter(:)
         integer(MPI_ADDRESS_KIND) :: bytes
 
         status = 0
-        call read_sweep(path, plan, error, 'rank'//int_text(rank))
+        ! every rank reads the same file and meets the same error: rank 0 says it
+        call read_sweep(path, plan, error)
         if (allocated(error)) then
             if (rank /= 0) deallocate (error)
             call give_up(error, status)
             status = 2
             return
         end if
-        if (rank == 0) then
-            call check_sweep(plan, output_unit, pending, outcomes, n_done, n_bad)
-            call report_check(plan, output_unit, n_done, n_bad, check_only, error)
-            call give_up(error, status)
-            n_pending = size(pending)
-        end if
-        call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
-        if (check_only .or. status /= 0) return
-        call MPI_Bcast(n_pending, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
-        if (rank /= 0) allocate (pending(n_pending))
-        call MPI_Bcast(pending, n_pending, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        n = size(plan%values, 1)
+        if (rank == 0) allocate (outcomes(n))
 
         bytes = 0
         if (rank == 0) bytes = storage_size(0)/8
@@ -134,69 +131,85 @@ contains
             counter(1) = 0
         end if
         call MPI_Barrier(MPI_COMM_WORLD)
+        counts = 0
+        allocate (taken(0), lengths(0))
+        texts = ''
         do
             call MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window)
             call MPI_Fetch_and_op(1, next, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, MPI_SUM, window)
             call MPI_Win_unlock(0, window)
-            if (next >= n_pending) exit
-            k = pending(next + 1)
-            call run_variant(plan, k, outcome)
-            call report_variant(plan, k, outcome, output_unit)
-            call save_record(plan, k, outcome, error)
+            if (next >= n) exit
+            k = next + 1
+            call take_variant(plan, k, check_only, outcome, what, files)
+            call report_taken(plan, k, outcome, what, output_unit, counts(1), counts(2), error)
             if (allocated(error)) then
                 write (error_unit, '(a)') 'greenconv: '//error%message
                 deallocate (error)
             end if
+            if (check_only) cycle
             if (rank == 0) then
                 outcomes(k) = outcome
             else
-                call send_outcome(k, outcome)
+                ! kept until the end: a send now could wait for rank 0, busy with a variant
+                taken = [taken, k]
+                texts = texts//outcome_text(outcome)
+                lengths = [lengths, len(outcome_text(outcome))]
             end if
         end do
         call MPI_Win_free(window)
-        if (rank /= 0) then
-            call MPI_Send(0, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
-            return
+        if (.not. check_only) then
+            if (rank == 0) then
+                call gather_outcomes(outcomes)
+            else
+                call send_outcomes(taken, lengths, texts)
+            end if
         end if
-        call gather_outcomes(outcomes)
-        call finish_report(plan, outcomes, output_unit, error)
+        call MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INTEGER, MPI_SUM, MPI_COMM_WORLD)
+        if (rank /= 0) return
+        call report_check(plan, output_unit, counts(1), counts(2), check_only, error)
+        if (.not. (check_only .or. allocated(error))) call finish_report(plan, outcomes, output_unit, error)
         call give_up(error, status)
     end subroutine run_on_ranks
 
-    !> Send an outcome to rank 0: the variant's number (tag 1), then its text (tag 2).
-    subroutine send_outcome(k, outcome)
-        integer, intent(in) :: k
-        type(variant_outcome), intent(in) :: outcome
+    !> Send this rank's outcomes to rank 0 in three messages: their count (tag 1), then the
+    !> variants' numbers and the lengths of their texts (tag 2), then the texts one after
+    !> another (tag 3).
+    subroutine send_outcomes(taken, lengths, texts)
+        integer, intent(in) :: taken(:), lengths(:)
+        character(len=*), intent(in) :: texts
 
-        character(len=:), allocatable :: text
+        call MPI_Send(size(taken), 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
+        if (size(taken) == 0) return
+        call MPI_Send([taken, lengths], 2*size(taken), MPI_INTEGER, 0, 2, MPI_COMM_WORLD)
+        call MPI_Send(texts, len(texts), MPI_CHARACTER, 0, 3, MPI_COMM_WORLD)
+    end subroutine send_outcomes
 
-        text = outcome_text(outcome)
-        call MPI_Send(k, 1, MPI_INTEGER, 0, 1, MPI_COMM_WORLD)
-        call MPI_Send(text, len(text), MPI_CHARACTER, 0, 2, MPI_COMM_WORLD)
-    end subroutine send_outcome
-
-    !> On rank 0: every other rank's outcomes, until each has sent 0 (its end).
+    !> On rank 0: every other rank's outcomes (`send_outcomes`).
     subroutine gather_outcomes(outcomes)
         type(variant_outcome), intent(inout) :: outcomes(:)
 
         type(MPI_Status) :: state
-        character(len=:), allocatable :: text
-        integer :: k, n, finished
+        character(len=:), allocatable :: texts
+        integer, allocatable :: numbers(:)
+        integer :: i, m, n, from, at
         logical :: ok
 
-        finished = 0
-        do while (finished < ranks - 1)
-            call MPI_Recv(k, 1, MPI_INTEGER, MPI_ANY_SOURCE, 1, MPI_COMM_WORLD, state)
-            if (k == 0) then
-                finished = finished + 1
-                cycle
-            end if
-            call MPI_Probe(state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
+        do i = 1, ranks - 1
+            call MPI_Recv(m, 1, MPI_INTEGER, MPI_ANY_SOURCE, 1, MPI_COMM_WORLD, state)
+            if (m == 0) cycle
+            from = state%MPI_SOURCE
+            allocate (numbers(2*m))
+            call MPI_Recv(numbers, 2*m, MPI_INTEGER, from, 2, MPI_COMM_WORLD, state)
+            call MPI_Probe(from, 3, MPI_COMM_WORLD, state)
             call MPI_Get_count(state, MPI_CHARACTER, n)
-            allocate (character(len=n) :: text)
-            call MPI_Recv(text, n, MPI_CHARACTER, state%MPI_SOURCE, 2, MPI_COMM_WORLD, state)
-            call outcome_from_text(text, outcomes(k), ok)
-            deallocate (text)
+            allocate (character(len=n) :: texts)
+            call MPI_Recv(texts, n, MPI_CHARACTER, from, 3, MPI_COMM_WORLD, state)
+            at = 0
+            do n = 1, m
+                call outcome_from_text(texts(at + 1:at + numbers(m + n)), outcomes(numbers(n)), ok)
+                at = at + numbers(m + n)
+            end do
+            deallocate (numbers, texts)
         end do
     end subroutine gather_outcomes
 

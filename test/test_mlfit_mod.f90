@@ -870,7 +870,7 @@ contains
         if (allocated(failure)) call check(error, .false., failure%message)
         if (allocated(error)) return
         open (newunit=unit, status='scratch', action='readwrite', iostat=stat)
-        call identification_summary(built, unit)
+        write (unit, '(a)') identification_summary(built)
         rewind (unit)
         read (unit, '(a)', iostat=stat) line
         close (unit)

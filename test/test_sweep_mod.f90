@@ -66,7 +66,7 @@ contains
         call make_directory(scratch, failure)
         if (allocated(failure)) return
         call write_text(scratch//'/'//name, text)
-        call read_sweep(scratch//'/'//name, plan, failure, 'unit')
+        call read_sweep(scratch//'/'//name, plan, failure)
     end subroutine read_text
 
     subroutine test_product(error)

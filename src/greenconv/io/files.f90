@@ -24,7 +24,7 @@ module greenconv_io_files
 
     public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals
     public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
-    public :: block_rows, binary_header
+    public :: block_rows, binary_header, write_text
 
     !> Rows a run streamed in blocks computes and writes at a time (a block of this many steps
     !> of a single-point run, of block_rows/N_c steps of an N_c-point run): what a long run
@@ -201,6 +201,24 @@ contains
         if (.not. allocated(error)) call append_rows(writer, table, error)
         if (.not. allocated(error)) call close_columns(writer, error)
     end subroutine write_columns
+
+    !> Write a text (lines separated by new_line('a'), each kept as it is, trailing blanks
+    !> too) and a final newline to `path`, atomically as a column file.
+    subroutine write_text(path, text, error)
+        !> Target file.
+        character(len=*), intent(in) :: path
+        !> The text.
+        character(len=*), intent(in) :: text
+        !> Set when the file cannot be written (nothing is left behind).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(column_writer) :: writer
+        character(len=1) :: no_comments(0)
+
+        call open_columns(writer, path, no_comments, 0, error)
+        if (.not. allocated(error)) call put_line(writer, text, error)
+        if (.not. allocated(error)) call close_columns(writer, error)
+    end subroutine write_text
 
     !> Start a column file written in blocks: create its temporary file exclusively and write
     !> the `# ` header lines (the last should name the columns). Then `append_rows` per block,

@@ -31,7 +31,7 @@ module greenconv_scene_input
     implicit none
     private
 
-    public :: scene_type, read_scene, output_path, input_place, write_scene_template
+    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -140,6 +140,15 @@ module greenconv_scene_input
         real(dp) :: accuracy
     end type scene_type
 
+    !> Road files and road textures read by scenes, each kept by its path: a caller that reads
+    !> many scenes naming the same files (a sweep's variants) reads each file once.
+    type :: scene_files
+        !> The road files read, each with its path.
+        type(road_file), allocatable :: roads(:)
+        !> The road textures read, each with its path.
+        type(road_texture), allocatable :: textures(:)
+    end type scene_files
+
 contains
 
     !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`, or `.bin`
@@ -180,23 +189,43 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: lines(:)
-        integer, parameter :: no_unit = -1
 
         scene%file = path
         call read_lines(path, 'scene file', lines, error)
         if (allocated(error)) return
-        call scan_scene(path, lines, scene%input, error)
+        call read_scene_lines(path, lines, scene, error)
+    end subroutine read_scene
+
+    !> Read and check a scene from its lines in memory (as `read_scene` does a file's; a
+    !> sweep's variant is read so). `name` stands for the file in the scene and its messages.
+    subroutine read_scene_lines(name, lines, scene, error, files)
+        !> What the messages call the scene (a path, or a sweep file and its variant).
+        character(len=*), intent(in) :: name
+        !> The scene's lines, each padded with blanks to the longest.
+        character(len=*), intent(in) :: lines(:)
+        !> The scene, with defaults where the lines are silent.
+        type(scene_type), intent(out) :: scene
+        !> Set, naming `name`, the group and the variable, when the input is unusable.
+        type(error_type), allocatable, intent(out) :: error
+        !> Files read by earlier scenes, taken from here rather than read again; files this
+        !> scene reads are added.
+        type(scene_files), intent(inout), optional :: files
+
+        integer, parameter :: no_unit = -1
+
+        scene%file = name
+        call scan_scene(name, lines, scene%input, error)
         if (allocated(error)) return
         call read_scene_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call read_structure_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call read_identification_group(no_unit, lines, scene, error)
-        if (.not. allocated(error)) call read_road_group(no_unit, lines, scene, error)
+        if (.not. allocated(error)) call read_road_group(no_unit, lines, scene, error, files=files)
         if (.not. allocated(error)) call read_contact_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call read_convolution_group(no_unit, lines, scene, error)
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
         if (.not. allocated(error)) call check_spectra(scene, error)
-    end subroutine read_scene
+    end subroutine read_scene_lines
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
     !> scene template; `preload` shows -1 for its default M*g). Written by the same namelists
@@ -441,13 +470,15 @@ contains
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.
-    subroutine read_road_group(unit, lines, this, error, template)
+    subroutine read_road_group(unit, lines, this, error, template, files)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: lines(:)
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
         !> Present: write the group with its defaults on `unit` instead of reading it.
         logical, intent(in), optional :: template
+        !> Road files and textures read before (see `read_scene_lines`).
+        type(scene_files), intent(inout), optional :: files
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
@@ -512,23 +543,57 @@ contains
         case ('random')
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
         case ('texture')
-            call read_road_texture(trim(texture_file), this%texture, error)
+            call read_texture_once(trim(texture_file), this%texture, error, files)
             if (allocated(error)) error%message = input_place(this, 'road', 'texture_file')//': '//error%message
         case default
-            call read_file_road(this, trim(road_file), error)
+            call read_file_road(this, trim(road_file), error, files)
         end select
     end subroutine read_road_group
 
+    !> Profile 'texture': read the road texture (or take it from `files`).
+    subroutine read_texture_once(path, texture, error, files)
+        character(len=*), intent(in) :: path
+        type(road_texture), intent(out) :: texture
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_files), intent(inout), optional :: files
+
+        integer :: i, k
+
+        i = 0
+        if (present(files)) then
+            if (.not. allocated(files%textures)) allocate (files%textures(0))
+            i = findloc([(files%textures(k)%path == path, k=1, size(files%textures))], .true., 1)
+        end if
+        if (i > 0) then
+            texture = files%textures(i)
+        else
+            call read_road_texture(path, texture, error)
+            if (present(files) .and. .not. allocated(error)) files%textures = [files%textures, texture]
+        end if
+    end subroutine read_texture_once
+
     !> Profile 'file': read the road file; a single contact point must stay on it for the
     !> whole run (the tyre scene checks its patch when it samples the road).
-    subroutine read_file_road(this, path, error)
+    subroutine read_file_road(this, path, error, files)
         type(scene_type), intent(inout) :: this
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
+        type(scene_files), intent(inout), optional :: files
 
         type(file_road), allocatable :: road
+        integer :: i, k
 
-        call read_road_file(path, this%road_data, error)
+        i = 0
+        if (present(files)) then
+            if (.not. allocated(files%roads)) allocate (files%roads(0))
+            i = findloc([(files%roads(k)%path == path, k=1, size(files%roads))], .true., 1)
+        end if
+        if (i > 0) then
+            this%road_data = files%roads(i)
+        else
+            call read_road_file(path, this%road_data, error)
+            if (present(files) .and. .not. allocated(error)) files%roads = [files%roads, this%road_data]
+        end if
         if (allocated(error)) then
             error%message = input_place(this, 'road', 'road_file')//': '//error%message
             return

@@ -64,21 +64,21 @@ contains
     end function points_n_points
 
     !> The points of a multi-point scene, placed on the road and checked against it for the whole
-    !> run; the scene's summary lines are printed on `unit`.
-    subroutine find_scene_points(scene, unit, points, error)
+    !> run, and the scene's summary lines (printed by the caller who wants them).
+    subroutine find_scene_points(scene, points, summary, error)
         !> The scene (a multi-point model, task 'contact', road profile 'file' or 'texture').
         type(scene_type), intent(in) :: scene
-        !> Unit of the summary.
-        integer, intent(in) :: unit
         !> The points.
         type(scene_points), intent(out) :: points
+        !> The summary: "# scene NAME: ..." lines, separated by new_line('a').
+        character(len=:), allocatable, intent(out) :: summary
         !> Set for a bad file, a failed identification or a road that does not cover the run.
         type(error_type), allocatable, intent(out) :: error
 
         type(green_options) :: options
 
         if (.not. model_requires(find_model(scene%model), 'green_file')) then
-            call tyre_points(scene, unit, points%modes, points%x, points%road_x, error, points%road_y)
+            call tyre_points(scene, points%modes, points%x, points%road_x, summary, error, points%road_y)
             if (.not. allocated(error)) points%y = 0.0_dp*points%x
             return
         end if
@@ -99,9 +99,9 @@ contains
             error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
             return
         end if
-        write (unit, '(a)') '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
-            //int_text(points%n_points())//' contact points, '//run_text(scene)
-        write (unit, '(a)') points%green%summary()
+        summary = '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
+                  //int_text(points%n_points())//' contact points, '//run_text(scene)//new_line('a') &
+                  //points%green%summary()
     end subroutine find_scene_points
 
     !> The convolver called `method` on a scene's points, and what its model neglects.

@@ -22,55 +22,70 @@ module greenconv_scene_report
 
 contains
 
-    !> Print the identification in a few `#` lines: where G came from (a universal file), the
-    !> order, noise, worst uncertainty, E and CPU time, dropped poles, warnings.
-    subroutine identification_summary(structure, unit)
+    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
+    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
+    !> CPU time, dropped poles, warnings.
+    function identification_summary(structure) result(text)
         !> The identified structure.
         type(structure_model), intent(in) :: structure
-        !> Unit to print on.
-        integer, intent(in) :: unit
+        !> The lines.
+        character(len=:), allocatable :: text
 
+        character(len=400) :: buffer
+
+        text = ''
         if (allocated(structure%frf%source)) then
-            if (len(structure%frf%source) > 0) write (unit, '(a)') '# receptance: '//structure%frf%source
+            if (len(structure%frf%source) > 0) call add_line(text, '# receptance: '//structure%frf%source)
         end if
         if (structure%method == 'ml') then
-            call ml_summary(structure, unit)
+            call ml_summary(structure, text)
             return
         end if
         associate (fit => structure%fit)
-            write (unit, '(a,i0,a,i0,a,i0,a,es9.2,a,l1)') '# identification: LSCE order 2N = ', 2*fit%order_modes, &
+            write (buffer, '(a,i0,a,i0,a,i0,a,es9.2,a,l1)') '# identification: LSCE order 2N = ', 2*fit%order_modes, &
                 ' (N = ', fit%order_modes, '), ', fit%modes%n_modes(), ' modes, E = ', fit%e, &
                 ' (eq. 7), target met: ', fit%tolerance_met
-            write (unit, '(a,i0,a,i0,a,i0,a)') '# poles dropped: ', fit%n_unstable, ' unstable (Re lambda >= 0), ', &
+            call add_line(text, trim(buffer))
+            write (buffer, '(a,i0,a,i0,a,i0,a)') '# poles dropped: ', fit%n_unstable, ' unstable (Re lambda >= 0), ', &
                 fit%n_real, ' real, ', fit%n_not_stable, ' not stable across orders'
+            call add_line(text, trim(buffer))
             if (allocated(fit%warning)) then
-                if (len(fit%warning) > 0) write (unit, '(a)') '# warning: '//fit%warning
+                if (len(fit%warning) > 0) call add_line(text, '# warning: '//fit%warning)
             end if
         end associate
-    end subroutine identification_summary
+    end function identification_summary
+
+    !> Append a line to a text of lines.
+    subroutine add_line(text, line)
+        character(len=:), allocatable, intent(inout) :: text
+        character(len=*), intent(in) :: line
+
+        if (len(text) > 0) text = text//new_line('a')
+        text = text//line
+    end subroutine add_line
 
     !> The maximum-likelihood fit in two to four lines, e.g.
     !>
     !>     # identification: maximum likelihood, 12 modes (order by MDL), noise 1.01E-02 of |G| (estimated
     !>     #   from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02, diagram to N = 30,
     !>     #   E = 8.95E-03 (eq. 7), CPU 9.70E-01 s
-    subroutine ml_summary(structure, unit)
+    subroutine ml_summary(structure, text)
         type(structure_model), intent(in) :: structure
-        integer, intent(in) :: unit
+        character(len=:), allocatable, intent(inout) :: text
 
         character(len=:), allocatable :: line
         integer :: k
 
         associate (ml => structure%ml)
-            write (unit, '(a)') '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
+            call add_line(text, '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
                 //int_text(maxval([0, ml%diagram_order]))//', E = '//sci_text(ml%e)//' (eq. 7), CPU ' &
-                //sci_text(structure%cpu_time)//' s'
-            write (unit, '(a)') '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
+                //sci_text(structure%cpu_time)//' s')
+            call add_line(text, '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
                 trim(merge('explained by the noise    ', 'larger than the noise asks', ml%explained))//'), ' &
                 //int_text(ml%n_start)//' start poles from the stabilisation diagram, '//int_text(ml%n_wandering) &
                 //' wandering, '//int_text(ml%iterations)//' Levenberg-Marquardt iterations' &
                 //trim(merge(', upper residual kept', '                     ', ml%has_upper)) &
-                //trim(merge(', lower residual kept', '                     ', ml%has_lower))
+                //trim(merge(', lower residual kept', '                     ', ml%has_lower)))
             if (size(ml%dropped_pole) > 0) then
                 line = '# dropped:'
                 do k = 1, size(ml%dropped_pole)
@@ -78,10 +93,10 @@ contains
                     line = line//' '//sci_text(abs(ml%dropped_pole(k))/two_pi)//' Hz ('//reason(ml%dropped_reason(k)) &
                            //')'
                 end do
-                write (unit, '(a)') line
+                call add_line(text, line)
             end if
             if (allocated(ml%warning)) then
-                if (len(ml%warning) > 0) write (unit, '(a)') '# warning: '//ml%warning
+                if (len(ml%warning) > 0) call add_line(text, '# warning: '//ml%warning)
             end if
         end associate
     contains
@@ -225,7 +240,6 @@ contains
 
         complex(dp), allocatable :: fitted(:)
         character(len=100) :: comments(4)
-        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
 
         allocate (fitted(structure%frf%n_freq()))
         associate (f => structure%frf%frequency, g => structure%frf%receptance)
@@ -239,11 +253,7 @@ contains
             comments(2) = 'phase in degrees, in (-180, 180]'
             comments(3) = 'units: Hz m/N m/N m/N deg m/N m/N m/N deg'
             comments(4) = 'f re_g im_g abs_g phase_g re_fit im_fit abs_fit phase_fit'
-            call write_columns(path, comments, reshape([f, real(g, dp), aimag(g), abs(g), &
-                                                        degrees*atan2(aimag(g), real(g, dp)), real(fitted, dp), &
-                                                        aimag(fitted), abs(fitted), &
-                                                        degrees*atan2(aimag(fitted), real(fitted, dp))], &
-                                                       [size(f), 9]), error)
+            call write_columns(path, comments, fit_columns(f, g, fitted), error)
         end associate
     end subroutine write_fit
 
@@ -257,7 +267,6 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=120) :: comments(4)
-        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
         integer :: first
 
         first = merge(2, 1, structure%ml%has_lower)
@@ -268,13 +277,22 @@ contains
             comments(2) = 'phase in degrees, in (-180, 180]; sigma: noise standard deviation of the line'
             comments(3) = 'units: Hz m/N m/N m/N deg m/N m/N m/N deg m/N m/N'
             comments(4) = 'f re_g im_g abs_g phase_g re_fit im_fit abs_fit phase_fit abs_residual sigma'
-            call write_columns(path, comments, reshape([f, real(g, dp), aimag(g), abs(g), &
-                                                        degrees*atan2(aimag(g), real(g, dp)), real(model, dp), &
-                                                        aimag(model), abs(model), &
-                                                        degrees*atan2(aimag(model), real(model, dp)), &
-                                                        abs(g - model), ml%noise_level_fit*abs(model)], &
-                                                       [size(f), 11]), error)
+            call write_columns(path, comments, reshape([fit_columns(f, g, model), abs(g - model), &
+                                                        ml%noise_level_fit*abs(model)], [size(f), 11]), error)
         end associate
     end subroutine write_ml_fit
+
+    !> The columns f, Re G, Im G, |G|, phase of G [deg], then the same four of a model of G,
+    !> one row per frequency line.
+    pure function fit_columns(f, g, model) result(table)
+        real(dp), intent(in) :: f(:)
+        complex(dp), intent(in) :: g(:), model(:)
+        real(dp), allocatable :: table(:, :)
+
+        real(dp), parameter :: degrees = 180.0_dp/acos(-1.0_dp)
+
+        table = reshape([f, real(g, dp), aimag(g), abs(g), degrees*atan2(aimag(g), real(g, dp)), real(model, dp), &
+                         aimag(model), abs(model), degrees*atan2(aimag(model), real(model, dp))], [size(f), 9])
+    end function fit_columns
 
 end module greenconv_scene_report

@@ -3,30 +3,18 @@
 !> per method (task `contact`), writing column files and a summary line per method.
 !>
 !> Single- and multi-point runs (the tyre scene, greenconv_scene_tyre; a Green's matrix file,
-!> greenconv_scene_points) share one streaming
-!> loop, `stream_run`: a run is streamed in blocks of greenconv_io_files's `block_rows` steps
-!> (divided by N_c for several points): the road is sampled per block, the contact loop
-!> continues from the convolver's state (greenconv_contact_single's `contact_block`,
-!> greenconv_contact_multi's `multi_contact_block`), and the block's rows (every
-!> `output_every`-th step of the run) are appended to the column file, so the memory a run
-!> needs does not grow with N_t. A numerical fault closes the file with the rows before it;
-!> bad input or a failed write deletes it. A progress line (greenconv_scene_progress) shows
-!> on standard error for long runs. What differs between the two kinds of run is a
-!> `contact_run`: how it samples the road, steps a block and lays out the block's rows.
+!> greenconv_scene_points) are streamed by greenconv_scene_stream's `stream_run` into the
+!> method's column file (and its force spectra with `&scene spectra`); this module starts each
+!> method's `single_run` or `multi_run` and prints its summary line.
 module greenconv_scene_runner
-    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver, free_convolver
-    use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_contact_single, only: contact_response, contact_state, start_contact, contact_block
-    use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, start_multi_contact, &
-                                       multi_contact_block, newton_options
-    use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept, block_rows, &
-                         make_directory, check_output_directory
-    use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
+    use greenconv_contact_single, only: start_contact
+    use greenconv_contact_multi, only: start_multi_contact, newton_options
+    use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_input, only: scene_type, output_path, input_place
     use greenconv_scene_models, only: find_model, model_requires, multi_point_model
     use greenconv_ident_structure, only: structure_model
@@ -34,116 +22,18 @@ module greenconv_scene_runner
     use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header
-    use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
-                                              finish_force_spectra, spectra_line, spectra_path
-    use greenconv_scene_points, only: scene_points, find_scene_points, points_convolver, check_green_scene, &
-                                      point_rows
-    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_scene_spectra_output, only: spectra_line, spectra_path
+    use greenconv_scene_points, only: find_scene_points, points_convolver, check_green_scene
+    use greenconv_scene_stream, only: single_run, multi_run, stream_sinks, stream_run
     implicit none
     private
 
-    public :: run_scene, check_scene, make_convolver, output_path
+    public :: run_scene, check_scene, check_scene_line, make_convolver, output_path
 
     !> Layout of the summary line of a method.
     character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
     !> Column titles of the summary lines.
     character(len=*), parameter :: summary_titles = '(a,t12,a,t24,a,t36,a,t48,a)'
-
-    !> One method's contact run as the streaming loop sees it: it knows its step, samples
-    !> the road of a block, steps the block and gives the block's rows.
-    type, abstract :: contact_run
-    contains
-        !> Steps done so far.
-        procedure(run_step), deferred :: step
-        !> Sample the road of steps first..first + count - 1.
-        procedure(run_sample), deferred :: sample
-        !> Step the block sampled last; the contact loop alone, which `stream_run` times.
-        procedure(run_advance), deferred :: advance
-        !> The rows of the block stepped last that are written.
-        procedure(run_rows), deferred :: rows
-        !> The contact forces of the block stepped last, for the force spectra.
-        procedure(run_forces), deferred :: forces
-    end type contact_run
-
-    abstract interface
-        !> Steps done so far.
-        function run_step(self) result(step)
-            import :: contact_run, int64
-            implicit none
-            class(contact_run), intent(in) :: self
-            integer(int64) :: step
-        end function run_step
-
-        !> Sample the road of `count` steps from step `first` on.
-        subroutine run_sample(self, scene, first, count)
-            import :: contact_run, scene_type, int64
-            implicit none
-            class(contact_run), intent(inout) :: self
-            type(scene_type), intent(in) :: scene
-            integer(int64), intent(in) :: first
-            integer, intent(in) :: count
-        end subroutine run_sample
-
-        !> Step the sampled block; `fault` names a failed step (the run stops there).
-        subroutine run_advance(self, fault)
-            import :: contact_run, error_type
-            implicit none
-            class(contact_run), intent(inout) :: self
-            type(error_type), allocatable, intent(out) :: fault
-        end subroutine run_advance
-
-        !> The rows of the last block (its first step `first`) for the steps that are
-        !> multiples of `every`.
-        subroutine run_rows(self, first, every, table)
-            import :: contact_run, int64, dp
-            implicit none
-            class(contact_run), intent(inout) :: self
-            integer(int64), intent(in) :: first
-            integer, intent(in) :: every
-            real(dp), allocatable, intent(out) :: table(:, :)
-        end subroutine run_rows
-
-        !> The total contact force of each step of the last block and, for several points,
-        !> each point's, points(step, point) (no columns for one point).
-        subroutine run_forces(self, total, points)
-            import :: contact_run, dp
-            implicit none
-            class(contact_run), intent(in) :: self
-            real(dp), allocatable, intent(out) :: total(:), points(:, :)
-        end subroutine run_forces
-    end interface
-
-    !> A single-point run: one convolver, the road under one point.
-    type, extends(contact_run) :: single_run
-        class(convolver), allocatable :: conv
-        type(contact_state) :: state
-        type(contact_response) :: response
-        real(dp), allocatable :: road(:)
-    contains
-        procedure :: step => single_step
-        procedure :: sample => single_sample
-        procedure :: advance => single_advance
-        procedure :: rows => single_rows
-        procedure :: forces => single_forces
-    end type single_run
-
-    !> A multi-point run: a Green's matrix, the road under N_c points, the peak total force.
-    type, extends(contact_run) :: multi_run
-        class(multipoint_convolver), allocatable :: conv
-        type(multi_contact_state) :: state
-        type(multi_contact_response) :: response
-        real(dp), allocatable :: heights(:, :)
-        !> The points: on the body (x, y) and on the road (greenconv_scene_points).
-        type(scene_points) :: points
-        !> Largest total force [N] so far.
-        real(dp) :: peak = -huge(1.0_dp)
-    contains
-        procedure :: step => multi_step
-        procedure :: sample => multi_sample
-        procedure :: advance => multi_advance
-        procedure :: rows => multi_rows
-        procedure :: forces => multi_forces
-    end type multi_run
 
 contains
 
@@ -176,16 +66,14 @@ contains
         call make_directory(scene%output_dir, error)
         if (allocated(error)) return
         if (structure%identified) then
-            call identification_summary(structure, unit)
+            write (unit, '(a)') identification_summary(structure)
             call write_identification(scene, structure, error)
             if (allocated(error)) return
         end if
         if (scene%task == 'contact') call run_methods(scene, structure, unit, block_size, error)
     end subroutine run_scene
 
-    !> Check a scene without running it: the scene file was read and checked by `read_scene`
-    !> (with its road file); this also reads and checks a receptance file the structure
-    !> names, then prints one line on `unit` saying what a run would do. Nothing is written.
+    !> Check a scene without running it and print `check_scene_line`'s line on `unit`.
     !>
     !>     greenconv: data/sdof_sine.nml: ok: task contact, model sdof, N_t = 2000 steps of 1.000E-04 s, ...
     subroutine check_scene(scene, unit, error)
@@ -196,8 +84,24 @@ contains
         !> Set when a file the scene names is unusable.
         type(error_type), allocatable, intent(out) :: error
 
-        type(frf_type) :: frf
         character(len=:), allocatable :: line
+
+        call check_scene_line(scene, line, error)
+        if (.not. allocated(error)) write (unit, '(a)') line
+    end subroutine check_scene
+
+    !> Check a scene without running it: the scene was read and checked by `read_scene`
+    !> (with its road file); this also reads and checks a receptance file the structure
+    !> names, and says in `line` what a run would do. Nothing is written or printed.
+    subroutine check_scene_line(scene, line, error)
+        !> The scene, as `read_scene` returned it.
+        type(scene_type), intent(in) :: scene
+        !> "greenconv: FILE: ok: task ..., model ..., ..." (set when the scene is usable).
+        character(len=:), allocatable, intent(out) :: line
+        !> Set when a file the scene names is unusable.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
         integer :: i, n_c
 
         call check_output_directory(scene%output_dir, error)
@@ -232,8 +136,7 @@ contains
             end do
             if (scene%spectra) line = line//', '//spectra_line(scene)
         end if
-        write (unit, '(a)') line
-    end subroutine check_scene
+    end subroutine check_scene_line
 
     !> The contact loop once per method of a single-point scene.
     subroutine run_methods(scene, structure, unit, block, error)
@@ -243,6 +146,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(single_run) :: run
+        type(stream_sinks) :: sinks
         character(len=:), allocatable :: method, accuracy, label
         real(dp) :: seconds
         integer :: i, n
@@ -259,9 +163,9 @@ contains
             if (allocated(error)) then
                 error%message = scene%file//': '//method//': '//error%message
             else
-                call stream_run(run, scene, method, response_header(scene, run%conv), 5, block, &
-                                scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): ', seconds, &
-                                error)
+                sinks = column_sinks(scene, method, response_header(scene, run%conv), 5)
+                call stream_run(run, scene, method, block, sinks, &
+                                scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): ', seconds, error)
             end if
             call run%conv%model_size(n, label)
             call free_convolver(run%conv)
@@ -279,12 +183,14 @@ contains
         integer, intent(in), optional :: block
 
         type(multi_run) :: run
-        character(len=:), allocatable :: method, accuracy, label
+        type(stream_sinks) :: sinks
+        character(len=:), allocatable :: method, accuracy, label, summary
         real(dp) :: seconds
         integer :: i, n, n_c, block_size
 
-        call find_scene_points(scene, unit, run%points, error)
+        call find_scene_points(scene, run%points, summary, error)
         if (allocated(error)) return
+        write (unit, '(a)') summary
         n_c = run%points%n_points()
         block_size = max(block_rows/n_c, 1)
         if (present(block)) block_size = max(block, 1)
@@ -301,9 +207,9 @@ contains
                                      error, newton_options(max_displacement=scene%contact%divergence_bound))
             if (allocated(error)) return
             run%peak = -huge(1.0_dp)
-            call stream_run(run, scene, method, multi_contact_header(title(scene, method), run%points%from_file), &
-                            merge(8, 7, run%points%from_file), block_size, scene%file//': '//method//': ', seconds, &
-                            error)
+            sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), run%points%from_file), &
+                                 merge(8, 7, run%points%from_file))
+            call stream_run(run, scene, method, block_size, sinks, scene%file//': '//method//': ', seconds, error)
             call run%conv%release()
             if (allocated(error)) return
             call run%conv%model_size(n, label)
@@ -312,56 +218,21 @@ contains
         end do
     end subroutine run_multipoint_methods
 
-    !> One method's contact run, streamed in blocks of `block` steps into its column file,
-    !> `<output_dir>/<name>_<method>.dat` with the lines `header` and rows of `n_columns`
-    !> values. `seconds` is the CPU time of the contact loop alone. A numerical fault keeps
-    !> the rows written before it: the file is completed and `error` names it after `prefix`.
-    !> With `&scene spectra`, every step's contact forces also feed the force spectra
-    !> (greenconv_scene_spectra_output), written when the run ends.
-    subroutine stream_run(run, scene, method, header, n_columns, block, prefix, seconds, error)
-        class(contact_run), intent(inout) :: run
+    !> The sinks of a driver's run: the method's column file `<output_dir>/<name>_<method>.dat`
+    !> (or `.bin`) with the lines `header` and rows of `n_columns` values, and the force
+    !> spectra when the scene asks for them.
+    function column_sinks(scene, method, header, n_columns) result(sinks)
         type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: method, header(:), prefix
-        integer, intent(in) :: n_columns, block
-        real(dp), intent(out) :: seconds
-        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: method, header(:)
+        integer, intent(in) :: n_columns
+        type(stream_sinks) :: sinks
 
-        type(column_writer) :: writer
-        type(progress_meter) :: meter
-        type(force_spectra) :: spectra
-        type(error_type), allocatable :: fault
-        real(dp), allocatable :: table(:, :), total(:), points(:, :)
-        integer(int64) :: first
-        real(dp) :: start, finish
-        integer :: m
-
-        seconds = 0.0_dp
-        call open_columns(writer, output_path(scene, method), header, n_columns, error, &
-                          binary=scene%output_format == 'binary')
-        if (allocated(error)) return
-        call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
-        call start_force_spectra(spectra, scene)
-        do while (run%step() < scene%n_steps)
-            first = run%step()
-            m = int(min(int(block, int64), scene%n_steps - first))
-            call run%sample(scene, first, m)
-            call cpu_time(start)
-            call run%advance(fault)
-            call cpu_time(finish)
-            seconds = seconds + (finish - start)
-            if (spectra%active .and. .not. allocated(fault)) then
-                call run%forces(total, points)
-                call add_contact_forces(spectra, total, points)
-            end if
-            call run%rows(first, scene%output_every, table)
-            call append_rows(writer, table, error)
-            if (allocated(error) .or. allocated(fault)) exit
-            call update_progress(meter, run%step())
-        end do
-        call finish_progress(meter, run%step())
-        call close_run_file(writer, fault, prefix, error)
-        call finish_force_spectra(spectra, scene, method, error)
-    end subroutine stream_run
+        sinks%path = output_path(scene, method)
+        sinks%header = header
+        sinks%n_columns = n_columns
+        sinks%binary = scene%output_format == 'binary'
+        sinks%scene_spectra = .true.
+    end function column_sinks
 
     !> The header of a method's column file: what ran, the units, the columns (t, u_road,
     !> u, f_contact, delta); with `output_every` > 1, which steps the rows are.
@@ -396,100 +267,5 @@ contains
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
     end function title
-
-    function single_step(self) result(step)
-        class(single_run), intent(in) :: self
-        integer(int64) :: step
-
-        step = self%state%step
-    end function single_step
-
-    !> The road height under the point at steps first..first + count - 1.
-    subroutine single_sample(self, scene, first, count)
-        class(single_run), intent(inout) :: self
-        type(scene_type), intent(in) :: scene
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: count
-
-        self%road = scene%road%sample_steps(scene%dt, first, count)
-    end subroutine single_sample
-
-    subroutine single_advance(self, fault)
-        class(single_run), intent(inout) :: self
-        type(error_type), allocatable, intent(out) :: fault
-
-        call contact_block(self%conv, self%state, self%road, self%response, fault)
-    end subroutine single_advance
-
-    !> The columns t, u_road, u, f_contact, delta of the steps of the block that are multiples of `every`.
-    subroutine single_rows(self, first, every, table)
-        class(single_run), intent(inout) :: self
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: every
-        real(dp), allocatable, intent(out) :: table(:, :)
-
-        integer :: j
-
-        j = first_kept(first, every)
-        associate (response => self%response)
-            table = reshape([response%time(j::every), response%road(j::every), response%displacement(j::every), &
-                             response%force(j::every), response%compression(j::every)], &
-                            [size(response%time(j::every)), 5])
-        end associate
-    end subroutine single_rows
-
-    !> The contact force of each step of the block.
-    subroutine single_forces(self, total, points)
-        class(single_run), intent(in) :: self
-        real(dp), allocatable, intent(out) :: total(:), points(:, :)
-
-        total = self%response%force
-        allocate (points(size(total), 0))
-    end subroutine single_forces
-
-    function multi_step(self) result(step)
-        class(multi_run), intent(in) :: self
-        integer(int64) :: step
-
-        step = self%state%step
-    end function multi_step
-
-    !> The road heights under the N_c points at steps first..first + count - 1.
-    subroutine multi_sample(self, scene, first, count)
-        class(multi_run), intent(inout) :: self
-        type(scene_type), intent(in) :: scene
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: count
-
-        call sample_patch_road(scene, self%points%road_x, self%points%road_y, first, count, self%heights)
-    end subroutine multi_sample
-
-    subroutine multi_advance(self, fault)
-        class(multi_run), intent(inout) :: self
-        type(error_type), allocatable, intent(out) :: fault
-
-        call multi_contact_block(self%conv, self%state, self%heights, self%response, fault)
-    end subroutine multi_advance
-
-    !> N_c rows per kept step (greenconv_scene_points's `point_rows`, with the column y
-    !> for a Green's matrix file's points); the peak total force of the block is noted.
-    subroutine multi_rows(self, first, every, table)
-        class(multi_run), intent(inout) :: self
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: every
-        real(dp), allocatable, intent(out) :: table(:, :)
-
-        if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
-        table = point_rows(self%points, self%response, first_kept(first, every), every)
-    end subroutine multi_rows
-
-    !> The total force and each point's force of each step of the block.
-    subroutine multi_forces(self, total, points)
-        class(multi_run), intent(in) :: self
-        real(dp), allocatable, intent(out) :: total(:), points(:, :)
-
-        total = self%response%total_force
-        points = self%response%force
-    end subroutine multi_forces
 
 end module greenconv_scene_runner

@@ -69,6 +69,10 @@ module greenconv_scene_schema
         'model', '', "profile, for task 'contact'", "stiffness and exponent, for task 'contact'", &
         "methods, for task 'contact'"]
 
+    !> The table, built once (by `variable_row`, which every default of every scene read looks
+    !> up: building it each time cost a sweep's variants more than their check).
+    type(scene_variable), allocatable, save :: table_copy(:)
+
 contains
 
     !> Every variable of a scene file, group by group in file order.
@@ -374,15 +378,16 @@ contains
         character(len=*), intent(in) :: group, name
         type(scene_variable) :: variable
 
-        type(scene_variable), allocatable :: table(:)
         integer :: i
 
-        table = scene_table()
+        !$omp critical (greenconv_scene_table)
+        if (.not. allocated(table_copy)) table_copy = scene_table()
+        !$omp end critical (greenconv_scene_table)
         variable%group = ''
         variable%name = ''
         variable%default = ''
-        do i = 1, size(table)
-            if (table(i)%group == group .and. table(i)%name == name) variable = table(i)
+        do i = 1, size(table_copy)
+            if (table_copy(i)%group == group .and. table_copy(i)%name == name) variable = table_copy(i)
         end do
     end function variable_row
 

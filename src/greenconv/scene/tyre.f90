@@ -26,27 +26,28 @@ module greenconv_scene_tyre
 contains
 
     !> The contact points of a tyre scene, the belt's modes at them and where they meet the
-    !> road; the scene's line is printed on `unit` ("# scene NAME: tyre belt, ...").
+    !> road, and the scene's line ("# scene NAME: tyre belt, ...") for a caller who prints it.
     !>
     !> Without `across` (as the sweep, greenconv_scene_sweep, calls it), the caller samples the
     !> road file itself: a scene on a road texture, or of another model, is refused then.
-    subroutine tyre_points(scene, unit, modes, positions, road_positions, error, across)
+    subroutine tyre_points(scene, modes, positions, road_positions, summary, error, across)
         !> The scene (model 'tyre', road profile 'file' or 'texture').
         type(scene_type), intent(in) :: scene
-        !> Unit of the summary.
-        integer, intent(in) :: unit
         !> Modes of the belt up to the scene's f_max and their shapes at the points.
         type(point_modes), intent(out) :: modes
         !> Position x_i [m] of each point on the belt.
         real(dp), allocatable, intent(out) :: positions(:)
         !> Position [m] of each point on the road file at t = 0.
         real(dp), allocatable, intent(out) :: road_positions(:)
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
         !> Set for an unusable scene: not a contact run on a road file, no modes, a road too short.
         type(error_type), allocatable, intent(out) :: error
         !> Position Y_i [m] of each point across the road (y_start: the belt's points lie at y = 0).
         real(dp), allocatable, intent(out), optional :: across(:)
 
         real(dp), allocatable :: road_y(:)
+        character(len=:), allocatable :: line
         real(dp) :: f_max
         integer :: i
 
@@ -69,11 +70,13 @@ contains
         call place_patch(scene, positions, [(0.0_dp, i=1, size(positions))], road_positions, road_y, error)
         if (allocated(error)) return
         if (present(across)) call move_alloc(road_y, across)
-        write (unit, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') &
+        allocate (character(len=1000) :: line)
+        write (line, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') &
             '# scene '//scene%name//': tyre belt, ', scene%n_points, ' contact points over ', scene%patch_length, &
             ' m, ', modes%modes%n_modes(), &
             ' modes from ', tyre_frequency(scene%tyre, 1)/(2.0_dp*pi), ' Hz to f_max = ', f_max, ' Hz, ' &
             //run_text(scene)
+        summary = trim(line)
     end subroutine tyre_points
 
 end module greenconv_scene_tyre

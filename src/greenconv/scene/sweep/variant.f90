@@ -1,0 +1,211 @@
+!> One variant of a sweep (issue 17), taken as a whole by whichever process runs it: its scene
+!> read from memory and checked, its content key, its record when a previous run finished it
+!> (then nothing runs), else each method of its scene run through the one streaming loop
+!> (greenconv_scene_stream's `stream_run`) into the sinks a sweep asks for: the force summary
+!> of the table's row, the total-force history of the band levels (`spectra`) and the column
+!> file of each method (`histories`: `<name>_v<k>_<method>.dat`, or `.bin` with its header
+!> `.bin.txt` for `output_format = 'binary'`; a numerical fault keeps the rows before it).
+!> Every model of a contact scene can be swept: one point (sdof, random_modes, frf_file), the
+!> tyre's line of points, and the nodes of a Green's matrix file (identified once per variant).
+module greenconv_scene_sweep_variant
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: int_text, real_text
+    use greenconv_io_files, only: make_directory, block_rows
+    use greenconv_conv_builder, only: make_convolver
+    use greenconv_conv_convolver, only: free_convolver
+    use greenconv_contact_single, only: start_contact
+    use greenconv_contact_multi, only: start_multi_contact, newton_options
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_models, only: multi_point_model
+    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_points, only: find_scene_points, points_convolver
+    use greenconv_scene_output, only: multi_contact_header
+    use greenconv_scene_stream, only: single_run, multi_run, stream_sinks, stream_run
+    use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
+    use greenconv_scene_sweep_record, only: variant_outcome, content_key, load_record, record_path
+    use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text
+    implicit none
+    private
+
+    public :: take_variant, variant_ran, variant_done, variant_bad
+
+    !> What `take_variant` did with a variant: ran it, found it done (its record), found it bad.
+    integer, parameter :: variant_ran = 0, variant_done = 1, variant_bad = 2
+
+contains
+
+    !> Take variant k: read and check it; a bad one (status 2, message in the outcome) is not
+    !> run; one a previous run recorded under its content key is not run either (its record is
+    !> the outcome); else each method runs. With `check_only`, only the check. The outcome of a
+    !> variant that ran carries its key (`save_record` then records it).
+    subroutine take_variant(plan, k, check_only, outcome, what, files)
+        !> The sweep.
+        type(sweep_plan), intent(in) :: plan
+        !> Variant number.
+        integer, intent(in) :: k
+        !> Only check it.
+        logical, intent(in) :: check_only
+        !> Its outcome (unset with `check_only` when it is good).
+        type(variant_outcome), intent(out) :: outcome
+        !> `variant_ran`, `variant_done` or `variant_bad`.
+        integer, intent(out) :: what
+        !> Road files and textures read by earlier variants (each file is read once).
+        type(scene_files), intent(inout) :: files
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: error
+        character(len=:), allocatable :: key
+        logical :: found
+
+        what = variant_bad
+        call read_variant(plan, k, scene, error, files)
+        if (allocated(error)) then
+            outcome = failed_outcome(plan, error)
+            return
+        end if
+        what = variant_ran
+        if (check_only) return
+        key = content_key(plan, k, scene)
+        call load_record(record_path(plan, key), outcome, found)
+        if (found) then
+            what = variant_done
+            return
+        end if
+        if (plan%histories) call make_directory(plan%output_dir, error)
+        if (allocated(error)) then
+            outcome = failed_outcome(plan, error)
+            return
+        end if
+        call run_variant(plan, k, scene, outcome)
+        outcome%key = key
+    end subroutine take_variant
+
+    !> Run variant k's scene: every method, summarised. A fault (bad input, divergence) is
+    !> kept in the outcome.
+    subroutine run_variant(plan, k, scene, outcome)
+        type(sweep_plan), intent(in) :: plan
+        integer, intent(in) :: k
+        type(scene_type), intent(inout) :: scene
+        type(variant_outcome), intent(out) :: outcome
+
+        type(structure_model) :: structure
+        type(single_run) :: single
+        type(multi_run) :: multi
+        type(stream_sinks) :: sinks
+        type(error_type), allocatable :: failure, error
+        character(len=:), allocatable :: accuracy, levels, method, summary
+        real(dp) :: seconds
+        integer(int64) :: step
+        integer :: i, n, n_c, block
+        logical :: several
+
+        outcome%result = ''
+        outcome%cpu = ''
+        outcome%message = ''
+        scene%progress = .false.
+        several = multi_point_model(scene%model)
+        if (several) then
+            call find_scene_points(scene, multi%points, summary, failure)
+            n_c = max(multi%points%n_points(), 1)
+            block = max(block_rows/n_c, 1)
+        else
+            call build_structure(scene, structure, failure)
+            block = block_rows
+        end if
+        levels = ''
+        do i = 1, size(scene%methods)
+            method = trim(scene%methods(i))
+            sinks = variant_sinks(plan, scene, k, method, several, multi%points%from_file)
+            seconds = 0.0_dp
+            step = 0
+            if (allocated(failure)) then
+                error = failure
+            else if (several) then
+                call points_convolver(multi%points, scene, method, multi%conv, accuracy, error)
+                if (.not. allocated(error)) call start_multi_contact(multi%conv, [(scene%law, n=1, n_c)], &
+                    [(scene%preload/n_c, n=1, n_c)], multi%state, error, &
+                    newton_options(max_displacement=scene%contact%divergence_bound))
+                if (.not. allocated(error)) then
+                    call stream_run(multi, scene, method, block, sinks, '', seconds, error)
+                    step = multi%step()
+                end if
+                if (allocated(multi%conv)) then
+                    call multi%conv%release()
+                    deallocate (multi%conv)
+                end if
+            else
+                call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, single%conv, &
+                                    accuracy, error, scene%accuracy)
+                if (.not. allocated(error)) call start_contact(single%conv, scene%law, scene%preload, single%state, &
+                                                               error, scene%contact)
+                if (.not. allocated(error)) then
+                    call stream_run(single, scene, method, block, sinks, '', seconds, error)
+                    step = single%step()
+                end if
+                call free_convolver(single%conv)
+            end if
+            call add_method(outcome, sinks%summary, seconds, error, step, 'variant '//int_text(k)//': '//method//': ')
+            levels = levels//band_text(plan, sinks%history, scene, .not. allocated(error))
+            if (allocated(error)) deallocate (error)
+        end do
+        outcome%result = outcome%result//levels
+    end subroutine run_variant
+
+    !> The sinks of a variant's method: its force summary, its total-force history with
+    !> `spectra`, its column file with `histories` (the header of a contact scene's file, the
+    !> first line naming the sweep, the variant and its values).
+    function variant_sinks(plan, scene, k, method, several, from_file) result(sinks)
+        type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        logical, intent(in) :: several, from_file
+        type(stream_sinks) :: sinks
+
+        character(len=:), allocatable :: title
+
+        sinks%summarise = .true.
+        if (plan%spectra) allocate (sinks%history(scene%n_steps))
+        if (.not. plan%histories) return
+        sinks%binary = scene%output_format == 'binary'
+        sinks%path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method &
+                     //merge('.bin', '.dat', sinks%binary)
+        title = history_title(plan, scene, k, method)
+        if (several) then
+            sinks%header = multi_contact_header(title, from_file)
+            sinks%n_columns = merge(8, 7, from_file)
+        else
+            allocate (character(len=max(len(title), 40)) :: sinks%header(3))
+            sinks%header(1) = title
+            sinks%header(2) = 'units: s m m N m'
+            sinks%header(3) = 't u_road u f_contact delta'
+            sinks%n_columns = 5
+        end if
+    end function variant_sinks
+
+    !> First header line of a variant's history file: the sweep, the variant and its values,
+    !> the method, the steps; with `output_every` > 1, which steps the rows are.
+    function history_title(plan, scene, k, method) result(line)
+        type(sweep_plan), intent(in) :: plan
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        character(len=:), allocatable :: line
+
+        integer :: j
+
+        line = 'greenconv sweep '//plan%name//', variant '//int_text(k)//' ('
+        do j = 1, size(plan%variables)
+            if (j > 1) line = line//', '
+            line = line//plan%variables(j)%text//' = '//plan%values(k, j)%text
+        end do
+        line = line//'), method '//method//', '//int_text(scene%n_steps)//' steps of '//real_text(scene%dt)//' s'
+        if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
+                                           //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
+                                           //', ...)'
+    end function history_title
+
+end module greenconv_scene_sweep_variant
