@@ -151,6 +151,7 @@ contains
         free(:) = state%delta0 + road - u_h
         iterations = 0
         point = 1
+        residual = 0.0_dp
         if (state%settings%scheme /= 'implicit') then
             state%delta(:) = free
         else if (size(free) == 1) then
@@ -259,14 +260,14 @@ contains
     end subroutine implicit_compression
 
     !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2, from
-    !> the free compression corrected by the previous step's forces (`force` is work space).
-    !> Not converged: `iterations` = max_iterations + 1, `residual` [m] the largest |R_i| left,
+    !> the free compression corrected by the previous step's forces (`load` is work space).
+    !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
     !> at `point`. `error` is set only when a Newton system cannot be solved.
-    subroutine solve_compressions(weight0, state, free, force, iterations, largest, point, error)
+    subroutine solve_compressions(weight0, state, free, load, iterations, largest, point, error)
         real(dp), intent(in) :: weight0(:, :)
         type(contact_state), intent(inout) :: state
         real(dp), intent(in) :: free(:)
-        real(dp), intent(out) :: force(:)
+        real(dp), intent(out) :: load(:)
         integer, intent(out) :: iterations, point
         real(dp), intent(out) :: largest
         type(error_type), allocatable, intent(out) :: error
@@ -275,9 +276,11 @@ contains
         real(dp) :: jacobian(size(free), size(free)), alpha, scale
         integer :: j, halvings
 
+        largest = 0.0_dp
+        point = 1
         associate (delta => state%delta, laws => state%laws, options => state%settings)
-            force(:) = laws%force(delta)
-            delta(:) = free - matmul(weight0, force - state%preload)
+            load(:) = laws%force(delta) - state%preload
+            delta(:) = free - matmul(weight0, load)
             call residual(weight0, laws, state%preload, free, delta, r, scale)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations

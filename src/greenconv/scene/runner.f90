@@ -167,6 +167,7 @@ contains
                 return
             end if
             seconds = 0.0_dp
+            prefix = ''
             call start_run(run, scene, error)
             if (allocated(error)) then
                 if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
