@@ -48,7 +48,7 @@ module greenconv_contact_multi
     !> The state of a run between two blocks: greenconv_contact_step's `contact_state`, by the
     !> name multi-point callers know.
     public :: multi_contact_state
-    public :: start_multi_contact, start_points_contact, multi_contact_block, as_contact_options
+    public :: start_multi_contact, multi_contact_block, as_contact_options
 
     !> Settings of the per-step nonlinear solve and of the divergence guard, with the defaults
     !> of multi-point contact (the C and Fortran 77 multi-point doors document them). A run
@@ -112,10 +112,14 @@ contains
         if (.not. allocated(error)) call multi_contact_block(conv, state, road, response, error)
     end subroutine run_multi_contact
 
-    !> Start a streamed multi-point run: check the sizes, reset the convolver (rest, the
-    !> static equilibrium under the preloads) and set `state` at step 0. Then call
+    !> Start a streamed multi-point run: check the sizes and the settings, reset the convolver
+    !> (rest, the static equilibrium under the preloads) and set `state` at step 0. Then call
     !> `multi_contact_block` once per block of road heights.
-    subroutine start_multi_contact(conv, laws, preload, state, error, options)
+    !>
+    !> The settings are the multi-point ones (`options`, the implicit scheme), or any
+    !> `contact_options` (`settings`): a single-point run's scheme too, its structure's convolver
+    !> wrapped as the 1 x 1 case (greenconv_conv_point_matrix), so that one loop runs both.
+    subroutine start_multi_contact(conv, laws, preload, state, error, options, settings)
         !> The Green's matrix of the N_c points; reset here.
         class(multipoint_convolver), intent(inout) :: conv
         !> Contact law of each point (N_c).
@@ -124,33 +128,15 @@ contains
         real(dp), intent(in) :: preload(:)
         !> The run at step 0.
         type(multi_contact_state), intent(out) :: state
-        !> Set (`stat_input`) when the laws, preloads and Green's matrix disagree in size.
+        !> Set (`stat_input`) when the laws, preloads and Green's matrix disagree in size, or
+        !> the settings are unusable with this W0.
         type(error_type), allocatable, intent(out) :: error
-        !> Newton and divergence settings; defaults when absent.
+        !> Newton and divergence settings; the defaults when both are absent.
         type(newton_options), intent(in), optional :: options
+        !> Scheme, divergence bound and Newton settings, in place of `options`.
+        type(contact_options), intent(in), optional :: settings
 
-        type(newton_options) :: settings
-
-        if (present(options)) settings = options
-        call start_points_contact(conv, laws, preload, as_contact_options(settings), state, error)
-    end subroutine start_multi_contact
-
-    !> `start_multi_contact` with any `contact_options`: the scheme, bound and Newton settings
-    !> of a single-point run too, its structure's convolver wrapped as the 1 x 1 case
-    !> (greenconv_conv_point_matrix), so that one loop runs both.
-    subroutine start_points_contact(conv, laws, preload, settings, state, error)
-        !> The Green's matrix of the N_c points; reset here.
-        class(multipoint_convolver), intent(inout) :: conv
-        !> Contact law of each point (N_c).
-        type(contact_law), intent(in) :: laws(:)
-        !> Static preloads F0_i [N], >= 0 (N_c).
-        real(dp), intent(in) :: preload(:)
-        !> Scheme, divergence bound and Newton settings.
-        type(contact_options), intent(in) :: settings
-        !> The run at step 0.
-        type(multi_contact_state), intent(out) :: state
-        !> Set (`stat_input`) when sizes disagree or the options are unusable with this W0.
-        type(error_type), allocatable, intent(out) :: error
+        type(contact_options) :: chosen
 
         if (conv%n_points() /= size(laws) .or. size(preload) /= size(laws)) then
             call fatal_error(error, 'multi-point contact: the Green''s matrix has '//int_text(conv%n_points()) &
@@ -158,10 +144,13 @@ contains
                              //int_text(size(preload)), stat_input)
             return
         end if
-        call start_state(laws, preload, conv%weight0, conv%dt, settings, state, error)
+        chosen = as_contact_options(newton_options())
+        if (present(options)) chosen = as_contact_options(options)
+        if (present(settings)) chosen = settings
+        call start_state(laws, preload, conv%weight0, conv%dt, chosen, state, error)
         if (allocated(error)) return
         call conv%reset()
-    end subroutine start_points_contact
+    end subroutine start_multi_contact
 
     !> Continue a multi-point run over the next size(road, 1) steps, n = state%step onwards.
     !>

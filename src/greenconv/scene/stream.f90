@@ -27,7 +27,7 @@ module greenconv_scene_stream
     use greenconv_conv_builder, only: make_convolver
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
-                                       start_points_contact, as_contact_options, newton_options
+                                       start_multi_contact, newton_options
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
@@ -233,17 +233,15 @@ contains
         !> Set when the contact settings are unusable with the convolver.
         type(error_type), allocatable, intent(out) :: error
 
-        type(newton_options) :: settings
         integer :: n, n_c
 
         run%peak = -huge(1.0_dp)
         n_c = run%conv%n_points()
         if (run%several) then
-            settings%max_displacement = scene%contact%divergence_bound
-            call start_points_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], &
-                                      as_contact_options(settings), run%state, error)
+            call start_multi_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], run%state, &
+                                     error, newton_options(max_displacement=scene%contact%divergence_bound))
         else
-            call start_points_contact(run%conv, [scene%law], [scene%preload], scene%contact, run%state, error)
+            call start_multi_contact(run%conv, [scene%law], [scene%preload], run%state, error, settings=scene%contact)
         end if
     end subroutine start_run
 
