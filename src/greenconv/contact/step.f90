@@ -27,9 +27,13 @@
 !> finite - before the caller pushes the load: a fault leaves the convolver where it was and
 !> names the step, its time, the point (when N_c > 1) and what to change.
 !>
-!> A new contact law is a new type with `force`, `compression` and `tangent` (in
-!> greenconv_contact_law, which holds the one concrete law the steppers call) plus its rows in the
-!> scene schema; nothing here changes.
+!> The law is greenconv_contact_law's concrete `contact_law`, and the step calls only its
+!> `force`, `compression` and `tangent`. A new law therefore changes contact/law.f90 (its
+!> parameters and those three procedures), the scene's rows for its parameters
+!> (scene/schema.f90, and scene/input.f90 where `&contact` becomes a law) and the check of
+!> its values (api/library.f90's `check_contact_law`); nothing here, in the single- and
+!> multi-point loops, the runner or verify/contact changes, and the C and Fortran 77 doors
+!> only if the law is to be given other parameters than k_c and p.
 module greenconv_contact_step
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
