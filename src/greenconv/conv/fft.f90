@@ -128,7 +128,6 @@ module greenconv_conv_fft
         procedure :: history => fft_history
         procedure :: push => fft_push
         procedure :: reset => fft_reset
-        procedure :: model_size => fft_size
         !> Destroy this object's FFTW plans now (it plans again if stepped further).
         procedure :: release => fft_release_plans
         !> Number of FFTW plan pairs this object owns.
@@ -160,8 +159,7 @@ contains
         n_head = min(max(n_head, 1), n_g)
         allocate (weight(n_g))
         weight(:) = dt*kernel(1:n_g)
-        conv%name = 'fft'
-        conv%dt = dt
+        call conv%set_model('fft', dt, n_g, 'N_g')
         conv%weight0 = dt*kernel(0)
         conv%n_g = n_g
         if (present(valid_steps)) conv%valid_steps = valid_steps
@@ -410,15 +408,6 @@ contains
         self%step = 0
     end subroutine fft_reset
 
-    !> Kernel length N_g.
-    subroutine fft_size(self, n, label)
-        class(fft_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = self%n_g
-        label = 'N_g'
-    end subroutine fft_size
 
     !> Destroy the FFTW plans this object owns; stepping on plans again.
     subroutine fft_release_plans(self)

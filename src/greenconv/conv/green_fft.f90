@@ -104,7 +104,6 @@ module greenconv_conv_green_fft
         procedure :: history => green_fft_history
         procedure :: push => green_fft_push
         procedure :: reset => green_fft_reset
-        procedure :: model_size => green_fft_size
         procedure :: release => green_fft_release
         !> Number of FFTW plan pairs this object owns.
         procedure :: plan_count => green_fft_plan_count
@@ -138,8 +137,7 @@ contains
         n_head = default_multipoint_head
         if (present(head)) n_head = head
         n_head = min(max(n_head, 1), n_g)
-        conv%name = 'fft'
-        conv%dt = dt
+        call conv%set_model('fft', dt, n_g, 'N_g')
         conv%n_g = n_g
         call conv%set_instant_matrix(dt*kernel(0, :, :))
         allocate (conv%head_weight(n_c, n_head, n_c), conv%head_past(2*n_head, n_c))
@@ -333,15 +331,6 @@ contains
         self%step = 0
     end subroutine green_fft_reset
 
-    !> Kernel length N_g.
-    subroutine green_fft_size(self, n, label)
-        class(fft_green_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = self%n_g
-        label = 'N_g'
-    end subroutine green_fft_size
 
     !> Destroy the FFTW plans this object owns; stepping on plans again.
     subroutine green_fft_release(self)

@@ -32,7 +32,6 @@ module greenconv_conv_green_sampled
         procedure :: history => sampled_history
         procedure :: push => sampled_push
         procedure :: reset => sampled_reset
-        procedure :: model_size => sampled_size
     end type sampled_green_matrix
 
 contains
@@ -58,8 +57,7 @@ contains
                              //'N_c x N_c matrix')
             return
         end if
-        conv%name = 'direct'
-        conv%dt = dt
+        call conv%set_model('direct', dt, n_g, 'N_g')
         allocate (conv%weight(n_g, n_c, n_c), conv%past(2*n_g, n_c))
         call conv%set_instant_matrix(dt*kernel(0, :, :))
         conv%weight(:, :, :) = dt*kernel(1:n_g, :, :)
@@ -107,15 +105,5 @@ contains
         self%head = 1
         self%step = 0
     end subroutine sampled_reset
-
-    !> Kernel length N_g.
-    subroutine sampled_size(self, n, label)
-        class(sampled_green_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%weight, 1)
-        label = 'N_g'
-    end subroutine sampled_size
 
 end module greenconv_conv_green_sampled

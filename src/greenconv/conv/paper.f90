@@ -53,7 +53,6 @@ module greenconv_conv_paper
         procedure :: history => modal_history
         procedure :: push => modal_push
         procedure :: reset => modal_reset
-        procedure :: model_size => modal_size
     end type paper_convolver
 
 contains
@@ -66,8 +65,7 @@ contains
         real(dp), intent(in) :: dt
         type(paper_convolver) :: conv
 
-        conv%name = 'paper'
-        conv%dt = dt
+        call conv%set_model('paper', dt, modes%n_modes(), 'N_m')
         conv%decay = -real(modes%pole, kind=dp)
         conv%omega_d = aimag(modes%pole)
         conv%residue = modes%residue
@@ -112,15 +110,5 @@ contains
         self%beta = 0.0_dp
         self%step = 0
     end subroutine modal_reset
-
-    !> Number of modes N_m.
-    subroutine modal_size(self, n, label)
-        class(paper_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%decay)
-        label = 'N_m'
-    end subroutine modal_size
 
 end module greenconv_conv_paper

@@ -99,7 +99,6 @@ module greenconv_conv_recursive
         procedure :: history => recursive_history
         procedure :: push => recursive_push
         procedure :: reset => recursive_reset
-        procedure :: model_size => recursive_size
     end type recursive_convolver
 
     !> Terms kept in the Taylor series of phi1 and phi2 for |x| < 1 (error below 1/21!).
@@ -216,8 +215,7 @@ contains
         real(dp), intent(in) :: dt
         complex(dp), intent(in) :: z(:), c(:), v(:)
 
-        conv%name = name
-        conv%dt = dt
+        call conv%set_model(name, dt, size(z), 'N_m')
         conv%weight0 = 2.0_dp*sum(real(v, kind=dp))
         conv%mode_weight = 2.0_dp*real(v, kind=dp)
         conv%decay_re = real(z, kind=dp)
@@ -261,15 +259,5 @@ contains
         self%state_im = 0.0_dp
         self%step = 0
     end subroutine recursive_reset
-
-    !> Number of modes N_m.
-    subroutine recursive_size(self, n, label)
-        class(recursive_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%state_re)
-        label = 'N_m'
-    end subroutine recursive_size
 
 end module greenconv_conv_recursive
