@@ -33,8 +33,10 @@ module greenconv_conv_convolver
         !> What `model_count` counts: `N_g` or `N_m`.
         character(len=:), allocatable :: model_label
     contains
-        !> Forget all forces pushed and return to step 0.
-        procedure(reset_interface), deferred :: reset
+        !> Forget all forces pushed and return to step 0: `clear`, then the step counter.
+        procedure, non_overridable :: reset
+        !> Forget the forces pushed: the engine's own memory of them (by `reset`).
+        procedure(clear_interface), deferred :: clear
         !> Size of the model: N_g kernel samples or N_m modes, with its label.
         procedure :: model_size
         !> Set the name, time step and model size (by the constructors).
@@ -59,12 +61,12 @@ module greenconv_conv_convolver
     end type convolver
 
     abstract interface
-        !> Return to step 0 with no force history.
-        subroutine reset_interface(self)
+        !> Forget the forces pushed so far (the step counter is `reset`'s).
+        subroutine clear_interface(self)
             import :: convolver_core
             implicit none
             class(convolver_core), intent(inout) :: self
-        end subroutine reset_interface
+        end subroutine clear_interface
 
         !> Displacement u_h(n) [m] at t_n from the forces pushed so far.
         function history_interface(self) result(u)
@@ -105,6 +107,15 @@ contains
         capped_step = limit
         if (step < limit) capped_step = int(step)
     end function capped_step
+
+    !> Forget all forces pushed and return to step 0.
+    subroutine reset(self)
+        !> The convolver.
+        class(convolver_core), intent(inout) :: self
+
+        call self%clear()
+        self%step = 0
+    end subroutine reset
 
     !> Size of the model and its label (`N_g` or `N_m`).
     subroutine model_size(self, n, label)

@@ -33,7 +33,7 @@ module greenconv_conv_direct
     contains
         procedure :: history => direct_history
         procedure :: push => direct_push
-        procedure :: reset => direct_reset
+        procedure :: clear => direct_clear
     end type direct_convolver
 
 contains
@@ -92,12 +92,11 @@ contains
     end subroutine direct_push
 
     !> Clear the force history.
-    subroutine direct_reset(self)
+    subroutine direct_clear(self)
         class(direct_convolver), intent(inout) :: self
 
         self%past = 0.0_dp
         self%head = 1
-        self%step = 0
-    end subroutine direct_reset
+    end subroutine direct_clear
 
 end module greenconv_conv_direct

@@ -39,7 +39,7 @@ module greenconv_conv_green_modal
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
-        procedure :: reset => modal_reset
+        procedure :: clear => modal_clear
     end type modal_green_matrix
 
 contains
@@ -123,12 +123,11 @@ contains
     end subroutine modal_push
 
     !> Clear the modal states.
-    subroutine modal_reset(self)
+    subroutine modal_clear(self)
         class(modal_green_matrix), intent(inout) :: self
 
         call self%engine%reset()
         self%modal_force(:) = 0.0_dp
-        self%step = 0
-    end subroutine modal_reset
+    end subroutine modal_clear
 
 end module greenconv_conv_green_modal

@@ -26,6 +26,7 @@
 !> tabulates g_ij(t_m) from it.
 module greenconv_conv_multipoint
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_convolver, only: convolver_core
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
@@ -33,7 +34,7 @@ module greenconv_conv_multipoint
     implicit none
     private
 
-    public :: multipoint_convolver, sample_green_matrix
+    public :: multipoint_convolver, sample_green_matrix, check_green_table
 
     !> A causal multi-point convolver stepped once per time step.
     type, abstract, extends(convolver_core) :: multipoint_convolver
@@ -104,6 +105,20 @@ contains
         self%weight0(:, :) = w0
         self%explicit = maxval(abs(w0)) <= 0.0_dp
     end subroutine set_instant_matrix
+
+    !> Check a table kernel(m, i, j) = g_ij(m*dt) of a sampled Green's matrix: samples
+    !> m = 0..N_g with N_g >= 1 of an N_c x N_c matrix, N_c >= 1.
+    subroutine check_green_table(kernel, error)
+        !> Samples g_ij(m*dt) [m/(N*s)], first index m = 0..N_g, then i and j.
+        real(dp), intent(in) :: kernel(0:, :, :)
+        !> Set when the table is not square in (i, j) or has no sample after t = 0.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (ubound(kernel, 1) < 1 .or. size(kernel, 2) < 1 .or. size(kernel, 3) /= size(kernel, 2)) then
+            call fatal_error(error, 'sampled Green''s matrix: expected samples m = 0..N_g (N_g >= 1) of an ' &
+                             //'N_c x N_c matrix')
+        end if
+    end subroutine check_green_table
 
     !> Tabulate g_ij(t_m), t_m = m*dt, from modes and truncate it by the paper's rule.
     !>

@@ -52,7 +52,7 @@ module greenconv_conv_paper
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
-        procedure :: reset => modal_reset
+        procedure :: clear => modal_clear
     end type paper_convolver
 
 contains
@@ -72,6 +72,14 @@ contains
         allocate (conv%alpha(modes%n_modes()), conv%beta(modes%n_modes()))
         call conv%reset()
     end function new_paper_convolver
+
+    !> Clear the accumulated integrals.
+    subroutine modal_clear(self)
+        class(paper_convolver), intent(inout) :: self
+
+        self%alpha = 0.0_dp
+        self%beta = 0.0_dp
+    end subroutine modal_clear
 
     !> History displacement of eq. (15) at t_n from alpha_k(n), beta_k(n).
     function modal_history(self) result(u)
@@ -101,14 +109,5 @@ contains
         self%beta = self%beta + growth*sin(self%omega_d*t)
         self%step = self%step + 1
     end subroutine modal_push
-
-    !> Clear the accumulated integrals.
-    subroutine modal_reset(self)
-        class(paper_convolver), intent(inout) :: self
-
-        self%alpha = 0.0_dp
-        self%beta = 0.0_dp
-        self%step = 0
-    end subroutine modal_reset
 
 end module greenconv_conv_paper

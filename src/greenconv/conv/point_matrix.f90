@@ -22,7 +22,7 @@ module greenconv_conv_point_matrix
     contains
         procedure :: history => point_history
         procedure :: push => point_push
-        procedure :: reset => point_reset
+        procedure :: clear => point_clear
         procedure :: release => point_release
     end type point_matrix
 
@@ -63,13 +63,12 @@ contains
         self%step = self%point%step
     end subroutine point_push
 
-    !> Back to step 0.
-    subroutine point_reset(self)
+    !> The engine back to step 0.
+    subroutine point_clear(self)
         class(point_matrix), intent(inout) :: self
 
         call self%point%reset()
-        self%step = self%point%step
-    end subroutine point_reset
+    end subroutine point_clear
 
 
     !> Release what the engine holds outside Fortran (FFTW plans).

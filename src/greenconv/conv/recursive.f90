@@ -98,7 +98,7 @@ module greenconv_conv_recursive
     contains
         procedure :: history => recursive_history
         procedure :: push => recursive_push
-        procedure :: reset => recursive_reset
+        procedure :: clear => recursive_clear
     end type recursive_convolver
 
     !> Terms kept in the Taylor series of phi1 and phi2 for |x| < 1 (error below 1/21!).
@@ -252,12 +252,11 @@ contains
     end subroutine recursive_push
 
     !> Clear the states.
-    subroutine recursive_reset(self)
+    subroutine recursive_clear(self)
         class(recursive_convolver), intent(inout) :: self
 
         self%state_re = 0.0_dp
         self%state_im = 0.0_dp
-        self%step = 0
-    end subroutine recursive_reset
+    end subroutine recursive_clear
 
 end module greenconv_conv_recursive
