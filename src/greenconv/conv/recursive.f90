@@ -109,10 +109,11 @@ contains
     !> The paper's convolution, eqs. (15)-(17), as a decaying recursion named `recursive`:
     !> the same numbers as `new_paper_convolver` without its overflow.
     function new_recursive_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0), summed by the rectangle rule.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]: the kernel is w_j = dt*g(t_j) [m/N] and w0 = 0.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0.
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_rectangle, modes, dt)
@@ -121,10 +122,11 @@ contains
     !> The first-order-hold convolution named `exact`: the force linear within each step,
     !> integrated exactly against each mode; w0 = sum_k 2*Re(r_k*dt*phi2(lambda_k*dt)).
     function new_exact_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0), each integrated exactly over a step.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]; the error is of second order in it for a smooth force.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0; its w0 [m/N] is the weight of phi2.
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_first_order, modes, dt)
@@ -134,10 +136,11 @@ contains
     !> step that ends at its sample; w0 = a_0 = sum_k 2*Re(r_k*dt*phi1(lambda_k*dt)) [m/N],
     !> c_k = 2*r_k*dt*phi1*z_k. First order in dt, static gain exact.
     function new_backward_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0); their static gain is kept exactly.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]; the error is of first order in it.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0; its w0 = a_0 [m/N].
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_backward, modes, dt)
