@@ -9,6 +9,11 @@
 !> with `push(q)`, which advances to step n + 1. `instant_weight()` is w0, the
 !> displacement per newton of the current step's own force (zero for the paper's scheme).
 !> The loop never knows whether a direct sum, an FFT or modes answer.
+!>
+!> What single-point and multi-point convolvers (greenconv_conv_multipoint) have in common sits
+!> in `convolver_core`: an engine implements `history`, `push` (which advances `step`) and
+!> `clear` (its memory of the forces; `reset` clears and returns the step to 0), and its
+!> constructor names it, with its time step and model size, by `set_model`.
 module greenconv_conv_convolver
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
