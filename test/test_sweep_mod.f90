@@ -172,8 +172,8 @@ contains
         outcome%cpu = ' 0.0100'
         outcome%status = 3
         outcome%message = 'diverged'
-        call check(error, summary_row(plan, 2, outcome) == '2        2.5e-3         1.0 2.0 3.0 0.5 0 0', &
-                   'the row: '//summary_row(plan, 2, outcome))
+        call check(error, summary_row(plan, 2, outcome%result) == '2        2.5e-3         1.0 2.0 3.0 0.5 0 0', &
+                   'the row: '//summary_row(plan, 2, outcome%result))
         if (allocated(error)) return
         call outcome_from_text(outcome_text(outcome), back, ok)
         call check(error, ok .and. back%result == outcome%result .and. back%cpu == outcome%cpu .and. &

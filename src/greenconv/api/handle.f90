@@ -29,7 +29,7 @@ module greenconv_api_handle
     use greenconv_conv_fft, only: fft_convolver
     use greenconv_conv_methods, only: method_needs_g
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_single, only: contact_options, contact_response, contact_state, run_contact, &
+    use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
                                         copy_histories, start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_state
     use greenconv_api_library, only: new_convolver, check_contact_law, contact_step
@@ -53,11 +53,10 @@ module greenconv_api_handle
         character(len=:), allocatable :: warning
         !> Newton and divergence settings of the multi-point contact runs on this convolver.
         type(newton_options) :: settings
-        !> The multi-point contact run stepped one call at a time.
+        !> The contact run stepped one call at a time, at N_c points or at one (C:
+        !> `gc_multi_contact_start`, or `gc_contact_start` with the single-point scheme):
+        !> one state for both (greenconv_contact_step's).
         type(multi_contact_state) :: contact
-        !> The single-point contact run stepped one call at a time (C: `gc_contact_start`,
-        !> `gc_contact_advance`), with the single-point scheme (explicit, or the scalar implicit step).
-        type(contact_state) :: point_contact
         !> True between a successful start of a stepped contact run and its first fault or reset.
         logical :: stepping = .false.
         !> The Green's matrix file the convolver was built from, read and identified (its points:
@@ -439,7 +438,7 @@ contains
         box%stepping = .false.
         select type (matrix => box%conv)
         type is (point_matrix)
-            call start_contact(matrix%point, law, preload, box%point_contact, error, options)
+            call start_contact(matrix%point, law, preload, box%contact, error, options)
             matrix%step = matrix%point%step
             box%stepping = .not. allocated(error)
         end select
@@ -458,7 +457,7 @@ contains
 
         select type (matrix => box%conv)
         type is (point_matrix)
-            call contact_block(matrix%point, box%point_contact, road, response, error)
+            call contact_block(matrix%point, box%contact, road, response, error)
             matrix%step = matrix%point%step
         end select
     end subroutine advance_point_box

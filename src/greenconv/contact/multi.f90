@@ -23,27 +23,37 @@
 !> matrix W0 that is symmetric positive semi-definite and monotone laws, I + W0*D has
 !> eigenvalues >= 1, so every Newton system is solvable.
 !>
+!> The step is greenconv_contact_step's, the one single-point contact takes too (one point is
+!> solved there by its scalar Newton iteration instead); here are the loop that feeds it the
+!> histories of a multi-point convolver, and the settings multi-point callers know.
+!>
 !> A run too long to hold is streamed like greenconv_contact_single's: `start_multi_contact`, then
 !> `multi_contact_block` per block of road heights; the state carries the step index and the
 !> compressions that start the next step's Newton iteration, so the blocks put together equal
 !> `run_multi_contact` on the whole road bit for bit.
 module greenconv_contact_multi
     use, intrinsic :: iso_fortran_env, only: int64
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
-    use greenconv_core_text, only: int_text, sci_text
-    use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
-    use greenconv_ext_lapack, only: solve_linear
+    use greenconv_core_text, only: int_text
+    use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_contact_law, only: contact_law
+    use greenconv_contact_step, only: contact_options, multi_contact_state => contact_state, start_state, &
+                                      step_contact
     use greenconv_contact_rows, only: keep_first, keep_all
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
 
     public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step
-    public :: multi_contact_state, start_multi_contact, multi_contact_block
+    !> The state of a run between two blocks: greenconv_contact_step's `contact_state`, by the
+    !> name multi-point callers know.
+    public :: multi_contact_state
+    public :: start_multi_contact, multi_contact_block, as_contact_options
 
-    !> Settings of the per-step nonlinear solve and of the divergence guard.
+    !> Settings of the per-step nonlinear solve and of the divergence guard, with the defaults
+    !> of multi-point contact (the C and Fortran 77 multi-point doors document them). A run
+    !> takes them as the `implicit` scheme of `contact_options` (`as_contact_options`), which
+    !> with W0 = 0 is the paper's explicit step.
     type :: newton_options
         !> Convergence: max_i |R_i| <= tolerance*scale, scale = the largest of |a_i|, |delta_i|,
         !> delta0_i and |sum_j W0_ij*(F_j - F0_j)| (dimensionless).
@@ -72,25 +82,6 @@ module greenconv_contact_multi
         !> Newton iterations of each step (0 for the explicit scheme).
         integer, allocatable :: iterations(:)
     end type multi_contact_response
-
-    !> A multi-point contact run between two blocks of a streamed run.
-    type :: multi_contact_state
-        !> Contact law of each point (N_c).
-        type(contact_law), allocatable :: laws(:)
-        !> Static preloads F0_i [N] (N_c).
-        real(dp), allocatable :: preload(:)
-        !> Static compressions delta0_i [m] (N_c).
-        real(dp), allocatable :: delta0(:)
-        !> Compressions of the last step done [m] (delta0 before step 0): the next step's guess.
-        real(dp), allocatable :: delta(:)
-        !> Newton and divergence settings.
-        type(newton_options) :: settings
-        !> Index n of the next step (the number of steps done), 64 bits.
-        integer(int64) :: step = 0
-    end type multi_contact_state
-
-    !> Most halvings of a Newton step in the line search.
-    integer, parameter :: max_halvings = 30
 
 contains
 
@@ -121,10 +112,14 @@ contains
         if (.not. allocated(error)) call multi_contact_block(conv, state, road, response, error)
     end subroutine run_multi_contact
 
-    !> Start a streamed multi-point run: check the sizes, reset the convolver (rest, the
-    !> static equilibrium under the preloads) and set `state` at step 0. Then call
+    !> Start a streamed multi-point run: check the sizes and the settings, reset the convolver
+    !> (rest, the static equilibrium under the preloads) and set `state` at step 0. Then call
     !> `multi_contact_block` once per block of road heights.
-    subroutine start_multi_contact(conv, laws, preload, state, error, options)
+    !>
+    !> The settings are the multi-point ones (`options`, the implicit scheme), or any
+    !> `contact_options` (`settings`): a single-point run's scheme too, its structure's convolver
+    !> wrapped as the 1 x 1 case (greenconv_conv_point_matrix), so that one loop runs both.
+    subroutine start_multi_contact(conv, laws, preload, state, error, options, settings)
         !> The Green's matrix of the N_c points; reset here.
         class(multipoint_convolver), intent(inout) :: conv
         !> Contact law of each point (N_c).
@@ -133,10 +128,15 @@ contains
         real(dp), intent(in) :: preload(:)
         !> The run at step 0.
         type(multi_contact_state), intent(out) :: state
-        !> Set (`stat_input`) when the laws, preloads and Green's matrix disagree in size.
+        !> Set (`stat_input`) when the laws, preloads and Green's matrix disagree in size, or
+        !> the settings are unusable with this W0.
         type(error_type), allocatable, intent(out) :: error
-        !> Newton and divergence settings; defaults when absent.
+        !> Newton and divergence settings; the defaults when both are absent.
         type(newton_options), intent(in), optional :: options
+        !> Scheme, divergence bound and Newton settings, in place of `options`.
+        type(contact_options), intent(in), optional :: settings
+
+        type(contact_options) :: chosen
 
         if (conv%n_points() /= size(laws) .or. size(preload) /= size(laws)) then
             call fatal_error(error, 'multi-point contact: the Green''s matrix has '//int_text(conv%n_points()) &
@@ -144,12 +144,11 @@ contains
                              //int_text(size(preload)), stat_input)
             return
         end if
-        if (present(options)) state%settings = options
-        state%laws = laws
-        state%preload = preload
-        state%delta0 = laws%compression(preload)
-        state%delta = state%delta0
-        state%step = 0
+        chosen = as_contact_options(newton_options())
+        if (present(options)) chosen = as_contact_options(options)
+        if (present(settings)) chosen = settings
+        call start_state(laws, preload, conv%weight0, conv%dt, chosen, state, error)
+        if (allocated(error)) return
         call conv%reset()
     end subroutine start_multi_contact
 
@@ -170,9 +169,8 @@ contains
         !> Set on a road of the wrong width, a step whose forces do not converge, or divergence.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: u(size(state%laws))
+        real(dp) :: u_h(size(state%laws))
         integer :: j, n_t
-        integer(int64) :: n
 
         n_t = size(road, 1)
         if (size(road, 2) /= size(state%laws)) then
@@ -185,29 +183,24 @@ contains
         response%time(:) = [((state%step + j)*conv%dt, j=0, n_t - 1)]
         response%road(:, :) = road
         do j = 0, n_t - 1
-            n = state%step + j
-            call multi_contact_step(conv, state%laws, state%delta0, state%preload, road(j, :), state%delta, &
-                                    response%force(j, :), u, response%iterations(j), error, state%settings)
-            if (.not. allocated(error)) call divergence_guard(u, response%force(j, :), state%settings, error)
+            call conv%history(u_h)
+            call step_contact(state, conv%weight0, u_h, road(j, :), response%force(j, :), &
+                              response%displacement(j, :), response%iterations(j), error)
             if (allocated(error)) then
-                error%message = error%message//' at step '//int_text(n)//' (t = '//sci_text(n*conv%dt)//' s)'
                 call keep_all(j, response%time, response%total_force)
                 call keep_first(response%iterations, j)
                 call keep_all(j, response%road, response%displacement, response%force, response%compression)
-                state%step = n
                 return
             end if
+            call conv%push(response%force(j, :) - state%preload)
             response%compression(j, :) = state%delta
-            response%displacement(j, :) = u
             response%total_force(j) = sum(response%force(j, :))
         end do
-        state%step = state%step + n_t
     end subroutine multi_contact_block
 
-    !> One step of the loop: history, forces of all points, push of F - F0.
-    !>
-    !> `delta` holds on entry the compressions of the previous step (the Newton guess is the
-    !> free compression corrected by the previous forces) and on return this step's.
+    !> One step of the loop on its own, outside a run's state: history, forces of all points,
+    !> push of F - F0 (when the step succeeds). `delta` holds on entry the compressions of the
+    !> previous step (the first guess of the Newton iteration) and on return this step's.
     subroutine multi_contact_step(conv, laws, delta0, preload, road, delta, force, displacement, iterations, &
                                   error, options)
         !> The Green's matrix of the N_c points, at step n; advanced to n + 1.
@@ -228,121 +221,35 @@ contains
         real(dp), intent(out) :: displacement(:)
         !> Newton iterations used (0 when W0 = 0).
         integer, intent(out) :: iterations
-        !> Set when the forces do not converge.
+        !> Set when the options are unusable, the forces do not converge or the step diverges.
         type(error_type), allocatable, intent(out) :: error
         !> Newton settings.
         type(newton_options), intent(in) :: options
 
-        real(dp) :: u_h(size(laws)), free(size(laws))
-        logical :: explicit
+        type(multi_contact_state) :: state
+        real(dp) :: u_h(size(laws))
 
-        explicit = conv%is_explicit()
+        call start_state(laws, preload, conv%weight0, conv%dt, as_contact_options(options), state, error)
+        if (allocated(error)) return
+        state%delta0(:) = delta0
+        state%delta(:) = delta
+        state%step = conv%step
         call conv%history(u_h)
-        free(:) = delta0 + road - u_h
-        iterations = 0
-        if (explicit) then
-            delta(:) = free
-            force(:) = laws%force(delta)
-        else
-            force(:) = laws%force(delta)
-            delta(:) = free - matmul(conv%weight0, force - preload)
-            call solve_compressions(conv%weight0, laws, preload, delta0, free, options, delta, iterations, error)
-            if (allocated(error)) return
-            force(:) = laws%force(delta)
-        end if
-        call conv%push(force - preload)
-        displacement(:) = u_h
-        if (.not. explicit) displacement(:) = u_h + matmul(conv%weight0, force - preload)
+        call step_contact(state, conv%weight0, u_h, road, force, displacement, iterations, error)
+        delta(:) = state%delta
+        if (.not. allocated(error)) call conv%push(force - preload)
     end subroutine multi_contact_step
 
-    !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2.
-    subroutine solve_compressions(w0, laws, preload, delta0, free, options, delta, iterations, error)
-        real(dp), intent(in) :: w0(:, :)
-        type(contact_law), intent(in) :: laws(:)
-        real(dp), intent(in) :: preload(:), delta0(:), free(:)
-        type(newton_options), intent(in) :: options
-        real(dp), intent(inout) :: delta(:)
-        integer, intent(out) :: iterations
-        type(error_type), allocatable, intent(out) :: error
+    !> The contact options of a multi-point run: the implicit scheme with these Newton and
+    !> divergence settings.
+    pure function as_contact_options(newton) result(options)
+        !> The multi-point settings.
+        type(newton_options), intent(in) :: newton
+        type(contact_options) :: options
 
-        real(dp) :: r(size(delta)), trial(size(delta)), r_trial(size(delta)), step(size(delta))
-        real(dp) :: jacobian(size(delta), size(delta)), alpha, scale
-        integer :: j, halvings
-
-        call residual(w0, laws, preload, free, delta, r, scale)
-        scale = max(scale, maxval(delta0))
-        do iterations = 0, options%max_iterations
-            if (maxval(abs(r)) <= options%tolerance*scale) return
-            if (iterations == options%max_iterations) exit
-            do j = 1, size(delta)
-                jacobian(:, j) = w0(:, j)*slope(laws(j), delta(j))
-                jacobian(j, j) = jacobian(j, j) + 1.0_dp
-            end do
-            call solve_linear(jacobian, -r, step, error)
-            if (allocated(error)) return
-            alpha = 1.0_dp
-            do halvings = 0, max_halvings
-                trial(:) = delta + alpha*step
-                call residual(w0, laws, preload, free, trial, r_trial, scale)
-                if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
-                alpha = alpha/2
-            end do
-            delta(:) = trial
-            r(:) = r_trial
-            scale = max(scale, maxval(delta0))
-        end do
-        call fatal_error(error, 'multi-point contact: Newton did not converge in '//int_text(options%max_iterations) &
-                         //' iterations, max |residual| = '//sci_text(maxval(abs(r)))//' m > ' &
-                         //sci_text(options%tolerance*scale)//' m at point '//int_text(maxloc(abs(r), 1)), &
-                         stat_numerical)
-    end subroutine solve_compressions
-
-    !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].
-    subroutine residual(w0, laws, preload, free, delta, r, scale)
-        real(dp), intent(in) :: w0(:, :)
-        type(contact_law), intent(in) :: laws(:)
-        real(dp), intent(in) :: preload(:), free(:), delta(:)
-        real(dp), intent(out) :: r(:), scale
-
-        real(dp) :: load(size(delta)), coupling(size(delta))
-
-        load(:) = laws%force(delta) - preload
-        coupling(:) = matmul(w0, load)
-        r(:) = delta - free + coupling
-        scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
-    end subroutine residual
-
-    !> dF/ddelta = p*k_c*delta^(p - 1) [N/m] in compression, zero otherwise.
-    elemental real(dp) function slope(law, delta)
-        type(contact_law), intent(in) :: law
-        real(dp), intent(in) :: delta
-
-        slope = 0.0_dp
-        if (delta > 0.0_dp) slope = law%tangent(delta)
-    end function slope
-
-    !> An error when a displacement exceeds the bound or a value is not finite.
-    subroutine divergence_guard(u, force, options, error)
-        real(dp), intent(in) :: u(:), force(:)
-        type(newton_options), intent(in) :: options
-        type(error_type), allocatable, intent(out) :: error
-
-        integer :: i
-
-        do i = 1, size(u)
-            if (.not. (ieee_is_finite(u(i)) .and. ieee_is_finite(force(i)))) then
-                call fatal_error(error, 'multi-point contact: diverged: displacement or force at point ' &
-                                 //int_text(i)//' is not a finite number', stat_numerical)
-                return
-            end if
-            if (abs(u(i)) > options%max_displacement) then
-                call fatal_error(error, 'multi-point contact: diverged: |u| = '//sci_text(abs(u(i))) &
-                                 //' m at point '//int_text(i)//' exceeds the bound ' &
-                                 //sci_text(options%max_displacement)//' m', stat_numerical)
-                return
-            end if
-        end do
-    end subroutine divergence_guard
+        options = contact_options(scheme='implicit', divergence_bound=newton%max_displacement, &
+                                  tolerance=newton%tolerance, max_iterations=newton%max_iterations)
+    end function as_contact_options
 
     !> Allocate the histories of n_t steps at n_c points.
     subroutine allocate_response(response, n_t, n_c)

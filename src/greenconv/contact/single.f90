@@ -49,6 +49,10 @@
 !> A run that diverges is stopped (`contact_options%divergence_bound`): the response keeps
 !> the steps computed before, and never holds a NaN or an infinity.
 !>
+!> The step itself is greenconv_contact_step's, the one multi-point contact takes too (this is
+!> its case N_c = 1, the implicit step then solved by the scalar Newton iteration above); here
+!> is only the loop that feeds it the history of a single-point convolver.
+!>
 !> Long runs. `run_contact` takes the whole road and returns the whole history. A run too long
 !> to hold is streamed instead: `start_contact` resets the convolver into a `contact_state`,
 !> and each `contact_block` continues it over the next block of road heights, returning that
@@ -56,21 +60,21 @@
 !> step hands the next (the step index and the implicit step's first guess), so the blocks of
 !> a run put together equal `run_contact` on the whole road bit for bit.
 module greenconv_contact_single
-    use, intrinsic :: iso_fortran_env, only: int64
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
-    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
     use greenconv_contact_law, only: contact_law
+    use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact
     use greenconv_contact_rows, only: keep_first, keep_all
     implicit none
     private
 
     !> The contact law, greenconv_contact_law's, named here too for the callers that take it from this module.
     public :: contact_law
-    public :: contact_response, contact_options, run_contact
-    public :: contact_state, start_contact, contact_block, copy_histories
+    !> The options and the state of a run, greenconv_contact_step's (a single-point run is a run at one point).
+    public :: contact_options, contact_state
+    public :: contact_response, run_contact
+    public :: start_contact, contact_block, copy_histories
 
     !> Time histories of a contact run, sampled at t_n = n*dt, n = 0..N-1, where N is the
     !> number of road samples, or fewer when the run was stopped by a fault.
@@ -86,45 +90,6 @@ module greenconv_contact_single
         !> Compression delta(t_n) [m] of the contact spring (negative: no contact).
         real(dp), allocatable :: compression(:)
     end type contact_response
-
-    !> How `run_contact` steps and when it gives up; the defaults give the paper's scheme.
-    type :: contact_options
-        !> `'explicit'`: the force from the history displacement alone (the paper's scheme).
-        !> `'implicit'`: the force, compression and displacement of each step solved together
-        !> (needs w0 >= 0; gains stability and accuracy only with w0 > 0, as for `exact`).
-        character(len=16) :: scheme = 'explicit'
-        !> Largest |u| [m] accepted; a larger, infinite or NaN u stops the run as divergent.
-        !> The default, 0.1 m, is a hundred times the millimetres a tyre, wheel or rail moves at
-        !> its contact point, and far below overflow. A run whose unresolved impacts pump energy
-        !> in without growing exponentially (the implicit step at omega_c*dt near 3 on the SDOF
-        !> scene) reaches some 0.6 m; a bound of 1 m would let it through.
-        real(dp) :: divergence_bound = 0.1_dp
-        !> Implicit step: stop when |r(delta)| <= tolerance*max(b, delta0), relative to the
-        !> compression scale (dimensionless, > 0; 1e-12 is a few thousand round-offs).
-        real(dp) :: tolerance = 1.0e-12_dp
-        !> Implicit step: most Newton or bisection iterations per step (>= 1). Bisection alone
-        !> needs about 40 to reach the default tolerance; Newton typically 2 to 6.
-        integer :: max_iterations = 100
-    end type contact_options
-
-    !> A contact run between two blocks of a streamed run (`start_contact`, `contact_block`).
-    type :: contact_state
-        !> The contact law.
-        type(contact_law) :: law
-        !> Scheme, divergence bound and Newton settings.
-        type(contact_options) :: settings
-        !> Static preload F0 [N].
-        real(dp) :: preload = 0.0_dp
-        !> Static compression delta0 = law%compression(F0) [m].
-        real(dp) :: delta0 = 0.0_dp
-        !> The convolver's instant weight w0 [m/N].
-        real(dp) :: w0 = 0.0_dp
-        !> Compression of the last step done [m] (delta0 before step 0): the first guess of
-        !> the next implicit step.
-        real(dp) :: delta = 0.0_dp
-        !> Index n of the next step (the number of steps done), 64 bits for runs past 2^31 steps.
-        integer(int64) :: step = 0
-    end type contact_state
 
 contains
 
@@ -210,16 +175,13 @@ contains
         !> Scheme, divergence bound and Newton settings; the defaults when absent.
         type(contact_options), intent(in), optional :: options
 
-        if (present(options)) state%settings = options
-        call check_options(state%settings, conv%instant_weight(), error)
+        type(contact_options) :: settings
+
+        if (present(options)) settings = options
+        call start_state([law], [preload], reshape([conv%instant_weight()], [1, 1]), conv%dt, settings, state, &
+                         error)
         if (allocated(error)) return
         call conv%reset()
-        state%law = law
-        state%preload = preload
-        state%delta0 = law%compression(preload)
-        state%w0 = conv%instant_weight()
-        state%delta = state%delta0
-        state%step = 0
     end subroutine start_contact
 
     !> Continue a contact run over the next size(road) steps, n = state%step onwards.
@@ -239,207 +201,28 @@ contains
         !> Set on a numerical fault (divergence, an implicit step that did not converge).
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: n_done
-
-        call contact_loop(conv, state, road, response, n_done, error)
-        state%step = state%step + n_done
-        call keep_rows(response, n_done)
-    end subroutine contact_block
-
-    !> The options are usable with an instant weight w0 [m/N].
-    subroutine check_options(settings, w0, error)
-        type(contact_options), intent(in) :: settings
-        real(dp), intent(in) :: w0
-        type(error_type), allocatable, intent(out) :: error
-
-        if (settings%scheme /= 'explicit' .and. settings%scheme /= 'implicit') then
-            call fatal_error(error, "contact_options%scheme: expected 'explicit' or 'implicit', found '" &
-                             //trim(settings%scheme)//"'", stat_input)
-        else if (.not. (settings%divergence_bound > 0.0_dp)) then
-            call fatal_error(error, 'contact_options%divergence_bound: expected a bound > 0 m, found ' &
-                             //sci_text(settings%divergence_bound), stat_input)
-        else if (.not. (settings%tolerance > 0.0_dp)) then
-            call fatal_error(error, 'contact_options%tolerance: expected a tolerance > 0, found ' &
-                             //sci_text(settings%tolerance), stat_input)
-        else if (settings%max_iterations < 1) then
-            call fatal_error(error, 'contact_options%max_iterations: expected at least 1, found ' &
-                             //int_text(settings%max_iterations), stat_input)
-        else if (settings%scheme == 'implicit' .and. .not. (w0 >= 0.0_dp)) then
-            call fatal_error(error, 'implicit contact step: the convolver''s instant weight w0 = '//sci_text(w0) &
-                             //' m/N must be >= 0 for the step to have a unique solution', stat_input)
-        end if
-    end subroutine check_options
-
-    !> Step the run over size(road) steps from state%step; n_done is the number of steps of
-    !> this block completed (all of them unless a fault).
-    subroutine contact_loop(conv, state, road, response, n_done, fault)
-        class(convolver), intent(inout) :: conv
-        type(contact_state), intent(inout) :: state
-        real(dp), intent(in) :: road(0:)
-        type(contact_response), intent(inout) :: response
-        integer, intent(out) :: n_done
-        type(error_type), allocatable, intent(out) :: fault
-
-        real(dp) :: u_h, delta, force, u, residual
-        logical :: implicit, converged
-        integer :: j, n_t
-        integer(int64) :: n
+        real(dp) :: w0(1, 1), u_h(1), force(1), u(1)
+        integer :: j, n_t, iterations
 
         n_t = size(road)
         allocate (response%time(0:n_t - 1), response%road(0:n_t - 1), response%displacement(0:n_t - 1), &
                   response%force(0:n_t - 1), response%compression(0:n_t - 1))
-        implicit = state%settings%scheme == 'implicit'
-        associate (law => state%law, settings => state%settings, delta0 => state%delta0, w0 => state%w0, &
-                   preload => state%preload)
-            delta = state%delta
-            do j = 0, n_t - 1
-                n_done = j
-                n = state%step + j
-                u_h = conv%history()
-                if (implicit) then
-                    call implicit_compression(law, delta0 + road(j) - u_h + w0*preload, w0, delta0, settings, &
-                                              delta, residual, converged)
-                    if (.not. converged) then
-                        if (ieee_is_finite(road(j))) then
-                            call fatal_error(fault, convergence_message(n, conv%dt, residual, settings), stat_numerical)
-                        else
-                            call fatal_error(fault, road_message(n, conv%dt), stat_numerical)
-                        end if
-                        return
-                    end if
-                else
-                    delta = delta0 + road(j) - u_h
-                end if
-                force = law%force(delta)
-                u = u_h + w0*(force - preload)
-                if (.not. (abs(u) <= settings%divergence_bound .and. ieee_is_finite(force) &
-                           .and. ieee_is_finite(delta))) then
-                    if (ieee_is_finite(road(j))) then
-                        call fatal_error(fault, divergence_message(n, conv%dt, u, settings, law%tangent(delta0), w0), &
-                                         stat_numerical)
-                    else
-                        call fatal_error(fault, road_message(n, conv%dt), stat_numerical)
-                    end if
-                    return
-                end if
-                call conv%push(force - preload)
-                state%delta = delta
-                response%time(j) = n*conv%dt
-                response%road(j) = road(j)
-                response%displacement(j) = u
-                response%force(j) = force
-                response%compression(j) = delta
-            end do
-        end associate
-        n_done = n_t
-    end subroutine contact_loop
-
-    !> One line on a road height that is not a finite number at step n.
-    pure function road_message(n, dt) result(message)
-        integer(int64), intent(in) :: n
-        real(dp), intent(in) :: dt
-        character(len=:), allocatable :: message
-
-        message = 'contact run stopped at step '//int_text(n)//' (t = '//sci_text(n*dt)//' s): the road height ' &
-                  //'u_r is not a finite number (NaN or infinite); steps before it are kept. Check the road data ' &
-                  //'of that step'
-    end function road_message
-
-    !> One line on an implicit step n that did not converge: where, and the residual.
-    pure function convergence_message(n, dt, residual, settings) result(message)
-        integer(int64), intent(in) :: n
-        real(dp), intent(in) :: dt, residual
-        type(contact_options), intent(in) :: settings
-        character(len=:), allocatable :: message
-
-        message = 'implicit contact step did not converge at step '//int_text(n)//' (t = '//sci_text(n*dt) &
-                  //' s): residual |r| = '//sci_text(abs(residual))//' m after ' &
-                  //int_text(settings%max_iterations)//' iterations (tolerance '//sci_text(settings%tolerance) &
-                  //' of the compression scale)'
-    end function convergence_message
-
-    !> The compression delta [m] solving delta + w0*law(delta) = b, by safeguarded Newton.
-    !>
-    !> On entry `delta` is a first guess (the previous step's), used when it lies in (0, b).
-    !> `scale` is delta0 [m]; the iteration stops at |r| <= tolerance*max(b, delta0).
-    pure subroutine implicit_compression(law, b, w0, scale, settings, delta, residual, converged)
-        type(contact_law), intent(in) :: law
-        real(dp), intent(in) :: b, w0, scale
-        type(contact_options), intent(in) :: settings
-        real(dp), intent(inout) :: delta
-        real(dp), intent(out) :: residual
-        logical, intent(out) :: converged
-
-        real(dp) :: lower, upper, step, step_before, newton, target
-        integer :: iteration
-
-        residual = 0.0_dp
-        converged = .true.
-        if (b <= 0.0_dp .or. .not. (w0 > 0.0_dp)) then
-            delta = b
-            return
-        end if
-        target = settings%tolerance*max(b, scale)
-        lower = 0.0_dp
-        upper = b
-        if (.not. (delta > lower .and. delta < upper)) delta = upper
-        step = upper - lower
-        step_before = step
-        do iteration = 1, settings%max_iterations
-            residual = delta + w0*law%force(delta) - b
-            converged = abs(residual) <= target
-            if (converged) return
-            if (residual < 0.0_dp) then
-                lower = delta
-            else
-                upper = delta
+        w0(1, 1) = conv%instant_weight()
+        do j = 0, n_t - 1
+            u_h(1) = conv%history()
+            response%time(j) = state%step*conv%dt
+            call step_contact(state, w0, u_h, road(j:j), force, u, iterations, error)
+            if (allocated(error)) then
+                call keep_rows(response, j)
+                return
             end if
-            newton = residual/(1.0_dp + w0*law%tangent(delta))
-            if (delta - newton > lower .and. delta - newton < upper .and. abs(newton) <= 0.5_dp*abs(step_before)) then
-                step_before = step
-                step = newton
-            else
-                step_before = step
-                step = delta - 0.5_dp*(lower + upper)
-            end if
-            delta = delta - step
+            call conv%push(force(1) - state%preload(1))
+            response%road(j) = road(j)
+            response%displacement(j) = u(1)
+            response%force(j) = force(1)
+            response%compression(j) = state%delta(1)
         end do
-        residual = delta + w0*law%force(delta) - b
-        converged = abs(residual) <= target
-    end subroutine implicit_compression
-
-    !> One line on a divergent run at step n: where, how large, and what to change.
-    pure function divergence_message(n, dt, u, settings, stiffness, w0) result(message)
-        integer(int64), intent(in) :: n
-        real(dp), intent(in) :: dt, u, stiffness, w0
-        type(contact_options), intent(in) :: settings
-        character(len=:), allocatable :: message
-
-        character(len=:), allocatable :: advice
-
-        message = 'contact run diverged at step '//int_text(n)//' (t = '//sci_text(n*dt)//' s): '
-        if (ieee_is_finite(u)) then
-            message = message//'|u| = '//sci_text(abs(u))//' m exceeds the divergence bound ' &
-                      //sci_text(settings%divergence_bound)//' m'
-        else
-            message = message//'u, F or delta is not finite'
-        end if
-        if (n > 0) then
-            message = message//'; steps 0 to '//int_text(n - 1)//' are kept. '
-        else
-            message = message//'; no step is kept. '
-        end if
-        message = message//'The contact frequency is omega_c = sqrt(k_c''/M), k_c'' = p*k_c*delta0^(p-1) = ' &
-                  //sci_text(stiffness)//' N/m: '
-        if (settings%scheme == 'implicit' .and. w0 > 0.0_dp) then
-            advice = 'the implicit step with w0 > 0 is stable up to omega_c*dt of about 2*sqrt(3) = 3.46 ' &
-                     //'(first-order hold, exact): reduce dt below ~3.46/omega_c'
-        else
-            advice = 'the explicit step is stable only for omega_c*dt < 2: reduce dt below ~2/omega_c ' &
-                     //'or use scheme = ''implicit'' with an engine whose w0 > 0 (exact)'
-        end if
-        message = message//advice
-    end function divergence_message
+    end subroutine contact_block
 
     !> Shorten the histories to their first n_done steps, keeping the lower bound 0
     !> (histories never allocated get n_done = 0 rows).

@@ -14,18 +14,21 @@ module greenconv_scene_input
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, contact_positions
-    use greenconv_model_road_file, only: road_file, read_road_file, file_road, check_road_coverage
+    ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
+    ! otherwise confuse with the type.
+    use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
+                                         check_road_coverage
     use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
-    use greenconv_scene_schema, only: scan_scene, max_methods, scene_default
+    use greenconv_scene_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
+                                      scene_row, admits
     use greenconv_io_columns, only: read_lines
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                       model_sdof, model_tyre, multi_point_model
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
-    use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
-                                max_contact_points, max_kernel_values, kernel_values, max_spectrum_values
+    use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values
     use greenconv_io_spectra, only: band_centre, first_band, last_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
@@ -112,7 +115,7 @@ module greenconv_scene_input
         !> Road profile.
         class(road_profile), allocatable :: road
         !> The road file of profile 'file' (heights over x), for the multi-point scene.
-        type(road_file) :: road_data
+        type(road_file_type) :: road_data
         !> The road texture of profile 'texture' (heights over x and y), for the multi-point scene.
         type(road_texture) :: texture
         !> Position [m] on the road file of the body (the patch centre) at t = 0.
@@ -144,10 +147,22 @@ module greenconv_scene_input
     !> many scenes naming the same files (a sweep's variants) reads each file once.
     type :: scene_files
         !> The road files read, each with its path.
-        type(road_file), allocatable :: roads(:)
+        type(road_file_type), allocatable :: roads(:)
         !> The road textures read, each with its path.
         type(road_texture), allocatable :: textures(:)
     end type scene_files
+
+    !> Marks a group source that reads (no unit to write on).
+    integer, parameter :: no_unit = -1
+
+    !> What the group readers read: a scene's lines, or nothing when they write each group
+    !> with its defaults on a unit instead (a scene template).
+    type :: group_source
+        !> The scene's lines, each padded with blanks to the longest (none for a template).
+        character(len=:), allocatable :: lines(:)
+        !> The unit a template is written on; `no_unit` when reading.
+        integer :: unit = no_unit
+    end type group_source
 
 contains
 
@@ -211,17 +226,13 @@ contains
         !> scene reads are added.
         type(scene_files), intent(inout), optional :: files
 
-        integer, parameter :: no_unit = -1
+        type(group_source) :: source
 
         scene%file = name
         call scan_scene(name, lines, scene%input, error)
         if (allocated(error)) return
-        call read_scene_group(no_unit, lines, scene, error)
-        if (.not. allocated(error)) call read_structure_group(no_unit, lines, scene, error)
-        if (.not. allocated(error)) call read_identification_group(no_unit, lines, scene, error)
-        if (.not. allocated(error)) call read_road_group(no_unit, lines, scene, error, files=files)
-        if (.not. allocated(error)) call read_contact_group(no_unit, lines, scene, error)
-        if (.not. allocated(error)) call read_convolution_group(no_unit, lines, scene, error)
+        source%lines = lines
+        call read_groups(source, scene, error, files)
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
         if (.not. allocated(error)) call check_spectra(scene, error)
@@ -237,26 +248,40 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(scene_type) :: scene
-        character(len=1) :: no_lines(0)
+        type(group_source) :: source
 
         scene%file = 'scene template'
         call scene_default('scene', 'dt', scene%dt)
-        call read_scene_group(unit, no_lines, scene, error, .true.)
-        if (.not. allocated(error)) call read_structure_group(unit, no_lines, scene, error, .true.)
-        if (.not. allocated(error)) call read_identification_group(unit, no_lines, scene, error, .true.)
-        if (.not. allocated(error)) call read_road_group(unit, no_lines, scene, error, .true.)
-        if (.not. allocated(error)) call read_contact_group(unit, no_lines, scene, error, .true.)
-        if (.not. allocated(error)) call read_convolution_group(unit, no_lines, scene, error, .true.)
+        allocate (character(len=1) :: source%lines(0))
+        source%unit = unit
+        call read_groups(source, scene, error)
     end subroutine write_scene_template
 
-    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, output_format, progress.
-    subroutine read_scene_group(unit, lines, this, error, template)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    !> Read (or write, for a template) every group in file order, each starting from its
+    !> defaults in the scene table; stop at the first error.
+    subroutine read_groups(source, this, error, files)
+        type(group_source), intent(in) :: source
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
+        !> Road files and textures read before (see `read_scene_lines`).
+        type(scene_files), intent(inout), optional :: files
+
+        call read_scene_group(source, group_defaults('scene'), this, error)
+        if (.not. allocated(error)) call read_structure_group(source, group_defaults('structure'), this, error)
+        if (.not. allocated(error)) call read_identification_group(source, group_defaults('identification'), &
+                                                                   this, error)
+        if (.not. allocated(error)) call read_road_group(source, group_defaults('road'), this, error, files)
+        if (.not. allocated(error)) call read_contact_group(source, group_defaults('contact'), this, error)
+        if (.not. allocated(error)) call read_convolution_group(source, group_defaults('convolution'), this, error)
+    end subroutine read_groups
+
+    !> &scene: task, name, output_dir, dt [s], n_steps, output_every, output_format, progress.
+    subroutine read_scene_group(source, defaults, this, error)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
+        type(scene_type), intent(inout) :: this
+        type(error_type), allocatable, intent(out) :: error
 
         character(len=name_length) :: task, name, output_format
         character(len=path_length) :: output_dir
@@ -267,40 +292,19 @@ contains
         namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress, spectra, &
             spectra_f_low, spectra_f_high, spectra_points
 
-        call scene_default('scene', 'task', task)
-        call scene_default('scene', 'name', name)
-        call scene_default('scene', 'output_dir', output_dir)
-        call scene_default('scene', 'dt', dt)
-        call scene_default('scene', 'n_steps', n_steps)
-        call scene_default('scene', 'output_every', output_every)
-        call scene_default('scene', 'output_format', output_format)
-        call scene_default('scene', 'progress', progress)
-        call scene_default('scene', 'spectra', spectra)
-        call scene_default('scene', 'spectra_f_low', spectra_f_low)
-        call scene_default('scene', 'spectra_f_high', spectra_f_high)
-        call scene_default('scene', 'spectra_points', spectra_points)
-        if (present(template)) then
-            write (unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=scene, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'scene', stat, message, error)
-        if (allocated(error) .or. present(template)) return
-        call require(any(trim(task) == [character(len=8) :: 'contact', 'identify']), &
-                     expected(this, 'scene', 'task', "'contact' or 'identify'", task), error)
+        read (defaults, nml=scene)
+        if (source%unit /= no_unit) write (source%unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=scene, iostat=stat, iomsg=message)
+        if (group_failed(this, 'scene', source, stat, message, error)) return
+        call check_value(this, 'scene', 'task', task, error)
         call require(len_trim(name) > 0, expected(this, 'scene', 'name', 'a file base name'), error)
         call require(len_trim(output_dir) > 0, expected(this, 'scene', 'output_dir', 'a directory path'), error)
-        call require(dt > 0.0_dp .and. dt < huge(dt), &
-                     expected(this, 'scene', 'dt', 'a time step > 0 s', dt), error)
-        call require(n_steps > 0, expected(this, 'scene', 'n_steps', 'a step count > 0', n_steps), error)
-        call require(output_every > 0, expected(this, 'scene', 'output_every', &
-                     'a number of steps >= 1 between written rows', output_every), error)
-        call require(any(trim(output_format) == [character(len=8) :: 'text', 'binary']), &
-                     expected(this, 'scene', 'output_format', "'text' or 'binary'", output_format), error)
-        call require(spectra_f_low > 0.0_dp .and. spectra_f_low < huge(spectra_f_low), &
-                     expected(this, 'scene', 'spectra_f_low', 'a frequency > 0 Hz', spectra_f_low), error)
-        call require(spectra_f_high > 0.0_dp .and. spectra_f_high < huge(spectra_f_high), &
-                     expected(this, 'scene', 'spectra_f_high', 'a frequency > 0 Hz', spectra_f_high), error)
+        call check_value(this, 'scene', 'dt', dt, error)
+        call check_value(this, 'scene', 'n_steps', n_steps, error)
+        call check_value(this, 'scene', 'output_every', output_every, error)
+        call check_value(this, 'scene', 'output_format', output_format, error)
+        call check_values(this, 'scene', [character(len=16) :: 'spectra_f_low', 'spectra_f_high'], &
+                          [spectra_f_low, spectra_f_high], error)
         this%task = trim(task)
         this%name = trim(name)
         this%output_dir = trim(output_dir)
@@ -316,13 +320,12 @@ contains
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
-    subroutine read_structure_group(unit, lines, this, error, template)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    subroutine read_structure_group(source, defaults, this, error)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
 
         character(len=name_length) :: model
         character(len=path_length) :: frf_file, green_file
@@ -334,43 +337,14 @@ contains
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
             belt_tension, belt_foundation, f_modes, green_file
 
-        call scene_default('structure', 'model', model)
-        call scene_default('structure', 'mass', mass)
-        call scene_default('structure', 'stiffness', stiffness)
-        call scene_default('structure', 'damping_ratio', damping_ratio)
-        call scene_default('structure', 'n_modes', n_modes)
-        call scene_default('structure', 'seed', seed)
-        call scene_default('structure', 'f_low', f_low)
-        call scene_default('structure', 'f_high', f_high)
-        call scene_default('structure', 'xi_low', xi_low)
-        call scene_default('structure', 'xi_high', xi_high)
-        call scene_default('structure', 'a_low', a_low)
-        call scene_default('structure', 'a_high', a_high)
-        call scene_default('structure', 'frf_file', frf_file)
-        call scene_default('structure', 'frf_dataset', frf_dataset)
-        call scene_default('structure', 'belt_length', belt_length)
-        call scene_default('structure', 'belt_mass', belt_mass)
-        call scene_default('structure', 'belt_bending', belt_bending)
-        call scene_default('structure', 'belt_tension', belt_tension)
-        call scene_default('structure', 'belt_foundation', belt_foundation)
-        call scene_default('structure', 'f_modes', f_modes)
-        call scene_default('structure', 'green_file', green_file)
-        if (present(template)) then
-            write (unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=structure, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'structure', stat, message, error)
-        if (allocated(error) .or. present(template)) return
+        read (defaults, nml=structure)
+        if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=structure, iostat=stat, iomsg=message)
+        if (group_failed(this, 'structure', source, stat, message, error)) return
         call require(model_id(trim(model)) > 0, expected(this, 'structure', 'model', model_names(), model), error)
-        call require(mass > 0.0_dp .and. mass < huge(mass), &
-                     expected(this, 'structure', 'mass', 'a mass > 0 kg', mass), error)
-        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
-                     expected(this, 'structure', 'stiffness', 'a stiffness > 0 N/m', stiffness), error)
-        call require(damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp, &
-                     expected(this, 'structure', 'damping_ratio', 'a ratio in [0, 1)', damping_ratio), error)
-        call require(n_modes > 0 .and. n_modes <= max_random_modes, expected(this, 'structure', 'n_modes', &
-                     'a number of modes from 1 to '//int_text(max_random_modes), n_modes), error)
+        call check_values(this, 'structure', [character(len=16) :: 'mass', 'stiffness', 'damping_ratio'], &
+                          [mass, stiffness, damping_ratio], error)
+        call check_value(this, 'structure', 'n_modes', n_modes, error)
         call require(f_low > 0.0_dp .and. f_high > f_low .and. f_high < huge(f_high), &
                      expected(this, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
         call require(xi_low > 0.0_dp .and. xi_high >= xi_low .and. xi_high < 1.0_dp, &
@@ -399,10 +373,8 @@ contains
                      all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
                      expected(this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
                               //'belt_tension, belt_foundation >= 0, all finite'), error)
-        call require(f_modes >= 0.0_dp .and. f_modes < huge(f_modes), expected(this, 'structure', 'f_modes', &
-                     'a frequency >= 0 Hz (0: the band rule)', f_modes), error)
-        call require(frf_dataset >= 0, expected(this, 'structure', 'frf_dataset', &
-                     'a dataset 58 number >= 1 of the universal file (0: its only one)', frf_dataset), error)
+        call check_value(this, 'structure', 'f_modes', f_modes, error)
+        call check_value(this, 'structure', 'frf_dataset', frf_dataset, error)
         this%frf_file = trim(frf_file)
         this%frf_dataset = frf_dataset
         this%green_file = trim(green_file)
@@ -413,13 +385,12 @@ contains
     end subroutine read_structure_group
 
     !> &identification: frequency grid of the sampled G and LSCE options.
-    subroutine read_identification_group(unit, lines, this, error, template)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    subroutine read_identification_group(source, defaults, this, error)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
 
         real(dp) :: f_max, tol_e
         integer :: n_freq, max_order, order, stat
@@ -429,28 +400,15 @@ contains
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
         f_max = 0.5_dp/this%dt
-        call scene_default('identification', 'n_freq', n_freq)
-        call scene_default('identification', 'tol_e', tol_e)
-        call scene_default('identification', 'max_order', max_order)
-        call scene_default('identification', 'order', order)
-        call scene_default('identification', 'method', method)
-        if (present(template)) then
-            write (unit, nml=identification, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=identification, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'identification', stat, message, error)
-        if (allocated(error) .or. present(template)) return
-        call require(f_max > 0.0_dp .and. f_max < huge(f_max), &
-                     expected(this, 'identification', 'f_max', 'a frequency > 0 Hz', f_max), error)
-        call require(n_freq >= 16 .and. n_freq <= max_freq_lines, expected(this, 'identification', 'n_freq', &
-                     'from 16 to '//int_text(max_freq_lines)//' lines', n_freq), error)
-        call require(tol_e > 0.0_dp .and. tol_e < 1.0_dp, &
-                     expected(this, 'identification', 'tol_e', 'an error target in (0, 1)', tol_e), error)
-        call require(max_order > 0 .and. max_order <= max_lsce_modes, expected(this, 'identification', &
-                     'max_order', 'a number of modes from 1 to '//int_text(max_lsce_modes), max_order), error)
-        call require(order >= 0 .and. order <= max_lsce_modes, expected(this, 'identification', 'order', &
-                     'a number of modes from 0 (chosen by tol_e) to '//int_text(max_lsce_modes), order), error)
+        read (defaults, nml=identification)
+        if (source%unit /= no_unit) write (source%unit, nml=identification, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=identification, iostat=stat, iomsg=message)
+        if (group_failed(this, 'identification', source, stat, message, error)) return
+        call check_value(this, 'identification', 'f_max', f_max, error)
+        call check_value(this, 'identification', 'n_freq', n_freq, error)
+        call check_value(this, 'identification', 'tol_e', tol_e, error)
+        call check_value(this, 'identification', 'max_order', max_order, error)
+        call check_value(this, 'identification', 'order', order, error)
         this%f_max = f_max
         this%n_freq = n_freq
         this%tol_e = tol_e
@@ -470,67 +428,38 @@ contains
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.
-    subroutine read_road_group(unit, lines, this, error, template, files)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    subroutine read_road_group(source, defaults, this, error, files)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
         !> Road files and textures read before (see `read_scene_lines`).
         type(scene_files), intent(inout), optional :: files
 
         character(len=name_length) :: profile
         type(sine_road) :: sine
-        character(len=path_length) :: road_file, path, texture_file
+        character(len=path_length) :: road_file, texture_file
         real(dp) :: amplitude, omega, wavelength, speed, x_start, y_start
         integer :: n_terms, seed, stat
         character(len=512) :: message
         namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start, &
             texture_file, y_start
 
-        call scene_default('road', 'profile', profile)
-        call scene_default('road', 'amplitude', amplitude)
-        call scene_default('road', 'omega', omega)
-        call scene_default('road', 'wavelength', wavelength)
-        call scene_default('road', 'speed', speed)
-        call scene_default('road', 'n_terms', n_terms)
-        call scene_default('road', 'seed', seed)
-        ! Through `path`: gfortran takes the name `road_file` as an actual argument for the type.
-        call scene_default('road', 'road_file', path)
-        road_file = path
-        call scene_default('road', 'x_start', x_start)
-        call scene_default('road', 'texture_file', texture_file)
-        call scene_default('road', 'y_start', y_start)
-        if (present(template)) then
-            write (unit, nml=road, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=road, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'road', stat, message, error)
-        if (allocated(error) .or. present(template)) return
-        call require(any(trim(profile) == [character(len=8) :: 'sine', 'random', 'file', 'texture']), &
-                     expected(this, 'road', 'profile', "'sine', 'random', 'file' or 'texture'", profile), error)
+        read (defaults, nml=road)
+        if (source%unit /= no_unit) write (source%unit, nml=road, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=road, iostat=stat, iomsg=message)
+        if (group_failed(this, 'road', source, stat, message, error)) return
+        call check_value(this, 'road', 'profile', profile, error)
         call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
                      expected(this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
                      error)
         call require(trim(profile) /= 'texture' .or. len_trim(texture_file) > 0, &
                      expected(this, 'road', 'texture_file', "a road texture file (heights [m] on an x-y grid) " &
                               //"for profile 'texture'"), error)
-        call require(abs(x_start) < huge(x_start), &
-                     expected(this, 'road', 'x_start', 'a finite position in m', x_start), error)
-        call require(abs(y_start) < huge(y_start), &
-                     expected(this, 'road', 'y_start', 'a finite position in m', y_start), error)
-        call require(abs(amplitude) < huge(amplitude), &
-                     expected(this, 'road', 'amplitude', 'a finite height in m', amplitude), error)
-        call require(abs(omega) < huge(omega), &
-                     expected(this, 'road', 'omega', 'a finite angular frequency in rad/s', omega), error)
-        call require(wavelength > 0.0_dp .and. wavelength < huge(wavelength), &
-                     expected(this, 'road', 'wavelength', 'a wavelength > 0 m', wavelength), error)
-        call require(abs(speed) < huge(speed), &
-                     expected(this, 'road', 'speed', 'a finite speed in m/s', speed), error)
-        call require(n_terms > 0 .and. n_terms <= max_road_terms, expected(this, 'road', 'n_terms', &
-                     'a number of terms from 1 to '//int_text(max_road_terms), n_terms), error)
+        call check_values(this, 'road', [character(len=16) :: 'x_start', 'y_start', 'amplitude', 'omega', &
+                          'wavelength', 'speed'], [x_start, y_start, amplitude, omega, wavelength, speed], error)
+        call check_value(this, 'road', 'n_terms', n_terms, error)
         if (allocated(error)) return
         this%speed = speed
         this%x_start = x_start
@@ -737,13 +666,12 @@ contains
     end function band_name
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
-    subroutine read_contact_group(unit, lines, this, error, template)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    subroutine read_contact_group(source, defaults, this, error)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
 
         real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound
         character(len=name_length) :: scheme
@@ -752,36 +680,19 @@ contains
         character(len=512) :: message
         namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, scheme, divergence_bound
 
-        call scene_default('contact', 'stiffness', stiffness)
-        call scene_default('contact', 'exponent', exponent)
-        call scene_default('contact', 'gravity', gravity)
         ! The table's default `mass*gravity`, set below when the file is silent.
         preload = -1.0_dp
-        call scene_default('contact', 'n_points', n_points)
-        call scene_default('contact', 'patch_length', patch_length)
-        call scene_default('contact', 'scheme', scheme)
-        call scene_default('contact', 'divergence_bound', divergence_bound)
-        if (present(template)) then
-            write (unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=contact, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'contact', stat, message, error)
-        if (allocated(error) .or. present(template)) return
-        call require(stiffness > 0.0_dp .and. stiffness < huge(stiffness), &
-                     expected(this, 'contact', 'stiffness', 'a stiffness k_c > 0 N/m^p', stiffness), error)
-        call require(exponent > 0.0_dp .and. exponent < huge(exponent), &
-                     expected(this, 'contact', 'exponent', 'an exponent p > 0', exponent), error)
-        call require(gravity >= 0.0_dp .and. gravity < huge(gravity), &
-                     expected(this, 'contact', 'gravity', 'an acceleration >= 0 m/s^2', gravity), error)
-        call require(abs(preload) < huge(preload), &
-                     expected(this, 'contact', 'preload', 'a finite force in N', preload), error)
+        read (defaults, nml=contact)
+        if (source%unit /= no_unit) write (source%unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=contact, iostat=stat, iomsg=message)
+        if (group_failed(this, 'contact', source, stat, message, error)) return
+        call check_values(this, 'contact', [character(len=16) :: 'stiffness', 'exponent', 'gravity', 'preload'], &
+                          [stiffness, exponent, gravity, preload], error)
         model = find_model(this%model)
         call require(preload >= 0.0_dp .or. model%has_mass .or. this%task /= 'contact', &
                      expected(this, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
-        call require(n_points <= max_contact_points, expected(this, 'contact', 'n_points', &
-                     'at most '//int_text(max_contact_points)//' points', n_points), error)
+        call check_value(this, 'contact', 'n_points', n_points, error)
         call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point), &
                      expected(this, 'contact', 'n_points', &
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
@@ -793,11 +704,8 @@ contains
                      //this%model//"' (the file's node coordinates place its points)"), error)
         call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
                      'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
-        call require(any(trim(scheme) == [character(len=8) :: 'explicit', 'implicit']), &
-                     expected(this, 'contact', 'scheme', "'explicit' or 'implicit'", scheme), error)
-        call require(divergence_bound > 0.0_dp .and. divergence_bound < huge(divergence_bound), &
-                     expected(this, 'contact', 'divergence_bound', 'a displacement > 0 m', divergence_bound), &
-                     error)
+        call check_value(this, 'contact', 'scheme', scheme, error)
+        call check_value(this, 'contact', 'divergence_bound', divergence_bound, error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
         this%contact%scheme = trim(scheme)
         this%contact%divergence_bound = divergence_bound
@@ -808,13 +716,12 @@ contains
     end subroutine read_contact_group
 
     !> &convolution: methods (list of names), truncation_tol, accuracy.
-    subroutine read_convolution_group(unit, lines, this, error, template)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: lines(:)
+    subroutine read_convolution_group(source, defaults, this, error)
+        type(group_source), intent(in) :: source
+        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
-        !> Present: write the group with its defaults on `unit` instead of reading it.
-        logical, intent(in), optional :: template
 
         character(len=name_length) :: methods(max_methods)
         real(dp) :: truncation_tol, accuracy
@@ -825,23 +732,16 @@ contains
         ! No default list: a contact scene must name its methods (the scan requires it), and
         ! a list that started from defaults would keep the defaults the file does not overwrite.
         methods = ''
-        call scene_default('convolution', 'truncation_tol', truncation_tol)
-        call scene_default('convolution', 'accuracy', accuracy)
-        if (present(template)) then
-            write (unit, nml=convolution, delim='quote', iostat=stat, iomsg=message)
-        else
-            read (lines, nml=convolution, iostat=stat, iomsg=message)
-        end if
-        call group_status(this, 'convolution', stat, message, error)
-        if (allocated(error) .or. present(template)) return
+        read (defaults, nml=convolution)
+        if (source%unit /= no_unit) write (source%unit, nml=convolution, delim='quote', iostat=stat, iomsg=message)
+        if (source%unit == no_unit) read (source%lines, nml=convolution, iostat=stat, iomsg=message)
+        if (group_failed(this, 'convolution', source, stat, message, error)) return
         do i = 1, max_methods
             if (methods(i) == '' .or. is_method(methods(i))) cycle
             call fatal_error(error, expected(this, 'convolution', 'methods', method_list(), methods(i)))
             return
         end do
-        call require(truncation_tol > 0.0_dp .and. truncation_tol < 1.0_dp, &
-            expected(this, 'convolution', 'truncation_tol', &
-                                             'a fraction of max |g| in (0, 1)', truncation_tol), error)
+        call check_value(this, 'convolution', 'truncation_tol', truncation_tol, error)
         this%methods = pack(methods, methods /= '')
         call require(size(this%methods) > 0 .or. this%task /= 'contact', &
                      expected(this, 'convolution', 'methods', 'at least one method'), error)
@@ -849,8 +749,7 @@ contains
             call require(all(this%methods(:i - 1) /= this%methods(i)), expected(this, 'convolution', 'methods', &
                          'each method once (its file would be written twice)', this%methods(i)), error)
         end do
-        call require(accuracy > 0.0_dp .and. accuracy < 1.0_dp, &
-                     expected(this, 'convolution', 'accuracy', 'a relative error in (0, 1)', accuracy), error)
+        call check_value(this, 'convolution', 'accuracy', accuracy, error)
         this%truncation_tol = truncation_tol
         this%accuracy = accuracy
         if (.not. allocated(error)) call check_methods_on_model(this, error)
@@ -903,18 +802,20 @@ contains
                      //'exact), found '//sci_text(values)//' values'), error)
     end subroutine check_kernel_size
 
-    !> Turn the status of a namelist read into an error ("file:line: &group: message"); a
-    !> missing group is no error here (greenconv_scene_schema checks the required ones).
-    subroutine group_status(scene, group, stat, message, error)
+    !> Whether a group reader stops after its namelist read or write: it failed (the status
+    !> made an error, "file:line: &group: message") or wrote a template. A missing group is no
+    !> error here (greenconv_scene_schema checks the required ones).
+    logical function group_failed(scene, group, source, stat, message, error)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: group, message
+        type(group_source), intent(in) :: source
         integer, intent(in) :: stat
         type(error_type), allocatable, intent(out) :: error
 
-        if (stat == 0 .or. stat == iostat_end) return
-        call fatal_error(error, scene%file//':'//int_text(scene%input%line_of(group, ''))//': &'//group//': ' &
-                         //trim(message))
-    end subroutine group_status
+        if (stat /= 0 .and. stat /= iostat_end) call fatal_error(error, scene%file//':' &
+            //int_text(scene%input%line_of(group, ''))//': &'//group//': '//trim(message))
+        group_failed = allocated(error) .or. source%unit /= no_unit
+    end function group_failed
 
     !> "file:line: &group variable: expected what[, found value]", the line that of the variable
     !> (the first of a list `a, b`) when the file sets it, else the group's; value is a real, an
@@ -965,6 +866,35 @@ contains
             text = scene%file//': &'//group
         end if
     end function place
+
+    !> Check a value a group read against its row of the scene table (greenconv_scene_schema):
+    !> its range or choices; its message says what the row expects and what was found.
+    subroutine check_value(this, group, name, value, error)
+        type(scene_type), intent(in) :: this
+        character(len=*), intent(in) :: group, name
+        class(*), intent(in) :: value
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(scene_variable) :: row
+
+        if (allocated(error)) return
+        row = scene_row(group, name)
+        if (.not. admits(row, value)) call fatal_error(error, expected(this, group, name, row%expect, value))
+    end subroutine check_value
+
+    !> `check_value` for several values of one kind, in order.
+    subroutine check_values(this, group, names, values, error)
+        type(scene_type), intent(in) :: this
+        character(len=*), intent(in) :: group, names(:)
+        class(*), intent(in) :: values(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        integer :: i
+
+        do i = 1, size(names)
+            call check_value(this, group, trim(names(i)), values(i), error)
+        end do
+    end subroutine check_values
 
     !> Record `message` as the error unless `ok` holds or an earlier check already failed.
     subroutine require(ok, message, error)

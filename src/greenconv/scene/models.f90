@@ -10,7 +10,7 @@ module greenconv_scene_models
     private
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
-    public :: multi_point_model
+    public :: multi_point_model, quoted_list
     public :: model_sdof, model_random_modes, model_frf_file, model_tyre, model_green_file
 
     !> Identifier of the single-degree-of-freedom oscillator (M, K, xi) of Tab. 1.
@@ -87,10 +87,8 @@ contains
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 
-        type(structure_kind) :: model
-
-        model = find_model(name)
-        model_id = model%id
+        ! The names are distinct: at most one row matches.
+        model_id = sum(registry%id, mask=registry%name == name)
     end function model_id
 
     !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
@@ -98,17 +96,30 @@ contains
         !> The quoted names, comma-separated, the last after `or`.
         character(len=:), allocatable :: text
 
+        character(len=len(registry%name)) :: names(size(registry))
+
+        names = registry%name
+        text = quoted_list(names)
+    end function model_names
+
+    !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
+    pure function quoted_list(names) result(text)
+        !> The names (at least one).
+        character(len=*), intent(in) :: names(:)
+        !> The list.
+        character(len=:), allocatable :: text
+
         integer :: i
 
-        text = "'"//trim(registry(1)%name)//"'"
-        do i = 2, size(registry)
-            if (i < size(registry)) then
-                text = text//", '"//trim(registry(i)%name)//"'"
+        text = "'"//trim(names(1))//"'"
+        do i = 2, size(names)
+            if (i < size(names)) then
+                text = text//", '"//trim(names(i))//"'"
             else
-                text = text//" or '"//trim(registry(i)%name)//"'"
+                text = text//" or '"//trim(names(i))//"'"
             end if
         end do
-    end function model_names
+    end function quoted_list
 
     !> Whether a model requires a `&structure` variable.
     pure logical function model_requires(model, variable)
@@ -125,10 +136,7 @@ contains
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 
-        type(structure_kind) :: model
-
-        model = find_model(name)
-        multi_point_model = model%multi_point
+        multi_point_model = any(registry%multi_point .and. registry%name == name)
     end function multi_point_model
 
 end module greenconv_scene_models

@@ -3,17 +3,15 @@
 !> per method (task `contact`), writing column files and a summary line per method.
 !>
 !> Single- and multi-point runs (the tyre scene, greenconv_scene_tyre; a Green's matrix file,
-!> greenconv_scene_points) are streamed by greenconv_scene_stream's `stream_run` into the
-!> method's column file (and its force spectra with `&scene spectra`); this module starts each
-!> method's `single_run` or `multi_run` and prints its summary line.
+!> greenconv_scene_points) are one `contact_run` each, streamed by greenconv_scene_stream's
+!> `stream_run` into the method's column file (and its force spectra with `&scene spectra`);
+!> this module starts each method's run, in one loop for both, and prints its summary line.
 module greenconv_scene_runner
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type
-    use greenconv_conv_convolver, only: convolver, free_convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_contact_single, only: start_contact
-    use greenconv_contact_multi, only: start_multi_contact, newton_options
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_input, only: scene_type, output_path, input_place
     use greenconv_scene_models, only: find_model, model_requires, multi_point_model
@@ -23,8 +21,8 @@ module greenconv_scene_runner
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
-    use greenconv_scene_points, only: find_scene_points, points_convolver, check_green_scene
-    use greenconv_scene_stream, only: single_run, multi_run, stream_sinks, stream_run
+    use greenconv_scene_points, only: find_scene_points, check_green_scene
+    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     implicit none
     private
 
@@ -52,25 +50,32 @@ contains
         integer, intent(in), optional :: block
 
         type(structure_model) :: structure
+        type(contact_run) :: run
+        character(len=:), allocatable :: summary
         integer :: block_size
 
         if (multi_point_model(scene%model)) then
             call make_directory(scene%output_dir, error)
-            if (.not. allocated(error)) call run_multipoint_methods(scene, unit, error, block)
-            return
-        end if
-        block_size = block_rows
-        if (present(block)) block_size = max(block, 1)
-        call build_structure(scene, structure, error)
-        if (allocated(error)) return
-        call make_directory(scene%output_dir, error)
-        if (allocated(error)) return
-        if (structure%identified) then
-            write (unit, '(a)') identification_summary(structure)
-            call write_identification(scene, structure, error)
+            if (.not. allocated(error)) call find_scene_points(scene, run%points, summary, error)
             if (allocated(error)) return
+            write (unit, '(a)') summary
+            block_size = max(block_rows/run%points%n_points(), 1)
+        else
+            block_size = block_rows
+            call build_structure(scene, structure, error)
+            if (allocated(error)) return
+            call make_directory(scene%output_dir, error)
+            if (allocated(error)) return
+            if (structure%identified) then
+                write (unit, '(a)') identification_summary(structure)
+                call write_identification(scene, structure, error)
+                if (allocated(error)) return
+            end if
+            if (scene%task /= 'contact') return
+            write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         end if
-        if (scene%task == 'contact') call run_methods(scene, structure, unit, block_size, error)
+        if (present(block)) block_size = max(block, 1)
+        call run_methods(scene, structure, run, unit, block_size, error)
     end subroutine run_scene
 
     !> Check a scene without running it and print `check_scene_line`'s line on `unit`.
@@ -138,85 +143,51 @@ contains
         end if
     end subroutine check_scene_line
 
-    !> The contact loop once per method of a single-point scene.
-    subroutine run_methods(scene, structure, unit, block, error)
+    !> The contact loop once per method of a scene, single- or multi-point (`run%points`
+    !> found for a multi-point one), in blocks of `block` steps.
+    subroutine run_methods(scene, structure, run, unit, block, error)
         type(scene_type), intent(in) :: scene
         type(structure_model), intent(in) :: structure
+        type(contact_run), intent(inout) :: run
         integer, intent(in) :: unit, block
         type(error_type), allocatable, intent(out) :: error
 
-        type(single_run) :: run
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label
+        character(len=:), allocatable :: method, accuracy, label, prefix
         real(dp) :: seconds
         integer :: i, n
 
-        write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
-            call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, run%conv, &
-                                accuracy, error, scene%accuracy)
-            if (allocated(error)) return
-            call start_contact(run%conv, scene%law, scene%preload, run%state, error, scene%contact)
+            call make_run_convolver(run, scene, structure, method, accuracy, error)
             if (allocated(error)) then
-                error%message = scene%file//': '//method//': '//error%message
+                if (run%several) error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
+                return
+            end if
+            seconds = 0.0_dp
+            prefix = ''
+            call start_run(run, scene, error)
+            if (allocated(error)) then
+                if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
+            else if (run%several) then
+                sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), &
+                                                                         run%points%from_file), &
+                                     merge(8, 7, run%points%from_file))
+                prefix = scene%file//': '//method//': '
             else
                 sinks = column_sinks(scene, method, response_header(scene, run%conv), 5)
-                call stream_run(run, scene, method, block, sinks, &
-                                scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): ', seconds, error)
+                prefix = scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): '
             end if
+            if (.not. allocated(error)) call stream_run(run, scene, method, block, sinks, prefix, seconds, error)
             call run%conv%model_size(n, label)
-            call free_convolver(run%conv)
+            call run%conv%release()
             if (allocated(error)) return
+            if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, accuracy
         end do
     end subroutine run_methods
-
-    !> The contact loop once per method of a multi-point scene (the tyre, a Green's matrix
-    !> file), in blocks of `block` steps (default greenconv_io_files's `block_rows`/N_c).
-    subroutine run_multipoint_methods(scene, unit, error, block)
-        type(scene_type), intent(in) :: scene
-        integer, intent(in) :: unit
-        type(error_type), allocatable, intent(out) :: error
-        integer, intent(in), optional :: block
-
-        type(multi_run) :: run
-        type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, summary
-        real(dp) :: seconds
-        integer :: i, n, n_c, block_size
-
-        call find_scene_points(scene, run%points, summary, error)
-        if (allocated(error)) return
-        write (unit, '(a)') summary
-        n_c = run%points%n_points()
-        block_size = max(block_rows/n_c, 1)
-        if (present(block)) block_size = max(block, 1)
-        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
-        write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
-        do i = 1, size(scene%methods)
-            method = trim(scene%methods(i))
-            call points_convolver(run%points, scene, method, run%conv, accuracy, error)
-            if (allocated(error)) then
-                error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
-                return
-            end if
-            call start_multi_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], run%state, &
-                                     error, newton_options(max_displacement=scene%contact%divergence_bound))
-            if (allocated(error)) return
-            run%peak = -huge(1.0_dp)
-            sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), run%points%from_file), &
-                                 merge(8, 7, run%points%from_file))
-            call stream_run(run, scene, method, block_size, sinks, scene%file//': '//method//': ', seconds, error)
-            call run%conv%release()
-            if (allocated(error)) return
-            call run%conv%model_size(n, label)
-            write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, &
-                accuracy//'; peak total force '//sci_text(run%peak)//' N'
-        end do
-    end subroutine run_multipoint_methods
 
     !> The sinks of a driver's run: the method's column file `<output_dir>/<name>_<method>.dat`
     !> (or `.bin`) with the lines `header` and rows of `n_columns` values, and the force
@@ -238,7 +209,7 @@ contains
     !> u, f_contact, delta); with `output_every` > 1, which steps the rows are.
     function response_header(scene, conv) result(comments)
         type(scene_type), intent(in) :: scene
-        class(convolver), intent(in) :: conv
+        class(multipoint_convolver), intent(in) :: conv
         character(len=400) :: comments(3)
 
         character(len=:), allocatable :: label

@@ -91,9 +91,7 @@ module greenconv_scene_scan
     contains
         !> Line of a group (variable '') or of a variable's first assignment; 0 when absent.
         procedure :: line_of
-        !> Whether the file holds a group.
-        procedure :: has_group
-        !> Whether the file assigns a variable of a group.
+        !> Whether the file assigns a variable of a group, or (variable '') holds the group.
         procedure :: has_value
         !> The first value given to a variable (a text without quotes); '' when absent.
         procedure :: value_of
@@ -180,7 +178,7 @@ contains
                                  //suggestion(token%text, names, '&'))
                 return
             end if
-            if (scan%has_group(token%text)) then
+            if (scan%has_value(token%text, '')) then
                 call fatal_error(error, state%path//':'//int_text(token%line)//': &'//token%text &
                                  //': expected each group once, found it again (first on line ' &
                                  //int_text(scan%line_of(token%text, ''))//')')
@@ -427,16 +425,10 @@ contains
         integer, intent(in) :: kind
         character(len=:), allocatable :: text
 
-        select case (kind)
-        case (value_real)
-            text = 'a real number'
-        case (value_integer)
-            text = 'an integer'
-        case (value_logical)
-            text = '.true. or .false.'
-        case default
-            text = 'a text in quotes'
-        end select
+        character(len=*), parameter :: texts(value_real:value_text_list) = [character(len=17) :: &
+            'a real number', 'an integer', '.true. or .false.', 'a text in quotes', 'a text in quotes']
+
+        text = trim(texts(kind))
     end function kind_text
 
     !> The index of `name(i)` (1 without a subscript): a scalar takes none, an array 1..size.
@@ -769,23 +761,13 @@ contains
         end do
     end function line_of
 
-    !> Whether the file holds a group.
-    pure logical function has_group(self, group)
-        !> The scan.
-        class(namelist_scan), intent(in) :: self
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-
-        has_group = self%line_of(group, '') > 0
-    end function has_group
-
-    !> Whether the file assigns a variable of a group.
+    !> Whether the file assigns a variable of a group, or, for variable '', holds the group.
     pure logical function has_value(self, group, variable)
         !> The scan.
         class(namelist_scan), intent(in) :: self
         !> Group name, lower case.
         character(len=*), intent(in) :: group
-        !> Variable name, lower case.
+        !> Variable name, lower case; '' for the group itself.
         character(len=*), intent(in) :: variable
 
         has_value = self%line_of(group, variable) > 0

@@ -16,8 +16,9 @@
 !>     &contact stiffness, exponent  for task 'contact'
 !>     &convolution methods          for task 'contact'
 !>
-!> Adding a scene variable: one `row` in `scene_table`, the variable in its group's namelist
-!> and a component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
+!> Adding a scene variable: one `row` in `scene_table` (with its range and message, when a
+!> value can be wrong), the variable in its group's namelist, its `check_value` and a
+!> component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
 !> when a namelist and the table disagree.
 module greenconv_scene_schema
     use greenconv_core_error, only: error_type, fatal_error
@@ -26,12 +27,14 @@ module greenconv_scene_schema
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
-    use greenconv_scene_models, only: structure_kind, find_model, model_names, model_requires
+    use greenconv_scene_models, only: structure_kind, find_model, model_names, model_requires, quoted_list
+    use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
+                                      max_contact_points
     implicit none
     private
 
     public :: scan_scene, max_methods, scene_variable, scene_table, scene_group_names, scene_groups
-    public :: scene_default, required_text
+    public :: scene_default, group_defaults, required_text, scene_row, admits
 
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
@@ -56,6 +59,16 @@ module greenconv_scene_schema
         !> When a scene must state it: '' (never, unless its model requires it), 'always', or
         !> "<variable> '<value>'" (e.g. "task 'contact'"), the variable's value or default.
         character(len=:), allocatable :: required
+        !> What a set value must be, as messages say it after "expected" ("a time step > 0 s");
+        !> '' when the group's reader (greenconv_scene_input) checks the variable itself.
+        character(len=:), allocatable :: expect
+        !> Range of a real or integer value, in its units: above `low` (or at it, with
+        !> `low_in`) and below `high` (or at it, with `high_in`); by default any finite value.
+        real(dp) :: low = -huge(1.0_dp), high = huge(1.0_dp)
+        !> Whether `low` and `high` themselves are in the range.
+        logical :: low_in = .false., high_in = .false.
+        !> The texts a text value may be, compared after trimming (none: any text).
+        character(len=16), allocatable :: choices(:)
     end type scene_variable
 
     !> The groups in the order of a scene file.
@@ -69,8 +82,8 @@ module greenconv_scene_schema
         'model', '', "profile, for task 'contact'", "stiffness and exponent, for task 'contact'", &
         "methods, for task 'contact'"]
 
-    !> The table, built once (by `variable_row`, which every default of every scene read looks
-    !> up: building it each time cost a sweep's variants more than their check).
+    !> The table, built once (`build_table`) for `scene_row` and `group_defaults`, which every
+    !> scene read asks: building it each time cost a sweep's variants more than their check.
     type(scene_variable), allocatable, save :: table_copy(:)
 
 contains
@@ -85,21 +98,26 @@ contains
 
         n = 0
         call add(rows, n, 'scene', 'task', value_text, 'contact', '', &
-            "what to do, 'contact' (simulate) or 'identify' (fit modes to G only)", '')
+            "what to do, 'contact' (simulate) or 'identify' (fit modes to G only)", '', &
+            choices=[character(len=16) :: 'contact', 'identify'])
         call add(rows, n, 'scene', 'name', value_text, 'sdof_sine', '', &
             'the base name of the output files', '')
         call add(rows, n, 'scene', 'output_dir', value_text, 'out', '', &
             'the directory the output files are written to', '')
         call add(rows, n, 'scene', 'dt', value_real, '1.0e-4', 's', &
-            'a time step', "task 'contact'")
+            'a time step', "task 'contact'", &
+            expect='a time step > 0 s', above=0.0_dp)
         call add(rows, n, 'scene', 'n_steps', value_integer, '2000', '', &
-            'a number of steps', "task 'contact'")
+            'a number of steps', "task 'contact'", &
+            expect='a step count > 0', above=0.0_dp)
         call add(rows, n, 'scene', 'output_every', value_integer, '1', '', &
-            'the steps between written rows (1: every step)', '')
+            'the steps between written rows (1: every step)', '', &
+            expect='a number of steps >= 1 between written rows', at_least=1.0_dp)
         call add(rows, n, 'scene', 'output_format', value_text, 'text', '', &
             "how a contact run's rows are written: 'text' (<name>_<method>.dat, exact 17-digit " &
             //"columns) or 'binary' (<name>_<method>.bin, little-endian float64, described by " &
-            //"<name>_<method>.bin.txt)", '')
+            //"<name>_<method>.bin.txt)", '', &
+            choices=[character(len=16) :: 'text', 'binary'])
         call add(rows, n, 'scene', 'progress', value_logical, '.true.', '', &
             'whether to show a progress line on a terminal', '')
         call add(rows, n, 'scene', 'spectra', value_logical, '.false.', '', &
@@ -107,22 +125,29 @@ contains
             //"<name>_<method>_spectra.dat", '')
         call add(rows, n, 'scene', 'spectra_f_low', value_real, '20.0', 'Hz', &
             'the lowest band centre of the force spectra (default: 20 Hz or the lowest band the ' &
-            //'record resolves)', '')
+            //'record resolves)', '', &
+            expect='a frequency > 0 Hz', above=0.0_dp)
         call add(rows, n, 'scene', 'spectra_f_high', value_real, '20000.0', 'Hz', &
             'the highest band centre of the force spectra (default: 20 kHz or the highest band below ' &
-            //'the Nyquist frequency 1/(2*dt))', '')
+            //'the Nyquist frequency 1/(2*dt))', '', &
+            expect='a frequency > 0 Hz', above=0.0_dp)
         call add(rows, n, 'scene', 'spectra_points', value_logical, '.false.', '', &
             'whether the force spectra of a multi-point run also give the level of each point', '')
         call add(rows, n, 'structure', 'model', value_text, '', '', &
             "the structure model, "//model_names(), 'always')
         call add(rows, n, 'structure', 'mass', value_real, '1.0', 'kg', &
-            'the mass M', '')
+            'the mass M', '', &
+            expect='a mass > 0 kg', above=0.0_dp)
         call add(rows, n, 'structure', 'stiffness', value_real, '1.0e6', 'N/m', &
-            'the stiffness K', '')
+            'the stiffness K', '', &
+            expect='a stiffness > 0 N/m', above=0.0_dp)
         call add(rows, n, 'structure', 'damping_ratio', value_real, '0.02', '', &
-            'the damping ratio in [0, 1)', '')
+            'the damping ratio in [0, 1)', '', &
+            expect='a ratio in [0, 1)', at_least=0.0_dp, below=1.0_dp)
         call add(rows, n, 'structure', 'n_modes', value_integer, '10', '', &
-            'the number of random modes', '')
+            'the number of random modes', '', &
+            expect='a number of modes from 1 to '//int_text(max_random_modes), at_least=1.0_dp, &
+            at_most=real(max_random_modes, dp))
         call add(rows, n, 'structure', 'seed', value_integer, '2011', '', &
             'the seed of the random modes', '')
         call add(rows, n, 'structure', 'f_low', value_real, '100.0', 'Hz', &
@@ -140,7 +165,8 @@ contains
         call add(rows, n, 'structure', 'frf_file', value_text, '', '', &
             'a receptance file', '')
         call add(rows, n, 'structure', 'frf_dataset', value_integer, '0', '', &
-            'which dataset 58 of a universal frf_file (0: its only one)', '')
+            'which dataset 58 of a universal frf_file (0: its only one)', '', &
+            expect='a dataset 58 number >= 1 of the universal file (0: its only one)', at_least=0.0_dp)
         call add(rows, n, 'structure', 'belt_length', value_real, '1.885', 'm', &
             'the tyre belt length', '')
         call add(rows, n, 'structure', 'belt_mass', value_real, '2.5', 'kg/m', &
@@ -152,76 +178,108 @@ contains
         call add(rows, n, 'structure', 'belt_foundation', value_real, '7.0e5', 'N/m^2', &
             'the tyre foundation stiffness', '')
         call add(rows, n, 'structure', 'f_modes', value_real, '0.0', 'Hz', &
-            'the highest tyre mode kept (0: the band rule)', '')
+            'the highest tyre mode kept (0: the band rule)', '', &
+            expect='a frequency >= 0 Hz (0: the band rule)', at_least=0.0_dp)
         call add(rows, n, 'structure', 'green_file', value_text, '', '', &
             "a universal file of the Green's matrix between the contact points: receptances G_ij(f) " &
             //'in m/N (datasets 58 of function type 4) or impulse responses g_ij(t) in m/(N*s) (type 1), ' &
             //'the points at their node coordinates (dataset 15 or 2411, m)', '')
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
-            'the highest frequency of the sampled G', '')
+            'the highest frequency of the sampled G', '', &
+            expect='a frequency > 0 Hz', above=0.0_dp)
         call add(rows, n, 'identification', 'n_freq', value_integer, '20001', '', &
-            'the number of frequency lines of G, 0 Hz to f_max', '')
+            'the number of frequency lines of G, 0 Hz to f_max', '', &
+            expect='from 16 to '//int_text(max_freq_lines)//' lines', at_least=16.0_dp, &
+            at_most=real(max_freq_lines, dp))
         call add(rows, n, 'identification', 'tol_e', value_real, '1.0e-6', '', &
-            'the target of the identification error E, eq. (7)', '')
+            'the target of the identification error E, eq. (7)', '', &
+            expect='an error target in (0, 1)', above=0.0_dp, below=1.0_dp)
         call add(rows, n, 'identification', 'max_order', value_integer, '30', '', &
-            'the largest number of modes the order scan tries', '')
+            'the largest number of modes the order scan tries', '', &
+            expect='a number of modes from 1 to '//int_text(max_lsce_modes), at_least=1.0_dp, &
+            at_most=real(max_lsce_modes, dp))
         call add(rows, n, 'identification', 'order', value_integer, '0', '', &
-            'a fixed number of modes (0: the smallest meeting tol_e)', '')
+            'a fixed number of modes (0: the smallest meeting tol_e)', '', &
+            expect='a number of modes from 0 (chosen by tol_e) to '//int_text(max_lsce_modes), &
+            at_least=0.0_dp, at_most=real(max_lsce_modes, dp))
         call add(rows, n, 'identification', 'method', value_text, '', '', &
             "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
-            "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'")
+            "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
+            choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])
         call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &
-            'the road amplitude', '')
+            'the road amplitude', '', &
+            expect='a finite height in m')
         call add(rows, n, 'road', 'omega', value_real, '100.0', 'rad/s', &
-            'the angular frequency of the sine road', '')
+            'the angular frequency of the sine road', '', &
+            expect='a finite angular frequency in rad/s')
         call add(rows, n, 'road', 'wavelength', value_real, '50.0e-3', 'm', &
-            'the shortest wavelength of the random road', '')
+            'the shortest wavelength of the random road', '', &
+            expect='a wavelength > 0 m', above=0.0_dp)
         call add(rows, n, 'road', 'speed', value_real, '1.0', 'm/s', &
-            'the travel speed V', '')
+            'the travel speed V', '', &
+            expect='a finite speed in m/s')
         call add(rows, n, 'road', 'n_terms', value_integer, '10', '', &
-            'the number of terms of the random road, eq. (35)', '')
+            'the number of terms of the random road, eq. (35)', '', &
+            expect='a number of terms from 1 to '//int_text(max_road_terms), at_least=1.0_dp, &
+            at_most=real(max_road_terms, dp))
         call add(rows, n, 'road', 'seed', value_integer, '35', '', &
             'the seed of the random road', '')
         call add(rows, n, 'road', 'road_file', value_text, '', '', &
             'a road file', "profile 'file'")
         call add(rows, n, 'road', 'x_start', value_real, '0.0', 'm', &
-            'the position on the road file at t = 0', '')
+            'the position on the road file at t = 0', '', &
+            expect='a finite position in m')
         call add(rows, n, 'road', 'texture_file', value_text, '', '', &
             'a road texture file (heights on an x-y grid)', "profile 'texture'")
         call add(rows, n, 'road', 'y_start', value_real, '0.0', 'm', &
-            'the lateral position on the road texture of the patch centre', '')
+            'the lateral position on the road texture of the patch centre', '', &
+            expect='a finite position in m')
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
-            'the contact stiffness k_c', "task 'contact'")
+            'the contact stiffness k_c', "task 'contact'", &
+            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp)
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
-            'the contact exponent p', "task 'contact'")
+            'the contact exponent p', "task 'contact'", &
+            expect='an exponent p > 0', above=0.0_dp)
         call add(rows, n, 'contact', 'gravity', value_real, '9.81', 'm/s^2', &
-            'the gravity g weighing the mass', '')
+            'the gravity g weighing the mass', '', &
+            expect='an acceleration >= 0 m/s^2', at_least=0.0_dp)
         call add(rows, n, 'contact', 'preload', value_real, 'mass*gravity', 'N', &
-            'the static preload F0', '')
+            'the static preload F0', '', &
+            expect='a finite force in N')
         call add(rows, n, 'contact', 'n_points', value_integer, '1', '', &
-            'the number of contact points N_c (tyre)', '')
+            'the number of contact points N_c (tyre)', '', &
+            expect='at most '//int_text(max_contact_points)//' points', at_most=real(max_contact_points, dp))
         call add(rows, n, 'contact', 'patch_length', value_real, '0.1', 'm', &
             'the length of the contact patch (tyre)', '')
         call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
-            "the contact step, 'explicit' or 'implicit'", '')
+            "the contact step, 'explicit' or 'implicit'", '', &
+            choices=[character(len=16) :: 'explicit', 'implicit'])
         call add(rows, n, 'contact', 'divergence_bound', value_real, '0.1', 'm', &
-            'the displacement beyond which a run diverged', '')
+            'the displacement beyond which a run diverged', '', &
+            expect='a displacement > 0 m', above=0.0_dp)
         call add(rows, n, 'convolution', 'methods', value_text_list, '', '', &
             "the methods to run, e.g. 'direct', 'modal'", "task 'contact'")
         call add(rows, n, 'convolution', 'truncation_tol', value_real, exact_text(default_truncation_tol), '', &
-            'the truncation fraction of max |g| (direct)', '')
+            'the truncation fraction of max |g| (direct)', '', &
+            expect='a fraction of max |g| in (0, 1)', above=0.0_dp, below=1.0_dp)
         call add(rows, n, 'convolution', 'accuracy', value_real, exact_text(default_accuracy), '', &
-            'the largest error E that auto accepts', '')
+            'the largest error E that auto accepts', '', &
+            expect='a relative error in (0, 1)', above=0.0_dp, below=1.0_dp)
         table = rows(:n)
     end function scene_table
 
-    !> Append a row to the table.
-    subroutine add(rows, n, group, name, kind, default, units, meaning, required)
+    !> Append a row to the table; a checked value has its message `expect` and its range
+    !> (`above` or `at_least`, `below` or `at_most`), a text its `choices`.
+    subroutine add(rows, n, group, name, kind, default, units, meaning, required, expect, above, at_least, &
+                   below, at_most, choices)
         type(scene_variable), intent(inout) :: rows(:)
         integer, intent(inout) :: n
         character(len=*), intent(in) :: group, name, default, units, meaning, required
         integer, intent(in) :: kind
+        character(len=*), intent(in), optional :: expect
+        real(dp), intent(in), optional :: above, at_least, below, at_most
+        character(len=*), intent(in), optional :: choices(:)
 
         n = n + 1
         rows(n)%group = group
@@ -233,7 +291,45 @@ contains
         rows(n)%units = units
         rows(n)%meaning = meaning
         rows(n)%required = required
+        rows(n)%expect = ''
+        if (present(expect)) rows(n)%expect = expect
+        if (present(above)) rows(n)%low = above
+        if (present(at_least)) rows(n)%low = at_least
+        rows(n)%low_in = present(at_least)
+        if (present(below)) rows(n)%high = below
+        if (present(at_most)) rows(n)%high = at_most
+        rows(n)%high_in = present(at_most)
+        if (present(choices)) then
+            rows(n)%choices = choices
+            rows(n)%expect = quoted_list(choices)
+        end if
     end subroutine add
+
+    !> Whether a value is one its table row admits: a real or integer in the row's range, a
+    !> text among its choices (any text when it has none).
+    logical function admits(variable, value)
+        !> The table row.
+        type(scene_variable), intent(in) :: variable
+        !> The value: real(dp), integer or text (trailing blanks ignored).
+        class(*), intent(in) :: value
+
+        admits = .true.
+        select type (value)
+        type is (character(len=*))
+            if (allocated(variable%choices)) admits = any(variable%choices == value)
+        type is (integer)
+            admits = in_range(real(value, dp))
+        type is (real(dp))
+            admits = in_range(value)
+        end select
+    contains
+        logical function in_range(x)
+            real(dp), intent(in) :: x
+
+            in_range = merge(x >= variable%low, x > variable%low, variable%low_in) .and. &
+                       merge(x <= variable%high, x < variable%high, variable%high_in)
+        end function in_range
+    end function admits
 
     !> The group names of a scene file, in file order.
     pure function scene_group_names() result(names)
@@ -317,7 +413,7 @@ contains
         model_name = lower_text(scan%value_of('structure', 'model'))
         model = find_model(model_name)
         do g = 1, size(group_names)
-            if (holds(scan, table, group_required(g)) .and. .not. scan%has_group(trim(group_names(g)))) then
+            if (holds(scan, table, group_required(g)) .and. .not. scan%has_value(trim(group_names(g)), '')) then
                 call fatal_error(error, scan%file//': &'//trim(group_names(g))//': expected the group &' &
                                  //trim(group_names(g))//' ... / (required: '//trim(group_holds(g))//'), found none')
                 return
@@ -373,23 +469,58 @@ contains
                          //' '//variable%name//': expected '//required_text(variable, when)//', found no value')
     end subroutine need
 
+    !> Build `table_copy` once, for every caller (thread-safe).
+    subroutine build_table()
+        !$omp critical (greenconv_scene_table)
+        if (.not. allocated(table_copy)) table_copy = scene_table()
+        !$omp end critical (greenconv_scene_table)
+    end subroutine build_table
+
     !> The table row of a variable; an empty row when the table lacks it.
-    function variable_row(group, name) result(variable)
-        character(len=*), intent(in) :: group, name
+    function scene_row(group, name) result(variable)
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: name
+        !> Its row.
         type(scene_variable) :: variable
 
         integer :: i
 
-        !$omp critical (greenconv_scene_table)
-        if (.not. allocated(table_copy)) table_copy = scene_table()
-        !$omp end critical (greenconv_scene_table)
+        call build_table()
         variable%group = ''
         variable%name = ''
         variable%default = ''
         do i = 1, size(table_copy)
             if (table_copy(i)%group == group .and. table_copy(i)%name == name) variable = table_copy(i)
         end do
-    end function variable_row
+    end function scene_row
+
+    !> A namelist record that gives each variable of a group its default from the table
+    !> ("&road profile='sine', amplitude=1.0e-3, ... /"), read before the file's group. A
+    !> default that is a formula of other variables (`1/(2*dt)`, `mass*gravity`) and the list
+    !> of methods (no default) are left out: the group's reader sets them.
+    function group_defaults(group) result(record)
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> The record.
+        character(len=:), allocatable :: record
+
+        character(len=:), allocatable :: value
+        integer :: i
+
+        call build_table()
+        record = '&'//group
+        do i = 1, size(table_copy)
+            if (table_copy(i)%group /= group .or. table_copy(i)%kind == value_text_list) cycle
+            value = table_copy(i)%default
+            if (table_copy(i)%kind == value_text) value = "'"//value//"'"
+            if (any(table_copy(i)%kind == [value_real, value_integer]) .and. verify(value, '0123456789.eE+-') > 0) &
+                cycle
+            record = record//' '//table_copy(i)%name//'='//value//','
+        end do
+        record = record//' /'
+    end function group_defaults
 
     !> Give a namelist variable its default from the table (a real, integer, logical or text).
     subroutine scene_default(group, name, value)
@@ -402,7 +533,7 @@ contains
 
         type(scene_variable) :: variable
 
-        variable = variable_row(group, name)
+        variable = scene_row(group, name)
         select type (value)
         type is (real(dp))
             read (variable%default, *) value

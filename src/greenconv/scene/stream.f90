@@ -12,131 +12,65 @@
 !>
 !> So the memory a run needs does not grow with N_t (unless the history is asked for). A
 !> numerical fault stops the run: the column file is completed with the rows before it; a
-!> failed write deletes it. What differs between a single- and a multi-point run is a
-!> `contact_run`: how it samples the road, steps a block and lays out the block's rows.
+!> failed write deletes it. A `contact_run` is one method's run, single- and multi-point
+!> alike: a multi-point convolver (a single-point structure's convolver wrapped as the 1 x 1
+!> case, greenconv_conv_point_matrix) stepped by greenconv_contact_multi's loop. Only what a
+!> scene asks for differs: where the road is sampled (under the one point, or under the
+!> points of the tyre or of a Green's matrix file) and how the rows are laid out.
 module greenconv_scene_stream
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_contact_single, only: contact_response, contact_state, contact_block
-    use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block
+    use greenconv_conv_point_matrix, only: point_matrix, wrap_point
+    use greenconv_conv_builder, only: make_convolver
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
+                                       start_multi_contact, newton_options
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
+    use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
                                               finish_force_spectra
-    use greenconv_scene_points, only: scene_points, point_rows
+    use greenconv_scene_points, only: scene_points, point_rows, points_convolver
     use greenconv_scene_patch, only: sample_patch_road
     implicit none
     private
 
-    public :: contact_run, single_run, multi_run, stream_sinks, force_summary, stream_run
+    public :: contact_run, stream_sinks, force_summary, stream_run, make_run_convolver, start_run
 
-    !> One method's contact run as the streaming loop sees it: it knows its step, samples
-    !> the road of a block, steps the block and gives the block's rows and forces.
-    type, abstract :: contact_run
-    contains
-        !> Steps done so far.
-        procedure(run_step), deferred :: step
-        !> Sample the road of steps first..first + count - 1.
-        procedure(run_sample), deferred :: sample
-        !> Step the block sampled last; the contact loop alone, which `stream_run` times.
-        procedure(run_advance), deferred :: advance
-        !> The rows of the block stepped last that are written.
-        procedure(run_rows), deferred :: rows
-        !> The contact forces of the block stepped last.
-        procedure(run_forces), deferred :: forces
-    end type contact_run
-
-    abstract interface
-        !> Steps done so far.
-        function run_step(self) result(step)
-            import :: contact_run, int64
-            implicit none
-            class(contact_run), intent(in) :: self
-            integer(int64) :: step
-        end function run_step
-
-        !> Sample the road of `count` steps from step `first` on.
-        subroutine run_sample(self, scene, first, count)
-            import :: contact_run, scene_type, int64
-            implicit none
-            class(contact_run), intent(inout) :: self
-            type(scene_type), intent(in) :: scene
-            integer(int64), intent(in) :: first
-            integer, intent(in) :: count
-        end subroutine run_sample
-
-        !> Step the sampled block; `fault` names a failed step (the run stops there).
-        subroutine run_advance(self, fault)
-            import :: contact_run, error_type
-            implicit none
-            class(contact_run), intent(inout) :: self
-            type(error_type), allocatable, intent(out) :: fault
-        end subroutine run_advance
-
-        !> The rows of the last block (its first step `first`) for the steps that are
-        !> multiples of `every`.
-        subroutine run_rows(self, first, every, table)
-            import :: contact_run, int64, dp
-            implicit none
-            class(contact_run), intent(in) :: self
-            integer(int64), intent(in) :: first
-            integer, intent(in) :: every
-            real(dp), allocatable, intent(out) :: table(:, :)
-        end subroutine run_rows
-
-        !> The total contact force of each step of the last block and, for several points,
-        !> each point's, points(step, point) (no columns for one point).
-        subroutine run_forces(self, total, points)
-            import :: contact_run, dp
-            implicit none
-            class(contact_run), intent(in) :: self
-            real(dp), allocatable, intent(out) :: total(:), points(:, :)
-        end subroutine run_forces
-    end interface
-
-    !> A single-point run: one convolver, the road under one point.
-    type, extends(contact_run) :: single_run
-        !> The convolver, started by the caller.
-        class(convolver), allocatable :: conv
-        !> The contact loop's state (start_contact).
-        type(contact_state) :: state
-        !> The last block's response.
-        type(contact_response) :: response
-        !> The road height [m] under the point at each step of the block.
-        real(dp), allocatable :: road(:)
-    contains
-        procedure :: step => single_step
-        procedure :: sample => single_sample
-        procedure :: advance => single_advance
-        procedure :: rows => single_rows
-        procedure :: forces => single_forces
-    end type single_run
-
-    !> A multi-point run: a Green's matrix, the road under N_c points, the peak total force.
-    type, extends(contact_run) :: multi_run
-        !> The convolver, started by the caller.
+    !> One method's contact run of a scene, single- or multi-point.
+    type :: contact_run
+        !> Whether the scene is a multi-point one (the tyre, a Green's matrix file): the road
+        !> under `points`, N_c rows per step; else one point, the scene's road, 5 columns.
+        logical :: several = .false.
+        !> The convolver (`make_run_convolver`).
         class(multipoint_convolver), allocatable :: conv
-        !> The contact loop's state (start_multi_contact).
+        !> The contact loop's state (`start_run`).
         type(multi_contact_state) :: state
         !> The last block's response.
         type(multi_contact_response) :: response
         !> Road heights [m] under the points, heights(step, point), of the block.
         real(dp), allocatable :: heights(:, :)
-        !> The points: on the body (x, y) and on the road (greenconv_scene_points).
+        !> The points of a multi-point scene: on the body (x, y) and on the road
+        !> (greenconv_scene_points's `find_scene_points`, called by the owner of the run).
         type(scene_points) :: points
         !> Largest total force [N] so far.
         real(dp) :: peak = -huge(1.0_dp)
     contains
-        procedure :: step => multi_step
-        procedure :: sample => multi_sample
-        procedure :: advance => multi_advance
-        procedure :: rows => multi_rows
-        procedure :: forces => multi_forces
-    end type multi_run
+        !> Steps done so far.
+        procedure :: step => run_step
+        !> Sample the road of steps first..first + count - 1.
+        procedure :: sample => run_sample
+        !> Step the block sampled last; the contact loop alone, which `stream_run` times.
+        procedure :: advance => run_advance
+        !> The rows of the block stepped last that are written.
+        procedure :: rows => run_rows
+        !> The contact forces of the block stepped last.
+        procedure :: forces => run_forces
+    end type contact_run
 
     !> Running summary of a total-force history.
     type :: force_summary
@@ -174,7 +108,7 @@ contains
     !> run, its message after `prefix` and naming the column file that keeps the rows before it.
     subroutine stream_run(run, scene, method, block, sinks, prefix, seconds, error)
         !> The run.
-        class(contact_run), intent(inout) :: run
+        type(contact_run), intent(inout) :: run
         !> The scene (dt, n_steps, output_every, progress, spectra).
         type(scene_type), intent(in) :: scene
         !> The method's name (progress line, spectra file).
@@ -253,33 +187,99 @@ contains
         end do
     end subroutine add_forces
 
-    function single_step(self) result(step)
-        class(single_run), intent(in) :: self
+    !> The convolver called `method` for a scene, at step 0, and what its model neglects: the
+    !> Green's matrix of the points of a multi-point scene (`run%points` found already), or the
+    !> structure's single-point convolver wrapped as the 1 x 1 case.
+    subroutine make_run_convolver(run, scene, structure, method, accuracy, error)
+        !> The run; its convolver made.
+        type(contact_run), intent(inout) :: run
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> The structure of a single-point scene (not used for a multi-point one).
+        type(structure_model), intent(in) :: structure
+        !> The method's name.
+        character(len=*), intent(in) :: method
+        !> What the model neglects, in words.
+        character(len=:), allocatable, intent(out) :: accuracy
+        !> Set when the method cannot run on the structure.
+        type(error_type), allocatable, intent(out) :: error
+
+        class(convolver), allocatable :: point
+
+        run%several = multi_point_model(scene%model)
+        if (allocated(run%conv)) deallocate (run%conv)
+        if (run%several) then
+            call points_convolver(run%points, scene, method, run%conv, accuracy, error)
+            return
+        end if
+        call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, point, accuracy, &
+                            error, scene%accuracy)
+        if (allocated(error)) return
+        allocate (point_matrix :: run%conv)
+        select type (matrix => run%conv)
+        type is (point_matrix)
+            call wrap_point(point, matrix)
+        end select
+    end subroutine make_run_convolver
+
+    !> Start the contact loop of a run at step 0 with the scene's law: one point under the
+    !> whole preload with the scene's `&contact` scheme and settings, or N_c points sharing it
+    !> with the multi-point settings (the implicit step, the scene's divergence bound).
+    subroutine start_run(run, scene, error)
+        !> The run, its convolver made.
+        type(contact_run), intent(inout) :: run
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Set when the contact settings are unusable with the convolver.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: n, n_c
+
+        run%peak = -huge(1.0_dp)
+        n_c = run%conv%n_points()
+        if (run%several) then
+            call start_multi_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], run%state, &
+                                     error, newton_options(max_displacement=scene%contact%divergence_bound))
+        else
+            call start_multi_contact(run%conv, [scene%law], [scene%preload], run%state, error, settings=scene%contact)
+        end if
+    end subroutine start_run
+
+    function run_step(self) result(step)
+        class(contact_run), intent(in) :: self
         integer(int64) :: step
 
         step = self%state%step
-    end function single_step
+    end function run_step
 
-    !> The road height under the point at steps first..first + count - 1.
-    subroutine single_sample(self, scene, first, count)
-        class(single_run), intent(inout) :: self
+    !> The road heights under the point or points at steps first..first + count - 1.
+    subroutine run_sample(self, scene, first, count)
+        class(contact_run), intent(inout) :: self
         type(scene_type), intent(in) :: scene
         integer(int64), intent(in) :: first
         integer, intent(in) :: count
 
-        self%road = scene%road%sample_steps(scene%dt, first, count)
-    end subroutine single_sample
+        if (self%several) then
+            call sample_patch_road(scene, self%points%road_x, self%points%road_y, first, count, self%heights)
+        else
+            self%heights = reshape(scene%road%sample_steps(scene%dt, first, count), [count, 1])
+        end if
+    end subroutine run_sample
 
-    subroutine single_advance(self, fault)
-        class(single_run), intent(inout) :: self
+    !> Step the block; the peak total force of the block is noted.
+    subroutine run_advance(self, fault)
+        class(contact_run), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: fault
 
-        call contact_block(self%conv, self%state, self%road, self%response, fault)
-    end subroutine single_advance
+        call multi_contact_block(self%conv, self%state, self%heights, self%response, fault)
+        if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
+    end subroutine run_advance
 
-    !> The columns t, u_road, u, f_contact, delta of the steps of the block that are multiples of `every`.
-    subroutine single_rows(self, first, every, table)
-        class(single_run), intent(in) :: self
+    !> The rows of the steps of the block that are multiples of `every`: t, u_road, u,
+    !> f_contact, delta for one point; N_c rows per step for several (greenconv_scene_points's
+    !> `point_rows`, with the column y for a Green's matrix file's points).
+    subroutine run_rows(self, first, every, table)
+        class(contact_run), intent(in) :: self
         integer(int64), intent(in) :: first
         integer, intent(in) :: every
         real(dp), allocatable, intent(out) :: table(:, :)
@@ -287,66 +287,30 @@ contains
         integer :: j
 
         j = first_kept(first, every)
+        if (self%several) then
+            table = point_rows(self%points, self%response, j, every)
+            return
+        end if
         associate (response => self%response)
-            table = reshape([response%time(j::every), response%road(j::every), response%displacement(j::every), &
-                             response%force(j::every), response%compression(j::every)], &
-                            [size(response%time(j::every)), 5])
+            table = reshape([response%time(j::every), response%road(j::every, 1), &
+                             response%displacement(j::every, 1), response%force(j::every, 1), &
+                             response%compression(j::every, 1)], [size(response%time(j::every)), 5])
         end associate
-    end subroutine single_rows
+    end subroutine run_rows
 
-    !> The contact force of each step of the block.
-    subroutine single_forces(self, total, points)
-        class(single_run), intent(in) :: self
+    !> The total contact force of each step of the block and, for a multi-point scene, each
+    !> point's, points(step, point) (no columns for one point).
+    subroutine run_forces(self, total, points)
+        class(contact_run), intent(in) :: self
         real(dp), allocatable, intent(out) :: total(:), points(:, :)
 
-        total = self%response%force
-        allocate (points(size(total), 0))
-    end subroutine single_forces
-
-    function multi_step(self) result(step)
-        class(multi_run), intent(in) :: self
-        integer(int64) :: step
-
-        step = self%state%step
-    end function multi_step
-
-    !> The road heights under the N_c points at steps first..first + count - 1.
-    subroutine multi_sample(self, scene, first, count)
-        class(multi_run), intent(inout) :: self
-        type(scene_type), intent(in) :: scene
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: count
-
-        call sample_patch_road(scene, self%points%road_x, self%points%road_y, first, count, self%heights)
-    end subroutine multi_sample
-
-    !> Step the block; the peak total force of the block is noted.
-    subroutine multi_advance(self, fault)
-        class(multi_run), intent(inout) :: self
-        type(error_type), allocatable, intent(out) :: fault
-
-        call multi_contact_block(self%conv, self%state, self%heights, self%response, fault)
-        if (size(self%response%total_force) > 0) self%peak = max(self%peak, maxval(self%response%total_force))
-    end subroutine multi_advance
-
-    !> N_c rows per kept step (greenconv_scene_points's `point_rows`, with the column y
-    !> for a Green's matrix file's points).
-    subroutine multi_rows(self, first, every, table)
-        class(multi_run), intent(in) :: self
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: every
-        real(dp), allocatable, intent(out) :: table(:, :)
-
-        table = point_rows(self%points, self%response, first_kept(first, every), every)
-    end subroutine multi_rows
-
-    !> The total force and each point's force of each step of the block.
-    subroutine multi_forces(self, total, points)
-        class(multi_run), intent(in) :: self
-        real(dp), allocatable, intent(out) :: total(:), points(:, :)
-
-        total = self%response%total_force
-        points = self%response%force
-    end subroutine multi_forces
+        if (self%several) then
+            total = self%response%total_force
+            points = self%response%force
+        else
+            total = self%response%force(:, 1)
+            allocate (points(size(total), 0))
+        end if
+    end subroutine run_forces
 
 end module greenconv_scene_stream

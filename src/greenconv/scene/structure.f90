@@ -13,6 +13,7 @@ module greenconv_scene_structure
                                          structure_from_frf_ml
     use greenconv_scene_input, only: scene_type, input_place
     use greenconv_scene_models, only: model_id, model_sdof, model_random_modes, model_frf_file
+    use greenconv_conv_methods, only: method_scheme, scheme_auto
     implicit none
     private
 
@@ -90,9 +91,10 @@ contains
         type(lsce_options) :: options
 
         options%tol_e = scene%tol_e
-        ! `auto` wants the smallest model that meets the scene's accuracy, not more.
+        ! `auto` (by the registry's scheme, not its spelling) wants the smallest model that
+        ! meets the scene's accuracy, not more.
         if (allocated(scene%methods)) then
-            if (any(scene%methods == 'auto')) options%tol_e = scene%accuracy
+            if (any(method_scheme(scene%methods) == scheme_auto)) options%tol_e = scene%accuracy
         end if
         options%max_modes = scene%max_order
         options%fixed_modes = scene%order

@@ -55,12 +55,12 @@
 !> out to the ranks one at a time.
 module greenconv_scene_sweep
     use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: int_text
     use greenconv_scene_sweep_plan, only: sweep_text, sweep_plan, scene_files, is_sweep_file, read_sweep, &
                                           variant_lines, replaced_all
     use greenconv_scene_sweep_record, only: variant_outcome, variant_key, content_key, outcome_text, &
                                             outcome_from_text, save_record
-    use greenconv_scene_sweep_report, only: summary_row, write_sweep_table, report_check, report_variant, &
-                                            finish_report
+    use greenconv_scene_sweep_report, only: summary_row, write_sweep_table, report_check, finish_report
     use greenconv_scene_sweep_variant, only: take_variant, variant_ran, variant_done, variant_bad
     implicit none
     private
@@ -69,7 +69,7 @@ module greenconv_scene_sweep
     public :: is_sweep_file, read_sweep, variant_lines, variant_key, content_key, take_variant, variant_ran, &
               variant_done, variant_bad
     public :: save_record, summary_row, write_sweep_table, outcome_text, outcome_from_text, run_sweep
-    public :: report_check, report_variant, report_taken, finish_report, replaced_all
+    public :: report_check, report_taken, finish_report, replaced_all
 
 contains
 
@@ -109,7 +109,7 @@ contains
     end subroutine run_sweep
 
     !> After a variant was taken (`take_variant`): count it, say why a bad or failed one
-    !> failed, and record one that ran.
+    !> failed (one line on `unit`), and record one that ran.
     subroutine report_taken(plan, k, outcome, what, unit, n_done, n_bad, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -134,8 +134,10 @@ contains
             n_done = n_done + 1
         case default
             if (.not. allocated(outcome%key)) return
-            call report_variant(plan, k, outcome, unit)
-            call save_record(plan, k, outcome, error)
+            if (outcome%status /= 0) write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k) &
+                //' failed (status '//int_text(outcome%status)//', recorded in its row): '//outcome%message
+            call save_record(plan, outcome, error)
+            if (allocated(error)) error%message = 'variant '//int_text(k)//': '//error%message
         end select
     end subroutine report_taken
 

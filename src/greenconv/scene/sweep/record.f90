@@ -183,14 +183,12 @@ contains
         outcome%message = text(c + 1:)
     end subroutine outcome_from_text
 
-    !> Record variant k's outcome, atomically, under its content key (nothing when the
+    !> Record a variant's outcome, atomically, under its content key (nothing when the
     !> outcome has none: the variant failed its check, a fixed file reruns it).
-    subroutine save_record(plan, k, outcome, error)
+    subroutine save_record(plan, outcome, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
-        !> Variant number.
-        integer, intent(in) :: k
-        !> Its outcome.
+        !> The variant's outcome.
         type(variant_outcome), intent(in) :: outcome
         !> Set when the record cannot be written.
         type(error_type), allocatable, intent(out) :: error
@@ -199,7 +197,6 @@ contains
         call make_directory(record_directory(plan), error)
         if (allocated(error)) return
         call write_text(record_path(plan, outcome%key), outcome_text(outcome), error)
-        if (allocated(error)) error%message = 'variant '//int_text(k)//': '//error%message
     end subroutine save_record
 
     !> The directory of the records of finished variants.

@@ -18,7 +18,7 @@ module greenconv_scene_sweep_report
     implicit none
     private
 
-    public :: summary_row, write_sweep_table, report_check, report_variant, finish_report, add_method, &
+    public :: summary_row, write_sweep_table, report_check, finish_report, add_method, &
               failed_outcome, band_text
 
     !> Width of a band level's column.
@@ -27,13 +27,13 @@ module greenconv_scene_sweep_report
 contains
 
     !> The row of variant k in the table: its number, its values, its result.
-    function summary_row(plan, k, outcome) result(row)
+    function summary_row(plan, k, result) result(row)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Variant number.
         integer, intent(in) :: k
-        !> Its outcome.
-        type(variant_outcome), intent(in) :: outcome
+        !> Its result columns (`variant_outcome%result`).
+        character(len=*), intent(in) :: result
         character(len=:), allocatable :: row
 
         integer :: j
@@ -42,7 +42,7 @@ contains
         do j = 1, size(plan%variables)
             row = row//'  '//padded(plan%values(k, j)%text, column_width(plan, j))
         end do
-        row = row//outcome%result
+        row = row//result
     end function summary_row
 
     !> Write `<name>_sweep.dat` (one row per variant, in order) and `<name>_sweep_cpu.dat`
@@ -87,7 +87,7 @@ contains
         cpu = '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method'//new_line('a') &
               //cpu_names
         do k = 1, size(outcomes)
-            table = table//new_line('a')//summary_row(plan, k, outcomes(k))
+            table = table//new_line('a')//summary_row(plan, k, outcomes(k)%result)
             cpu = cpu//new_line('a')//padded(int_text(k), len('# variant') - 2)//outcomes(k)%cpu
         end do
         call make_directory(plan%output_dir, error)
@@ -128,21 +128,6 @@ contains
         if (check_only .and. n_bad > 0) call fatal_error(error, plan%file//': '//int_text(n_bad) &
             //' variant(s) failed their check (see above); fix the values named there')
     end subroutine report_check
-
-    !> One line per finished variant that failed, on `unit`.
-    subroutine report_variant(plan, k, outcome, unit)
-        !> The sweep.
-        type(sweep_plan), intent(in) :: plan
-        !> Variant number.
-        integer, intent(in) :: k
-        !> Its outcome.
-        type(variant_outcome), intent(in) :: outcome
-        !> Unit of the line.
-        integer, intent(in) :: unit
-
-        if (outcome%status /= 0) write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k) &
-            //' failed (status '//int_text(outcome%status)//', recorded in its row): '//outcome%message
-    end subroutine report_variant
 
     !> Write the table and say where it is and how many variants failed. A sweep with failed
     !> variants is not a success even though every other variant completed and the table is

@@ -13,17 +13,13 @@ module greenconv_scene_sweep_variant
     use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, block_rows
-    use greenconv_conv_builder, only: make_convolver
-    use greenconv_conv_convolver, only: free_convolver
-    use greenconv_contact_single, only: start_contact
-    use greenconv_contact_multi, only: start_multi_contact, newton_options
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_input, only: scene_type
     use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_points, only: find_scene_points, points_convolver
+    use greenconv_scene_points, only: find_scene_points
     use greenconv_scene_output, only: multi_contact_header
-    use greenconv_scene_stream, only: single_run, multi_run, stream_sinks, stream_run
+    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
     use greenconv_scene_sweep_record, only: variant_outcome, content_key, load_record, record_path
     use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text
@@ -92,14 +88,13 @@ contains
         type(variant_outcome), intent(out) :: outcome
 
         type(structure_model) :: structure
-        type(single_run) :: single
-        type(multi_run) :: multi
+        type(contact_run) :: run
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
         character(len=:), allocatable :: accuracy, levels, method, summary
         real(dp) :: seconds
         integer(int64) :: step
-        integer :: i, n, n_c, block
+        integer :: i, n_c, block
         logical :: several
 
         outcome%result = ''
@@ -108,8 +103,8 @@ contains
         scene%progress = .false.
         several = multi_point_model(scene%model)
         if (several) then
-            call find_scene_points(scene, multi%points, summary, failure)
-            n_c = max(multi%points%n_points(), 1)
+            call find_scene_points(scene, run%points, summary, failure)
+            n_c = max(run%points%n_points(), 1)
             block = max(block_rows/n_c, 1)
         else
             call build_structure(scene, structure, failure)
@@ -118,34 +113,22 @@ contains
         levels = ''
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
-            sinks = variant_sinks(plan, scene, k, method, several, multi%points%from_file)
+            sinks = variant_sinks(plan, scene, k, method, several, run%points%from_file)
             seconds = 0.0_dp
             step = 0
             if (allocated(failure)) then
                 error = failure
-            else if (several) then
-                call points_convolver(multi%points, scene, method, multi%conv, accuracy, error)
-                if (.not. allocated(error)) call start_multi_contact(multi%conv, [(scene%law, n=1, n_c)], &
-                    [(scene%preload/n_c, n=1, n_c)], multi%state, error, &
-                    newton_options(max_displacement=scene%contact%divergence_bound))
-                if (.not. allocated(error)) then
-                    call stream_run(multi, scene, method, block, sinks, '', seconds, error)
-                    step = multi%step()
-                end if
-                if (allocated(multi%conv)) then
-                    call multi%conv%release()
-                    deallocate (multi%conv)
-                end if
             else
-                call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, single%conv, &
-                                    accuracy, error, scene%accuracy)
-                if (.not. allocated(error)) call start_contact(single%conv, scene%law, scene%preload, single%state, &
-                                                               error, scene%contact)
+                call make_run_convolver(run, scene, structure, method, accuracy, error)
+                if (.not. allocated(error)) call start_run(run, scene, error)
                 if (.not. allocated(error)) then
-                    call stream_run(single, scene, method, block, sinks, '', seconds, error)
-                    step = single%step()
+                    call stream_run(run, scene, method, block, sinks, '', seconds, error)
+                    step = run%step()
                 end if
-                call free_convolver(single%conv)
+                if (allocated(run%conv)) then
+                    call run%conv%release()
+                    deallocate (run%conv)
+                end if
             end if
             call add_method(outcome, sinks%summary, seconds, error, step, 'variant '//int_text(k)//': '//method//': ')
             levels = levels//band_text(plan, sinks%history, scene, .not. allocated(error))

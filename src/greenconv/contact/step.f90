@@ -1,0 +1,431 @@
+!> One step of a contact run at N_c points, single-point contact being the case N_c = 1: the
+!> one place where the forces of a step are decided, for greenconv_contact_single and
+!> greenconv_contact_multi alike (they only fetch the history from their convolver, call
+!> `step_contact`, push the load and record).
+!>
+!> Conventions (SI units), per point i: the body's displacement u_i and the road height u_r,i
+!> point up, u_i from the static equilibrium under the preloads F0_i; the compression is
+!> delta_i = delta0_i + u_r,i - u_i, delta0_i = law_i%compression(F0_i); the force
+!> F_i = law_i%force(delta_i) (greenconv_contact_law); the structure is loaded by F - F0.
+!> The convolver gives the history displacements u_h(n) and the instant compliance W0 [m/N]
+!> of the step's own forces, so that at t_n
+!>
+!>     u = u_h + W0*(F - F0),   delta = a - (u - u_h),   a = delta0 + u_r - u_h,
+!>
+!> a being the free compression, the one the springs would have if the step's loads were zero.
+!> Two schemes close these relations (`contact_options%scheme`):
+!>
+!> - `explicit` (the paper's, eqs. 20-23): delta = a; W0*(F - F0) enters u afterwards only.
+!> - `implicit`: delta solves R(delta) = delta - a + W0*(F(delta) - F0) = 0. With W0 = 0 this is
+!>   delta = a, the explicit step itself. For one point the equation is scalar,
+!>   delta + w0*F(delta) = a + w0*F0, and is solved exactly by a safeguarded Newton iteration
+!>   (greenconv_contact_single tells why it converges: the residual increases strictly for
+!>   w0 >= 0, and the root is bracketed in (0, b]). For N_c > 1 a semismooth Newton method on
+!>   the compressions (greenconv_contact_multi tells how: active set, dgesv, Armijo damping).
+!>
+!> Then every point passes the divergence guard - |u_i| at most the bound, F_i and delta_i
+!> finite - before the caller pushes the load: a fault leaves the convolver where it was and
+!> names the step, its time, the point (when N_c > 1) and what to change.
+!>
+!> The law is greenconv_contact_law's concrete `contact_law`, and the step calls only its
+!> `force`, `compression` and `tangent`. A new law therefore changes contact/law.f90 (its
+!> parameters and those three procedures), the scene's rows for its parameters
+!> (scene/schema.f90, and scene/input.f90 where `&contact` becomes a law) and the check of
+!> its values (api/library.f90's `check_contact_law`); nothing here, in the single- and
+!> multi-point loops, the runner or verify/contact changes, and the C and Fortran 77 doors
+!> only if the law is to be given other parameters than k_c and p.
+module greenconv_contact_step
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_ext_lapack, only: solve_linear
+    use greenconv_contact_law, only: contact_law
+    implicit none
+    private
+
+    public :: contact_options, contact_state, start_state, step_contact
+
+    !> How a contact run steps and when it gives up. The defaults are those of single-point
+    !> contact (`run_contact`, `gc_contact_options_init`); multi-point contact has its own
+    !> (greenconv_contact_multi's `newton_options`, which converts into this type).
+    type :: contact_options
+        !> `'explicit'`: the compressions from the history displacements alone (the paper's scheme).
+        !> `'implicit'`: forces, compressions and displacements of each step solved together
+        !> (needs w0 >= 0 at a single point; gains stability and accuracy only with W0 /= 0, as
+        !> for `exact`).
+        character(len=16) :: scheme = 'explicit'
+        !> Largest |u_i| [m] accepted; a larger, infinite or NaN u stops the run as divergent.
+        !> The default, 0.1 m, is a hundred times the millimetres a tyre, wheel or rail moves at
+        !> its contact point, and far below overflow. A run whose unresolved impacts pump energy
+        !> in without growing exponentially (the implicit step at omega_c*dt near 3 on the SDOF
+        !> scene) reaches some 0.6 m; a bound of 1 m would let it through.
+        real(dp) :: divergence_bound = 0.1_dp
+        !> Implicit step: stop when the residual is at most tolerance times the compression
+        !> scale (dimensionless, > 0; 1e-12 is a few thousand round-offs). The scale is
+        !> max(b, delta0) at one point, and the largest of |a_i|, |delta_i|, delta0_i and
+        !> |(W0*(F - F0))_i| at several.
+        real(dp) :: tolerance = 1.0e-12_dp
+        !> Implicit step: most Newton (or bisection) iterations per step (>= 1). At one point
+        !> bisection alone needs about 40 to reach the default tolerance; Newton typically 2 to 6.
+        integer :: max_iterations = 100
+    end type contact_options
+
+    !> A contact run at N_c points between two steps: what one step hands the next.
+    type :: contact_state
+        !> Contact law of each point (N_c).
+        type(contact_law), allocatable :: laws(:)
+        !> Static preloads F0_i [N] (N_c).
+        real(dp), allocatable :: preload(:)
+        !> Static compressions delta0_i = law_i%compression(F0_i) [m] (N_c).
+        real(dp), allocatable :: delta0(:)
+        !> Compressions of the last step done [m] (delta0 before step 0): the first guess of
+        !> the next implicit step.
+        real(dp), allocatable :: delta(:)
+        !> Scheme, divergence bound and Newton settings.
+        type(contact_options) :: settings
+        !> Whether W0 /= 0 (some step's own force reaches the body within the step).
+        logical :: coupled = .false.
+        !> Time step dt [s] of the convolver, for the times in the messages.
+        real(dp) :: dt = 0.0_dp
+        !> Index n of the next step (the number of steps done), 64 bits for runs past 2^31 steps.
+        integer(int64) :: step = 0
+    end type contact_state
+
+    !> Most halvings of a Newton step in the line search of the semismooth method.
+    integer, parameter :: max_halvings = 30
+
+contains
+
+    !> A run at step 0: the options checked against W0, the static compressions computed.
+    subroutine start_state(laws, preload, weight0, dt, options, state, error)
+        !> Contact law of each point (N_c).
+        type(contact_law), intent(in) :: laws(:)
+        !> Static preloads F0_i [N], >= 0 (N_c).
+        real(dp), intent(in) :: preload(:)
+        !> The convolver's instant compliance W0 [m/N] (N_c x N_c).
+        real(dp), intent(in) :: weight0(:, :)
+        !> The convolver's time step dt [s].
+        real(dp), intent(in) :: dt
+        !> Scheme, divergence bound and Newton settings.
+        type(contact_options), intent(in) :: options
+        !> The run at step 0.
+        type(contact_state), intent(out) :: state
+        !> Set (`stat_input`) when the options are unusable with this W0.
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_options(options, weight0, error)
+        if (allocated(error)) return
+        state%laws = laws
+        state%preload = preload
+        state%delta0 = laws%compression(preload)
+        state%delta = state%delta0
+        state%settings = options
+        state%coupled = .not. (maxval(abs(weight0)) <= 0.0_dp)
+        state%dt = dt
+        state%step = 0
+    end subroutine start_state
+
+    !> Step n = state%step: from the history displacements and road heights, the forces,
+    !> compressions (into state%delta) and displacements of the step, state%step advanced.
+    !> The caller then pushes force - state%preload. On a fault nothing in `state` that a
+    !> later step reads is trusted: the run must end, its steps before n kept.
+    subroutine step_contact(state, weight0, u_h, road, force, displacement, iterations, fault)
+        !> The run; advanced by one step unless a fault.
+        type(contact_state), intent(inout) :: state
+        !> The convolver's instant compliance W0 [m/N] (N_c x N_c).
+        real(dp), intent(in) :: weight0(:, :)
+        !> History displacements u_h,i(n) [m].
+        real(dp), intent(in) :: u_h(:)
+        !> Road heights u_r,i(t_n) [m].
+        real(dp), intent(in) :: road(:)
+        !> Contact forces F_i(t_n) [N].
+        real(dp), intent(out) :: force(:)
+        !> Displacements u_i(t_n) [m].
+        real(dp), intent(out) :: displacement(:)
+        !> Newton iterations of the step (0 when explicit).
+        integer, intent(out) :: iterations
+        !> Set (`stat_numerical`) when the step does not converge or the run diverges.
+        type(error_type), allocatable, intent(out) :: fault
+
+        real(dp) :: free(size(u_h)), residual
+        integer :: point
+
+        free(:) = state%delta0 + road - u_h
+        iterations = 0
+        point = 1
+        residual = 0.0_dp
+        if (state%settings%scheme /= 'implicit') then
+            state%delta(:) = free
+        else if (size(free) == 1) then
+            call implicit_compression(state%laws(1), free(1) + weight0(1, 1)*state%preload(1), weight0(1, 1), &
+                                      state%delta0(1), state%settings, state%delta(1), residual, iterations)
+        else if (.not. state%coupled) then
+            state%delta(:) = free
+        else
+            call solve_compressions(weight0, state, free, force, iterations, residual, point, fault)
+            if (allocated(fault)) then
+                if (all(ieee_is_finite(road))) then
+                    fault%message = fault%message//' '//where(state, 0)
+                else
+                    call step_fault(state, road, findloc(ieee_is_finite(road), .false., 1), '', fault)
+                end if
+                return
+            end if
+        end if
+        if (iterations > state%settings%max_iterations) then
+            call step_fault(state, road, point, convergence_message(state, point, residual), fault)
+            return
+        end if
+        force(:) = state%laws%force(state%delta)
+        displacement(:) = u_h
+        if (size(u_h) == 1) then
+            displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
+        else if (state%coupled) then
+            displacement(:) = u_h + matmul(weight0, force - state%preload)
+        end if
+        call divergence_guard(state, road, displacement, force, fault)
+        if (.not. allocated(fault)) state%step = state%step + 1
+    end subroutine step_contact
+
+    !> The options are usable with the instant compliance W0 [m/N].
+    subroutine check_options(settings, weight0, error)
+        type(contact_options), intent(in) :: settings
+        real(dp), intent(in) :: weight0(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (settings%scheme /= 'explicit' .and. settings%scheme /= 'implicit') then
+            call fatal_error(error, "contact_options%scheme: expected 'explicit' or 'implicit', found '" &
+                             //trim(settings%scheme)//"'", stat_input)
+        else if (.not. (settings%divergence_bound > 0.0_dp)) then
+            call fatal_error(error, 'contact_options%divergence_bound: expected a bound > 0 m, found ' &
+                             //sci_text(settings%divergence_bound), stat_input)
+        else if (.not. (settings%tolerance > 0.0_dp)) then
+            call fatal_error(error, 'contact_options%tolerance: expected a tolerance > 0, found ' &
+                             //sci_text(settings%tolerance), stat_input)
+        else if (settings%max_iterations < 1) then
+            call fatal_error(error, 'contact_options%max_iterations: expected at least 1, found ' &
+                             //int_text(settings%max_iterations), stat_input)
+        else if (settings%scheme == 'implicit' .and. size(weight0) == 1) then
+            if (.not. (weight0(1, 1) >= 0.0_dp)) call fatal_error(error, 'implicit contact step: the ' &
+                    //'convolver''s instant weight w0 = '//sci_text(weight0(1, 1))//' m/N must be >= 0 for the ' &
+                    //'step to have a unique solution', stat_input)
+        end if
+    end subroutine check_options
+
+    !> The compression delta [m] solving delta + w0*law(delta) = b, by safeguarded Newton.
+    !>
+    !> On entry `delta` is a first guess (the previous step's), used when it lies in (0, b).
+    !> `scale` is delta0 [m]; the iteration stops at |r| <= tolerance*max(b, delta0).
+    !> `iterations` is the number of updates made, max_iterations + 1 when not converged.
+    pure subroutine implicit_compression(law, b, w0, scale, settings, delta, residual, iterations)
+        type(contact_law), intent(in) :: law
+        real(dp), intent(in) :: b, w0, scale
+        type(contact_options), intent(in) :: settings
+        real(dp), intent(inout) :: delta
+        real(dp), intent(out) :: residual
+        integer, intent(out) :: iterations
+
+        real(dp) :: lower, upper, step, step_before, newton, target
+
+        residual = 0.0_dp
+        iterations = 0
+        if (b <= 0.0_dp .or. .not. (w0 > 0.0_dp)) then
+            delta = b
+            return
+        end if
+        target = settings%tolerance*max(b, scale)
+        lower = 0.0_dp
+        upper = b
+        if (.not. (delta > lower .and. delta < upper)) delta = upper
+        step = upper - lower
+        step_before = step
+        do iterations = 0, settings%max_iterations - 1
+            residual = delta + w0*law%force(delta) - b
+            if (abs(residual) <= target) return
+            if (residual < 0.0_dp) then
+                lower = delta
+            else
+                upper = delta
+            end if
+            newton = residual/(1.0_dp + w0*law%tangent(delta))
+            if (delta - newton > lower .and. delta - newton < upper .and. abs(newton) <= 0.5_dp*abs(step_before)) then
+                step_before = step
+                step = newton
+            else
+                step_before = step
+                step = delta - 0.5_dp*(lower + upper)
+            end if
+            delta = delta - step
+        end do
+        residual = delta + w0*law%force(delta) - b
+        if (.not. (abs(residual) <= target)) iterations = settings%max_iterations + 1
+    end subroutine implicit_compression
+
+    !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2, from
+    !> the free compression corrected by the previous step's forces (`load` is work space).
+    !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
+    !> at `point`. `error` is set only when a Newton system cannot be solved.
+    subroutine solve_compressions(weight0, state, free, load, iterations, largest, point, error)
+        real(dp), intent(in) :: weight0(:, :)
+        type(contact_state), intent(inout) :: state
+        real(dp), intent(in) :: free(:)
+        real(dp), intent(out) :: load(:)
+        integer, intent(out) :: iterations, point
+        real(dp), intent(out) :: largest
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
+        real(dp) :: jacobian(size(free), size(free)), alpha, scale
+        integer :: j, halvings
+
+        largest = 0.0_dp
+        point = 1
+        associate (delta => state%delta, laws => state%laws, options => state%settings)
+            load(:) = laws%force(delta) - state%preload
+            delta(:) = free - matmul(weight0, load)
+            call residual(weight0, laws, state%preload, free, delta, r, scale)
+            scale = max(scale, maxval(state%delta0))
+            do iterations = 0, options%max_iterations
+                if (maxval(abs(r)) <= options%tolerance*scale) return
+                if (iterations == options%max_iterations) exit
+                do j = 1, size(delta)
+                    jacobian(:, j) = weight0(:, j)*slope(laws(j), delta(j))
+                    jacobian(j, j) = jacobian(j, j) + 1.0_dp
+                end do
+                call solve_linear(jacobian, -r, step, error)
+                if (allocated(error)) return
+                alpha = 1.0_dp
+                do halvings = 0, max_halvings
+                    trial(:) = delta + alpha*step
+                    call residual(weight0, laws, state%preload, free, trial, r_trial, scale)
+                    if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
+                    alpha = alpha/2
+                end do
+                delta(:) = trial
+                r(:) = r_trial
+                scale = max(scale, maxval(state%delta0))
+            end do
+        end associate
+        iterations = state%settings%max_iterations + 1
+        point = maxloc(abs(r), 1)
+        largest = r(point)
+    end subroutine solve_compressions
+
+    !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].
+    subroutine residual(weight0, laws, preload, free, delta, r, scale)
+        real(dp), intent(in) :: weight0(:, :)
+        type(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: preload(:), free(:), delta(:)
+        real(dp), intent(out) :: r(:), scale
+
+        real(dp) :: load(size(delta)), coupling(size(delta))
+
+        load(:) = laws%force(delta) - preload
+        coupling(:) = matmul(weight0, load)
+        r(:) = delta - free + coupling
+        scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
+    end subroutine residual
+
+    !> dF/ddelta = p*k_c*delta^(p - 1) [N/m] in compression, zero otherwise.
+    elemental real(dp) function slope(law, delta)
+        type(contact_law), intent(in) :: law
+        real(dp), intent(in) :: delta
+
+        slope = 0.0_dp
+        if (delta > 0.0_dp) slope = law%tangent(delta)
+    end function slope
+
+    !> A fault unless every |u_i| is within the bound and F_i, delta_i are finite: the first
+    !> point that fails is named.
+    subroutine divergence_guard(state, road, displacement, force, fault)
+        type(contact_state), intent(in) :: state
+        real(dp), intent(in) :: road(:), displacement(:), force(:)
+        type(error_type), allocatable, intent(out) :: fault
+
+        integer :: i
+
+        do i = 1, size(displacement)
+            if (abs(displacement(i)) <= state%settings%divergence_bound .and. ieee_is_finite(force(i)) &
+                .and. ieee_is_finite(state%delta(i))) cycle
+            call step_fault(state, road, i, divergence_message(state, i, displacement(i)), fault)
+            return
+        end do
+    end subroutine divergence_guard
+
+    !> The fault of step state%step at a point: `what` went wrong, unless the road height
+    !> there is not a finite number, which is then said instead.
+    subroutine step_fault(state, road, point, what, fault)
+        type(contact_state), intent(in) :: state
+        real(dp), intent(in) :: road(:)
+        integer, intent(in) :: point
+        character(len=*), intent(in) :: what
+        type(error_type), allocatable, intent(inout) :: fault
+
+        character(len=:), allocatable :: message
+
+        if (ieee_is_finite(road(point))) then
+            message = what
+        else
+            message = 'contact run stopped '//where(state, point)//': the road height u_r is not a finite ' &
+                      //'number (NaN or infinite); steps before it are kept. Check the road data of that step'
+        end if
+        if (allocated(fault)) deallocate (fault)
+        call fatal_error(fault, message, stat_numerical)
+    end subroutine step_fault
+
+    !> "at step n (t = t_n s)", and " at point i" when the run has more than one point and
+    !> i > 0.
+    pure function where(state, point) result(text)
+        type(contact_state), intent(in) :: state
+        integer, intent(in) :: point
+        character(len=:), allocatable :: text
+
+        text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
+        if (size(state%laws) > 1 .and. point > 0) text = text//' at point '//int_text(point)
+    end function where
+
+    !> One line on an implicit step that did not converge: where, and the residual left [m].
+    pure function convergence_message(state, point, residual) result(message)
+        type(contact_state), intent(in) :: state
+        integer, intent(in) :: point
+        real(dp), intent(in) :: residual
+        character(len=:), allocatable :: message
+
+        message = 'implicit contact step did not converge '//where(state, point)//': residual |r| = ' &
+                  //sci_text(abs(residual))//' m after '//int_text(state%settings%max_iterations) &
+                  //' iterations (tolerance '//sci_text(state%settings%tolerance)//' of the compression scale)'
+    end function convergence_message
+
+    !> One line on a divergent run at a point: where, how large, and what to change.
+    pure function divergence_message(state, point, u) result(message)
+        type(contact_state), intent(in) :: state
+        integer, intent(in) :: point
+        real(dp), intent(in) :: u
+        character(len=:), allocatable :: message
+
+        message = 'contact run diverged '//where(state, point)//': '
+        if (ieee_is_finite(u)) then
+            message = message//'|u| = '//sci_text(abs(u))//' m exceeds the divergence bound ' &
+                      //sci_text(state%settings%divergence_bound)//' m'
+        else
+            message = message//'u, F or delta is not finite'
+        end if
+        if (state%step > 0) then
+            message = message//'; steps 0 to '//int_text(state%step - 1)//' are kept. '
+        else
+            message = message//'; no step is kept. '
+        end if
+        message = message//'The contact frequency is omega_c = sqrt(k_c''/M), k_c'' = p*k_c*delta0^(p-1) = ' &
+                  //sci_text(state%laws(point)%tangent(state%delta0(point)))//' N/m: '
+        if (state%settings%scheme == 'implicit' .and. state%coupled) then
+            message = message//'the implicit step with w0 > 0 is stable up to omega_c*dt of about ' &
+                      //'2*sqrt(3) = 3.46 (first-order hold, exact): reduce dt below ~3.46/omega_c'
+        else
+            message = message//'the explicit step is stable only for omega_c*dt < 2: reduce dt below ' &
+                      //'~2/omega_c or use scheme = ''implicit'' with an engine whose w0 > 0 (exact)'
+        end if
+    end function divergence_message
+
+end module greenconv_contact_step
