@@ -265,16 +265,16 @@ contains
         integer :: count_new, count_after_release
 
         fft = new_fft_convolver(random_kernel(2500, 9), dt_random, 16)
-        count_new = fft%plan_count()
+        count_new = fft%rings%plan_count()
         call run(fft, n_first + n_more, 33, reference)
         call fft%reset()
         call run(fft, n_first, 33, before)
         call fft%release()
-        count_after_release = fft%plan_count()
+        count_after_release = fft%rings%plan_count()
         call continue_run(fft, n_first, n_more, 33, after)
         call note('plans of a new object', real(count_new, dp))
-        call note('plans after the run', real(fft%plan_count(), dp))
-        call check(error, count_new == 0 .and. count_after_release == 0 .and. fft%plan_count() > 0, &
+        call note('plans after the run', real(fft%rings%plan_count(), dp))
+        call check(error, count_new == 0 .and. count_after_release == 0 .and. fft%rings%plan_count() > 0, &
                    'none when new, none after release, then planned again')
         if (allocated(error)) return
         call check(error, maxval(abs([before, after] - reference)), 0.0_dp, &

@@ -195,14 +195,14 @@ contains
         call new_fft_green_matrix(random_table(1500, 3, 51), dt, conv, failure)
         if (allocated(failure)) error stop 'test_greenfft_mod: '//failure%message
         first = stepped(conv, 4000, 52, 0)
-        call check(error, conv%plan_count() > 0, 'a run that reached the levels owns plans')
+        call check(error, conv%rings%plan_count() > 0, 'a run that reached the levels owns plans')
         if (allocated(error)) return
         call conv%reset()
         again = stepped(conv, 4000, 52, 0)
         call conv%reset()
         released = stepped(conv, 4000, 52, 1234)
         call conv%release()
-        call check(error, conv%plan_count() == 0, 'release leaves no plan')
+        call check(error, conv%rings%plan_count() == 0, 'release leaves no plan')
         if (allocated(error)) return
         call check(error, all(first == again), 'a rerun after reset is identical to the bit')
         if (allocated(error)) return

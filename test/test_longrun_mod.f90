@@ -498,7 +498,7 @@ contains
         ring_period = 1
         select type (conv)
         type is (fft_convolver)
-            ring_period = size(conv%recent, kind=int64)*size(conv%pending, kind=int64)
+            ring_period = size(conv%rings%recent, 1, kind=int64)*size(conv%rings%pending, 1, kind=int64)
         end select
     end function ring_period
 

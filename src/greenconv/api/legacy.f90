@@ -62,9 +62,10 @@ contains
         !> Method: 'direct', 'fft', 'modal', 'recursive', 'paper', 'exact', 'backward' or 'auto'
         !> (any case).
         character(len=*), intent(in) :: method
-        !> The new convolver's handle; 0 on failure.
+        !> Handle of the new mass-spring convolver; 0 on failure.
         integer(int64), intent(out) :: handle
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 for a mass, stiffness, damping ratio, dt, nstep or method out of
+        !> range.
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
@@ -95,9 +96,9 @@ contains
         integer, intent(in) :: nstep
         !> Method name (see `gcsdof`).
         character(len=*), intent(in) :: method
-        !> The new convolver's handle; 0 on failure.
+        !> Handle of the new modal convolver; 0 on failure.
         integer(int64), intent(out) :: handle
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 for a pole, residue, dt, nstep or method out of range.
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
@@ -124,9 +125,9 @@ contains
         integer, intent(in) :: nstep
         !> Method: 'direct' or 'fft'.
         character(len=*), intent(in) :: method
-        !> The new convolver's handle; 0 on failure.
+        !> Handle of the new convolver on the samples; 0 on failure.
         integer(int64), intent(out) :: handle
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 for too few samples, or a dt, nstep or method out of range.
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
@@ -145,7 +146,7 @@ contains
     subroutine gcfrf(path, dt, nstep, method, tole, maxmod, handle, ierr, errmsg)
         !> Path of the receptance file.
         character(len=*), intent(in) :: path
-        !> Time step dt [s], > 0.
+        !> Time step dt [s], > 0; for 'direct' and 'fft' a whole multiple of 1/(2*f_max).
         real(dp), intent(in) :: dt
         !> Number of steps N_t of the run, >= 1.
         integer, intent(in) :: nstep
@@ -155,7 +156,7 @@ contains
         real(dp), intent(in) :: tole
         !> Largest number of modes the LSCE order scan tries, >= 1 (30 is usual).
         integer, intent(in) :: maxmod
-        !> The new convolver's handle; 0 on failure.
+        !> Handle of the new convolver on the identified structure; 0 on failure.
         integer(int64), intent(out) :: handle
         !> Status: 0 success, 2 bad input, 3 failed identification.
         integer, intent(out) :: ierr
@@ -315,8 +316,8 @@ contains
 
         type(convolver_box), pointer :: box
 
-        text = ' '
         box => checked_box(handle, ierr)
+        text = ' '
         if (associated(box)) text = describe_box(box)
     end subroutine gcdesc
 

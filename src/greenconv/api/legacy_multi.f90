@@ -60,9 +60,9 @@ contains
         real(dp), intent(in) :: tol
         !> Method: 'modal' (= 'recursive'), 'exact', 'direct' or 'fft' (any case).
         character(len=*), intent(in) :: method
-        !> The new handle; 0 on failure.
+        !> Handle of the new modal multi-point convolver; 0 on failure.
         integer(int64), intent(out) :: handle
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 for NC, NMODE, a pole, residue, dt, nstep, tol or method out of range.
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
@@ -98,9 +98,9 @@ contains
         real(dp), intent(in) :: tol
         !> Method: 'direct' or 'fft' (any case).
         character(len=*), intent(in) :: method
-        !> The new handle; 0 on failure.
+        !> Handle of the new convolver on the sampled matrix; 0 on failure.
         integer(int64), intent(out) :: handle
-        !> Status: 0 success, 2 bad input.
+        !> Status: 0 success, 2 for NC, too few samples, or a dt, nstep, tol or method out of range.
         integer, intent(out) :: ierr
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
@@ -132,7 +132,7 @@ contains
         real(dp), intent(in) :: tol
         !> Largest order of the pole fit's stabilisation diagram, or 0 for the library's default (30).
         integer, intent(in) :: maxord
-        !> The new handle; 0 on failure.
+        !> Handle of the new convolver on the file's Green's matrix; 0 on failure.
         integer(int64), intent(out) :: handle
         !> Status: 0 success, 2 bad input or file, 3 a failed identification.
         integer, intent(out) :: ierr
@@ -158,7 +158,7 @@ contains
         integer, intent(in) :: nstep
         !> Truncation fraction of max |g_ij| for 'direct' and 'fft', in [0, 1).
         real(dp), intent(in) :: tol
-        !> The new handle; 0 on failure.
+        !> Handle of the new convolver on HFROM's file; 0 on failure.
         integer(int64), intent(out) :: handle
         !> Status: 0 success, 2 bad input or a source not made by GCMFIL.
         integer, intent(out) :: ierr

@@ -9,16 +9,23 @@
 !> with `push(q)`, which advances to step n + 1. `instant_weight()` is w0, the
 !> displacement per newton of the current step's own force (zero for the paper's scheme).
 !> The loop never knows whether a direct sum, an FFT or modes answer.
+!>
+!> What single-point and multi-point convolvers (greenconv_conv_multipoint) have in common sits
+!> in `convolver_core`: an engine implements `history`, `push` (which advances `step`) and
+!> `clear` (its memory of the forces; `reset` clears and returns the step to 0), and its
+!> constructor names it, with its time step and model size, by `set_model`.
 module greenconv_conv_convolver
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     implicit none
     private
 
-    public :: convolver, free_convolver, capped_step
+    public :: convolver_core, convolver, free_convolver, capped_step
 
-    !> A causal convolver stepped once per time step.
-    type, abstract :: convolver
+    !> What every convolver holds and does, for one contact point (`convolver`) or for N_c
+    !> (greenconv_conv_multipoint's `multipoint_convolver`): its name, time step, step
+    !> counter and model size; `reset`, `model_size` and `release`.
+    type, abstract :: convolver_core
         !> Short name of the method, as written in a scene's `methods` list.
         character(len=:), allocatable :: name
         !> Time step dt [s].
@@ -26,6 +33,26 @@ module greenconv_conv_convolver
         !> Number of forces pushed so far (the index n of the next step); 64 bits, so that a
         !> convolver may be stepped past 2^31 - 1 pushes.
         integer(int64) :: step = 0
+        !> Size of the model: N_g kernel samples or N_m modes (set by `set_model`).
+        integer :: model_count = 0
+        !> What `model_count` counts: `N_g` or `N_m`.
+        character(len=:), allocatable :: model_label
+    contains
+        !> Forget all forces pushed and return to step 0: `clear`, then the step counter.
+        procedure, non_overridable :: reset
+        !> Forget the forces pushed: the engine's own memory of them (by `reset`).
+        procedure(clear_interface), deferred :: clear
+        !> Size of the model: N_g kernel samples or N_m modes, with its label.
+        procedure :: model_size
+        !> Set the name, time step and model size (by the constructors).
+        procedure :: set_model
+        !> Give back what the convolver holds outside Fortran's memory (FFTW plans); it makes
+        !> them again if stepped further. Nothing to give back by default.
+        procedure :: release => release_nothing
+    end type convolver_core
+
+    !> A causal convolver of one contact point, stepped once per time step.
+    type, abstract, extends(convolver_core) :: convolver
         !> Displacement per newton [m/N] of the current step's own force, w0; fixed when the
         !> convolver is built, the same at every step.
         real(dp) :: weight0 = 0.0_dp
@@ -34,18 +61,18 @@ module greenconv_conv_convolver
         procedure(history_interface), deferred :: history
         !> Record the force q(t_n) [N] of the current step and advance to the next.
         procedure(push_interface), deferred :: push
-        !> Forget all forces pushed and return to step 0.
-        procedure(reset_interface), deferred :: reset
-        !> Size of the model: N_g kernel samples or N_m modes, with its label.
-        procedure(size_interface), deferred :: model_size
         !> Displacement per newton [m/N] of the current step's own force.
         procedure :: instant_weight
-        !> Give back what the convolver holds outside Fortran's memory (FFTW plans); it makes
-        !> them again if stepped further. Nothing to give back by default.
-        procedure :: release => release_nothing
     end type convolver
 
     abstract interface
+        !> Forget the forces pushed so far (the step counter is `reset`'s).
+        subroutine clear_interface(self)
+            import :: convolver_core
+            implicit none
+            class(convolver_core), intent(inout) :: self
+        end subroutine clear_interface
+
         !> Displacement u_h(n) [m] at t_n from the forces pushed so far.
         function history_interface(self) result(u)
             import :: convolver, dp
@@ -61,22 +88,6 @@ module greenconv_conv_convolver
             class(convolver), intent(inout) :: self
             real(dp), intent(in) :: force
         end subroutine push_interface
-
-        !> Return to step 0 with no force history.
-        subroutine reset_interface(self)
-            import :: convolver
-            implicit none
-            class(convolver), intent(inout) :: self
-        end subroutine reset_interface
-
-        !> Size of the model and its label (`N_g` or `N_m`).
-        subroutine size_interface(self, n, label)
-            import :: convolver
-            implicit none
-            class(convolver), intent(in) :: self
-            integer, intent(out) :: n
-            character(len=:), allocatable, intent(out) :: label
-        end subroutine size_interface
     end interface
 
 contains
@@ -102,10 +113,52 @@ contains
         if (step < limit) capped_step = int(step)
     end function capped_step
 
+    !> Forget all forces pushed and return to step 0.
+    subroutine reset(self)
+        !> The convolver.
+        class(convolver_core), intent(inout) :: self
+
+        call self%clear()
+        self%step = 0
+    end subroutine reset
+
+    !> Size of the model and its label (`N_g` or `N_m`).
+    subroutine model_size(self, n, label)
+        !> The convolver.
+        class(convolver_core), intent(in) :: self
+        !> Number of kernel samples N_g or of modes N_m.
+        integer, intent(out) :: n
+        !> `N_g` or `N_m`.
+        character(len=:), allocatable, intent(out) :: label
+
+        n = self%model_count
+        label = ''
+        if (allocated(self%model_label)) label = self%model_label
+    end subroutine model_size
+
+    !> Name a new convolver and give it its time step and model size.
+    pure subroutine set_model(self, name, dt, n, label)
+        !> The convolver.
+        class(convolver_core), intent(inout) :: self
+        !> Short name of the method.
+        character(len=*), intent(in) :: name
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Number of kernel samples N_g or of modes N_m.
+        integer, intent(in) :: n
+        !> `N_g` or `N_m`.
+        character(len=*), intent(in) :: label
+
+        self%name = name
+        self%dt = dt
+        self%model_count = n
+        self%model_label = label
+    end subroutine set_model
+
     !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
     subroutine release_nothing(self)
         !> The convolver.
-        class(convolver), intent(inout) :: self
+        class(convolver_core), intent(inout) :: self
 
         associate (unused => self%step)
         end associate

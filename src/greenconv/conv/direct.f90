@@ -33,8 +33,7 @@ module greenconv_conv_direct
     contains
         procedure :: history => direct_history
         procedure :: push => direct_push
-        procedure :: reset => direct_reset
-        procedure :: model_size => direct_size
+        procedure :: clear => direct_clear
     end type direct_convolver
 
 contains
@@ -53,8 +52,7 @@ contains
         integer :: n_g
 
         n_g = ubound(kernel, 1)
-        conv%name = 'direct'
-        conv%dt = dt
+        call conv%set_model('direct', dt, n_g, 'N_g')
         conv%weight0 = dt*kernel(0)
         conv%weight = dt*kernel(1:n_g)
         allocate (conv%past(2*n_g))
@@ -94,22 +92,11 @@ contains
     end subroutine direct_push
 
     !> Clear the force history.
-    subroutine direct_reset(self)
+    subroutine direct_clear(self)
         class(direct_convolver), intent(inout) :: self
 
         self%past = 0.0_dp
         self%head = 1
-        self%step = 0
-    end subroutine direct_reset
-
-    !> Kernel length N_g.
-    subroutine direct_size(self, n, label)
-        class(direct_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%weight)
-        label = 'N_g'
-    end subroutine direct_size
+    end subroutine direct_clear
 
 end module greenconv_conv_direct

@@ -68,6 +68,7 @@ module greenconv_conv_fft
     public :: fft_convolver, new_fft_convolver
     public :: default_head
     public :: partition_schedule, add_to_ring
+    public :: partition_rings, lay_out
 
     !> Number of taps summed directly when the constructor is given no `head`.
     integer, parameter :: default_head = 64
@@ -93,46 +94,62 @@ module greenconv_conv_fft
         complex(dp), allocatable :: input_spectra(:, :)
     end type fft_level
 
+    !> What a partitioned-FFT engine keeps between pushes besides its levels, for N_c points
+    !> (one column per point; one for `fft`, N_c for greenconv_conv_green_fft): the rings of
+    !> past forces and of pending outputs, the count down to the next block, the scratch of
+    !> the transforms and their FFTW plans.
+    type :: partition_rings
+        !> The last H forces of each point [N], each stored twice (rows r and r + H), newest
+        !> at row `head_position`.
+        real(dp), allocatable :: head_past(:, :)
+        !> Row of the newest force in `head_past`.
+        integer :: head_position = 1
+        !> The last forces [N], force of step m at row mod(m, rows) + 1 (rows = largest block).
+        real(dp), allocatable :: recent(:, :)
+        !> Row in `recent` of the force of the current step, mod(step, rows) + 1.
+        integer :: recent_position = 1
+        !> Contributions of the levels to coming outputs [m], output n at row mod(n, rows) + 1.
+        real(dp), allocatable :: pending(:, :)
+        !> Row in `pending` of the output of the current step, mod(step, rows) + 1.
+        integer :: pending_position = 1
+        !> Block size B_l of each level, smallest first.
+        integer, allocatable :: blocks(:)
+        !> Pushes left until the step is a multiple of the smallest block (huge without levels).
+        integer :: countdown = 0
+        !> Scratch: zero-padded samples of a block or partition, 2*(largest block).
+        real(dp), allocatable :: samples(:)
+        !> Scratch: a spectrum, (largest block) + 1 lines.
+        complex(dp), allocatable :: spectrum(:)
+        !> The FFTW plans of the engine's transforms, made on demand.
+        type(fft_plan_set) :: plans
+    contains
+        !> Empty rings, positions at the start, the count down at the smallest block.
+        procedure :: clear => rings_clear
+        !> Take the forces of a push and say which levels it completes.
+        procedure :: store => rings_store
+        !> Number of FFTW plan pairs (r2c and c2r) the rings' transforms own.
+        procedure :: plan_count => rings_plan_count
+    end type partition_rings
+
     !> Partitioned FFT convolution: a direct head and FFT levels of growing block size.
     type, extends(convolver) :: fft_convolver
         !> Kernel length N_g (taps 1..N_g).
         integer :: n_g = 0
         !> Head weights w_j = dt*g(t_j) [m/N], j = 1..H.
         real(dp), allocatable :: head_weight(:)
-        !> The last H forces [N], each stored twice (positions i and i + H), newest at `head_position`.
-        real(dp), allocatable :: head_past(:)
-        !> Position of the newest force in `head_past`.
-        integer :: head_position = 1
         !> The FFT levels, smallest block first (none when N_g <= H).
         type(fft_level), allocatable :: levels(:)
-        !> The last forces [N], force of step m at position mod(m, size) + 1 (size = largest block).
-        real(dp), allocatable :: recent(:)
-        !> Position in `recent` of the force of the current step, mod(step, size(recent)) + 1.
-        integer :: recent_position = 1
-        !> Contributions of the levels to coming outputs [m], output n at position mod(n, size) + 1.
-        real(dp), allocatable :: pending(:)
-        !> Position in `pending` of the output of the current step, mod(step, size(pending)) + 1.
-        integer :: pending_position = 1
-        !> Pushes left until the step is a multiple of the smallest block (huge without levels).
-        integer :: countdown = 0
-        !> Scratch: zero-padded samples of a block or partition, 2*(largest block).
-        real(dp), allocatable :: samples(:)
-        !> Scratch: a product spectrum, (largest block) + 1 lines.
-        complex(dp), allocatable :: spectrum(:)
-        !> The FFTW plans of this object's transforms, made on demand.
-        type(fft_plan_set) :: plans
+        !> Force rings, pending outputs, scratch and FFTW plans (one column: one point).
+        type(partition_rings) :: rings
         !> Steps n whose history the kernel covers, n < valid_steps (huge: any run length); the
         !> history is NaN from then on (see greenconv_conv_direct).
         integer(int64) :: valid_steps = huge(0_int64)
     contains
         procedure :: history => fft_history
         procedure :: push => fft_push
-        procedure :: reset => fft_reset
-        procedure :: model_size => fft_size
+        procedure :: clear => fft_clear
         !> Destroy this object's FFTW plans now (it plans again if stepped further).
         procedure :: release => fft_release_plans
-        !> Number of FFTW plan pairs this object owns.
-        procedure :: plan_count => fft_plan_count
     end type fft_convolver
 
 contains
@@ -160,18 +177,25 @@ contains
         n_head = min(max(n_head, 1), n_g)
         allocate (weight(n_g))
         weight(:) = dt*kernel(1:n_g)
-        conv%name = 'fft'
-        conv%dt = dt
+        call conv%set_model('fft', dt, n_g, 'N_g')
         conv%weight0 = dt*kernel(0)
         conv%n_g = n_g
         if (present(valid_steps)) conv%valid_steps = valid_steps
-        allocate (conv%head_weight(n_head), conv%head_past(2*n_head))
+        allocate (conv%head_weight(n_head))
         conv%head_weight(:) = weight(1:n_head)
         call build_levels(conv, weight, n_head)
         ! The kernel spectra are made: the new object holds no plan (see the module notes).
-        call conv%plans%release()
+        call conv%rings%plans%release()
         call conv%reset()
     end function new_fft_convolver
+
+    !> Destroy the FFTW plans this object owns; stepping on plans again.
+    subroutine fft_release_plans(self)
+        !> The convolver.
+        class(fft_convolver), intent(inout) :: self
+
+        call self%rings%plans%release()
+    end subroutine fft_release_plans
 
     !> Lay out the levels behind a head of n_head taps, size the rings and scratch arrays,
     !> and transform the partitions.
@@ -181,21 +205,49 @@ contains
         integer, intent(in) :: n_head
 
         integer :: blocks(bit_size(0)), parts(bit_size(0)), first(bit_size(0))
-        integer :: n_levels, l, largest, span
+        integer :: n_levels, l
 
-        call partition_schedule(size(weight), n_head, n_levels, blocks, parts, first)
+        call lay_out(conv%rings, size(weight), n_head, 1, n_levels, blocks, parts, first)
+        allocate (conv%levels(n_levels))
+        do l = 1, n_levels
+            call build_level(conv%levels(l), weight, blocks(l), parts(l), first(l), conv%rings%samples, &
+                             conv%rings%plans)
+        end do
+    end subroutine build_levels
+
+    !> The levels' schedule (`partition_schedule`, whose optional arguments it hands on) and
+    !> rings and scratch sized for it, for n_c points behind a head of n_head taps.
+    subroutine lay_out(rings, n_g, n_head, n_c, n_levels, blocks, parts, first, level_parts, finish)
+        !> The rings to size.
+        type(partition_rings), intent(inout) :: rings
+        !> Kernel length N_g (taps 1..N_g).
+        integer, intent(in) :: n_g
+        !> Number of taps H summed directly.
+        integer, intent(in) :: n_head
+        !> Number of points N_c (columns of the rings).
+        integer, intent(in) :: n_c
+        !> Number of levels L (0 when N_g <= H).
+        integer, intent(out) :: n_levels
+        !> Block size B_l, partition count P_l and first tap s_l of each level l = 1..L.
+        integer, intent(out) :: blocks(:), parts(:), first(:)
+        !> Partitions of a level that is not the last.
+        integer, intent(in), optional :: level_parts
+        !> Partitions that make a level the last.
+        integer, intent(in), optional :: finish
+
+        integer :: largest, span
+
+        call partition_schedule(n_g, n_head, n_levels, blocks, parts, first, level_parts, finish)
         largest = 1
         span = 1
         if (n_levels > 0) then
             largest = blocks(n_levels)
             span = maxval(first(1:n_levels) + blocks(1:n_levels) - 1)
         end if
-        allocate (conv%levels(n_levels), conv%recent(largest), conv%pending(span))
-        allocate (conv%samples(2*largest), conv%spectrum(largest + 1))
-        do l = 1, n_levels
-            call build_level(conv%levels(l), weight, blocks(l), parts(l), first(l), conv%samples, conv%plans)
-        end do
-    end subroutine build_levels
+        rings%blocks = blocks(1:n_levels)
+        allocate (rings%head_past(2*n_head, n_c), rings%recent(largest, n_c), rings%pending(span, n_c))
+        allocate (rings%samples(2*largest), rings%spectrum(largest + 1))
+    end subroutine lay_out
 
     !> The schedule: block size, partition count and first tap of each level (see the module
     !> notes); also the schedule of the multi-point engine (greenconv_conv_green_fft).
@@ -282,8 +334,10 @@ contains
             return
         end if
         h = size(self%head_weight)
-        u = dot4(self%head_weight, self%head_past(self%head_position:self%head_position + h - 1)) &
-            + self%pending(self%pending_position)
+        associate (r => self%rings)
+            u = dot4(self%head_weight, r%head_past(r%head_position:r%head_position + h - 1, 1)) &
+                + r%pending(r%pending_position, 1)
+        end associate
     end function fft_history
 
     !> sum_i a(i)*b(i) in four interleaved partial sums: four multiply-adds in flight instead
@@ -319,27 +373,12 @@ contains
         class(fft_convolver), intent(inout) :: self
         real(dp), intent(in) :: force
 
-        integer :: h, l
+        integer :: l, n_due
 
-        h = size(self%head_weight)
-        if (h > 0) then
-            self%head_position = self%head_position - 1
-            if (self%head_position < 1) self%head_position = h
-            self%head_past(self%head_position) = force
-            self%head_past(self%head_position + h) = force
-        end if
-        self%recent(self%recent_position) = force
-        self%recent_position = self%recent_position + 1
-        if (self%recent_position > size(self%recent)) self%recent_position = 1
-        self%pending(self%pending_position) = 0.0_dp
-        self%pending_position = self%pending_position + 1
-        if (self%pending_position > size(self%pending)) self%pending_position = 1
         self%step = self%step + 1
-        self%countdown = self%countdown - 1
-        if (self%countdown > 0 .or. size(self%levels) == 0) return
-        self%countdown = self%levels(1)%block
-        do l = 1, size(self%levels)
-            if (mod(self%step, int(self%levels(l)%block, int64)) == 0) call run_level(self, l)
+        call self%rings%store([force], self%step, n_due)
+        do l = 1, n_due
+            call run_level(self, l)
         end do
     end subroutine fft_push
 
@@ -352,22 +391,22 @@ contains
 
         integer :: b, first, p, column
 
-        associate (level => self%levels(l))
+        associate (level => self%levels(l), r => self%rings)
             b = level%block
-            first = int(mod(self%step - b, size(self%recent, kind=int64))) + 1
-            self%samples(1:b) = self%recent(first:first + b - 1)
-            self%samples(b + 1:2*b) = 0.0_dp
+            first = int(mod(self%step - b, size(r%recent, 1, kind=int64))) + 1
+            r%samples(1:b) = r%recent(first:first + b - 1, 1)
+            r%samples(b + 1:2*b) = 0.0_dp
             level%newest = level%newest - 1
             if (level%newest < 1) level%newest = level%parts
-            call self%plans%forward(self%samples(1:2*b), level%input_spectra(1:b + 1, level%newest))
-            self%spectrum(1:b + 1) = level%kernel_spectra(1:b + 1, 1)*level%input_spectra(1:b + 1, level%newest)
+            call r%plans%forward(r%samples(1:2*b), level%input_spectra(1:b + 1, level%newest))
+            r%spectrum(1:b + 1) = level%kernel_spectra(1:b + 1, 1)*level%input_spectra(1:b + 1, level%newest)
             do p = 2, level%parts
                 column = mod(level%newest + p - 2, level%parts) + 1
-                self%spectrum(1:b + 1) = self%spectrum(1:b + 1) &
+                r%spectrum(1:b + 1) = r%spectrum(1:b + 1) &
                                          + level%kernel_spectra(1:b + 1, p)*level%input_spectra(1:b + 1, column)
             end do
-            call self%plans%inverse(self%spectrum(1:b + 1), self%samples(1:2*b))
-            call add_to_ring(self%pending, self%step - b + level%first_tap, self%samples(1:2*b - 1))
+            call r%plans%inverse(r%spectrum(1:b + 1), r%samples(1:2*b))
+            call add_to_ring(r%pending(:, 1), self%step - b + level%first_tap, r%samples(1:2*b - 1))
         end associate
     end subroutine run_level
 
@@ -389,52 +428,81 @@ contains
         ring(1:m - n1) = ring(1:m - n1) + values(n1 + 1:m)
     end subroutine add_to_ring
 
-    !> Clear the force history and the pending outputs.
-    subroutine fft_reset(self)
+    !> No force pushed yet: empty delay lines of block spectra, empty rings.
+    subroutine fft_clear(self)
         class(fft_convolver), intent(inout) :: self
 
         integer :: l
 
-        self%head_past(:) = 0.0_dp
-        self%head_position = 1
-        self%recent(:) = 0.0_dp
-        self%recent_position = 1
-        self%pending(:) = 0.0_dp
-        self%pending_position = 1
-        self%countdown = huge(0)
-        if (size(self%levels) > 0) self%countdown = self%levels(1)%block
         do l = 1, size(self%levels)
             self%levels(l)%input_spectra(:, :) = (0.0_dp, 0.0_dp)
-            self%levels(l)%newest = 1
         end do
-        self%step = 0
-    end subroutine fft_reset
+        self%levels(:)%newest = 1
+        call self%rings%clear()
+    end subroutine fft_clear
 
-    !> Kernel length N_g.
-    subroutine fft_size(self, n, label)
-        class(fft_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
 
-        n = self%n_g
-        label = 'N_g'
-    end subroutine fft_size
+    !> Empty rings of forces and outputs, every position at its start, the count down at the
+    !> smallest block (huge without levels).
+    subroutine rings_clear(self)
+        !> The rings.
+        class(partition_rings), intent(inout) :: self
 
-    !> Destroy the FFTW plans this object owns; stepping on plans again.
-    subroutine fft_release_plans(self)
-        !> The convolver.
-        class(fft_convolver), intent(inout) :: self
+        self%head_past(:, :) = 0.0_dp
+        self%head_position = 1
+        self%recent(:, :) = 0.0_dp
+        self%recent_position = 1
+        self%pending(:, :) = 0.0_dp
+        self%pending_position = 1
+        self%countdown = huge(0)
+        if (size(self%blocks) > 0) self%countdown = self%blocks(1)
+    end subroutine rings_clear
 
-        call self%plans%release()
-    end subroutine fft_release_plans
+    !> Take the forces of step n - 1 into the head and the recent forces, retire output n - 1,
+    !> and count the levels the push completes: levels 1..n_due, those whose block size
+    !> divides n (each block size divides the next, so they are the first ones).
+    subroutine rings_store(self, forces, step, n_due)
+        !> The rings.
+        class(partition_rings), intent(inout) :: self
+        !> The forces of the push [N], one per point.
+        real(dp), intent(in) :: forces(:)
+        !> The step n after the push.
+        integer(int64), intent(in) :: step
+        !> Number of levels whose block the push completes.
+        integer, intent(out) :: n_due
 
-    !> Number of FFTW plan pairs (r2c and c2r) this object owns.
-    function fft_plan_count(self) result(count)
-        !> The convolver.
-        class(fft_convolver), intent(in) :: self
+        integer :: h
+
+        h = size(self%head_past, 1)/2
+        if (h > 0) then
+            self%head_position = self%head_position - 1
+            if (self%head_position < 1) self%head_position = h
+            self%head_past(self%head_position, :) = forces
+            self%head_past(self%head_position + h, :) = forces
+        end if
+        self%recent(self%recent_position, :) = forces
+        self%recent_position = self%recent_position + 1
+        if (self%recent_position > size(self%recent, 1)) self%recent_position = 1
+        self%pending(self%pending_position, :) = 0.0_dp
+        self%pending_position = self%pending_position + 1
+        if (self%pending_position > size(self%pending, 1)) self%pending_position = 1
+        n_due = 0
+        self%countdown = self%countdown - 1
+        if (self%countdown > 0 .or. size(self%blocks) == 0) return
+        self%countdown = self%blocks(1)
+        do while (n_due < size(self%blocks))
+            if (mod(step, int(self%blocks(n_due + 1), int64)) /= 0) exit
+            n_due = n_due + 1
+        end do
+    end subroutine rings_store
+
+    !> Number of FFTW plan pairs (r2c and c2r) the engine owns.
+    function rings_plan_count(self) result(count)
+        !> The rings.
+        class(partition_rings), intent(in) :: self
         integer :: count
 
         count = self%plans%plan_count()
-    end function fft_plan_count
+    end function rings_plan_count
 
 end module greenconv_conv_fft

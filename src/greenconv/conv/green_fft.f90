@@ -28,10 +28,10 @@
 module greenconv_conv_green_fft
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_error, only: error_type
     use greenconv_ext_fftw, only: fft_plan_set
-    use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_fft, only: partition_schedule, add_to_ring
+    use greenconv_conv_multipoint, only: multipoint_convolver, check_green_table
+    use greenconv_conv_fft, only: add_to_ring, partition_rings, lay_out
     implicit none
     private
 
@@ -75,39 +75,17 @@ module greenconv_conv_green_fft
         !> Head weights head_weight(i, m, j) = W_ij(m) [m/N], m = 1..H (receiving point first,
         !> so that the head's sum is a vectorised update of all points per tap and source).
         real(dp), allocatable :: head_weight(:, :, :)
-        !> The last H forces of each point [N], each stored twice (rows r and r + H), newest
-        !> at row `head_position`.
-        real(dp), allocatable :: head_past(:, :)
-        !> Row of the newest force in `head_past`.
-        integer :: head_position = 1
         !> The FFT levels, smallest block first (none when N_g <= H).
         type(green_fft_level), allocatable :: levels(:)
-        !> The last forces [N], force of step m at row mod(m, rows) + 1 (rows = largest block).
-        real(dp), allocatable :: recent(:, :)
-        !> Row in `recent` of the force of the current step.
-        integer :: recent_position = 1
-        !> Contributions of the levels to coming outputs [m], output n at row mod(n, rows) + 1.
-        real(dp), allocatable :: pending(:, :)
-        !> Row in `pending` of the output of the current step.
-        integer :: pending_position = 1
-        !> Pushes left until the step is a multiple of the smallest block (huge without levels).
-        integer :: countdown = 0
-        !> Scratch: zero-padded samples, 2*(largest block).
-        real(dp), allocatable :: samples(:)
-        !> Scratch: a spectrum, (largest block) + 1 lines.
-        complex(dp), allocatable :: spectrum(:)
         !> Scratch: real and imaginary parts of a product sum, (largest block) + 1 lines.
         real(dp), allocatable :: sum_re(:), sum_im(:)
-        !> The FFTW plans of this object's transforms, made on demand.
-        type(fft_plan_set) :: plans
+        !> Force rings (one column per point), pending outputs, scratch and FFTW plans.
+        type(partition_rings) :: rings
     contains
         procedure :: history => green_fft_history
         procedure :: push => green_fft_push
-        procedure :: reset => green_fft_reset
-        procedure :: model_size => green_fft_size
+        procedure :: clear => green_fft_clear
         procedure :: release => green_fft_release
-        !> Number of FFTW plan pairs this object owns.
-        procedure :: plan_count => green_fft_plan_count
     end type fft_green_matrix
 
 contains
@@ -128,27 +106,30 @@ contains
 
         integer :: n_g, n_c, n_head
 
+        call check_green_table(kernel, error)
+        if (allocated(error)) return
         n_g = ubound(kernel, 1)
         n_c = size(kernel, 2)
-        if (n_g < 1 .or. n_c < 1 .or. size(kernel, 3) /= n_c) then
-            call fatal_error(error, 'sampled Green''s matrix: expected samples m = 0..N_g (N_g >= 1) of an ' &
-                             //'N_c x N_c matrix')
-            return
-        end if
         n_head = default_multipoint_head
         if (present(head)) n_head = head
         n_head = min(max(n_head, 1), n_g)
-        conv%name = 'fft'
-        conv%dt = dt
+        call conv%set_model('fft', dt, n_g, 'N_g')
         conv%n_g = n_g
         call conv%set_instant_matrix(dt*kernel(0, :, :))
-        allocate (conv%head_weight(n_c, n_head, n_c), conv%head_past(2*n_head, n_c))
+        allocate (conv%head_weight(n_c, n_head, n_c))
         conv%head_weight(:, :, :) = reshape(dt*kernel(1:n_head, :, :), [n_c, n_head, n_c], order=[2, 1, 3])
         call build_levels(conv, kernel, dt, n_head)
         ! The kernel spectra are made: the new object holds no plan (as the single-point engine).
-        call conv%plans%release()
+        call conv%rings%plans%release()
         call conv%reset()
     end subroutine new_fft_green_matrix
+
+    !> Destroy the FFTW plans this object owns; stepping on plans again.
+    subroutine green_fft_release(self)
+        class(fft_green_matrix), intent(inout) :: self
+
+        call self%rings%plans%release()
+    end subroutine green_fft_release
 
     !> Lay out the levels behind the head, size the rings and the scratch, transform the partitions.
     subroutine build_levels(conv, kernel, dt, n_head)
@@ -158,21 +139,15 @@ contains
         integer, intent(in) :: n_head
 
         integer :: blocks(bit_size(0)), parts(bit_size(0)), first(bit_size(0))
-        integer :: n_levels, l, largest, span, n_c
+        integer :: n_levels, l, n_c
 
         n_c = size(kernel, 2)
-        call partition_schedule(conv%n_g, n_head, n_levels, blocks, parts, first, level_parts, finish_parts)
-        largest = 1
-        span = 1
-        if (n_levels > 0) then
-            largest = blocks(n_levels)
-            span = maxval(first(1:n_levels) + blocks(1:n_levels) - 1)
-        end if
-        allocate (conv%levels(n_levels), conv%recent(largest, n_c), conv%pending(span, n_c))
-        allocate (conv%samples(2*largest), conv%spectrum(largest + 1), conv%sum_re(largest + 1), &
-                  conv%sum_im(largest + 1))
+        call lay_out(conv%rings, conv%n_g, n_head, n_c, n_levels, blocks, parts, first, level_parts, finish_parts)
+        allocate (conv%levels(n_levels), conv%sum_re(size(conv%rings%spectrum)), &
+                  conv%sum_im(size(conv%rings%spectrum)))
         do l = 1, n_levels
-            call build_level(conv%levels(l), kernel, dt, blocks(l), parts(l), first(l), conv%samples, conv%plans)
+            call build_level(conv%levels(l), kernel, dt, blocks(l), parts(l), first(l), conv%rings%samples, &
+                             conv%rings%plans)
         end do
     end subroutine build_levels
 
@@ -220,13 +195,15 @@ contains
         integer :: h, m, j, first
 
         h = size(self%head_weight, 2)
-        first = self%head_position - 1
-        u(:) = self%pending(self%pending_position, :)
-        do j = 1, size(self%head_past, 2)
-            do m = 1, h
-                u(:) = u(:) + self%head_weight(:, m, j)*self%head_past(first + m, j)
+        associate (r => self%rings)
+            first = r%head_position - 1
+            u(:) = r%pending(r%pending_position, :)
+            do j = 1, size(r%head_past, 2)
+                do m = 1, h
+                    u(:) = u(:) + self%head_weight(:, m, j)*r%head_past(first + m, j)
+                end do
             end do
-        end do
+        end associate
     end subroutine green_fft_history
 
     !> Store the forces of step n, retire output n, advance, and run every level whose block
@@ -235,25 +212,12 @@ contains
         class(fft_green_matrix), intent(inout) :: self
         real(dp), intent(in) :: forces(:)
 
-        integer :: h, l
+        integer :: l, n_due
 
-        h = size(self%head_weight, 2)
-        self%head_position = self%head_position - 1
-        if (self%head_position < 1) self%head_position = h
-        self%head_past(self%head_position, :) = forces
-        self%head_past(self%head_position + h, :) = forces
-        self%recent(self%recent_position, :) = forces
-        self%recent_position = self%recent_position + 1
-        if (self%recent_position > size(self%recent, 1)) self%recent_position = 1
-        self%pending(self%pending_position, :) = 0.0_dp
-        self%pending_position = self%pending_position + 1
-        if (self%pending_position > size(self%pending, 1)) self%pending_position = 1
         self%step = self%step + 1
-        self%countdown = self%countdown - 1
-        if (self%countdown > 0 .or. size(self%levels) == 0) return
-        self%countdown = self%levels(1)%block
-        do l = 1, size(self%levels)
-            if (mod(self%step, int(self%levels(l)%block, int64)) == 0) call run_level(self, l)
+        call self%rings%store(forces, self%step, n_due)
+        do l = 1, n_due
+            call run_level(self, l)
         end do
     end subroutine green_fft_push
 
@@ -266,18 +230,18 @@ contains
 
         integer :: b, first, p, i, j, column, n_c
 
-        n_c = size(self%recent, 2)
-        associate (level => self%levels(l))
+        n_c = size(self%rings%recent, 2)
+        associate (level => self%levels(l), r => self%rings)
             b = level%block
-            first = int(mod(self%step - b, size(self%recent, 1, kind=int64))) + 1
+            first = int(mod(self%step - b, size(r%recent, 1, kind=int64))) + 1
             level%newest = level%newest - 1
             if (level%newest < 1) level%newest = level%parts
-            self%samples(b + 1:2*b) = 0.0_dp
+            r%samples(b + 1:2*b) = 0.0_dp
             do j = 1, n_c
-                self%samples(1:b) = self%recent(first:first + b - 1, j)
-                call self%plans%forward(self%samples(1:2*b), self%spectrum(1:b + 1))
-                level%input_re(1:b + 1, level%newest, j) = real(self%spectrum(1:b + 1), dp)
-                level%input_im(1:b + 1, level%newest, j) = aimag(self%spectrum(1:b + 1))
+                r%samples(1:b) = r%recent(first:first + b - 1, j)
+                call r%plans%forward(r%samples(1:2*b), r%spectrum(1:b + 1))
+                level%input_re(1:b + 1, level%newest, j) = real(r%spectrum(1:b + 1), dp)
+                level%input_im(1:b + 1, level%newest, j) = aimag(r%spectrum(1:b + 1))
             end do
             do i = 1, n_c
                 self%sum_re(1:b + 1) = 0.0_dp
@@ -290,9 +254,9 @@ contains
                                           self%sum_re, self%sum_im)
                     end do
                 end do
-                self%spectrum(1:b + 1) = cmplx(self%sum_re(1:b + 1), self%sum_im(1:b + 1), dp)
-                call self%plans%inverse(self%spectrum(1:b + 1), self%samples(1:2*b))
-                call add_to_ring(self%pending(:, i), self%step - b + level%first_tap, self%samples(1:2*b - 1))
+                r%spectrum(1:b + 1) = cmplx(self%sum_re(1:b + 1), self%sum_im(1:b + 1), dp)
+                call r%plans%inverse(r%spectrum(1:b + 1), r%samples(1:2*b))
+                call add_to_ring(r%pending(:, i), self%step - b + level%first_tap, r%samples(1:2*b - 1))
             end do
         end associate
     end subroutine run_level
@@ -311,52 +275,18 @@ contains
         end do
     end subroutine multiply_add
 
-    !> Clear the force history and the pending outputs.
-    subroutine green_fft_reset(self)
+    !> No force pushed yet: every point's delay lines of block spectra and rings emptied.
+    subroutine green_fft_clear(self)
         class(fft_green_matrix), intent(inout) :: self
 
         integer :: l
 
-        self%head_past(:, :) = 0.0_dp
-        self%head_position = 1
-        self%recent(:, :) = 0.0_dp
-        self%recent_position = 1
-        self%pending(:, :) = 0.0_dp
-        self%pending_position = 1
-        self%countdown = huge(0)
-        if (size(self%levels) > 0) self%countdown = self%levels(1)%block
         do l = 1, size(self%levels)
             self%levels(l)%input_re(:, :, :) = 0.0_dp
             self%levels(l)%input_im(:, :, :) = 0.0_dp
-            self%levels(l)%newest = 1
         end do
-        self%step = 0
-    end subroutine green_fft_reset
-
-    !> Kernel length N_g.
-    subroutine green_fft_size(self, n, label)
-        class(fft_green_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = self%n_g
-        label = 'N_g'
-    end subroutine green_fft_size
-
-    !> Destroy the FFTW plans this object owns; stepping on plans again.
-    subroutine green_fft_release(self)
-        class(fft_green_matrix), intent(inout) :: self
-
-        call self%plans%release()
-    end subroutine green_fft_release
-
-    !> Number of FFTW plan pairs (r2c and c2r) this object owns.
-    function green_fft_plan_count(self) result(count)
-        !> The convolver.
-        class(fft_green_matrix), intent(in) :: self
-        integer :: count
-
-        count = self%plans%plan_count()
-    end function green_fft_plan_count
+        self%levels(:)%newest = 1
+        call self%rings%clear()
+    end subroutine green_fft_clear
 
 end module greenconv_conv_green_fft

@@ -39,8 +39,7 @@ module greenconv_conv_green_modal
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
-        procedure :: reset => modal_reset
-        procedure :: model_size => modal_size
+        procedure :: clear => modal_clear
     end type modal_green_matrix
 
 contains
@@ -79,8 +78,7 @@ contains
         ! The single-point engine of the same scheme on the same modes: its states are the p_k,
         ! and its per-mode shares of w0 weigh the mode shapes into W0.
         conv%engine = new_modal_engine(method_scheme(scheme), description%modes, dt)
-        conv%name = conv%engine%name
-        conv%dt = dt
+        call conv%set_model(conv%engine%name, dt, n_m, 'N_m')
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape
         weight0(:, :) = 0.0_dp
@@ -125,22 +123,11 @@ contains
     end subroutine modal_push
 
     !> Clear the modal states.
-    subroutine modal_reset(self)
+    subroutine modal_clear(self)
         class(modal_green_matrix), intent(inout) :: self
 
         call self%engine%reset()
         self%modal_force(:) = 0.0_dp
-        self%step = 0
-    end subroutine modal_reset
-
-    !> Number of modes N_m.
-    subroutine modal_size(self, n, label)
-        class(modal_green_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%shape, 2)
-        label = 'N_m'
-    end subroutine modal_size
+    end subroutine modal_clear
 
 end module greenconv_conv_green_modal

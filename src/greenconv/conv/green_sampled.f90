@@ -10,8 +10,8 @@
 !> point, so that every dot product is contiguous.
 module greenconv_conv_green_sampled
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_core_error, only: error_type
+    use greenconv_conv_multipoint, only: multipoint_convolver, check_green_table
     use greenconv_conv_kernel, only: lane_dot
     use greenconv_conv_convolver, only: capped_step
     implicit none
@@ -31,8 +31,7 @@ module greenconv_conv_green_sampled
     contains
         procedure :: history => sampled_history
         procedure :: push => sampled_push
-        procedure :: reset => sampled_reset
-        procedure :: model_size => sampled_size
+        procedure :: clear => sampled_clear
     end type sampled_green_matrix
 
 contains
@@ -51,15 +50,11 @@ contains
 
         integer :: n_g, n_c
 
+        call check_green_table(kernel, error)
+        if (allocated(error)) return
         n_g = ubound(kernel, 1)
         n_c = size(kernel, 2)
-        if (n_g < 1 .or. n_c < 1 .or. size(kernel, 3) /= n_c) then
-            call fatal_error(error, 'sampled Green''s matrix: expected samples m = 0..N_g (N_g >= 1) of an ' &
-                             //'N_c x N_c matrix')
-            return
-        end if
-        conv%name = 'direct'
-        conv%dt = dt
+        call conv%set_model('direct', dt, n_g, 'N_g')
         allocate (conv%weight(n_g, n_c, n_c), conv%past(2*n_g, n_c))
         call conv%set_instant_matrix(dt*kernel(0, :, :))
         conv%weight(:, :, :) = dt*kernel(1:n_g, :, :)
@@ -100,22 +95,11 @@ contains
     end subroutine sampled_push
 
     !> Clear the force history.
-    subroutine sampled_reset(self)
+    subroutine sampled_clear(self)
         class(sampled_green_matrix), intent(inout) :: self
 
         self%past(:, :) = 0.0_dp
         self%head = 1
-        self%step = 0
-    end subroutine sampled_reset
-
-    !> Kernel length N_g.
-    subroutine sampled_size(self, n, label)
-        class(sampled_green_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%weight, 1)
-        label = 'N_g'
-    end subroutine sampled_size
+    end subroutine sampled_clear
 
 end module greenconv_conv_green_sampled

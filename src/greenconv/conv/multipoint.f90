@@ -25,25 +25,19 @@
 !> `point_modes` (greenconv_model_point_modes) holds that description; `sample_green_matrix`
 !> tabulates g_ij(t_m) from it.
 module greenconv_conv_multipoint
-    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_conv_convolver, only: convolver_core
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_conv_kernel, only: truncation_length
     implicit none
     private
 
-    public :: multipoint_convolver, sample_green_matrix
+    public :: multipoint_convolver, sample_green_matrix, check_green_table
 
     !> A causal multi-point convolver stepped once per time step.
-    type, abstract :: multipoint_convolver
-        !> Short name of the method (`recursive`, `exact` or `direct`).
-        character(len=:), allocatable :: name
-        !> Time step dt [s].
-        real(dp) :: dt = 0.0_dp
-        !> Number of force vectors pushed so far (the index n of the next step); 64 bits, so
-        !> that a convolver may be stepped past 2^31 - 1 pushes.
-        integer(int64) :: step = 0
+    type, abstract, extends(convolver_core) :: multipoint_convolver
         !> Instant compliance matrix W0 (N_c x N_c) [m/N]: displacement at i per newton of
         !> the current step's own force at j; fixed when the convolver is built.
         real(dp), allocatable :: weight0(:, :)
@@ -54,19 +48,12 @@ module greenconv_conv_multipoint
         procedure(history_interface), deferred :: history
         !> Record the forces q(t_n) [N] of the current step and advance to the next.
         procedure(push_interface), deferred :: push
-        !> Forget all forces pushed and return to step 0.
-        procedure(reset_interface), deferred :: reset
-        !> Size of the model: N_g kernel samples or N_m modes, with its label.
-        procedure(size_interface), deferred :: model_size
         !> Number of contact points N_c.
         procedure :: n_points
         !> Whether W0 = 0, so that the forces of a step follow from the history alone.
         procedure :: is_explicit
         !> Set the instant compliance matrix W0 [m/N] (by the constructors).
         procedure :: set_instant_matrix
-        !> Free what the convolver holds outside Fortran (the FFTW plans of `fft`); call it
-        !> before dropping a convolver that has run. Nothing by default.
-        procedure :: release => release_nothing
     end type multipoint_convolver
 
     abstract interface
@@ -85,24 +72,7 @@ module greenconv_conv_multipoint
             class(multipoint_convolver), intent(inout) :: self
             real(dp), intent(in) :: forces(:)
         end subroutine push_interface
-
-        !> Return to step 0 with no force history.
-        subroutine reset_interface(self)
-            import :: multipoint_convolver
-            implicit none
-            class(multipoint_convolver), intent(inout) :: self
-        end subroutine reset_interface
-
-        !> Size of the model and its label (`N_g` or `N_m`).
-        subroutine size_interface(self, n, label)
-            import :: multipoint_convolver
-            implicit none
-            class(multipoint_convolver), intent(in) :: self
-            integer, intent(out) :: n
-            character(len=:), allocatable, intent(out) :: label
-        end subroutine size_interface
     end interface
-
 
 contains
 
@@ -136,14 +106,19 @@ contains
         self%explicit = maxval(abs(w0)) <= 0.0_dp
     end subroutine set_instant_matrix
 
-    !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
-    subroutine release_nothing(self)
-        !> The convolver.
-        class(multipoint_convolver), intent(inout) :: self
+    !> Check a table kernel(m, i, j) = g_ij(m*dt) of a sampled Green's matrix: samples
+    !> m = 0..N_g with N_g >= 1 of an N_c x N_c matrix, N_c >= 1.
+    subroutine check_green_table(kernel, error)
+        !> Samples g_ij(m*dt) [m/(N*s)], first index m = 0..N_g, then i and j.
+        real(dp), intent(in) :: kernel(0:, :, :)
+        !> Set when the table is not square in (i, j) or has no sample after t = 0.
+        type(error_type), allocatable, intent(out) :: error
 
-        associate (unused => self)
-        end associate
-    end subroutine release_nothing
+        if (ubound(kernel, 1) < 1 .or. size(kernel, 2) < 1 .or. size(kernel, 3) /= size(kernel, 2)) then
+            call fatal_error(error, 'sampled Green''s matrix: expected samples m = 0..N_g (N_g >= 1) of an ' &
+                             //'N_c x N_c matrix')
+        end if
+    end subroutine check_green_table
 
     !> Tabulate g_ij(t_m), t_m = m*dt, from modes and truncate it by the paper's rule.
     !>

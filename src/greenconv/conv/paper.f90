@@ -52,8 +52,7 @@ module greenconv_conv_paper
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
-        procedure :: reset => modal_reset
-        procedure :: model_size => modal_size
+        procedure :: clear => modal_clear
     end type paper_convolver
 
 contains
@@ -66,14 +65,21 @@ contains
         real(dp), intent(in) :: dt
         type(paper_convolver) :: conv
 
-        conv%name = 'paper'
-        conv%dt = dt
+        call conv%set_model('paper', dt, modes%n_modes(), 'N_m')
         conv%decay = -real(modes%pole, kind=dp)
         conv%omega_d = aimag(modes%pole)
         conv%residue = modes%residue
         allocate (conv%alpha(modes%n_modes()), conv%beta(modes%n_modes()))
         call conv%reset()
     end function new_paper_convolver
+
+    !> Clear the accumulated integrals.
+    subroutine modal_clear(self)
+        class(paper_convolver), intent(inout) :: self
+
+        self%alpha = 0.0_dp
+        self%beta = 0.0_dp
+    end subroutine modal_clear
 
     !> History displacement of eq. (15) at t_n from alpha_k(n), beta_k(n).
     function modal_history(self) result(u)
@@ -103,24 +109,5 @@ contains
         self%beta = self%beta + growth*sin(self%omega_d*t)
         self%step = self%step + 1
     end subroutine modal_push
-
-    !> Clear the accumulated integrals.
-    subroutine modal_reset(self)
-        class(paper_convolver), intent(inout) :: self
-
-        self%alpha = 0.0_dp
-        self%beta = 0.0_dp
-        self%step = 0
-    end subroutine modal_reset
-
-    !> Number of modes N_m.
-    subroutine modal_size(self, n, label)
-        class(paper_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%decay)
-        label = 'N_m'
-    end subroutine modal_size
 
 end module greenconv_conv_paper

@@ -22,8 +22,7 @@ module greenconv_conv_point_matrix
     contains
         procedure :: history => point_history
         procedure :: push => point_push
-        procedure :: reset => point_reset
-        procedure :: model_size => point_size
+        procedure :: clear => point_clear
         procedure :: release => point_release
     end type point_matrix
 
@@ -37,8 +36,11 @@ contains
         !> The 1 x 1 convolver.
         type(point_matrix), intent(out) :: matrix
 
-        matrix%name = point%name
-        matrix%dt = point%dt
+        character(len=:), allocatable :: label
+        integer :: n
+
+        call point%model_size(n, label)
+        call matrix%set_model(point%name, point%dt, n, label)
         matrix%step = point%step
         call matrix%set_instant_matrix(reshape([point%instant_weight()], [1, 1]))
         call move_alloc(point, matrix%point)
@@ -61,22 +63,13 @@ contains
         self%step = self%point%step
     end subroutine point_push
 
-    !> Back to step 0.
-    subroutine point_reset(self)
+    !> The engine back to step 0.
+    subroutine point_clear(self)
         class(point_matrix), intent(inout) :: self
 
         call self%point%reset()
-        self%step = self%point%step
-    end subroutine point_reset
+    end subroutine point_clear
 
-    !> The engine's model size and label.
-    subroutine point_size(self, n, label)
-        class(point_matrix), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        call self%point%model_size(n, label)
-    end subroutine point_size
 
     !> Release what the engine holds outside Fortran (FFTW plans).
     subroutine point_release(self)

@@ -98,8 +98,7 @@ module greenconv_conv_recursive
     contains
         procedure :: history => recursive_history
         procedure :: push => recursive_push
-        procedure :: reset => recursive_reset
-        procedure :: model_size => recursive_size
+        procedure :: clear => recursive_clear
     end type recursive_convolver
 
     !> Terms kept in the Taylor series of phi1 and phi2 for |x| < 1 (error below 1/21!).
@@ -110,10 +109,11 @@ contains
     !> The paper's convolution, eqs. (15)-(17), as a decaying recursion named `recursive`:
     !> the same numbers as `new_paper_convolver` without its overflow.
     function new_recursive_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0), summed by the rectangle rule.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]: the kernel is w_j = dt*g(t_j) [m/N] and w0 = 0.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0.
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_rectangle, modes, dt)
@@ -122,10 +122,11 @@ contains
     !> The first-order-hold convolution named `exact`: the force linear within each step,
     !> integrated exactly against each mode; w0 = sum_k 2*Re(r_k*dt*phi2(lambda_k*dt)).
     function new_exact_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0), each integrated exactly over a step.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]; the error is of second order in it for a smooth force.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0; its w0 [m/N] is the weight of phi2.
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_first_order, modes, dt)
@@ -135,10 +136,11 @@ contains
     !> step that ends at its sample; w0 = a_0 = sum_k 2*Re(r_k*dt*phi1(lambda_k*dt)) [m/N],
     !> c_k = 2*r_k*dt*phi1*z_k. First order in dt, static gain exact.
     function new_backward_convolver(modes, dt) result(conv)
-        !> The Green's function as modes (Re lambda_k <= 0).
+        !> The Green's function as modes (Re lambda_k <= 0); their static gain is kept exactly.
         type(modal_set), intent(in) :: modes
-        !> Time step [s].
+        !> Time step [s]; the error is of first order in it.
         real(dp), intent(in) :: dt
+        !> The convolver, at step 0; its w0 = a_0 [m/N].
         type(recursive_convolver) :: conv
 
         conv = new_modal_engine(scheme_backward, modes, dt)
@@ -216,8 +218,7 @@ contains
         real(dp), intent(in) :: dt
         complex(dp), intent(in) :: z(:), c(:), v(:)
 
-        conv%name = name
-        conv%dt = dt
+        call conv%set_model(name, dt, size(z), 'N_m')
         conv%weight0 = 2.0_dp*sum(real(v, kind=dp))
         conv%mode_weight = 2.0_dp*real(v, kind=dp)
         conv%decay_re = real(z, kind=dp)
@@ -254,22 +255,11 @@ contains
     end subroutine recursive_push
 
     !> Clear the states.
-    subroutine recursive_reset(self)
+    subroutine recursive_clear(self)
         class(recursive_convolver), intent(inout) :: self
 
         self%state_re = 0.0_dp
         self%state_im = 0.0_dp
-        self%step = 0
-    end subroutine recursive_reset
-
-    !> Number of modes N_m.
-    subroutine recursive_size(self, n, label)
-        class(recursive_convolver), intent(in) :: self
-        integer, intent(out) :: n
-        character(len=:), allocatable, intent(out) :: label
-
-        n = size(self%state_re)
-        label = 'N_m'
-    end subroutine recursive_size
+    end subroutine recursive_clear
 
 end module greenconv_conv_recursive
