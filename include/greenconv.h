@@ -364,7 +364,7 @@ int gc_multi_new_samples(int n_points, int n_samples, const double *g, double dt
 /**
  * A multi-point convolver on a universal file of a Green's matrix (path: nodes with their
  * coordinates in dataset 15 or 2411, datasets 58 of the receptances G_ij(f) [m/N] or of the
- * impulse responses g_ij(t) [m/(N*s)] between them; README's "Green's matrix files"). Its
+ * impulse responses g_ij(t) [m/(N*s)] between them; doc/multipoint.md). Its
  * points are the file's nodes, in the file's order (gc_multi_points). Receptances are
  * identified once with shared poles (a maximum-likelihood pole fit of the summed driving
  * points, its stabilisation diagram up to max_order modes, 0 for the library's default 30,

@@ -388,7 +388,7 @@ contains
     end function replace_mark
 
     !> The explicit step with a linear k_c = 1e9 N/m at 0.1 ms (omega_c*dt = 3.16) diverges at
-    !> step 97 (README): run in blocks of 10, the file holds steps 0..96 (no `.part` left) and
+    !> step 97 (doc/methods.md): run in blocks of 10, the file holds steps 0..96 (no `.part` left) and
     !> the message names it and the step. The tyre with a divergence bound of 50 micrometres
     !> stops at its first step beyond it (step 17, in the third block of 7), with N_c rows per
     !> step before it in its file.

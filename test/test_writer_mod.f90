@@ -254,7 +254,7 @@ contains
         end do
     end subroutine test_scene_formats
 
-    !> The stiff linear contact that diverges at step 97 (README), in binary: the run is
+    !> The stiff linear contact that diverges at step 97 (doc/methods.md), in binary: the run is
     !> stopped, its .bin holds steps 0..96, the header file says 97 rows, no .part is left.
     subroutine test_binary_fault(error)
         type(test_error), allocatable, intent(out) :: error

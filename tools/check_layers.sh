@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Check the layering of src/ (README, "Layout"): a module in src/greenconv/<layer>/ may use
+# Check the layering of src/ (doc/layout.md): a module in src/greenconv/<layer>/ may use
 # modules of its own layer and of the layers below it, never one above. The layers, bottom
 # to top, are listed in LAYERS; src/greenconv.f90 (the facade) sits at the top with api.
 # Every module under src/greenconv/<layer>/<name>.f90 must be named greenconv_<layer>_<name>

@@ -5,7 +5,7 @@
 !> scene table (greenconv_scene_schema's `scene_table`: the paper's Tab. 1 and section 3.1,
 !> section 3.2 for the random road and random modes), and its values checked, messages
 !> carrying the line of the variable. So a scene file states only what differs. The table
-!> lists every variable with its units; README.md shows it.
+!> lists every variable with its units; doc/scenes.md shows it.
 module greenconv_scene_input
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use greenconv_core_kinds, only: dp

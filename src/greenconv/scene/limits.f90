@@ -1,6 +1,6 @@
 !> Limits on the sizes a scene may ask for. Each is far beyond any sensible scene, and is
 !> there so that a mistyped value (an extra few zeros) gets a message before the run, rather
-!> than a failed allocation or a run of days. README.md lists them.
+!> than a failed allocation or a run of days. doc/scenes.md lists them.
 module greenconv_scene_limits
     use greenconv_core_kinds, only: dp
     implicit none

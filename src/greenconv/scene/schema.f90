@@ -2,7 +2,7 @@
 !> default, units, meaning and when it is required. Everything else derives from it: the
 !> groups and kinds the pre-scan (greenconv_scene_scan) checks and suggests names from, the
 !> required-value checks, the defaults greenconv_scene_input starts each namelist from, and
-!> README.md's scene table. Which `&structure` variables a model requires comes from the
+!> the scene table of doc/scenes.md. Which `&structure` variables a model requires comes from the
 !> model registry (greenconv_scene_models).
 !>
 !> Required:
