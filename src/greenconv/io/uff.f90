@@ -64,7 +64,7 @@ module greenconv_io_uff
                                       uff_mobility, uff_accelerance
     use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets
     use greenconv_io_uff_dataset58, only: read_function
-    use greenconv_io_uff_nodes, only: read_nodes
+    use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
     implicit none
     private
 
@@ -115,6 +115,7 @@ contains
             if (allocated(error)) return
         end do
         file%nodes = file%nodes(1:n_nodes)
+        call check_node_labels(path, file%nodes, error)
     end subroutine read_uff
 
     !> One line saying what a file held: functions, nodes and the datasets skipped, e.g.
