@@ -14,6 +14,7 @@ module test_uffchecks_mod
     use greenconv_io_uff, only: uff_file, uff_function, uff_node, read_uff
     use greenconv_io_uff_write, only: write_uff, receptance_function
     use greenconv_model_green_matrix_file, only: green_matrix, read_green_matrix
+    use greenconv_model_frf, only: frf_type, read_frf
     use test_patch_mod, only: two_point_file, message_of
     implicit none
     private
@@ -36,7 +37,8 @@ contains
                      new_unittest('directions: X refused, -Z/-Z as +Z, +Z/-Z with its sign', test_directions), &
                      new_unittest('a real-valued receptance is refused', test_real_receptance), &
                      new_unittest('a G left out for its function type is named', test_left_out), &
-                     new_unittest('a value of 1e308 is refused at its line', test_huge_value)]
+                     new_unittest('a value of 1e308 is refused at its line', test_huge_value), &
+                     new_unittest('a receptance file value of 1e308 is refused at its line', test_huge_frf)]
     end subroutine collect_uffchecks
 
     !> A file with one receptance whose record 7 claims 1e9 or 3e8 points: refused at once,
@@ -267,6 +269,30 @@ contains
         close (unit)
         call check(error, index(buffer, 'E+308') > 0, 'line '//int_text(line)//' holds no 1e308: '//trim(buffer))
     end subroutine test_huge_value
+
+    !> The same in a column receptance file (f, Re G, Im G).
+    subroutine test_huge_frf(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(error_type), allocatable :: fail
+        character(len=:), allocatable :: path
+        integer :: unit, l
+
+        call make_directory(scratch, fail)
+        path = scratch//'/huge.frf'
+        open (newunit=unit, file=path, status='replace', action='write')
+        write (unit, '(a)') '# f [Hz]  Re G [m/N]  Im G [m/N]'
+        do l = 0, 9
+            write (unit, '(i0, 2es14.3e3)') l, merge(1.0e308_dp, 1.0e-6_dp, l == 4), -1.0e-7_dp
+        end do
+        close (unit)
+        call read_frf(path, frf, fail)
+        call check(error, allocated(fail), '1e308 accepted')
+        if (allocated(error)) return
+        call check(error, index(fail%message, path//':6: expected Re G and Im G of at most 1.0E+10 m/N in ' &
+                                //'magnitude, found 1.0E+308') == 1, 'message: '//fail%message)
+    end subroutine test_huge_frf
 
     ! ---- helpers ---------------------------------------------------------------------------
 

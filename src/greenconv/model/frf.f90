@@ -11,8 +11,8 @@
 !> with 0 <= f_1 < f_2 < ... < f_n, n >= `min_frf_lines`. When the grid is the uniform grid
 !> from 0 Hz (f_j = (j - 1)*df, every f_j within 1e-6*df of it, df = f_n/(n - 1)) it is
 !> stored exactly as (j - 1)*df, as the inverse FFT wants it (`uniform_from_zero`); any other
-!> grid is stored as read. G must be finite. Each kind of bad file (a negative, repeated or
-!> decreasing frequency, too few lines, a non-number) gets one message naming the file, the
+!> grid is stored as read. G must be finite, |Re G| and |Im G| at most `max_green_magnitude`.
+!> Each kind of bad file (a negative, repeated or decreasing frequency, too few lines, a non-number) gets one message naming the file, the
 !> line and what was expected and found.
 !>
 !> What needs which grid: the maximum-likelihood identification (greenconv_ident_mlfit) fits
@@ -262,6 +262,14 @@ contains
         end if
         call check_grid(path, table(:, 1), line_of, error)
         if (allocated(error)) return
+        n = findloc(max(abs(table(:, 2)), abs(table(:, 3))) > max_green_magnitude, .true., dim=1)
+        if (n > 0) then
+            call fatal_error(error, path//':'//int_text(line_of(n))//': expected Re G and Im G of at most ' &
+                             //real_text(max_green_magnitude)//' m/N in magnitude, found '//real_text(table(n, 2)) &
+                             //' and '//real_text(table(n, 3))//'; check the value and the file''s units')
+            return
+        end if
+        n = size(table, 1)
         allocate (frf%receptance(n))
         frf%frequency = stored_grid(table(:, 1))
         frf%receptance(:) = cmplx(table(:, 2), table(:, 3), kind=dp)
