@@ -457,51 +457,44 @@ contains
         end if
         if (sign < 0) then
             frf%receptance = -frf%receptance
-            frf%source = frf%source//', sign changed to +/+'
+            frf%source = frf%source//', sign changed to +/+ (driving point)'
         end if
         frf%source = frf%source//', response '//dof_text(function%response_node, function%response_direction) &
                      //', reference '//dof_text(function%reference_node, function%reference_direction)
     end subroutine frf_from_uff
 
-    !> Check a dataset 58 taken as a Green's function between points of contact: the response
-    !> and reference directions along Z, the direction of contact (3 = +Z or -3 = -Z), or, for
-    !> a driving-point receptance (`one_axis`), both on any one translation axis (or both 0,
-    !> scalar); `sign` is the product of their signs, which turns the values into +/+ (a file
-    !> in -Z/-Z needs no change, one in +Z/-Z its sign changed). Also complex values for a
-    !> frequency response (function type 4: real data types 2 and 4 would be taken with a zero
-    !> imaginary part, which no receptance has), real or complex ones for an impulse response
-    !> (type 1), and no value larger than `max_green_magnitude`. Each refusal names the file,
-    !> line, record and field, what was expected and what was found.
-    subroutine check_contact_function(path, function, one_axis, sign, error)
+    !> Check a dataset 58 taken as a Green's function. Between points of contact (`any_direction`
+    !> false) the response and reference directions must lie along Z, the direction of contact
+    !> (3 = +Z or -3 = -Z); `sign` is the product of their signs, which turns the values into
+    !> +Z/+Z (a file in -Z/-Z needs no change, one in +Z/-Z its sign changed). A single FRF
+    !> (`any_direction`: a driving point, or a transfer function to identify) may have any
+    !> directions; only a driving point given with opposite signs on one axis (3+Z/3-Z) gets
+    !> its sign changed. Also complex values for a frequency response (function type 4: real
+    !> data types 2 and 4 would be taken with a zero imaginary part, which no receptance has),
+    !> real or complex ones for an impulse response (type 1), and no value larger than
+    !> `max_green_magnitude`. Each refusal names the file, line, record and field, what was
+    !> expected and what was found.
+    subroutine check_contact_function(path, function, any_direction, sign, error)
         !> The file, for messages.
         character(len=*), intent(in) :: path
         !> The dataset 58.
         type(uff_function), intent(in) :: function
-        !> Whether any one axis is accepted (a single driving-point FRF) rather than Z alone.
-        logical, intent(in) :: one_axis
+        !> Whether any directions are accepted (a single FRF) rather than Z alone.
+        logical, intent(in) :: any_direction
         !> +1 or -1: the factor that turns the values into the +/+ function (0 when refused).
         integer, intent(out) :: sign
         !> Set (status 2) for another direction, a real-valued frequency response or a value
         !> out of range.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: place, axes
         integer :: i, line
-        logical :: along
 
         sign = 0
-        place = path//':'//int_text(function%line + 7)//': universal file dataset 58 record '
-        if (one_axis) then
-            along = abs(function%response_direction) == abs(function%reference_direction) .and. &
-                    abs(function%response_direction) <= 3
-            axes = 'one translation axis (both 1, 2 or 3 with either sign, or both 0'
-        else
-            along = abs(function%response_direction) == 3 .and. abs(function%reference_direction) == 3
-            axes = 'Z, the direction of contact (3 or -3'
-        end if
-        if (.not. along) then
-            call fatal_error(error, place//'6: expected the response and reference directions along '//axes &
-                             //' in columns 52-55 and 77-80), found response ' &
+        if (.not. any_direction .and. &
+            (abs(function%response_direction) /= 3 .or. abs(function%reference_direction) /= 3)) then
+            call fatal_error(error, path//':'//int_text(function%line + 7)//': universal file dataset 58 record 6: ' &
+                             //'expected the response and reference directions along Z, the direction of contact ' &
+                             //'(3 or -3 in columns 52-55 and 77-80), found response ' &
                              //dof_text(function%response_node, function%response_direction)//' and reference ' &
                              //dof_text(function%reference_node, function%reference_direction) &
                              //'; give G_ij for vertical forces and displacements')
@@ -531,6 +524,8 @@ contains
             end associate
         end do
         sign = merge(-1, 1, function%response_direction*function%reference_direction < 0)
+        if (any_direction .and. (function%response_node /= function%reference_node .or. &
+                                 abs(function%response_direction) /= abs(function%reference_direction))) sign = 1
     end subroutine check_contact_function
 
     !> The grid to store: the uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max,
