@@ -359,15 +359,19 @@ contains
         character(len=200) :: buffer
         integer :: unit, stat, n, k
 
-        allocate (lines(0))
         open (newunit=unit, file=path, status='old', action='read')
+        n = 0
         do
             read (unit, '(a)', iostat=stat) buffer
             if (stat /= 0) exit
-            lines = [lines, buffer]
+            n = n + 1
+        end do
+        rewind (unit)
+        allocate (lines(n))
+        do k = 1, n
+            read (unit, '(a)') lines(k)
         end do
         close (unit)
-        n = size(lines)
         if (present(whole)) then
             lines(line_number) = text
         else
