@@ -58,6 +58,9 @@
 #   make valgrind   the plain build's driver on every data/*.nml scene (n_steps cut to 2000),
 #                   the examples and the C tests under valgrind; fails on an invalid access or
 #                   memory "definitely lost" (tools/make_helpers.sh valgrind)
+#   make thread-check  two threads through the C API (test/threads/two_threads.c: a stress
+#                   run and one under helgrind) and the check that the library holds no
+#                   static string length (tools/check_symbols.sh --static-locals); see below
 #   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
 #                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
 #                   fuzz cases (default 200) on each (`make sanitize-builds`), then `make valgrind`;
@@ -81,10 +84,12 @@ ifeq ($(origin FC),default)
 FC := gfortran
 endif
 FC ?= gfortran
-FFLAGS ?= -O2 -g -std=f2018 -Wall -Wextra -Wimplicit-interface -fimplicit-none
+FFLAGS ?= -O2 -g -std=f2018 -Wall -Wextra -Wimplicit-interface -fimplicit-none -frecursive
 # The library is compiled position-independent (for libgreenconv.so) and with OpenMP: its
 # only directives are the critical sections around FFTW's planner (src/greenconv/ext/fftw.f90), and
-# OpenMP also keeps every local variable on the stack (re-entrant). OMPFLAGS= turns it off.
+# OpenMP also keeps every local variable on the stack (re-entrant). OMPFLAGS= turns it off;
+# -frecursive in FFLAGS keeps the locals on the stack then too. Neither reaches the lengths of
+# deferred-length character function results, which gfortran keeps static (`make thread-check`).
 PICFLAGS ?= -fPIC
 OMPFLAGS ?= -fopenmp
 LDLIBS ?= -llapack -lblas -lfftw3
@@ -143,7 +148,7 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers links clean examples install doc doc-check \
-        fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test
+        fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test thread-test thread-stress thread-helgrind thread-check
 
 all: lib
 
@@ -292,6 +297,42 @@ ctest: $(CTESTS)
 $(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+# ---- two threads (issue 24) ----------------------------------------------------------------
+# test/threads/two_threads.c: two POSIX threads, each with its own convolvers, build, step,
+# are refused (an unknown method 'direc' / 'fftx') and free, THREAD_CALLS API calls in all;
+# every status, message and value must be what one thread alone gets. `make thread-test` runs
+# TEST_THREAD_CALLS calls, `make thread-stress` STRESS_THREAD_CALLS, `make thread-helgrind`
+# HELGRIND_THREAD_CALLS under valgrind's helgrind (any race reported fails; under a minute),
+# `make thread-check` all three with the static-length symbol check (tools/check_symbols.sh
+# --static-locals). They fail while gfortran keeps the lengths of deferred-length character
+# function results in static storage (784 of them in the library today), which is why
+# neither `make test` nor `make sanitize-ci` runs them yet.
+
+THREAD_TEST := $(BUILD)/threads/two_threads
+TEST_THREAD_CALLS ?= 20000
+STRESS_THREAD_CALLS ?= 200000
+HELGRIND_THREAD_CALLS ?= 4000
+
+$(THREAD_TEST): test/threads/two_threads.c test/c/check.h include/greenconv.h $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -D_POSIX_C_SOURCE=200809L -pthread -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
+
+thread-test: $(THREAD_TEST)
+	$(THREAD_TEST) $(TEST_THREAD_CALLS)
+
+thread-stress: $(THREAD_TEST)
+	$(THREAD_TEST) $(STRESS_THREAD_CALLS)
+
+thread-helgrind: $(THREAD_TEST)
+	valgrind --tool=helgrind --error-exitcode=99 $(THREAD_TEST) $(HELGRIND_THREAD_CALLS)
+
+thread-check: $(SHLIB)
+	@status=0; \
+	bash tools/check_symbols.sh --static-locals $(SHLIB) || status=1; \
+	$(MAKE) thread-stress || status=1; \
+	$(MAKE) thread-helgrind || status=1; \
+	exit $$status
 
 # ---- fuzz test of the driver -------------------------------------------------------------
 

@@ -10,7 +10,8 @@
 !> `--version` prints "greenconv x.y.z" (fpm.toml's version) and `--help` the usage line, both
 !> on standard output with status 0.
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
-!> variable, or an output file that could not be written, which is then absent); 3 a
+!> variable, or an output file that could not be written, which is then absent, or standard
+!> output that could not be written, e.g. a full device: the summary is then lost); 3 a
 !> numerical fault (one line saying where; the rows before it are written). SIGINT and
 !> SIGTERM delete the temporary `<out>.<pid>.<n>.part` files in flight.
 !> A sweep scene (`task = 'sweep'`, a `&sweep` group; greenconv_scene_sweep) runs its
@@ -19,7 +20,7 @@
 program greenconv_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use greenconv, only: scene_type, read_scene, run_scene, check_scene, error_type, greenconv_version
-    use greenconv_io_files, only: remove_parts_on_signals
+    use greenconv_io_files, only: remove_parts_on_signals, standard_output_is_terminal, relay_to_standard_output
     use greenconv_scene_sweep, only: is_sweep_file, run_sweep
     implicit none
 
@@ -27,10 +28,10 @@ program greenconv_driver
                                            //'(for example: greenconv data/sdof_sine.nml), ' &
                                            //'or greenconv --version'
     type(scene_type) :: scene
-    type(error_type), allocatable :: error
+    type(error_type), allocatable :: error, output_error
     character(len=:), allocatable :: path, argument
     logical :: check_only, quiet, sweep
-    integer :: i, length, status
+    integer :: i, length, status, out
     integer(int64) :: file_size
 
     check_only = .false.
@@ -61,12 +62,16 @@ program greenconv_driver
 
     ! SIGINT/SIGTERM delete the temporary files of the outputs being written.
     call remove_parts_on_signals()
+    ! Standard output that is no terminal (a file, a pipe, a full device) gets the summary at
+    ! the end, through writes whose failure is seen (gfortran drops them on its own unit).
+    out = output_unit
+    if (.not. standard_output_is_terminal()) open (newunit=out, status='scratch', action='readwrite')
     ! A sweep is a regular file (size > 0); a pipe or a FIFO is read once, as one scene.
     inquire (file=path, size=file_size)
     sweep = .false.
     if (file_size > 0) sweep = is_sweep_file(path)
     if (sweep) then
-        call run_sweep(path, output_unit, check_only, error)
+        call run_sweep(path, out, check_only, error)
     else
         call read_scene(path, scene, error)
     end if
@@ -76,10 +81,16 @@ program greenconv_driver
     if (.not. allocated(error) .and. .not. sweep) then
         if (quiet) scene%progress = .false.
         if (check_only) then
-            call check_scene(scene, output_unit, error)
+            call check_scene(scene, out, error)
         else
-            call run_scene(scene, output_unit, error)
+            call run_scene(scene, out, error)
         end if
+    end if
+    if (out /= output_unit) then
+        call relay_to_standard_output(out, output_error)
+        ! A failed run keeps its own message and status; a run whose summary was lost fails.
+        if (allocated(output_error) .and. .not. allocated(error)) call move_alloc(output_error, error)
+        if (allocated(output_error)) deallocate (output_error)
     end if
     if (allocated(error)) then
         write (error_unit, '(a)') 'greenconv: '//error%message

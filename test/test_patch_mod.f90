@@ -21,6 +21,8 @@ module test_patch_mod
     private
 
     public :: collect_patch
+    ! shared with the universal-file checks of test_uffchecks_mod
+    public :: two_point_file, message_of
 
     !> Scratch directory for the files the tests write.
     character(len=*), parameter :: scratch = 'build/test_scratch/patch'

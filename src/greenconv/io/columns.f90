@@ -14,11 +14,14 @@ module greenconv_io_columns
     implicit none
     private
 
-    public :: read_columns, read_line, read_lines, max_line_length, parse_row, count_tokens
+    public :: read_columns, read_line, read_lines, max_line_length, parse_row, count_tokens, byte_order_mark
 
     !> Longest line the readers accept [characters]: a longer one is not a scene, receptance
     !> or road file (a binary file, a file without line ends) and is refused at that line.
     integer, parameter :: max_line_length = 1048576
+
+    !> The UTF-8 byte-order mark some editors write at the start of a text file; the readers skip it.
+    character(len=*), parameter :: byte_order_mark = achar(239)//achar(187)//achar(191)
 
     !> Most bytes of a text file `read_lines` holds, as its lines padded to the longest one.
     integer, parameter :: max_text_bytes = 64*1048576
@@ -278,7 +281,6 @@ contains
         !> Set when the file cannot be read, naming it (and the line).
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=*), parameter :: bom = achar(239)//achar(187)//achar(191)
         type(text_line), allocatable :: list(:), longer(:)
         character(len=512) :: message
         integer :: unit, stat, n, longest
@@ -305,7 +307,8 @@ contains
             end if
             if (stat /= 0) exit
             n = n + 1
-            if (n == 1 .and. index(list(1)%text, bom) == 1) list(1)%text = list(1)%text(len(bom) + 1:)
+            if (n == 1 .and. index(list(1)%text, byte_order_mark) == 1) &
+                list(1)%text = list(1)%text(len(byte_order_mark) + 1:)
             longest = max(longest, len(list(n)%text))
             if (real(longest, dp)*real(n, dp) > real(max_text_bytes, dp)) then
                 call fatal_error(error, path//':'//int_text(n)//': expected a '//what//' of at most ' &

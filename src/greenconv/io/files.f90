@@ -19,12 +19,13 @@ module greenconv_io_files
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_core_real_text, only: real_rows_text, rows_text_length
+    use greenconv_io_columns, only: read_line
     implicit none
     private
 
     public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals
     public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
-    public :: block_rows, binary_header, write_text
+    public :: block_rows, binary_header, write_text, standard_output_is_terminal, relay_to_standard_output
 
     !> Rows a run streamed in blocks computes and writes at a time (a block of this many steps
     !> of a single-point run, of block_rows/N_c steps of an N_c-point run): what a long run
@@ -154,6 +155,14 @@ module greenconv_io_files
             integer(c_size_t), value :: length
             integer(c_int) :: number
         end function c_part_write
+
+        !> C library isatty(3): 1 when the descriptor is a terminal.
+        function c_isatty(fd) bind(c, name='isatty') result(answer)
+            import :: c_int
+            implicit none
+            integer(c_int), value :: fd
+            integer(c_int) :: answer
+        end function c_isatty
 
         !> Close a descriptor (io/part_files.c): 0 or errno.
         function c_part_close(fd) bind(c, name='gc_part_close') result(number)
@@ -459,6 +468,41 @@ contains
         writer%used = 0
         if (number /= 0) call write_failed(writer, error_text(number), error)
     end subroutine flush_buffer
+
+    !> Whether standard output (descriptor 1) is a terminal.
+    logical function standard_output_is_terminal()
+        standard_output_is_terminal = c_isatty(1_c_int) == 1
+    end function standard_output_is_terminal
+
+    !> Copy the lines a formatted unit holds (a scratch file the driver's summary went to) to
+    !> standard output with every write(2) checked, and close the unit. gfortran's runtime
+    !> drops the errors of writes on its standard output (a full device, a closed pipe): the
+    !> WRITE, FLUSH and CLOSE statements all report success, so a driver whose output is not a
+    !> terminal writes its summary to a scratch unit and hands it over here at its end.
+    subroutine relay_to_standard_output(unit, error)
+        !> The unit, open for reading and writing; closed (deleted when scratch) on return.
+        integer, intent(in) :: unit
+        !> Set (status 2) when a write on standard output failed, with the system's reason.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+        integer :: stat
+        integer(c_int) :: number
+
+        rewind (unit)
+        do
+            call read_line(unit, line, stat)
+            if (stat /= 0) exit
+            line = line//new_line('a')
+            number = c_part_write(1_c_int, line, int(len(line), c_size_t))
+            if (number /= 0) then
+                call fatal_error(error, 'standard output: writing the summary failed: '//error_text(number) &
+                                 //'; the output files of the run are written, its summary is lost')
+                exit
+            end if
+        end do
+        close (unit)
+    end subroutine relay_to_standard_output
 
     !> The system's text for an errno value.
     function error_text(number) result(text)

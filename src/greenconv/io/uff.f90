@@ -5,7 +5,7 @@
 !> A file is a sequence of datasets, each between two lines holding `-1` right-justified in
 !> columns 1-6; the line after the opening one holds the dataset number (columns 1-6; a `b`
 !> in column 7 marks a binary dataset, which is refused). Blank lines between datasets are
-!> ignored.
+!> ignored, and so is a UTF-8 byte-order mark at the start of the file.
 !>
 !> Dataset 58 (function at nodal DOF), where each output of `uff_function` comes from:
 !>
@@ -46,7 +46,12 @@
 !> Dataset 15: one record per node, 4I10,1P3E13.5 (label, definition and displacement
 !> coordinate systems, color, x, y, z). Dataset 2411: two records per node, 4I10 (the
 !> same integers) and 1P3D25.16 (x, y, z). Coordinates are returned as written, in the
-!> definition coordinate system.
+!> definition coordinate system. A label given again with other coordinates is refused,
+!> naming both lines.
+!>
+!> Sizes: the point count of record 7 takes no memory before record 12 has held that many
+!> points (the values are stored as they are read, at most what the lines hold), so a
+!> damaged count is refused at once, not after gigabytes.
 !>
 !> Every malformed file gets one line with status 2 (`stat_input`), e.g.
 !>
@@ -64,7 +69,7 @@ module greenconv_io_uff
                                       uff_mobility, uff_accelerance
     use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets
     use greenconv_io_uff_dataset58, only: read_function
-    use greenconv_io_uff_nodes, only: read_nodes
+    use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
     implicit none
     private
 
@@ -115,6 +120,7 @@ contains
             if (allocated(error)) return
         end do
         file%nodes = file%nodes(1:n_nodes)
+        call check_node_labels(path, file%nodes, error)
     end subroutine read_uff
 
     !> One line saying what a file held: functions, nodes and the datasets skipped, e.g.

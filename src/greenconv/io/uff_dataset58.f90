@@ -43,6 +43,7 @@ contains
             'the denominator characteristics (I10,3I5,2(1X,20A1))', &
             'the z-axis characteristics (I10,3I5,2(1X,20A1))']
         type(uff_axis) :: axes(8:11)
+        real(dp) :: minimum, step
         integer :: record, n_points, k
 
         function%line = set%first
@@ -62,7 +63,7 @@ contains
         call read_record6(record_prefix(path, k, 58, 6), lines(k)%text, function, error)
         if (allocated(error)) return
         k = set%first + 8
-        call read_record7(record_prefix(path, k, 58, 7), lines(k)%text, function, n_points, error)
+        call read_record7(record_prefix(path, k, 58, 7), lines(k)%text, function, n_points, minimum, step, error)
         if (allocated(error)) return
         do record = 8, 11
             k = set%first + 1 + record
@@ -75,6 +76,10 @@ contains
         function%z_axis = axes(11)
         function%kind = ordinate_kind(function%numerator%data_type, function%denominator%data_type)
         call read_data(path, lines, set%first + 13, set%last, n_points, function, error)
+        if (allocated(error)) return
+        ! Only now that record 12 held the points record 7 promised: a damaged count (1e9) is
+        ! refused by read_data, whose storage the lines bound, before any grid is built.
+        if (function%even) function%abscissa = [(minimum + (k - 1)*step, k=1, n_points)]
     end subroutine read_function
 
     !> Record 6: DOF identification, 2(I5,I10),2(1X,10A1,I10,I4).
@@ -124,17 +129,17 @@ contains
                          //quoted(line, record6_first(field), record6_last(field)))
     end subroutine check_direction
 
-    !> Record 7: data form, 3I10,3E13.5.
-    subroutine read_record7(prefix, line, function, n_points, error)
+    !> Record 7: data form, 3I10,3E13.5 (the abscissa minimum and increment of even spacing are
+    !> returned, for the grid built once the points are read).
+    subroutine read_record7(prefix, line, function, n_points, minimum, step, error)
         character(len=*), intent(in) :: prefix, line
         type(uff_function), intent(inout) :: function
         integer, intent(out) :: n_points
+        real(dp), intent(out) :: minimum, step
         type(error_type), allocatable, intent(out) :: error
 
         character(len=*), parameter :: layout = '3I10,3E13.5'
         integer :: spacing
-        real(dp) :: minimum, step
-        integer :: i
 
         call integer_field(prefix, line, 1, 10, 'the ordinate data type', .true., function%ordinate_type, error)
         if (allocated(error)) return
@@ -175,7 +180,6 @@ contains
                              //'found '//quoted(line, 44, 56))
             return
         end if
-        if (function%even) function%abscissa = [(minimum + (i - 1)*step, i=1, n_points)]
     end subroutine read_record7
 
     !> Records 8 to 11: data characteristics, I10,3I5,2(1X,20A1).
@@ -346,10 +350,11 @@ contains
         integer :: n, i, at_x
 
         n = size(values)/per_point
-        allocate (function%ordinate(n))
+        allocate (function%ordinate(n), function%point_line(n))
         if (.not. function%even) allocate (function%abscissa(n))
         do i = 1, n
             at_x = (i - 1)*per_point + 1
+            function%point_line(i) = value_line(at_x)
             if (function%even) then
                 if (complex_data) then
                     function%ordinate(i) = cmplx(values(at_x), values(at_x + 1), dp)

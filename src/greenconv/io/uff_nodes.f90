@@ -1,14 +1,16 @@
 !> Datasets 15 and 2411 of universal files (nodes) for the reader greenconv_io_uff: dataset
 !> 15 holds one record per node, 4I10,1P3E13.5; dataset 2411 two, 4I10 and 1P3D25.16.
 module greenconv_io_uff_nodes
+    use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text
+    use greenconv_core_text, only: int_text, real_text
+    use greenconv_core_sorting, only: heap_sort
     use greenconv_io_uff_types, only: uff_node
     use greenconv_io_uff_records, only: text_line, dataset_extent, record_prefix, integer_field, real_field
     implicit none
     private
 
-    public :: read_nodes
+    public :: read_nodes, check_node_labels
 
 contains
 
@@ -93,5 +95,83 @@ contains
                              //layout//'), found "'//trim(adjustl(line(skip + 3*width + 1:)))//'"')
         end if
     end subroutine read_coordinates
+
+    !> Refuse a node label given twice with other coordinates (a second definition would
+    !> otherwise be ignored without a word); a label repeated with the same coordinates is
+    !> harmless. O(n log n): the labels are sorted, and only the repeated ones are compared.
+    subroutine check_node_labels(path, nodes, error)
+        !> File the nodes come from (for messages).
+        character(len=*), intent(in) :: path
+        !> Every node of the file's datasets 15 and 2411, in file order.
+        type(uff_node), intent(in) :: nodes(:)
+        !> Set (status 2) naming both lines when a label has two sets of coordinates.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: labels(:), repeated(:)
+        integer, allocatable :: first(:)
+        integer :: k, n, at
+
+        if (size(nodes) < 2) return
+        ! node labels are integers, exact as reals
+        labels = real(nodes%label, dp)
+        call heap_sort(labels)
+        repeated = pack(labels(2:), labels(2:) == labels(:size(labels) - 1))
+        if (size(repeated) == 0) return
+        ! unique repeated labels, ascending
+        n = 1
+        do k = 2, size(repeated)
+            if (repeated(k) /= repeated(n)) then
+                n = n + 1
+                repeated(n) = repeated(k)
+            end if
+        end do
+        allocate (first(n))
+        first(:) = 0
+        do k = 1, size(nodes)
+            at = locate(repeated(:n), real(nodes(k)%label, dp))
+            if (at == 0) cycle
+            if (first(at) == 0) then
+                first(at) = k
+            else if (any(nodes(k)%position /= nodes(first(at))%position)) then
+                call fatal_error(error, path//':'//int_text(nodes(k)%line)//': universal file dataset ' &
+                                 //int_text(nodes(k)%dataset)//': node '//int_text(nodes(k)%label) &
+                                 //' is given again with other coordinates ('//position_text(nodes(k)) &
+                                 //') than at line '//int_text(nodes(first(at))%line)//' (' &
+                                 //position_text(nodes(first(at)))//'); give each node once')
+                return
+            end if
+        end do
+    end subroutine check_node_labels
+
+    !> Index of `value` in the ascending `list`, 0 when absent (bisection).
+    pure integer function locate(list, value)
+        real(dp), intent(in) :: list(:), value
+
+        integer :: low, high, middle
+
+        locate = 0
+        low = 1
+        high = size(list)
+        do while (low <= high)
+            middle = (low + high)/2
+            if (list(middle) == value) then
+                locate = middle
+                return
+            else if (list(middle) < value) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function locate
+
+    !> A node's coordinates as `x, y, z = 0.1, 0.0, 0.0`.
+    pure function position_text(node) result(text)
+        type(uff_node), intent(in) :: node
+        character(len=:), allocatable :: text
+
+        text = 'x, y, z = '//real_text(node%position(1))//', '//real_text(node%position(2))//', ' &
+               //real_text(node%position(3))
+    end function position_text
 
 end module greenconv_io_uff_nodes

@@ -7,7 +7,7 @@ module greenconv_io_uff_records
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_core_number_text, only: is_number, is_nan_or_inf, is_integer, read_real, read_integer
-    use greenconv_io_columns, only: read_line
+    use greenconv_io_columns, only: read_line, byte_order_mark
     implicit none
     private
 
@@ -30,7 +30,7 @@ module greenconv_io_uff_records
 
 contains
 
-    !> Read every line of a file (a trailing carriage return removed).
+    !> Read every line of a file (a trailing carriage return and a UTF-8 byte-order mark at its start removed).
     subroutine load_lines(path, lines, error)
         !> File to read.
         character(len=*), intent(in) :: path
@@ -68,6 +68,8 @@ contains
             if (len(line) > 0) then
                 if (line(len(line):len(line)) == achar(13)) line = line(:len(line) - 1)
             end if
+            ! A UTF-8 byte-order mark (what some editors write first) is not part of the text.
+            if (i == 1 .and. index(line, byte_order_mark) == 1) line = line(len(byte_order_mark) + 1:)
             lines(i)%text = line
         end do
         close (unit)

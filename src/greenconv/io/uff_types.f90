@@ -87,6 +87,9 @@ module greenconv_io_uff_types
         real(dp), allocatable :: abscissa(:)
         !> Ordinate of every point, in the units records 9 and 10 say (e.g. [m/N]).
         complex(dp), allocatable :: ordinate(:)
+        !> Line of the file holding each point's first value (record 12), for messages; not
+        !> allocated for a function that was not read from a file.
+        integer, allocatable :: point_line(:)
     end type uff_function
 
     !> One node of dataset 15 or 2411.

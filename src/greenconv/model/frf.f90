@@ -11,8 +11,8 @@
 !> with 0 <= f_1 < f_2 < ... < f_n, n >= `min_frf_lines`. When the grid is the uniform grid
 !> from 0 Hz (f_j = (j - 1)*df, every f_j within 1e-6*df of it, df = f_n/(n - 1)) it is
 !> stored exactly as (j - 1)*df, as the inverse FFT wants it (`uniform_from_zero`); any other
-!> grid is stored as read. G must be finite. Each kind of bad file (a negative, repeated or
-!> decreasing frequency, too few lines, a non-number) gets one message naming the file, the
+!> grid is stored as read. G must be finite, |Re G| and |Im G| at most `max_green_magnitude`.
+!> Each kind of bad file (a negative, repeated or decreasing frequency, too few lines, a non-number) gets one message naming the file, the
 !> line and what was expected and found.
 !>
 !> What needs which grid: the maximum-likelihood identification (greenconv_ident_mlfit) fits
@@ -41,12 +41,18 @@ module greenconv_model_frf
     use greenconv_io_files, only: write_columns
     use greenconv_io_columns, only: read_columns
     use greenconv_io_uff, only: uff_file, uff_function, read_uff, uff_kind_name, uff_function_type_name, &
-                                uff_receptance, uff_mobility, uff_accelerance
+                                uff_data_type_name, uff_receptance, uff_mobility, uff_accelerance
     implicit none
     private
 
     public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
-    public :: add_relative_noise
+    public :: add_relative_noise, check_contact_function, max_green_magnitude
+
+    !> Largest magnitude a value of a universal file's Green's function may have, in its own
+    !> unit ([m/N] for a receptance, [m/(N*s)] for an impulse response, [m/(N*s)] or [m/(N*s^2)]
+    !> for a mobility or accelerance): no structure comes near it, and larger values overflow
+    !> the sums of squares of the checks and fits that follow (1e308 would give Infinity).
+    real(dp), parameter :: max_green_magnitude = 1.0e10_dp
 
     !> Fewest data lines read_frf accepts: n lines give 2*(n - 1) impulse samples, and 8
     !> lines (14 samples) is the least for an overdetermined order-2 linear prediction
@@ -256,6 +262,14 @@ contains
         end if
         call check_grid(path, table(:, 1), line_of, error)
         if (allocated(error)) return
+        n = findloc(max(abs(table(:, 2)), abs(table(:, 3))) > max_green_magnitude, .true., dim=1)
+        if (n > 0) then
+            call fatal_error(error, path//':'//int_text(line_of(n))//': expected Re G and Im G of at most ' &
+                             //real_text(max_green_magnitude)//' m/N in magnitude, found '//real_text(table(n, 2)) &
+                             //' and '//real_text(table(n, 3))//'; check the value and the file''s units')
+            return
+        end if
+        n = size(table, 1)
         allocate (frf%receptance(n))
         frf%frequency = stored_grid(table(:, 1))
         frf%receptance(:) = cmplx(table(:, 2), table(:, 3), kind=dp)
@@ -380,7 +394,7 @@ contains
         character(len=:), allocatable :: place
         real(dp), allocatable :: omega(:)
         integer, allocatable :: line_of(:)
-        integer :: n, first
+        integer :: n, first, sign
 
         place = path//':'//int_text(function%line)//': dataset 58'
         n = 0
@@ -401,6 +415,8 @@ contains
             call fatal_error(error, place//': expected at least '//int_text(min_frf_lines)//' points, found ' &
                              //int_text(n))
         end if
+        if (allocated(error)) return
+        call check_contact_function(path, function, .true., sign, error)
         if (allocated(error)) return
         allocate (line_of(n))
         line_of(:) = function%line
@@ -439,9 +455,78 @@ contains
             end if
             frf%source = frf%source//' (0 Hz line extrapolated)'
         end if
+        if (sign < 0) then
+            frf%receptance = -frf%receptance
+            frf%source = frf%source//', sign changed to +/+ (driving point)'
+        end if
         frf%source = frf%source//', response '//dof_text(function%response_node, function%response_direction) &
                      //', reference '//dof_text(function%reference_node, function%reference_direction)
     end subroutine frf_from_uff
+
+    !> Check a dataset 58 taken as a Green's function. Between points of contact (`any_direction`
+    !> false) the response and reference directions must lie along Z, the direction of contact
+    !> (3 = +Z or -3 = -Z); `sign` is the product of their signs, which turns the values into
+    !> +Z/+Z (a file in -Z/-Z needs no change, one in +Z/-Z its sign changed). A single FRF
+    !> (`any_direction`: a driving point, or a transfer function to identify) may have any
+    !> directions; only a driving point given with opposite signs on one axis (3+Z/3-Z) gets
+    !> its sign changed. Also complex values for a frequency response (function type 4: real
+    !> data types 2 and 4 would be taken with a zero imaginary part, which no receptance has),
+    !> real or complex ones for an impulse response (type 1), and no value larger than
+    !> `max_green_magnitude`. Each refusal names the file, line, record and field, what was
+    !> expected and what was found.
+    subroutine check_contact_function(path, function, any_direction, sign, error)
+        !> The file, for messages.
+        character(len=*), intent(in) :: path
+        !> The dataset 58.
+        type(uff_function), intent(in) :: function
+        !> Whether any directions are accepted (a single FRF) rather than Z alone.
+        logical, intent(in) :: any_direction
+        !> +1 or -1: the factor that turns the values into the +/+ function (0 when refused).
+        integer, intent(out) :: sign
+        !> Set (status 2) for another direction, a real-valued frequency response or a value
+        !> out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i, line
+
+        sign = 0
+        if (.not. any_direction .and. &
+            (abs(function%response_direction) /= 3 .or. abs(function%reference_direction) /= 3)) then
+            call fatal_error(error, path//':'//int_text(function%line + 7)//': universal file dataset 58 record 6: ' &
+                             //'expected the response and reference directions along Z, the direction of contact ' &
+                             //'(3 or -3 in columns 52-55 and 77-80), found response ' &
+                             //dof_text(function%response_node, function%response_direction)//' and reference ' &
+                             //dof_text(function%reference_node, function%reference_direction) &
+                             //'; give G_ij for vertical forces and displacements')
+            return
+        end if
+        if (function%function_type == 4 .and. (function%ordinate_type == 2 .or. function%ordinate_type == 4)) then
+            call fatal_error(error, path//':'//int_text(function%line + 8)//': universal file dataset 58 record 7: ' &
+                             //'expected complex values (ordinate data type 5 or 6 in columns 1-10) for a ' &
+                             //'frequency response ('//uff_data_type_name(function%numerator%data_type)//' over ' &
+                             //uff_data_type_name(function%denominator%data_type)//'), found real-valued data ' &
+                             //'(type '//int_text(function%ordinate_type)//'); its imaginary part would be taken ' &
+                             //'as zero, which no receptance has: write Re and Im')
+            return
+        end if
+        do i = 1, size(function%ordinate)
+            associate (value => function%ordinate(i))
+                if (max(abs(value%re), abs(value%im)) <= max_green_magnitude) cycle
+                line = function%line
+                if (allocated(function%point_line)) line = function%point_line(i)
+                call fatal_error(error, path//':'//int_text(line)//': universal file dataset 58 record 12: ' &
+                                 //'expected values of at most '//real_text(max_green_magnitude)//' in magnitude ' &
+                                 //'(a Green''s function in m/N or m/(N*s)), found '//real_text(value%re) &
+                                 //' + '//real_text(value%im)//'i at point '//int_text(i)//' ('//real_text( &
+                                 function%abscissa(i))//' '//trim(merge('Hz', 's ', function%function_type /= 1)) &
+                                 //'); check the value and the file''s units')
+                return
+            end associate
+        end do
+        sign = merge(-1, 1, function%response_direction*function%reference_direction < 0)
+        if (any_direction .and. (function%response_node /= function%reference_node .or. &
+                                 abs(function%response_direction) /= abs(function%reference_direction))) sign = 1
+    end subroutine check_contact_function
 
     !> The grid to store: the uniform grid j*f_max/(n - 1), j = 0..n-1, ending exactly at f_max,
     !> when the frequencies read are that grid within the tolerance; else the frequencies read.

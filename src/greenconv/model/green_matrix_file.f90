@@ -9,9 +9,15 @@
 !>   travel, y across the patch (z is ignored).
 !> - **Checks**, each a message naming the file and what to do: no receptance; a response or
 !>   reference direction that differs from the first receptance's (mixed directions); a missing
-!>   or repeated (response, reference) pair of points; a frequency grid that differs from the
-!>   first receptance's (number of lines, or a line by more than 1e-6 of the step); a point
-!>   without coordinates.
+!>   or repeated (response, reference) pair of points (the message names the datasets of the
+!>   pair left out for their function type, and the datasets skipped); a node given only as a
+!>   response or only as a reference node (its G would be dropped: the matrix would not be
+!>   square); a frequency grid that differs from the first receptance's (number of lines, or a
+!>   line by more than 1e-6 of the step); a point without coordinates; and, for each dataset,
+!>   greenconv_model_frf's `check_contact_function`: directions along Z (3 or -3; a file in
+!>   -Z/-Z is taken as it is, one in +Z/-Z or -Z/+Z gets its sign changed, so that G_ij is
+!>   always displacement +Z per force +Z), complex values for receptances, and no value
+!>   above `max_green_magnitude` in magnitude.
 !> - **Reciprocity** (a warning, not an error): for each pair i < j the difference
 !>   d_l = G_ij - G_ji. For a reciprocal structure it is noise alone, as rough from line to
 !>   line as white noise; a systematic difference is smooth. The ratio of the rms of d to the
@@ -22,8 +28,9 @@ module greenconv_model_green_matrix_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, real_text
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_io_uff, only: uff_file, read_uff
+    use greenconv_io_uff, only: uff_file, read_uff, uff_function_type_name
     use greenconv_model_modal_set, only: sorted_order
+    use greenconv_model_frf, only: check_contact_function
     implicit none
     private
 
@@ -106,7 +113,7 @@ contains
         integer, intent(in), optional :: function_type
 
         integer, allocatable :: frfs(:), found(:, :)
-        integer :: f, first, i, j, k, n_c, n_f
+        integer :: f, first, i, j, k, n_c, n_f, sign
         character(len=:), allocatable :: place, functions, grid
 
         if (present(function_type)) matrix%function_type = function_type
@@ -143,9 +150,13 @@ contains
                                      //int_text(file%functions(first)%line)//'); resample every G_ij on one grid')
                     return
                 end if
+                call check_contact_function(file%path, fun, .false., sign, error)
+                if (allocated(error)) return
             end associate
         end do
         call contact_nodes(file, frfs, matrix%node)
+        call one_way_node(file, frfs, matrix%node, error)
+        if (allocated(error)) return
         n_c = size(matrix%node)
         if (n_c == 0) then
             call fatal_error(error, file%path//': no node is both a response and a reference node; the contact ' &
@@ -169,7 +180,12 @@ contains
                     return
                 end if
                 found(i, j) = fun%line
-                matrix%g(i, j, :) = fun%ordinate
+                ! every dataset has the first one's directions: one sign for all (-Z/-Z: +1)
+                if (sign > 0) then
+                    matrix%g(i, j, :) = fun%ordinate
+                else
+                    matrix%g(i, j, :) = -fun%ordinate
+                end if
             end associate
         end do
         do j = 1, n_c
@@ -177,7 +193,8 @@ contains
                 if (found(i, j) == 0) then
                     call fatal_error(error, file%path//': missing G for response node '//int_text(matrix%node(i)) &
                                      //', reference node '//int_text(matrix%node(j))//' (the contact points are ' &
-                                     //'the '//int_text(n_c)//' nodes given as response and reference); add it')
+                                     //'the '//int_text(n_c)//' nodes given as response and reference); add it' &
+                                     //left_out(file, matrix%function_type, matrix%node(i), matrix%node(j)))
                     return
                 end if
             end do
@@ -227,6 +244,65 @@ contains
         ! the labels are integers, exact as reals
         nodes = nodes(sorted_order(real(nodes, dp)))
     end subroutine contact_nodes
+
+    !> Refuse a node that is only a response or only a reference node of the functions: the
+    !> contact points are the nodes given both ways, so its datasets would be dropped without a
+    !> word and the matrix the file means would not be square.
+    subroutine one_way_node(file, frfs, nodes, error)
+        type(uff_file), intent(in) :: file
+        integer, intent(in) :: frfs(:), nodes(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: k
+
+        do k = 1, size(frfs)
+            associate (fun => file%functions(frfs(k)))
+                if (all(nodes /= fun%response_node)) then
+                    call fatal_error(error, one_way(file%path, fun%line, fun%response_node, 'response', 'reference'))
+                else if (all(nodes /= fun%reference_node)) then
+                    call fatal_error(error, one_way(file%path, fun%line, fun%reference_node, 'reference', 'response'))
+                end if
+                if (allocated(error)) return
+            end associate
+        end do
+    end subroutine one_way_node
+
+    !> The message of `one_way_node`.
+    pure function one_way(path, line, node, given, missing) result(text)
+        character(len=*), intent(in) :: path, given, missing
+        integer, intent(in) :: line, node
+        character(len=:), allocatable :: text
+
+        text = path//':'//int_text(line + 7)//': universal file dataset 58 record 6: node '//int_text(node) &
+               //' is a '//given//' node here but never a '//missing//' node, so it is no contact point (those ' &
+               //'are the nodes given both ways) and this G would be dropped, leaving the matrix not square; ' &
+               //'give G_ij both ways for every contact point, or remove the dataset'
+    end function one_way
+
+    !> For the message on a missing G_ij: the datasets 58 of the pair that were left out for
+    !> their function type ('' when there is none).
+    pure function left_out(file, function_type, response, reference) result(text)
+        type(uff_file), intent(in) :: file
+        integer, intent(in) :: function_type, response, reference
+        character(len=:), allocatable :: text
+
+        integer :: f
+
+        text = ''
+        do f = 1, size(file%functions)
+            associate (fun => file%functions(f))
+                if (fun%response_node /= response .or. fun%reference_node /= reference .or. &
+                    fun%function_type == function_type) cycle
+                text = text//'; the dataset 58 at line '//int_text(fun%line)//' for this pair was left out: its ' &
+                       //'function type (record 6 field 1) is '//int_text(fun%function_type)//' (' &
+                       //uff_function_type_name(fun%function_type)//'), not '//int_text(function_type)
+            end associate
+        end do
+        do f = 1, size(file%skipped)
+            if (f == 1) text = text//'; datasets the reader does not read were skipped:'
+            text = text//' '//int_text(file%skipped(f)%dataset)//' (line '//int_text(file%skipped(f)%line)//')'
+        end do
+    end function left_out
 
     !> x_i, y_i of every point from the file's nodes.
     subroutine point_layout(file, matrix, error)
