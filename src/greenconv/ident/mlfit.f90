@@ -26,8 +26,10 @@
 !>    Weights of the relative model: during the order search rho times the rms of |G| over 5
 !>    lines, each |G| clipped at ten times their median (the noise of |G| in the weight reduced
 !>    by sqrt(5), independent of any model, so the chi2 of different models stay comparable
-!>    without a refit after each change; one outlier line moves no weight); for the final fit
-!>    and the uncertainty rho*|G_model|.
+!>    without a refit after each change; one outlier line moves no weight), at least 1e-4 of
+!>    the largest such sigma (`dynamic_range`: an FRF rolling off as omega^-10 otherwise has
+!>    the fit ruled by its tail and its resonances thrown out); for the final fit and the
+!>    uncertainty rho*|G_model|.
 !> 2. **Stabilisation diagram** with the linear LSCE step only (greenconv_ident_lsce's
 !>    lsce_poles, no out-of-band correction, no residues, no polish) at N = 1..max_order modes:
 !>    each physical pole is flagged 2 (its f within stable_frequency and its xi within
