@@ -15,6 +15,10 @@ module test_identreal_mod
     use greenconv_model_frf, only: frf_type, frf_from_uff, read_frf
     use greenconv_ident_lsce, only: natural_frequency, damping_ratio
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    use greenconv_core_random, only: random_stream
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_model_frf, only: frf_from_modes, add_relative_noise
+    use test_mlfit_mod, only: cramer_rao, structure
     implicit none
     private
 
@@ -38,7 +42,9 @@ contains
                      new_unittest('sdypy-EMA test_synth_FRF: 4 of 5 receptances within its criteria', &
                                   test_sdypy_receptance), &
                      new_unittest('sdypy-EMA test_synth_FRF: 4 of 5 accelerances within its criteria', &
-                                  test_sdypy_accelerance)]
+                                  test_sdypy_accelerance), &
+                     new_unittest('floor: 0.1 and 1 % of |G| plus 1e-3 of the peak, no spurious mode, <= 5 CRB', &
+                                  test_noise_floor)]
     end subroutine collect_identreal
 
     !> x as an E13.5 field gives it back: six significant digits.
@@ -218,5 +224,82 @@ contains
                        .or. all(abs(f - f_true) <= 1.0e-8_dp + 2.0e-2_dp*f_true)) &
                       .and. all(abs(xi - xi_true) <= 1.0e-8_dp + 2.0e-2_dp*xi_true)
     end function sdypy_close
+
+    !> 12 modes to 5 kHz on 8193 lines (mlfit's structure (a): a close pair, xi 0.003-0.2, mixed
+    !> signs), relative noise 0.1 and 1 % of |G| plus a floor of 1e-3 of the peak |G| (complex
+    !> Gaussian, two seeds each), fitted with noise_model = 'floor': no mode invented, none the
+    !> data determine (sigma_xi/xi < 0.3 at the Cramér-Rao bound of the true noise model) missed,
+    !> each within 5 CRB sigma.
+    subroutine test_noise_floor(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: levels(2) = [1.0e-3_dp, 1.0e-2_dp]
+        type(modal_set) :: truth
+        type(frf_type) :: clean, noisy
+        type(ml_options) :: options
+        type(ml_result) :: result
+        type(error_type), allocatable :: failure
+        type(random_stream) :: stream
+        real(dp), allocatable :: sigma_f(:), sigma_xi(:)
+        real(dp) :: floor, worst_f, worst_xi, radius, angle
+        integer, allocatable :: match(:)
+        character(len=120) :: text
+        integer :: i, seed, k, l
+
+        truth = structure([95.0_dp, 412.0_dp, 418.0_dp, 730.0_dp, 1150.0_dp, 1600.0_dp, 2100.0_dp, 2650.0_dp, &
+                           3200.0_dp, 3800.0_dp, 4300.0_dp, 4750.0_dp], &
+                          [0.01_dp, 0.003_dp, 0.005_dp, 0.02_dp, 0.12_dp, 0.008_dp, 0.05_dp, 0.2_dp, 0.015_dp, &
+                           0.03_dp, 0.006_dp, 0.04_dp], &
+                          1.0e-6_dp*[1.0_dp, -0.6_dp, 0.8_dp, 1.5_dp, -2.0_dp, 0.7_dp, 3.0_dp, -4.0_dp, 1.2_dp, &
+                                     -0.9_dp, 0.5_dp, 2.0_dp])
+        clean = frf_from_modes(truth, 5000.0_dp, 8193)
+        floor = 1.0e-3_dp*maxval(abs(clean%receptance))
+        options%noise_model = 'floor'
+        do i = 1, size(levels)
+            call cramer_rao(truth, clean, levels(i), sigma_f, sigma_xi, error, floor)
+            if (allocated(error)) return
+            do seed = 1, 2
+                noisy = clean
+                call add_relative_noise(noisy, levels(i), 100*i + seed)
+                stream = random_stream(1000 + 100*i + seed)
+                do l = 1, noisy%n_freq()
+                    radius = sqrt(-2.0_dp*log(1.0_dp - stream%uniform()))
+                    angle = two_pi*stream%uniform()
+                    noisy%receptance(l) = noisy%receptance(l) + floor*sqrt(0.5_dp) &
+                                          *cmplx(radius*cos(angle), radius*sin(angle), dp)
+                end do
+                call identify_ml(noisy, options, result, failure)
+                if (allocated(failure)) call check(error, .false., failure%message)
+                if (allocated(error)) return
+                write (text, '(a,es8.1,a,i0,a,i0,a)') 'noise ', levels(i), ', seed ', seed, ': ', &
+                    result%modes%n_modes(), ' modes'
+                call note(trim(text)//', estimated floor/true', result%noise_floor_level/floor)
+                ! Each found mode is the nearest of one true mode: none invented.
+                match = [(minloc(abs(truth%pole - result%modes%pole(k)), 1), k=1, result%modes%n_modes())]
+                do k = 1, size(match)
+                    call check(error, count(match == match(k)) == 1, trim(text)//': a spurious mode')
+                    if (allocated(error)) return
+                end do
+                worst_f = 0.0_dp
+                worst_xi = 0.0_dp
+                do k = 1, truth%n_modes()
+                    if (.not. any(match == k)) then
+                        call check(error, sigma_xi(k) >= 0.3_dp*(-real(truth%pole(k), dp)/abs(truth%pole(k))), &
+                                   trim(text)//': a mode the data determine was missed')
+                        if (allocated(error)) return
+                        cycle
+                    end if
+                    associate (found => result%modes%pole(findloc(match, k, 1)), pole => truth%pole(k))
+                        worst_f = max(worst_f, abs(abs(found) - abs(pole))/two_pi/sigma_f(k))
+                        worst_xi = max(worst_xi, abs(real(found, dp)/abs(found) - real(pole, dp)/abs(pole))/sigma_xi(k))
+                    end associate
+                end do
+                call note(trim(text)//', worst f/CRB', worst_f)
+                call note(trim(text)//', worst xi/CRB', worst_xi)
+                call check(error, max(worst_f, worst_xi) <= 5.0_dp, trim(text)//': a mode beyond 5 CRB sigma')
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine test_noise_floor
 
 end module test_identreal_mod
