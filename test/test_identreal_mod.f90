@@ -18,7 +18,7 @@ module test_identreal_mod
     use greenconv_core_random, only: random_stream
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_frf, only: frf_from_modes, add_relative_noise
-    use test_mlfit_mod, only: cramer_rao, structure
+    use test_mlfit_mod, only: cramer_rao, case_a
     implicit none
     private
 
@@ -246,12 +246,7 @@ contains
         character(len=120) :: text
         integer :: i, seed, k, l
 
-        truth = structure([95.0_dp, 412.0_dp, 418.0_dp, 730.0_dp, 1150.0_dp, 1600.0_dp, 2100.0_dp, 2650.0_dp, &
-                           3200.0_dp, 3800.0_dp, 4300.0_dp, 4750.0_dp], &
-                          [0.01_dp, 0.003_dp, 0.005_dp, 0.02_dp, 0.12_dp, 0.008_dp, 0.05_dp, 0.2_dp, 0.015_dp, &
-                           0.03_dp, 0.006_dp, 0.04_dp], &
-                          1.0e-6_dp*[1.0_dp, -0.6_dp, 0.8_dp, 1.5_dp, -2.0_dp, 0.7_dp, 3.0_dp, -4.0_dp, 1.2_dp, &
-                                     -0.9_dp, 0.5_dp, 2.0_dp])
+        truth = case_a()
         clean = frf_from_modes(truth, 5000.0_dp, 8193)
         floor = 1.0e-3_dp*maxval(abs(clean%receptance))
         options%noise_model = 'floor'

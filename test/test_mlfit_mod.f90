@@ -32,7 +32,7 @@ module test_mlfit_mod
     implicit none
     private
 
-    public :: collect_mlfit, cramer_rao, structure, fit_draw_on
+    public :: collect_mlfit, cramer_rao, structure, fit_draw_on, case_a
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
