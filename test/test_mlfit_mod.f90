@@ -32,7 +32,7 @@ module test_mlfit_mod
     implicit none
     private
 
-    public :: collect_mlfit, cramer_rao, structure, fit_draw_on
+    public :: collect_mlfit, cramer_rao, structure, fit_draw_on, case_a
 
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
@@ -130,13 +130,15 @@ contains
         g = modes%receptance(omega)
     end function model_of
 
-    !> Cramér-Rao standard deviations of f [Hz] and xi of each true mode for noise level*|G|.
-    subroutine cramer_rao(truth, frf, level, sigma_f, sigma_xi, error)
+    !> Cramér-Rao standard deviations of f [Hz] and xi of each true mode for noise level*|G|
+    !> (and a floor: sigma^2 = (level*|G|)^2 + floor^2 [m/N], when given).
+    subroutine cramer_rao(truth, frf, level, sigma_f, sigma_xi, error, floor)
         type(modal_set), intent(in) :: truth
         type(frf_type), intent(in) :: frf
         real(dp), intent(in) :: level
         real(dp), allocatable, intent(out) :: sigma_f(:), sigma_xi(:)
         type(test_error), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: floor
 
         real(dp), allocatable :: theta(:), omega(:), fisher(:, :), x(:), e(:), w(:), scale(:)
         complex(dp), allocatable :: jac(:, :)
@@ -162,6 +164,7 @@ contains
             jac(:, i) = (model_of(theta + e, omega) - model_of(theta - e, omega))/(2.0_dp*h)
         end do
         w = 2.0_dp/(level*abs(model_of(theta, omega)))**2
+        if (present(floor)) w = 2.0_dp/((level*abs(model_of(theta, omega)))**2 + floor**2)
         do j = 1, p
             do i = 1, p
                 fisher(i, j) = sum(w*real(conjg(jac(:, i))*jac(:, j), dp))

@@ -68,6 +68,8 @@ module greenconv_ident_lm_fit
         real(dp) :: df = 0.0_dp
         !> Whether the weights follow the relative noise model (estimated level times |G|).
         logical :: relative = .false.
+        !> Noise floor s [m/N] of the 'floor' model: sigma_l^2 = (level*|G_l|)^2 + s^2 (0: none).
+        real(dp) :: absolute_floor = 0.0_dp
         !> Most Levenberg-Marquardt iterations of a fit.
         integer :: max_iterations = 60
         !> Most modes of a model in the order search.
@@ -316,7 +318,11 @@ contains
         !> Count of Levenberg-Marquardt iterations, increased by those of this refinement.
         integer, intent(inout) :: lm_iterations
 
-        if (data%relative) data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        if (data%relative .and. data%absolute_floor > 0.0_dp) then
+            data%weight = 1.0_dp/max(hypot(data%level*abs(evaluate(model, data%omega)), data%absolute_floor), data%floor)
+        else if (data%relative) then
+            data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+        end if
         call refine(data, model, lm_iterations)
     end subroutine reweight
 

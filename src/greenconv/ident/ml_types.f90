@@ -33,7 +33,9 @@ module greenconv_ident_ml_types
         integer :: max_order = 30
         !> Noise standard deviation per line [m/N] (E|n_l|^2 = sigma_l^2); estimated when not allocated.
         real(dp), allocatable :: sigma(:)
-        !> Noise model of the estimate: 'relative' (sigma_l = rho*|G_l|) or 'absolute' (sigma_l = sigma).
+        !> Noise model of the estimate: 'relative' (sigma_l = rho*|G_l|), 'absolute' (sigma_l = sigma)
+        !> or 'floor' (sigma_l^2 = (rho*|G_l|)^2 + s^2: a measurement's coherence-limited floor s [m/N]
+        !> under its relative noise, both estimated from the data).
         character(len=16) :: noise_model = 'relative'
         !> Smallest noise level, relative to |G_l| (clean data are fitted to round-off above it).
         real(dp) :: noise_floor = 1.0e-13_dp
@@ -88,6 +90,8 @@ module greenconv_ident_ml_types
         real(dp) :: noise_level_fit = 0.0_dp
         !> Whether the noise level was estimated from the data (not given).
         logical :: noise_estimated = .false.
+        !> Noise floor s [m/N] of the 'floor' noise model, estimated with noise_level (0 otherwise).
+        real(dp) :: noise_floor_level = 0.0_dp
         !> chi2 of the final model with the weights used (before the chi2/nu rescaling).
         real(dp) :: chi_square = 0.0_dp
         !> Degrees of freedom nu = 2L - P.
@@ -206,7 +210,9 @@ contains
         character(len=:), allocatable :: text
 
         text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
-        if (self%noise_estimated) then
+        if (self%noise_floor_level > 0.0_dp) then
+            text = text//' of |G| and a floor of '//sci_text(self%noise_floor_level)//' m/N (estimated from the data)'
+        else if (self%noise_estimated) then
             text = text//' of |G| (estimated from the data)'
         else
             text = text//' times the sigma given'

@@ -5,7 +5,7 @@
 !> (repaired by their neighbours' cubic) and the line spacing of a grid.
 module greenconv_ident_noise_model
     use greenconv_core_kinds, only: dp
-    use greenconv_core_sorting, only: median
+    use greenconv_core_sorting, only: median, heap_sort
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_ml_types, only: ml_options, ml_result
     use greenconv_ident_lm_fit, only: data_type, narrow_band
@@ -20,6 +20,17 @@ module greenconv_ident_noise_model
 
     !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
     real(dp), parameter :: gross_ratio = 1.0e100_dp
+    !> Smallest estimated relative-noise sigma of the order search, as a fraction of the
+    !> largest (80 dB): lines further below the peak are weighted as if they were this far
+    !> below until the final refinement, whose weights rho*|G_model| are not capped (the
+    !> likelihood of the relative model, started from the modes found). Without it the
+    !> weights of an FRF rolling off as omega^-10 (sdypy-EMA's far transfers, 11 decades from
+    !> the peak to 1700 Hz) span 1e22: the fit is ruled by the lines of the tail, where the
+    !> five mode terms cancel to 1e-7 of each, and resonances 100 dB above them were thrown
+    !> out as outliers at 1e13 sigma or merged (chi2/nu 3e11, 600-800 LM iterations, the 50 Hz
+    !> mode lost); with it the same FRFs give the five modes to 1e-7 in 30-70 iterations.
+    !> Where the estimated noise spans less than 80 dB nothing changes.
+    real(dp), parameter :: dynamic_range = 1.0e-4_dp
 
 contains
 
@@ -48,6 +59,72 @@ contains
         end do
         level = sqrt(median(q)/log(2.0_dp))
     end function estimate_noise
+
+    !> Noise of the 'floor' model, sigma_l^2 = (rho*|G_l|)^2 + s^2, from the smoothness of G: the
+    !> 4th difference d_l (as estimate_noise) has E|d_l|^2 = rho^2*a_l + s^2, a_l = sum_j c_j^2*|G_{l+j}|^2.
+    !> The lines are sorted by a_l into `bins` groups of equal count; in each, median(|d|^2)/ln 2
+    !> against median(a) (robust to the lines where d sees a resonance, as in estimate_noise), and
+    !> rho^2, s^2 >= 0 fitted to these points by least squares relative to each point (the
+    !> points span many decades). Too few lines for the bins: s = 0 and rho as 'relative'.
+    pure subroutine estimate_floor_noise(receptance, level, floor_level)
+        !> Receptance lines [m/N] on a uniform grid (at least 5).
+        complex(dp), intent(in) :: receptance(:)
+        !> rho, relative to |G|.
+        real(dp), intent(out) :: level
+        !> s [m/N].
+        real(dp), intent(out) :: floor_level
+
+        integer, parameter :: bins = 16
+        real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
+        real(dp) :: q(size(receptance) - 4), a(size(receptance) - 4), sorted(size(receptance) - 4)
+        real(dp) :: x(bins), y(bins), w(bins), scale, low, high, s_xx, s_x, s_1, s_xy, s_y, det, r, s2
+        integer :: l, b, n
+        logical :: inside(size(receptance) - 4)
+
+        n = size(q)
+        floor_level = 0.0_dp
+        if (n < 5*bins) then
+            level = estimate_noise(receptance, 'relative')
+            return
+        end if
+        scale = max(maxval(abs(receptance)), tiny(1.0_dp))
+        do l = 1, n
+            q(l) = abs(sum(c*receptance(l:l + 4))/scale)**2
+            a(l) = sum(c**2*abs(receptance(l:l + 4)/scale)**2)
+        end do
+        sorted = a
+        call heap_sort(sorted)
+        do b = 1, bins
+            low = sorted(1 + ((b - 1)*n)/bins)
+            high = sorted((b*n)/bins)
+            inside = a >= low .and. a <= high
+            x(b) = median(pack(a, inside))
+            y(b) = max(median(pack(q, inside))/log(2.0_dp), tiny(1.0_dp))
+        end do
+        ! Weighted least squares of y = r*x + s2 with weights 1/y^2, then r, s2 >= 0.
+        w = 1.0_dp/y**2
+        s_xx = sum(w*x*x)
+        s_x = sum(w*x)
+        s_1 = sum(w)
+        s_xy = sum(w*x*y)
+        s_y = sum(w*y)
+        det = s_xx*s_1 - s_x**2
+        r = -1.0_dp
+        s2 = -1.0_dp
+        if (det > 0.0_dp) then
+            r = (s_xy*s_1 - s_x*s_y)/det
+            s2 = (s_xx*s_y - s_x*s_xy)/det
+        end if
+        if (.not. (s2 > 0.0_dp)) then
+            s2 = 0.0_dp
+            r = s_xy/s_xx
+        else if (.not. (r > 0.0_dp)) then
+            r = 0.0_dp
+            s2 = s_y/s_1
+        end if
+        level = sqrt(max(r, 0.0_dp))
+        floor_level = sqrt(s2)*scale
+    end subroutine estimate_floor_noise
 
     !> sqrt of the mean of |G|^2 over each line and its two neighbours on each side: the scale
     !> of the relative noise model during the order search, with the noise of |G| in the
@@ -104,11 +181,19 @@ contains
         if (allocated(options%sigma)) then
             sigma(:) = options%sigma
         else
-            result%noise_level = estimate_noise(frf%receptance, options%noise_model)
+            if (options%noise_model == 'floor') then
+                call estimate_floor_noise(frf%receptance, result%noise_level, result%noise_floor_level)
+            else
+                result%noise_level = estimate_noise(frf%receptance, options%noise_model)
+            end if
             if (options%noise_model == 'absolute') then
                 sigma(:) = result%noise_level
+            else if (options%noise_model == 'floor') then
+                sigma(:) = hypot(result%noise_level*smoothed_magnitude(frf%receptance), result%noise_floor_level)
+                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
             else
                 sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
+                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
             end if
         end if
         sigma(:) = max(sigma, floor)
@@ -127,6 +212,7 @@ contains
         data%max_iterations = options%max_iterations
         data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
         data%level = result%noise_level
+        data%absolute_floor = result%noise_floor_level
     end subroutine prepare_data
 
     !> Lines whose |G| exceeds the median |G| of the nonzero lines above 0 Hz by more than

@@ -24,7 +24,9 @@
 !> columns 1-6, or by the extension .uff or .unv) is read too (greenconv_io_uff): one
 !> dataset 58 of function type 4 (FRF) with a frequency abscissa, or the one `dataset`
 !> names when the file holds several; its abscissa even or uneven, the same grids as a
-!> column file. Its ordinate is converted to a receptance:
+!> column file. Its abscissae are E13.5 fields (six digits): a grid that lies within that
+!> rounding of a uniform grid from its first line is taken to be that grid (`rounded_grid`:
+!> df = 5000/8192 Hz written 6.10352E-01 is 3.6e-3 Hz off at 5 kHz when read as written). Its ordinate is converted to a receptance:
 !> - receptance (displacement over force): taken as it is [m/N];
 !> - mobility (velocity over force): G = Y/(i*omega);
 !> - accelerance (acceleration over force): G = A/(i*omega)^2 = -A/omega^2;
@@ -427,7 +429,7 @@ contains
             return
         end if
         allocate (frf%receptance(n))
-        frf%frequency = stored_grid(function%abscissa)
+        frf%frequency = rounded_grid(function%abscissa, function%even)
         frf%line = line_of
         omega = two_pi*frf%frequency
         ! Above 0 Hz the conversion divides; a 0 Hz line (the first, if any) is extrapolated below.
@@ -544,6 +546,87 @@ contains
         f = [(j*(read(n)/(n - 1)), j=0, n - 1)]
         f(n) = read(n)
     end function stored_grid
+
+    !> The grid a universal file states. Its abscissae went through E13.5 fields (six
+    !> significant digits): record 7's increment for even spacing, each line's value for uneven.
+    !> A grid such a file states as uniform (an analyser's df = 5000/8192 Hz written 6.10352E-01,
+    !> 0.33806761... written 3.38068E-01) then comes back with an error of up to half a unit in
+    !> the sixth digit, which grows along the lines (2e-3 Hz at the 5000th line): a systematic
+    !> shift of every resonance. When every line lies within its rounding t_j of a uniform grid
+    !> from the first line, the grid is taken to be that one: its last line F is the decimal
+    !> with fewest significant digits within t_n of the last line read (the end a user chose,
+    !> 1700 or 5000 Hz), else the last line itself, and f_j = f_1 + (j - 1)*(F - f_1)/(n - 1),
+    !> f_n = F (from 0 Hz, j*F/(n - 1) exactly, as stored_grid gives). The rounding is
+    !> t_j = (j - 1)*h(df) for even spacing (the minimum is the first line as stated) and
+    !> t_j = h(f_j) for uneven, h(x) half a unit in the sixth significant digit of x. Any other
+    !> grid is stored as stored_grid stores it.
+    pure function rounded_grid(read, even) result(f)
+        real(dp), intent(in) :: read(:)
+        logical, intent(in) :: even
+        real(dp) :: f(size(read))
+
+        real(dp) :: tolerance(size(read)), last, step
+        integer :: j, n, try
+
+        n = size(read)
+        if (even) then
+            tolerance = [(j*half_unit(read(2) - read(1)), j=0, n - 1)]
+        else
+            tolerance = [(half_unit(read(j)), j=1, n)]
+        end if
+        do try = 1, 2
+            if (try == 1) then
+                last = shortest_decimal(read(n) - tolerance(n), read(n) + tolerance(n), read(n))
+            else
+                last = read(n)
+            end if
+            step = (last - read(1))/(n - 1)
+            f = [(read(1) + j*step, j=0, n - 1)]
+            f(n) = last
+            ! The decimal read may be a few units in the last binary place off the decimal written.
+            if (all(abs(read - f) <= tolerance + 8*spacing(abs(read)))) return
+        end do
+        f = stored_grid(read)
+    end function rounded_grid
+
+    !> Half a unit in the sixth significant digit of x, the rounding of an E13.5 field [as x].
+    elemental real(dp) function half_unit(x)
+        real(dp), intent(in) :: x
+
+        half_unit = 0.0_dp
+        if (x /= 0.0_dp) half_unit = 0.5_dp*10.0_dp**(floor(log10(abs(x))) - 5)
+    end function half_unit
+
+    !> The decimal with fewest significant digits in [low, high] (low <= high), the one nearest
+    !> `near` among those; `near` itself when none has fewer than 17 digits.
+    pure real(dp) function shortest_decimal(low, high, near) result(x)
+        real(dp), intent(in) :: low, high, near
+
+        real(dp) :: scale, candidate, best
+        integer :: k, top, step
+
+        x = near
+        if (.not. (high > low) .or. .not. (high > 0.0_dp)) return
+        top = floor(log10(max(abs(low), abs(high)))) + 1
+        do k = top, top - 16, -1
+            ! Multiples of 10^k, as integer/10^-k below 1 so that 0.001 is the double nearest it.
+            scale = 10.0_dp**abs(k)
+            best = huge(1.0_dp)
+            do step = -1, 1
+                if (k >= 0) then
+                    candidate = (anint(near/scale) + step)*scale
+                else
+                    candidate = (anint(near*scale) + step)/scale
+                end if
+                if (candidate >= low .and. candidate <= high .and. abs(candidate - near) < best) then
+                    x = candidate
+                    best = abs(candidate - near)
+                end if
+            end do
+            if (best < huge(1.0_dp)) return
+        end do
+        x = near
+    end function shortest_decimal
 
     !> Check that the frequencies are >= 0 and increase (a grid from 0 Hz within the tolerance
     !> counts as starting at 0).
