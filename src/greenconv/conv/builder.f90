@@ -12,9 +12,9 @@
 !> - `table_convolver`: a multi-point `direct` or `fft` convolver on a table g_ij(t_m) (from a
 !>   file, or given by a caller), truncated by the paper's rule.
 !>
-!> Methods are told apart by their registry scheme (`method_scheme`), never by name: the kernel
-!> engines here (`new_kernel_engine`, `new_table_engine`), the decaying recursions in
-!> greenconv_conv_recursive's `new_modal_engine`.
+!> Methods are never told apart here: greenconv_conv_engines's `engine_of` gives a method's
+!> constructors (on the sampled g or on modes, single- or multi-point) and whether it picks
+!> another method (`auto`), and this module calls what it gives.
 module greenconv_conv_builder
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -24,19 +24,11 @@ module greenconv_conv_builder
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_structure, only: structure_model
-    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method, &
-                                      method_scheme, scheme_direct, scheme_fft, scheme_paper, scheme_first_order, &
-                                      scheme_auto
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method
     use greenconv_conv_convolver, only: convolver
-    use greenconv_conv_direct, only: new_direct_convolver
     use greenconv_conv_kernel, only: sample_kernel, truncation_length
-    use greenconv_conv_fft, only: new_fft_convolver
-    use greenconv_conv_paper, only: new_paper_convolver
-    use greenconv_conv_recursive, only: new_modal_engine
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
-    use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
-    use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
-    use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
+    use greenconv_conv_engines, only: engine_constructors, engine_of
     implicit none
     private
 
@@ -189,6 +181,7 @@ contains
         real(dp), intent(in), optional :: requested
 
         character(len=:), allocatable :: chosen, reason
+        type(engine_constructors) :: engine
         real(dp) :: target
 
         ! What the structure has is the caller's to check (`new_convolver` does; a scene's
@@ -199,7 +192,8 @@ contains
         if (allocated(error)) return
         call check_wrapped_g(method, structure, error)
         if (allocated(error)) return
-        if (method_scheme(method) /= scheme_auto) then
+        engine = engine_of(method)
+        if (.not. engine%chooses) then
             call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
             return
         end if
@@ -269,18 +263,19 @@ contains
         class(convolver), allocatable, intent(out) :: conv
         character(len=:), allocatable, intent(out) :: accuracy
 
+        type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:)
         real(dp) :: tail, misfit
         integer(int64) :: valid
         integer :: j
 
-        select case (method_scheme(method))
-        case (scheme_direct, scheme_fft)
+        engine = engine_of(method)
+        if (associated(engine%from_kernel)) then
             call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
             ! A kernel that reaches the run's end was cut there: it is valid for n_steps steps.
             valid = huge(valid)
             if (size(kernel) >= n_steps) valid = n_steps
-            call new_kernel_engine(method_scheme(method), kernel, dt, valid, conv)
+            call engine%from_kernel(kernel, dt, valid, conv)
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
             if (structure%identified .and. .not. structure%has_exact) then
@@ -295,11 +290,9 @@ contains
                                //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
                 end if
             end if
-        case (scheme_paper)
-            conv = new_paper_convolver(structure%model, dt)
-        case default
-            conv = new_modal_engine(method_scheme(method), structure%model, dt)
-        end select
+        else
+            call engine%on_modes(structure%model, dt, conv)
+        end if
         if (method_needs_modes(method)) then
             accuracy = 'exact: the modes are the structure''s own'
             if (structure%identified) accuracy = structure%fit_brief()
@@ -343,19 +336,20 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: why
+        type(engine_constructors) :: engine
 
         if (.not. wrapped_g(structure)) return
         why = 'g from the receptance has not decayed within the period 1/df of its frequency grid (wrap-around: ' &
               //sci_text(structure%fit%tail_level)//' of max|g| left at its end), so a convolution with it is wrong'
-        select case (method_scheme(method))
-        case (scheme_direct, scheme_fft)
+        engine = engine_of(method)
+        if (associated(engine%from_kernel)) then
             call fatal_error(error, 'method '//method//': '//why//': use a modal method (''modal'', ''exact'') on ' &
                              //'the identified modes, or a receptance on a finer frequency grid')
-        case (scheme_auto)
+        else if (engine%chooses) then
             if (structure%model%n_modes() == 0) call fatal_error(error, 'method auto: '//why//', and the ' &
                                                                  //'identification kept no modes: give a ' &
                                                                  //'receptance on a finer frequency grid')
-        end select
+        end if
     end subroutine check_wrapped_g
 
     !> The truncated kernel of the structure's own g and the largest neglected sample.
@@ -404,27 +398,25 @@ contains
         !> Set for a method that does not serve multi-point contact or modes that do not fit.
         type(error_type), allocatable, intent(out) :: error
 
-        type(modal_green_matrix) :: modal
+        type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :)
         real(dp) :: tail
 
         accuracy = ''
         call check_method(method, .true., modes%modes%n_modes() > 0, modes%modes%n_modes() > 0, error)
         if (allocated(error)) return
-        select case (method_scheme(method))
-        case (scheme_direct, scheme_fft)
+        engine = engine_of(method)
+        if (associated(engine%from_table)) then
             call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
-            call new_table_engine(method_scheme(method), kernel, dt, conv, error)
+            call engine%from_table(kernel, dt, conv, error)
             if (allocated(error)) return
             accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
-        case default
-            call new_modal_green_matrix(modes, dt, method, modal, error)
+        else
+            call engine%on_point_modes(modes, dt, conv, error)
             if (allocated(error)) return
-            allocate (conv, source=modal)
             accuracy = 'exact on the model''s modes (explicit step)'
-            if (method_scheme(method) == scheme_first_order) &
-                accuracy = 'first-order hold, implicit step (Newton, all points)'
-        end select
+            if (engine%instant_part) accuracy = 'first-order hold, implicit step (Newton, all points)'
+        end if
     end subroutine make_multipoint_convolver
 
     !> `direct` or `fft` on a table g_ij(t_m), truncated by the paper's rule: the last m at
@@ -451,6 +443,7 @@ contains
         !> The identified model's g_ij(m*dt) on the same samples [m/(N*s)].
         real(dp), intent(in), optional :: fitted(0:, :, :)
 
+        type(engine_constructors) :: engine
         real(dp), allocatable :: row_max(:)
         real(dp) :: tail, misfit
         integer :: last, n_g, m
@@ -463,7 +456,8 @@ contains
         n_g = truncation_length(row_max, tol)
         tail = 0.0_dp
         if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
-        call new_table_engine(method_scheme(method), kernel(0:n_g, :, :), dt, conv, error)
+        engine = engine_of(method)
+        call engine%from_table(kernel(0:n_g, :, :), dt, conv, error)
         if (allocated(error)) return
         accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         if (.not. present(fitted)) return
@@ -471,38 +465,5 @@ contains
         accuracy = accuracy//'; the identified model''s g_ij by the same FFT differs by '//sci_text(misfit) &
                    //' of max|g_ij|'
     end subroutine table_convolver
-
-    !> The single-point kernel engine of a scheme: `scheme_direct` or `scheme_fft`.
-    subroutine new_kernel_engine(scheme, kernel, dt, valid, conv)
-        integer, intent(in) :: scheme
-        real(dp), intent(in) :: kernel(:), dt
-        integer(int64), intent(in) :: valid
-        class(convolver), allocatable, intent(out) :: conv
-
-        if (scheme == scheme_direct) then
-            conv = new_direct_convolver(kernel, dt, valid)
-        else
-            conv = new_fft_convolver(kernel, dt, valid_steps=valid)
-        end if
-    end subroutine new_kernel_engine
-
-    !> The multi-point table engine of a scheme: `scheme_direct` or `scheme_fft`.
-    subroutine new_table_engine(scheme, kernel, dt, conv, error)
-        integer, intent(in) :: scheme
-        real(dp), intent(in) :: kernel(0:, :, :), dt
-        class(multipoint_convolver), allocatable, intent(out) :: conv
-        type(error_type), allocatable, intent(out) :: error
-
-        type(sampled_green_matrix) :: sampled
-        type(fft_green_matrix) :: partitioned
-
-        if (scheme == scheme_direct) then
-            call new_sampled_green_matrix(kernel, dt, sampled, error)
-            if (.not. allocated(error)) allocate (conv, source=sampled)
-        else
-            call new_fft_green_matrix(kernel, dt, partitioned, error)
-            if (.not. allocated(error)) allocate (conv, source=partitioned)
-        end if
-    end subroutine new_table_engine
 
 end module greenconv_conv_builder

@@ -24,8 +24,8 @@ module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_conv_methods, only: check_method, default_truncation_tol, method_scheme, scheme_direct, scheme_fft, &
-                                      scheme_first_order
+    use greenconv_conv_methods, only: check_method, default_truncation_tol
+    use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
@@ -138,13 +138,15 @@ contains
         !> that does not fit the file's impulse responses.
         type(error_type), allocatable, intent(out) :: error
 
+        type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :), fitted(:, :, :)
         character(len=:), allocatable :: source, text
 
         accuracy = ''
         call check_method(method, .true., .true., structure%identified, error)
         if (allocated(error)) return
-        if (any(method_scheme(method) == [scheme_direct, scheme_fft])) then
+        engine = engine_of(method)
+        if (associated(engine%from_table)) then
             call sampled_kernel(structure, dt, kernel, source, error, fitted)
             if (allocated(error)) return
             if (allocated(kernel)) then
@@ -164,7 +166,7 @@ contains
         accuracy = text//'; '//modes_accuracy(structure, .false.)
         ! The fit's upper residual U is an impulse U*delta(t) in g_ij: the first-order hold puts
         ! all of it in the current step's displacement, W0.
-        if (method_scheme(method) == scheme_first_order .and. structure%fit%pole_fit%has_upper) then
+        if (engine%instant_part .and. structure%fit%pole_fit%has_upper) then
             call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
             accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
         end if

@@ -26,7 +26,7 @@ module greenconv_conv_green_modal
     implicit none
     private
 
-    public :: modal_green_matrix, new_modal_green_matrix
+    public :: modal_green_matrix, new_modal_green_matrix, modal_green_matrix_on
 
     !> Shared modes stepped by one decaying recursion per mode (`recursive` or `exact`).
     type, extends(multipoint_convolver) :: modal_green_matrix
@@ -60,24 +60,61 @@ contains
         !> Set for an unknown scheme or mode shapes that do not match the modes.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: weight0(:, :)
-        integer :: n_c, n_m, k
-
-        n_c = description%n_points()
-        n_m = description%modes%n_modes()
-        if (n_c < 1 .or. size(description%shape, 2) /= n_m) then
-            call fatal_error(error, 'modal Green''s matrix: expected mode shapes for at least one point and ' &
-                             //'one column per mode')
-            return
-        end if
+        call check_shapes(description, error)
+        if (allocated(error)) return
         if (.not. is_modal_recursion(scheme)) then
             call fatal_error(error, 'modal Green''s matrix: unknown scheme '''//scheme//''': expected ' &
                              //method_list(engine='recursive'))
             return
         end if
-        ! The single-point engine of the same scheme on the same modes: its states are the p_k,
-        ! and its per-mode shares of w0 weigh the mode shapes into W0.
-        conv%engine = new_modal_engine(method_scheme(scheme), description%modes, dt)
+        call set_up_matrix(description, dt, new_modal_engine(method_scheme(scheme), description%modes, dt), conv)
+    end subroutine new_modal_green_matrix
+
+    !> A modal multi-point convolver on a single-point decaying recursion already built on the
+    !> same modes at the same step (greenconv_conv_recursive's `new_recursive_convolver`,
+    !> `new_exact_convolver`, `new_backward_convolver`): its states are the p_k, and its
+    !> per-mode shares of w0 weigh the mode shapes into W0.
+    subroutine modal_green_matrix_on(description, dt, engine, conv, error)
+        !> Modes and mode shapes at the points.
+        type(point_modes), intent(in) :: description
+        !> Time step [s], the engine's.
+        real(dp), intent(in) :: dt
+        !> The single-point recursion on `description%modes`.
+        type(recursive_convolver), intent(in) :: engine
+        !> The convolver.
+        type(modal_green_matrix), intent(out) :: conv
+        !> Set for mode shapes that do not match the modes.
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_shapes(description, error)
+        if (allocated(error)) return
+        call set_up_matrix(description, dt, engine, conv)
+    end subroutine modal_green_matrix_on
+
+    !> Refuse mode shapes for no point, or with a column count other than the number of modes.
+    subroutine check_shapes(description, error)
+        type(point_modes), intent(in) :: description
+        type(error_type), allocatable, intent(out) :: error
+
+        if (description%n_points() < 1 .or. size(description%shape, 2) /= description%modes%n_modes()) then
+            call fatal_error(error, 'modal Green''s matrix: expected mode shapes for at least one point and ' &
+                             //'one column per mode')
+        end if
+    end subroutine check_shapes
+
+    !> Hold the engine and the mode shapes, weigh W0 from the engine's per-mode shares, and reset.
+    subroutine set_up_matrix(description, dt, engine, conv)
+        type(point_modes), intent(in) :: description
+        real(dp), intent(in) :: dt
+        type(recursive_convolver), intent(in) :: engine
+        type(modal_green_matrix), intent(inout) :: conv
+
+        real(dp), allocatable :: weight0(:, :)
+        integer :: n_c, n_m, k
+
+        n_c = description%n_points()
+        n_m = description%modes%n_modes()
+        conv%engine = engine
         call conv%set_model(conv%engine%name, dt, n_m, 'N_m')
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape
@@ -88,7 +125,7 @@ contains
         end do
         call conv%set_instant_matrix(weight0)
         call conv%reset()
-    end subroutine new_modal_green_matrix
+    end subroutine set_up_matrix
 
     !> u_h,i(n) = sum_k phi_ik*Re(p_k(n)) [m].
     subroutine modal_history(self, u)

@@ -4,10 +4,10 @@
 !>
 !> The scene check, the builder (greenconv_conv_builder), the runner and the library ask it,
 !> so a scene `--check` refuses exactly what a run refuses. This is the only place a method's
-!> name is compared: everyone else asks for its `scheme` (`method_scheme`), an integer the
-!> constructors dispatch on once (the builder for the kernel engines, greenconv_conv_recursive's
-!> `new_modal_engine` for the decaying recursions). Adding an engine: its module, one row in
-!> `registry` with a new scheme, and its `case` in the builder.
+!> name is compared: everyone else asks for its `scheme` (`method_scheme`), an integer turned
+!> into constructors at one place, greenconv_conv_engines's `engine_of` (the builder calls what
+!> it gives). Adding an engine: its module, one row in `registry` with a new scheme, and its
+!> `case` in `engine_of`.
 module greenconv_conv_methods
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
