@@ -481,6 +481,7 @@ plot-test: $(BIN)
 test: deps
 	@$(MAKE) layers
 	@$(MAKE) links
+	@$(MAKE) doc-check
 	@$(MAKE) lib
 	@bash tools/check_symbols.sh $(LIB) $(SHLIB)
 	@bash tools/check_version.sh $(BIN)

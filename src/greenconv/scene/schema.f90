@@ -324,6 +324,7 @@ contains
         end select
     contains
         logical function in_range(x)
+            !> The value as a real number.
             real(dp), intent(in) :: x
 
             in_range = merge(x >= variable%low, x > variable%low, variable%low_in) .and. &

@@ -583,7 +583,9 @@ contains
 
     !> Append a text to a list.
     subroutine append_text(list, text)
+        !> The list [texts], grown by one.
         type(sweep_text), allocatable, intent(inout) :: list(:)
+        !> The text to append.
         character(len=*), intent(in) :: text
 
         type(sweep_text), allocatable :: longer(:)
@@ -813,7 +815,9 @@ contains
 
     !> A text padded with blanks on the right to at least `width` characters.
     pure function padded(text, width) result(wide)
+        !> The text.
         character(len=*), intent(in) :: text
+        !> The least width [characters].
         integer, intent(in) :: width
         character(len=max(len(text), width)) :: wide
 
@@ -822,7 +826,9 @@ contains
 
     !> The width of variable j's column: its name or its widest value.
     integer function column_width(plan, j)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
+        !> Index of the varied variable.
         integer, intent(in) :: j
 
         integer :: k

@@ -209,7 +209,9 @@ contains
 
     !> The record of a variant, named by its content key.
     function record_path(plan, key) result(path)
+        !> The sweep.
         type(sweep_plan), intent(in) :: plan
+        !> The variant's content key (hex digits).
         character(len=*), intent(in) :: key
         character(len=:), allocatable :: path
 
@@ -218,8 +220,11 @@ contains
 
     !> Read a record; `found` is .false. when there is none (or it is not one).
     subroutine load_record(path, outcome, found)
+        !> File of the record.
         character(len=*), intent(in) :: path
+        !> The variant's outcome read from it.
         type(variant_outcome), intent(out) :: outcome
+        !> Whether a whole record was read.
         logical, intent(out) :: found
 
         type(sweep_text), allocatable :: lines(:)
