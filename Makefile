@@ -29,7 +29,8 @@
 #                   plot/lib/column_file.gp picks <name>_<method>.dat or .bin)
 #   make plot-test  the plot scripts that read contact runs draw the same figure from a text
 #                   and a binary run (tools/test_plot_formats.sh, about 10 s; run by make test)
-#   make test       deps, the layer check (`make layers`), the link check (`make links`), `make lib`
+#   make test       deps, the layer check (`make layers`), the link check (`make links`), the doc
+#                   check (`make doc-check`), `make lib`
 #                   and its symbol check (tools/check_symbols.sh: no global symbol outside greenconv's
 #                   prefixes), the version check (tools/check_version.sh: fpm.toml's version in the
 #                   header, doc/greenconv.md, CHANGELOG.md and `greenconv --version`), check that the
