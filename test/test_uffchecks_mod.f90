@@ -141,7 +141,7 @@ contains
 
         type(uff_function), allocatable :: functions(:)
         type(uff_node), allocatable :: nodes(:)
-        character(len=*), parameter :: expected(2) = [character(len=60) :: &
+        character(len=*), parameter :: expected(2) = [character(len=80) :: &
             'node 3 is a reference node here but never a response node', &
             'node 3 is a response node here but never a reference node']
         integer :: case

@@ -114,7 +114,11 @@ contains
     end function capped_step
 
     !> Forget all forces pushed and return to step 0.
-    subroutine reset(self)
+    !>
+    !> Recursive: a convolver that holds another (the 1 x 1 point_matrix around a single-point
+    !> engine, the modal Green's matrix around its recursion) resets the one it holds from its
+    !> own `clear`, so this routine runs inside itself.
+    recursive subroutine reset(self)
         !> The convolver.
         class(convolver_core), intent(inout) :: self
 
