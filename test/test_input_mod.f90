@@ -47,7 +47,7 @@ contains
                      new_unittest('library: modes with Re lambda >= 0 or NaN refused', test_library_modes), &
                      new_unittest('scene table: each namelist holds the table''s variables', test_table_namelists), &
                      new_unittest('scene table: defaults read as their kind', test_table_defaults), &
-                     new_unittest('model registry: names, required variables in the table', test_model_registry)]
+                     new_unittest('model registry: names, required variables, one builder per row', test_model_registry)]
     end subroutine collect_input
 
     !> Write `text` as scratch/name, read it as the driver does (read_scene, and
@@ -631,6 +631,15 @@ contains
             end do
             call check(error, n == count_words(models(m)%requires), trim(models(m)%name)//' requires "' &
                        //trim(models(m)%requires)//'": not all are &structure variables of the table')
+            if (allocated(error)) return
+            ! each model is built one way: a single-point structure, or the points of several
+            call check(error, associated(models(m)%build) .neqv. associated(models(m)%find_points), &
+                       trim(models(m)%name)//': expected a builder or a points finder, exactly one')
+            if (allocated(error)) return
+            ! a model whose direct/fft sample its exact g bounds that kernel's length
+            call check(error, associated(models(m)%slowest_decay) .eqv. &
+                       (models(m)%exact_modes .and. .not. models(m)%sampled_g), &
+                       trim(models(m)%name)//': a decay bound exactly when g is sampled from exact modes')
             if (allocated(error)) return
         end do
     end subroutine test_model_registry

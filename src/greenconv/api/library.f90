@@ -59,7 +59,7 @@ contains
         if (present(compression)) compression = delta
     end subroutine contact_step
 
-    !> Check a contact law and preload: k_c > 0, p > 0 and F0 >= 0, all finite.
+    !> Check a contact law (its own `check`) and a preload F0 >= 0, finite.
     subroutine check_contact_law(law, preload, error)
         !> The contact law.
         type(contact_law), intent(in) :: law
@@ -68,11 +68,9 @@ contains
         !> Set (status `stat_input`) when a value is out of range.
         type(error_type), allocatable, intent(out) :: error
 
-        if (.not. (law%stiffness > 0.0_dp .and. ieee_is_finite(law%stiffness))) then
-            call fatal_error(error, 'contact: the stiffness k_c must be finite and > 0 N/m^p')
-        else if (.not. (law%exponent > 0.0_dp .and. ieee_is_finite(law%exponent))) then
-            call fatal_error(error, 'contact: the exponent p must be finite and > 0')
-        else if (.not. (preload >= 0.0_dp .and. ieee_is_finite(preload))) then
+        call law%check(error)
+        if (allocated(error)) return
+        if (.not. (preload >= 0.0_dp .and. ieee_is_finite(preload))) then
             call fatal_error(error, 'contact: the preload F0 must be finite and >= 0 N')
         end if
     end subroutine check_contact_law

@@ -2,10 +2,13 @@
 !> contact alike (greenconv_contact_single, greenconv_contact_multi): the force it carries at a
 !> compression, the compression that carries a force, and its tangent stiffness.
 !>
-!> The contact steppers call only these three type-bound procedures: a new contact law is
-!> written here, in them, and nowhere in the steppers (plus its rows in the scene schema).
+!> The contact steppers call only these three type-bound procedures, and every door (scenes,
+!> Fortran, C, F77) checks a law by its fourth, `check`: a new contact law is written here, in
+!> them, and nowhere in the steppers or the doors (plus its rows in the scene schema).
 module greenconv_contact_law
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
     implicit none
     private
 
@@ -24,6 +27,8 @@ module greenconv_contact_law
         procedure :: compression => law_compression
         !> Tangent stiffness dF/d(delta) [N/m] at a compression delta > 0 [m].
         procedure :: tangent => law_tangent
+        !> Refuse a law whose parameters are out of range (status `stat_input`).
+        procedure :: check => law_check
     end type contact_law
 
 contains
@@ -68,5 +73,20 @@ contains
 
         law_tangent = self%exponent*self%stiffness*delta**(self%exponent - 1.0_dp)
     end function law_tangent
+
+    !> Refuse a law whose parameters make no spring: k_c > 0 and p > 0, both finite; the
+    !> message names the parameter and its range.
+    subroutine law_check(self, error)
+        !> The contact law.
+        class(contact_law), intent(in) :: self
+        !> Set when a parameter is out of range.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (self%stiffness > 0.0_dp .and. ieee_is_finite(self%stiffness))) then
+            call fatal_error(error, 'contact: the stiffness k_c must be finite and > 0 N/m^p')
+        else if (.not. (self%exponent > 0.0_dp .and. ieee_is_finite(self%exponent))) then
+            call fatal_error(error, 'contact: the exponent p must be finite and > 0')
+        end if
+    end subroutine law_check
 
 end module greenconv_contact_law

@@ -270,12 +270,12 @@ contains
         integer :: j
 
         engine = engine_of(method)
-        if (associated(engine%from_kernel)) then
+        if (engine%samples_g()) then
             call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
             ! A kernel that reaches the run's end was cut there: it is valid for n_steps steps.
             valid = huge(valid)
             if (size(kernel) >= n_steps) valid = n_steps
-            call engine%from_kernel(kernel, dt, valid, conv)
+            call engine%on_kernel(kernel, dt, valid, conv)
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
             if (structure%identified .and. .not. structure%has_exact) then
@@ -342,7 +342,7 @@ contains
         why = 'g from the receptance has not decayed within the period 1/df of its frequency grid (wrap-around: ' &
               //sci_text(structure%fit%tail_level)//' of max|g| left at its end), so a convolution with it is wrong'
         engine = engine_of(method)
-        if (associated(engine%from_kernel)) then
+        if (engine%samples_g()) then
             call fatal_error(error, 'method '//method//': '//why//': use a modal method (''modal'', ''exact'') on ' &
                              //'the identified modes, or a receptance on a finer frequency grid')
         else if (engine%chooses) then
@@ -406,9 +406,9 @@ contains
         call check_method(method, .true., modes%modes%n_modes() > 0, modes%modes%n_modes() > 0, error)
         if (allocated(error)) return
         engine = engine_of(method)
-        if (associated(engine%from_table)) then
+        if (engine%samples_g()) then
             call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
-            call engine%from_table(kernel, dt, conv, error)
+            call engine%on_table(kernel, dt, conv, error)
             if (allocated(error)) return
             accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         else
@@ -457,7 +457,7 @@ contains
         tail = 0.0_dp
         if (n_g < last .and. maxval(row_max) > 0.0_dp) tail = maxval(row_max(n_g + 1:))/maxval(row_max)
         engine = engine_of(method)
-        call engine%from_table(kernel(0:n_g, :, :), dt, conv, error)
+        call engine%on_table(kernel(0:n_g, :, :), dt, conv, error)
         if (allocated(error)) return
         accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         if (.not. present(fitted)) return

@@ -3,13 +3,15 @@
 !> it, and nobody else tells the methods apart. The builder (greenconv_conv_builder) and the
 !> Green's-file builder (greenconv_conv_green_file) call what it gives.
 !>
-!> Each method names its constructors: on the sampled g, `from_kernel` (one point) and
-!> `from_table` (a table g_ij, several points); on modes, `recursion` (a decaying recursion,
-!> which also steps the modal Green's matrix of several points) or `from_modes` (`paper`).
-!> `on_modes` and `on_point_modes` build a modal method's engine for one or several points.
-!> The registry's `check_method` refuses a kind of contact a method does not serve before any
-!> constructor is called. Adding an engine: its module, its row in the
-!> registry, and its `case` in `engine_of` naming its constructors.
+!> Each method names how it is built: on the sampled g, its kind `on_sampled_g` (the direct sum
+!> or the partitioned FFT), which `on_kernel` (one point) and `on_table` (a table g_ij, several
+!> points) turn into an engine; on modes, `recursion` (a decaying recursion, which also steps
+!> the modal Green's matrix of several points) or `from_modes` (`paper`), which `on_modes` and
+!> `on_point_modes` build for one or several points. The registry's `check_method` refuses a
+!> kind of contact a method does not serve before any constructor is called. Adding an engine:
+!> its module, its row in the registry, and its `case` in `engine_of` (for a modal engine, its
+!> constructor; for one more kind of sampled convolution, its kind and its branch in
+!> `on_kernel` and `on_table`).
 module greenconv_conv_engines
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
@@ -32,22 +34,17 @@ module greenconv_conv_engines
     private
 
     public :: engine_constructors, engine_of
-    public :: kernel_constructor, modes_constructor, table_constructor, recursion_constructor
+    public :: modes_constructor, recursion_constructor
+    public :: kernel_none, kernel_direct, kernel_partitioned
+
+    !> How a method convolves with a sampled g: it does not (a modal method).
+    integer, parameter :: kernel_none = 0
+    !> ... by the direct sum of eq. (5) (`direct`).
+    integer, parameter :: kernel_direct = 1
+    !> ... by the partitioned FFT (`fft`).
+    integer, parameter :: kernel_partitioned = 2
 
     abstract interface
-        !> A single-point engine on a sampled kernel w_j = g(t_j) [m/(N*s)], j = 0..N_g.
-        subroutine kernel_constructor(kernel, dt, valid, conv)
-            import :: dp, int64, convolver
-            !> The kernel g(t_j) [m/(N*s)].
-            real(dp), intent(in) :: kernel(0:)
-            !> Time step [s].
-            real(dp), intent(in) :: dt
-            !> Number of steps the kernel is valid for (huge when it holds the whole of g).
-            integer(int64), intent(in) :: valid
-            !> The convolver, at step 0.
-            class(convolver), allocatable, intent(out) :: conv
-        end subroutine kernel_constructor
-
         !> A single-point engine on modes (poles [rad/s] and residues).
         subroutine modes_constructor(modes, dt, conv)
             import :: dp, modal_set, convolver
@@ -58,19 +55,6 @@ module greenconv_conv_engines
             !> The convolver, at step 0.
             class(convolver), allocatable, intent(out) :: conv
         end subroutine modes_constructor
-
-        !> A multi-point engine on a table kernel(m, i, j) = g_ij(m*dt) [m/(N*s)].
-        subroutine table_constructor(kernel, dt, conv, error)
-            import :: dp, multipoint_convolver, error_type
-            !> The table g_ij(t_m) [m/(N*s)].
-            real(dp), intent(in) :: kernel(0:, :, :)
-            !> Time step [s].
-            real(dp), intent(in) :: dt
-            !> The convolver, at step 0.
-            class(multipoint_convolver), allocatable, intent(out) :: conv
-            !> Set when the table does not make a convolver.
-            type(error_type), allocatable, intent(out) :: error
-        end subroutine table_constructor
 
         !> A decaying modal recursion (greenconv_conv_recursive), the single-point engine that a
         !> multi-point one on the same modes holds.
@@ -87,22 +71,27 @@ module greenconv_conv_engines
 
     !> What builds a method, and what its builder must know of it.
     type :: engine_constructors
-        !> Single-point constructor on the sampled g (`direct`, `fft`), else unassociated.
-        procedure(kernel_constructor), pointer, nopass :: from_kernel => null()
+        !> How the method convolves with the sampled g (`kernel_direct` for `direct`,
+        !> `kernel_partitioned` for `fft`), `kernel_none` when it runs on modes.
+        integer :: on_sampled_g = kernel_none
         !> Single-point constructor on modes that is no decaying recursion (`paper`), else
         !> unassociated.
         procedure(modes_constructor), pointer, nopass :: from_modes => null()
         !> The decaying recursion (`recursive`, `exact`, `backward`): single-point on modes, and
         !> the engine of the multi-point one on modes and shapes; else unassociated.
         procedure(recursion_constructor), pointer, nopass :: recursion => null()
-        !> Multi-point constructor on a table g_ij (`direct`, `fft`), else unassociated.
-        procedure(table_constructor), pointer, nopass :: from_table => null()
         !> Whether the method picks another one instead of stepping (`auto`).
         logical :: chooses = .false.
         !> Whether its multi-point step has an instantaneous part W0 /= 0 (the first-order
         !> hold, stepped implicitly by Newton on the active set).
         logical :: instant_part = .false.
     contains
+        !> Whether the method runs on the sampled g (one point) or on a table g_ij (several).
+        procedure :: samples_g
+        !> Build the single-point engine on a sampled kernel.
+        procedure :: on_kernel
+        !> Build the multi-point engine on a table g_ij.
+        procedure :: on_table
         !> Build the single-point engine on modes.
         procedure :: on_modes
         !> Build the multi-point engine on modes and mode shapes.
@@ -120,11 +109,9 @@ contains
 
         select case (method_scheme(method))
         case (scheme_direct)
-            engine%from_kernel => direct_engine
-            engine%from_table => direct_table
+            engine%on_sampled_g = kernel_direct
         case (scheme_fft)
-            engine%from_kernel => fft_engine
-            engine%from_table => fft_table
+            engine%on_sampled_g = kernel_partitioned
         case (scheme_paper)
             engine%from_modes => paper_engine
         case (scheme_rectangle)
@@ -139,25 +126,59 @@ contains
         end select
     end function engine_of
 
-    !> `direct` on one point.
-    subroutine direct_engine(kernel, dt, valid, conv)
+    !> Whether the method runs on the sampled g (`direct`, `fft`), not on modes.
+    elemental logical function samples_g(self)
+        !> The method's constructors.
+        class(engine_constructors), intent(in) :: self
+
+        samples_g = self%on_sampled_g /= kernel_none
+    end function samples_g
+
+    !> The single-point engine of a method on the sampled g (`direct` or `fft`).
+    subroutine on_kernel(self, kernel, dt, valid, conv)
+        !> The method's constructors (`samples_g`).
+        class(engine_constructors), intent(in) :: self
+        !> The kernel w_j = g(t_j) [m/(N*s)], j = 0..N_g.
         real(dp), intent(in) :: kernel(0:)
+        !> Time step [s].
         real(dp), intent(in) :: dt
+        !> Number of steps the kernel is valid for (huge when it holds the whole of g).
         integer(int64), intent(in) :: valid
+        !> The convolver, at step 0.
         class(convolver), allocatable, intent(out) :: conv
 
-        conv = new_direct_convolver(kernel, dt, valid)
-    end subroutine direct_engine
+        if (self%on_sampled_g == kernel_partitioned) then
+            conv = new_fft_convolver(kernel, dt, valid_steps=valid)
+        else
+            conv = new_direct_convolver(kernel, dt, valid)
+        end if
+    end subroutine on_kernel
 
-    !> `fft` on one point.
-    subroutine fft_engine(kernel, dt, valid, conv)
-        real(dp), intent(in) :: kernel(0:)
+    !> The multi-point engine of a method on a table kernel(m, i, j) = g_ij(m*dt) [m/(N*s)]:
+    !> the sampled table (`direct`) or the table by partitioned FFT (`fft`).
+    subroutine on_table(self, kernel, dt, conv, error)
+        !> The method's constructors (`samples_g`).
+        class(engine_constructors), intent(in) :: self
+        !> The table g_ij(t_m) [m/(N*s)].
+        real(dp), intent(in) :: kernel(0:, :, :)
+        !> Time step [s].
         real(dp), intent(in) :: dt
-        integer(int64), intent(in) :: valid
-        class(convolver), allocatable, intent(out) :: conv
+        !> The convolver, at step 0.
+        class(multipoint_convolver), allocatable, intent(out) :: conv
+        !> Set when the table does not make a convolver.
+        type(error_type), allocatable, intent(out) :: error
 
-        conv = new_fft_convolver(kernel, dt, valid_steps=valid)
-    end subroutine fft_engine
+        type(sampled_green_matrix) :: sampled
+        type(fft_green_matrix) :: partitioned
+
+        if (self%on_sampled_g == kernel_partitioned) then
+            call new_fft_green_matrix(kernel, dt, partitioned, error)
+            if (.not. allocated(error)) allocate (conv, source=partitioned)
+        else
+            call new_sampled_green_matrix(kernel, dt, sampled, error)
+            if (.not. allocated(error)) allocate (conv, source=sampled)
+        end if
+    end subroutine on_table
 
     !> `paper` on one point.
     subroutine paper_engine(modes, dt, conv)
@@ -167,32 +188,6 @@ contains
 
         conv = new_paper_convolver(modes, dt)
     end subroutine paper_engine
-
-    !> `direct` on several points: the sampled table.
-    subroutine direct_table(kernel, dt, conv, error)
-        real(dp), intent(in) :: kernel(0:, :, :)
-        real(dp), intent(in) :: dt
-        class(multipoint_convolver), allocatable, intent(out) :: conv
-        type(error_type), allocatable, intent(out) :: error
-
-        type(sampled_green_matrix) :: sampled
-
-        call new_sampled_green_matrix(kernel, dt, sampled, error)
-        if (.not. allocated(error)) allocate (conv, source=sampled)
-    end subroutine direct_table
-
-    !> `fft` on several points: the table by partitioned FFT.
-    subroutine fft_table(kernel, dt, conv, error)
-        real(dp), intent(in) :: kernel(0:, :, :)
-        real(dp), intent(in) :: dt
-        class(multipoint_convolver), allocatable, intent(out) :: conv
-        type(error_type), allocatable, intent(out) :: error
-
-        type(fft_green_matrix) :: partitioned
-
-        call new_fft_green_matrix(kernel, dt, partitioned, error)
-        if (.not. allocated(error)) allocate (conv, source=partitioned)
-    end subroutine fft_table
 
     !> The single-point engine of a modal method: its recursion, or its own constructor (`paper`).
     subroutine on_modes(self, modes, dt, conv)

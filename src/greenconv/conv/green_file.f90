@@ -146,7 +146,7 @@ contains
         call check_method(method, .true., .true., structure%identified, error)
         if (allocated(error)) return
         engine = engine_of(method)
-        if (associated(engine%from_table)) then
+        if (engine%samples_g()) then
             call sampled_kernel(structure, dt, kernel, source, error, fitted)
             if (allocated(error)) return
             if (allocated(kernel)) then

@@ -13,7 +13,7 @@ module greenconv_scene_input
     use greenconv_core_text, only: real_text, int_text, sci_text
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
     use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_model_tyre, only: tyre_belt, tyre_frequency, contact_positions
+    use greenconv_model_tyre, only: tyre_belt, contact_positions
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
     use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
@@ -24,11 +24,12 @@ module greenconv_scene_input
                                       scene_row, admits
     use greenconv_io_columns, only: read_lines
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
-                                      model_sdof, model_tyre, multi_point_model
+                                      multi_point_model
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
     use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values
+    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
     use greenconv_io_spectra, only: band_centre, first_band, last_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
@@ -36,121 +37,8 @@ module greenconv_scene_input
 
     public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template
 
-    !> Length of names read from a namelist.
-    integer, parameter :: name_length = 64
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
-    !> Everything a contact run needs, in SI units. `read_scene` sets every component; the
-    !> defaults are those of the scene table, not component initialisers.
-    type :: scene_type
-        !> The namelist file the scene came from.
-        character(len=:), allocatable :: file
-        !> Where each group and variable of the file stands (its lines), from the pre-scan.
-        type(namelist_scan) :: input
-        !> What to do: `contact` (simulate) or `identify` (fit modes to the structure's G only).
-        character(len=:), allocatable :: task
-        !> Base name of the output files.
-        character(len=:), allocatable :: name
-        !> Directory the column files are written to.
-        character(len=:), allocatable :: output_dir
-        !> Time step [s].
-        real(dp) :: dt
-        !> Number of time steps N_t.
-        integer :: n_steps
-        !> Write every this many steps to the column files (1: every step), >= 1.
-        integer :: output_every
-        !> How a contact run's rows are written: `text` (`.dat`) or `binary` (`.bin`, little-endian
-        !> float64, with the text header file `.bin.txt`).
-        character(len=8) :: output_format = 'text'
-        !> Show a progress line on standard error for long runs (only when it is a terminal).
-        logical :: progress
-        !> Whether a contact run also writes the 1/3-octave spectrum of its contact force
-        !> (greenconv_scene_spectra_output).
-        logical :: spectra = .false.
-        !> Exact centre frequencies [Hz] of the lowest and highest band of the spectra, as
-        !> `check_spectra` resolved them from the file's values or the defaults.
-        real(dp) :: spectra_f_low = 0.0_dp, spectra_f_high = 0.0_dp
-        !> Whether the spectra of a multi-point run also give each point's level.
-        logical :: spectra_points = .false.
-        !> Structure model: `sdof`, `random_modes`, `frf_file`, `tyre` or `green_file`.
-        character(len=:), allocatable :: model
-        !> Mass M [kg] of the sdof model.
-        real(dp) :: mass
-        !> Stiffness K [N/m] of the sdof model.
-        real(dp) :: stiffness
-        !> Damping ratio xi of the sdof model.
-        real(dp) :: damping_ratio
-        !> Number of modes of the random_modes model.
-        integer :: n_modes
-        !> Seed of the random_modes model.
-        integer :: modes_seed
-        !> Range of natural frequencies [Hz] of the random_modes model.
-        real(dp) :: f_low, f_high
-        !> Range of damping ratios of the random_modes model.
-        real(dp) :: xi_low, xi_high
-        !> Range of modal amplitudes A_k [1/kg] of the random_modes model.
-        real(dp) :: a_low, a_high
-        !> Receptance file of the frf_file model (columns f [Hz], Re G, Im G [m/N], or a universal file).
-        character(len=:), allocatable :: frf_file
-        !> Which dataset 58 of a universal frf_file to read (0: the file must hold one).
-        integer :: frf_dataset = 0
-        !> Universal file of the Green's matrix between the contact points (model `green_file`).
-        character(len=:), allocatable :: green_file
-        !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
-        type(tyre_belt) :: tyre
-        !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
-        real(dp) :: f_modes
-        !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
-        real(dp) :: f_max
-        !> Number of frequency lines, 0 Hz to f_max, of the sampled G (random_modes).
-        integer :: n_freq
-        !> Target of the identification error E of eq. (7).
-        real(dp) :: tol_e
-        !> Largest number of modes the order scan tries.
-        integer :: max_order
-        !> Fixed number of modes (0: the smallest order that meets tol_e).
-        integer :: order
-        !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
-        character(len=:), allocatable :: ident_method
-        !> Road profile.
-        class(road_profile), allocatable :: road
-        !> The road file of profile 'file' (heights over x), for the multi-point scene.
-        type(road_file_type) :: road_data
-        !> The road texture of profile 'texture' (heights over x and y), for the multi-point scene.
-        type(road_texture) :: texture
-        !> Position [m] on the road file of the body (the patch centre) at t = 0.
-        real(dp) :: x_start
-        !> Lateral position [m] on the road texture of the patch centre (mean y of its points).
-        real(dp) :: y_start
-        !> Travel speed V [m/s] over the road.
-        real(dp) :: speed
-        !> Number of contact points N_c (tyre model; 1 otherwise).
-        integer :: n_points
-        !> Length [m] of the contact patch the N_c points share (tyre model).
-        real(dp) :: patch_length
-        !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
-        type(contact_options) :: contact
-        !> Contact law.
-        type(contact_law) :: law
-        !> Static preload F0 [N].
-        real(dp) :: preload
-        !> Convolution methods to run, in order.
-        character(len=name_length), allocatable :: methods(:)
-        !> Truncation fraction of max |g| for the direct method.
-        real(dp) :: truncation_tol
-        !> Relative accuracy the `auto` method must meet: the largest E (eq. 7) of a modal model
-        !> it accepts; a scene that lists `auto` identifies modes with tol_e = accuracy.
-        real(dp) :: accuracy
-    end type scene_type
-
-    !> Road files and road textures read by scenes, each kept by its path: a caller that reads
-    !> many scenes naming the same files (a sweep's variants) reads each file once.
-    type :: scene_files
-        !> The road files read, each with its path.
-        type(road_file_type), allocatable :: roads(:)
-        !> The road textures read, each with its path.
-        type(road_texture), allocatable :: textures(:)
-    end type scene_files
 
     !> Marks a group source that reads (no unit to write on).
     integer, parameter :: no_unit = -1
@@ -178,20 +66,6 @@ contains
         path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
         if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
     end function output_path
-
-    !> "file:line: &group variable" for messages about a value of the scene (the line of the
-    !> variable when the file sets it, else of its group), e.g. before a file it names.
-    function input_place(scene, group, variable) result(text)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-        character(len=:), allocatable :: text
-
-        text = place(scene, group, variable)//' '//variable
-    end function input_place
 
     !> Read and check a scene namelist file. The file is read once, from start to end (a pipe,
     !> a FIFO or a process substitution works), and scanned and parsed from memory.
@@ -693,7 +567,7 @@ contains
                      expected(this, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
         call check_value(this, 'contact', 'n_points', n_points, error)
-        call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point), &
+        call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point()), &
                      expected(this, 'contact', 'n_points', &
                               "1, or a number of points >= 1 for model 'tyre'", n_points), error)
         call require(.not. (model_requires(model, 'green_file') .and. this%input%has_value('contact', 'n_points')), &
@@ -707,6 +581,11 @@ contains
         call check_value(this, 'contact', 'scheme', scheme, error)
         call check_value(this, 'contact', 'divergence_bound', divergence_bound, error)
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
+        ! the law's own check, as at every door (the table's rows already bound its values)
+        if (.not. allocated(error)) then
+            call this%law%check(error)
+            if (allocated(error)) error%message = place(this, 'contact', 'stiffness, exponent')//': '//error%message
+        end if
         this%contact%scheme = trim(scheme)
         this%contact%divergence_bound = divergence_bound
         this%n_points = n_points
@@ -776,26 +655,19 @@ contains
     end subroutine check_methods_on_model
 
     !> A sampled kernel (`direct`, `fft`, and `auto`, which samples it to weigh its cost) must
-    !> fit in max_kernel_values; a receptance file's g is bounded by the file and not checked.
+    !> fit in max_kernel_values, its length bounded by the slowest decay of the model's exact
+    !> modes; a file's g is bounded by the file and not checked here.
     subroutine check_kernel_size(this, error)
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: values, decay_rate
+        real(dp) :: values
         type(structure_kind) :: model
 
         model = find_model(this%model)
-        if (this%task /= 'contact' .or. model%sampled_g) return
+        if (this%task /= 'contact' .or. .not. associated(model%slowest_decay)) return
         if (.not. any(method_needs_g(this%methods))) return
-        select case (model%id)
-        case (model_sdof)
-            decay_rate = this%damping_ratio*sqrt(this%stiffness/this%mass)
-        case (model_tyre)
-            decay_rate = this%damping_ratio*tyre_frequency(this%tyre, 1)
-        case default
-            decay_rate = this%xi_low*2.0_dp*acos(-1.0_dp)*this%f_low
-        end select
-        values = kernel_values(decay_rate, this%dt, this%truncation_tol, this%n_steps, this%n_points)
+        values = kernel_values(model%slowest_decay(this), this%dt, this%truncation_tol, this%n_steps, this%n_points)
         call require(values <= max_kernel_values, expected(this, 'convolution', 'methods', &
                      'a sampled kernel (direct, fft, auto) of at most '//sci_text(real(max_kernel_values, dp)) &
                      //' values (8 bytes each); use a larger dt or truncation_tol, or a modal method (modal, ' &
@@ -840,32 +712,6 @@ contains
             line = line//", found '"//trim(found)//"'"
         end select
     end function expected
-
-    !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
-    !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
-    function place(scene, group, variables) result(text)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variables
-        character(len=:), allocatable :: text
-
-        character(len=:), allocatable :: rest
-        integer :: line, comma
-
-        line = 0
-        rest = variables
-        do while (line == 0 .and. len_trim(rest) > 0)
-            comma = index(rest, ',')
-            if (comma == 0) comma = len(rest) + 1
-            line = scene%input%line_of(group, trim(adjustl(rest(:comma - 1))))
-            rest = rest(min(comma + 1, len(rest) + 1):)
-        end do
-        if (line == 0) line = scene%input%line_of(group, '')
-        if (line > 0) then
-            text = scene%file//':'//int_text(line)//': &'//group
-        else
-            text = scene%file//': &'//group
-        end if
-    end function place
 
     !> Check a value a group read against its row of the scene table (greenconv_scene_schema):
     !> its range or choices; its message says what the row expects and what was found.

@@ -1,33 +1,84 @@
-!> The structure models a scene may name (`&structure model`), each written once: its name,
-!> the `&structure` variables it requires, and what it gives the convolution methods. The
-!> scene's checks (greenconv_scene_schema, greenconv_scene_input) and its builder
-!> (greenconv_scene_structure) ask this registry instead of comparing model names.
+!> The structure models a scene may name (`&structure model`), each one row of the registry:
+!> its name, the `&structure` variables it requires, what it gives the convolution methods,
+!> and the procedures that build it (a single-point structure, or the contact points of a
+!> multi-point one), bound its kernel's length and check its file for `--check`. The scene's
+!> checks (greenconv_scene_schema, greenconv_scene_input), its builders
+!> (greenconv_scene_structure's `build_structure`; the runner and the sweep call a multi-point
+!> model's `find_points`) and `--check` (greenconv_scene_runner) ask this registry, and nothing
+!> else compares model names.
 !>
-!> A new structure model is one row here, its variables in the scene table
-!> (greenconv_scene_schema) and its case in greenconv_scene_structure.
+!> A new structure model is its module (its builder or its points' finder, as
+!> greenconv_scene_single_models and greenconv_scene_multi_models hold the shipped ones) and
+!> its row in `structure_models`, plus the rows of any new `&structure` variable in the scene
+!> table (greenconv_scene_schema).
 module greenconv_scene_models
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_point_set, only: scene_points
+    use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
+                                             frf_file_structure, check_frf_file
+    use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, green_file_points, check_green_file
     implicit none
     private
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
     public :: multi_point_model, quoted_list
-    public :: model_sdof, model_random_modes, model_frf_file, model_tyre, model_green_file
+    public :: structure_builder, points_finder, decay_bound, file_check
 
-    !> Identifier of the single-degree-of-freedom oscillator (M, K, xi) of Tab. 1.
-    integer, parameter :: model_sdof = 1
-    !> Identifier of the random modes of section 3.2 (G sampled from them, then identified).
-    integer, parameter :: model_random_modes = 2
-    !> Identifier of a receptance G read from a file (identified, g by inverse FFT).
-    integer, parameter :: model_frf_file = 3
-    !> Identifier of the tyre belt on an elastic foundation, contact over a patch of points.
-    integer, parameter :: model_tyre = 4
-    !> Identifier of a Green's matrix read from a universal file (shared poles identified, g_ij
-    !> by inverse FFT or from the file), contact at its nodes.
-    integer, parameter :: model_green_file = 5
+    abstract interface
+        !> Build a single-point model's structure from a scene.
+        subroutine structure_builder(scene, structure, error)
+            import :: scene_type, structure_model, error_type
+            !> The scene.
+            type(scene_type), intent(in) :: scene
+            !> The structure.
+            type(structure_model), intent(out) :: structure
+            !> Set when the structure cannot be built, the scene's place in front.
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine structure_builder
 
-    !> One structure model and what it requires and provides.
+        !> Find a multi-point model's contact points, placed on the road, and what their
+        !> convolvers are built from.
+        subroutine points_finder(scene, points, summary, error)
+            import :: scene_type, scene_points, error_type
+            !> The scene (task 'contact').
+            type(scene_type), intent(in) :: scene
+            !> The points.
+            type(scene_points), intent(out) :: points
+            !> The scene's summary lines ("# scene NAME: ..."), separated by new_line('a').
+            character(len=:), allocatable, intent(out) :: summary
+            !> Set for an unusable scene, the scene's place in front.
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine points_finder
+
+        !> Decay rate [1/s] of the slowest mode of a model with exact modes, from the scene's
+        !> values (it bounds the length of a sampled kernel before any is built).
+        pure real(dp) function decay_bound(scene)
+            import :: dp, scene_type
+            !> The scene.
+            type(scene_type), intent(in) :: scene
+        end function decay_bound
+
+        !> For `--check`: read the file a model names without building the structure and
+        !> append what was found to the check's line.
+        subroutine file_check(scene, line, n_points, error)
+            import :: scene_type, error_type
+            !> The scene.
+            type(scene_type), intent(in) :: scene
+            !> The check's line.
+            character(len=:), allocatable, intent(inout) :: line
+            !> Number of contact points N_c (the file's, for a multi-point model).
+            integer, intent(inout) :: n_points
+            !> Set for an unusable file, the scene's place in front.
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine file_check
+    end interface
+
+    !> One structure model: what it requires and provides, and its procedures.
     type :: structure_kind
-        !> Registry identifier (`model_sdof`, ...); 0 for a name not in the registry.
+        !> Row of the registry; 0 for a name not in the registry.
         integer :: id = 0
         !> Name a scene writes, `&structure model = '<name>'`.
         character(len=16) :: name = ''
@@ -42,64 +93,87 @@ module greenconv_scene_models
         !> Whether `direct` and `fft` use g sampled from a receptance (bounded by its file),
         !> rather than g of the exact modes.
         logical :: sampled_g = .false.
-        !> Whether the contact has several points (N_c >= 1, `&contact n_points`).
-        logical :: multi_point = .false.
+        !> Builder of a single-point model's structure; unassociated for a multi-point model.
+        procedure(structure_builder), pointer, nopass :: build => null()
+        !> Finder of a multi-point model's contact points (N_c >= 1, `&contact n_points`);
+        !> unassociated for a single-point model.
+        procedure(points_finder), pointer, nopass :: find_points => null()
+        !> Decay rate of the slowest exact mode, for a model whose `direct` and `fft` sample
+        !> its exact g (not `sampled_g`); else unassociated.
+        procedure(decay_bound), pointer, nopass :: slowest_decay => null()
+        !> `--check` of the file the model names; unassociated when it names none.
+        procedure(file_check), pointer, nopass :: check_file => null()
+    contains
+        !> Whether the contact has several points (the model finds its points).
+        procedure :: multi_point => kind_multi_point
     end type structure_kind
-
-    !> The registry, in the order messages list the names.
-    type(structure_kind), parameter :: registry(5) = [ &
-        structure_kind(model_sdof, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true.), &
-        structure_kind(model_random_modes, 'random_modes', '', exact_modes=.true., identified_modes=.true.), &
-        structure_kind(model_frf_file, 'frf_file', 'frf_file', identified_modes=.true., sampled_g=.true.), &
-        structure_kind(model_tyre, 'tyre', '', exact_modes=.true., multi_point=.true.), &
-        structure_kind(model_green_file, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
-                       multi_point=.true.)]
 
 contains
 
-    !> Every structure model of the registry.
-    pure function structure_models() result(models)
-        !> The registry, in the order messages list the names.
-        type(structure_kind) :: models(size(registry))
+    !> Every structure model of the registry, in the order messages list the names.
+    function structure_models() result(models)
+        !> The registry.
+        type(structure_kind) :: models(5)
 
-        models = registry
+        models(1) = structure_kind(1, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true., &
+                                   build=sdof_structure, slowest_decay=sdof_decay)
+        models(2) = structure_kind(2, 'random_modes', '', exact_modes=.true., identified_modes=.true., &
+                                   build=random_modes_structure, slowest_decay=random_modes_decay)
+        models(3) = structure_kind(3, 'frf_file', 'frf_file', identified_modes=.true., sampled_g=.true., &
+                                   build=frf_file_structure, check_file=check_frf_file)
+        models(4) = structure_kind(4, 'tyre', '', exact_modes=.true., find_points=tyre_scene_points, &
+                                   slowest_decay=tyre_decay)
+        models(5) = structure_kind(5, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
+                                   find_points=green_file_points, check_file=check_green_file)
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.
-    pure function find_model(name) result(model)
+    function find_model(name) result(model)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
         !> Its registry entry, or an entry with id 0 and no capability.
         type(structure_kind) :: model
 
+        type(structure_kind), allocatable :: models(:)
         integer :: i
 
-        do i = 1, size(registry)
-            if (trim(registry(i)%name) == trim(name)) then
-                model = registry(i)
+        models = structure_models()
+        do i = 1, size(models)
+            if (trim(models(i)%name) == trim(name)) then
+                model = models(i)
                 return
             end if
         end do
     end function find_model
 
-    !> The registry identifier of the model called `name` (exact, lower case); 0 when there is none.
-    pure integer function model_id(name)
+    !> The registry row of the model called `name` (exact, lower case); 0 when there is none.
+    integer function model_id(name)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 
-        ! The names are distinct: at most one row matches.
-        model_id = sum(registry%id, mask=registry%name == name)
+        type(structure_kind) :: model
+
+        model = find_model(name)
+        model_id = model%id
     end function model_id
 
+    !> Whether the model touches the road at several points: it finds its points.
+    elemental logical function kind_multi_point(self)
+        !> The model's registry entry.
+        class(structure_kind), intent(in) :: self
+
+        kind_multi_point = associated(self%find_points)
+    end function kind_multi_point
+
     !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
-    pure function model_names() result(text)
+    function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
         character(len=:), allocatable :: text
 
-        character(len=len(registry%name)) :: names(size(registry))
+        type(structure_kind), allocatable :: models(:)
 
-        names = registry%name
-        text = quoted_list(names)
+        models = structure_models()
+        text = quoted_list(models%name)
     end function model_names
 
     !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
@@ -132,11 +206,14 @@ contains
     end function model_requires
 
     !> Whether the model called `name` touches the road at several points (N_c >= 1).
-    pure logical function multi_point_model(name)
+    logical function multi_point_model(name)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 
-        multi_point_model = any(registry%multi_point .and. registry%name == name)
+        type(structure_kind) :: model
+
+        model = find_model(name)
+        multi_point_model = model%multi_point()
     end function multi_point_model
 
 end module greenconv_scene_models

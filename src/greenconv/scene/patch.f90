@@ -20,7 +20,7 @@ module greenconv_scene_patch
     use greenconv_core_error, only: error_type
     use greenconv_model_road_file, only: check_road_coverage, sample_road_steps
     use greenconv_model_road_texture, only: check_texture_coverage, sample_texture_steps
-    use greenconv_scene_input, only: scene_type, input_place
+    use greenconv_scene_settings, only: scene_type, input_place
     implicit none
     private
 

@@ -14,14 +14,12 @@ module greenconv_scene_runner
     use greenconv_conv_builder, only: make_convolver
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_input, only: scene_type, output_path, input_place
-    use greenconv_scene_models, only: find_model, model_requires, multi_point_model
+    use greenconv_scene_models, only: structure_kind, find_model, multi_point_model
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure
-    use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
-    use greenconv_scene_points, only: find_scene_points, check_green_scene
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     implicit none
     private
@@ -50,13 +48,15 @@ contains
         integer, intent(in), optional :: block
 
         type(structure_model) :: structure
+        type(structure_kind) :: model
         type(contact_run) :: run
         character(len=:), allocatable :: summary
         integer :: block_size
 
-        if (multi_point_model(scene%model)) then
+        model = find_model(scene%model)
+        if (model%multi_point()) then
             call make_directory(scene%output_dir, error)
-            if (.not. allocated(error)) call find_scene_points(scene, run%points, summary, error)
+            if (.not. allocated(error)) call model%find_points(scene, run%points, summary, error)
             if (allocated(error)) return
             write (unit, '(a)') summary
             block_size = max(block_rows/run%points%n_points(), 1)
@@ -106,7 +106,7 @@ contains
         !> Set when a file the scene names is unusable.
         type(error_type), allocatable, intent(out) :: error
 
-        type(frf_type) :: frf
+        type(structure_kind) :: model
         integer :: i, n_c
 
         call check_output_directory(scene%output_dir, error)
@@ -115,17 +115,9 @@ contains
             return
         end if
         line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
-        if (model_requires(find_model(scene%model), 'frf_file')) then
-            call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
-            if (allocated(error)) then
-                error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
-                return
-            end if
-            line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
-                   //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
-        end if
         n_c = scene%n_points
-        if (model_requires(find_model(scene%model), 'green_file')) call check_green_scene(scene, line, n_c, error)
+        model = find_model(scene%model)
+        if (associated(model%check_file)) call model%check_file(scene, line, n_c, error)
         if (allocated(error)) return
         if (scene%task == 'contact') then
             line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &

@@ -55,7 +55,7 @@ module greenconv_scene_stream
         !> Road heights [m] under the points, heights(step, point), of the block.
         real(dp), allocatable :: heights(:, :)
         !> The points of a multi-point scene: on the body (x, y) and on the road
-        !> (greenconv_scene_points's `find_scene_points`, called by the owner of the run).
+        !> (the `find_points` of the scene's model, greenconv_scene_models, called by the owner of the run).
         type(scene_points) :: points
         !> Largest total force [N] so far.
         real(dp) :: peak = -huge(1.0_dp)

@@ -12,7 +12,7 @@
 module greenconv_scene_tyre
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_settings, only: scene_type
     use greenconv_model_tyre, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
     use greenconv_model_point_modes, only: point_modes
     use greenconv_scene_patch, only: place_patch, run_text, road_step

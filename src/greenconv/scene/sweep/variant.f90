@@ -15,9 +15,8 @@ module greenconv_scene_sweep_variant
     use greenconv_io_files, only: make_directory, block_rows
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_input, only: scene_type
-    use greenconv_scene_models, only: multi_point_model
+    use greenconv_scene_models, only: structure_kind, find_model
     use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_points, only: find_scene_points
     use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
@@ -96,14 +95,16 @@ contains
         integer(int64) :: step
         integer :: i, n_c, block
         logical :: several
+        type(structure_kind) :: model
 
         outcome%result = ''
         outcome%cpu = ''
         outcome%message = ''
         scene%progress = .false.
-        several = multi_point_model(scene%model)
+        model = find_model(scene%model)
+        several = model%multi_point()
         if (several) then
-            call find_scene_points(scene, run%points, summary, failure)
+            call model%find_points(scene, run%points, summary, failure)
             n_c = max(run%points%n_points(), 1)
             block = max(block_rows/n_c, 1)
         else

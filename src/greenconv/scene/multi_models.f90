@@ -1,0 +1,144 @@
+!> The multi-point structure models of the registry (greenconv_scene_models), each as what the
+!> registry's row names: the finder of its contact points, and what `--check` and the scene's
+!> checks ask of it.
+!>
+!> - `tyre`: a line of points under the belt of greenconv_model_tyre, its exact modes
+!>   (greenconv_scene_tyre);
+!> - `green_file`: the nodes of a universal file of a Green's matrix (`&structure green_file`),
+!>   at their coordinates, any layout, 1D or 2D: the file is read and its receptances
+!>   identified once with shared poles (greenconv_ident_green_structure, the pole fit's
+!>   stabilisation diagram up to `&identification max_order`), and each method is built on it
+!>   by greenconv_conv_green_file (modal methods on the identified modes, `direct` and `fft`
+!>   on g_ij from the file).
+!>
+!> Both follow the conventions of greenconv_scene_patch (preload shared evenly, the points
+!> seeing the road around x_start and y_start). The summary of a Green's file names the file,
+!> its points and the identification: E of eq. (7) per receptance (worst, mean) and per point,
+!> the worst pole uncertainty, the modes the modal methods run on.
+module greenconv_scene_multi_models
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: int_text
+    use greenconv_model_tyre, only: tyre_frequency
+    use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
+                                               sampled_kernel
+    use greenconv_conv_methods, only: check_method, method_needs_g
+    use greenconv_scene_settings, only: scene_type, input_place
+    use greenconv_scene_point_set, only: scene_points
+    use greenconv_scene_patch, only: place_patch, run_text
+    use greenconv_scene_tyre, only: tyre_points
+    implicit none
+    private
+
+    public :: tyre_scene_points, tyre_decay, green_file_points, check_green_file
+
+contains
+
+    !> The points of a `tyre` scene: the belt's modes at a line of points, placed on the road.
+    subroutine tyre_scene_points(scene, points, summary, error)
+        !> The scene (model 'tyre', task 'contact', road profile 'file' or 'texture').
+        type(scene_type), intent(in) :: scene
+        !> The points, at y = 0 on the belt.
+        type(scene_points), intent(out) :: points
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set for an unusable scene (greenconv_scene_tyre's `tyre_points`).
+        type(error_type), allocatable, intent(out) :: error
+
+        call tyre_points(scene, points%modes, points%x, points%road_x, summary, error, points%road_y)
+        if (.not. allocated(error)) points%y = 0.0_dp*points%x
+    end subroutine tyre_scene_points
+
+    !> Decay rate [1/s] of the tyre's slowest mode, xi*omega_1, which bounds a sampled kernel's
+    !> length.
+    pure real(dp) function tyre_decay(scene)
+        !> The scene (model 'tyre').
+        type(scene_type), intent(in) :: scene
+
+        tyre_decay = scene%damping_ratio*tyre_frequency(scene%tyre, 1)
+    end function tyre_decay
+
+    !> The points of a `green_file` scene: the file's nodes, placed on the road, and its
+    !> receptances identified with shared poles.
+    subroutine green_file_points(scene, points, summary, error)
+        !> The scene (model 'green_file', task 'contact').
+        type(scene_type), intent(in) :: scene
+        !> The points and the identified Green's matrix.
+        type(scene_points), intent(out) :: points
+        !> The summary: "# scene NAME: ..." lines, separated by new_line('a').
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set for a bad file, a failed identification or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(green_options) :: options
+
+        points%from_file = .true.
+        points%green%path = scene%green_file
+        call read_green_layout(scene%green_file, points%green%matrix, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            return
+        end if
+        points%x = points%green%matrix%x
+        points%y = points%green%matrix%y
+        call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
+        if (allocated(error)) return
+        options%fit%max_order = scene%max_order
+        call identify_green(options, points%green, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            return
+        end if
+        summary = '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
+                  //int_text(points%n_points())//' contact points, '//run_text(scene)//new_line('a') &
+                  //points%green%summary()
+    end subroutine green_file_points
+
+    !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its
+    !> points stay on the road for the whole run, and append what was found to `line`.
+    subroutine check_green_file(scene, line, n_points, error)
+        !> The scene (model 'green_file').
+        type(scene_type), intent(in) :: scene
+        !> The check's line, extended with the file's points and grid.
+        character(len=:), allocatable, intent(inout) :: line
+        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        integer, intent(inout) :: n_points
+        !> Set for a bad file or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(green_structure) :: green
+        real(dp), allocatable :: road_x(:), road_y(:), kernel(:, :, :)
+        character(len=:), allocatable :: source
+        integer :: i
+
+        green%path = scene%green_file
+        call read_green_layout(scene%green_file, green%matrix, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            return
+        end if
+        associate (matrix => green%matrix)
+            n_points = matrix%n_points()
+            if (scene%task /= 'contact') return
+            call place_patch(scene, matrix%x, matrix%y, road_x, road_y, error)
+            if (allocated(error)) return
+            ! a file of impulse responses: no modes, and g_ij only at whole multiples of its step
+            do i = 1, size(scene%methods)
+                call check_method(trim(scene%methods(i)), .true., .true., matrix%function_type == 4, error)
+                if (.not. allocated(error) .and. matrix%function_type /= 4 .and. &
+                    method_needs_g(trim(scene%methods(i)))) call sampled_kernel(green, scene%dt, kernel, source, error)
+                if (allocated(error)) then
+                    error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
+                    return
+                end if
+            end do
+            line = line//' ('//scene%green_file//': '//int_text(matrix%n_points())//' points, '
+            if (matrix%function_type == 4) then
+                line = line//int_text(size(matrix%frequency))//' lines of G_ij)'
+            else
+                line = line//int_text(size(matrix%frequency))//' samples of g_ij(t))'
+            end if
+        end associate
+    end subroutine check_green_file
+
+end module greenconv_scene_multi_models

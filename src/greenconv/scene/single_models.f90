@@ -1,0 +1,166 @@
+!> The single-point structure models of the registry (greenconv_scene_models), each as what the
+!> registry's row names: its builder (a `structure_model` from the scene's values), and what the
+!> scene's checks and `--check` ask of it.
+!>
+!> - `sdof`: the oscillator (M, K, xi) of Tab. 1, its exact mode;
+!> - `random_modes`: the random modes of section 3.2, G sampled from them and identified;
+!> - `frf_file`: a receptance read from a file (columns or a universal file), identified by the
+!>   scene's method ('ml' or 'lsce'), g by inverse FFT at the scene's dt.
+module greenconv_scene_single_models
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_model_modal_set, only: modal_set, random_modes
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
+    use greenconv_ident_lsce, only: lsce_options
+    use greenconv_ident_mlfit, only: ml_options
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
+                                         structure_from_frf_ml
+    use greenconv_conv_methods, only: method_scheme, scheme_auto
+    use greenconv_scene_settings, only: scene_type, input_place
+    implicit none
+    private
+
+    public :: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay
+    public :: frf_file_structure, check_frf_file
+
+    real(dp), parameter :: pi = acos(-1.0_dp)
+
+contains
+
+    !> The `sdof` structure: the oscillator's exact mode.
+    subroutine sdof_structure(scene, structure, error)
+        !> The scene (mass, stiffness, damping_ratio).
+        type(scene_type), intent(in) :: scene
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Never set: the scene's checks bound the values.
+        type(error_type), allocatable, intent(out) :: error
+
+        structure = structure_from_modes(sdof_modes(scene%mass, scene%stiffness, scene%damping_ratio))
+    end subroutine sdof_structure
+
+    !> Decay rate [1/s] xi*sqrt(K/M) of the oscillator's g.
+    pure real(dp) function sdof_decay(scene)
+        !> The scene (model 'sdof').
+        type(scene_type), intent(in) :: scene
+
+        sdof_decay = scene%damping_ratio*sqrt(scene%stiffness/scene%mass)
+    end function sdof_decay
+
+    !> The `random_modes` structure: G sampled from the random modes, identified by the scene's
+    !> method; the exact modes kept beside the identified ones.
+    subroutine random_modes_structure(scene, structure, error)
+        !> The scene (the random modes' seed, number and ranges, f_max, n_freq).
+        type(scene_type), intent(in) :: scene
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(modal_set) :: exact
+
+        exact = random_modes(scene%modes_seed, scene%n_modes, scene%f_low, scene%f_high, &
+                             scene%xi_low, scene%xi_high, scene%a_low, scene%a_high)
+        call identify_scene(scene, frf_from_modes(exact, scene%f_max, scene%n_freq), 0.0_dp, structure, error)
+        structure%has_exact = .true.
+        structure%exact = exact
+    end subroutine random_modes_structure
+
+    !> Decay rate [1/s] xi_low*2*pi*f_low bounding the slowest random mode's.
+    pure real(dp) function random_modes_decay(scene)
+        !> The scene (model 'random_modes').
+        type(scene_type), intent(in) :: scene
+
+        random_modes_decay = scene%xi_low*2.0_dp*pi*scene%f_low
+    end function random_modes_decay
+
+    !> The `frf_file` structure: the file's receptance identified by the scene's method, g
+    !> sampled at the scene's dt for a contact run.
+    subroutine frf_file_structure(scene, structure, error)
+        !> The scene (frf_file, frf_dataset, the identification's settings).
+        type(scene_type), intent(in) :: scene
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the file is unusable or the identification fails, with the file's place.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+
+        call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
+        if (.not. allocated(error)) then
+            call identify_scene(scene, frf, sampling_step(scene), structure, error)
+            if (allocated(error)) error%message = scene%frf_file//': '//error%message
+        end if
+        if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
+    end subroutine frf_file_structure
+
+    !> For `--check`: read the scene's receptance file and append its lines to `line`.
+    subroutine check_frf_file(scene, line, n_points, error)
+        !> The scene (model 'frf_file').
+        type(scene_type), intent(in) :: scene
+        !> The check's line, extended with the file's lines.
+        character(len=:), allocatable, intent(inout) :: line
+        !> Number of contact points (unchanged: one).
+        integer, intent(inout) :: n_points
+        !> Set for an unusable file.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+
+        call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
+            return
+        end if
+        line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &
+               //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
+    end subroutine check_frf_file
+
+    !> Identify G by the scene's method (`&identification method`).
+    subroutine identify_scene(scene, frf, dt, structure, error)
+        type(scene_type), intent(in) :: scene
+        type(frf_type), intent(in) :: frf
+        real(dp), intent(in) :: dt
+        type(structure_model), intent(out) :: structure
+        type(error_type), allocatable, intent(out) :: error
+
+        type(ml_options) :: options
+        logical :: ml
+
+        ml = .false.
+        if (allocated(scene%ident_method)) ml = scene%ident_method == 'ml'
+        if (ml) then
+            options%max_order = scene%max_order
+            call structure_from_frf_ml(frf, options, dt, structure, error)
+        else
+            call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+        end if
+    end subroutine identify_scene
+
+    !> The step [s] g is sampled at: the scene's dt for a contact run (the step every convolver
+    !> of the run gets), 0 (modes alone, no g) for task `identify`.
+    pure real(dp) function sampling_step(scene)
+        type(scene_type), intent(in) :: scene
+
+        sampling_step = 0.0_dp
+        if (scene%task == 'contact') sampling_step = scene%dt
+    end function sampling_step
+
+    !> The scene's identification settings.
+    function scene_options(scene) result(options)
+        type(scene_type), intent(in) :: scene
+        type(lsce_options) :: options
+
+        options%tol_e = scene%tol_e
+        ! `auto` (by the registry's scheme, not its spelling) wants the smallest model that
+        ! meets the scene's accuracy, not more.
+        if (allocated(scene%methods)) then
+            if (any(method_scheme(scene%methods) == scheme_auto)) options%tol_e = scene%accuracy
+        end if
+        options%max_modes = scene%max_order
+        options%fixed_modes = scene%order
+    end function scene_options
+
+end module greenconv_scene_single_models
