@@ -11,7 +11,7 @@ module test_spectra_mod
     use greenconv_io_files, only: make_directory
     use greenconv_io_spectra, only: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels, &
                                     welch_accumulator, start_welch, add_welch_samples, welch_average, band_centre, &
-                                    first_band, last_band, nominal_frequency, segment_for_band, lowest_resolved_band, &
+                                    first_band, edge_band, nominal_frequency, segment_for_band, lowest_resolved_band, &
                                     highest_band_below
     implicit none
     private
@@ -186,7 +186,7 @@ contains
 
         do x = -20, 13
             call check(error, abs(nominal_frequency(band_centre(x)) - names(x + 21)) < 1.0e-9_dp*names(x + 21) &
-                       .and. first_band(names(x + 21)) == x .and. last_band(names(x + 21)) == x, &
+                       .and. first_band(names(x + 21)) == x .and. edge_band(names(x + 21), 1) == x, &
                        'band '//int_label(x)//': nominal name or the band its name selects')
             if (allocated(error)) return
         end do

@@ -6,12 +6,12 @@
 !> Each method names how it is built: on the sampled g, its kind `on_sampled_g` (the direct sum
 !> or the partitioned FFT), which `on_kernel` (one point) and `on_table` (a table g_ij, several
 !> points) turn into an engine; on modes, `recursion` (a decaying recursion, which also steps
-!> the modal Green's matrix of several points) or `from_modes` (`paper`), which `on_modes` and
-!> `on_point_modes` build for one or several points. The registry's `check_method` refuses a
-!> kind of contact a method does not serve before any constructor is called. Adding an engine:
-!> its module, its row in the registry, and its `case` in `engine_of` (for a modal engine, its
-!> constructor; for one more kind of sampled convolution, its kind and its branch in
-!> `on_kernel` and `on_table`).
+!> the modal Green's matrix of several points) or the paper's own recursion
+!> (`paper_recursion`), which `on_modes` and `on_point_modes` build for one or several points.
+!> The registry's `check_method` refuses a kind of contact a method does not serve before any
+!> constructor is called. Adding an engine: its module, its row in the registry, and its
+!> `case` in `engine_of` (for a decaying modal recursion, its constructor; for one more kind of
+!> convolution with the sampled g, its kind and its branch in `on_kernel` and `on_table`).
 module greenconv_conv_engines
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
@@ -34,7 +34,7 @@ module greenconv_conv_engines
     private
 
     public :: engine_constructors, engine_of
-    public :: modes_constructor, recursion_constructor
+    public :: recursion_constructor
     public :: kernel_none, kernel_direct, kernel_partitioned
 
     !> How a method convolves with a sampled g: it does not (a modal method).
@@ -45,17 +45,6 @@ module greenconv_conv_engines
     integer, parameter :: kernel_partitioned = 2
 
     abstract interface
-        !> A single-point engine on modes (poles [rad/s] and residues).
-        subroutine modes_constructor(modes, dt, conv)
-            import :: dp, modal_set, convolver
-            !> The Green's function as modes.
-            type(modal_set), intent(in) :: modes
-            !> Time step [s].
-            real(dp), intent(in) :: dt
-            !> The convolver, at step 0.
-            class(convolver), allocatable, intent(out) :: conv
-        end subroutine modes_constructor
-
         !> A decaying modal recursion (greenconv_conv_recursive), the single-point engine that a
         !> multi-point one on the same modes holds.
         function recursion_constructor(modes, dt) result(conv)
@@ -74,9 +63,9 @@ module greenconv_conv_engines
         !> How the method convolves with the sampled g (`kernel_direct` for `direct`,
         !> `kernel_partitioned` for `fft`), `kernel_none` when it runs on modes.
         integer :: on_sampled_g = kernel_none
-        !> Single-point constructor on modes that is no decaying recursion (`paper`), else
-        !> unassociated.
-        procedure(modes_constructor), pointer, nopass :: from_modes => null()
+        !> Whether the method is the paper's own recursion of eqs. (15)-(17) on modes (`paper`),
+        !> single-point only, which is no decaying recursion.
+        logical :: paper_recursion = .false.
         !> The decaying recursion (`recursive`, `exact`, `backward`): single-point on modes, and
         !> the engine of the multi-point one on modes and shapes; else unassociated.
         procedure(recursion_constructor), pointer, nopass :: recursion => null()
@@ -113,7 +102,7 @@ contains
         case (scheme_fft)
             engine%on_sampled_g = kernel_partitioned
         case (scheme_paper)
-            engine%from_modes => paper_engine
+            engine%paper_recursion = .true.
         case (scheme_rectangle)
             engine%recursion => new_recursive_convolver
         case (scheme_first_order)
@@ -180,15 +169,6 @@ contains
         end if
     end subroutine on_table
 
-    !> `paper` on one point.
-    subroutine paper_engine(modes, dt, conv)
-        type(modal_set), intent(in) :: modes
-        real(dp), intent(in) :: dt
-        class(convolver), allocatable, intent(out) :: conv
-
-        conv = new_paper_convolver(modes, dt)
-    end subroutine paper_engine
-
     !> The single-point engine of a modal method: its recursion, or its own constructor (`paper`).
     subroutine on_modes(self, modes, dt, conv)
         !> The method's constructors (a modal method's).
@@ -203,7 +183,7 @@ contains
         if (associated(self%recursion)) then
             conv = self%recursion(modes, dt)
         else
-            call self%from_modes(modes, dt, conv)
+            conv = new_paper_convolver(modes, dt)
         end if
     end subroutine on_modes
 

@@ -52,7 +52,7 @@ module greenconv_io_spectra
 
     public :: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels
     public :: welch_accumulator, start_welch, add_welch_samples, welch_average
-    public :: band_centre, first_band, last_band, nominal_frequency, segment_for_band, lowest_resolved_band
+    public :: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, lowest_resolved_band
     public :: highest_band_below, band_powers, level_spread, default_lines_per_band
 
     !> pi
@@ -134,21 +134,14 @@ contains
         first_band = edge_band(f, -1)
     end function first_band
 
-    !> The highest band whose centre is at or below f [Hz] (> 0); a centre given by its
-    !> nominal, rounded value counts as that band.
-    pure integer function last_band(f)
-        !> Frequency [Hz].
-        real(dp), intent(in) :: f
-
-        last_band = edge_band(f, 1)
-    end function last_band
-
     !> The band nearest f [Hz] (> 0) on the side `side` of it: -1 the lowest band whose centre
     !> is at or above f, +1 the highest at or below f; a centre given by its nominal, rounded
     !> value counts as that band. With side = -1, side*floor(side*y + 1e-9) is
     !> ceiling(y - 1e-9) exactly (negation is exact, so is rounding of a negated sum).
     pure integer function edge_band(f, side)
+        !> Frequency [Hz], > 0.
         real(dp), intent(in) :: f
+        !> -1: the lowest band at or above f (`first_band`); +1: the highest at or below f.
         integer, intent(in) :: side
 
         edge_band = side*floor(side*(10.0_dp*log10(f/1000.0_dp)) + 1.0e-9_dp)
@@ -190,7 +183,7 @@ contains
 
         integer :: x
 
-        centre = [(band_centre(x), x=first_band(f_low), min(last_band(f_high), highest_band_below(f_nyquist)))]
+        centre = [(band_centre(x), x=first_band(f_low), min(edge_band(f_high, 1), highest_band_below(f_nyquist)))]
         lower = centre*10.0_dp**(-half_band)
         upper = centre*10.0_dp**half_band
     end subroutine third_octave_bands

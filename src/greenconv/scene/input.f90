@@ -30,7 +30,7 @@ module greenconv_scene_input
                                       method_needs_g, check_method
     use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values
     use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
-    use greenconv_io_spectra, only: band_centre, first_band, last_band, nominal_frequency, segment_for_band, &
+    use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
@@ -501,9 +501,9 @@ contains
                 return
             end if
         end if
-        high = min(last_band(this%spectra_f_high), top)
+        high = min(edge_band(this%spectra_f_high, 1), top)
         if (this%input%has_value('scene', 'spectra_f_high')) then
-            high = last_band(this%spectra_f_high)
+            high = edge_band(this%spectra_f_high, 1)
             if (high > top) then
                 call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre whose band ' &
                     //'ends below the Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (at most ' &
