@@ -39,6 +39,7 @@ program greenconv_tests
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
     use test_patchscene_mod, only: collect_patchscene
+    use test_tyrepatch_mod, only: collect_tyrepatch
     use test_reliability_mod, only: collect_reliability
     use test_version_mod, only: collect_version
     use test_uffchecks_mod, only: collect_uffchecks
@@ -78,6 +79,7 @@ program greenconv_tests
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
                        new_testsuite('patchscene', collect_patchscene), &
+                       new_testsuite('tyrepatch', collect_tyrepatch), &
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('version', collect_version), &
                        new_testsuite('uffchecks', collect_uffchecks), &

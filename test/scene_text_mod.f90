@@ -1,12 +1,15 @@
 !> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
 !> (greenconv_scene_schema), any group replaced or left out, and a writer of small text files.
 module scene_text_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
     use greenconv_io_files, only: make_directory
     use greenconv, only: scene_type, read_scene, error_type
+    use greenconv_io_columns, only: read_columns
+    use greenconv_scene_runner, only: run_scene
     implicit none
     private
 
-    public :: tab1_scene, write_text, read_scene_text, omit
+    public :: tab1_scene, write_text, read_scene_text, omit, run_scene_text, read_table, message_of
 
     !> Passed as a group's body: leave the group out.
     character(len=*), parameter :: omit = '-'
@@ -87,5 +90,58 @@ contains
         call write_text(directory//'/'//name, text)
         call read_scene(directory//'/'//name, scene, error)
     end subroutine read_scene_text
+
+    !> Write `text` as the scene file directory/name, read it and run it (its summary thrown away).
+    subroutine run_scene_text(directory, name, text, error)
+        !> Directory of the file.
+        character(len=*), intent(in) :: directory
+        !> File name.
+        character(len=*), intent(in) :: name
+        !> The scene's text.
+        character(len=*), intent(in) :: text
+        !> Set when the scene is refused or its run fails.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        integer :: unit
+
+        call read_scene_text(directory, name, text, scene, error)
+        if (allocated(error)) return
+        open (newunit=unit, status='scratch', action='readwrite')
+        call run_scene(scene, unit, error)
+        close (unit)
+    end subroutine run_scene_text
+
+    !> Read a table of `n_columns` numbers per row (comment lines skipped).
+    subroutine read_table(path, n_columns, rows, error)
+        !> The file.
+        character(len=*), intent(in) :: path
+        !> Numbers per row.
+        integer, intent(in) :: n_columns
+        !> The rows, rows(i, j) the j-th number of row i.
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        !> Set when the file cannot be read as such a table.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=8) :: names(n_columns)
+        integer, allocatable :: line_of(:)
+        integer :: k
+
+        do k = 1, n_columns
+            write (names(k), '(a,i0)') 'c', k
+        end do
+        call read_columns(path, names, [(' ', k=1, n_columns)], rows, line_of, error)
+    end subroutine read_table
+
+    !> The message of an error, '' when none.
+    pure function message_of(error) result(text)
+        !> The error, or none.
+        type(error_type), allocatable, intent(in) :: error
+        !> Its message.
+        character(len=:), allocatable :: text
+
+        text = ''
+        if (allocated(error)) text = error%message
+    end function message_of
 
 end module scene_text_mod

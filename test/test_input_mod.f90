@@ -295,7 +295,7 @@ contains
 
         call expect_error(error, 'points.nml', tab1_scene(contact='stiffness = 1.0e6, exponent = 1.5, ' &
                                                                   //'n_points = 1000000'), &
-                          [character(len=piece) :: ':4: &contact n_points: expected at most 1000 points, ' &
+                          [character(len=piece) :: ':4: &contact n_points: expected at most 5000 points, ' &
                            //'found 1000000'])
         if (allocated(error)) return
         call expect_error(error, 'lines.nml', tab1_scene(structure="model = 'random_modes'", &
@@ -620,7 +620,8 @@ contains
         type(scene_variable), allocatable :: table(:)
         integer :: i, m, n
 
-        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'", model_names())
+        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre', 'tyre_plate' or " &
+                   //"'green_file'", model_names())
         if (allocated(error)) return
         models = structure_models()
         table = scene_table()

@@ -5,7 +5,7 @@
 module test_patchscene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use scene_text_mod, only: read_scene_text
+    use scene_text_mod, only: read_scene_text, run_scene_text, read_table, message_of, write_text
     use greenconv_core_error, only: error_type, stat_input
     use greenconv_io_files, only: make_directory
     use greenconv_io_columns, only: read_columns
@@ -95,7 +95,7 @@ contains
         if (allocated(error)) return
         call note('E worst of the fit', structure%fit%e_worst)
         bound = 100.0_dp*structure%fit%e_worst + 1.0e-12_dp
-        call run_scene_text('plate_2x2.nml', "&scene name = 'plate2x2', output_dir = '"//scratch &
+        call run_scene_text(scratch, 'plate_2x2.nml', "&scene name = 'plate2x2', output_dir = '"//scratch &
             //"', dt = 5.0e-4, n_steps = 400 / &structure model = 'green_file', green_file = '"//path//"' / " &
             //"&road profile = 'file', road_file = 'data/road_sample.dat', x_start = 1.0, speed = 5.0 / " &
             //"&contact stiffness = 5.0e4, exponent = 1.0, preload = 1000.0 / " &
@@ -428,7 +428,7 @@ contains
         call check(error, index(fail%message, "sdof_texture.nml:1: &road profile: expected 'sine', 'random' or " &
                                 //"'file' for model 'sdof'") > 0, 'message: '//fail%message)
         if (allocated(error)) return
-        call run_scene_text('off_texture.nml', head//" &road profile = 'texture', texture_file = " &
+        call run_scene_text(scratch, 'off_texture.nml', head//" &road profile = 'texture', texture_file = " &
                             //"'data/road_texture.dat', x_start = 3.98"//tail, fail)
         call check(error, allocated(fail), 'a run off the texture accepted')
         if (allocated(error)) return
@@ -475,7 +475,7 @@ contains
         do k = 1, size(text)
             path = scratch//'/texture_'//char(iachar('a') + k - 1)//'.dat'
             if (k < size(text)) then
-                call write_file(path, trim(text(k)))
+                call write_text(path, trim(text(k)))
             else
                 path = scratch//'/no_such_texture.dat'
             end if
@@ -578,9 +578,9 @@ contains
         call small_patch(patch, truth, x, y, fail)
         call check(error, .not. allocated(fail), 'the 2 x 2 patch file: '//message_of(fail))
         if (allocated(error)) return
-        call write_file(path, '# slope across'//new_line('a')//'  -0.1  0.1'//new_line('a')//'0.0 -1e-3 1e-3' &
+        call write_text(path, '# slope across'//new_line('a')//'  -0.1  0.1'//new_line('a')//'0.0 -1e-3 1e-3' &
                         //new_line('a')//'10.0 -1e-3 1e-3')
-        call run_scene_text('slope.nml', "&scene name = 'slope', output_dir = '"//scratch &
+        call run_scene_text(scratch, 'slope.nml', "&scene name = 'slope', output_dir = '"//scratch &
             //"', dt = 2.0e-4, n_steps = 20 / &structure model = 'green_file', green_file = '"//patch//"' /" &
             //" &road profile = 'texture', texture_file = '"//path &
             //"', x_start = 1.0, speed = 5.0 / &contact stiffness = 5.0e4, exponent = 1.0, preload = 3000.0 / " &
@@ -625,13 +625,13 @@ contains
         call check(error, .not. allocated(fail), 'the 2 x 2 patch file: '//message_of(fail))
         if (allocated(error)) return
         ! heights varying along x and across y: 1 mm bumps 0.05 m apart, 0.5 mm higher on one side
-        call write_file(texture, '# bumps'//new_line('a')//'  -0.1  0.1'//new_line('a') &
+        call write_text(texture, '# bumps'//new_line('a')//'  -0.1  0.1'//new_line('a') &
                         //bump_rows(0.0_dp, 12.0_dp, 0.01_dp))
         base = " &structure model = 'green_file', green_file = '"//patch//"' /" &
                //" &road profile = 'texture', texture_file = '"//texture &
                //"', x_start = 1.0, speed = 5.0 / &contact stiffness = 5.0e4, exponent = 1.0, preload = 1000.0 / " &
                //"&convolution methods = 'exact', 'fft' /"
-        call write_file(scratch//'/sweep_green.nml', "&scene task = 'sweep', name = 'sweep_green', output_dir = '" &
+        call write_text(scratch//'/sweep_green.nml', "&scene task = 'sweep', name = 'sweep_green', output_dir = '" &
                         //scratch//"', dt = 5.0e-4, n_steps = 400 /"//base//new_line('a')//"&sweep"//new_line('a') &
                         //"    road.speed = 4.0, 6.0"//new_line('a')//"/")
         call execute_command_line('rm -rf '//scratch//'/sweep_green_sweep.d')
@@ -651,7 +651,7 @@ contains
         if (allocated(error)) return
         worst = 0.0_dp
         do v = 1, 2
-            call run_scene_text('sweep_alone.nml', "&scene name = 'sweep_alone', output_dir = '"//scratch &
+            call run_scene_text(scratch, 'sweep_alone.nml', "&scene name = 'sweep_alone', output_dir = '"//scratch &
                                 //"', dt = 5.0e-4, n_steps = 400 /"//replace_speed(base, table(v, 2)), fail)
             call check(error, .not. allocated(fail), 'the scene alone runs: '//message_of(fail))
             if (allocated(error)) return
@@ -710,21 +710,6 @@ contains
 
     ! ---- helpers -------------------------------------------------------------------------------
 
-    !> Write a scene's text to scratch/name, read it and run it (its summary to a scratch unit).
-    subroutine run_scene_text(name, text, fail)
-        character(len=*), intent(in) :: name, text
-        type(error_type), allocatable, intent(out) :: fail
-
-        type(scene_type) :: scene
-        integer :: unit
-
-        call read_scene_text(scratch, name, text, scene, fail)
-        if (allocated(fail)) return
-        open (newunit=unit, status='scratch', action='readwrite')
-        call run_scene(scene, unit, fail)
-        close (unit)
-    end subroutine run_scene_text
-
     !> The 2 x 2 patch of test_scene_against_modes: points 0.06 m by 0.1 m around (L/2, b/2) of
     !> the plate (xi = 0.02), its modes up to 300 Hz, and their receptances on 0 to 400 Hz by 1 Hz
     !> written to `path` (nodes in dataset 2411, 17 digits).
@@ -767,42 +752,5 @@ contains
         end do
         call write_uff(path, functions, nodes, fail, node_dataset=2411)
     end subroutine write_receptance_file
-
-    !> A multi-point output file's rows, rows(k, :) the n_columns values of data line k.
-    subroutine read_table(path, n_columns, rows, fail)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: n_columns
-        real(dp), allocatable, intent(out) :: rows(:, :)
-        type(error_type), allocatable, intent(out) :: fail
-
-        character(len=8) :: names(n_columns)
-        integer, allocatable :: line_of(:)
-        integer :: k
-
-        do k = 1, n_columns
-            write (names(k), '(a,i0)') 'c', k
-        end do
-        call read_columns(path, names, [(' ', k=1, n_columns)], rows, line_of, fail)
-    end subroutine read_table
-
-    !> Write text to a file, replacing it.
-    subroutine write_file(path, text)
-        character(len=*), intent(in) :: path, text
-
-        integer :: unit
-
-        open (newunit=unit, file=path, status='replace', action='write')
-        write (unit, '(a)') text
-        close (unit)
-    end subroutine write_file
-
-    !> The message of an error, '' when none.
-    pure function message_of(fail) result(text)
-        type(error_type), allocatable, intent(in) :: fail
-        character(len=:), allocatable :: text
-
-        text = ''
-        if (allocated(fail)) text = fail%message
-    end function message_of
 
 end module test_patchscene_mod

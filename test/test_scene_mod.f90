@@ -413,7 +413,7 @@ contains
         call check(error, allocated(run_error), 'sdof with 5 points is refused')
         if (allocated(error)) return
         call check(error, index(run_error%message, "&contact n_points: expected 1, or a number of points >= 1 " &
-                                //"for model 'tyre', found 5") > 0, 'message: '//run_error%message)
+                                //"for model 'tyre' or 'tyre_plate', found 5") > 0, 'message: '//run_error%message)
         if (allocated(error)) return
         call scene_from_text('bad_tyre.nml', tab1_scene(structure="model = 'tyre'", &
                                                         contact='stiffness = 1.0e6, exponent = 1.5, preload = 100.0'), &

@@ -14,6 +14,7 @@ module greenconv_scene_input
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt, contact_positions
+    use greenconv_model_plate, only: tyre_plate
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
     use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
@@ -28,7 +29,7 @@ module greenconv_scene_input
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
-    use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values
+    use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values, max_contact_points
     use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
@@ -205,11 +206,14 @@ contains
         character(len=path_length) :: frf_file, green_file
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
+        real(dp) :: belt_width, plate_mass, plate_bending_x, plate_bending_y, plate_bending_xy, plate_tension_x, &
+                    plate_tension_y, plate_foundation
         integer :: n_modes, seed, stat, frf_dataset
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
-            belt_tension, belt_foundation, f_modes, green_file
+            belt_tension, belt_foundation, belt_width, plate_mass, plate_bending_x, plate_bending_y, &
+            plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation, f_modes, green_file
 
         read (defaults, nml=structure)
         if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
@@ -247,6 +251,10 @@ contains
                      all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
                      expected(this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
                               //'belt_tension, belt_foundation >= 0, all finite'), error)
+        call check_values(this, 'structure', [character(len=16) :: 'belt_width', 'plate_mass', 'plate_bending_x', &
+                          'plate_bending_y', 'plate_bending_xy', 'plate_tension_x', 'plate_tension_y', &
+                          'plate_foundation'], [belt_width, plate_mass, plate_bending_x, plate_bending_y, &
+                          plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation], error)
         call check_value(this, 'structure', 'f_modes', f_modes, error)
         call check_value(this, 'structure', 'frf_dataset', frf_dataset, error)
         this%frf_file = trim(frf_file)
@@ -255,6 +263,10 @@ contains
         this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
                               tension=belt_tension, foundation_stiffness=belt_foundation, &
                               damping_ratio=damping_ratio)
+        this%plate = tyre_plate(length=belt_length, width=belt_width, mass_per_area=plate_mass, &
+                                bending_x=plate_bending_x, bending_y=plate_bending_y, bending_xy=plate_bending_xy, &
+                                tension_x=plate_tension_x, tension_y=plate_tension_y, foundation=plate_foundation, &
+                                damping_ratio=damping_ratio)
         this%f_modes = f_modes
     end subroutine read_structure_group
 
@@ -547,12 +559,14 @@ contains
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound
+        real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound, patch_width, &
+                    stiffness_per_area
         character(len=name_length) :: scheme
         type(structure_kind) :: model
-        integer :: stat, n_points
+        integer :: stat, n_points, n_points_x, n_points_y
         character(len=512) :: message
-        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, scheme, divergence_bound
+        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, n_points_x, n_points_y, &
+            patch_width, stiffness_per_area, scheme, divergence_bound
 
         ! The table's default `mass*gravity`, set below when the file is silent.
         preload = -1.0_dp
@@ -560,26 +574,41 @@ contains
         if (source%unit /= no_unit) write (source%unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
         if (source%unit == no_unit) read (source%lines, nml=contact, iostat=stat, iomsg=message)
         if (group_failed(this, 'contact', source, stat, message, error)) return
-        call check_values(this, 'contact', [character(len=16) :: 'stiffness', 'exponent', 'gravity', 'preload'], &
-                          [stiffness, exponent, gravity, preload], error)
+        call check_values(this, 'contact', [character(len=18) :: 'stiffness', 'exponent', 'gravity', 'preload', &
+                          'patch_width', 'stiffness_per_area'], &
+                          [stiffness, exponent, gravity, preload, patch_width, stiffness_per_area], error)
         model = find_model(this%model)
         call require(preload >= 0.0_dp .or. model%has_mass .or. this%task /= 'contact', &
                      expected(this, 'contact', 'preload', &
                      "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
-        call check_value(this, 'contact', 'n_points', n_points, error)
-        call require(n_points >= 1 .and. (n_points == 1 .or. model%multi_point()), &
-                     expected(this, 'contact', 'n_points', &
-                              "1, or a number of points >= 1 for model 'tyre'", n_points), error)
-        call require(.not. (model_requires(model, 'green_file') .and. this%input%has_value('contact', 'n_points')), &
-                     expected(this, 'contact', 'n_points', "no value for model '"//this%model//"' (its contact " &
-                              //'points are the nodes of the file)'), error)
-        call require(.not. (model_requires(model, 'green_file') .and. this%input%has_value('contact', &
-                     'patch_length')), expected(this, 'contact', 'patch_length', "no value for model '" &
-                     //this%model//"' (the file's node coordinates place its points)"), error)
+        call check_values(this, 'contact', [character(len=16) :: 'n_points', 'n_points_x', 'n_points_y'], &
+                          [n_points, n_points_x, n_points_y], error)
+        call check_patch_grid(this, model, n_points, n_points_x, n_points_y, error)
+        call require(.not. (model%multi_point() .and. model%grid_dimensions == 0 .and. &
+                            this%input%has_value('contact', 'patch_length')), expected(this, 'contact', &
+                     'patch_length', "no value for model '"//this%model//"' (the file's node coordinates place " &
+                     //'its points)'), error)
         call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
                      'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
+        call require(model%grid_dimensions == 2 .or. stiffness_per_area > 0.0_dp .or. &
+                     .not. this%input%has_value('contact', 'patch_width'), expected(this, 'contact', 'patch_width', &
+                     "no value for model '"//this%model//"' without stiffness_per_area (it is the tread width " &
+                     //'a per-area law shares out)'), error)
+        call require(model%grid_dimensions < 2 .or. patch_width < this%plate%width, expected(this, 'contact', &
+                     'patch_width', 'a width below belt_width', patch_width), error)
+        call require(stiffness_per_area == 0.0_dp .or. model%grid_dimensions > 0, expected(this, 'contact', &
+                     'stiffness_per_area', "0 for model '"//this%model//"' (a law per area needs a patch grid: " &
+                     //"model 'tyre' or 'tyre_plate'); give the stiffness per point", stiffness_per_area), error)
+        call require(stiffness_per_area == 0.0_dp .or. .not. this%input%has_value('contact', 'stiffness'), &
+                     expected(this, 'contact', 'stiffness', 'no value beside stiffness_per_area (each point''s ' &
+                     //'stiffness is k_a times its share of the patch)'), error)
         call check_value(this, 'contact', 'scheme', scheme, error)
         call check_value(this, 'contact', 'divergence_bound', divergence_bound, error)
+        this%patch_length = patch_length
+        this%patch_width = patch_width
+        this%stiffness_per_area = stiffness_per_area
+        ! a law per area: each point carries its element's share, patch_length*patch_width/N_c
+        if (stiffness_per_area > 0.0_dp) stiffness = stiffness_per_area*patch_length*patch_width/this%n_points
         this%law = contact_law(stiffness=stiffness, exponent=exponent)
         ! the law's own check, as at every door (the table's rows already bound its values)
         if (.not. allocated(error)) then
@@ -588,11 +617,44 @@ contains
         end if
         this%contact%scheme = trim(scheme)
         this%contact%divergence_bound = divergence_bound
-        this%n_points = n_points
-        this%patch_length = patch_length
         this%preload = preload
         if (preload < 0.0_dp) this%preload = this%mass*gravity
     end subroutine read_contact_group
+
+    !> The contact points a scene asks for: one (single-point models); n_points on a line
+    !> (`tyre`); n_points_x*n_points_y on a patch grid (`tyre_plate`, n_points_x = 0 taking
+    !> n_points); none for a model whose points come from a file. Sets n_points, n_points_x
+    !> and n_points_y.
+    subroutine check_patch_grid(this, model, n_points, n_points_x, n_points_y, error)
+        type(scene_type), intent(inout) :: this
+        type(structure_kind), intent(in) :: model
+        integer, intent(in) :: n_points, n_points_x, n_points_y
+        type(error_type), allocatable, intent(inout) :: error
+
+        integer :: along
+
+        if (allocated(error)) return
+        call require(.not. (model%multi_point() .and. model%grid_dimensions == 0 .and. &
+                            this%input%has_value('contact', 'n_points')), &
+                     expected(this, 'contact', 'n_points', "no value for model '"//this%model//"' (its contact " &
+                              //'points are the nodes of the file)'), error)
+        call require(n_points >= 1 .and. (n_points == 1 .or. model%grid_dimensions > 0), &
+                     expected(this, 'contact', 'n_points', "1, or a number of points >= 1 for model 'tyre' or " &
+                              //"'tyre_plate'", n_points), error)
+        call require(model%grid_dimensions == 2 .or. .not. (this%input%has_value('contact', 'n_points_x') .or. &
+                     this%input%has_value('contact', 'n_points_y')), expected(this, 'contact', 'n_points_x, n_points_y', &
+                     "no value for model '"//this%model//"' (a patch grid is model 'tyre_plate''s; "//"'tyre' " &
+                     //'takes n_points)'), error)
+        along = n_points
+        if (n_points_x > 0) along = n_points_x
+        this%n_points_x = along
+        this%n_points_y = 1
+        if (model%grid_dimensions == 2) this%n_points_y = n_points_y
+        call require(real(along, dp)*this%n_points_y <= max_contact_points, expected(this, 'contact', &
+                     'n_points_x, n_points_y', 'at most '//int_text(max_contact_points)//' points in all, found ' &
+                     //int_text(along)//' x '//int_text(this%n_points_y)), error)
+        if (.not. allocated(error)) this%n_points = along*this%n_points_y
+    end subroutine check_patch_grid
 
     !> &convolution: methods (list of names), truncation_tol, accuracy.
     subroutine read_convolution_group(source, defaults, this, error)

@@ -19,8 +19,9 @@ module greenconv_scene_limits
     integer, parameter :: max_lsce_modes = 200
     !> Largest number of terms of the random road, eq. (35) (&road n_terms).
     integer, parameter :: max_road_terms = 100000
-    !> Largest number of contact points (&contact n_points): each step solves an N_c x N_c system.
-    integer, parameter :: max_contact_points = 1000
+    !> Largest number of contact points (&contact n_points, n_points_x*n_points_y): a tyre's
+    !> patch at a few millimetres; `exact` holds its N_c x N_c instantaneous matrix (0.2 GB).
+    integer, parameter :: max_contact_points = 5000
     !> Largest number of stored values of a sampled kernel: N_g*N_c^2 weights and 2*N_g*N_c
     !> past forces, 8 bytes each (10^8: 0.8 GB).
     integer, parameter :: max_kernel_values = 100000000

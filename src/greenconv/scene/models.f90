@@ -19,7 +19,8 @@ module greenconv_scene_models
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
                                              frf_file_structure, check_frf_file
-    use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, green_file_points, check_green_file
+    use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
+                                            green_file_points, check_green_file
     implicit none
     private
 
@@ -93,6 +94,10 @@ module greenconv_scene_models
         !> Whether `direct` and `fft` use g sampled from a receptance (bounded by its file),
         !> rather than g of the exact modes.
         logical :: sampled_g = .false.
+        !> Dimensions of the patch grid the scene lays its contact points on: 0 (one point, or
+        !> points from a file), 1 (`&contact n_points` on a line), 2 (`n_points_x` by
+        !> `n_points_y`).
+        integer :: grid_dimensions = 0
         !> Builder of a single-point model's structure; unassociated for a multi-point model.
         procedure(structure_builder), pointer, nopass :: build => null()
         !> Finder of a multi-point model's contact points (N_c >= 1, `&contact n_points`);
@@ -113,7 +118,7 @@ contains
     !> Every structure model of the registry, in the order messages list the names.
     function structure_models() result(models)
         !> The registry.
-        type(structure_kind) :: models(5)
+        type(structure_kind) :: models(6)
 
         models(1) = structure_kind(1, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true., &
                                    build=sdof_structure, slowest_decay=sdof_decay)
@@ -121,9 +126,11 @@ contains
                                    build=random_modes_structure, slowest_decay=random_modes_decay)
         models(3) = structure_kind(3, 'frf_file', 'frf_file', identified_modes=.true., sampled_g=.true., &
                                    build=frf_file_structure, check_file=check_frf_file)
-        models(4) = structure_kind(4, 'tyre', '', exact_modes=.true., find_points=tyre_scene_points, &
-                                   slowest_decay=tyre_decay)
-        models(5) = structure_kind(5, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
+        models(4) = structure_kind(4, 'tyre', '', exact_modes=.true., grid_dimensions=1, &
+                                   find_points=tyre_scene_points, slowest_decay=tyre_decay)
+        models(5) = structure_kind(5, 'tyre_plate', '', exact_modes=.true., grid_dimensions=2, &
+                                   find_points=plate_scene_points, slowest_decay=plate_decay)
+        models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
                                    find_points=green_file_points, check_file=check_green_file)
     end function structure_models
 

@@ -19,18 +19,21 @@ module greenconv_scene_multi_models
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text
-    use greenconv_model_tyre, only: tyre_frequency
+    use greenconv_model_tyre, only: tyre_frequency, tyre_band
+    use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
                                                sampled_kernel
     use greenconv_conv_methods, only: check_method, method_needs_g
     use greenconv_scene_settings, only: scene_type, input_place
     use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_patch, only: place_patch, run_text
+    use greenconv_scene_patch, only: place_patch, run_text, road_step
     use greenconv_scene_tyre, only: tyre_points
     implicit none
     private
 
-    public :: tyre_scene_points, tyre_decay, green_file_points, check_green_file
+    real(dp), parameter :: pi = acos(-1.0_dp)
+
+    public :: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, green_file_points, check_green_file
 
 contains
 
@@ -58,6 +61,52 @@ contains
         tyre_decay = scene%damping_ratio*tyre_frequency(scene%tyre, 1)
     end function tyre_decay
 
+    !> The points of a `tyre_plate` scene: an n_x by n_y grid over the patch, centred on the
+    !> belt (x = L/2, y = b/2), each point the middle of its share; the plate's modes up to
+    !> f_modes (or the band rule of the 1D tyre) at them; placed on the road around x_start
+    !> and y_start.
+    subroutine plate_scene_points(scene, points, summary, error)
+        !> The scene (model 'tyre_plate', task 'contact', road profile 'file' or 'texture').
+        type(scene_type), intent(in) :: scene
+        !> The points.
+        type(scene_points), intent(out) :: points
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set for an unusable plate, no mode below the band or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: f_max
+        character(len=200) :: numbers
+
+        allocate (points%x(scene%n_points), points%y(scene%n_points))
+        points%across = .true.
+        call patch_points([0.5_dp*scene%plate%length, 0.5_dp*scene%plate%width], &
+                          [scene%patch_length, scene%patch_width], scene%n_points_x, scene%n_points_y, &
+                          points%x, points%y)
+        f_max = scene%f_modes
+        if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
+        call plate_modes(scene%plate, points%x, points%y, f_max, points%modes, error)
+        if (.not. allocated(error)) call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'model')//': '//error%message
+            return
+        end if
+        write (numbers, '(i0,a,i0,a,f0.3,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') scene%n_points_x, ' x ', scene%n_points_y, &
+            ' contact points over ', scene%patch_length, ' m x ', scene%patch_width, ' m, ', &
+            points%modes%modes%n_modes(), ' modes from ', plate_frequency(scene%plate, 0, 1)/(2.0_dp*pi), &
+            ' Hz to f_max = ', f_max, ' Hz, '
+        summary = '# scene '//scene%name//': tyre belt as a plate, '//trim(numbers)//' '//run_text(scene)
+    end subroutine plate_scene_points
+
+    !> Decay rate [1/s] of the plate's slowest mode, xi*omega_01, which bounds a sampled
+    !> kernel's length.
+    pure real(dp) function plate_decay(scene)
+        !> The scene (model 'tyre_plate').
+        type(scene_type), intent(in) :: scene
+
+        plate_decay = scene%damping_ratio*plate_frequency(scene%plate, 0, 1)
+    end function plate_decay
+
     !> The points of a `green_file` scene: the file's nodes, placed on the road, and its
     !> receptances identified with shared poles.
     subroutine green_file_points(scene, points, summary, error)
@@ -73,6 +122,7 @@ contains
         type(green_options) :: options
 
         points%from_file = .true.
+        points%across = .true.
         points%green%path = scene%green_file
         call read_green_layout(scene%green_file, points%green%matrix, error)
         if (allocated(error)) then

@@ -19,6 +19,9 @@ module greenconv_scene_point_set
         real(dp), allocatable :: road_x(:), road_y(:)
         !> Whether the points come from a Green's matrix file (else from `modes`).
         logical :: from_file = .false.
+        !> Whether the points spread across the patch too (y varies), so that the output has a
+        !> column y.
+        logical :: across = .false.
         !> The structure's modes and their shapes at the points.
         type(point_modes) :: modes
         !> The Green's matrix read from the file, identified.

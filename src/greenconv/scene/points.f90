@@ -44,7 +44,7 @@ contains
     end subroutine points_convolver
 
     !> Output rows of a multi-point run (greenconv_scene_output's `multi_contact_table`): N_c
-    !> rows per kept step, with the column y [m] for a Green's matrix file's points.
+    !> rows per kept step, with the column y [m] for points spread across the patch.
     function point_rows(points, response, first, every) result(table)
         !> The points.
         type(scene_points), intent(in) :: points
@@ -57,7 +57,7 @@ contains
         !> Rows (t, x, u_road, u, F, delta, F_total[, y]).
         real(dp), allocatable :: table(:, :)
 
-        if (points%from_file) then
+        if (points%across) then
             table = multi_contact_table(points%x, response, first, every, points%y)
         else
             table = multi_contact_table(points%x, response, first, every)

@@ -165,8 +165,8 @@ contains
                 if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
             else if (run%several) then
                 sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), &
-                                                                         run%points%from_file), &
-                                     merge(8, 7, run%points%from_file))
+                                                                         run%points%across), &
+                                     merge(8, 7, run%points%across))
                 prefix = scene%file//': '//method//': '
             else
                 sinks = column_sinks(scene, method, response_header(scene, run%conv), 5)

@@ -59,6 +59,9 @@ module greenconv_scene_schema
         !> When a scene must state it: '' (never, unless its model requires it), 'always', or
         !> "<variable> '<value>'" (e.g. "task 'contact'"), the variable's value or default.
         character(len=:), allocatable :: required
+        !> Another variable of the group that, when the file gives it, stands in for this one
+        !> (not required then); '' for none.
+        character(len=:), allocatable :: unless
         !> What a set value must be, as messages say it after "expected" ("a time step > 0 s");
         !> '' when the group's reader (greenconv_scene_input) checks the variable itself.
         character(len=:), allocatable :: expect
@@ -93,7 +96,7 @@ contains
         !> The table.
         type(scene_variable), allocatable :: table(:)
 
-        type(scene_variable) :: rows(96)
+        type(scene_variable) :: rows(120)
         integer :: n
 
         n = 0
@@ -177,6 +180,30 @@ contains
             'the tyre belt tension', '')
         call add(rows, n, 'structure', 'belt_foundation', value_real, '7.0e5', 'N/m^2', &
             'the tyre foundation stiffness', '')
+        call add(rows, n, 'structure', 'belt_width', value_real, '0.2', 'm', &
+            'the tyre belt width b (tyre_plate)', '', &
+            expect='a width b > 0 m', above=0.0_dp)
+        call add(rows, n, 'structure', 'plate_mass', value_real, '12.5', 'kg/m^2', &
+            'the belt mass per area rho_h (tyre_plate)', '', &
+            expect='a mass per area > 0 kg/m^2', above=0.0_dp)
+        call add(rows, n, 'structure', 'plate_bending_x', value_real, '25.0', 'N*m', &
+            'the belt bending stiffness D_x along the circumference (tyre_plate)', '', &
+            expect='a bending stiffness >= 0 N*m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'plate_bending_y', value_real, '10.0', 'N*m', &
+            'the belt bending stiffness D_y across (tyre_plate)', '', &
+            expect='a bending stiffness >= 0 N*m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'plate_bending_xy', value_real, '15.811388300841896', 'N*m', &
+            'the belt effective torsional stiffness D_xy (tyre_plate; default sqrt(25*10))', '', &
+            expect='a torsional stiffness >= 0 N*m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'plate_tension_x', value_real, '6.6e4', 'N/m', &
+            'the belt membrane tension T_x along the circumference (tyre_plate)', '', &
+            expect='a tension >= 0 N/m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'plate_tension_y', value_real, '1.0e4', 'N/m', &
+            'the belt membrane tension T_y across (tyre_plate)', '', &
+            expect='a tension >= 0 N/m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'plate_foundation', value_real, '1.5e6', 'N/m^3', &
+            'the foundation stiffness s per area of belt (tyre_plate)', '', &
+            expect='a foundation stiffness > 0 N/m^3', above=0.0_dp)
         call add(rows, n, 'structure', 'f_modes', value_real, '0.0', 'Hz', &
             'the highest tyre mode kept (0: the band rule)', '', &
             expect='a frequency >= 0 Hz (0: the band rule)', at_least=0.0_dp)
@@ -237,7 +264,7 @@ contains
             expect='a finite position in m')
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'", &
-            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp)
+            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area')
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
             'the contact exponent p', "task 'contact'", &
             expect='an exponent p > 0', above=0.0_dp)
@@ -251,7 +278,20 @@ contains
             'the number of contact points N_c (tyre)', '', &
             expect='at most '//int_text(max_contact_points)//' points', at_most=real(max_contact_points, dp))
         call add(rows, n, 'contact', 'patch_length', value_real, '0.1', 'm', &
-            'the length of the contact patch (tyre)', '')
+            'the length of the contact patch (tyre, tyre_plate)', '')
+        call add(rows, n, 'contact', 'n_points_x', value_integer, '0', '', &
+            'the points along the travel of a tyre_plate patch (0: n_points)', '', &
+            expect='a number of points >= 0 (0: n_points)', at_least=0.0_dp, at_most=real(max_contact_points, dp))
+        call add(rows, n, 'contact', 'n_points_y', value_integer, '1', '', &
+            'the points across a tyre_plate patch', '', &
+            expect='a number of points >= 1', at_least=1.0_dp, at_most=real(max_contact_points, dp))
+        call add(rows, n, 'contact', 'patch_width', value_real, '0.1', 'm', &
+            'the width of the contact patch (tyre_plate; the tread width under stiffness_per_area)', '', &
+            expect='a width > 0 m', above=0.0_dp)
+        call add(rows, n, 'contact', 'stiffness_per_area', value_real, '0.0', 'N/m^(2+p)', &
+            'the tread stiffness per area k_a (0: stiffness per point); each point gets k_a times its ' &
+            //'share of the patch, patch_length*patch_width/N_c', '', &
+            expect='a stiffness per area >= 0 N/m^(2+p) (0: stiffness per point)', at_least=0.0_dp)
         call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
             "the contact step, 'explicit' or 'implicit'", '', &
             choices=[character(len=16) :: 'explicit', 'implicit'])
@@ -272,7 +312,7 @@ contains
     !> Append a row to the table; a checked value has its message `expect` and its range
     !> (`above` or `at_least`, `below` or `at_most`), a text its `choices`.
     subroutine add(rows, n, group, name, kind, default, units, meaning, required, expect, above, at_least, &
-                   below, at_most, choices)
+                   below, at_most, choices, unless)
         type(scene_variable), intent(inout) :: rows(:)
         integer, intent(inout) :: n
         character(len=*), intent(in) :: group, name, default, units, meaning, required
@@ -280,6 +320,7 @@ contains
         character(len=*), intent(in), optional :: expect
         real(dp), intent(in), optional :: above, at_least, below, at_most
         character(len=*), intent(in), optional :: choices(:)
+        character(len=*), intent(in), optional :: unless
 
         n = n + 1
         rows(n)%group = group
@@ -291,6 +332,8 @@ contains
         rows(n)%units = units
         rows(n)%meaning = meaning
         rows(n)%required = required
+        rows(n)%unless = ''
+        if (present(unless)) rows(n)%unless = unless
         rows(n)%expect = ''
         if (present(expect)) rows(n)%expect = expect
         if (present(above)) rows(n)%low = above
@@ -466,6 +509,13 @@ contains
         type(error_type), allocatable, intent(inout) :: error
 
         if (scan%has_value(variable%group, variable%name)) return
+        if (len(variable%unless) > 0) then
+            if (scan%has_value(variable%group, variable%unless)) return
+            call fatal_error(error, scan%file//':'//int_text(scan%line_of(variable%group, ''))//': &' &
+                             //variable%group//' '//variable%name//': expected '//required_text(variable, when) &
+                             //' or '//variable%unless//', found neither')
+            return
+        end if
         call fatal_error(error, scan%file//':'//int_text(scan%line_of(variable%group, ''))//': &'//variable%group &
                          //' '//variable%name//': expected '//required_text(variable, when)//', found no value')
     end subroutine need

@@ -8,6 +8,7 @@ module greenconv_scene_settings
     use greenconv_model_road, only: road_profile
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt
+    use greenconv_model_plate, only: tyre_plate
     use greenconv_model_road_file, only: road_file_type => road_file
     use greenconv_model_road_texture, only: road_texture
     use greenconv_scene_scan, only: namelist_scan
@@ -76,6 +77,9 @@ module greenconv_scene_settings
         character(len=:), allocatable :: green_file
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
+        !> The 2D tyre belt of the tyre_plate model (its damping ratio is `damping_ratio`, its
+        !> circumference `belt_length`).
+        type(tyre_plate) :: plate
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
         real(dp) :: f_modes
         !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
@@ -104,8 +108,16 @@ module greenconv_scene_settings
         real(dp) :: speed
         !> Number of contact points N_c (tyre model; 1 otherwise).
         integer :: n_points
-        !> Length [m] of the contact patch the N_c points share (tyre model).
+        !> Length [m] of the contact patch the N_c points share (tyre models).
         real(dp) :: patch_length
+        !> Points of the patch grid along the travel (x) and across (y): N_c = n_x*n_y (a tyre
+        !> line: n_y = 1).
+        integer :: n_points_x = 1, n_points_y = 1
+        !> Width [m] of the contact patch (tyre_plate; the tread width of a per-area law).
+        real(dp) :: patch_width = 0.1_dp
+        !> Tread stiffness per area k_a [N/m^(2+p)] the law's k_c was made from (k_c = k_a times
+        !> each point's share of the patch); 0 when the scene gave k_c per point.
+        real(dp) :: stiffness_per_area = 0.0_dp
         !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
         type(contact_options) :: contact
         !> Contact law.

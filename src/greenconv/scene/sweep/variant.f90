@@ -114,7 +114,7 @@ contains
         levels = ''
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
-            sinks = variant_sinks(plan, scene, k, method, several, run%points%from_file)
+            sinks = variant_sinks(plan, scene, k, method, several, run%points%across)
             seconds = 0.0_dp
             step = 0
             if (allocated(failure)) then
@@ -141,12 +141,12 @@ contains
     !> The sinks of a variant's method: its force summary, its total-force history with
     !> `spectra`, its column file with `histories` (the header of a contact scene's file, the
     !> first line naming the sweep, the variant and its values).
-    function variant_sinks(plan, scene, k, method, several, from_file) result(sinks)
+    function variant_sinks(plan, scene, k, method, several, across) result(sinks)
         type(sweep_plan), intent(in) :: plan
         type(scene_type), intent(in) :: scene
         integer, intent(in) :: k
         character(len=*), intent(in) :: method
-        logical, intent(in) :: several, from_file
+        logical, intent(in) :: several, across
         type(stream_sinks) :: sinks
 
         character(len=:), allocatable :: title
@@ -159,8 +159,8 @@ contains
                      //merge('.bin', '.dat', sinks%binary)
         title = history_title(plan, scene, k, method)
         if (several) then
-            sinks%header = multi_contact_header(title, from_file)
-            sinks%n_columns = merge(8, 7, from_file)
+            sinks%header = multi_contact_header(title, across)
+            sinks%n_columns = merge(8, 7, across)
         else
             allocate (character(len=max(len(title), 40)) :: sinks%header(3))
             sinks%header(1) = title
