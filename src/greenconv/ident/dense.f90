@@ -1,8 +1,9 @@
-!> Dense symmetric linear algebra of the identification fits on the BLAS and LAPACK the
-!> library links (issue 26: the Gram matrices J^T J of the Levenberg-Marquardt steps took
-!> 40 % of a 50-mode fit in gfortran's general matmul).
+!> Dense symmetric linear algebra of the identification fits (issue 26: the Gram matrices
+!> J^T J of the Levenberg-Marquardt steps took 40 % of a 50-mode fit in gfortran's general
+!> matmul, the hand-written Cholesky 10 %): the Gram matrix by blocks of matmul, the Cholesky
+!> factor, solve and inverse by the LAPACK the library links.
 !>
-!> - `gram`: A^T A and A^T b, one triangle computed by blocks (about 60 % of the work of
+!> - `gram`: A^T A and A^T b, one triangle computed by blocks of 16 rows (54 % of the work of
 !>   matmul(transpose(A), A) for 50 modes), the other copied;
 !> - `spd_solve`: A x = b for symmetric positive definite A by dpotrf and dpotrs;
 !> - `spd_inverse`: inv(A) by dpotrf and dpotri.
@@ -16,10 +17,11 @@ module greenconv_ident_dense
     implicit none
     private
 
-    public :: gram, spd_factor, spd_solve, spd_inverse
+    public :: gram, spd_factor, spd_solve, spd_inverse, identity
 
-    !> Rows of A^T A computed per call of matmul in `gram`.
-    integer, parameter :: block = 32
+    !> Rows of A^T A computed per call of matmul in `gram` (16: 10.0 s on the 50-mode fit, 32: 11.0 s,
+    !> 64: 12.0 s; smaller blocks cost more in calls than they save).
+    integer, parameter :: block = 16
 
     interface
         !> Cholesky factor of a symmetric positive definite matrix, in place (LAPACK).
@@ -147,5 +149,20 @@ contains
             a(j + 1:n, j) = a(j, j + 1:n)
         end do
     end subroutine spd_inverse
+
+    !> Identity matrix of order n.
+    pure function identity(n) result(m)
+        !> Order.
+        integer, intent(in) :: n
+        !> The identity matrix (n x n).
+        real(dp) :: m(n, n)
+
+        integer :: i
+
+        m = 0.0_dp
+        do i = 1, n
+            m(i, i) = 1.0_dp
+        end do
+    end function identity
 
 end module greenconv_ident_dense

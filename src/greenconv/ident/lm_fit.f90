@@ -7,7 +7,7 @@ module greenconv_ident_lm_fit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ext_lapack, only: least_squares
-    use greenconv_ident_dense, only: gram, spd_factor, spd_solve, spd_inverse
+    use greenconv_ident_dense, only: gram, spd_factor, spd_solve, spd_inverse, identity
     use greenconv_ident_lsce, only: stack, add_parameter_step
     implicit none
     private
@@ -440,19 +440,6 @@ contains
 
         narrowest = -real(pole, dp) < 2.0_dp*min_decay
     end function narrowest
-
-    !> Identity matrix of order n.
-    pure function identity(n) result(m)
-        integer, intent(in) :: n
-        real(dp) :: m(n, n)
-
-        integer :: i
-
-        m = 0.0_dp
-        do i = 1, n
-            m(i, i) = 1.0_dp
-        end do
-    end function identity
 
     !> Covariance inv(F) of a symmetric positive definite F (scaled to unit diagonal first).
     pure subroutine covariance(fisher, cov, ok)
