@@ -8,7 +8,8 @@
 !>   one line 1e4 times too large and with three damaged lines (that one, a negated real
 !>   part, a zero in the 412/418 Hz pair);
 !> - 30 modes spread over the same band (xi 0.005 to 0.05, mixed signs) on the same grid at
-!>   1 %, max_order = 30 and 40; 50 modes so spread, max_order = 60 (one run: about a minute);
+!>   1 %, max_order = 30 and 40; 50 modes so spread, max_order = 60 (one run: about 10 s,
+!>   19 s before issue 26's faster fits);
 !> - data/sample_receptance.frf (4 clean modes, 2001 lines) with max_order = 8, intact and with
 !>   one line 1e16 times too large: the fuzz test's case, 5 to 24 s and 40 modes before the
 !>   order search was bounded and outlier lines detected.

@@ -26,8 +26,17 @@ parameters and the generator's noise, level*|G_true| per line) and the CPU time.
 A mode counts as found when a returned mode lies within 1 % of its frequency (each returned
 mode matched at most once, nearest first); spurious = returned modes not matched.
 
+Speed (issue 26): the spread structures of bench/bench_ident_mod.f90 (n modes from 100 Hz to
+4.8 kHz in geometric steps, xi 0.005/0.01/0.02/0.05 in turn, peaks of alternating sign, 8193
+lines to 5 kHz, 1 % complex noise, numpy's generator seeded with n), written as a column file
+that both tools read in the same run: greenconv with max_order = SPEED_ORDER (the scene's CPU
+time, its diagram included), sdypy's LSCF with its own stabilisation at pol_order_high =
+SPEED_PEER_ORDER (3 per mode: at the 60 of the table above it finds 18 of the 50 modes, at 150
+it finds 33; the issue's 1.9-3.7 s); the last column is greenconv's time over the peer's.
+
 Run from the repository root after `make lib` (the generator is built against build/make):
     python3 bench/ident_peer.py      (or: make bench-ident)
+    python3 bench/ident_peer.py --speed      (the speed rows alone)
 sdypy-EMA is pip-installed into build/ident_peer/venv on the first run (a tool around
 greenconv, not a dependency).
 """
@@ -49,6 +58,9 @@ CASES = [(level, seed) for level in (0.001, 0.01, 0.03) for seed in (13, 14)]
 PEER_ORDER = 60          # pol_order_high of the peer
 PEER_MIN_ORDERS = 10     # orders a stable group must appear in to count as a mode
 PEER_GROUP = 0.002       # relative frequency gap that starts a new group of stable poles
+SPEED_MODES = (30, 50)   # modes of the speed rows
+SPEED_ORDER = {30: 30, 50: 60}         # greenconv's max_order per speed row (as bench_ident_mod)
+SPEED_PEER_ORDER = {30: 90, 50: 150}   # the peer's pol_order_high per speed row
 
 
 def in_venv():
@@ -128,13 +140,13 @@ def score(found_f, found_xi, sigma_f, sigma_xi):
     return len(F) - len(used_k), found_f.size - len(used_m), worst_f, worst_xi
 
 
-def own_stable_modes(model):
+def own_stable_modes(model, order=PEER_ORDER):
     """Modes by the peer's own stabilisation test (see the module description)."""
     import numpy as np
     from sdypy.EMA import stabilization
     with warnings.catch_warnings():
         warnings.simplefilter('ignore')
-        fn, xi, test_fn, test_xi = stabilization._stabilization(model.all_poles, model.n_bands * PEER_ORDER,
+        fn, xi, test_fn, test_xi = stabilization._stabilization(model.all_poles, model.n_bands * order,
                                                                 err_fn=0.001, err_xi=0.05)
     stable = (test_fn > 0) & (test_xi > 0) & (xi > 0) & (xi < 1) & np.isfinite(fn) & (fn > 0)
     order = np.nonzero(stable)[1]
@@ -153,6 +165,71 @@ def own_stable_modes(model):
     return modes_f, modes_xi
 
 
+def spread_structure(n):
+    """Frequencies [Hz], damping ratios and the receptance on 8193 lines to 5 kHz (1 % noise)."""
+    import numpy as np
+    k = np.arange(n)
+    f = 100.0 * 48.0**(k / (n - 1))
+    xi = np.array([0.005, 0.01, 0.02, 0.05])[k % 4]
+    c = 1.0e-6 * np.where(k % 2 == 0, 1.0, -0.7)
+    w = 2 * np.pi * f
+    freq = np.arange(8193) * 5000.0 / 8192
+    omega = 2 * np.pi * freq
+    g = np.zeros(freq.size, dtype=complex)
+    for a, wk, x in zip(c * xi * w**2, w, xi):
+        g += a / (wk**2 - omega**2 + 2j * x * wk * omega)
+    rng = np.random.default_rng(n)
+    g *= 1 + 0.01 * (rng.standard_normal(g.size) + 1j * rng.standard_normal(g.size)) / np.sqrt(2)
+    return f, xi, freq, g
+
+
+def count(found_f, true_f):
+    """Modes missed and spurious (a match within 1 % of frequency, nearest first)."""
+    pairs = sorted((abs(m - t) / t, i, j) for i, t in enumerate(true_f) for j, m in enumerate(found_f))
+    used_t, used_m = set(), set()
+    for distance, i, j in pairs:
+        if distance <= 0.01 and i not in used_t and j not in used_m:
+            used_t.add(i)
+            used_m.add(j)
+    return len(true_f) - len(used_t), len(found_f) - len(used_m)
+
+
+def speed_table():
+    """greenconv against sdypy's LSCF on the spread structures, one thread each."""
+    import numpy as np
+    from sdypy import EMA
+    print()
+    print('| modes | tool | order | missed | spurious | CPU [s] | greenconv / LSCF |')
+    print('|---:|---|---:|---:|---:|---:|---:|')
+    for n in SPEED_MODES:
+        f, xi, freq, g = spread_structure(n)
+        name = 'speed_%d' % n
+        path = os.path.join(WORK, name + '.frf')
+        with open(path, 'w') as out:
+            out.write('# spread structure of %d modes, 1 %% noise (bench/ident_peer.py)\n' % n)
+            out.write('# f [Hz]  Re G [m/N]  Im G [m/N]\n')
+            for x, z in zip(freq, g):
+                out.write('%.17e %.17e %.17e\n' % (x, z.real, z.imag))
+        scene = os.path.join(WORK, name + '.nml')
+        with open(scene, 'w') as out:
+            out.write("&scene task = 'identify', name = '%s', output_dir = '%s' /\n" % (name, WORK))
+            out.write("&structure model = 'frf_file', frf_file = '%s' /\n" % path)
+            out.write("&identification max_order = %d /\n" % SPEED_ORDER[n])
+        summary = run(['build/make/greenconv', scene])
+        ours = float(re.search(r'CPU ([0-9.E+-]+) s', summary).group(1))
+        modes = np.loadtxt(os.path.join(WORK, name + '_modes.dat'), ndmin=2)
+        start = time.process_time()
+        model = EMA.Model(g[None, 1:], freq[1:], lower=freq[1], upper=freq[-1], pol_order_high=SPEED_PEER_ORDER[n],
+                          frf_form='receptance')
+        model.get_poles(method='lscf', show_progress=False)
+        found_f, found_xi = own_stable_modes(model, SPEED_PEER_ORDER[n])
+        peer = time.process_time() - start
+        print('| %d | greenconv ML (MDL order) | %d | %d | %d | %.2f | %.2f |' % ((n, SPEED_ORDER[n]) +
+                                                                        count(modes[:, 0], f) + (ours, ours / peer)))
+        print('| %d | sdypy LSCF, own stabilisation | %d | %d | %d | %.2f | |' % ((n, SPEED_PEER_ORDER[n]) +
+                                                                        count(found_f, f) + (peer,)), flush=True)
+
+
 def main():
     in_venv()
     import numpy as np
@@ -162,6 +239,9 @@ def main():
     generator = os.path.join(WORK, 'write_noisy_receptance')
     run(['gfortran', '-O2', '-Ibuild/make/include', '-J' + WORK, 'example/write_noisy_receptance.f90',
          'build/make/libgreenconv.a', '-llapack', '-lblas', '-lfftw3', '-fopenmp', '-o', generator])
+    if '--speed' in sys.argv:
+        speed_table()
+        return
     print('| noise, seed | tool | missed | spurious | worst f err / CRB sigma | worst xi err / CRB sigma | CPU [s] |')
     print('|---|---|---:|---:|---:|---:|---:|')
     for level, seed in CASES:
@@ -202,6 +282,7 @@ def main():
         for tool, missed, spurious, worst_f, worst_xi, seconds in rows:
             print('| %s | %s | %d | %d | %.3g | %.3g | %.2f |' % (label, tool, missed, spurious, worst_f, worst_xi,
                                                                  seconds), flush=True)
+    speed_table()
 
 
 if __name__ == '__main__':

@@ -201,11 +201,11 @@ contains
         !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :), jac_t(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :), work(:, :)
         logical :: ok
 
         do while (size(model%pole) > 0)
-            call information(data, model, fisher, gradient, jac, jac_t)
+            call information(data, model, fisher, gradient, jac, work)
             call covariance(fisher, cov, ok)
             if (ok) return
             call drop_pole(data, merged(model), dropped_degenerate, model, result, error)
@@ -517,7 +517,7 @@ contains
         integer, intent(out) :: outlier
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), jac_t(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), work(:, :)
         real(dp) :: block2(2, 2), before
         type(model_type) :: trial
         logical :: ok
@@ -532,7 +532,7 @@ contains
             removed = .true.
             return
         end if
-        call information(data, model, fisher, gradient, jac, jac_t)
+        call information(data, model, fisher, gradient, jac, work)
         call covariance(fisher, cov, ok)
         allocate (wald(size(model%pole)))
         if (.not. ok) then

@@ -1,0 +1,126 @@
+!> The dense linear algebra of the identification fits (greenconv_ident_dense, issue 26's
+!> speed): the Gram matrix by upper-triangle blocks against the sums written out, on sizes
+!> below, at and across the block size; the Cholesky solve and inverse against the matrix they
+!> invert; a matrix that is not positive definite, or holds a NaN, reported rather than solved.
+module test_identdense_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use greenconv_ident_dense, only: gram, spd_solve, spd_inverse, identity
+    implicit none
+    private
+
+    public :: collect_identdense
+
+contains
+
+    !> Tests of greenconv_ident_dense.
+    subroutine collect_identdense(testsuite)
+        !> The suite's tests.
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('gram: scale*A^T A and scale*A^T b against the sums, 1 to 3 blocks', test_gram), &
+                     new_unittest('spd: solve and inverse against A, to round-off', test_spd), &
+                     new_unittest('spd: indefinite and NaN matrices reported, not solved', test_not_spd)]
+    end subroutine collect_identdense
+
+    !> A deterministic m x n matrix with entries in (-1, 1) of no pattern the blocks could share.
+    pure function sample_matrix(m, n) result(a)
+        integer, intent(in) :: m, n
+        real(dp) :: a(m, n)
+
+        integer :: i, j
+
+        do j = 1, n
+            do i = 1, m
+                a(i, j) = sin(1.7_dp*i + 0.37_dp*j*j) + 0.1_dp*cos(3.1_dp*i*j)
+            end do
+        end do
+    end function sample_matrix
+
+    subroutine test_gram(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: sizes(6) = [1, 5, 16, 17, 33, 48]
+        real(dp), allocatable :: a(:, :), b(:), product(:, :), projection(:), work(:, :)
+        real(dp) :: worst, sum_ij
+        integer :: s, n, i, j, l
+
+        worst = 0.0_dp
+        do s = 1, size(sizes)
+            n = sizes(s)
+            a = sample_matrix(301, n)
+            b = [(cos(0.3_dp*l), l=1, 301)]
+            if (allocated(product)) deallocate (product, projection)
+            allocate (product(n, n), projection(n))
+            call gram(a, 2.0_dp, product, b, projection, work)
+            do j = 1, n
+                do i = 1, n
+                    sum_ij = 0.0_dp
+                    do l = 1, size(a, 1)
+                        sum_ij = sum_ij + a(l, i)*a(l, j)
+                    end do
+                    worst = max(worst, abs(product(i, j) - 2.0_dp*sum_ij)/(2.0_dp*size(a, 1)))
+                end do
+                worst = max(worst, abs(projection(j) - 2.0_dp*dot_product(a(:, j), b))/(2.0_dp*size(a, 1)))
+            end do
+        end do
+        call note('gram: worst |error|/(2 m)', worst)
+        call check(error, worst < 1.0e-14_dp, 'A^T A and A^T b to round-off on every size')
+    end subroutine test_gram
+
+    subroutine test_spd(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n = 40
+        real(dp) :: a(n, n), inverse(n, n), b(n), residual, off_identity
+        real(dp), allocatable :: x(:), work(:, :), unused(:)
+        logical :: ok
+        integer :: i
+
+        ! A = B^T B + I, condition about 1e3: positive definite.
+        allocate (unused(n))
+        call gram(sample_matrix(60, n), 1.0_dp, a, [(0.0_dp, i=1, 60)], unused, work)
+        do i = 1, n
+            a(i, i) = a(i, i) + 1.0_dp
+        end do
+        b = [(real(i, dp), i=1, n)]
+        call spd_solve(a, b, x, ok)
+        call check(error, ok, 'A = B^T B + I is positive definite')
+        if (allocated(error)) return
+        residual = maxval(abs(matmul(a, x) - b))/maxval(abs(b))
+        inverse = a
+        call spd_inverse(inverse, ok)
+        call check(error, ok, 'its inverse exists')
+        if (allocated(error)) return
+        off_identity = maxval(abs(matmul(inverse, a) - identity(n)))
+        call note('spd_solve: max|A x - b|/max|b|', residual)
+        call note('spd_inverse: max|inv(A) A - I|', off_identity)
+        call check(error, residual < 1.0e-12_dp, 'A x = b to round-off')
+        if (allocated(error)) return
+        call check(error, off_identity < 1.0e-11_dp, 'inv(A) A = I to round-off')
+        if (allocated(error)) return
+        call check(error, maxval(abs(inverse - transpose(inverse))) == 0.0_dp, 'both triangles of the inverse')
+    end subroutine test_spd
+
+    subroutine test_not_spd(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp) :: a(3, 3)
+        real(dp), allocatable :: x(:)
+        logical :: ok
+
+        a = reshape([2.0_dp, 3.0_dp, 0.0_dp, 3.0_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+        call spd_solve(a, [1.0_dp, 1.0_dp, 1.0_dp], x, ok)
+        call check(error, .not. ok, 'an indefinite matrix (eigenvalues 5, -1, 1) is reported')
+        if (allocated(error)) return
+        call spd_inverse(a, ok)
+        call check(error, .not. ok, 'and has no inverse here')
+        if (allocated(error)) return
+        a = identity(3)
+        a(2, 2) = ieee_value(1.0_dp, ieee_quiet_nan)
+        call spd_solve(a, [1.0_dp, 1.0_dp, 1.0_dp], x, ok)
+        call check(error, .not. ok, 'a NaN pivot is reported')
+    end subroutine test_not_spd
+
+end module test_identdense_mod
