@@ -313,10 +313,13 @@ contains
         type(test_error), allocatable, intent(out) :: error
 
         character(len=*), parameter :: methods(4) = ['exact ', 'modal ', 'direct', 'fft   ']
+        type(run_setup) :: setup
         integer :: m
 
+        setup = wave_setup(plate_description())
+        call note('modes', real(setup%description%modes%n_modes(), dp))
         do m = 1, size(methods)
-            call check_order(wave_setup(plate_description()), trim(methods(m)), trim(methods(m)), 5.0e-3_dp, error)
+            call check_order(setup, trim(methods(m)), trim(methods(m)), 5.0e-3_dp, error)
             if (allocated(error)) return
         end do
     end subroutine test_plate_orders
