@@ -38,7 +38,7 @@ module greenconv_contact_multi
     use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_step, only: contact_options, multi_contact_state => contact_state, start_state, &
-                                      step_contact, step_load
+                                      step_contact
     use greenconv_contact_rows, only: keep_first, keep_all
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
@@ -192,7 +192,7 @@ contains
                 call keep_all(j, response%road, response%displacement, response%force, response%compression)
                 return
             end if
-            call conv%push(step_load(state, response%force(j, :)))
+            call conv%push(response%force(j, :) - state%preload)
             response%compression(j, :) = state%delta
             response%total_force(j) = sum(response%force(j, :))
         end do
@@ -237,7 +237,7 @@ contains
         call conv%history(u_h)
         call step_contact(state, conv%weight0, u_h, road, force, displacement, iterations, error)
         delta(:) = state%delta
-        if (.not. allocated(error)) call conv%push(step_load(state, force))
+        if (.not. allocated(error)) call conv%push(force - preload)
     end subroutine multi_contact_step
 
     !> The contact options of a multi-point run: the implicit scheme with these Newton and

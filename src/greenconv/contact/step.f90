@@ -23,9 +23,10 @@
 !>   w0 >= 0, and the root is bracketed in (0, b]). For N_c > 1 a semismooth Newton method on
 !>   the compressions (greenconv_contact_multi tells how: active set, dgesv, Armijo damping).
 !>
-!> Step 0 is explicit whatever the scheme: the body is at rest at t = 0 (u = 0), and the load
-!> it pushes is half of F - F0 (`step_load` tells why: second order in dt when a road that is
-!> not at its static height at t = 0 switches the loads on at t = 0+).
+!> The load a single-point loop pushes is F - F0, halved at step 0 (`step_load` tells why:
+!> second order in dt when a road that is not at its static height at t = 0 switches the loads
+!> on at t = 0+); a multi-point convolver halves its first load itself
+!> (greenconv_conv_multipoint's `recorded_load`), so the multi-point loop pushes F - F0.
 !>
 !> Then every point passes the divergence guard - |u_i| at most the bound, F_i and delta_i
 !> finite - before the caller pushes the load: a fault leaves the convolver where it was and
@@ -160,7 +161,7 @@ contains
         iterations = 0
         point = 1
         residual = 0.0_dp
-        if (state%settings%scheme /= 'implicit' .or. state%step == 0) then
+        if (state%settings%scheme /= 'implicit') then
             state%delta(:) = free
         else if (size(free) == 1) then
             call implicit_compression(state%laws(1), free(1) + weight0(1, 1)*state%preload(1), weight0(1, 1), &
@@ -184,9 +185,7 @@ contains
         end if
         force(:) = state%laws%force(state%delta)
         displacement(:) = u_h
-        if (state%step == 0) then
-            continue  ! at rest at t = 0: no step-0 force reaches u(0) through W0
-        else if (size(u_h) == 1) then
+        if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
         else if (state%coupled) then
             displacement(:) = u_h + matmul(weight0, force - state%preload)
@@ -195,11 +194,11 @@ contains
         if (.not. allocated(fault)) state%step = state%step + 1
     end subroutine step_contact
 
-    !> The load [N] to push after a step done by `step_contact`: F - F0, halved after step 0.
+    !> The load [N] a single-point loop pushes after a step done by `step_contact`: F - F0,
+    !> halved after step 0 (a multi-point convolver does this itself, `recorded_load`).
     !>
-    !> The body is at rest at t = 0 (u(0) = 0, so step 0 is explicit whatever the scheme: no
-    !> force reaches it through W0 before it moves) and the loads q = F - F0 are zero before;
-    !> a road that is not at its static height at t = 0 switches them on at t = 0+. The
+    !> The body is at rest before t = 0 and the loads q = F - F0 are zero before; a road that
+    !> is not at its static height at t = 0 switches them on at t = 0+. The
     !> convolvers' kernels w_j ~ dt*g(t_j) are the trapezoidal rule of the convolution integral,
     !> whose end sample at tau = 0 carries half a weight: pushing q(t_0)/2 makes every scheme
     !> of second order (rectangle rule: the trapezoidal rule exactly; first-order hold: the
