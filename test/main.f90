@@ -44,6 +44,7 @@ program greenconv_tests
     use test_reliability_mod, only: collect_reliability
     use test_version_mod, only: collect_version
     use test_uffchecks_mod, only: collect_uffchecks
+    use test_multiorder_mod, only: collect_multiorder
     implicit none
 
     integer :: n_passed, n_failed
@@ -85,6 +86,7 @@ program greenconv_tests
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('version', collect_version), &
                        new_testsuite('uffchecks', collect_uffchecks), &
+                       new_testsuite('multiorder', collect_multiorder), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

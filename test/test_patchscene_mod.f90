@@ -28,7 +28,7 @@ module test_patchscene_mod
     implicit none
     private
 
-    public :: collect_patchscene
+    public :: collect_patchscene, write_receptance_file
 
     !> Scratch directory for the files the tests write.
     character(len=*), parameter :: scratch = 'build/test_scratch/patchscene'

@@ -30,8 +30,9 @@ contains
 
     !> One explicit step n of the contact loop, exactly as `run_contact` takes it (eqs. 20-24):
     !> u_h = history, delta = delta0 + u_r - u_h with delta0 = (F0/k_c)^(1/p), F = k_c*delta^p
-    !> (0 when delta <= 0), the load F - F0 pushed, u = u_h + w0*(F - F0). Start from a
-    !> convolver at step 0 (new or reset): the body rests in static equilibrium under F0.
+    !> (0 when delta <= 0), the load F - F0 pushed (half of it at step 0, greenconv_contact_step's
+    !> `step_load`), u = u_h + w0*(F - F0). Start from a convolver at step 0 (new or reset): the
+    !> body rests in static equilibrium under F0.
     subroutine contact_step(conv, law, road, preload, displacement, force, compression)
         !> The convolver, advanced by one step.
         class(convolver), intent(inout) :: conv
@@ -54,8 +55,10 @@ contains
         delta = law%compression(preload) + road - u_h
         force = law%force(delta)
         load = force - preload
-        call conv%push(load)
         displacement = u_h + conv%instant_weight()*load
+        ! half the first load: greenconv_contact_step's `step_load`
+        if (conv%step == 0) load = 0.5_dp*load
+        call conv%push(load)
         if (present(compression)) compression = delta
     end subroutine contact_step
 

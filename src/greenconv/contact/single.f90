@@ -64,7 +64,7 @@ module greenconv_contact_single
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact
+    use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact, step_load
     use greenconv_contact_rows, only: keep_first, keep_all
     implicit none
     private
@@ -201,7 +201,7 @@ contains
         !> Set on a numerical fault (divergence, an implicit step that did not converge).
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: w0(1, 1), u_h(1), force(1), u(1)
+        real(dp) :: w0(1, 1), u_h(1), force(1), u(1), load(1)
         integer :: j, n_t, iterations
 
         n_t = size(road)
@@ -216,7 +216,8 @@ contains
                 call keep_rows(response, j)
                 return
             end if
-            call conv%push(force(1) - state%preload(1))
+            load = step_load(state, force)
+            call conv%push(load(1))
             response%road(j) = road(j)
             response%displacement(j) = u(1)
             response%force(j) = force(1)

@@ -23,6 +23,11 @@
 !>   w0 >= 0, and the root is bracketed in (0, b]). For N_c > 1 a semismooth Newton method on
 !>   the compressions (greenconv_contact_multi tells how: active set, dgesv, Armijo damping).
 !>
+!> The load a single-point loop pushes is F - F0, halved at step 0 (`step_load` tells why:
+!> second order in dt when a road that is not at its static height at t = 0 switches the loads
+!> on at t = 0+); a multi-point convolver halves its first load itself
+!> (greenconv_conv_multipoint's `recorded_load`), so the multi-point loop pushes F - F0.
+!>
 !> Then every point passes the divergence guard - |u_i| at most the bound, F_i and delta_i
 !> finite - before the caller pushes the load: a fault leaves the convolver where it was and
 !> names the step, its time, the point (when N_c > 1) and what to change.
@@ -45,7 +50,7 @@ module greenconv_contact_step
     implicit none
     private
 
-    public :: contact_options, contact_state, start_state, step_contact
+    public :: contact_options, contact_state, start_state, step_contact, step_load
 
     !> How a contact run steps and when it gives up. The defaults are those of single-point
     !> contact (`run_contact`, `gc_contact_options_init`); multi-point contact has its own
@@ -188,6 +193,29 @@ contains
         call divergence_guard(state, road, displacement, force, fault)
         if (.not. allocated(fault)) state%step = state%step + 1
     end subroutine step_contact
+
+    !> The load [N] a single-point loop pushes after a step done by `step_contact`: F - F0,
+    !> halved after step 0 (a multi-point convolver does this itself, `recorded_load`).
+    !>
+    !> The body is at rest before t = 0 and the loads q = F - F0 are zero before; a road that
+    !> is not at its static height at t = 0 switches them on at t = 0+. The
+    !> convolvers' kernels w_j ~ dt*g(t_j) are the trapezoidal rule of the convolution integral,
+    !> whose end sample at tau = 0 carries half a weight: pushing q(t_0)/2 makes every scheme
+    !> of second order (rectangle rule: the trapezoidal rule exactly; first-order hold: the
+    !> weight of q(t_0) in u(t_n) is then dt*g(t_n)/2 + O(dt^3) against the exact
+    !> int_0^dt g(t_n - tau)*(1 - tau/dt) dtau = dt*g(t_n)/2 + O(dt^2)). Pushing the whole
+    !> q(t_0) puts an impulse q(t_0)*dt/2 too much at the start: an error of first order in dt.
+    !> A load that starts from zero (a road at its static height at t = 0) is not changed.
+    pure function step_load(state, force) result(load)
+        !> The run, after `step_contact` (state%step is the number of steps done).
+        type(contact_state), intent(in) :: state
+        !> Contact forces F_i of the step [N].
+        real(dp), intent(in) :: force(:)
+        real(dp) :: load(size(force))
+
+        load(:) = force - state%preload
+        if (state%step == 1) load(:) = 0.5_dp*load
+    end function step_load
 
     !> The options are usable with the instant compliance W0 [m/N].
     subroutine check_options(settings, weight0, error)

@@ -214,8 +214,8 @@ contains
 
         integer :: l, n_due
 
+        call self%rings%store(self%recorded_load(forces), self%step + 1, n_due)
         self%step = self%step + 1
-        call self%rings%store(forces, self%step, n_due)
         do l = 1, n_due
             call run_level(self, l)
         end do

@@ -149,7 +149,7 @@ contains
         integer :: k
 
         do k = 1, size(self%shape, 2)
-            self%modal_force(k) = dot_product(self%shape(:, k), forces)
+            self%modal_force(k) = dot_product(self%shape(:, k), self%recorded_load(forces))
         end do
         associate (e => self%engine, q => self%modal_force)
             old_re(:) = e%state_re

@@ -89,8 +89,8 @@ contains
         n_g = size(self%weight, 1)
         self%head = self%head - 1
         if (self%head < 1) self%head = n_g
-        self%past(self%head, :) = forces
-        self%past(self%head + n_g, :) = forces
+        self%past(self%head, :) = self%recorded_load(forces)
+        self%past(self%head + n_g, :) = self%past(self%head, :)
         self%step = self%step + 1
     end subroutine sampled_push
 

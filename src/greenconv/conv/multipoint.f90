@@ -15,6 +15,17 @@
 !> forces of the step and hands them over with `push(q)`. W0 (`weight0`) is the instant
 !> compliance matrix of the current step's forces, zero in the paper's explicit scheme.
 !>
+!> The first push after a reset, q(t_0), is recorded at half weight (`recorded_load`): the
+!> weights W(m) ~ dt*g(t_m) are the trapezoidal rule of the convolution integral, whose end
+!> sample at tau = 0 carries half a weight. A contact run starts at rest with loads switched
+!> on at t = 0+ (a road not at its static height at t = 0), and with the whole q(t_0) it would
+!> carry an impulse q(t_0)*dt/2 too much: an error of first order in dt (issue 23). With the
+!> half weight every method is second order (the rectangle rule becomes the trapezoidal rule;
+!> for the first-order hold of `exact` the weight of q(t_0) in u(t_n) is dt*g(t_n)/2 + O(dt^3)
+!> against the exact dt*g(t_n)/2 + O(dt^2)). A load that starts from zero is not changed. The
+!> convolver does it, not the loop, so that a caller's own loop of `history` and `push` equals
+!> the library's run (greenconv_contact_multi).
+!>
 !> When the structure's modes k = 1..N_m are shared by all points, with mode shapes phi_ik
 !> at the points (normalised to unit modal mass),
 !>
@@ -54,6 +65,8 @@ module greenconv_conv_multipoint
         procedure :: is_explicit
         !> Set the instant compliance matrix W0 [m/N] (by the constructors).
         procedure :: set_instant_matrix
+        !> The loads [N] a push records: the forces, halved at step 0 (for the engines' `push`).
+        procedure :: recorded_load
     end type multipoint_convolver
 
     abstract interface
@@ -105,6 +118,19 @@ contains
         self%weight0(:, :) = w0
         self%explicit = maxval(abs(w0)) <= 0.0_dp
     end subroutine set_instant_matrix
+
+    !> The loads [N] that `push` records at the current step: q, or q/2 at step 0 (the
+    !> trapezoidal rule's end sample, see the module description).
+    pure function recorded_load(self, forces) result(load)
+        !> The convolver, before the push.
+        class(multipoint_convolver), intent(in) :: self
+        !> Forces q_j(t_n) [N] handed to `push`.
+        real(dp), intent(in) :: forces(:)
+        real(dp) :: load(size(forces))
+
+        load(:) = forces
+        if (self%step == 0) load(:) = 0.5_dp*forces
+    end function recorded_load
 
     !> Check a table kernel(m, i, j) = g_ij(m*dt) of a sampled Green's matrix: samples
     !> m = 0..N_g with N_g >= 1 of an N_c x N_c matrix, N_c >= 1.

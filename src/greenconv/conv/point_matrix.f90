@@ -59,7 +59,10 @@ contains
         class(point_matrix), intent(inout) :: self
         real(dp), intent(in) :: forces(:)
 
-        call self%point%push(forces(1))
+        real(dp) :: load(1)
+
+        load = self%recorded_load(forces(1:1))
+        call self%point%push(load(1))
         self%step = self%point%step
     end subroutine point_push
 
