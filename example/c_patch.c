@@ -9,8 +9,8 @@
  * point i at x_i sees the road at x_start + (x_i - mean x) + V*t, V = 20 m/s, a road of two
  * sines (0.3 mm at 0.25 m wavelength, 0.1 mm at 0.06 m). Methods "modal" (explicit) and
  * "exact" (implicit: all forces of a step solved together by Newton). The stepped forces must
- * equal the whole run's bit for bit; the two methods must agree to 5 % of the peak force (the
- * explicit rectangle rule is first-order in dt: 3.3 % here).
+ * equal the whole run's bit for bit; the two methods must agree to 5 % of the peak force (each
+ * is second order in dt, doc/multipoint.md "Order in dt"; they differ by their dt^2 errors).
  * Exit status 0 when every check passes.
  */
 #include <math.h>
