@@ -19,7 +19,7 @@ module greenconv_scene_runner
     use greenconv_scene_structure, only: build_structure
     use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_scene_report, only: write_identification, identification_summary
-    use greenconv_scene_output, only: multi_contact_header
+    use greenconv_scene_output, only: multi_contact_header, check_inputs_kept
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_points, only: find_scene_points, check_green_scene
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
@@ -54,6 +54,8 @@ contains
         character(len=:), allocatable :: summary
         integer :: block_size
 
+        call check_inputs_kept(scene, error)
+        if (allocated(error)) return
         if (multi_point_model(scene%model)) then
             call make_directory(scene%output_dir, error)
             if (.not. allocated(error)) call find_scene_points(scene, run%points, summary, error)
@@ -109,6 +111,8 @@ contains
         type(frf_type) :: frf
         integer :: i, n_c
 
+        call check_inputs_kept(scene, error)
+        if (allocated(error)) return
         call check_output_directory(scene%output_dir, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'scene', 'output_dir')//': '//error%message
