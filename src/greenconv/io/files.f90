@@ -649,8 +649,8 @@ contains
     end subroutine check_output_directory
 
     !> Refuse (`stat_input`) an input file that a run's outputs would replace. A run owns the
-    !> names `<output_dir>/<prefix>*` (its column files, identification files, sweep table and
-    !> records), each written to a temporary file and renamed over its target: an input whose
+    !> names `<output_dir>/<prefix>*.dat`, `.bin`, `.bin.txt` (its column files, identification
+    !> files, sweep table) and the folders `<output_dir>/<prefix>*/` (a sweep's records), each written to a temporary file and renamed over its target: an input whose
     !> real location (symbolic links and `..` resolved, so that two spellings of one file
     !> are one) lies there would be lost. Checked before anything is written; an input or
     !> output directory that does not exist yet cannot collide and passes.
@@ -666,17 +666,32 @@ contains
         !> Set (`stat_input`) when the input lies where an output goes, with both names.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: input_real, dir_real
+        character(len=:), allocatable :: input_real, dir_real, rest
 
         input_real = real_path(input)
         dir_real = real_path(output_dir)
         if (len(input_real) == 0 .or. len(dir_real) == 0) return
         if (dir_real /= '/') dir_real = dir_real//'/'
         if (index(input_real, dir_real//prefix) /= 1) return
+        rest = input_real(len(dir_real//prefix) + 1:)
+        ! What the run writes there ends in .dat, .bin or .bin.txt, or is in a folder of its own
+        ! (a sweep's records): other names (a scene file, a universal file) are left alone.
+        if (index(rest, '/') == 0 .and. .not. any(ends_with(rest, ['.dat    ', '.bin    ', '.bin.txt']))) return
         call fatal_error(error, what//' = '''//input//''': this input lies where the run writes its outputs (' &
                          //output_dir//'/'//prefix//'*) and would be overwritten: move it, or change the ' &
                          //'scene''s name or output_dir')
     end subroutine check_input_kept
+
+    !> Whether text ends with the (trimmed) suffix.
+    elemental logical function ends_with(text, suffix)
+        character(len=*), intent(in) :: text, suffix
+
+        integer :: n
+
+        n = len_trim(suffix)
+        ends_with = len(text) >= n
+        if (ends_with) ends_with = text(len(text) - n + 1:) == suffix(1:n)
+    end function ends_with
 
     !> The canonical absolute path of an existing file or directory (POSIX realpath), or ''
     !> when it does not exist or cannot be resolved.

@@ -16,7 +16,8 @@ contains
 
     !> Refuse (`stat_input`, both names in the message) a scene whose input files (the scene
     !> file, the receptance or Green's matrix file, the road file or texture) lie where its
-    !> outputs go, `<output_dir>/<name>_*`: the run would replace them. Called before anything
+    !> outputs go, `<output_dir>/<name>_*.dat` and the like (greenconv_io_files's
+    !> `check_input_kept`): the run would replace them. Called before anything
     !> is written, by the run, by `--check` and for every variant of a sweep.
     subroutine check_inputs_kept(scene, error)
         !> The scene, as `read_scene` returned it.
