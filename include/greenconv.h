@@ -110,7 +110,10 @@ typedef struct gc_contact_options {
 /**
  * Convolver of a damped mass-spring system (mass [kg], stiffness [N/m], damping ratio in
  * [0, 1)), stepped every dt [s] for at most n_steps steps, by `method`. On success *conv is
- * the new convolver, at step 0; on failure NULL.
+ * the new convolver, at step 0; on failure NULL. Every constructor refuses (GC_ERROR_INPUT) a
+ * "direct", "fft" or "auto" kernel on modes above 1e8 stored values (N_g*N_c^2 + 2*N_g*N_c,
+ * N_g from the slowest decay and n_steps), the scenes' cap; its peak memory is about 18
+ * ("direct") or 34 ("fft") bytes per value (doc/reliability.md).
  */
 int gc_convolver_new_sdof(double mass, double stiffness, double damping_ratio, double dt,
                           const char *method, int n_steps, gc_convolver **conv,
@@ -284,7 +287,8 @@ int gc_contact_advance(gc_convolver *conv, double road, double *displacement, do
  * Identify modes from a receptance file (format as gc_convolver_new_frf_file) by LSCE: at
  * most `capacity` modes written to the four arrays, lowest natural frequency first, their
  * number in *n_modes (status GC_ERROR_INPUT if it exceeds capacity) and the fit's error E
- * (eq. 7) in *error_e.
+ * (eq. 7) in *error_e. GC_ERROR_INPUT, naming the argument, for a NULL path or output pointer,
+ * a negative capacity, or max_modes outside 1..200.
  */
 int gc_identify_frf_file(const char *path, double tol_e, int max_modes, int capacity,
                          int *n_modes, double *pole_re, double *pole_im, double *residue_re,
@@ -321,7 +325,7 @@ int gc_run_scene(const char *path, char *errmsg, size_t errmsg_len);
  *     road[i*n_steps + n], and the outputs  = value at point i, step n
  *     w0[j*n_points + i]                    = W0_ij [m/N]
  * Functions taking `n_points` check it against the convolver's N_c (GC_ERROR_INPUT, naming
- * n_points, when they differ).
+ * n_points, when they differ; a negative n_points too).
  *
  * Contact, per point i (as the single-point run): compression delta_i = delta0_i + u_r,i - u_i,
  * delta0_i = (F0_i/k_c,i)^(1/p_i); F_i = k_c,i*delta_i^p_i in compression, 0 otherwise; the
@@ -370,7 +374,8 @@ int gc_multi_new_samples(int n_points, int n_samples, const double *g, double dt
  * impulse responses g_ij(t) [m/(N*s)] between them; doc/multipoint.md). Its
  * points are the file's nodes, in the file's order (gc_multi_points). Receptances are
  * identified once with shared poles (a maximum-likelihood pole fit of the summed driving
- * points, its stabilisation diagram up to max_order modes, 0 for the library's default 30,
+ * points, its stabilisation diagram up to max_order modes (at most 200, as in scenes), 0 for
+ * the library's default 30,
  * then every receptance's residue matrix): "modal"/"exact" run on the identified modes
  * ("exact" with the fit's upper residual in W0), "direct"/"fft" on g_ij from the inverse FFT
  * of the file's receptances when dt fits their grid (from the modes otherwise), as the

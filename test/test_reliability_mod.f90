@@ -57,7 +57,9 @@ contains
                      new_unittest('long lines read in linear time; over 1 MiB refused at once', test_long_lines), &
                      new_unittest('direct/fft past a cut kernel: NaN (Fortran), refused (F77); xi = 0', &
                                   test_cut_kernel), &
-                     new_unittest('wrap-around: direct/fft refused, auto picks the modes', test_wrapped_g)]
+                     new_unittest('wrap-around: direct/fft refused, auto picks the modes', test_wrapped_g), &
+                     new_unittest('an input where an output goes: refused by run and --check, kept', &
+                                  test_input_kept)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -427,5 +429,80 @@ contains
         call check(error, .not. allocated(make_error), 'modal refused')
         if (allocated(conv)) call free_convolver(conv)
     end subroutine test_wrapped_g
+
+    !> Issue 24: a receptance file named like an output of its own scene (`<output_dir>/<name>_frf.dat`,
+    !> the fit the identification writes) is refused by the run and by `--check`, status 2, both
+    !> names in the message, and the measurement is left as it was; so is the same file reached
+    !> by another spelling (a symbolic link from elsewhere). Another name in that directory runs.
+    subroutine test_input_kept(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: folder = scratch//'/kept', measured = folder//'/id_frf.dat'
+        character(len=*), parameter :: linked = scratch//'/kept_link.frf', safe = folder//'/measured.frf'
+        character(len=:), allocatable :: before, after
+        type(scene_type) :: scene
+        type(error_type), allocatable :: run_error
+        integer :: sink, stat, pass
+        character(len=:), allocatable :: input
+
+        call make_directory(folder, run_error)
+        call execute_command_line('cp data/sample_receptance.frf '//measured//' && cp data/sample_receptance.frf ' &
+                                  //safe//' && rm -f '//linked, exitstat=stat)
+        stat = c_symlink('kept/id_frf.dat'//c_null_char, linked//c_null_char)
+        before = file_text(measured)
+        open (newunit=sink, file='/dev/null', action='write')
+        do pass = 1, 4
+            input = linked
+            if (pass <= 2) input = measured
+            call read_scene_text(scratch, 'kept.nml', "&scene task = 'identify', name = 'id', output_dir = '" &
+                                 //folder//"' / &structure model = 'frf_file', frf_file = '"//input &
+                                 //"' / &identification method = 'lsce', max_order = 4 /", scene, run_error)
+            if (.not. allocated(run_error)) then
+                if (mod(pass, 2) == 1) call check_scene(scene, sink, run_error)
+                if (mod(pass, 2) == 0) call run_scene(scene, sink, run_error)
+            end if
+            call check(error, allocated(run_error), 'an input named like an output was accepted ('//input//')')
+            if (allocated(error)) exit
+            call check(error, run_error%stat == 2 .and. index(run_error%message, 'frf_file') > 0 .and. &
+                       index(run_error%message, input) > 0 .and. index(run_error%message, folder//'/id_*') > 0, &
+                       'status 2 with both names: '//run_error%message)
+            if (allocated(error)) exit
+        end do
+        close (sink)
+        if (allocated(error)) return
+        after = file_text(measured)
+        call check(error, after == before, 'the measurement was overwritten')
+        if (allocated(error)) return
+        call read_scene_text(scratch, 'kept.nml', "&scene task = 'identify', name = 'id', output_dir = '" &
+                             //folder//"' / &structure model = 'frf_file', frf_file = '"//safe &
+                             //"' / &identification method = 'lsce', max_order = 4 /", scene, run_error)
+        if (.not. allocated(run_error)) then
+            open (newunit=sink, file='/dev/null', action='write')
+            call run_scene(scene, sink, run_error)
+            close (sink)
+        end if
+        if (allocated(run_error)) then
+            call check(error, .false., 'another name in the output directory: '//run_error%message)
+        end if
+    end subroutine test_input_kept
+
+    !> The whole text of a file, its lines joined by new lines.
+    function file_text(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+
+        character(len=4096) :: line
+        integer :: unit, stat
+
+        text = ''
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            text = text//trim(line)//new_line('a')
+        end do
+        close (unit)
+    end function file_text
 
 end module test_reliability_mod

@@ -811,43 +811,66 @@ contains
         real(c_double), value, intent(in) :: tol_e
         !> Largest number of modes the LSCE scan tries, >= 1.
         integer(c_int), value, intent(in) :: max_modes
-        !> Capacity of the four output arrays.
+        !> Capacity of the four output arrays, >= 0.
         integer(c_int), value, intent(in) :: capacity
-        !> Number of modes found.
-        integer(c_int), intent(out) :: n_modes
-        !> Real parts of the poles [rad/s].
-        real(c_double), intent(out) :: pole_re(*)
-        !> Imaginary parts of the poles [rad/s].
-        real(c_double), intent(out) :: pole_im(*)
-        !> Real parts of the residues [m/(N*s)].
-        real(c_double), intent(out) :: residue_re(*)
-        !> Imaginary parts of the residues [m/(N*s)].
-        real(c_double), intent(out) :: residue_im(*)
-        !> Error E of eq. (7) of the model.
-        real(c_double), intent(out) :: error_e
+        !> Where the number of modes found goes (an int).
+        type(c_ptr), value, intent(in) :: n_modes
+        !> Where the real parts of the poles [rad/s] go (capacity values).
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Where the imaginary parts of the poles [rad/s] go (capacity values).
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Where the real parts of the residues [m/(N*s)] go (capacity values).
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Where the imaginary parts of the residues [m/(N*s)] go (capacity values).
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Where the error E of eq. (7) of the model goes (a double).
+        type(c_ptr), value, intent(in) :: error_e
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
+        character(len=*), parameter :: caller = 'gc_identify_frf_file'
         type(error_type), allocatable :: error
         type(modal_set) :: modes
+        integer(c_int), pointer :: count
+        real(c_double), pointer :: e_out, out(:)
+        real(dp) :: e_value
         integer :: n
 
-        n_modes = 0
-        call identify_file(from_c(path), tol_e, int(max_modes), modes, error_e, error)
+        call check_outputs(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, error_e], &
+                           [character(len=10) :: 'n_modes', 'pole_re', 'pole_im', 'residue_re', 'residue_im', &
+                            'error_e'], error)
+        if (.not. allocated(error) .and. .not. c_associated(path)) then
+            call fatal_error(error, caller//': path is NULL: pass the name of a receptance file')
+        else if (.not. allocated(error) .and. capacity < 0) then
+            call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': expected >= 0')
+        end if
+        if (allocated(error)) then
+            status = finish(error, errmsg, errmsg_len)
+            return
+        end if
+        call c_f_pointer(n_modes, count)
+        call c_f_pointer(error_e, e_out)
+        count = 0
+        call identify_file(from_c(path), tol_e, int(max_modes), modes, e_value, error)
+        e_out = e_value
         if (.not. allocated(error)) then
             n = modes%n_modes()
-            n_modes = int(n, c_int)
+            count = int(n, c_int)
             if (n > capacity) then
-                call fatal_error(error, 'gc_identify_frf_file: '//int_text(n)//' modes found, more than capacity = ' &
+                call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
                                  //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
             else
-                pole_re(1:n) = real(modes%pole, dp)
-                pole_im(1:n) = aimag(modes%pole)
-                residue_re(1:n) = real(modes%residue, dp)
-                residue_im(1:n) = aimag(modes%residue)
+                call c_f_pointer(pole_re, out, [n])
+                out = real(modes%pole, dp)
+                call c_f_pointer(pole_im, out, [n])
+                out = aimag(modes%pole)
+                call c_f_pointer(residue_re, out, [n])
+                out = real(modes%residue, dp)
+                call c_f_pointer(residue_im, out, [n])
+                out = aimag(modes%residue)
             end if
         end if
         status = finish(error, errmsg, errmsg_len)
@@ -911,6 +934,23 @@ contains
         if (.not. allocated(error)) handle = c_loc(box)
         status = finish(error, errmsg, errmsg_len)
     end function made
+
+    !> Refuse (`stat_input`) the first NULL among a door's output pointers, by its name.
+    subroutine check_outputs(caller, pointers, names, error)
+        character(len=*), intent(in) :: caller
+        type(c_ptr), intent(in) :: pointers(:)
+        character(len=*), intent(in) :: names(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i
+
+        do i = 1, size(pointers)
+            if (.not. c_associated(pointers(i))) then
+                call fatal_error(error, caller//': '//trim(names(i))//' is NULL: pass where it should go')
+                return
+            end if
+        end do
+    end subroutine check_outputs
 
     !> The Fortran contact options from a C `gc_contact_options *` (defaults for NULL).
     subroutine options_from_c(options, settings, error)

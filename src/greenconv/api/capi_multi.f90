@@ -317,7 +317,7 @@ contains
         call start_handle(caller, conv, method, error)
         if (.not. allocated(error)) then
             from => box_at(source)
-            call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, -1, error)
+            call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, error=error)
             if (.not. allocated(error)) call method_multi_box(caller, from, from_c(method), dt, &
                                                               tolerance_of(options), int(n_steps), box, error)
         end if
@@ -399,7 +399,7 @@ contains
         integer :: poles
 
         box => box_at(conv)
-        call check_box('gc_multi_file_summary', null_handle, box, -1, error)
+        call check_box('gc_multi_file_summary', null_handle, box, error=error)
         if (.not. allocated(error)) call check_file_box('gc_multi_file_summary', box, error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
@@ -454,7 +454,7 @@ contains
         integer(c_int), pointer :: count
 
         box => box_at(conv)
-        call check_box('gc_multi_n_points', null_handle, box, -1, error)
+        call check_box('gc_multi_n_points', null_handle, box, error=error)
         if (.not. allocated(error) .and. .not. c_associated(n_points)) then
             call fatal_error(error, 'gc_multi_n_points: n_points is NULL: pass the address of an int')
         end if
@@ -563,7 +563,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => box_at(conv)
-        call check_box('gc_multi_reset', null_handle, box, -1, error)
+        call check_box('gc_multi_reset', null_handle, box, error=error)
         if (.not. allocated(error)) then
             call reset_box(box)
         end if
@@ -590,7 +590,7 @@ contains
         integer :: n
 
         box => box_at(conv)
-        call check_box('gc_multi_describe', null_handle, box, -1, error)
+        call check_box('gc_multi_describe', null_handle, box, error=error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
         call to_c(describe_box(box, n), text, text_len)
@@ -622,7 +622,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => box_at(conv)
-        call check_box('gc_multi_set_newton', null_handle, box, -1, error)
+        call check_box('gc_multi_set_newton', null_handle, box, error=error)
         if (.not. allocated(error)) call set_multi_options('gc_multi_set_newton', box, tolerance, &
                                                            int(max_iterations), divergence_bound, error)
         status = finish(error, errmsg, errmsg_len)

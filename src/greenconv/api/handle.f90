@@ -32,6 +32,7 @@ module greenconv_api_handle
     use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
                                         copy_histories, start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_state
+    use greenconv_scene_limits, only: max_lsce_modes
     use greenconv_api_library, only: new_convolver, check_contact_law, contact_step
     implicit none
     private
@@ -499,6 +500,12 @@ contains
         type(lsce_options), intent(out) :: options
         type(error_type), allocatable, intent(out) :: error
 
+        ! Capped as in scenes: the LSCE companion matrix is 2N x 2N, and a huge N overflows its sizes.
+        if (max_modes < 1 .or. max_modes > max_lsce_modes) then
+            call fatal_error(error, 'max_modes = '//int_text(max_modes)//': expected a number of modes from 1 to ' &
+                             //int_text(max_lsce_modes))
+            return
+        end if
         call read_frf(path, frf, error)
         options%tol_e = tol_e
         options%max_modes = max_modes

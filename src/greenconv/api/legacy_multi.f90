@@ -169,7 +169,7 @@ contains
         type(convolver_box), pointer :: box, from
 
         box => null()
-        from => checked('gcmmth', hfrom, -1, error)
+        from => checked('gcmmth', hfrom, error=error)
         if (.not. allocated(error)) call method_multi_box('gcmmth', from, trim(method), dt, tol, nstep, box, error)
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmmth
@@ -227,7 +227,7 @@ contains
         eworst = 0.0_dp
         emean = 0.0_dp
         npole = 0
-        box => checked('gcmsum', handle, -1, error)
+        box => checked('gcmsum', handle, error=error)
         if (.not. allocated(error)) call check_file_box('gcmsum', box, error)
         call report(error, ierr, text)
         if (allocated(error)) return
@@ -322,7 +322,7 @@ contains
         type(convolver_box), pointer :: box
 
         nc = 0
-        box => checked('gcmnpt', handle, -1, error)
+        box => checked('gcmnpt', handle, error=error)
         if (.not. allocated(error)) nc = box%conv%n_points()
         call report(error, ierr, errmsg)
     end subroutine gcmnpt
@@ -402,7 +402,7 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => checked('gcmrst', handle, -1, error)
+        box => checked('gcmrst', handle, error=error)
         if (.not. allocated(error)) then
             call reset_box(box)
         end if
@@ -424,7 +424,7 @@ contains
         type(convolver_box), pointer :: box
 
         nsize = 0
-        box => checked('gcmdsc', handle, -1, error)
+        box => checked('gcmdsc', handle, error=error)
         call report(error, ierr, text)
         if (allocated(error)) return
         text = describe_box(box, nsize)
@@ -448,7 +448,7 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => checked('gcmopt', handle, -1, error)
+        box => checked('gcmopt', handle, error=error)
         if (.not. allocated(error)) call set_multi_options('gcmopt', box, tol, maxit, bound, error)
         call report(error, ierr, errmsg)
     end subroutine gcmopt
@@ -566,11 +566,11 @@ contains
     end subroutine new_handle
 
 
-    !> The box of a handle, checked (with NC when >= 0).
+    !> The box of a handle, checked (with NC when present; a negative NC is refused).
     function checked(caller, handle, nc, error) result(box)
         character(len=*), intent(in) :: caller
         integer(int64), intent(in) :: handle
-        integer, intent(in) :: nc
+        integer, intent(in), optional :: nc
         type(error_type), allocatable, intent(out) :: error
         type(convolver_box), pointer :: box
 

@@ -27,12 +27,13 @@ module greenconv_api_multi_handle
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_conv_methods, only: check_method
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
+    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_cap
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
+    use greenconv_scene_limits, only: max_lsce_modes
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
     implicit none
@@ -95,6 +96,11 @@ contains
         description%modes%pole = cmplx(pole_re, pole_im, dp)
         description%modes%residue = cmplx(residue_re, residue_im, dp)
         description%shape = shape
+        call check_kernel_cap(lower_text(method), description%modes, dt, truncation_tol, n_steps, size(shape, 1), error)
+        if (allocated(error)) then
+            error%message = caller//': '//error%message
+            return
+        end if
         allocate (box)
         call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
                                        box%description, error)
@@ -171,9 +177,10 @@ contains
 
         box => null()
         call check_run(caller, dt, truncation_tol, n_steps, error)
-        if (.not. allocated(error) .and. max_order < 0) then
+        if (.not. allocated(error) .and. (max_order < 0 .or. max_order > max_lsce_modes)) then
             call fatal_error(error, caller//': max_order = '//int_text(max_order) &
-                             //': give the largest order of the pole fit (>= 1), or 0 for the default')
+                             //': give the largest order of the pole fit (1 to '//int_text(max_lsce_modes) &
+                             //'), or 0 for the default')
         end if
         if (allocated(error)) return
         ! A method no file serves is refused before the identification, which takes seconds.
@@ -322,14 +329,16 @@ contains
         character(len=*), intent(in) :: missing
         !> The box, or null.
         type(convolver_box), pointer, intent(in) :: box
-        !> Number of points the caller's arrays hold; < 0: not checked.
-        integer, intent(in) :: n_points
+        !> Number of points the caller's arrays hold; absent: not checked (a negative count is refused).
+        integer, intent(in), optional :: n_points
         !> Set (`stat_input`) for a null handle or a count that differs.
         type(error_type), allocatable, intent(out) :: error
 
         if (.not. associated(box)) then
             call fatal_error(error, caller//': '//missing)
-        else if (n_points >= 0 .and. n_points /= box%conv%n_points()) then
+        else if (.not. present(n_points)) then
+            return
+        else if (n_points /= box%conv%n_points()) then
             call fatal_error(error, caller//': n_points = '//int_text(n_points)//': the convolver has ' &
                              //int_text(box%conv%n_points())//' points: pass arrays of that many values')
         end if

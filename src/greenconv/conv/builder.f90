@@ -24,7 +24,8 @@ module greenconv_conv_builder
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_structure, only: structure_model
-    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method, &
+                                       method_needs_g
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_kernel, only: sample_kernel, truncation_length
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
@@ -33,6 +34,15 @@ module greenconv_conv_builder
     private
 
     public :: new_convolver, make_convolver, make_multipoint_convolver, table_convolver
+    public :: max_kernel_values, kernel_values, check_kernel_cap
+
+    !> Largest number of stored values of a sampled kernel: N_g*N_c^2 weights and 2*N_g*N_c
+    !> past forces (10^8 values: 0.8 GB at 8 bytes each). The peak while a convolver is built
+    !> is larger (doc/reliability.md, measured with /usr/bin/time -v on one point): about 18
+    !> bytes per value for `direct` (the samples are held twice while the kernel is cut) and
+    !> 34 for `fft` (the partition spectra, complex, and their delay lines), so 10^8 values
+    !> peak at about 1.8 GB (`direct`) and 3.4 GB (`fft`).
+    integer, parameter :: max_kernel_values = 100000000
 
     !> `auto` runs the direct sum when N_t*N_g is at most this many multiply-adds (about
     !> 2 ms at the measured 6-7 GMAC/s): then no model is worth building.
@@ -78,6 +88,62 @@ contains
         if (present(description)) description = text
     end subroutine new_convolver
 
+    !> Values a `direct` or `fft` convolver stores, N_g*N_c^2 + 2*N_g*N_c, with N_g estimated
+    !> from the slowest decay rate: the envelope exp(-sigma*t) falls to tol by
+    !> t = ln(1/tol)/sigma, and the kernel never exceeds the run (N_t samples). A real, so
+    !> that absurd sizes do not overflow.
+    pure real(dp) function kernel_values(decay_rate, dt, tol, n_steps, n_points)
+        !> Slowest modal decay rate sigma = min xi_k*omega_k [1/s] (0: no decay).
+        real(dp), intent(in) :: decay_rate
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g|, in (0, 1).
+        real(dp), intent(in) :: tol
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Number of contact points N_c.
+        integer, intent(in) :: n_points
+
+        real(dp) :: n_g
+
+        n_g = real(n_steps, dp)
+        if (decay_rate > 0.0_dp) n_g = min(n_g, log(1.0_dp/tol)/(decay_rate*dt) + 1.0_dp)
+        kernel_values = n_g*real(n_points, dp)**2 + 2.0_dp*n_g*n_points
+    end function kernel_values
+
+    !> Refuse (`stat_input`) a kernel method (`direct`, `fft`, `auto`) on modes whose sampled
+    !> kernel would exceed `max_kernel_values` (the check a scene makes when it is read, here
+    !> for the library's doors): an undamped mode over 10^8 steps would otherwise take
+    !> gigabytes, or end in a failed allocation.
+    subroutine check_kernel_cap(method, modes, dt, tol, n_steps, n_points, error)
+        !> Method name (lower case).
+        character(len=*), intent(in) :: method
+        !> The modes g is sampled from.
+        type(modal_set), intent(in) :: modes
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g|, in (0, 1).
+        real(dp), intent(in) :: tol
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Number of contact points N_c.
+        integer, intent(in) :: n_points
+        !> Set (`stat_input`) above the cap, with the estimate and the remedies.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: values, decay_rate
+
+        if (.not. method_needs_g(method) .or. modes%n_modes() < 1) return
+        decay_rate = max(minval(-real(modes%pole, dp)), 0.0_dp)
+        values = kernel_values(decay_rate, dt, tol, n_steps, n_points)
+        if (values <= max_kernel_values) return
+        call fatal_error(error, 'method '''//method//''': expected a sampled kernel of at most ' &
+                         //sci_text(real(max_kernel_values, dp))//' values (8 bytes each), found ' &
+                         //sci_text(values)//' (N_t = '//int_text(n_steps)//', slowest decay rate ' &
+                         //sci_text(decay_rate)//' 1/s): use fewer steps, a larger dt or truncation_tol, ' &
+                         //'or a modal method (modal, exact)')
+    end subroutine check_kernel_cap
+
     !> Reject a request `make_convolver` cannot serve, the message starting "new_convolver: ".
     subroutine check_request(method, structure, dt, n_steps, tol, requested, error)
         character(len=*), intent(in) :: method
@@ -102,6 +168,10 @@ contains
             end if
             call check_modes(structure%model, error)
             if (.not. allocated(error) .and. structure%has_exact) call check_modes(structure%exact, error)
+            if (.not. allocated(error) .and. structure%has_exact) then
+                call check_kernel_cap(method, structure%exact, dt, tol, n_steps, 1, error)
+                if (allocated(error)) error%message = 'new_convolver: '//error%message
+            end if
         end if
     end subroutine check_request
 

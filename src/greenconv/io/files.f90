@@ -13,7 +13,7 @@
 !> which file and why. `remove_parts_on_signals`
 !> (called by the driver) makes SIGINT and SIGTERM delete the temporary files in flight.
 module greenconv_io_files
-    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t, c_null_char
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_size_t, c_null_char, c_ptr, c_associated
     use, intrinsic :: iso_fortran_env, only: int32, int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -23,7 +23,7 @@ module greenconv_io_files
     implicit none
     private
 
-    public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals
+    public :: write_columns, make_directory, check_output_directory, remove_parts_on_signals, check_input_kept
     public :: column_writer, open_columns, append_rows, close_columns, discard_columns, close_run_file, first_kept
     public :: block_rows, binary_header, write_text, standard_output_is_terminal, relay_to_standard_output
 
@@ -109,6 +109,13 @@ module greenconv_io_files
         end function c_access
 
         !> C library getpid(2).
+        function c_realpath(path, resolved) bind(c, name='realpath') result(answer)
+            import :: c_char, c_ptr
+            character(kind=c_char), intent(in) :: path(*)
+            character(kind=c_char), intent(out) :: resolved(*)
+            type(c_ptr) :: answer
+        end function c_realpath
+
         function c_getpid() bind(c, name='getpid') result(pid)
             import :: c_int
             implicit none
@@ -640,6 +647,67 @@ contains
                              //' is not writable; choose another output_dir')
         end if
     end subroutine check_output_directory
+
+    !> Refuse (`stat_input`) an input file that a run's outputs would replace. A run owns the
+    !> names `<output_dir>/<prefix>*.dat`, `.bin`, `.bin.txt` (its column files, identification
+    !> files, sweep table) and the folders `<output_dir>/<prefix>*/` (a sweep's records), each written to a temporary file and renamed over its target: an input whose
+    !> real location (symbolic links and `..` resolved, so that two spellings of one file
+    !> are one) lies there would be lost. Checked before anything is written; an input or
+    !> output directory that does not exist yet cannot collide and passes.
+    subroutine check_input_kept(input, what, output_dir, prefix, error)
+        !> Path of the input file, as the scene gives it.
+        character(len=*), intent(in) :: input
+        !> What names it in a message, e.g. "data/id.nml:4: &structure frf_file".
+        character(len=*), intent(in) :: what
+        !> Directory the run writes to.
+        character(len=*), intent(in) :: output_dir
+        !> Start of the name of every file the run writes there, e.g. "<name>_".
+        character(len=*), intent(in) :: prefix
+        !> Set (`stat_input`) when the input lies where an output goes, with both names.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: input_real, dir_real, rest
+
+        input_real = real_path(input)
+        dir_real = real_path(output_dir)
+        if (len(input_real) == 0 .or. len(dir_real) == 0) return
+        if (dir_real /= '/') dir_real = dir_real//'/'
+        if (index(input_real, dir_real//prefix) /= 1) return
+        rest = input_real(len(dir_real//prefix) + 1:)
+        ! What the run writes there ends in .dat, .bin or .bin.txt, or is in a folder of its own
+        ! (a sweep's records): other names (a scene file, a universal file) are left alone.
+        if (index(rest, '/') == 0 .and. .not. any(ends_with(rest, ['.dat    ', '.bin    ', '.bin.txt']))) return
+        call fatal_error(error, what//' = '''//input//''': this input lies where the run writes its outputs (' &
+                         //output_dir//'/'//prefix//'*) and would be overwritten: move it, or change the ' &
+                         //'scene''s name or output_dir')
+    end subroutine check_input_kept
+
+    !> Whether text ends with the (trimmed) suffix.
+    elemental logical function ends_with(text, suffix)
+        character(len=*), intent(in) :: text, suffix
+
+        integer :: n
+
+        n = len_trim(suffix)
+        ends_with = len(text) >= n
+        if (ends_with) ends_with = text(len(text) - n + 1:) == suffix(1:n)
+    end function ends_with
+
+    !> The canonical absolute path of an existing file or directory (POSIX realpath), or ''
+    !> when it does not exist or cannot be resolved.
+    function real_path(path) result(resolved)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: resolved
+
+        character(kind=c_char, len=4097) :: buffer
+        integer :: n
+
+        resolved = ''
+        buffer = c_null_char
+        if (.not. c_associated(c_realpath(path//c_null_char, buffer))) return
+        n = index(buffer, c_null_char) - 1
+        if (n > 0) resolved = buffer(1:n)
+    end function real_path
 
     !> Make SIGINT and SIGTERM delete the temporary files of the column files being written,
     !> then end the program by that signal (for a program such as the driver; a host program

@@ -4,14 +4,48 @@
 module greenconv_scene_output
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_io_files, only: write_columns
+    use greenconv_io_files, only: write_columns, check_input_kept
+    use greenconv_scene_input, only: scene_type, input_place
     use greenconv_contact_multi, only: multi_contact_response
     implicit none
     private
 
-    public :: write_multi_contact, multi_contact_header, multi_contact_table
+    public :: write_multi_contact, multi_contact_header, multi_contact_table, check_inputs_kept
 
 contains
+
+    !> Refuse (`stat_input`, both names in the message) a scene whose input files (the scene
+    !> file, the receptance or Green's matrix file, the road file or texture) lie where its
+    !> outputs go, `<output_dir>/<name>_*.dat` and the like (greenconv_io_files's
+    !> `check_input_kept`): the run would replace them. Called before anything
+    !> is written, by the run, by `--check` and for every variant of a sweep.
+    subroutine check_inputs_kept(scene, error)
+        !> The scene, as `read_scene` returned it.
+        type(scene_type), intent(in) :: scene
+        !> Set when an input would be overwritten.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: prefix
+
+        prefix = scene%name//'_'
+        call check_input_kept(scene%file, scene%file//': the scene file', scene%output_dir, prefix, error)
+        if (.not. allocated(error) .and. allocated(scene%frf_file)) then
+            call check_input_kept(scene%frf_file, input_place(scene, 'structure', 'frf_file'), scene%output_dir, &
+                                  prefix, error)
+        end if
+        if (.not. allocated(error) .and. allocated(scene%green_file)) then
+            call check_input_kept(scene%green_file, input_place(scene, 'structure', 'green_file'), &
+                                  scene%output_dir, prefix, error)
+        end if
+        if (.not. allocated(error) .and. allocated(scene%road_data%path)) then
+            call check_input_kept(scene%road_data%path, input_place(scene, 'road', 'road_file'), scene%output_dir, &
+                                  prefix, error)
+        end if
+        if (.not. allocated(error) .and. allocated(scene%texture%path)) then
+            call check_input_kept(scene%texture%path, input_place(scene, 'road', 'texture_file'), &
+                                  scene%output_dir, prefix, error)
+        end if
+    end subroutine check_inputs_kept
 
     !> Write a run as one row per step and point, time-major, with a blank-free layout that
     !> gnuplot maps directly (`plot FILE using 2:1:5 with image` gives F over x and t):

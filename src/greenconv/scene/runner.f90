@@ -18,7 +18,7 @@ module greenconv_scene_runner
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_report, only: write_identification, identification_summary
-    use greenconv_scene_output, only: multi_contact_header
+    use greenconv_scene_output, only: multi_contact_header, check_inputs_kept
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     implicit none
@@ -53,6 +53,8 @@ contains
         character(len=:), allocatable :: summary
         integer :: block_size
 
+        call check_inputs_kept(scene, error)
+        if (allocated(error)) return
         model = find_model(scene%model)
         if (model%multi_point()) then
             call make_directory(scene%output_dir, error)
@@ -109,6 +111,8 @@ contains
         type(structure_kind) :: model
         integer :: i, n_c
 
+        call check_inputs_kept(scene, error)
+        if (allocated(error)) return
         call check_output_directory(scene%output_dir, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'scene', 'output_dir')//': '//error%message
