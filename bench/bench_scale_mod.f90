@@ -14,7 +14,8 @@
 !> here past 100 points (bench_multipoint_mod and bench_greenfft_mod time them up to there).
 !>
 !> Columns of DIR/scale_cost.dat and of the printed table: n_c n_m exact_s_per_step
-!> modal_s_per_step start_s rank table_gb.
+!> modal_s_per_step start_s rank table_gb. A second printed table holds the same costs at
+!> 1,000 points against N_m (the tyre's modes up to 500 Hz to 8 kHz).
 module bench_scale_mod
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -88,8 +89,31 @@ contains
         close (file)
         write (unit, '(a,f6.2,a,f6.2,a)') '# fitted growth t ~ N_c^p: exact p = ', exponent(counts, exact), &
             ', modal p = ', exponent(counts, modal), ''
-        write (unit, '(a)') ''
+        call modes_cost_table(unit, steps, error)
     end subroutine scale_cost_table
+
+    !> Print the cost per step against N_m (modes up to 500 Hz to 8 kHz) at 1,000 points, then
+    !> the fitted exponents.
+    subroutine modes_cost_table(unit, steps, error)
+        integer, intent(in) :: unit, steps
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), parameter :: bands(5) = [500.0_dp, 1000.0_dp, 2000.0_dp, 4000.0_dp, 8000.0_dp]
+        integer, parameter :: n_c = 1000
+        real(dp) :: exact(size(bands)), modal(size(bands)), start
+        integer :: modes(size(bands)), rank, i
+
+        write (unit, '(a,i0,a)') '# the same at ', n_c, ' points against the number of modes N_m (f_max 500 Hz to 8 kHz)'
+        write (unit, '(a)') '# n_c   n_m  exact_s_per_step  modal_s_per_step  start_s  rank'
+        do i = 1, size(bands)
+            call time_runs(n_c, bands(i), steps, exact(i), modal(i), start, modes(i), rank, error)
+            if (allocated(error)) return
+            write (unit, '(i5,i6,2(3x,es14.4),3x,es10.3,i6)') n_c, modes(i), exact(i), modal(i), start, rank
+        end do
+        write (unit, '(a,f6.2,a,f6.2,a)') '# fitted growth t ~ N_m^p: exact p = ', exponent(modes, exact), &
+            ', modal p = ', exponent(modes, modal), ''
+        write (unit, '(a)') ''
+    end subroutine modes_cost_table
 
     !> N_g of the 1 % rule for the tyre at 20 points (the table the sampled methods would hold).
     integer function table_length(f_max) result(n_g)
@@ -109,7 +133,7 @@ contains
         n_g = ubound(kernel, 1)
     end function table_length
 
-    !> Least-squares slope of log(t) against log(N_c) over the rows with t > 0.
+    !> Least-squares slope of log(t) against log(N) over the rows with t > 0.
     real(dp) function exponent(counts, seconds)
         integer, intent(in) :: counts(:)
         real(dp), intent(in) :: seconds(:)
