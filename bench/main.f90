@@ -7,6 +7,7 @@
 !>     greenconv-bench --fft
 !>     greenconv-bench --output [ANCHOR]
 !>     greenconv-bench --ident
+!>     greenconv-bench --scale
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
 !> directory: `make bench`). `--smoke` runs only the smoke checks of the benchmark's code
@@ -15,7 +16,8 @@
 !> multi-point fft part (bench_greenfft_mod: its cost table and the tyre scene); `--output`
 !> only the output benchmark (bench_output_mod), with the C anchor ANCHOR (default
 !> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist);
-!> `--ident` only the identification's cost (bench_ident_mod).
+!> `--ident` only the identification's cost (bench_ident_mod); `--scale` only the multi-point
+!> cost against N_c up to 4,000 points (bench_scale_mod, out/bench/scale_cost.dat).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -29,6 +31,7 @@ program greenconv_bench
     use greenconv_io_files, only: make_directory
     use bench_accuracy_mod, only: accuracy_charts
     use bench_ident_mod, only: identification_table
+    use bench_scale_mod, only: scale_cost_table
     implicit none
 
     type(error_type), allocatable :: error
@@ -51,6 +54,15 @@ program greenconv_bench
     case ('--ident')
         ! The identification's cost alone.
         call identification_table(output_unit, error)
+        if (allocated(error)) then
+            write (error_unit, '(a)') 'greenconv-bench: '//error%message
+            stop 2, quiet=.true.
+        end if
+        stop
+    case ('--scale')
+        ! The multi-point cost at a patch's scale alone (exact and modal against N_c).
+        call make_directory(output_dir, error)
+        if (.not. allocated(error)) call scale_cost_table(output_unit, output_dir, error)
         if (allocated(error)) then
             write (error_unit, '(a)') 'greenconv-bench: '//error%message
             stop 2, quiet=.true.
@@ -80,6 +92,7 @@ program greenconv_bench
     if (.not. allocated(error)) write (output_unit, '(a)') '# Contact stability map (explicit and implicit step over ' &
         //'k_c and dt): '//output_dir//'/contact_stability_map.dat', ''
     if (.not. allocated(error)) call multipoint_cost_table(output_unit, error)
+    if (.not. allocated(error)) call scale_cost_table(output_unit, output_dir, error)
     if (.not. allocated(error)) call greenfft_cost_table(output_unit, error)
     if (.not. allocated(error)) call tyre_scene_speedup(output_unit, 'data/tyre_road.nml', output_dir, error)
     if (.not. allocated(error)) call output_table(output_unit, output_dir, error, anchor=anchor(''))

@@ -18,6 +18,7 @@ program greenconv_tests
     use test_engines_mod, only: collect_engines
     use test_fft_mod, only: collect_fft
     use test_multicontact_mod, only: collect_multicontact
+    use test_lowrank_mod, only: collect_lowrank
     use test_implicit_mod, only: collect_implicit
     use test_accuracy_mod, only: collect_accuracy
     use test_library_mod, only: collect_library
@@ -61,6 +62,7 @@ program greenconv_tests
                        new_testsuite('engines', collect_engines), &
                        new_testsuite('fft', collect_fft), &
                        new_testsuite('multicontact', collect_multicontact), &
+                       new_testsuite('lowrank', collect_lowrank), &
                        new_testsuite('implicit', collect_implicit), &
                        new_testsuite('accuracy', collect_accuracy), &
                        new_testsuite('library', collect_library), &

@@ -21,7 +21,9 @@
 !>   delta + w0*F(delta) = a + w0*F0, and is solved exactly by a safeguarded Newton iteration
 !>   (greenconv_contact_single tells why it converges: the residual increases strictly for
 !>   w0 >= 0, and the root is bracketed in (0, b]). For N_c > 1 a semismooth Newton method on
-!>   the compressions (greenconv_contact_multi tells how: active set, dgesv, Armijo damping).
+!>   the compressions (greenconv_contact_multi tells how: active set, Armijo damping), its
+!>   linear systems solved in O(N_c*N_m^2) when W0 has the low rank N_m of a modal structure
+!>   (greenconv_contact_lowrank_solve), by dgesv otherwise.
 !>
 !> The load a single-point loop pushes is F - F0, halved at step 0 (`step_load` tells why:
 !> second order in dt when a road that is not at its static height at t = 0 switches the loads
@@ -45,8 +47,9 @@ module greenconv_contact_step
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_core_text, only: int_text, sci_text
-    use greenconv_ext_lapack, only: solve_linear
     use greenconv_contact_law, only: contact_law
+    use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
+                                               newton_solve
     implicit none
     private
 
@@ -96,6 +99,10 @@ module greenconv_contact_step
         real(dp) :: dt = 0.0_dp
         !> Index n of the next step (the number of steps done), 64 bits for runs past 2^31 steps.
         integer(int64) :: step = 0
+        !> W0 as the implicit multi-point step uses it: factored U*V^T at the first such step
+        !> when its rank is below N_c/2 (a modal structure), dense otherwise
+        !> (greenconv_contact_lowrank_solve).
+        type(lowrank_compliance) :: compliance
     end type contact_state
 
     !> Most halvings of a Newton step in the line search of the semismooth method.
@@ -188,7 +195,7 @@ contains
         if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
         else if (state%coupled) then
-            displacement(:) = u_h + matmul(weight0, force - state%preload)
+            displacement(:) = u_h + apply_compliance(state%compliance, weight0, force - state%preload)
         end if
         call divergence_guard(state, road, displacement, force, fault)
         if (.not. allocated(fault)) state%step = state%step + 1
@@ -305,29 +312,27 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
-        real(dp) :: jacobian(size(free), size(free)), alpha, scale
-        integer :: j, halvings
+        real(dp) :: alpha, scale
+        integer :: halvings
 
         largest = 0.0_dp
         point = 1
-        associate (delta => state%delta, laws => state%laws, options => state%settings)
+        if (.not. state%compliance%checked) call factor_compliance(weight0, state%compliance)
+        associate (delta => state%delta, laws => state%laws, options => state%settings, &
+                   compliance => state%compliance)
             load(:) = laws%force(delta) - state%preload
-            delta(:) = free - matmul(weight0, load)
-            call residual(weight0, laws, state%preload, free, delta, r, scale)
+            delta(:) = free - apply_compliance(compliance, weight0, load)
+            call residual(compliance, weight0, laws, state%preload, free, delta, r, scale)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
                 if (maxval(abs(r)) <= options%tolerance*scale) return
                 if (iterations == options%max_iterations) exit
-                do j = 1, size(delta)
-                    jacobian(:, j) = weight0(:, j)*slope(laws(j), delta(j))
-                    jacobian(j, j) = jacobian(j, j) + 1.0_dp
-                end do
-                call solve_linear(jacobian, -r, step, error)
+                call newton_solve(compliance, weight0, slope(laws, delta), -r, step, error)
                 if (allocated(error)) return
                 alpha = 1.0_dp
                 do halvings = 0, max_halvings
                     trial(:) = delta + alpha*step
-                    call residual(weight0, laws, state%preload, free, trial, r_trial, scale)
+                    call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, scale)
                     if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
                     alpha = alpha/2
                 end do
@@ -342,7 +347,8 @@ contains
     end subroutine solve_compressions
 
     !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].
-    subroutine residual(weight0, laws, preload, free, delta, r, scale)
+    subroutine residual(compliance, weight0, laws, preload, free, delta, r, scale)
+        type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
         type(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
@@ -351,7 +357,7 @@ contains
         real(dp) :: load(size(delta)), coupling(size(delta))
 
         load(:) = laws%force(delta) - preload
-        coupling(:) = matmul(weight0, load)
+        coupling(:) = apply_compliance(compliance, weight0, load)
         r(:) = delta - free + coupling
         scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
     end subroutine residual

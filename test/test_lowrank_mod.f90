@@ -1,0 +1,220 @@
+!> The implicit multi-point step with a low-rank instant compliance (issue 25): W0 of a modal
+!> structure factored as U*V^T and Newton's systems solved by Woodbury
+!> (greenconv_contact_lowrank_solve), against the dense LU they replace.
+!>
+!> Tolerances, each against something computed another way:
+!> - Woodbury against dgesv on the same system I + U*V^T*diag(t) (random, conditioned below
+!>   1e3, a third of the slopes zero as off the active set): 1e-12 of max|s|, a few hundred
+!>   roundings of an O(r) elimination;
+!> - the factors: rank found at most the number of modes (mode shapes sampled over a short
+!>   patch are nearly dependent: 11 of 34 tyre modes leave a remainder below round-off) and
+!>   |W0 - U*V^T| at most 1e-13 of max|W0| (the elimination stops at 1e-14 of it);
+!> - a whole run (tyre, 120 points, exact engine, Hertz points losing and regaining contact)
+!>   with the factors against the same run kept dense: 1e-10 of the peak force on every force,
+!>   the Newton tolerance being 1e-12 of the compression scale;
+!> - W0 of rank >= N_c/2 (fewer points than modes) is left dense, so results stay bit for bit.
+module test_lowrank_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use greenconv_core_error, only: error_type
+    use greenconv_core_random, only: random_stream
+    use greenconv_ext_lapack, only: solve_linear
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_tyre, only: tyre_belt, tyre_modes, contact_positions
+    use greenconv_model_road, only: random_road, new_random_road
+    use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
+                                       multi_contact_block
+    use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
+                                               newton_solve
+    implicit none
+    private
+
+    public :: collect_lowrank
+
+    !> Time step [s] of the runs (the tyre line's).
+    real(dp), parameter :: dt = 5.0e-5_dp
+
+contains
+
+    !> Tests of the low-rank Newton solve.
+    subroutine collect_lowrank(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('Woodbury equals dgesv on I + U V^T diag(t)', test_woodbury), &
+                     new_unittest('modal W0 factored: rank at most N_m, U V^T equals W0', test_factors), &
+                     new_unittest('tyre run, 120 points: low-rank forces equal the dense run', test_run), &
+                     new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback)]
+    end subroutine collect_lowrank
+
+    !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
+    function tyre_points(n, f_max) result(description)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: f_max
+        type(point_modes) :: description
+
+        type(error_type), allocatable :: failure
+
+        call tyre_modes(tyre_belt(), contact_positions(0.5_dp, 0.12_dp, n), f_max, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+    end function tyre_points
+
+    !> The exact engine's Green's matrix of a description, or stop.
+    function exact_matrix(description) result(conv)
+        type(point_modes), intent(in) :: description
+        type(modal_green_matrix) :: conv
+
+        type(error_type), allocatable :: failure
+
+        call new_modal_green_matrix(description, dt, 'exact', conv, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+    end function exact_matrix
+
+    subroutine test_woodbury(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n = 60, r = 7
+        type(lowrank_compliance) :: factors
+        type(lowrank_compliance) :: dense
+        type(random_stream) :: stream
+        type(error_type), allocatable :: failure
+        real(dp) :: weight0(n, n), slopes(n), b(n), by_woodbury(n), by_lu(n)
+        integer :: i, k
+
+        stream = random_stream(25)
+        allocate (factors%left(n, r), factors%right(n, r))
+        do k = 1, r
+            do i = 1, n
+                factors%left(i, k) = 1.0e-6_dp*(stream%uniform() - 0.5_dp)
+                factors%right(i, k) = stream%uniform() - 0.5_dp
+            end do
+        end do
+        do i = 1, n
+            slopes(i) = 1.0e5_dp*stream%uniform()
+            if (mod(i, 3) == 0) slopes(i) = 0.0_dp
+            b(i) = 1.0e-4_dp*(stream%uniform() - 0.5_dp)
+        end do
+        factors%checked = .true.
+        factors%low_rank = .true.
+        factors%rank = r
+        weight0 = matmul(factors%left, transpose(factors%right))
+        dense%checked = .true.
+        call newton_solve(factors, weight0, slopes, b, by_woodbury, failure)
+        call check(error, .not. allocated(failure), 'Woodbury solve failed')
+        if (allocated(error)) return
+        call newton_solve(dense, weight0, slopes, b, by_lu, failure)
+        call check(error, .not. allocated(failure), 'dense solve failed')
+        if (allocated(error)) return
+        call note('max|s_woodbury - s_lu|/max|s|', maxval(abs(by_woodbury - by_lu))/maxval(abs(by_lu)))
+        call check(error, maxval(abs(by_woodbury - by_lu)), 0.0_dp, 'Woodbury against dgesv', &
+                   thr=1.0e-12_dp*maxval(abs(by_lu)))
+        if (allocated(error)) return
+        call check(error, maxval(abs(apply_compliance(factors, weight0, b) - matmul(weight0, b))), 0.0_dp, &
+                   'U*(V^T*x) against W0*x', thr=1.0e-13_dp*maxval(abs(matmul(weight0, b))))
+    end subroutine test_woodbury
+
+    subroutine test_factors(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(modal_green_matrix) :: conv
+        type(lowrank_compliance) :: factors
+        integer :: n_modes
+
+        conv = exact_matrix(tyre_points(100, 1000.0_dp))
+        n_modes = size(conv%shape, 2)
+        call factor_compliance(conv%weight0, factors)
+        call note('N_m', real(n_modes, dp))
+        call note('rank found', real(factors%rank, dp))
+        call check(error, factors%low_rank .and. factors%rank >= 1 .and. factors%rank <= n_modes, &
+                   'W0 of the tyre: rank at most N_m')
+        if (allocated(error)) return
+        call note('max|W0 - U V^T|/max|W0|', maxval(abs(conv%weight0 - matmul(factors%left, &
+                  transpose(factors%right))))/maxval(abs(conv%weight0)))
+        call check(error, maxval(abs(conv%weight0 - matmul(factors%left, transpose(factors%right)))), 0.0_dp, &
+                   'U V^T against W0', thr=1.0e-13_dp*maxval(abs(conv%weight0)))
+    end subroutine test_factors
+
+    !> The same run twice, the factors used and the dense W0 forced.
+    subroutine run_twice(description, n_t, low_rank, dense, used)
+        type(point_modes), intent(in) :: description
+        integer, intent(in) :: n_t
+        type(multi_contact_response), intent(out) :: low_rank, dense
+        type(lowrank_compliance), intent(out) :: used
+
+        type(modal_green_matrix) :: conv
+        type(multi_contact_state) :: state
+        type(error_type), allocatable :: failure
+        type(contact_law), allocatable :: laws(:)
+        real(dp), allocatable :: road(:, :), preloads(:)
+        type(random_road) :: profile
+        real(dp) :: positions(description%n_points())
+        integer :: n_c, i, m, pass
+
+        n_c = description%n_points()
+        positions = contact_positions(0.5_dp, 0.12_dp, n_c)
+        profile = new_random_road(35, 10, 1.0e-3_dp, 0.05_dp, 20.0_dp)
+        allocate (road(0:n_t - 1, n_c), preloads(n_c), laws(n_c))
+        do i = 1, n_c
+            road(:, i) = profile%height([(m*dt + positions(i)/20.0_dp, m=0, n_t - 1)])
+        end do
+        preloads(:) = 3000.0_dp/n_c
+        laws(:) = contact_law(preloads(1)/(2.0e-3_dp)**1.5_dp, 1.5_dp)
+        conv = exact_matrix(description)
+        do pass = 1, 2
+            call start_multi_contact(conv, laws, preloads, state, failure)
+            if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+            if (pass == 2) state%compliance%checked = .true.
+            if (pass == 1) then
+                call multi_contact_block(conv, state, road, low_rank, failure)
+                used = state%compliance
+            else
+                call multi_contact_block(conv, state, road, dense, failure)
+            end if
+            if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        end do
+    end subroutine run_twice
+
+    subroutine test_run(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(multi_contact_response) :: low_rank, dense
+        type(lowrank_compliance) :: used
+        type(point_modes) :: description
+        real(dp) :: peak
+
+        description = tyre_points(120, 2000.0_dp)
+        call run_twice(description, 400, low_rank, dense, used)
+        call note('N_m', real(size(description%shape, 2), dp))
+        call note('rank used', real(used%rank, dp))
+        call check(error, used%low_rank .and. used%rank >= 1 .and. used%rank <= size(description%shape, 2), &
+                   'the run used the factors, of rank at most N_m')
+        if (allocated(error)) return
+        call check(error, any(dense%force <= 0.0_dp) .and. any(dense%force > 0.0_dp), &
+                   'some points lose contact, others keep it')
+        if (allocated(error)) return
+        peak = maxval(abs(dense%force))
+        call note('max|F_lowrank - F_dense|/max F', maxval(abs(low_rank%force - dense%force))/peak)
+        call check(error, maxval(abs(low_rank%force - dense%force)), 0.0_dp, 'forces: low rank against dense', &
+                   thr=1.0e-10_dp*peak)
+        if (allocated(error)) return
+        call check(error, maxval(abs(low_rank%displacement - dense%displacement)), 0.0_dp, &
+                   'displacements: low rank against dense', thr=1.0e-10_dp*maxval(abs(dense%displacement)))
+    end subroutine test_run
+
+    subroutine test_dense_fallback(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(multi_contact_response) :: low_rank, dense
+        type(lowrank_compliance) :: used
+        type(point_modes) :: description
+
+        description = tyre_points(20, 2000.0_dp)
+        call run_twice(description, 200, low_rank, dense, used)
+        call check(error, used%checked .and. .not. used%low_rank, 'N_m >= N_c/2: dense')
+        if (allocated(error)) return
+        call check(error, all(low_rank%force == dense%force) .and. all(low_rank%displacement == dense%displacement), &
+                   'dense: bit for bit the same run')
+    end subroutine test_dense_fallback
+
+end module test_lowrank_mod
