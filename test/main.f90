@@ -42,6 +42,7 @@ program greenconv_tests
     use test_reliability_mod, only: collect_reliability
     use test_version_mod, only: collect_version
     use test_uffchecks_mod, only: collect_uffchecks
+    use test_greenfiles_mod, only: collect_greenfiles
     implicit none
 
     integer :: n_passed, n_failed
@@ -78,6 +79,7 @@ program greenconv_tests
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
                        new_testsuite('patchscene', collect_patchscene), &
+                       new_testsuite('greenfiles', collect_greenfiles), &
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('version', collect_version), &
                        new_testsuite('uffchecks', collect_uffchecks), &

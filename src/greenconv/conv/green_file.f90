@@ -18,8 +18,10 @@
 !>     truncated by the paper's rule; their accuracy says where g came from, the neglected tail,
 !>     and how far the identified model's g_ij by the same inverse FFT is from it (max
 !>     |difference|/max |g_ij| over the table: the fit's misfit, the band limit being the same).
-!>     When dt does not fit the receptances' grid, g_ij is sampled from the identified modes
-!>     instead, and the accuracy says so and why.
+!>     When dt does not fit the receptances' grid, or the grid is not the uniform grid from
+!>     0 Hz the inverse FFT needs (a file whose lines start above 0 Hz, or uneven lines: the
+!>     FFT would put line l at l*df), g_ij is sampled from the identified modes instead, and
+!>     the accuracy says so, why, and on which band the modes were fitted.
 module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
@@ -28,6 +30,7 @@ module greenconv_conv_green_file
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
+    use greenconv_model_frf, only: frf_type
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
     implicit none
     private
@@ -147,7 +150,8 @@ contains
         if (allocated(error)) return
         engine = engine_of(method)
         if (associated(engine%from_table)) then
-            call sampled_kernel(structure, dt, kernel, source, error, fitted)
+            source = grid_problem(structure)
+            if (len(source) == 0) call sampled_kernel(structure, dt, kernel, source, error, fitted)
             if (allocated(error)) return
             if (allocated(kernel)) then
                 call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
@@ -171,6 +175,26 @@ contains
             accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
         end if
     end subroutine green_file_convolver
+
+    !> Why the inverse FFT of the file's receptances cannot give g_ij: their lines are not the
+    !> uniform grid from 0 Hz (a band starting above 0 Hz, or uneven lines), on which the FFT
+    !> would put line l at l*df and so at a frequency it does not have; '' when they are (or
+    !> for a file of impulse responses). The text names the band the modes were fitted on.
+    function grid_problem(structure) result(text)
+        type(green_structure), intent(in) :: structure
+        character(len=:), allocatable :: text
+
+        type(frf_type) :: grid
+
+        text = ''
+        if (.not. structure%identified) return
+        grid%frequency = structure%matrix%frequency
+        text = grid%fft_grid_problem()
+        if (len(text) == 0) return
+        text = 'not from the inverse FFT of G: '//text//'; the modes are fitted on the file''s band ' &
+               //sci_text(grid%frequency(1))//' to '//sci_text(grid%f_max())//' Hz ('//int_text(grid%n_freq()) &
+               //' lines), g_ij outside it is the modes'' extrapolation'
+    end function grid_problem
 
     !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
     !> modes with the upper residual.
