@@ -154,6 +154,7 @@ contains
             if (len(source) == 0) call sampled_kernel(structure, dt, kernel, source, error, fitted)
             if (allocated(error)) return
             if (allocated(kernel)) then
+                if (allocated(fitted)) call add_outside_band(structure, dt, kernel, fitted, source)
                 call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
                 if (allocated(error)) return
                 accuracy = source//'; '//text
@@ -175,6 +176,58 @@ contains
             accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
         end if
     end subroutine green_file_convolver
+
+    !> What the file's band leaves out, from the identified model: the inverse FFT of G gives
+    !> g_ij band-limited to the file's band 0..f_max, so a force's response above f_max (the
+    !> modes' own tails there and the residual flexibility of the modes above the band) is
+    !> lost. The model's g_ij sampled in full (its poles, sum_k 2*Re(R_k*exp(lambda_k*t_m)),
+    !> and its upper residual U as U*delta(t): U/dt in the first sample, so that the instant
+    !> matrix W0 = dt*g(0) gains U) less the same model by the same inverse FFT (`fitted`) is
+    !> that part; it is added to the
+    !> file's kernel, and `fitted` becomes the model in full, so that the misfit the accuracy
+    !> reports stays the file against the model inside the band. A fit with a lower residual
+    !> (-L/omega^2, unbounded at 0 Hz) is left as it is, and `source` says so. The fitted g by
+    !> the FFT is periodic (the wrap-around of g not decayed within the period 1/df); the model
+    !> in full is not, so the same sum also takes the model's wrap-around out of the kernel.
+    subroutine add_outside_band(structure, dt, kernel, fitted, source)
+        type(green_structure), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        real(dp), intent(inout) :: kernel(0:, :, :), fitted(0:, :, :)
+        character(len=:), allocatable, intent(inout) :: source
+
+        real(dp), allocatable :: full(:, :, :)
+        real(dp) :: peak, change
+        complex(dp) :: step, factor
+        integer :: last, k, m
+
+        if (structure%fit%pole_fit%has_lower) then
+            source = source//'; nothing added above the band (the fit has a lower residual)'
+            return
+        end if
+        last = ubound(kernel, 1)
+        allocate (full(0:last, size(kernel, 2), size(kernel, 3)))
+        full(:, :, :) = 0.0_dp
+        do k = 1, size(structure%fit%pole)
+            ! g of one pole pair: R_k*exp(lambda_k*t) + its conjugate, stepped by exp(lambda_k*dt).
+            step = exp(structure%fit%pole(k)*dt)
+            factor = (1.0_dp, 0.0_dp)
+            do m = 0, last
+                full(m, :, :) = full(m, :, :) + 2.0_dp*real(structure%fit%residue(:, :, k)*factor, dp)
+                factor = factor*step
+            end do
+        end do
+        ! g jumps at t = 0 from 0 to g(0+); the inverse FFT's first sample is the middle of the
+        ! jump, and so is this one.
+        full(0, :, :) = 0.5_dp*full(0, :, :)
+        if (structure%fit%pole_fit%has_upper) full(0, :, :) = full(0, :, :) + structure%fit%upper/dt
+        peak = max(maxval(abs(kernel)), tiny(1.0_dp))
+        change = maxval(abs(full(0:last, :, :) - fitted(0:last, :, :)))/peak
+        kernel(0:last, :, :) = kernel(0:last, :, :) + (full(0:last, :, :) - fitted(0:last, :, :))
+        fitted(0:last, :, :) = full(0:last, :, :)
+        source = source//'; above the band g_ij from the identified poles' &
+                 //trim(merge(' and U', '      ', structure%fit%pole_fit%has_upper))//' (largest change ' &
+                 //sci_text(change)//' of max|g_ij|)'
+    end subroutine add_outside_band
 
     !> Why the inverse FFT of the file's receptances cannot give g_ij: their lines are not the
     !> uniform grid from 0 Hz (a band starting above 0 Hz, or uneven lines), on which the FFT
