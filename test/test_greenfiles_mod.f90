@@ -151,22 +151,18 @@ contains
         type(point_modes) :: truth
         type(green_structure) :: structure
         type(error_type), allocatable :: fail
-        type(road_file) :: road
         type(multi_contact_response) :: reference, response
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy, path
-        real(dp), allocatable :: heights(:, :), frequency(:)
+        real(dp), allocatable :: frequency(:)
         real(dp) :: x(4), y(4), worst, dt
-        integer :: g, m, i, l
+        integer :: g, m, l
 
         dt = 5.0e-4_dp
         call patch_modes(truth, x, y, fail)
-        if (.not. allocated(fail)) call read_road_file('data/road_sample.dat', road, fail)
-        if (.not. allocated(fail)) call sample_road_file(road, 1.0_dp + (x - sum(x)/4), 5.0_dp, dt, 400, heights, fail)
         if (.not. allocated(fail)) &
             call make_multipoint_convolver('exact', truth, dt, 0.01_dp, 400, conv, accuracy, fail)
-        if (.not. allocated(fail)) call run_multi_contact(conv, [(contact_law(5.0e4_dp, 1.0_dp), i=1, 4)], heights, &
-                                                          [(250.0_dp, i=1, 4)], reference, fail)
+        if (.not. allocated(fail)) call roll(conv, x, dt, 400, 5.0e4_dp, reference, fail)
         call check(error, .not. allocated(fail), 'the reference run: '//message_of(fail))
         if (allocated(error)) return
         do g = 1, 2
@@ -184,8 +180,7 @@ contains
             if (allocated(error)) return
             do m = 1, size(methods)
                 call green_file_convolver(structure, trim(methods(m)), dt, 0.01_dp, 400, conv, accuracy, fail)
-                if (.not. allocated(fail)) call run_multi_contact(conv, [(contact_law(5.0e4_dp, 1.0_dp), i=1, 4)], &
-                                                                  heights, [(250.0_dp, i=1, 4)], response, fail)
+                if (.not. allocated(fail)) call roll(conv, x, dt, 400, 5.0e4_dp, response, fail)
                 call check(error, .not. allocated(fail), path//' '//trim(methods(m))//': '//message_of(fail))
                 if (allocated(error)) return
                 worst = maxval(abs(response%force - reference%force))/maxval(abs(reference%force))
@@ -218,33 +213,27 @@ contains
         type(point_modes) :: truth, file_modes
         type(green_structure) :: structure
         type(error_type), allocatable :: fail
-        type(road_file) :: road
         type(multi_contact_response) :: reference, response
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy
-        real(dp), allocatable :: heights(:, :)
         real(dp) :: x(4), y(4), worst, dt
-        integer :: m, i, l
+        integer :: m, l
 
         dt = 2.5e-4_dp
         call patch_modes(file_modes, x, y, fail)
         if (.not. allocated(fail)) call plate_modes(tyre_plate(damping_ratio=0.02_dp), x, y, 1500.0_dp, truth, fail)
         if (.not. allocated(fail)) call write_file_of(path, truth, x, y, [(1.0_dp*l, l=0, 400)], as_receptance, fail)
         if (.not. allocated(fail)) call read_green_structure(path, green_options(), structure, fail)
-        if (.not. allocated(fail)) call read_road_file('data/road_sample.dat', road, fail)
-        if (.not. allocated(fail)) call sample_road_file(road, 1.0_dp + (x - sum(x)/4), 5.0_dp, dt, 800, heights, fail)
         if (.not. allocated(fail)) &
             call make_multipoint_convolver('exact', truth, dt, 0.0_dp, 800, conv, accuracy, fail)
-        if (.not. allocated(fail)) call run_multi_contact(conv, [(contact_law(2.0e5_dp, 1.0_dp), i=1, 4)], heights, &
-                                                          [(250.0_dp, i=1, 4)], reference, fail)
+        if (.not. allocated(fail)) call roll(conv, x, dt, 800, 2.0e5_dp, reference, fail)
         call check(error, .not. allocated(fail), 'the structure and its reference run: '//message_of(fail))
         if (allocated(error)) return
         call note('modes of the structure', real(truth%modes%n_modes(), dp))
         call note('modes of the file''s fit', real(structure%modes%modes%n_modes(), dp))
         do m = 1, size(methods)
             call green_file_convolver(structure, trim(methods(m)), dt, 0.0_dp, 800, conv, accuracy, fail)
-            if (.not. allocated(fail)) call run_multi_contact(conv, [(contact_law(2.0e5_dp, 1.0_dp), i=1, 4)], &
-                                                              heights, [(250.0_dp, i=1, 4)], response, fail)
+            if (.not. allocated(fail)) call roll(conv, x, dt, 800, 2.0e5_dp, response, fail)
             call check(error, .not. allocated(fail), trim(methods(m))//': '//message_of(fail))
             if (allocated(error)) return
             worst = maxval(abs(response%force - reference%force))/maxval(abs(reference%force))
@@ -253,6 +242,28 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_band
+
+    !> The 2 x 2 patch (points at x [m]) rolled by a convolver over data/road_sample.dat from
+    !> x_start = 1 m at 5 m/s for n_steps of dt [s], linear contact springs of the given
+    !> stiffness [N/m] per point, 1000 N of preload shared evenly.
+    subroutine roll(conv, x, dt, n_steps, stiffness, response, fail)
+        class(multipoint_convolver), intent(inout) :: conv
+        real(dp), intent(in) :: x(:), dt, stiffness
+        integer, intent(in) :: n_steps
+        type(multi_contact_response), intent(out) :: response
+        type(error_type), allocatable, intent(out) :: fail
+
+        type(road_file) :: road
+        real(dp), allocatable :: heights(:, :)
+        integer :: i
+
+        call read_road_file('data/road_sample.dat', road, fail)
+        if (.not. allocated(fail)) &
+            call sample_road_file(road, 1.0_dp + (x - sum(x)/size(x)), 5.0_dp, dt, n_steps, heights, fail)
+        if (.not. allocated(fail)) &
+            call run_multi_contact(conv, [(contact_law(stiffness, 1.0_dp), i=1, size(x))], heights, &
+                                   [(1000.0_dp/size(x), i=1, size(x))], response, fail)
+    end subroutine roll
 
     !> Points 0.06 m by 0.1 m around (L/2, b/2) of the plate (xi = 0.02) and its modes to 300 Hz.
     subroutine patch_modes(truth, x, y, fail)
