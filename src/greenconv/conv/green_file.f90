@@ -164,6 +164,12 @@ contains
             if (allocated(error)) return
             accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; ' &
                        //modes_accuracy(structure, .false.)
+            ! As in the table from the file: the fit's upper residual, U*delta(t), in W0.
+            if (structure%fit%pole_fit%has_upper) then
+                call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
+                accuracy = 'g_ij sampled from the identified modes, U in W0 ('//source//'); '//text//'; ' &
+                           //modes_accuracy(structure, .true.)
+            end if
             return
         end if
         call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
