@@ -18,10 +18,13 @@
 !>     truncated by the paper's rule; their accuracy says where g came from, the neglected tail,
 !>     and how far the identified model's g_ij by the same inverse FFT is from it (max
 !>     |difference|/max |g_ij| over the table: the fit's misfit, the band limit being the same).
+!>     Lines above the file's f_max that dt asks for (up to 1/(2*dt)) hold the identified model
+!>     rather than zero (`extend_band`): the response above the band is the model's.
 !>     When dt does not fit the receptances' grid, or the grid is not the uniform grid from
 !>     0 Hz the inverse FFT needs (a file whose lines start above 0 Hz, or uneven lines: the
-!>     FFT would put line l at l*df), g_ij is sampled from the identified modes instead, and
-!>     the accuracy says so, why, and on which band the modes were fitted.
+!>     FFT would put line l at l*df), g_ij is sampled from the identified modes instead, the
+!>     fit's upper residual U added to W0, and the accuracy says so, why, and on which band the
+!>     modes were fitted.
 module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
@@ -32,6 +35,7 @@ module greenconv_conv_green_file
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
+    use greenconv_ident_shared_poles, only: shared_receptance
     implicit none
     private
 
@@ -143,7 +147,8 @@ contains
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :), fitted(:, :, :)
-        character(len=:), allocatable :: source, text
+        character(len=:), allocatable :: source, text, band
+        type(green_structure) :: extended
 
         accuracy = ''
         call check_method(method, .true., .true., structure%identified, error)
@@ -151,10 +156,13 @@ contains
         engine = engine_of(method)
         if (associated(engine%from_table)) then
             source = grid_problem(structure)
-            if (len(source) == 0) call sampled_kernel(structure, dt, kernel, source, error, fitted)
+            if (len(source) == 0) then
+                call extend_band(structure, dt, extended, band)
+                call sampled_kernel(extended, dt, kernel, source, error, fitted)
+                if (allocated(kernel)) source = source//band
+            end if
             if (allocated(error)) return
             if (allocated(kernel)) then
-                if (allocated(fitted)) call add_outside_band(structure, dt, kernel, fitted, source)
                 call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
                 if (allocated(error)) return
                 accuracy = source//'; '//text
@@ -183,57 +191,48 @@ contains
         end if
     end subroutine green_file_convolver
 
-    !> What the file's band leaves out, from the identified model: the inverse FFT of G gives
-    !> g_ij band-limited to the file's band 0..f_max, so a force's response above f_max (the
-    !> modes' own tails there and the residual flexibility of the modes above the band) is
-    !> lost. The model's g_ij sampled in full (its poles, sum_k 2*Re(R_k*exp(lambda_k*t_m)),
-    !> and its upper residual U as U*delta(t): U/dt in the first sample, so that the instant
-    !> matrix W0 = dt*g(0) gains U) less the same model by the same inverse FFT (`fitted`) is
-    !> that part; it is added to the
-    !> file's kernel, and `fitted` becomes the model in full, so that the misfit the accuracy
-    !> reports stays the file against the model inside the band. A fit with a lower residual
-    !> (-L/omega^2, unbounded at 0 Hz) is left as it is, and `source` says so. The fitted g by
-    !> the FFT is periodic (the wrap-around of g not decayed within the period 1/df); the model
-    !> in full is not, so the same sum also takes the model's wrap-around out of the kernel.
-    subroutine add_outside_band(structure, dt, kernel, fitted, source)
+    !> What the file's band leaves out, from the identified model: the inverse FFT of G on the
+    !> file's lines, zero above f_max up to the Nyquist frequency 1/(2*dt), gives g_ij
+    !> band-limited to the file's band, so a force's response above f_max (the tails of the
+    !> modes in band and the quasi-static compliance U of those above it) would be lost. The
+    !> copy `extended` holds the file's lines and, above f_max up to 1/(2*dt) on the same step,
+    !> the identified model (shared poles and U), so that the same inverse FFT gives g_ij whose
+    !> spectrum is the data in band and the model above it. Not extended (and `note` says why or
+    !> is '') when dt needs no line above f_max, or the fit has a lower residual (-L/omega^2,
+    !> fitted to the band alone) or the grid is not the uniform grid from 0 Hz.
+    subroutine extend_band(structure, dt, extended, note)
         type(green_structure), intent(in) :: structure
         real(dp), intent(in) :: dt
-        real(dp), intent(inout) :: kernel(0:, :, :), fitted(0:, :, :)
-        character(len=:), allocatable, intent(inout) :: source
+        type(green_structure), intent(out) :: extended
+        character(len=:), allocatable, intent(out) :: note
 
-        real(dp), allocatable :: full(:, :, :)
-        real(dp) :: peak, change
-        complex(dp) :: step, factor
-        integer :: last, k, m
+        complex(dp), allocatable :: model(:, :, :)
+        real(dp), allocatable :: above(:)
+        real(dp) :: df, f_max
+        integer :: n_f, n_lines, l
 
+        extended = structure
+        note = ''
+        if (.not. structure%identified) return
+        n_f = size(structure%matrix%frequency)
+        df = structure%matrix%frequency(2) - structure%matrix%frequency(1)
+        f_max = structure%matrix%frequency(n_f)
+        n_lines = nint(1.0_dp/(df*dt))/2 + 1
+        if (n_lines <= n_f) return
         if (structure%fit%pole_fit%has_lower) then
-            source = source//'; nothing added above the band (the fit has a lower residual)'
+            note = '; G zero above the band (the fit has a lower residual)'
             return
         end if
-        last = ubound(kernel, 1)
-        allocate (full(0:last, size(kernel, 2), size(kernel, 3)))
-        full(:, :, :) = 0.0_dp
-        do k = 1, size(structure%fit%pole)
-            ! g of one pole pair: R_k*exp(lambda_k*t) + its conjugate, stepped by exp(lambda_k*dt).
-            step = exp(structure%fit%pole(k)*dt)
-            factor = (1.0_dp, 0.0_dp)
-            do m = 0, last
-                full(m, :, :) = full(m, :, :) + 2.0_dp*real(structure%fit%residue(:, :, k)*factor, dp)
-                factor = factor*step
-            end do
-        end do
-        ! g jumps at t = 0 from 0 to g(0+); the inverse FFT's first sample is the middle of the
-        ! jump, and so is this one.
-        full(0, :, :) = 0.5_dp*full(0, :, :)
-        if (structure%fit%pole_fit%has_upper) full(0, :, :) = full(0, :, :) + structure%fit%upper/dt
-        peak = max(maxval(abs(kernel)), tiny(1.0_dp))
-        change = maxval(abs(full(0:last, :, :) - fitted(0:last, :, :)))/peak
-        kernel(0:last, :, :) = kernel(0:last, :, :) + (full(0:last, :, :) - fitted(0:last, :, :))
-        fitted(0:last, :, :) = full(0:last, :, :)
-        source = source//'; above the band g_ij from the identified poles' &
-                 //trim(merge(' and U', '      ', structure%fit%pole_fit%has_upper))//' (largest change ' &
-                 //sci_text(change)//' of max|g_ij|)'
-    end subroutine add_outside_band
+        above = [(l*df, l=n_f, n_lines - 1)]
+        call shared_receptance(structure%fit, above, model)
+        extended%matrix%frequency = [structure%matrix%frequency, above]
+        deallocate (extended%matrix%g)
+        allocate (extended%matrix%g(size(model, 1), size(model, 2), n_lines))
+        extended%matrix%g(:, :, 1:n_f) = structure%matrix%g
+        extended%matrix%g(:, :, n_f + 1:) = model
+        note = '; G from '//sci_text(f_max)//' Hz (the file''s last line) to '//sci_text(above(size(above))) &
+               //' Hz from the identified poles'//trim(merge(' and U', '      ', structure%fit%pole_fit%has_upper))
+    end subroutine extend_band
 
     !> Why the inverse FFT of the file's receptances cannot give g_ij: their lines are not the
     !> uniform grid from 0 Hz (a band starting above 0 Hz, or uneven lines), on which the FFT
