@@ -18,8 +18,13 @@
 !>     truncated by the paper's rule; their accuracy says where g came from, the neglected tail,
 !>     and how far the identified model's g_ij by the same inverse FFT is from it (max
 !>     |difference|/max |g_ij| over the table: the fit's misfit, the band limit being the same).
-!>     When dt does not fit the receptances' grid, g_ij is sampled from the identified modes
-!>     instead, and the accuracy says so and why.
+!>     Lines above the file's f_max that dt asks for (up to 1/(2*dt)) hold the identified model
+!>     rather than zero (`extend_band`): the response above the band is the model's.
+!>     When dt does not fit the receptances' grid, or the grid is not the uniform grid from
+!>     0 Hz the inverse FFT needs (a file whose lines start above 0 Hz, or uneven lines: the
+!>     FFT would put line l at l*df), g_ij is sampled from the identified modes instead, the
+!>     fit's upper residual U added to W0, and the accuracy says so, why, and on which band the
+!>     modes were fitted.
 module greenconv_conv_green_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
@@ -28,7 +33,9 @@ module greenconv_conv_green_file
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
+    use greenconv_model_frf, only: frf_type
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
+    use greenconv_ident_shared_poles, only: shared_receptance
     implicit none
     private
 
@@ -140,14 +147,20 @@ contains
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :), fitted(:, :, :)
-        character(len=:), allocatable :: source, text
+        character(len=:), allocatable :: source, text, band
+        type(green_structure) :: extended
 
         accuracy = ''
         call check_method(method, .true., .true., structure%identified, error)
         if (allocated(error)) return
         engine = engine_of(method)
         if (engine%samples_g()) then
-            call sampled_kernel(structure, dt, kernel, source, error, fitted)
+            source = grid_problem(structure)
+            if (len(source) == 0) then
+                call extend_band(structure, dt, extended, band)
+                call sampled_kernel(extended, dt, kernel, source, error, fitted)
+                if (allocated(kernel)) source = source//band
+            end if
             if (allocated(error)) return
             if (allocated(kernel)) then
                 call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
@@ -159,6 +172,12 @@ contains
             if (allocated(error)) return
             accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; ' &
                        //modes_accuracy(structure, .false.)
+            ! As in the table from the file: the fit's upper residual, U*delta(t), in W0.
+            if (structure%fit%pole_fit%has_upper) then
+                call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
+                accuracy = 'g_ij sampled from the identified modes, U in W0 ('//source//'); '//text//'; ' &
+                           //modes_accuracy(structure, .true.)
+            end if
             return
         end if
         call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
@@ -171,6 +190,69 @@ contains
             accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
         end if
     end subroutine green_file_convolver
+
+    !> What the file's band leaves out, from the identified model: the inverse FFT of G on the
+    !> file's lines, zero above f_max up to the Nyquist frequency 1/(2*dt), gives g_ij
+    !> band-limited to the file's band, so a force's response above f_max (the tails of the
+    !> modes in band and the quasi-static compliance U of those above it) would be lost. The
+    !> copy `extended` holds the file's lines and, above f_max up to 1/(2*dt) on the same step,
+    !> the identified model (shared poles and U), so that the same inverse FFT gives g_ij whose
+    !> spectrum is the data in band and the model above it. Not extended (and `note` says why or
+    !> is '') when dt needs no line above f_max, or the fit has a lower residual (-L/omega^2,
+    !> fitted to the band alone) or the grid is not the uniform grid from 0 Hz.
+    subroutine extend_band(structure, dt, extended, note)
+        type(green_structure), intent(in) :: structure
+        real(dp), intent(in) :: dt
+        type(green_structure), intent(out) :: extended
+        character(len=:), allocatable, intent(out) :: note
+
+        complex(dp), allocatable :: model(:, :, :)
+        real(dp), allocatable :: above(:)
+        real(dp) :: df, f_max
+        integer :: n_f, n_lines, l
+
+        extended = structure
+        note = ''
+        if (.not. structure%identified) return
+        n_f = size(structure%matrix%frequency)
+        df = structure%matrix%frequency(2) - structure%matrix%frequency(1)
+        f_max = structure%matrix%frequency(n_f)
+        n_lines = nint(1.0_dp/(df*dt))/2 + 1
+        if (n_lines <= n_f) return
+        if (structure%fit%pole_fit%has_lower) then
+            note = '; G zero above the band (the fit has a lower residual)'
+            return
+        end if
+        above = [(l*df, l=n_f, n_lines - 1)]
+        call shared_receptance(structure%fit, above, model)
+        extended%matrix%frequency = [structure%matrix%frequency, above]
+        deallocate (extended%matrix%g)
+        allocate (extended%matrix%g(size(model, 1), size(model, 2), n_lines))
+        extended%matrix%g(:, :, 1:n_f) = structure%matrix%g
+        extended%matrix%g(:, :, n_f + 1:) = model
+        note = '; G from '//sci_text(f_max)//' Hz (the file''s last line) to '//sci_text(above(size(above))) &
+               //' Hz from the identified poles'//trim(merge(' and U', '      ', structure%fit%pole_fit%has_upper))
+    end subroutine extend_band
+
+    !> Why the inverse FFT of the file's receptances cannot give g_ij: their lines are not the
+    !> uniform grid from 0 Hz (a band starting above 0 Hz, or uneven lines), on which the FFT
+    !> would put line l at l*df and so at a frequency it does not have; '' when they are (or
+    !> for a file of impulse responses). The text names the band the modes were fitted on.
+    function grid_problem(structure) result(text)
+        type(green_structure), intent(in) :: structure
+        character(len=:), allocatable :: text
+
+        type(frf_type) :: grid
+
+        text = ''
+        if (.not. structure%identified) return
+        grid%frequency = structure%matrix%frequency
+        text = grid%fft_grid_problem()
+        if (len(text) == 0) return
+        text = 'not from the inverse FFT of G: '//text//'; the modes are fitted on the file''s band ' &
+               //sci_text(grid%frequency(1))//' to '//sci_text(grid%f_max())//' Hz ('//int_text(grid%n_freq()) &
+               //' lines), g_ij outside it is the modes'' extrapolation'
+    end function grid_problem
 
     !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
     !> modes with the upper residual.

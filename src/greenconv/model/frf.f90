@@ -48,7 +48,7 @@ module greenconv_model_frf
     private
 
     public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
-    public :: add_relative_noise, check_contact_function, max_green_magnitude
+    public :: add_relative_noise, check_contact_function, max_green_magnitude, green_values
 
     !> Largest magnitude a value of a universal file's Green's function may have, in its own
     !> unit ([m/N] for a receptance, [m/(N*s)] for an impulse response, [m/(N*s)] or [m/(N*s^2)]
@@ -394,9 +394,8 @@ contains
         character(len=*), intent(in) :: path
 
         character(len=:), allocatable :: place
-        real(dp), allocatable :: omega(:)
         integer, allocatable :: line_of(:)
-        integer :: n, first, sign
+        integer :: n, sign
 
         place = path//':'//int_text(function%line)//': dataset 58'
         n = 0
@@ -405,14 +404,6 @@ contains
             call fatal_error(error, place//': expected function type 4 (frequency response function) in record 6, ' &
                              //'found '//int_text(function%function_type)//' ('// &
                              uff_function_type_name(function%function_type)//')')
-        else if (function%abscissa_axis%data_type /= 18 .and. function%abscissa_axis%data_type /= 0) then
-            call fatal_error(error, place//': expected a frequency abscissa (specific data type 18 in record 8), ' &
-                             //'found '//int_text(function%abscissa_axis%data_type))
-        else if (all(function%kind /= [uff_receptance, uff_mobility, uff_accelerance])) then
-            call fatal_error(error, place//': expected a receptance, mobility or accelerance (records 9/10: ' &
-                             //'displacement 8, velocity 11 or acceleration 12 over force 9 or 13), found data ' &
-                             //'types '//int_text(function%numerator%data_type)//' over ' &
-                             //int_text(function%denominator%data_type))
         else if (n < min_frf_lines) then
             call fatal_error(error, place//': expected at least '//int_text(min_frf_lines)//' points, found ' &
                              //int_text(n))
@@ -428,35 +419,10 @@ contains
                             //' spacing)'
             return
         end if
-        allocate (frf%receptance(n))
         frf%frequency = rounded_grid(function%abscissa, function%even)
         frf%line = line_of
-        omega = two_pi*frf%frequency
-        ! Above 0 Hz the conversion divides; a 0 Hz line (the first, if any) is extrapolated below.
-        first = 1
-        if (frf%frequency(1) == 0.0_dp) first = 2
-        frf%source = uff_kind_name(function%kind)
-        select case (function%kind)
-        case (uff_receptance)
-            frf%receptance(:) = function%ordinate
-        case (uff_mobility)
-            frf%receptance(first:) = function%ordinate(first:)/cmplx(0.0_dp, omega(first:), dp)
-            frf%source = frf%source//' converted by G = Y/(i*omega)'
-        case (uff_accelerance)
-            frf%receptance(first:) = -function%ordinate(first:)/omega(first:)**2
-            frf%source = frf%source//' converted by G = -A/omega^2'
-        end select
-        if (function%kind /= uff_receptance .and. first == 2) then
-            if (frf%uniform_from_zero()) then
-                frf%receptance(1) = real(2.0_dp*frf%receptance(2) - frf%receptance(3), dp)
-            else
-                ! The line through the next two lines, at 0 Hz.
-                associate (f => frf%frequency, g => frf%receptance)
-                    g(1) = real(g(2) - f(2)*(g(3) - g(2))/(f(3) - f(2)), dp)
-                end associate
-            end if
-            frf%source = frf%source//' (0 Hz line extrapolated)'
-        end if
+        call green_values(path, function, frf%frequency, frf%uniform_from_zero(), frf%receptance, frf%source, error)
+        if (allocated(error)) return
         if (sign < 0) then
             frf%receptance = -frf%receptance
             frf%source = frf%source//', sign changed to +/+ (driving point)'
@@ -464,6 +430,102 @@ contains
         frf%source = frf%source//', response '//dof_text(function%response_node, function%response_direction) &
                      //', reference '//dof_text(function%reference_node, function%reference_direction)
     end subroutine frf_from_uff
+
+    !> The values of a dataset 58 as the Green's function the convolution needs, from what
+    !> records 8 to 10 say (the one reading of units for a single FRF and a Green's matrix):
+    !>
+    !> - function type 4 (frequency response), abscissa frequency (record 8 data type 18, or 0
+    !>   unknown): a receptance (displacement over force, records 9/10 data types 8 over 9 or
+    !>   13) is taken [m/N]; a mobility (velocity 11 over force) gives G = Y/(i*omega), an
+    !>   accelerance (acceleration 12 over force) G = -A/omega^2, a 0 Hz line (0/0) being the
+    !>   real part of the line through the next two lines at 0 Hz;
+    !> - function type 1 (time response), abscissa time (data type 17, or 0): an impulse
+    !>   response g(t) [m/(N*s)], displacement per unit impulse of force (records 9/10: 8 over
+    !>   9 or 13), taken as it is;
+    !> - anything else (a pressure in Pa, a velocity impulse response, an acceleration time
+    !>   history, a coherence) is refused naming the file, the dataset's line, the record and
+    !>   the data types found.
+    pure subroutine green_values(path, function, abscissa, uniform, values, source, error)
+        !> The file, for messages.
+        character(len=*), intent(in) :: path
+        !> The dataset 58.
+        type(uff_function), intent(in) :: function
+        !> Its abscissa as stored [Hz or s], increasing, >= 0.
+        real(dp), intent(in) :: abscissa(:)
+        !> Whether `abscissa` is the uniform grid from 0 Hz (its 0 Hz line is then extrapolated
+        !> as 2*G(df) - G(2*df)).
+        logical, intent(in) :: uniform
+        !> The receptance G [m/N] (function type 4) or impulse response g [m/(N*s)] (type 1).
+        complex(dp), allocatable, intent(out) :: values(:)
+        !> What was read and how it was converted, e.g. `mobility converted by G = Y/(i*omega)`.
+        character(len=:), allocatable, intent(out) :: source
+        !> Set (status 2) for a function that is no Green's function in the units above.
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: place, found
+        real(dp), allocatable :: omega(:)
+        integer :: first, axis
+
+        place = path//':'//int_text(function%line)//': dataset 58 '
+        found = 'found '//uff_data_type_name(function%numerator%data_type)//' ('//int_text( &
+                function%numerator%data_type)//') over '//uff_data_type_name(function%denominator%data_type)//' (' &
+                //int_text(function%denominator%data_type)//')'
+        source = ''
+        axis = 18
+        if (function%function_type == 1) axis = 17
+        if (function%abscissa_axis%data_type /= axis .and. function%abscissa_axis%data_type /= 0) then
+            call fatal_error(error, place//'record 8 field 1: expected the abscissa '//uff_data_type_name(axis) &
+                             //' (specific data type '//int_text(axis)//') for function type ' &
+                             //int_text(function%function_type)//', found '// &
+                             uff_data_type_name(function%abscissa_axis%data_type)//' (' &
+                             //int_text(function%abscissa_axis%data_type)//')')
+            return
+        end if
+        if (function%function_type == 1) then
+            if (function%kind /= uff_receptance) then
+                call fatal_error(error, place//'records 9/10 field 1: expected an impulse response in m/(N*s), ' &
+                                 //'displacement (8) over force (9 or 13), for a time response (function ' &
+                                 //'type 1), '//found//'; write g_ij(t), the displacement per unit impulse')
+                return
+            end if
+            values = function%ordinate
+            source = 'impulse response'
+            return
+        end if
+        if (all(function%kind /= [uff_receptance, uff_mobility, uff_accelerance])) then
+            call fatal_error(error, place//'records 9/10 field 1: expected a receptance, mobility or ' &
+                             //'accelerance (displacement 8, velocity 11 or acceleration 12 over force 9 or 13), ' &
+                             //found)
+            return
+        end if
+        allocate (values(size(function%ordinate)))
+        omega = two_pi*abscissa
+        ! Above 0 Hz the conversion divides; a 0 Hz line (the first, if any) is extrapolated below.
+        first = 1
+        if (abscissa(1) == 0.0_dp) first = 2
+        source = uff_kind_name(function%kind)
+        select case (function%kind)
+        case (uff_receptance)
+            values(:) = function%ordinate
+        case (uff_mobility)
+            values(first:) = function%ordinate(first:)/cmplx(0.0_dp, omega(first:), dp)
+            source = source//' converted by G = Y/(i*omega)'
+        case (uff_accelerance)
+            values(first:) = -function%ordinate(first:)/omega(first:)**2
+            source = source//' converted by G = -A/omega^2'
+        end select
+        if (function%kind /= uff_receptance .and. first == 2) then
+            if (uniform) then
+                values(1) = real(2.0_dp*values(2) - values(3), dp)
+            else
+                ! The line through the next two lines, at 0 Hz.
+                associate (f => abscissa, g => values)
+                    g(1) = real(g(2) - f(2)*(g(3) - g(2))/(f(3) - f(2)), dp)
+                end associate
+            end if
+            source = source//' (0 Hz line extrapolated)'
+        end if
+    end subroutine green_values
 
     !> Check a dataset 58 taken as a Green's function. Between points of contact (`any_direction`
     !> false) the response and reference directions must lie along Z, the direction of contact

@@ -5,6 +5,10 @@
 !>   receptance (dataset 58, function type 4), sorted by label; point i is the i-th of them.
 !>   The same reader takes impulse responses g_ij(t) instead (function type 1, time response,
 !>   `function_type = 1`): the abscissa is then time [s] and the ordinate g_ij [m/(N*s)].
+!> - **Units**: records 8 to 10 of every dataset are read by greenconv_model_frf's
+!>   `green_values`, the same reading as a single FRF's: receptances are taken, mobilities and
+!>   accelerances converted to receptances, impulse responses must be displacement over force;
+!>   anything else (a pressure, a velocity time history) is refused naming the dataset and record.
 !> - **Geometry**: each point's coordinates from dataset 15 or 2411; x is the direction of
 !>   travel, y across the patch (z is ignored).
 !> - **Checks**, each a message naming the file and what to do: no receptance; a response or
@@ -30,7 +34,7 @@ module greenconv_model_green_matrix_file
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_io_uff, only: uff_file, read_uff, uff_function_type_name
     use greenconv_model_modal_set, only: sorted_order
-    use greenconv_model_frf, only: check_contact_function
+    use greenconv_model_frf, only: check_contact_function, green_values, frf_type
     implicit none
     private
 
@@ -57,6 +61,9 @@ module greenconv_model_green_matrix_file
         complex(dp), allocatable :: g(:, :, :)
         !> Function type of the datasets read: 4 (receptances) or 1 (impulse responses).
         integer :: function_type = 4
+        !> What records 9/10 said and how the values were converted, e.g. `mobility converted by
+        !> G = Y/(i*omega)`; the distinct kinds joined by `; ` when the datasets differ.
+        character(len=:), allocatable :: conversion
         !> Whether no pair failed the reciprocity check.
         logical :: reciprocal = .true.
         !> Largest reciprocity ratio (rms of G_ij - G_ji over the rms of its 4th difference) and its pair.
@@ -114,14 +121,16 @@ contains
 
         integer, allocatable :: frfs(:), found(:, :)
         integer :: f, first, i, j, k, n_c, n_f, sign
-        character(len=:), allocatable :: place, functions, grid
+        character(len=:), allocatable :: place, functions, grid_name, source
+        complex(dp), allocatable :: values(:)
+        type(frf_type) :: grid
 
         if (present(function_type)) matrix%function_type = function_type
         functions = 'receptances G_ij (datasets 58 of function type 4)'
-        grid = 'frequency grid'
+        grid_name = 'frequency grid'
         if (matrix%function_type /= 4) then
             functions = 'impulse responses g_ij(t) (datasets 58 of function type '//int_text(matrix%function_type)//')'
-            grid = 'time grid'
+            grid_name = 'time grid'
         end if
         frfs = pack([(f, f=1, size(file%functions))], file%functions%function_type == matrix%function_type)
         if (size(frfs) == 0) then
@@ -144,7 +153,7 @@ contains
                     return
                 end if
                 if (.not. same_grid(fun%abscissa, file%functions(first)%abscissa)) then
-                    call fatal_error(error, place//': its '//grid//' ('//int_text(size(fun%abscissa)) &
+                    call fatal_error(error, place//': its '//grid_name//' ('//int_text(size(fun%abscissa)) &
                                      //' lines) differs from the first dataset''s (' &
                                      //int_text(size(file%functions(first)%abscissa))//' lines, line ' &
                                      //int_text(file%functions(first)%line)//'); resample every G_ij on one grid')
@@ -167,6 +176,8 @@ contains
         matrix%frequency = file%functions(first)%abscissa
         allocate (matrix%g(n_c, n_c, n_f), found(n_c, n_c))
         found(:, :) = 0
+        grid%frequency = matrix%frequency
+        matrix%conversion = ''
         do k = 1, size(frfs)
             associate (fun => file%functions(frfs(k)))
                 i = findloc(matrix%node, fun%response_node, dim=1)
@@ -180,12 +191,14 @@ contains
                     return
                 end if
                 found(i, j) = fun%line
-                ! every dataset has the first one's directions: one sign for all (-Z/-Z: +1)
-                if (sign > 0) then
-                    matrix%g(i, j, :) = fun%ordinate
-                else
-                    matrix%g(i, j, :) = -fun%ordinate
+                call green_values(file%path, fun, matrix%frequency, grid%uniform_from_zero(), values, source, error)
+                if (allocated(error)) return
+                if (index(matrix%conversion, source) == 0) then
+                    if (len(matrix%conversion) > 0) matrix%conversion = matrix%conversion//'; '
+                    matrix%conversion = matrix%conversion//source
                 end if
+                ! every dataset has the first one's directions: one sign for all (-Z/-Z: +1)
+                matrix%g(i, j, :) = sign*values
             end associate
         end do
         do j = 1, n_c
