@@ -172,12 +172,11 @@ contains
         end if
     end subroutine green_file_convolver
 
-    !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
-    !> modes with the upper residual.
-    function modes_accuracy(structure, with_upper) result(text)
+    !> `modes_accuracy` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine modes_accuracy_build(structure, with_upper, text)
         type(green_structure), intent(in) :: structure
         logical, intent(in) :: with_upper
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                //' shared poles, E of the modes alone worst '//sci_text(maxval(structure%e_modes))//', mean ' &
@@ -186,6 +185,30 @@ contains
             text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                    //' shared poles and U, E worst '//sci_text(maxval(structure%e_upper))//', mean ' &
                    //sci_text(sum(structure%e_upper)/size(structure%e_upper))//' (eq. 7)'
+    end subroutine modes_accuracy_build
+
+    !> Length of the text `modes_accuracy` gives.
+    pure integer function modes_accuracy_length(structure, with_upper)
+        type(green_structure), intent(in) :: structure
+        logical, intent(in) :: with_upper
+
+        character(len=:), allocatable :: built
+
+        call modes_accuracy_build(structure, with_upper, built)
+        modes_accuracy_length = len(built)
+    end function modes_accuracy_length
+
+    !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
+    !> modes with the upper residual.
+    pure function modes_accuracy(structure, with_upper) result(text)
+        type(green_structure), intent(in) :: structure
+        logical, intent(in) :: with_upper
+        character(len=modes_accuracy_length(structure, with_upper)) :: text
+
+        character(len=:), allocatable :: built
+
+        call modes_accuracy_build(structure, with_upper, built)
+        text = built
     end function modes_accuracy
 
 end module greenconv_conv_green_file
