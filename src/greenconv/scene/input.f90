@@ -176,13 +176,20 @@ contains
         !> Road files and textures read before (see `read_scene_lines`).
         type(scene_files), intent(inout), optional :: files
 
-        call read_scene_group(source, group_defaults('scene'), this, error)
-        if (.not. allocated(error)) call read_structure_group(source, group_defaults('structure'), this, error)
-        if (.not. allocated(error)) call read_identification_group(source, group_defaults('identification'), &
-                                                                   this, error)
-        if (.not. allocated(error)) call read_road_group(source, group_defaults('road'), this, error, files)
-        if (.not. allocated(error)) call read_contact_group(source, group_defaults('contact'), this, error)
-        if (.not. allocated(error)) call read_convolution_group(source, group_defaults('convolution'), this, error)
+        character(len=:), allocatable :: defaults
+
+        call group_defaults('scene', defaults)
+        call read_scene_group(source, defaults, this, error)
+        call group_defaults('structure', defaults)
+        if (.not. allocated(error)) call read_structure_group(source, defaults, this, error)
+        call group_defaults('identification', defaults)
+        if (.not. allocated(error)) call read_identification_group(source, defaults, this, error)
+        call group_defaults('road', defaults)
+        if (.not. allocated(error)) call read_road_group(source, defaults, this, error, files)
+        call group_defaults('contact', defaults)
+        if (.not. allocated(error)) call read_contact_group(source, defaults, this, error)
+        call group_defaults('convolution', defaults)
+        if (.not. allocated(error)) call read_convolution_group(source, defaults, this, error)
     end subroutine read_groups
 
     !> &scene: task, name, output_dir, dt [s], n_steps, output_every, output_format, progress.

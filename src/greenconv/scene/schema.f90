@@ -578,11 +578,11 @@ contains
     !> ("&road profile='sine', amplitude=1.0e-3, ... /"), read before the file's group. A
     !> default that is a formula of other variables (`1/(2*dt)`, `mass*gravity`) and the list
     !> of methods (no default) are left out: the group's reader sets them.
-    function group_defaults(group) result(record)
+    subroutine group_defaults(group, record)
         !> Group name, lower case.
         character(len=*), intent(in) :: group
         !> The record.
-        character(len=:), allocatable :: record
+        character(len=:), allocatable, intent(out) :: record
 
         character(len=:), allocatable :: value
         integer :: i
@@ -598,7 +598,7 @@ contains
             record = record//' '//table_copy(i)%name//'='//value//','
         end do
         record = record//' /'
-    end function group_defaults
+    end subroutine group_defaults
 
     !> Give a namelist variable its default from the table (a real, integer, logical or text).
     subroutine scene_default(group, name, value)
