@@ -44,18 +44,27 @@ contains
         end if
     end function finish
 
-    !> A NUL-terminated C string as Fortran text (empty for NULL).
+    !> Length of a NUL-terminated C string (0 for NULL).
+    pure integer function c_length(text)
+        !> A NUL-terminated C string, or NULL.
+        type(c_ptr), intent(in) :: text
+
+        c_length = 0
+        if (c_associated(text)) c_length = int(c_strlen(text))
+    end function c_length
+
+    !> A NUL-terminated C string as Fortran text (empty for NULL). Its length is a specification
+    !> expression, not a deferred length (see greenconv_core_text on threads).
     function from_c(text) result(fortran_text)
         !> A NUL-terminated C string, or NULL.
         type(c_ptr), intent(in) :: text
-        character(len=:), allocatable :: fortran_text
+        !> The text.
+        character(len=c_length(text)) :: fortran_text
 
         character(kind=c_char), pointer :: chars(:)
         integer :: i, n
 
-        n = 0
-        if (c_associated(text)) n = int(c_strlen(text))
-        allocate (character(len=n) :: fortran_text)
+        n = len(fortran_text)
         if (n == 0) return
         call c_f_pointer(text, chars, [n])
         do i = 1, n

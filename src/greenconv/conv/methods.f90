@@ -90,6 +90,16 @@ module greenconv_conv_methods
     !> Number of methods in the registry.
     integer, parameter :: n_methods = size(registry)
 
+
+    !> The method names for messages, quoted, aliases after their method: all of them
+    !> (`method_list()`), those for one kind of contact (`method_list(multi_point)`) or those
+    !> one engine steps (`method_list(engine=...)`).
+    interface method_list
+        module procedure method_list_all
+        module procedure method_list_for
+        module procedure method_list_of
+    end interface method_list
+
 contains
 
     !> Whether `name` is a method of the registry (trailing blanks ignored).
@@ -100,17 +110,40 @@ contains
         is_method = find(name) > 0
     end function is_method
 
-    !> The method a name runs: the method itself, or the one it is an alias of (`modal`
-    !> gives `recursive`); '' for an unknown name.
-    function canonical_method(name) result(canonical)
+    !> `canonical_method` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine canonical_method_build(name, canonical)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=:), allocatable :: canonical
+        character(len=:), allocatable, intent(out) :: canonical
 
         type(method_entry) :: entry
 
         entry = entry_of(name)
         canonical = trim(entry%canonical)
+    end subroutine canonical_method_build
+
+    !> Length of the text `canonical_method` gives.
+    pure integer function canonical_method_length(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        character(len=:), allocatable :: built
+
+        call canonical_method_build(name, built)
+        canonical_method_length = len(built)
+    end function canonical_method_length
+
+    !> The method a name runs: the method itself, or the one it is an alias of (`modal`
+    !> gives `recursive`); '' for an unknown name.
+    pure function canonical_method(name) result(canonical)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=canonical_method_length(name)) :: canonical
+
+        character(len=:), allocatable :: built
+
+        call canonical_method_build(name, built)
+        canonical = built
     end function canonical_method
 
     !> The names of the methods, in the registry's order (blank-padded to `method_name_length`).
@@ -120,34 +153,132 @@ contains
         names(:) = registry%name
     end function method_names
 
+    !> `method_list_all` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine method_list_all_build(text)
+        character(len=:), allocatable, intent(out) :: text
+
+        text = joined(spread(.true., 1, n_methods))
+    end subroutine method_list_all_build
+
+    !> Length of the text `method_list_all` gives.
+    pure integer function method_list_all_length()
+
+        character(len=:), allocatable :: built
+
+        call method_list_all_build(built)
+        method_list_all_length = len(built)
+    end function method_list_all_length
+
     !> The method names for messages, "'direct', 'fft', ... or 'auto'"; with `multi_point`
     !> present, only those that serve single-point (false) or multi-point (true) contact.
-    function method_list(multi_point, engine) result(text)
+    !> (Every method.)
+    pure function method_list_all() result(text)
+        character(len=method_list_all_length()) :: text
+
+        character(len=:), allocatable :: built
+
+        call method_list_all_build(built)
+        text = built
+    end function method_list_all
+
+    !> `method_list_for` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine method_list_for_build(multi_point, text)
         !> Keep only the methods for this kind of contact.
-        logical, intent(in), optional :: multi_point
-        !> Keep only the methods this engine steps (see `method_engine`).
-        character(len=*), intent(in), optional :: engine
-        character(len=:), allocatable :: text
+        logical, intent(in) :: multi_point
+        character(len=:), allocatable, intent(out) :: text
 
-        logical :: keep(n_methods)
+        text = joined(merge(registry%multi_point, registry%single_point, multi_point))
+    end subroutine method_list_for_build
 
-        keep(:) = .true.
-        if (present(multi_point)) keep = keep .and. merge(registry%multi_point, registry%single_point, multi_point)
-        if (present(engine)) keep = keep .and. registry%engine == engine
-        text = joined(keep)
-    end function method_list
+    !> Length of the text `method_list_for` gives.
+    pure integer function method_list_for_length(multi_point)
+        !> Keep only the methods for this kind of contact.
+        logical, intent(in) :: multi_point
 
-    !> The engine that steps a method: `direct`, `fft`, `paper` or `recursive`; '' for `auto`
-    !> (it picks another method) and for an unknown name.
-    function method_engine(name) result(engine)
+        character(len=:), allocatable :: built
+
+        call method_list_for_build(multi_point, built)
+        method_list_for_length = len(built)
+    end function method_list_for_length
+
+    !> (The methods for one kind of contact: several points when `multi_point`, else one.)
+    pure function method_list_for(multi_point) result(text)
+        !> Keep only the methods for this kind of contact.
+        logical, intent(in) :: multi_point
+        character(len=method_list_for_length(multi_point)) :: text
+
+        character(len=:), allocatable :: built
+
+        call method_list_for_build(multi_point, built)
+        text = built
+    end function method_list_for
+
+    !> `method_list_of` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine method_list_of_build(engine, text)
+        !> Keep only the methods this engine steps.
+        character(len=*), intent(in) :: engine
+        character(len=:), allocatable, intent(out) :: text
+
+        text = joined(registry%engine == engine)
+    end subroutine method_list_of_build
+
+    !> Length of the text `method_list_of` gives.
+    pure integer function method_list_of_length(engine)
+        !> Keep only the methods this engine steps.
+        character(len=*), intent(in) :: engine
+
+        character(len=:), allocatable :: built
+
+        call method_list_of_build(engine, built)
+        method_list_of_length = len(built)
+    end function method_list_of_length
+
+    !> (The methods one engine steps, see `method_engine`.)
+    pure function method_list_of(engine) result(text)
+        !> Keep only the methods this engine steps.
+        character(len=*), intent(in) :: engine
+        character(len=method_list_of_length(engine)) :: text
+
+        character(len=:), allocatable :: built
+
+        call method_list_of_build(engine, built)
+        text = built
+    end function method_list_of
+
+    !> `method_engine` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine method_engine_build(name, engine)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=:), allocatable :: engine
+        character(len=:), allocatable, intent(out) :: engine
 
         type(method_entry) :: entry
 
         entry = entry_of(name)
         engine = trim(entry%engine)
+    end subroutine method_engine_build
+
+    !> Length of the text `method_engine` gives.
+    pure integer function method_engine_length(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        character(len=:), allocatable :: built
+
+        call method_engine_build(name, built)
+        method_engine_length = len(built)
+    end function method_engine_length
+
+    !> The engine that steps a method: `direct`, `fft`, `paper` or `recursive`; '' for `auto`
+    !> (it picks another method) and for an unknown name.
+    pure function method_engine(name) result(engine)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=method_engine_length(name)) :: engine
+
+        character(len=:), allocatable :: built
+
+        call method_engine_build(name, built)
+        engine = built
     end function method_engine
 
     !> The scheme a method's constructor dispatches on (`scheme_direct`, ..., `scheme_auto`),
@@ -172,16 +303,39 @@ contains
         is_modal_recursion = method_engine(name) == 'recursive'
     end function is_modal_recursion
 
-    !> What a method computes, in one line; '' for an unknown name.
-    function method_summary(name) result(text)
+    !> `method_summary` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine method_summary_build(name, text)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         type(method_entry) :: entry
 
         entry = entry_of(name)
         text = trim(entry%summary)
+    end subroutine method_summary_build
+
+    !> Length of the text `method_summary` gives.
+    pure integer function method_summary_length(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        character(len=:), allocatable :: built
+
+        call method_summary_build(name, built)
+        method_summary_length = len(built)
+    end function method_summary_length
+
+    !> What a method computes, in one line; '' for an unknown name.
+    pure function method_summary(name) result(text)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        character(len=method_summary_length(name)) :: text
+
+        character(len=:), allocatable :: built
+
+        call method_summary_build(name, built)
+        text = built
     end function method_summary
 
     !> Whether a method needs the sampled g (`direct`, `fft`, and `auto`, which samples it to
@@ -277,17 +431,36 @@ contains
         end do
     end function find
 
-    !> The methods that need g alone, "'direct' or 'fft'".
-    function g_only_list() result(text)
-        character(len=:), allocatable :: text
+    !> `g_only_list` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine g_only_list_build(text)
+        character(len=:), allocatable, intent(out) :: text
 
         text = joined(registry%needs_g .and. .not. registry%needs_modes)
+    end subroutine g_only_list_build
+
+    !> Length of the text `g_only_list` gives.
+    pure integer function g_only_list_length()
+
+        character(len=:), allocatable :: built
+
+        call g_only_list_build(built)
+        g_only_list_length = len(built)
+    end function g_only_list_length
+
+    !> The methods that need g alone, "'direct' or 'fft'".
+    pure function g_only_list() result(text)
+        character(len=g_only_list_length()) :: text
+
+        character(len=:), allocatable :: built
+
+        call g_only_list_build(built)
+        text = built
     end function g_only_list
 
-    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
-    function joined(keep) result(text)
+    !> `joined` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine joined_build(keep, text)
         logical, intent(in) :: keep(n_methods)
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         integer :: i, k, n
 
@@ -304,6 +477,27 @@ contains
             end if
             text = text//"'"//trim(registry(i)%name)//"'"
         end do
+    end subroutine joined_build
+
+    !> Length of the text `joined` gives.
+    pure integer function joined_length(keep)
+        logical, intent(in) :: keep(n_methods)
+
+        character(len=:), allocatable :: built
+
+        call joined_build(keep, built)
+        joined_length = len(built)
+    end function joined_length
+
+    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
+    pure function joined(keep) result(text)
+        logical, intent(in) :: keep(n_methods)
+        character(len=joined_length(keep)) :: text
+
+        character(len=:), allocatable :: built
+
+        call joined_build(keep, built)
+        text = built
     end function joined
 
 end module greenconv_conv_methods

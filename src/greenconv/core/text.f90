@@ -1,4 +1,10 @@
 !> Numbers as text for messages and summaries, and names in one case.
+!>
+!> Every function here returns a result whose length is a specification expression (computed
+!> by formatting into a fixed buffer first), never a deferred length: gfortran keeps the length
+!> of a deferred-length function result in a static variable at each call site, which two
+!> threads running the same code would share (issue 24). Each text is formatted twice, once for
+!> its length; these texts are messages and summaries, not hot paths.
 module greenconv_core_text
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
@@ -13,13 +19,144 @@ module greenconv_core_text
         module procedure long_int_text
     end interface int_text
 
+    !> Length of the buffers the numbers are formatted into.
+    integer, parameter :: buffer_length = 48
+
 contains
+
+    !> An integer's digits, left-justified in `buffer`, and how many characters they take.
+    pure subroutine format_int(i, buffer, used)
+        integer(int64), intent(in) :: i
+        character(len=buffer_length), intent(out) :: buffer
+        integer, intent(out) :: used
+
+        write (buffer, '(i0)') i
+        used = len_trim(buffer)
+    end subroutine format_int
+
+    !> Number of characters of an integer's text.
+    pure integer function int_length(i)
+        !> The integer.
+        integer(int64), intent(in) :: i
+
+        character(len=buffer_length) :: buffer
+
+        call format_int(i, buffer, int_length)
+    end function int_length
+
+    !> `sci_digits` into a fixed buffer, and how many characters it takes.
+    pure subroutine format_sci(x, digits, buffer, used)
+        real(dp), intent(in) :: x
+        integer, intent(in) :: digits
+        character(len=buffer_length), intent(out) :: buffer
+        integer, intent(out) :: used
+
+        character(len=24) :: form
+        integer :: mark
+
+        write (form, '(a,i0,a,i0,a)') '(es', digits + 9, '.', digits, 'e3)'
+        write (buffer, form) x
+        buffer = adjustl(buffer)
+        used = len_trim(buffer)
+        mark = index(buffer(:used), 'E')
+        if (mark > 0 .and. mark + 2 <= used) then
+            if (buffer(mark + 2:mark + 2) == '0') then
+                buffer = buffer(:mark + 1)//buffer(mark + 3:)
+                used = used - 1
+            end if
+        end if
+    end subroutine format_sci
+
+    !> Number of characters of `sci_digits`.
+    pure integer function sci_length(x, digits)
+        !> The real.
+        real(dp), intent(in) :: x
+        !> Digits after the decimal point.
+        integer, intent(in) :: digits
+
+        character(len=buffer_length) :: buffer
+
+        call format_sci(x, digits, buffer, sci_length)
+    end function sci_length
+
+    !> `trimmed_real_text` into a fixed buffer, and how many characters it takes.
+    pure subroutine format_trimmed(x, low, high, plain_digits, science_digits, buffer, used)
+        real(dp), intent(in) :: x, low, high
+        integer, intent(in) :: plain_digits, science_digits
+        character(len=buffer_length), intent(out) :: buffer
+        integer, intent(out) :: used
+
+        character(len=buffer_length) :: text
+        character(len=12) :: form
+        integer :: mark, last, n
+
+        if (abs(x) < tiny(x) .or. (abs(x) >= low .and. abs(x) < high)) then
+            write (form, '(a,i0,a)') '(f0.', plain_digits, ')'
+            write (text, form) x
+            text = adjustl(text)
+        else
+            call format_sci(x, science_digits, text, n)
+        end if
+        n = len_trim(text)
+        if (text(1:1) == '.') then
+            text = '0'//text
+            n = n + 1
+        end if
+        if (text(1:2) == '-.') then
+            text = '-0'//text(2:)
+            n = n + 1
+        end if
+        mark = scan(text(:n), 'E')
+        if (mark == 0) mark = n + 1
+        last = mark - 1
+        do while (last > 2 .and. text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
+            last = last - 1
+        end do
+        buffer = text(:last)//text(mark:n)
+        used = last + (n - mark + 1)
+    end subroutine format_trimmed
+
+    !> Number of characters of `trimmed_real_text`.
+    pure integer function trimmed_length(x, low, high, plain_digits, science_digits)
+        !> The real.
+        real(dp), intent(in) :: x
+        !> Smallest magnitude written plainly (zero aside), in the unit of x.
+        real(dp), intent(in) :: low
+        !> Magnitude from which on x is written in scientific notation, in the unit of x.
+        real(dp), intent(in) :: high
+        !> Decimals of the plain notation.
+        integer, intent(in) :: plain_digits
+        !> Digits after the point of the scientific notation.
+        integer, intent(in) :: science_digits
+
+        character(len=buffer_length) :: buffer
+
+        call format_trimmed(x, low, high, plain_digits, science_digits, buffer, trimmed_length)
+    end function trimmed_length
+
+    !> The fewest significant digits (1 to 17) whose scientific text reads back to x.
+    pure integer function exact_digits(x)
+        !> The number.
+        real(dp), intent(in) :: x
+
+        character(len=buffer_length) :: buffer
+        real(dp) :: back
+        integer :: used, status
+
+        do exact_digits = 1, 17
+            call format_sci(x, exact_digits - 1, buffer, used)
+            read (buffer(:used), *, iostat=status) back
+            if (status == 0 .and. back == x) exit
+        end do
+        exact_digits = min(exact_digits, 17)
+    end function exact_digits
 
     !> A default integer as text, without blanks.
     pure function default_int_text(i) result(text)
         !> The integer.
         integer, intent(in) :: i
-        character(len=:), allocatable :: text
+        !> Its digits, with a sign when negative.
+        character(len=int_length(int(i, int64))) :: text
 
         text = long_int_text(int(i, int64))
     end function default_int_text
@@ -28,12 +165,14 @@ contains
     pure function long_int_text(i) result(text)
         !> The integer.
         integer(int64), intent(in) :: i
-        character(len=:), allocatable :: text
+        !> Its digits, with a sign when negative.
+        character(len=int_length(i)) :: text
 
-        character(len=24) :: buffer
+        character(len=buffer_length) :: buffer
+        integer :: used
 
-        write (buffer, '(i0)') i
-        text = trim(buffer)
+        call format_int(i, buffer, used)
+        text = buffer(:used)
     end function long_int_text
 
     !> A real with up to ten significant digits, without blanks and without the trailing
@@ -42,7 +181,8 @@ contains
     pure function real_text(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
+        !> Its text.
+        character(len=trimmed_length(x, 0.1_dp, 1.0e7_dp, 9, 9)) :: text
 
         text = trimmed_real_text(x, 0.1_dp, 1.0e7_dp, 9, 9)
     end function real_text
@@ -62,35 +202,22 @@ contains
         integer, intent(in) :: plain_digits
         !> Digits after the point of the scientific notation before the zeros are removed.
         integer, intent(in) :: science_digits
-        character(len=:), allocatable :: text
+        !> Its text.
+        character(len=trimmed_length(x, low, high, plain_digits, science_digits)) :: text
 
-        character(len=32) :: buffer
-        character(len=12) :: form
-        integer :: mark, last
+        character(len=buffer_length) :: buffer
+        integer :: used
 
-        if (abs(x) < tiny(x) .or. (abs(x) >= low .and. abs(x) < high)) then
-            write (form, '(a,i0,a)') '(f0.', plain_digits, ')'
-            write (buffer, form) x
-            text = trim(adjustl(buffer))
-        else
-            text = sci_digits(x, science_digits)
-        end if
-        if (text(1:1) == '.') text = '0'//text
-        if (text(1:2) == '-.') text = '-0'//text(2:)
-        mark = scan(text, 'E')
-        if (mark == 0) mark = len(text) + 1
-        last = mark - 1
-        do while (text(last:last) == '0' .and. text(last - 1:last - 1) /= '.')
-            last = last - 1
-        end do
-        text = text(:last)//text(mark:)
+        call format_trimmed(x, low, high, plain_digits, science_digits, buffer, used)
+        text = buffer(:used)
     end function trimmed_real_text
 
     !> A real in short scientific notation (three significant digits), without blanks.
     pure function sci_text(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
+        !> Its text.
+        character(len=sci_length(x, 2)) :: text
 
         text = sci_digits(x, 2)
     end function sci_text
@@ -104,30 +231,26 @@ contains
         real(dp), intent(in) :: x
         !> Digits after the decimal point (0 to 20).
         integer, intent(in) :: digits
-        character(len=:), allocatable :: text
+        !> Its text.
+        character(len=sci_length(x, digits)) :: text
 
-        character(len=40) :: buffer
-        character(len=24) :: form
-        integer :: mark
+        character(len=buffer_length) :: buffer
+        integer :: used
 
-        write (form, '(a,i0,a,i0,a)') '(es', digits + 9, '.', digits, 'e3)'
-        write (buffer, form) x
-        text = trim(adjustl(buffer))
-        mark = index(text, 'E')
-        if (mark > 0 .and. mark + 2 <= len(text)) then
-            if (text(mark + 2:mark + 2) == '0') text = text(:mark + 1)//text(mark + 3:)
-        end if
+        call format_sci(x, digits, buffer, used)
+        text = buffer(:used)
     end function sci_digits
 
     !> Text with the letters A-Z in lower case and trailing blanks removed.
     pure function lower_text(text) result(lower)
         !> The text.
         character(len=*), intent(in) :: text
-        character(len=:), allocatable :: lower
+        !> The same letters in lower case.
+        character(len=len_trim(text)) :: lower
 
         integer :: i, code
 
-        lower = trim(text)
+        lower = text
         do i = 1, len(lower)
             code = iachar(lower(i:i))
             if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
@@ -140,16 +263,10 @@ contains
     function exact_text(x) result(text)
         !> The number.
         real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
+        !> Its text.
+        character(len=sci_length(x, exact_digits(x) - 1)) :: text
 
-        real(dp) :: back
-        integer :: digits, status
-
-        do digits = 1, 17
-            text = sci_digits(x, digits - 1)
-            read (text, *, iostat=status) back
-            if (status == 0 .and. back == x) exit
-        end do
+        text = sci_digits(x, exact_digits(x) - 1)
     end function exact_text
 
 end module greenconv_core_text

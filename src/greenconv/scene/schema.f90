@@ -426,13 +426,13 @@ contains
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
-    !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
-    function required_text(variable, when) result(text)
+    !> `required_text` built into an allocatable (see greenconv_core_text on static string lengths).
+    pure subroutine required_text_build(variable, when, text)
         !> The table row.
         type(scene_variable), intent(in) :: variable
         !> The condition that makes it required ('always': none to name).
         character(len=*), intent(in) :: when
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         text = variable%meaning
         if (len(variable%units) > 0) text = text//' in '//variable%units
@@ -441,6 +441,33 @@ contains
         else
             text = text//' (required for '//when//')'
         end if
+    end subroutine required_text_build
+
+    !> Length of the text `required_text` gives.
+    pure integer function required_text_length(variable, when)
+        !> The table row.
+        type(scene_variable), intent(in) :: variable
+        !> The condition that makes it required ('always': none to name).
+        character(len=*), intent(in) :: when
+
+        character(len=:), allocatable :: built
+
+        call required_text_build(variable, when, built)
+        required_text_length = len(built)
+    end function required_text_length
+
+    !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
+    pure function required_text(variable, when) result(text)
+        !> The table row.
+        type(scene_variable), intent(in) :: variable
+        !> The condition that makes it required ('always': none to name).
+        character(len=*), intent(in) :: when
+        character(len=required_text_length(variable, when)) :: text
+
+        character(len=:), allocatable :: built
+
+        call required_text_build(variable, when, built)
+        text = built
     end function required_text
 
     !> The required groups and values, in table order: a group, then its variables.
@@ -551,11 +578,11 @@ contains
     !> ("&road profile='sine', amplitude=1.0e-3, ... /"), read before the file's group. A
     !> default that is a formula of other variables (`1/(2*dt)`, `mass*gravity`) and the list
     !> of methods (no default) are left out: the group's reader sets them.
-    function group_defaults(group) result(record)
+    subroutine group_defaults(group, record)
         !> Group name, lower case.
         character(len=*), intent(in) :: group
         !> The record.
-        character(len=:), allocatable :: record
+        character(len=:), allocatable, intent(out) :: record
 
         character(len=:), allocatable :: value
         integer :: i
@@ -571,7 +598,7 @@ contains
             record = record//' '//table_copy(i)%name//'='//value//','
         end do
         record = record//' /'
-    end function group_defaults
+    end subroutine group_defaults
 
     !> Give a namelist variable its default from the table (a real, integer, logical or text).
     subroutine scene_default(group, name, value)
