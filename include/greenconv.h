@@ -32,9 +32,9 @@
  * when an "fft" convolver first runs and when it is freed) from any thread. A build without
  * OpenMP (e.g. fpm's default) leaves that to the caller: create, first run and free "fft"
  * convolvers from one thread at a time, or call fftw_make_planner_thread_safe() first.
- * Known limit (doc/library.md, "Threads"): calls that build or fail with a message (constructors, file
- * readers) in two threads at once can cut a message or crash (a static string length); make them from
- * one thread at a time until this is fixed.
+ * Known limit (doc/library.md, "Threads"): building, stepping and refusing convolvers from two threads
+ * is checked (make thread-stress, thread-helgrind); scene and universal files are read through code that
+ * still shares a static string length between threads: read them from one thread at a time.
  *
  * The convolution (eq. 20 of the paper): a convolver holds the force history q(t_m) [N]
  * pushed so far and gives the displacement

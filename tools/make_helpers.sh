@@ -117,7 +117,7 @@ as_root() {
 
 cmd_deps() {
     local missing=() packages=(gfortran liblapack-dev libblas-dev libfftw3-dev gnuplot-nox pkg-config openmpi-bin
-                               libopenmpi-dev)
+                               libopenmpi-dev valgrind)
     command -v gfortran >/dev/null 2>&1 || missing+=(gfortran)
     have_lib lapack || missing+=(LAPACK)
     have_lib blas || missing+=(BLAS)
@@ -126,6 +126,8 @@ cmd_deps() {
     command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
     # OpenMPI for the MPI driver of sweeps (make mpi, make sweep-test).
     command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1 || missing+=(OpenMPI)
+    # valgrind's helgrind for the two-thread check of make test (make thread-helgrind).
+    command -v valgrind >/dev/null 2>&1 || missing+=(valgrind)
     # fpm comes from pip; without python3/pip, apt brings them along.
     if ! have_fpm && ! have_pip; then
         missing+=(pip)

@@ -409,83 +409,35 @@ contains
         call fatal_error(fault, message, stat_numerical)
     end subroutine step_fault
 
-    !> `where` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine where_build(state, point, text)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        character(len=:), allocatable, intent(out) :: text
-
-        text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
-        if (size(state%laws) > 1 .and. point > 0) text = text//' at point '//int_text(point)
-    end subroutine where_build
-
-    !> Length of the text `where` gives.
-    pure integer function where_length(state, point)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-
-        character(len=:), allocatable :: built
-
-        call where_build(state, point, built)
-        where_length = len(built)
-    end function where_length
-
     !> "at step n (t = t_n s)", and " at point i" when the run has more than one point and
     !> i > 0.
     pure function where(state, point) result(text)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
-        character(len=where_length(state, point)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call where_build(state, point, built)
-        text = built
+        text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
+        if (size(state%laws) > 1 .and. point > 0) text = text//' at point '//int_text(point)
     end function where
-
-    !> `convergence_message` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine convergence_message_build(state, point, residual, message)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        real(dp), intent(in) :: residual
-        character(len=:), allocatable, intent(out) :: message
-
-        message = 'implicit contact step did not converge '//where(state, point)//': residual |r| = ' &
-                  //sci_text(abs(residual))//' m after '//int_text(state%settings%max_iterations) &
-                  //' iterations (tolerance '//sci_text(state%settings%tolerance)//' of the compression scale)'
-    end subroutine convergence_message_build
-
-    !> Length of the text `convergence_message` gives.
-    pure integer function convergence_message_length(state, point, residual)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        real(dp), intent(in) :: residual
-
-        character(len=:), allocatable :: built
-
-        call convergence_message_build(state, point, residual, built)
-        convergence_message_length = len(built)
-    end function convergence_message_length
 
     !> One line on an implicit step that did not converge: where, and the residual left [m].
     pure function convergence_message(state, point, residual) result(message)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
         real(dp), intent(in) :: residual
-        character(len=convergence_message_length(state, point, residual)) :: message
+        character(len=:), allocatable :: message
 
-        character(len=:), allocatable :: built
-
-        call convergence_message_build(state, point, residual, built)
-        message = built
+        message = 'implicit contact step did not converge '//where(state, point)//': residual |r| = ' &
+                  //sci_text(abs(residual))//' m after '//int_text(state%settings%max_iterations) &
+                  //' iterations (tolerance '//sci_text(state%settings%tolerance)//' of the compression scale)'
     end function convergence_message
 
-    !> `divergence_message` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine divergence_message_build(state, point, u, message)
+    !> One line on a divergent run at a point: where, how large, and what to change.
+    pure function divergence_message(state, point, u) result(message)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
         real(dp), intent(in) :: u
-        character(len=:), allocatable, intent(out) :: message
+        character(len=:), allocatable :: message
 
         message = 'contact run diverged '//where(state, point)//': '
         if (ieee_is_finite(u)) then
@@ -508,31 +460,6 @@ contains
             message = message//'the explicit step is stable only for omega_c*dt < 2: reduce dt below ' &
                       //'~2/omega_c or use scheme = ''implicit'' with an engine whose w0 > 0 (exact)'
         end if
-    end subroutine divergence_message_build
-
-    !> Length of the text `divergence_message` gives.
-    pure integer function divergence_message_length(state, point, u)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        real(dp), intent(in) :: u
-
-        character(len=:), allocatable :: built
-
-        call divergence_message_build(state, point, u, built)
-        divergence_message_length = len(built)
-    end function divergence_message_length
-
-    !> One line on a divergent run at a point: where, how large, and what to change.
-    pure function divergence_message(state, point, u) result(message)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        real(dp), intent(in) :: u
-        character(len=divergence_message_length(state, point, u)) :: message
-
-        character(len=:), allocatable :: built
-
-        call divergence_message_build(state, point, u, built)
-        message = built
     end function divergence_message
 
 end module greenconv_contact_step

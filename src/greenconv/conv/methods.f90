@@ -91,7 +91,7 @@ module greenconv_conv_methods
     integer, parameter :: n_methods = size(registry)
 
 
-    !> The method names for messages, quoted, aliases after their method: all of them
+    !> The method names for messages, "'direct', 'fft', ... or 'auto'": all of them
     !> (`method_list()`), those for one kind of contact (`method_list(multi_point)`) or those
     !> one engine steps (`method_list(engine=...)`).
     interface method_list
@@ -100,7 +100,45 @@ module greenconv_conv_methods
         module procedure method_list_of
     end interface method_list
 
+    !> Fields of a method's entry for `entry_field`.
+    integer, parameter :: field_canonical = 1, field_engine = 2, field_summary = 3
+
 contains
+
+    !> Length of `joined(keep)`: the quoted names kept, ", " between them and " or " before the
+    !> last (texts whose length is a specification expression: see greenconv_core_text).
+    pure integer function joined_length(keep)
+        !> Which methods of the registry to name.
+        logical, intent(in) :: keep(n_methods)
+
+        integer :: n
+
+        n = count(keep)
+        joined_length = sum(len_trim(registry%name) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
+    end function joined_length
+
+    !> One text field of a method's entry (`field_canonical`, `field_engine`, `field_summary`),
+    !> blank-padded; blank for an unknown name.
+    pure function entry_field(name, which) result(field)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        !> Which field.
+        integer, intent(in) :: which
+        !> The field.
+        character(len=96) :: field
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        select case (which)
+        case (field_canonical)
+            field = entry%canonical
+        case (field_engine)
+            field = entry%engine
+        case default
+            field = entry%summary
+        end select
+    end function entry_field
 
     !> Whether `name` is a method of the registry (trailing blanks ignored).
     elemental logical function is_method(name)
@@ -110,40 +148,15 @@ contains
         is_method = find(name) > 0
     end function is_method
 
-    !> `canonical_method` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine canonical_method_build(name, canonical)
-        !> A method name.
-        character(len=*), intent(in) :: name
-        character(len=:), allocatable, intent(out) :: canonical
-
-        type(method_entry) :: entry
-
-        entry = entry_of(name)
-        canonical = trim(entry%canonical)
-    end subroutine canonical_method_build
-
-    !> Length of the text `canonical_method` gives.
-    pure integer function canonical_method_length(name)
-        !> A method name.
-        character(len=*), intent(in) :: name
-
-        character(len=:), allocatable :: built
-
-        call canonical_method_build(name, built)
-        canonical_method_length = len(built)
-    end function canonical_method_length
-
     !> The method a name runs: the method itself, or the one it is an alias of (`modal`
     !> gives `recursive`); '' for an unknown name.
     pure function canonical_method(name) result(canonical)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=canonical_method_length(name)) :: canonical
+        !> The method it runs.
+        character(len=len_trim(entry_field(name, field_canonical))) :: canonical
 
-        character(len=:), allocatable :: built
-
-        call canonical_method_build(name, built)
-        canonical = built
+        canonical = entry_field(name, field_canonical)
     end function canonical_method
 
     !> The names of the methods, in the registry's order (blank-padded to `method_name_length`).
@@ -153,132 +166,43 @@ contains
         names(:) = registry%name
     end function method_names
 
-    !> `method_list_all` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine method_list_all_build(text)
-        character(len=:), allocatable, intent(out) :: text
+    !> Every method name for messages, "'direct', 'fft', ... or 'auto'".
+    pure function method_list_all() result(text)
+        !> The names.
+        character(len=joined_length(spread(.true., 1, n_methods))) :: text
 
         text = joined(spread(.true., 1, n_methods))
-    end subroutine method_list_all_build
-
-    !> Length of the text `method_list_all` gives.
-    pure integer function method_list_all_length()
-
-        character(len=:), allocatable :: built
-
-        call method_list_all_build(built)
-        method_list_all_length = len(built)
-    end function method_list_all_length
-
-    !> The method names for messages, "'direct', 'fft', ... or 'auto'"; with `multi_point`
-    !> present, only those that serve single-point (false) or multi-point (true) contact.
-    !> (Every method.)
-    pure function method_list_all() result(text)
-        character(len=method_list_all_length()) :: text
-
-        character(len=:), allocatable :: built
-
-        call method_list_all_build(built)
-        text = built
     end function method_list_all
 
-    !> `method_list_for` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine method_list_for_build(multi_point, text)
-        !> Keep only the methods for this kind of contact.
-        logical, intent(in) :: multi_point
-        character(len=:), allocatable, intent(out) :: text
-
-        text = joined(merge(registry%multi_point, registry%single_point, multi_point))
-    end subroutine method_list_for_build
-
-    !> Length of the text `method_list_for` gives.
-    pure integer function method_list_for_length(multi_point)
-        !> Keep only the methods for this kind of contact.
-        logical, intent(in) :: multi_point
-
-        character(len=:), allocatable :: built
-
-        call method_list_for_build(multi_point, built)
-        method_list_for_length = len(built)
-    end function method_list_for_length
-
-    !> (The methods for one kind of contact: several points when `multi_point`, else one.)
+    !> The method names that serve single-point (`multi_point` false) or multi-point contact.
     pure function method_list_for(multi_point) result(text)
         !> Keep only the methods for this kind of contact.
         logical, intent(in) :: multi_point
-        character(len=method_list_for_length(multi_point)) :: text
+        !> The names.
+        character(len=joined_length(merge(registry%multi_point, registry%single_point, multi_point))) :: text
 
-        character(len=:), allocatable :: built
-
-        call method_list_for_build(multi_point, built)
-        text = built
+        text = joined(merge(registry%multi_point, registry%single_point, multi_point))
     end function method_list_for
 
-    !> `method_list_of` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine method_list_of_build(engine, text)
-        !> Keep only the methods this engine steps.
-        character(len=*), intent(in) :: engine
-        character(len=:), allocatable, intent(out) :: text
-
-        text = joined(registry%engine == engine)
-    end subroutine method_list_of_build
-
-    !> Length of the text `method_list_of` gives.
-    pure integer function method_list_of_length(engine)
-        !> Keep only the methods this engine steps.
-        character(len=*), intent(in) :: engine
-
-        character(len=:), allocatable :: built
-
-        call method_list_of_build(engine, built)
-        method_list_of_length = len(built)
-    end function method_list_of_length
-
-    !> (The methods one engine steps, see `method_engine`.)
+    !> The method names one engine steps (see `method_engine`).
     pure function method_list_of(engine) result(text)
         !> Keep only the methods this engine steps.
         character(len=*), intent(in) :: engine
-        character(len=method_list_of_length(engine)) :: text
+        !> The names.
+        character(len=joined_length(registry%engine == engine)) :: text
 
-        character(len=:), allocatable :: built
-
-        call method_list_of_build(engine, built)
-        text = built
+        text = joined(registry%engine == engine)
     end function method_list_of
-
-    !> `method_engine` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine method_engine_build(name, engine)
-        !> A method name.
-        character(len=*), intent(in) :: name
-        character(len=:), allocatable, intent(out) :: engine
-
-        type(method_entry) :: entry
-
-        entry = entry_of(name)
-        engine = trim(entry%engine)
-    end subroutine method_engine_build
-
-    !> Length of the text `method_engine` gives.
-    pure integer function method_engine_length(name)
-        !> A method name.
-        character(len=*), intent(in) :: name
-
-        character(len=:), allocatable :: built
-
-        call method_engine_build(name, built)
-        method_engine_length = len(built)
-    end function method_engine_length
 
     !> The engine that steps a method: `direct`, `fft`, `paper` or `recursive`; '' for `auto`
     !> (it picks another method) and for an unknown name.
     pure function method_engine(name) result(engine)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=method_engine_length(name)) :: engine
+        !> Its engine.
+        character(len=len_trim(entry_field(name, field_engine))) :: engine
 
-        character(len=:), allocatable :: built
-
-        call method_engine_build(name, built)
-        engine = built
+        engine = entry_field(name, field_engine)
     end function method_engine
 
     !> The scheme a method's constructor dispatches on (`scheme_direct`, ..., `scheme_auto`),
@@ -303,39 +227,14 @@ contains
         is_modal_recursion = method_engine(name) == 'recursive'
     end function is_modal_recursion
 
-    !> `method_summary` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine method_summary_build(name, text)
-        !> A method name.
-        character(len=*), intent(in) :: name
-        character(len=:), allocatable, intent(out) :: text
-
-        type(method_entry) :: entry
-
-        entry = entry_of(name)
-        text = trim(entry%summary)
-    end subroutine method_summary_build
-
-    !> Length of the text `method_summary` gives.
-    pure integer function method_summary_length(name)
-        !> A method name.
-        character(len=*), intent(in) :: name
-
-        character(len=:), allocatable :: built
-
-        call method_summary_build(name, built)
-        method_summary_length = len(built)
-    end function method_summary_length
-
     !> What a method computes, in one line; '' for an unknown name.
     pure function method_summary(name) result(text)
         !> A method name.
         character(len=*), intent(in) :: name
-        character(len=method_summary_length(name)) :: text
+        !> Its line.
+        character(len=len_trim(entry_field(name, field_summary))) :: text
 
-        character(len=:), allocatable :: built
-
-        call method_summary_build(name, built)
-        text = built
+        text = entry_field(name, field_summary)
     end function method_summary
 
     !> Whether a method needs the sampled g (`direct`, `fft`, and `auto`, which samples it to
@@ -431,73 +330,36 @@ contains
         end do
     end function find
 
-    !> `g_only_list` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine g_only_list_build(text)
-        character(len=:), allocatable, intent(out) :: text
-
-        text = joined(registry%needs_g .and. .not. registry%needs_modes)
-    end subroutine g_only_list_build
-
-    !> Length of the text `g_only_list` gives.
-    pure integer function g_only_list_length()
-
-        character(len=:), allocatable :: built
-
-        call g_only_list_build(built)
-        g_only_list_length = len(built)
-    end function g_only_list_length
-
     !> The methods that need g alone, "'direct' or 'fft'".
     pure function g_only_list() result(text)
-        character(len=g_only_list_length()) :: text
+        character(len=joined_length(registry%needs_g .and. .not. registry%needs_modes)) :: text
 
-        character(len=:), allocatable :: built
-
-        call g_only_list_build(built)
-        text = built
+        text = joined(registry%needs_g .and. .not. registry%needs_modes)
     end function g_only_list
-
-    !> `joined` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine joined_build(keep, text)
-        logical, intent(in) :: keep(n_methods)
-        character(len=:), allocatable, intent(out) :: text
-
-        integer :: i, k, n
-
-        n = count(keep)
-        k = 0
-        text = ''
-        do i = 1, n_methods
-            if (.not. keep(i)) cycle
-            k = k + 1
-            if (k > 1 .and. k == n) then
-                text = text//' or '
-            else if (k > 1) then
-                text = text//', '
-            end if
-            text = text//"'"//trim(registry(i)%name)//"'"
-        end do
-    end subroutine joined_build
-
-    !> Length of the text `joined` gives.
-    pure integer function joined_length(keep)
-        logical, intent(in) :: keep(n_methods)
-
-        character(len=:), allocatable :: built
-
-        call joined_build(keep, built)
-        joined_length = len(built)
-    end function joined_length
 
     !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
     pure function joined(keep) result(text)
         logical, intent(in) :: keep(n_methods)
         character(len=joined_length(keep)) :: text
 
-        character(len=:), allocatable :: built
+        integer :: i, k, n, at
+        character(len=:), allocatable :: piece
 
-        call joined_build(keep, built)
-        text = built
+        n = count(keep)
+        k = 0
+        at = 0
+        do i = 1, n_methods
+            if (.not. keep(i)) cycle
+            k = k + 1
+            piece = "'"//trim(registry(i)%name)//"'"
+            if (k > 1 .and. k == n) then
+                piece = ' or '//piece
+            else if (k > 1) then
+                piece = ', '//piece
+            end if
+            text(at + 1:at + len(piece)) = piece
+            at = at + len(piece)
+        end do
     end function joined
 
 end module greenconv_conv_methods

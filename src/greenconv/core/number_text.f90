@@ -83,7 +83,7 @@ contains
 
     !> Read a token that `is_number` accepts as a real; ok is false when it overflows double
     !> precision (e.g. 1e999).
-    pure subroutine read_real(token, value, ok)
+    subroutine read_real(token, value, ok)
         !> The token.
         character(len=*), intent(in) :: token
         !> The value (0 when not ok).
@@ -101,7 +101,7 @@ contains
 
     !> Read a token that `is_integer` accepts; ok is false when it lies outside the default
     !> integer range.
-    pure subroutine read_integer(token, value, ok)
+    subroutine read_integer(token, value, ok)
         !> The token.
         character(len=*), intent(in) :: token
         !> The value (0 when not ok).
@@ -121,38 +121,15 @@ contains
         ok = .true.
     end subroutine read_integer
 
-    !> `compact_real` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine compact_real_build(x, text)
-        !> The real.
-        real(dp), intent(in) :: x
-        character(len=:), allocatable, intent(out) :: text
-
-        text = trimmed_real_text(x, 1.0e-3_dp, 1.0e6_dp, 6, 5)
-    end subroutine compact_real_build
-
-    !> Length of the text `compact_real` gives.
-    pure integer function compact_real_length(x)
-        !> The real.
-        real(dp), intent(in) :: x
-
-        character(len=:), allocatable :: built
-
-        call compact_real_build(x, built)
-        compact_real_length = len(built)
-    end function compact_real_length
-
     !> A real as short text for messages: up to six significant digits, without trailing
     !> zeros, in plain notation from 1e-3 to 1e6 (`0.02`, `-1.5`, `2000`) and scientific
     !> notation otherwise (`-1.0E+06`, `1.0E-04`).
     pure function compact_real(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
-        character(len=compact_real_length(x)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call compact_real_build(x, built)
-        text = built
+        text = trimmed_real_text(x, 1.0e-3_dp, 1.0e6_dp, 6, 5)
     end function compact_real
 
 end module greenconv_core_number_text

@@ -32,32 +32,12 @@ GC_QUOTED_END(GREENCONV_VERSION)
 
 contains
 
-    !> `greenconv_version` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine greenconv_version_build(text)
-        !> The version text, without blanks.
-        character(len=:), allocatable, intent(out) :: text
-
-        text = version_text
-    end subroutine greenconv_version_build
-
-    !> Length of the text `greenconv_version` gives.
-    pure integer function greenconv_version_length()
-
-        character(len=:), allocatable :: built
-
-        call greenconv_version_build(built)
-        greenconv_version_length = len(built)
-    end function greenconv_version_length
-
     !> greenconv's version, "major.minor.patch" as fpm.toml states it (for example "0.1.0").
     pure function greenconv_version() result(text)
         !> The version text, without blanks.
-        character(len=greenconv_version_length()) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call greenconv_version_build(built)
-        text = built
+        text = version_text
     end function greenconv_version
 
 end module greenconv_core_version

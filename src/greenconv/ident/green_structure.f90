@@ -334,11 +334,13 @@ contains
                  //' of max|g|)'
     end subroutine kernel_from_receptances
 
-    !> `structure_summary` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine structure_summary_build(self, text)
+    !> The summary of the structure in "# " lines, joined by line ends: the file and its points,
+    !> the identification (order, noise, worst uncertainty, E per receptance and per point) and
+    !> the modes the modal methods run on, the reciprocity warning.
+    function structure_summary(self) result(text)
         !> The structure.
         class(green_structure), intent(in) :: self
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=*), parameter :: nl = new_line('a')
         integer :: worst
@@ -381,31 +383,6 @@ contains
         if (allocated(self%matrix%warning)) then
             if (len(self%matrix%warning) > 0) text = text//nl//'# warning: '//self%matrix%warning
         end if
-    end subroutine structure_summary_build
-
-    !> Length of the text `structure_summary` gives.
-    pure integer function structure_summary_length(self)
-        !> The structure.
-        class(green_structure), intent(in) :: self
-
-        character(len=:), allocatable :: built
-
-        call structure_summary_build(self, built)
-        structure_summary_length = len(built)
-    end function structure_summary_length
-
-    !> The summary of the structure in "# " lines, joined by line ends: the file and its points,
-    !> the identification (order, noise, worst uncertainty, E per receptance and per point) and
-    !> the modes the modal methods run on, the reciprocity warning.
-    pure function structure_summary(self) result(text)
-        !> The structure.
-        class(green_structure), intent(in) :: self
-        character(len=structure_summary_length(self)) :: text
-
-        character(len=:), allocatable :: built
-
-        call structure_summary_build(self, built)
-        text = built
     end function structure_summary
 
 end module greenconv_ident_green_structure

@@ -445,12 +445,14 @@ contains
         call finish(frf, g_raw, options, result, error)
     end subroutine identify
 
-    !> `receptance_problem` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine receptance_problem_build(frf, problem)
+    !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
+    !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
+    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
+    pure function receptance_problem(frf) result(problem)
         !> The sampled receptance.
         type(frf_type), intent(in) :: frf
         !> The problem in a phrase ('' when none).
-        character(len=:), allocatable, intent(out) :: problem
+        character(len=:), allocatable :: problem
 
         problem = ''
         if (frf%n_freq() < min_frf_lines) then
@@ -463,32 +465,6 @@ contains
         else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
             problem = 'the FRF holds a NaN or infinite receptance; remove or repair those lines'
         end if
-    end subroutine receptance_problem_build
-
-    !> Length of the text `receptance_problem` gives.
-    pure integer function receptance_problem_length(frf)
-        !> The sampled receptance.
-        type(frf_type), intent(in) :: frf
-
-        character(len=:), allocatable :: built
-
-        call receptance_problem_build(frf, built)
-        receptance_problem_length = len(built)
-    end function receptance_problem_length
-
-    !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
-    !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
-    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
-    pure function receptance_problem(frf) result(problem)
-        !> The sampled receptance.
-        type(frf_type), intent(in) :: frf
-        !> The problem in a phrase ('' when none).
-        character(len=receptance_problem_length(frf)) :: problem
-
-        character(len=:), allocatable :: built
-
-        call receptance_problem_build(frf, built)
-        problem = built
     end function receptance_problem
 
     !> Reject inputs the identification cannot use.

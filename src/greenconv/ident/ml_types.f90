@@ -200,11 +200,14 @@ contains
         worst = maxval(sigma/value)
     end function worst_ratio
 
-    !> `ml_brief` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine ml_brief_build(self, text)
+    !> The identification in one phrase, e.g. "12 modes (order by MDL), noise 1.01E-02 of |G|
+    !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
+    !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
+    !> and the outlier lines left out.
+    pure function ml_brief(self) result(text)
         !> The result.
         class(ml_result), intent(in) :: self
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
         if (self%noise_floor_level > 0.0_dp) then
@@ -223,32 +226,6 @@ contains
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
                                                 //' outlier line(s) left out'
-    end subroutine ml_brief_build
-
-    !> Length of the text `ml_brief` gives.
-    pure integer function ml_brief_length(self)
-        !> The result.
-        class(ml_result), intent(in) :: self
-
-        character(len=:), allocatable :: built
-
-        call ml_brief_build(self, built)
-        ml_brief_length = len(built)
-    end function ml_brief_length
-
-    !> The identification in one phrase, e.g. "12 modes (order by MDL), noise 1.01E-02 of |G|
-    !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
-    !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
-    !> and the outlier lines left out.
-    pure function ml_brief(self) result(text)
-        !> The result.
-        class(ml_result), intent(in) :: self
-        character(len=ml_brief_length(self)) :: text
-
-        character(len=:), allocatable :: built
-
-        call ml_brief_build(self, built)
-        text = built
     end function ml_brief
 
     !> Append dropped poles to the result.

@@ -211,11 +211,13 @@ contains
         end select
     end function structure_fit_e
 
-    !> `structure_fit_brief` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine structure_fit_brief_build(self, text)
+    !> The identification in one phrase, e.g. "ML fit of G: 12 modes (order by MDL), noise 1.01E-02
+    !> of |G| (estimated from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02,
+    !> E = 8.95E-03 (eq. 7)" or "LSCE fit of G: E = 1.00E-06 (eq. 7)"; '' when not identified.
+    pure function structure_fit_brief(self) result(text)
         !> The structure.
         class(structure_model), intent(in) :: self
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         select case (self%method)
         case ('lsce')
@@ -225,31 +227,6 @@ contains
         case default
             text = ''
         end select
-    end subroutine structure_fit_brief_build
-
-    !> Length of the text `structure_fit_brief` gives.
-    pure integer function structure_fit_brief_length(self)
-        !> The structure.
-        class(structure_model), intent(in) :: self
-
-        character(len=:), allocatable :: built
-
-        call structure_fit_brief_build(self, built)
-        structure_fit_brief_length = len(built)
-    end function structure_fit_brief_length
-
-    !> The identification in one phrase, e.g. "ML fit of G: 12 modes (order by MDL), noise 1.01E-02
-    !> of |G| (estimated from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02,
-    !> E = 8.95E-03 (eq. 7)" or "LSCE fit of G: E = 1.00E-06 (eq. 7)"; '' when not identified.
-    pure function structure_fit_brief(self) result(text)
-        !> The structure.
-        class(structure_model), intent(in) :: self
-        character(len=structure_fit_brief_length(self)) :: text
-
-        character(len=:), allocatable :: built
-
-        call structure_fit_brief_build(self, built)
-        text = built
     end function structure_fit_brief
 
     !> Receptance of the identified model [m/N] at omega [rad/s] (0 when not identified).

@@ -169,10 +169,10 @@ contains
         end do
     end subroutine parse_row
 
-    !> `column_list` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine column_list_build(names, units, text)
+    !> `name [unit], name [unit], ...` for messages.
+    pure function column_list(names, units) result(text)
         character(len=*), intent(in) :: names(:), units(:)
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i
 
@@ -181,27 +181,6 @@ contains
             if (i > 1) text = text//', '
             text = text//trim(names(i))//' ['//trim(units(i))//']'
         end do
-    end subroutine column_list_build
-
-    !> Length of the text `column_list` gives.
-    pure integer function column_list_length(names, units)
-        character(len=*), intent(in) :: names(:), units(:)
-
-        character(len=:), allocatable :: built
-
-        call column_list_build(names, units, built)
-        column_list_length = len(built)
-    end function column_list_length
-
-    !> `name [unit], name [unit], ...` for messages.
-    pure function column_list(names, units) result(text)
-        character(len=*), intent(in) :: names(:), units(:)
-        character(len=column_list_length(names, units)) :: text
-
-        character(len=:), allocatable :: built
-
-        call column_list_build(names, units, built)
-        text = built
     end function column_list
 
     !> Number of blank- or tab-separated tokens of a line.
@@ -345,37 +324,14 @@ contains
         end do
     end subroutine read_lines
 
-    !> `long_line` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine long_line_build(path, line_number, text)
+    !> The message on a line longer than `max_line_length`.
+    function long_line(path, line_number) result(text)
         character(len=*), intent(in) :: path
         integer, intent(in) :: line_number
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
                //' characters, found a longer one (a binary file, or a file without line ends?)'
-    end subroutine long_line_build
-
-    !> Length of the text `long_line` gives.
-    pure integer function long_line_length(path, line_number)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: line_number
-
-        character(len=:), allocatable :: built
-
-        call long_line_build(path, line_number, built)
-        long_line_length = len(built)
-    end function long_line_length
-
-    !> The message on a line longer than `max_line_length`.
-    pure function long_line(path, line_number) result(text)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: line_number
-        character(len=long_line_length(path, line_number)) :: text
-
-        character(len=:), allocatable :: built
-
-        call long_line_build(path, line_number, built)
-        text = built
     end function long_line
 
 end module greenconv_io_columns

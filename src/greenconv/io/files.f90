@@ -366,36 +366,13 @@ contains
         end do
     end subroutine put_binary_rows
 
-    !> `binary_header` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine binary_header_build(path, header)
-        !> The binary column file.
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable, intent(out) :: header
-
-        header = path//'.txt'
-    end subroutine binary_header_build
-
-    !> Length of the text `binary_header` gives.
-    pure integer function binary_header_length(path)
-        !> The binary column file.
-        character(len=*), intent(in) :: path
-
-        character(len=:), allocatable :: built
-
-        call binary_header_build(path, built)
-        binary_header_length = len(built)
-    end function binary_header_length
-
     !> Path of the text header file of a binary column file: `<path>.txt`.
     pure function binary_header(path) result(header)
         !> The binary column file.
         character(len=*), intent(in) :: path
-        character(len=binary_header_length(path)) :: header
+        character(len=:), allocatable :: header
 
-        character(len=:), allocatable :: built
-
-        call binary_header_build(path, built)
-        header = built
+        header = path//'.txt'
     end function binary_header
 
     !> Write the header file of a binary column file: its header lines, then the layout, the

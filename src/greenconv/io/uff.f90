@@ -123,11 +123,12 @@ contains
         call check_node_labels(path, file%nodes, error)
     end subroutine read_uff
 
-    !> `uff_summary` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine uff_summary_build(file, text)
+    !> One line saying what a file held: functions, nodes and the datasets skipped, e.g.
+    !> `frf.uff: 4 functions (dataset 58), 6 nodes (datasets 15, 2411), skipped: 151 (line 1)`.
+    pure function uff_summary(file) result(text)
         !> A file read by `read_uff`.
         type(uff_file), intent(in) :: file
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i
 
@@ -139,30 +140,6 @@ contains
             if (i > 1) text = text//','
             text = text//' '//int_text(file%skipped(i)%dataset)//' (line '//int_text(file%skipped(i)%line)//')'
         end do
-    end subroutine uff_summary_build
-
-    !> Length of the text `uff_summary` gives.
-    pure integer function uff_summary_length(file)
-        !> A file read by `read_uff`.
-        type(uff_file), intent(in) :: file
-
-        character(len=:), allocatable :: built
-
-        call uff_summary_build(file, built)
-        uff_summary_length = len(built)
-    end function uff_summary_length
-
-    !> One line saying what a file held: functions, nodes and the datasets skipped, e.g.
-    !> `frf.uff: 4 functions (dataset 58), 6 nodes (datasets 15, 2411), skipped: 151 (line 1)`.
-    pure function uff_summary(file) result(text)
-        !> A file read by `read_uff`.
-        type(uff_file), intent(in) :: file
-        character(len=uff_summary_length(file)) :: text
-
-        character(len=:), allocatable :: built
-
-        call uff_summary_build(file, built)
-        text = built
     end function uff_summary
 
 end module greenconv_io_uff

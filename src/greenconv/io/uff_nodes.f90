@@ -165,34 +165,13 @@ contains
         end do
     end function locate
 
-    !> `position_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine position_text_build(node, text)
-        type(uff_node), intent(in) :: node
-        character(len=:), allocatable, intent(out) :: text
-
-        text = 'x, y, z = '//real_text(node%position(1))//', '//real_text(node%position(2))//', ' &
-               //real_text(node%position(3))
-    end subroutine position_text_build
-
-    !> Length of the text `position_text` gives.
-    pure integer function position_text_length(node)
-        type(uff_node), intent(in) :: node
-
-        character(len=:), allocatable :: built
-
-        call position_text_build(node, built)
-        position_text_length = len(built)
-    end function position_text_length
-
     !> A node's coordinates as `x, y, z = 0.1, 0.0, 0.0`.
     pure function position_text(node) result(text)
         type(uff_node), intent(in) :: node
-        character(len=position_text_length(node)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call position_text_build(node, built)
-        text = built
+        text = 'x, y, z = '//real_text(node%position(1))//', '//real_text(node%position(2))//', ' &
+               //real_text(node%position(3))
     end function position_text
 
 end module greenconv_io_uff_nodes

@@ -154,63 +154,17 @@ contains
         sets = found(1:n)
     end subroutine find_datasets
 
-    !> `first_token` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine first_token_build(line, token)
+    !> The first blank-separated word of a line ('' when blank).
+    pure function first_token(line) result(token)
         character(len=*), intent(in) :: line
-        character(len=:), allocatable, intent(out) :: token
+        character(len=:), allocatable :: token
 
         integer :: last
 
         token = trim(adjustl(line))
         last = index(token, ' ')
         if (last > 0) token = token(:last - 1)
-    end subroutine first_token_build
-
-    !> Length of the text `first_token` gives.
-    pure integer function first_token_length(line)
-        character(len=*), intent(in) :: line
-
-        character(len=:), allocatable :: built
-
-        call first_token_build(line, built)
-        first_token_length = len(built)
-    end function first_token_length
-
-    !> The first blank-separated word of a line ('' when blank).
-    pure function first_token(line) result(token)
-        character(len=*), intent(in) :: line
-        character(len=first_token_length(line)) :: token
-
-        character(len=:), allocatable :: built
-
-        call first_token_build(line, built)
-        token = built
     end function first_token
-
-    !> `record_prefix` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine record_prefix_build(path, line, dataset, record, prefix)
-        !> File (for the message).
-        character(len=*), intent(in) :: path
-        !> Line of the file, dataset number and record number.
-        integer, intent(in) :: line, dataset, record
-        character(len=:), allocatable, intent(out) :: prefix
-
-        prefix = path//':'//int_text(line)//': universal file dataset '//int_text(dataset)//' record ' &
-                 //int_text(record)//': '
-    end subroutine record_prefix_build
-
-    !> Length of the text `record_prefix` gives.
-    pure integer function record_prefix_length(path, line, dataset, record)
-        !> File (for the message).
-        character(len=*), intent(in) :: path
-        !> Line of the file, dataset number and record number.
-        integer, intent(in) :: line, dataset, record
-
-        character(len=:), allocatable :: built
-
-        call record_prefix_build(path, line, dataset, record, built)
-        record_prefix_length = len(built)
-    end function record_prefix_length
 
     !> `path:line: universal file dataset N record R: `, the start of every message about a record.
     pure function record_prefix(path, line, dataset, record) result(prefix)
@@ -218,12 +172,10 @@ contains
         character(len=*), intent(in) :: path
         !> Line of the file, dataset number and record number.
         integer, intent(in) :: line, dataset, record
-        character(len=record_prefix_length(path, line, dataset, record)) :: prefix
+        character(len=:), allocatable :: prefix
 
-        character(len=:), allocatable :: built
-
-        call record_prefix_build(path, line, dataset, record, built)
-        prefix = built
+        prefix = path//':'//int_text(line)//': universal file dataset '//int_text(dataset)//' record ' &
+                 //int_text(record)//': '
     end function record_prefix
 
     !> Columns first..last of a line, blank-padded where the line is shorter.
@@ -238,66 +190,14 @@ contains
         if (first <= len(line)) field = line(first:min(last, len(line)))
     end function columns
 
-    !> `span` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine span_build(first, last, text)
-        !> First and last column.
-        integer, intent(in) :: first, last
-        character(len=:), allocatable, intent(out) :: text
-
-        text = 'columns '//int_text(first)//'-'//int_text(last)
-    end subroutine span_build
-
-    !> Length of the text `span` gives.
-    pure integer function span_length(first, last)
-        !> First and last column.
-        integer, intent(in) :: first, last
-
-        character(len=:), allocatable :: built
-
-        call span_build(first, last, built)
-        span_length = len(built)
-    end function span_length
-
     !> `columns a-b` for messages.
     pure function span(first, last) result(text)
         !> First and last column.
         integer, intent(in) :: first, last
-        character(len=span_length(first, last)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call span_build(first, last, built)
-        text = built
+        text = 'columns '//int_text(first)//'-'//int_text(last)
     end function span
-
-    !> `quoted` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine quoted_build(line, first, last, text)
-        !> The line.
-        character(len=*), intent(in) :: line
-        !> First and last column.
-        integer, intent(in) :: first, last
-        character(len=:), allocatable, intent(out) :: text
-
-        text = trim(adjustl(columns(line, first, last)))
-        if (len(text) == 0) then
-            text = 'blanks'
-        else
-            text = '"'//text//'"'
-        end if
-    end subroutine quoted_build
-
-    !> Length of the text `quoted` gives.
-    pure integer function quoted_length(line, first, last)
-        !> The line.
-        character(len=*), intent(in) :: line
-        !> First and last column.
-        integer, intent(in) :: first, last
-
-        character(len=:), allocatable :: built
-
-        call quoted_build(line, first, last, built)
-        quoted_length = len(built)
-    end function quoted_length
 
     !> Columns first..last of a line in quotes for messages, or `blanks`.
     pure function quoted(line, first, last) result(text)
@@ -305,45 +205,24 @@ contains
         character(len=*), intent(in) :: line
         !> First and last column.
         integer, intent(in) :: first, last
-        character(len=quoted_length(line, first, last)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call quoted_build(line, first, last, built)
-        text = built
+        text = trim(adjustl(columns(line, first, last)))
+        if (len(text) == 0) then
+            text = 'blanks'
+        else
+            text = '"'//text//'"'
+        end if
     end function quoted
-
-    !> `number_words` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine number_words_build(status, text)
-        !> Status 1 (not a number) or 2 (not finite) of `parse_real`.
-        integer, intent(in) :: status
-        character(len=:), allocatable, intent(out) :: text
-
-        text = 'a number'
-        if (status == 2) text = 'a finite number'
-    end subroutine number_words_build
-
-    !> Length of the text `number_words` gives.
-    pure integer function number_words_length(status)
-        !> Status 1 (not a number) or 2 (not finite) of `parse_real`.
-        integer, intent(in) :: status
-
-        character(len=:), allocatable :: built
-
-        call number_words_build(status, built)
-        number_words_length = len(built)
-    end function number_words_length
 
     !> What a field of `parse_real` status 1 or 2 should have held, for messages.
     pure function number_words(status) result(text)
         !> Status 1 (not a number) or 2 (not finite) of `parse_real`.
         integer, intent(in) :: status
-        character(len=number_words_length(status)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call number_words_build(status, built)
-        text = built
+        text = 'a number'
+        if (status == 2) text = 'a finite number'
     end function number_words
 
     !> Read the integer in columns first..last; a blank field is 0 unless `required`.

@@ -132,47 +132,25 @@ module greenconv_io_uff_types
 
 contains
 
-    !> `uff_kind_name` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine uff_kind_name_build(kind, name)
+    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
+    pure function uff_kind_name(kind) result(name)
         !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
         integer, intent(in) :: kind
-        character(len=:), allocatable, intent(out) :: name
+        character(len=:), allocatable :: name
 
         character(len=*), parameter :: names(uff_other:uff_accelerance) = [character(len=11) :: 'other', &
             'receptance', 'mobility', 'accelerance']
 
         name = 'other'
         if (kind >= lbound(names, 1) .and. kind <= ubound(names, 1)) name = trim(names(kind))
-    end subroutine uff_kind_name_build
-
-    !> Length of the text `uff_kind_name` gives.
-    pure integer function uff_kind_name_length(kind)
-        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
-        integer, intent(in) :: kind
-
-        character(len=:), allocatable :: built
-
-        call uff_kind_name_build(kind, built)
-        uff_kind_name_length = len(built)
-    end function uff_kind_name_length
-
-    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
-    pure function uff_kind_name(kind) result(name)
-        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
-        integer, intent(in) :: kind
-        character(len=uff_kind_name_length(kind)) :: name
-
-        character(len=:), allocatable :: built
-
-        call uff_kind_name_build(kind, built)
-        name = built
     end function uff_kind_name
 
-    !> `uff_data_type_name` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine uff_data_type_name_build(code, name)
+    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
+    !> `type N` for a code the format does not list.
+    pure function uff_data_type_name(code) result(name)
         !> Specific data type (record 8-11 field 1).
         integer, intent(in) :: code
-        character(len=:), allocatable, intent(out) :: name
+        character(len=:), allocatable :: name
 
         select case (code)
         case (0); name = 'unknown'
@@ -194,37 +172,14 @@ contains
         case (20); name = 'order'
         case default; name = 'type '//int_text(code)
         end select
-    end subroutine uff_data_type_name_build
-
-    !> Length of the text `uff_data_type_name` gives.
-    pure integer function uff_data_type_name_length(code)
-        !> Specific data type (record 8-11 field 1).
-        integer, intent(in) :: code
-
-        character(len=:), allocatable :: built
-
-        call uff_data_type_name_build(code, built)
-        uff_data_type_name_length = len(built)
-    end function uff_data_type_name_length
-
-    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
-    !> `type N` for a code the format does not list.
-    pure function uff_data_type_name(code) result(name)
-        !> Specific data type (record 8-11 field 1).
-        integer, intent(in) :: code
-        character(len=uff_data_type_name_length(code)) :: name
-
-        character(len=:), allocatable :: built
-
-        call uff_data_type_name_build(code, built)
-        name = built
     end function uff_data_type_name
 
-    !> `uff_function_type_name` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine uff_function_type_name_build(code, name)
+    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
+    !> function`, ...); `type N` for a code the format does not list.
+    pure function uff_function_type_name(code) result(name)
         !> Function type (record 6 field 1).
         integer, intent(in) :: code
-        character(len=:), allocatable, intent(out) :: name
+        character(len=:), allocatable :: name
 
         character(len=*), parameter :: names(0:27) = [character(len=34) :: 'general or unknown', 'time response', &
             'auto spectrum', 'cross spectrum', 'frequency response function', 'transmissibility', 'coherence', &
@@ -239,30 +194,6 @@ contains
         else
             name = 'type '//int_text(code)
         end if
-    end subroutine uff_function_type_name_build
-
-    !> Length of the text `uff_function_type_name` gives.
-    pure integer function uff_function_type_name_length(code)
-        !> Function type (record 6 field 1).
-        integer, intent(in) :: code
-
-        character(len=:), allocatable :: built
-
-        call uff_function_type_name_build(code, built)
-        uff_function_type_name_length = len(built)
-    end function uff_function_type_name_length
-
-    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
-    !> function`, ...); `type N` for a code the format does not list.
-    pure function uff_function_type_name(code) result(name)
-        !> Function type (record 6 field 1).
-        integer, intent(in) :: code
-        character(len=uff_function_type_name_length(code)) :: name
-
-        character(len=:), allocatable :: built
-
-        call uff_function_type_name_build(code, built)
-        name = built
     end function uff_function_type_name
 
 end module greenconv_io_uff_types

@@ -130,11 +130,12 @@ contains
         frf_uniform_from_zero = off_grid(self%frequency) == 0
     end function frf_uniform_from_zero
 
-    !> `frf_fft_grid_problem` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine frf_fft_grid_problem_build(self, text)
+    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
+    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
+    pure function frf_fft_grid_problem(self) result(text)
         !> The FRF.
         class(frf_type), intent(in) :: self
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         real(dp) :: df
         integer :: j, n
@@ -155,30 +156,6 @@ contains
         end if
         text = text//'expected the uniform grid from 0 Hz (f = '//real_text((j - 1)*df)//' Hz there, step ' &
                //real_text(df)//' Hz), found '//real_text(self%frequency(j))//' Hz'
-    end subroutine frf_fft_grid_problem_build
-
-    !> Length of the text `frf_fft_grid_problem` gives.
-    pure integer function frf_fft_grid_problem_length(self)
-        !> The FRF.
-        class(frf_type), intent(in) :: self
-
-        character(len=:), allocatable :: built
-
-        call frf_fft_grid_problem_build(self, built)
-        frf_fft_grid_problem_length = len(built)
-    end function frf_fft_grid_problem_length
-
-    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
-    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
-    pure function frf_fft_grid_problem(self) result(text)
-        !> The FRF.
-        class(frf_type), intent(in) :: self
-        character(len=frf_fft_grid_problem_length(self)) :: text
-
-        character(len=:), allocatable :: built
-
-        call frf_fft_grid_problem_build(self, built)
-        text = built
     end function frf_fft_grid_problem
 
     !> First index j whose frequency is off the uniform grid (j - 1)*df from 0 Hz by more than
@@ -370,10 +347,11 @@ contains
                      //int_text(file%functions(i)%line)//'): '//frf%source
     end subroutine read_universal
 
-    !> `listing` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine listing_build(file, text)
+    !> The datasets 58 of a file in one line: `#1 line 1: frequency response function,
+    !> receptance, 3+Z/1+Z; #2 ...`.
+    pure function listing(file) result(text)
         type(uff_file), intent(in) :: file
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i
 
@@ -387,61 +365,18 @@ contains
                        //dof_text(f%reference_node, f%reference_direction)
             end associate
         end do
-    end subroutine listing_build
-
-    !> Length of the text `listing` gives.
-    pure integer function listing_length(file)
-        type(uff_file), intent(in) :: file
-
-        character(len=:), allocatable :: built
-
-        call listing_build(file, built)
-        listing_length = len(built)
-    end function listing_length
-
-    !> The datasets 58 of a file in one line: `#1 line 1: frequency response function,
-    !> receptance, 3+Z/1+Z; #2 ...`.
-    pure function listing(file) result(text)
-        type(uff_file), intent(in) :: file
-        character(len=listing_length(file)) :: text
-
-        character(len=:), allocatable :: built
-
-        call listing_build(file, built)
-        text = built
     end function listing
 
-    !> `dof_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine dof_text_build(node, direction, text)
+    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
+    pure function dof_text(node, direction) result(text)
         integer, intent(in) :: node, direction
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=*), parameter :: axes(6) = ['X ', 'Y ', 'Z ', 'RX', 'RY', 'RZ']
 
         text = int_text(node)
         if (direction == 0) return
         text = text//merge('+', '-', direction > 0)//trim(axes(min(abs(direction), 6)))
-    end subroutine dof_text_build
-
-    !> Length of the text `dof_text` gives.
-    pure integer function dof_text_length(node, direction)
-        integer, intent(in) :: node, direction
-
-        character(len=:), allocatable :: built
-
-        call dof_text_build(node, direction, built)
-        dof_text_length = len(built)
-    end function dof_text_length
-
-    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
-    pure function dof_text(node, direction) result(text)
-        integer, intent(in) :: node, direction
-        character(len=dof_text_length(node, direction)) :: text
-
-        character(len=:), allocatable :: built
-
-        call dof_text_build(node, direction, built)
-        text = built
     end function dof_text
 
     !> A receptance from one dataset 58 of a universal file (function type 4, frequency

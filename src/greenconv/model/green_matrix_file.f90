@@ -280,46 +280,24 @@ contains
         end do
     end subroutine one_way_node
 
-    !> `one_way` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine one_way_build(path, line, node, given, missing, text)
+    !> The message of `one_way_node`.
+    pure function one_way(path, line, node, given, missing) result(text)
         character(len=*), intent(in) :: path, given, missing
         integer, intent(in) :: line, node
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = path//':'//int_text(line + 7)//': universal file dataset 58 record 6: node '//int_text(node) &
                //' is a '//given//' node here but never a '//missing//' node, so it is no contact point (those ' &
                //'are the nodes given both ways) and this G would be dropped, leaving the matrix not square; ' &
                //'give G_ij both ways for every contact point, or remove the dataset'
-    end subroutine one_way_build
-
-    !> Length of the text `one_way` gives.
-    pure integer function one_way_length(path, line, node, given, missing)
-        character(len=*), intent(in) :: path, given, missing
-        integer, intent(in) :: line, node
-
-        character(len=:), allocatable :: built
-
-        call one_way_build(path, line, node, given, missing, built)
-        one_way_length = len(built)
-    end function one_way_length
-
-    !> The message of `one_way_node`.
-    pure function one_way(path, line, node, given, missing) result(text)
-        character(len=*), intent(in) :: path, given, missing
-        integer, intent(in) :: line, node
-        character(len=one_way_length(path, line, node, given, missing)) :: text
-
-        character(len=:), allocatable :: built
-
-        call one_way_build(path, line, node, given, missing, built)
-        text = built
     end function one_way
 
-    !> `left_out` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine left_out_build(file, function_type, response, reference, text)
+    !> For the message on a missing G_ij: the datasets 58 of the pair that were left out for
+    !> their function type ('' when there is none).
+    pure function left_out(file, function_type, response, reference) result(text)
         type(uff_file), intent(in) :: file
         integer, intent(in) :: function_type, response, reference
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: f
 
@@ -337,30 +315,6 @@ contains
             if (f == 1) text = text//'; datasets the reader does not read were skipped:'
             text = text//' '//int_text(file%skipped(f)%dataset)//' (line '//int_text(file%skipped(f)%line)//')'
         end do
-    end subroutine left_out_build
-
-    !> Length of the text `left_out` gives.
-    pure integer function left_out_length(file, function_type, response, reference)
-        type(uff_file), intent(in) :: file
-        integer, intent(in) :: function_type, response, reference
-
-        character(len=:), allocatable :: built
-
-        call left_out_build(file, function_type, response, reference, built)
-        left_out_length = len(built)
-    end function left_out_length
-
-    !> For the message on a missing G_ij: the datasets 58 of the pair that were left out for
-    !> their function type ('' when there is none).
-    pure function left_out(file, function_type, response, reference) result(text)
-        type(uff_file), intent(in) :: file
-        integer, intent(in) :: function_type, response, reference
-        character(len=left_out_length(file, function_type, response, reference)) :: text
-
-        character(len=:), allocatable :: built
-
-        call left_out_build(file, function_type, response, reference, built)
-        text = built
     end function left_out
 
     !> x_i, y_i of every point from the file's nodes.

@@ -53,54 +53,19 @@ module greenconv_scene_input
         integer :: unit = no_unit
     end type group_source
 
-
-    !> "file:line: &group variable: expected what[, found value]" (`expected_what`,
-    !> `expected_found`).
-    interface expected
-        module procedure expected_what
-        module procedure expected_found
-    end interface expected
-
 contains
-
-    !> `output_path` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine output_path_build(scene, method, path)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Method name.
-        character(len=*), intent(in) :: method
-        character(len=:), allocatable, intent(out) :: path
-
-        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
-        if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
-    end subroutine output_path_build
-
-    !> Length of the text `output_path` gives.
-    pure integer function output_path_length(scene, method)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Method name.
-        character(len=*), intent(in) :: method
-
-        character(len=:), allocatable :: built
-
-        call output_path_build(scene, method, built)
-        output_path_length = len(built)
-    end function output_path_length
 
     !> Path of the column file of one method: `<output_dir>/<name>_<method>.dat`, or `.bin`
     !> with `output_format = 'binary'`.
-    pure function output_path(scene, method) result(path)
+    function output_path(scene, method) result(path)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=output_path_length(scene, method)) :: path
+        character(len=:), allocatable :: path
 
-        character(len=:), allocatable :: built
-
-        call output_path_build(scene, method, built)
-        path = built
+        path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
+        if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
     end function output_path
 
     !> Read and check a scene namelist file. The file is read once, from start to end (a pipe,
@@ -585,33 +550,12 @@ contains
         this%spectra_f_high = band_centre(high)
     end subroutine check_spectra
 
-    !> `band_name` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine band_name_build(x, text)
+    !> "400 Hz", the nominal name of band x.
+    function band_name(x) result(text)
         integer, intent(in) :: x
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
-    end subroutine band_name_build
-
-    !> Length of the text `band_name` gives.
-    pure integer function band_name_length(x)
-        integer, intent(in) :: x
-
-        character(len=:), allocatable :: built
-
-        call band_name_build(x, built)
-        band_name_length = len(built)
-    end function band_name_length
-
-    !> "400 Hz", the nominal name of band x.
-    pure function band_name(x) result(text)
-        integer, intent(in) :: x
-        character(len=band_name_length(x)) :: text
-
-        character(len=:), allocatable :: built
-
-        call band_name_build(x, built)
-        text = built
     end function band_name
 
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
@@ -814,49 +758,19 @@ contains
         group_failed = allocated(error) .or. source%unit /= no_unit
     end function group_failed
 
-    !> `expected_what` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine expected_what_build(scene, group, variable, what, line)
+    !> "file:line: &group variable: expected what[, found value]", the line that of the variable
+    !> (the first of a list `a, b`) when the file sets it, else the group's; value is a real, an
+    !> integer or a text.
+    function expected(scene, group, variable, what, found) result(line)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: group, variable, what
-        character(len=:), allocatable, intent(out) :: line
-
-        line = place(scene, group, variable)//' '//variable//': expected '//what
-    end subroutine expected_what_build
-
-    !> Length of the text `expected_what` gives.
-    pure integer function expected_what_length(scene, group, variable, what)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variable, what
-
-        character(len=:), allocatable :: built
-
-        call expected_what_build(scene, group, variable, what, built)
-        expected_what_length = len(built)
-    end function expected_what_length
-
-    !> "file:line: &group variable: expected what", the line that of the variable (the first
-    !> of a list `a, b`) when the file sets it, else the group's.
-    pure function expected_what(scene, group, variable, what) result(line)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variable, what
-        character(len=expected_what_length(scene, group, variable, what)) :: line
-
-        character(len=:), allocatable :: built
-
-        call expected_what_build(scene, group, variable, what, built)
-        line = built
-    end function expected_what
-
-    !> `expected_found` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine expected_found_build(scene, group, variable, what, found, line)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variable, what
-        class(*), intent(in) :: found
-        character(len=:), allocatable, intent(out) :: line
+        class(*), intent(in), optional :: found
+        character(len=:), allocatable :: line
 
         character(len=32) :: value
 
-        line = expected_what(scene, group, variable, what)
+        line = place(scene, group, variable)//' '//variable//': expected '//what
+        if (.not. present(found)) return
         select type (found)
         type is (real(dp))
             line = line//', found '//compact_real(found)
@@ -866,33 +780,7 @@ contains
         type is (character(len=*))
             line = line//", found '"//trim(found)//"'"
         end select
-    end subroutine expected_found_build
-
-    !> Length of the text `expected_found` gives.
-    pure integer function expected_found_length(scene, group, variable, what, found)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variable, what
-        class(*), intent(in) :: found
-
-        character(len=:), allocatable :: built
-
-        call expected_found_build(scene, group, variable, what, found, built)
-        expected_found_length = len(built)
-    end function expected_found_length
-
-    !> "file:line: &group variable: expected what, found value" (`expected_what` and the
-    !> value found: a real, an integer or a text).
-    pure function expected_found(scene, group, variable, what, found) result(line)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: group, variable, what
-        class(*), intent(in) :: found
-        character(len=expected_found_length(scene, group, variable, what, found)) :: line
-
-        character(len=:), allocatable :: built
-
-        call expected_found_build(scene, group, variable, what, found, built)
-        line = built
-    end function expected_found
+    end function expected
 
     !> Check a value a group read against its row of the scene table (greenconv_scene_schema):
     !> its range or choices; its message says what the row expects and what was found.

@@ -116,7 +116,7 @@ module greenconv_scene_models
 contains
 
     !> Every structure model of the registry, in the order messages list the names.
-    pure function structure_models() result(models)
+    function structure_models() result(models)
         !> The registry.
         type(structure_kind) :: models(6)
 
@@ -135,7 +135,7 @@ contains
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.
-    pure function find_model(name) result(model)
+    function find_model(name) result(model)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
         !> Its registry entry, or an entry with id 0 and no capability.
@@ -154,7 +154,7 @@ contains
     end function find_model
 
     !> The registry row of the model called `name` (exact, lower case); 0 when there is none.
-    pure integer function model_id(name)
+    integer function model_id(name)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 
@@ -172,43 +172,23 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
-    !> `model_names` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine model_names_build(text)
+    !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
+    function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         type(structure_kind), allocatable :: models(:)
 
         models = structure_models()
         text = quoted_list(models%name)
-    end subroutine model_names_build
-
-    !> Length of the text `model_names` gives.
-    pure integer function model_names_length()
-
-        character(len=:), allocatable :: built
-
-        call model_names_build(built)
-        model_names_length = len(built)
-    end function model_names_length
-
-    !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
-    pure function model_names() result(text)
-        !> The quoted names, comma-separated, the last after `or`.
-        character(len=model_names_length()) :: text
-
-        character(len=:), allocatable :: built
-
-        call model_names_build(built)
-        text = built
     end function model_names
 
-    !> `quoted_list` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine quoted_list_build(names, text)
+    !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
+    pure function quoted_list(names) result(text)
         !> The names (at least one).
         character(len=*), intent(in) :: names(:)
         !> The list.
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i
 
@@ -220,30 +200,6 @@ contains
                 text = text//" or '"//trim(names(i))//"'"
             end if
         end do
-    end subroutine quoted_list_build
-
-    !> Length of the text `quoted_list` gives.
-    pure integer function quoted_list_length(names)
-        !> The names (at least one).
-        character(len=*), intent(in) :: names(:)
-
-        character(len=:), allocatable :: built
-
-        call quoted_list_build(names, built)
-        quoted_list_length = len(built)
-    end function quoted_list_length
-
-    !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
-    pure function quoted_list(names) result(text)
-        !> The names (at least one).
-        character(len=*), intent(in) :: names(:)
-        !> The list.
-        character(len=quoted_list_length(names)) :: text
-
-        character(len=:), allocatable :: built
-
-        call quoted_list_build(names, built)
-        text = built
     end function quoted_list
 
     !> Whether a model requires a `&structure` variable.
@@ -257,7 +213,7 @@ contains
     end function model_requires
 
     !> Whether the model called `name` touches the road at several points (N_c >= 1).
-    pure logical function multi_point_model(name)
+    logical function multi_point_model(name)
         !> Model name as the scene writes it.
         character(len=*), intent(in) :: name
 

@@ -89,11 +89,11 @@ contains
         end if
     end function road_step
 
-    !> `run_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine run_text_build(scene, text)
+    !> The end of a multi-point scene's summary line: "N steps of dt s at V m/s over <road>".
+    function run_text(scene) result(text)
         !> The scene.
         type(scene_type), intent(in) :: scene
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=80) :: numbers
 
@@ -104,29 +104,6 @@ contains
         else if (allocated(scene%road_data%path)) then
             text = text//' over '//scene%road_data%path
         end if
-    end subroutine run_text_build
-
-    !> Length of the text `run_text` gives.
-    pure integer function run_text_length(scene)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-
-        character(len=:), allocatable :: built
-
-        call run_text_build(scene, built)
-        run_text_length = len(built)
-    end function run_text_length
-
-    !> The end of a multi-point scene's summary line: "N steps of dt s at V m/s over <road>".
-    pure function run_text(scene) result(text)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        character(len=run_text_length(scene)) :: text
-
-        character(len=:), allocatable :: built
-
-        call run_text_build(scene, built)
-        text = built
     end function run_text
 
 end module greenconv_scene_patch

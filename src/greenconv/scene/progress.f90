@@ -129,8 +129,9 @@ contains
         if (last_shown >= 0.0_dp) progress_due = progress_due .and. elapsed - last_shown >= refresh_seconds
     end function progress_due
 
-    !> `progress_line` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine progress_line_build(label, done, total, elapsed, line)
+    !> The progress line after `done` of `total` steps in `elapsed` seconds: label, percent,
+    !> steps per second and the time left at that rate (h:mm:ss; `--:--:--` before any step).
+    pure function progress_line(label, done, total, elapsed) result(line)
         !> Name of what runs (the method).
         character(len=*), intent(in) :: label
         !> Steps done.
@@ -139,7 +140,7 @@ contains
         integer(int64), intent(in) :: total
         !> Wall time since the start [s].
         real(dp), intent(in) :: elapsed
-        character(len=:), allocatable, intent(out) :: line
+        character(len=:), allocatable :: line
 
         character(len=80) :: buffer
         real(dp) :: rate, percent
@@ -154,48 +155,12 @@ contains
         else
             line = line//'--:--:-- left'
         end if
-    end subroutine progress_line_build
-
-    !> Length of the text `progress_line` gives.
-    pure integer function progress_line_length(label, done, total, elapsed)
-        !> Name of what runs (the method).
-        character(len=*), intent(in) :: label
-        !> Steps done.
-        integer(int64), intent(in) :: done
-        !> Steps of the whole run, >= 1.
-        integer(int64), intent(in) :: total
-        !> Wall time since the start [s].
-        real(dp), intent(in) :: elapsed
-
-        character(len=:), allocatable :: built
-
-        call progress_line_build(label, done, total, elapsed, built)
-        progress_line_length = len(built)
-    end function progress_line_length
-
-    !> The progress line after `done` of `total` steps in `elapsed` seconds: label, percent,
-    !> steps per second and the time left at that rate (h:mm:ss; `--:--:--` before any step).
-    pure function progress_line(label, done, total, elapsed) result(line)
-        !> Name of what runs (the method).
-        character(len=*), intent(in) :: label
-        !> Steps done.
-        integer(int64), intent(in) :: done
-        !> Steps of the whole run, >= 1.
-        integer(int64), intent(in) :: total
-        !> Wall time since the start [s].
-        real(dp), intent(in) :: elapsed
-        character(len=progress_line_length(label, done, total, elapsed)) :: line
-
-        character(len=:), allocatable :: built
-
-        call progress_line_build(label, done, total, elapsed, built)
-        line = built
     end function progress_line
 
-    !> `clock_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine clock_text_build(seconds, text)
+    !> A duration [s] as h:mm:ss (hours unbounded), rounded to the second.
+    pure function clock_text(seconds) result(text)
         real(dp), intent(in) :: seconds
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=32) :: buffer
         integer(int64) :: whole
@@ -203,27 +168,6 @@ contains
         whole = nint(min(max(seconds, 0.0_dp), 3.6e9_dp), int64)
         write (buffer, '(i0,a,i2.2,a,i2.2)') whole/3600, ':', mod(whole/60, 60_int64), ':', mod(whole, 60_int64)
         text = trim(buffer)
-    end subroutine clock_text_build
-
-    !> Length of the text `clock_text` gives.
-    pure integer function clock_text_length(seconds)
-        real(dp), intent(in) :: seconds
-
-        character(len=:), allocatable :: built
-
-        call clock_text_build(seconds, built)
-        clock_text_length = len(built)
-    end function clock_text_length
-
-    !> A duration [s] as h:mm:ss (hours unbounded), rounded to the second.
-    pure function clock_text(seconds) result(text)
-        real(dp), intent(in) :: seconds
-        character(len=clock_text_length(seconds)) :: text
-
-        character(len=:), allocatable :: built
-
-        call clock_text_build(seconds, built)
-        text = built
     end function clock_text
 
     !> Write the line in place of the previous one.

@@ -56,7 +56,7 @@ contains
     end function identification_summary
 
     !> Append a line to a text of lines.
-    pure subroutine add_line(text, line)
+    subroutine add_line(text, line)
         character(len=:), allocatable, intent(inout) :: text
         character(len=*), intent(in) :: line
 

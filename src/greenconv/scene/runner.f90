@@ -221,11 +221,11 @@ contains
         comments(3) = 't u_road u f_contact delta'
     end function response_header
 
-    !> `title` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine title_build(scene, method, line)
+    !> First header line of a multi-point method's file; with `output_every` > 1, which steps the rows are.
+    function title(scene, method) result(line)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
-        character(len=:), allocatable, intent(out) :: line
+        character(len=:), allocatable :: line
 
         line = 'greenconv tyre/road scene '//scene%name//', method '//method
         if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
@@ -233,29 +233,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end subroutine title_build
-
-    !> Length of the text `title` gives.
-    pure integer function title_length(scene, method)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: method
-
-        character(len=:), allocatable :: built
-
-        call title_build(scene, method, built)
-        title_length = len(built)
-    end function title_length
-
-    !> First header line of a multi-point method's file; with `output_every` > 1, which steps the rows are.
-    pure function title(scene, method) result(line)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: method
-        character(len=title_length(scene, method)) :: line
-
-        character(len=:), allocatable :: built
-
-        call title_build(scene, method, built)
-        line = built
     end function title
 
 end module greenconv_scene_runner

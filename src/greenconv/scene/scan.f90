@@ -358,11 +358,11 @@ contains
         if (state%tokens(i)%kind == token_word) is_value = state%tokens(i + 1)%kind /= token_equals
     end function is_value
 
-    !> `kind_problem` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine kind_problem_build(kind, value, problem)
+    !> What is wrong with a value for a variable of this kind; '' when it fits.
+    function kind_problem(kind, value) result(problem)
         integer, intent(in) :: kind
         type(token_type), intent(in) :: value
-        character(len=:), allocatable, intent(out) :: problem
+        character(len=:), allocatable :: problem
 
         problem = ''
         if (value%kind == token_text .and. .not. value%closed) then
@@ -377,36 +377,14 @@ contains
         else if (.not. is_logical(value%text)) then
             problem = "expected .true. or .false., found '"//value%text//"'"
         end if
-    end subroutine kind_problem_build
-
-    !> Length of the text `kind_problem` gives.
-    pure integer function kind_problem_length(kind, value)
-        integer, intent(in) :: kind
-        type(token_type), intent(in) :: value
-
-        character(len=:), allocatable :: built
-
-        call kind_problem_build(kind, value, built)
-        kind_problem_length = len(built)
-    end function kind_problem_length
-
-    !> What is wrong with a value for a variable of this kind; '' when it fits.
-    pure function kind_problem(kind, value) result(problem)
-        integer, intent(in) :: kind
-        type(token_type), intent(in) :: value
-        character(len=kind_problem_length(kind, value)) :: problem
-
-        character(len=:), allocatable :: built
-
-        call kind_problem_build(kind, value, built)
-        problem = built
     end function kind_problem
 
-    !> `number_problem` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine number_problem_build(kind, word, problem)
+    !> What is wrong with a word given as a real (a finite double) or an integer (a default
+    !> integer); '' when it fits.
+    function number_problem(kind, word) result(problem)
         integer, intent(in) :: kind
         character(len=*), intent(in) :: word
-        character(len=:), allocatable, intent(out) :: problem
+        character(len=:), allocatable :: problem
 
         real(dp) :: real_value
         integer :: integer_value
@@ -430,30 +408,6 @@ contains
             if (.not. ok) problem = 'expected an integer within +-'//int_text(huge(integer_value))//", found '" &
                                     //word//"'"
         end if
-    end subroutine number_problem_build
-
-    !> Length of the text `number_problem` gives.
-    pure integer function number_problem_length(kind, word)
-        integer, intent(in) :: kind
-        character(len=*), intent(in) :: word
-
-        character(len=:), allocatable :: built
-
-        call number_problem_build(kind, word, built)
-        number_problem_length = len(built)
-    end function number_problem_length
-
-    !> What is wrong with a word given as a real (a finite double) or an integer (a default
-    !> integer); '' when it fits.
-    pure function number_problem(kind, word) result(problem)
-        integer, intent(in) :: kind
-        character(len=*), intent(in) :: word
-        character(len=number_problem_length(kind, word)) :: problem
-
-        character(len=:), allocatable :: built
-
-        call number_problem_build(kind, word, built)
-        problem = built
     end function number_problem
 
     !> Whether a word is a logical value: t, f, true, false, with or without periods.
@@ -466,36 +420,15 @@ contains
         is_logical = any(lower_text(word) == spellings)
     end function is_logical
 
-    !> `kind_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine kind_text_build(kind, text)
+    !> What a value of this kind is, for messages.
+    pure function kind_text(kind) result(text)
         integer, intent(in) :: kind
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=*), parameter :: texts(value_real:value_text_list) = [character(len=17) :: &
             'a real number', 'an integer', '.true. or .false.', 'a text in quotes', 'a text in quotes']
 
         text = trim(texts(kind))
-    end subroutine kind_text_build
-
-    !> Length of the text `kind_text` gives.
-    pure integer function kind_text_length(kind)
-        integer, intent(in) :: kind
-
-        character(len=:), allocatable :: built
-
-        call kind_text_build(kind, built)
-        kind_text_length = len(built)
-    end function kind_text_length
-
-    !> What a value of this kind is, for messages.
-    pure function kind_text(kind) result(text)
-        integer, intent(in) :: kind
-        character(len=kind_text_length(kind)) :: text
-
-        character(len=:), allocatable :: built
-
-        call kind_text_build(kind, built)
-        text = built
     end function kind_text
 
     !> The index of `name(i)` (1 without a subscript): a scalar takes none, an array 1..size.
@@ -572,10 +505,10 @@ contains
         end do
     end function variable_index
 
-    !> `listed` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine listed_build(names, prefix, text)
+    !> `a, b, c or d` (each name after `prefix`), or `a, b, c` without a prefix.
+    pure function listed(names, prefix) result(text)
         character(len=*), intent(in) :: names(:), prefix
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i
 
@@ -587,33 +520,13 @@ contains
                 text = text//', '//prefix//trim(names(i))
             end if
         end do
-    end subroutine listed_build
-
-    !> Length of the text `listed` gives.
-    pure integer function listed_length(names, prefix)
-        character(len=*), intent(in) :: names(:), prefix
-
-        character(len=:), allocatable :: built
-
-        call listed_build(names, prefix, built)
-        listed_length = len(built)
-    end function listed_length
-
-    !> `a, b, c or d` (each name after `prefix`), or `a, b, c` without a prefix.
-    pure function listed(names, prefix) result(text)
-        character(len=*), intent(in) :: names(:), prefix
-        character(len=listed_length(names, prefix)) :: text
-
-        character(len=:), allocatable :: built
-
-        call listed_build(names, prefix, built)
-        text = built
     end function listed
 
-    !> `suggestion` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine suggestion_build(name, names, prefix, text)
+    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
+    !> enough (at most 2 edits, or a third of the name); '' otherwise.
+    pure function suggestion(name, names, prefix) result(text)
         character(len=*), intent(in) :: name, names(:), prefix
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         integer :: i, best, distance, best_distance
 
@@ -629,28 +542,6 @@ contains
         end do
         if (best > 0 .and. best_distance <= max(2, len(name)/3)) text = "; did you mean '"//prefix &
                                                                          //trim(names(best))//"'?"
-    end subroutine suggestion_build
-
-    !> Length of the text `suggestion` gives.
-    pure integer function suggestion_length(name, names, prefix)
-        character(len=*), intent(in) :: name, names(:), prefix
-
-        character(len=:), allocatable :: built
-
-        call suggestion_build(name, names, prefix, built)
-        suggestion_length = len(built)
-    end function suggestion_length
-
-    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
-    !> enough (at most 2 edits, or a third of the name); '' otherwise.
-    pure function suggestion(name, names, prefix) result(text)
-        character(len=*), intent(in) :: name, names(:), prefix
-        character(len=suggestion_length(name, names, prefix)) :: text
-
-        character(len=:), allocatable :: built
-
-        call suggestion_build(name, names, prefix, built)
-        text = built
     end function suggestion
 
     !> Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
@@ -672,10 +563,10 @@ contains
         edit_distance = row(len(b))
     end function edit_distance
 
-    !> `shown` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine shown_build(token, text)
+    !> A token as the user wrote it, for messages.
+    pure function shown(token) result(text)
         type(token_type), intent(in) :: token
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         select case (token%kind)
         case (token_text)
@@ -691,27 +582,6 @@ contains
         case default
             text = token%text
         end select
-    end subroutine shown_build
-
-    !> Length of the text `shown` gives.
-    pure integer function shown_length(token)
-        type(token_type), intent(in) :: token
-
-        character(len=:), allocatable :: built
-
-        call shown_build(token, built)
-        shown_length = len(built)
-    end function shown_length
-
-    !> A token as the user wrote it, for messages.
-    pure function shown(token) result(text)
-        type(token_type), intent(in) :: token
-        character(len=shown_length(token)) :: text
-
-        character(len=:), allocatable :: built
-
-        call shown_build(token, built)
-        text = built
     end function shown
 
     !> Append an entry.
@@ -903,15 +773,15 @@ contains
         has_value = self%line_of(group, variable) > 0
     end function has_value
 
-    !> `value_of` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine value_of_build(self, group, variable, value)
+    !> The first value given to a variable, a text without its quotes, trimmed; '' when absent.
+    pure function value_of(self, group, variable) result(value)
         !> The scan.
         class(namelist_scan), intent(in) :: self
         !> Group name, lower case.
         character(len=*), intent(in) :: group
         !> Variable name, lower case.
         character(len=*), intent(in) :: variable
-        character(len=:), allocatable, intent(out) :: value
+        character(len=:), allocatable :: value
 
         integer :: i
 
@@ -923,37 +793,6 @@ contains
                 return
             end if
         end do
-    end subroutine value_of_build
-
-    !> Length of the text `value_of` gives.
-    pure integer function value_of_length(self, group, variable)
-        !> The scan.
-        class(namelist_scan), intent(in) :: self
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-
-        character(len=:), allocatable :: built
-
-        call value_of_build(self, group, variable, built)
-        value_of_length = len(built)
-    end function value_of_length
-
-    !> The first value given to a variable, a text without its quotes, trimmed; '' when absent.
-    pure function value_of(self, group, variable) result(value)
-        !> The scan.
-        class(namelist_scan), intent(in) :: self
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-        character(len=value_of_length(self, group, variable)) :: value
-
-        character(len=:), allocatable :: built
-
-        call value_of_build(self, group, variable, built)
-        value = built
     end function value_of
 
 end module greenconv_scene_scan

@@ -426,13 +426,13 @@ contains
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
-    !> `required_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine required_text_build(variable, when, text)
+    !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
+    function required_text(variable, when) result(text)
         !> The table row.
         type(scene_variable), intent(in) :: variable
         !> The condition that makes it required ('always': none to name).
         character(len=*), intent(in) :: when
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = variable%meaning
         if (len(variable%units) > 0) text = text//' in '//variable%units
@@ -441,33 +441,6 @@ contains
         else
             text = text//' (required for '//when//')'
         end if
-    end subroutine required_text_build
-
-    !> Length of the text `required_text` gives.
-    pure integer function required_text_length(variable, when)
-        !> The table row.
-        type(scene_variable), intent(in) :: variable
-        !> The condition that makes it required ('always': none to name).
-        character(len=*), intent(in) :: when
-
-        character(len=:), allocatable :: built
-
-        call required_text_build(variable, when, built)
-        required_text_length = len(built)
-    end function required_text_length
-
-    !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
-    pure function required_text(variable, when) result(text)
-        !> The table row.
-        type(scene_variable), intent(in) :: variable
-        !> The condition that makes it required ('always': none to name).
-        character(len=*), intent(in) :: when
-        character(len=required_text_length(variable, when)) :: text
-
-        character(len=:), allocatable :: built
-
-        call required_text_build(variable, when, built)
-        text = built
     end function required_text
 
     !> The required groups and values, in table order: a group, then its variables.

@@ -144,53 +144,23 @@ module greenconv_scene_settings
 
 contains
 
-    !> `input_place` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine input_place_build(scene, group, variable, text)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-        character(len=:), allocatable, intent(out) :: text
-
-        text = place(scene, group, variable)//' '//variable
-    end subroutine input_place_build
-
-    !> Length of the text `input_place` gives.
-    pure integer function input_place_length(scene, group, variable)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-
-        character(len=:), allocatable :: built
-
-        call input_place_build(scene, group, variable, built)
-        input_place_length = len(built)
-    end function input_place_length
-
     !> "file:line: &group variable" for messages about a value of the scene (the line of the
     !> variable when the file sets it, else of its group), e.g. before a file it names.
-    pure function input_place(scene, group, variable) result(text)
+    function input_place(scene, group, variable) result(text)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Group name, lower case.
         character(len=*), intent(in) :: group
         !> Variable name, lower case.
         character(len=*), intent(in) :: variable
-        character(len=input_place_length(scene, group, variable)) :: text
+        character(len=:), allocatable :: text
 
-        character(len=:), allocatable :: built
-
-        call input_place_build(scene, group, variable, built)
-        text = built
+        text = place(scene, group, variable)//' '//variable
     end function input_place
 
-    !> `place` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine place_build(scene, group, variables, text)
+    !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
+    !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
+    function place(scene, group, variables) result(text)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Group name, lower case.
@@ -198,7 +168,7 @@ contains
         !> Variable names, lower case, comma-separated.
         character(len=*), intent(in) :: variables
         !> The place.
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=:), allocatable :: rest
         integer :: line, comma
@@ -217,39 +187,6 @@ contains
         else
             text = scene%file//': &'//group
         end if
-    end subroutine place_build
-
-    !> Length of the text `place` gives.
-    pure integer function place_length(scene, group, variables)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable names, lower case, comma-separated.
-        character(len=*), intent(in) :: variables
-
-        character(len=:), allocatable :: built
-
-        call place_build(scene, group, variables, built)
-        place_length = len(built)
-    end function place_length
-
-    !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
-    !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
-    pure function place(scene, group, variables) result(text)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable names, lower case, comma-separated.
-        character(len=*), intent(in) :: variables
-        !> The place.
-        character(len=place_length(scene, group, variables)) :: text
-
-        character(len=:), allocatable :: built
-
-        call place_build(scene, group, variables, built)
-        text = built
     end function place
 
 end module greenconv_scene_settings

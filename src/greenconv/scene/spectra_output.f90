@@ -51,49 +51,23 @@ module greenconv_scene_spectra_output
 
 contains
 
-    !> `spectra_path` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine spectra_path_build(scene, method, path)
+    !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`.
+    function spectra_path(scene, method) result(path)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=:), allocatable, intent(out) :: path
+        character(len=:), allocatable :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'_spectra.dat'
-    end subroutine spectra_path_build
-
-    !> Length of the text `spectra_path` gives.
-    pure integer function spectra_path_length(scene, method)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Method name.
-        character(len=*), intent(in) :: method
-
-        character(len=:), allocatable :: built
-
-        call spectra_path_build(scene, method, built)
-        spectra_path_length = len(built)
-    end function spectra_path_length
-
-    !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`.
-    pure function spectra_path(scene, method) result(path)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Method name.
-        character(len=*), intent(in) :: method
-        character(len=spectra_path_length(scene, method)) :: path
-
-        character(len=:), allocatable :: built
-
-        call spectra_path_build(scene, method, built)
-        path = built
     end function spectra_path
 
-    !> `spectra_line` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine spectra_line_build(scene, line)
+    !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
+    !> e.g. "force spectra 400 Hz to 4000 Hz (11 bands), 2 Hann segments of 1024 samples".
+    function spectra_line(scene) result(line)
         !> The scene, read by `read_scene`.
         type(scene_type), intent(in) :: scene
-        character(len=:), allocatable, intent(out) :: line
+        character(len=:), allocatable :: line
 
         real(dp), allocatable :: centre(:), lower(:), upper(:)
         integer :: n
@@ -106,30 +80,6 @@ contains
                //compact_real(nominal_frequency(scene%spectra_f_high))//' Hz ('//int_text(size(centre)) &
                //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segment' &
                //trim(merge('s', ' ', segments(int(scene%n_steps, int64), n) > 1))//' of '//int_text(n)//' samples'
-    end subroutine spectra_line_build
-
-    !> Length of the text `spectra_line` gives.
-    pure integer function spectra_line_length(scene)
-        !> The scene, read by `read_scene`.
-        type(scene_type), intent(in) :: scene
-
-        character(len=:), allocatable :: built
-
-        call spectra_line_build(scene, built)
-        spectra_line_length = len(built)
-    end function spectra_line_length
-
-    !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
-    !> e.g. "force spectra 400 Hz to 4000 Hz (11 bands), 2 Hann segments of 1024 samples".
-    pure function spectra_line(scene) result(line)
-        !> The scene, read by `read_scene`.
-        type(scene_type), intent(in) :: scene
-        character(len=spectra_line_length(scene)) :: line
-
-        character(len=:), allocatable :: built
-
-        call spectra_line_build(scene, built)
-        line = built
     end function spectra_line
 
     !> Get ready for a method's run of `scene`.
@@ -275,7 +225,7 @@ contains
     end subroutine spectra_header
 
     !> Segment length of the scene's lowest band.
-    pure integer function segment_length(scene)
+    integer function segment_length(scene)
         type(scene_type), intent(in) :: scene
 
         segment_length = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)

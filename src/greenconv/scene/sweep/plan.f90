@@ -686,36 +686,15 @@ contains
         is_value = scan(token(1:1), '0123456789+-.''"') > 0
     end function is_value
 
-    !> `unquoted` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine unquoted_build(text, bare)
+    !> A text without its quotes.
+    pure function unquoted(text) result(bare)
         character(len=*), intent(in) :: text
-        character(len=:), allocatable, intent(out) :: bare
+        character(len=:), allocatable :: bare
 
         bare = text
         if (len(text) >= 2) then
             if (scan(text(1:1), '''"') > 0 .and. text(len(text):len(text)) == text(1:1)) bare = text(2:len(text) - 1)
         end if
-    end subroutine unquoted_build
-
-    !> Length of the text `unquoted` gives.
-    pure integer function unquoted_length(text)
-        character(len=*), intent(in) :: text
-
-        character(len=:), allocatable :: built
-
-        call unquoted_build(text, built)
-        unquoted_length = len(built)
-    end function unquoted_length
-
-    !> A text without its quotes.
-    pure function unquoted(text) result(bare)
-        character(len=*), intent(in) :: text
-        character(len=unquoted_length(text)) :: bare
-
-        character(len=:), allocatable :: built
-
-        call unquoted_build(text, built)
-        bare = built
     end function unquoted
 
     !> `group.variable` split in two.
@@ -727,10 +706,11 @@ contains
         variable = name(index(name, '.') + 1:)
     end subroutine split_name
 
-    !> `replaced_value` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine replaced_value_build(line, variable, value, changed)
+    !> A line with the value of `variable = ...` replaced by `value` (up to a comment, the
+    !> group's `/` or the next assignment on the line).
+    function replaced_value(line, variable, value) result(changed)
         character(len=*), intent(in) :: line, variable, value
-        character(len=:), allocatable, intent(out) :: changed
+        character(len=:), allocatable :: changed
 
         character(len=:), allocatable :: low, rest
         integer :: at, start, finish, i, j
@@ -783,60 +763,17 @@ contains
             end select
         end do
         changed = line(:at)//' '//value//line(finish + 1:)
-    end subroutine replaced_value_build
-
-    !> Length of the text `replaced_value` gives.
-    pure integer function replaced_value_length(line, variable, value)
-        character(len=*), intent(in) :: line, variable, value
-
-        character(len=:), allocatable :: built
-
-        call replaced_value_build(line, variable, value, built)
-        replaced_value_length = len(built)
-    end function replaced_value_length
-
-    !> A line with the value of `variable = ...` replaced by `value` (up to a comment, the
-    !> group's `/` or the next assignment on the line).
-    pure function replaced_value(line, variable, value) result(changed)
-        character(len=*), intent(in) :: line, variable, value
-        character(len=replaced_value_length(line, variable, value)) :: changed
-
-        character(len=:), allocatable :: built
-
-        call replaced_value_build(line, variable, value, built)
-        changed = built
     end function replaced_value
 
-    !> `after_group_name` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine after_group_name_build(line, group, assignment, changed)
+    !> A line with `assignment` written right after its `&group`.
+    function after_group_name(line, group, assignment) result(changed)
         character(len=*), intent(in) :: line, group, assignment
-        character(len=:), allocatable, intent(out) :: changed
+        character(len=:), allocatable :: changed
 
         integer :: at
 
         at = index(lower_text(line), '&'//group) + len(group)
         changed = line(:at)//' '//assignment//' '//line(at + 1:)
-    end subroutine after_group_name_build
-
-    !> Length of the text `after_group_name` gives.
-    pure integer function after_group_name_length(line, group, assignment)
-        character(len=*), intent(in) :: line, group, assignment
-
-        character(len=:), allocatable :: built
-
-        call after_group_name_build(line, group, assignment, built)
-        after_group_name_length = len(built)
-    end function after_group_name_length
-
-    !> A line with `assignment` written right after its `&group`.
-    pure function after_group_name(line, group, assignment) result(changed)
-        character(len=*), intent(in) :: line, group, assignment
-        character(len=after_group_name_length(line, group, assignment)) :: changed
-
-        character(len=:), allocatable :: built
-
-        call after_group_name_build(line, group, assignment, built)
-        changed = built
     end function after_group_name
 
     !> The line of a group added at the end of a variant (0 when none was added).
@@ -852,15 +789,16 @@ contains
         end do
     end function added_group_line
 
-    !> `replaced_all` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine replaced_all_build(text, old, new, changed)
+    !> Every occurrence of `old` in `text` replaced by `new` (left to right, each once: `new`
+    !> may hold `old`).
+    function replaced_all(text, old, new) result(changed)
         !> The text.
         character(len=*), intent(in) :: text
         !> What to replace (not empty).
         character(len=*), intent(in) :: old
         !> What replaces it.
         character(len=*), intent(in) :: new
-        character(len=:), allocatable, intent(out) :: changed
+        character(len=:), allocatable :: changed
 
         integer :: at, from
 
@@ -873,38 +811,6 @@ contains
             from = from + at - 1 + len(old)
         end do
         changed = changed//text(from:)
-    end subroutine replaced_all_build
-
-    !> Length of the text `replaced_all` gives.
-    pure integer function replaced_all_length(text, old, new)
-        !> The text.
-        character(len=*), intent(in) :: text
-        !> What to replace (not empty).
-        character(len=*), intent(in) :: old
-        !> What replaces it.
-        character(len=*), intent(in) :: new
-
-        character(len=:), allocatable :: built
-
-        call replaced_all_build(text, old, new, built)
-        replaced_all_length = len(built)
-    end function replaced_all_length
-
-    !> Every occurrence of `old` in `text` replaced by `new` (left to right, each once: `new`
-    !> may hold `old`).
-    pure function replaced_all(text, old, new) result(changed)
-        !> The text.
-        character(len=*), intent(in) :: text
-        !> What to replace (not empty).
-        character(len=*), intent(in) :: old
-        !> What replaces it.
-        character(len=*), intent(in) :: new
-        character(len=replaced_all_length(text, old, new)) :: changed
-
-        character(len=:), allocatable :: built
-
-        call replaced_all_build(text, old, new, built)
-        changed = built
     end function replaced_all
 
     !> A text padded with blanks on the right to at least `width` characters.
@@ -919,7 +825,7 @@ contains
     end function padded
 
     !> The width of variable j's column: its name or its widest value.
-    pure integer function column_width(plan, j)
+    integer function column_width(plan, j)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Index of the varied variable.

@@ -150,37 +150,14 @@ contains
         n = n + 2
     end subroutine add_file
 
-    !> `outcome_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine outcome_text_build(outcome, text)
+    !> An outcome as one text (its record, and what an MPI rank sends): four lines.
+    function outcome_text(outcome) result(text)
         !> The outcome.
         type(variant_outcome), intent(in) :: outcome
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         text = outcome%result//new_line('a')//outcome%cpu//new_line('a')//int_text(outcome%status)//new_line('a') &
                //outcome%message
-    end subroutine outcome_text_build
-
-    !> Length of the text `outcome_text` gives.
-    pure integer function outcome_text_length(outcome)
-        !> The outcome.
-        type(variant_outcome), intent(in) :: outcome
-
-        character(len=:), allocatable :: built
-
-        call outcome_text_build(outcome, built)
-        outcome_text_length = len(built)
-    end function outcome_text_length
-
-    !> An outcome as one text (its record, and what an MPI rank sends): four lines.
-    pure function outcome_text(outcome) result(text)
-        !> The outcome.
-        type(variant_outcome), intent(in) :: outcome
-        character(len=outcome_text_length(outcome)) :: text
-
-        character(len=:), allocatable :: built
-
-        call outcome_text_build(outcome, built)
-        text = built
     end function outcome_text
 
     !> The outcome `outcome_text` wrote; `ok` is .false. when the text is not one.
@@ -222,71 +199,23 @@ contains
         call write_text(record_path(plan, outcome%key), outcome_text(outcome), error)
     end subroutine save_record
 
-    !> `record_directory` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine record_directory_build(plan, path)
+    !> The directory of the records of finished variants.
+    function record_directory(plan) result(path)
         type(sweep_plan), intent(in) :: plan
-        character(len=:), allocatable, intent(out) :: path
+        character(len=:), allocatable :: path
 
         path = plan%output_dir//'/'//plan%name//'_sweep.d'
-    end subroutine record_directory_build
-
-    !> Length of the text `record_directory` gives.
-    pure integer function record_directory_length(plan)
-        type(sweep_plan), intent(in) :: plan
-
-        character(len=:), allocatable :: built
-
-        call record_directory_build(plan, built)
-        record_directory_length = len(built)
-    end function record_directory_length
-
-    !> The directory of the records of finished variants.
-    pure function record_directory(plan) result(path)
-        type(sweep_plan), intent(in) :: plan
-        character(len=record_directory_length(plan)) :: path
-
-        character(len=:), allocatable :: built
-
-        call record_directory_build(plan, built)
-        path = built
     end function record_directory
 
-    !> `record_path` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine record_path_build(plan, key, path)
+    !> The record of a variant, named by its content key.
+    function record_path(plan, key) result(path)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> The variant's content key (hex digits).
         character(len=*), intent(in) :: key
-        character(len=:), allocatable, intent(out) :: path
+        character(len=:), allocatable :: path
 
         path = record_directory(plan)//'/'//key//'.rec'
-    end subroutine record_path_build
-
-    !> Length of the text `record_path` gives.
-    pure integer function record_path_length(plan, key)
-        !> The sweep.
-        type(sweep_plan), intent(in) :: plan
-        !> The variant's content key (hex digits).
-        character(len=*), intent(in) :: key
-
-        character(len=:), allocatable :: built
-
-        call record_path_build(plan, key, built)
-        record_path_length = len(built)
-    end function record_path_length
-
-    !> The record of a variant, named by its content key.
-    pure function record_path(plan, key) result(path)
-        !> The sweep.
-        type(sweep_plan), intent(in) :: plan
-        !> The variant's content key (hex digits).
-        character(len=*), intent(in) :: key
-        character(len=record_path_length(plan, key)) :: path
-
-        character(len=:), allocatable :: built
-
-        call record_path_build(plan, key, built)
-        path = built
     end function record_path
 
     !> Read a record; `found` is .false. when there is none (or it is not one).

@@ -26,15 +26,15 @@ module greenconv_scene_sweep_report
 
 contains
 
-    !> `summary_row` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine summary_row_build(plan, k, result, row)
+    !> The row of variant k in the table: its number, its values, its result.
+    function summary_row(plan, k, result) result(row)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Variant number.
         integer, intent(in) :: k
         !> Its result columns (`variant_outcome%result`).
         character(len=*), intent(in) :: result
-        character(len=:), allocatable, intent(out) :: row
+        character(len=:), allocatable :: row
 
         integer :: j
 
@@ -43,37 +43,6 @@ contains
             row = row//'  '//padded(plan%values(k, j)%text, column_width(plan, j))
         end do
         row = row//result
-    end subroutine summary_row_build
-
-    !> Length of the text `summary_row` gives.
-    pure integer function summary_row_length(plan, k, result)
-        !> The sweep.
-        type(sweep_plan), intent(in) :: plan
-        !> Variant number.
-        integer, intent(in) :: k
-        !> Its result columns (`variant_outcome%result`).
-        character(len=*), intent(in) :: result
-
-        character(len=:), allocatable :: built
-
-        call summary_row_build(plan, k, result, built)
-        summary_row_length = len(built)
-    end function summary_row_length
-
-    !> The row of variant k in the table: its number, its values, its result.
-    pure function summary_row(plan, k, result) result(row)
-        !> The sweep.
-        type(sweep_plan), intent(in) :: plan
-        !> Variant number.
-        integer, intent(in) :: k
-        !> Its result columns (`variant_outcome%result`).
-        character(len=*), intent(in) :: result
-        character(len=summary_row_length(plan, k, result)) :: row
-
-        character(len=:), allocatable :: built
-
-        call summary_row_build(plan, k, result, built)
-        row = built
     end function summary_row
 
     !> Write `<name>_sweep.dat` (one row per variant, in order) and `<name>_sweep_cpu.dat`
@@ -282,10 +251,11 @@ contains
         end do
     end function band_text
 
-    !> `nominal_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine nominal_text_build(centre, text)
+    !> The nominal name of a 1/3-octave band (100, 125, 160, ..., 1000, 1250, ...) from its
+    !> exact centre 1000*10^(x/10) Hz: the preferred numbers of IEC 61260-1, three digits.
+    function nominal_text(centre) result(text)
         real(dp), intent(in) :: centre
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         real(dp), parameter :: preferred(0:9) = [1.0_dp, 1.25_dp, 1.6_dp, 2.0_dp, 2.5_dp, 3.15_dp, 4.0_dp, 5.0_dp, &
                                                  6.3_dp, 8.0_dp]
@@ -308,60 +278,17 @@ contains
             if (text(len(text):len(text)) == '.') text = text(:len(text) - 1)
         end if
         if (text(1:1) == '.') text = '0'//text
-    end subroutine nominal_text_build
-
-    !> Length of the text `nominal_text` gives.
-    pure integer function nominal_text_length(centre)
-        real(dp), intent(in) :: centre
-
-        character(len=:), allocatable :: built
-
-        call nominal_text_build(centre, built)
-        nominal_text_length = len(built)
-    end function nominal_text_length
-
-    !> The nominal name of a 1/3-octave band (100, 125, 160, ..., 1000, 1250, ...) from its
-    !> exact centre 1000*10^(x/10) Hz: the preferred numbers of IEC 61260-1, three digits.
-    pure function nominal_text(centre) result(text)
-        real(dp), intent(in) :: centre
-        character(len=nominal_text_length(centre)) :: text
-
-        character(len=:), allocatable :: built
-
-        call nominal_text_build(centre, built)
-        text = built
     end function nominal_text
 
-    !> `cpu_text` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine cpu_text_build(seconds, text)
+    !> CPU seconds as the CPU file shows them.
+    function cpu_text(seconds) result(text)
         real(dp), intent(in) :: seconds
-        character(len=:), allocatable, intent(out) :: text
+        character(len=:), allocatable :: text
 
         character(len=12) :: buffer
 
         write (buffer, '(f12.4)') seconds
         text = trim(adjustl(buffer))
-    end subroutine cpu_text_build
-
-    !> Length of the text `cpu_text` gives.
-    pure integer function cpu_text_length(seconds)
-        real(dp), intent(in) :: seconds
-
-        character(len=:), allocatable :: built
-
-        call cpu_text_build(seconds, built)
-        cpu_text_length = len(built)
-    end function cpu_text_length
-
-    !> CPU seconds as the CPU file shows them.
-    pure function cpu_text(seconds) result(text)
-        real(dp), intent(in) :: seconds
-        character(len=cpu_text_length(seconds)) :: text
-
-        character(len=:), allocatable :: built
-
-        call cpu_text_build(seconds, built)
-        text = built
     end function cpu_text
 
 end module greenconv_scene_sweep_report

@@ -170,13 +170,14 @@ contains
         end if
     end function variant_sinks
 
-    !> `history_title` built into an allocatable (see greenconv_core_text on static string lengths).
-    pure subroutine history_title_build(plan, scene, k, method, line)
+    !> First header line of a variant's history file: the sweep, the variant and its values,
+    !> the method, the steps; with `output_every` > 1, which steps the rows are.
+    function history_title(plan, scene, k, method) result(line)
         type(sweep_plan), intent(in) :: plan
         type(scene_type), intent(in) :: scene
         integer, intent(in) :: k
         character(len=*), intent(in) :: method
-        character(len=:), allocatable, intent(out) :: line
+        character(len=:), allocatable :: line
 
         integer :: j
 
@@ -189,34 +190,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end subroutine history_title_build
-
-    !> Length of the text `history_title` gives.
-    pure integer function history_title_length(plan, scene, k, method)
-        type(sweep_plan), intent(in) :: plan
-        type(scene_type), intent(in) :: scene
-        integer, intent(in) :: k
-        character(len=*), intent(in) :: method
-
-        character(len=:), allocatable :: built
-
-        call history_title_build(plan, scene, k, method, built)
-        history_title_length = len(built)
-    end function history_title_length
-
-    !> First header line of a variant's history file: the sweep, the variant and its values,
-    !> the method, the steps; with `output_every` > 1, which steps the rows are.
-    pure function history_title(plan, scene, k, method) result(line)
-        type(sweep_plan), intent(in) :: plan
-        type(scene_type), intent(in) :: scene
-        integer, intent(in) :: k
-        character(len=*), intent(in) :: method
-        character(len=history_title_length(plan, scene, k, method)) :: line
-
-        character(len=:), allocatable :: built
-
-        call history_title_build(plan, scene, k, method, built)
-        line = built
     end function history_title
 
 end module greenconv_scene_sweep_variant
