@@ -1,10 +1,10 @@
 !> Numbers as text for messages and summaries, and names in one case.
 !>
-!> Every function here returns a result whose length is a specification expression (computed
-!> by formatting into a fixed buffer first), never a deferred length: gfortran keeps the length
-!> of a deferred-length function result in a static variable at each call site, which two
-!> threads running the same code would share (issue 24). Each text is formatted twice, once for
-!> its length; these texts are messages and summaries, not hot paths.
+!> Every function here returns a result whose length is a specification expression (the text
+!> formatted into a fixed buffer first, its length the buffer's trimmed length), never a
+!> deferred length: gfortran keeps the length of a deferred-length function result in a static
+!> variable at each call site, which two threads running the same code would share (issue 24).
+!> Each text is formatted twice, once for its length; these texts are messages and summaries.
 module greenconv_core_text
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
@@ -24,32 +24,24 @@ module greenconv_core_text
 
 contains
 
-    !> An integer's digits, left-justified in `buffer`, and how many characters they take.
-    pure subroutine format_int(i, buffer, used)
-        integer(int64), intent(in) :: i
-        character(len=buffer_length), intent(out) :: buffer
-        integer, intent(out) :: used
-
-        write (buffer, '(i0)') i
-        used = len_trim(buffer)
-    end subroutine format_int
-
-    !> Number of characters of an integer's text.
-    pure integer function int_length(i)
+    !> An integer's digits, left-justified and blank-padded.
+    pure function int_buffer(i) result(buffer)
         !> The integer.
         integer(int64), intent(in) :: i
-
+        !> Its digits.
         character(len=buffer_length) :: buffer
 
-        call format_int(i, buffer, int_length)
-    end function int_length
+        write (buffer, '(i0)') i
+    end function int_buffer
 
-    !> `sci_digits` into a fixed buffer, and how many characters it takes.
-    pure subroutine format_sci(x, digits, buffer, used)
+    !> `sci_digits`'s text, left-justified and blank-padded.
+    pure function sci_buffer(x, digits) result(buffer)
+        !> The real.
         real(dp), intent(in) :: x
+        !> Digits after the decimal point (0 to 20).
         integer, intent(in) :: digits
-        character(len=buffer_length), intent(out) :: buffer
-        integer, intent(out) :: used
+        !> Its text.
+        character(len=buffer_length) :: buffer
 
         character(len=24) :: form
         integer :: mark
@@ -57,55 +49,39 @@ contains
         write (form, '(a,i0,a,i0,a)') '(es', digits + 9, '.', digits, 'e3)'
         write (buffer, form) x
         buffer = adjustl(buffer)
-        used = len_trim(buffer)
-        mark = index(buffer(:used), 'E')
-        if (mark > 0 .and. mark + 2 <= used) then
-            if (buffer(mark + 2:mark + 2) == '0') then
-                buffer = buffer(:mark + 1)//buffer(mark + 3:)
-                used = used - 1
-            end if
+        mark = index(buffer, 'E')
+        if (mark > 0 .and. mark + 2 <= len_trim(buffer)) then
+            if (buffer(mark + 2:mark + 2) == '0') buffer = buffer(:mark + 1)//buffer(mark + 3:)
         end if
-    end subroutine format_sci
+    end function sci_buffer
 
-    !> Number of characters of `sci_digits`.
-    pure integer function sci_length(x, digits)
+    !> `trimmed_real_text`'s text, left-justified and blank-padded: plain notation with
+    !> digits(1) decimals when x is zero or span(1) <= |x| < span(2), else scientific with
+    !> digits(2) digits after the point; the trailing zeros of the digits removed.
+    pure function trimmed_buffer(x, span, digits) result(buffer)
         !> The real.
         real(dp), intent(in) :: x
-        !> Digits after the decimal point.
-        integer, intent(in) :: digits
-
+        !> Range of magnitudes written plainly (zero aside), in the unit of x.
+        real(dp), intent(in) :: span(2)
+        !> Decimals of the plain notation, digits after the point of the scientific one.
+        integer, intent(in) :: digits(2)
+        !> Its text.
         character(len=buffer_length) :: buffer
-
-        call format_sci(x, digits, buffer, sci_length)
-    end function sci_length
-
-    !> `trimmed_real_text` into a fixed buffer, and how many characters it takes.
-    pure subroutine format_trimmed(x, low, high, plain_digits, science_digits, buffer, used)
-        real(dp), intent(in) :: x, low, high
-        integer, intent(in) :: plain_digits, science_digits
-        character(len=buffer_length), intent(out) :: buffer
-        integer, intent(out) :: used
 
         character(len=buffer_length) :: text
         character(len=12) :: form
         integer :: mark, last, n
 
-        if (abs(x) < tiny(x) .or. (abs(x) >= low .and. abs(x) < high)) then
-            write (form, '(a,i0,a)') '(f0.', plain_digits, ')'
+        if (abs(x) < tiny(x) .or. (abs(x) >= span(1) .and. abs(x) < span(2))) then
+            write (form, '(a,i0,a)') '(f0.', digits(1), ')'
             write (text, form) x
             text = adjustl(text)
         else
-            call format_sci(x, science_digits, text, n)
+            text = sci_buffer(x, digits(2))
         end if
+        if (text(1:1) == '.') text = '0'//text
+        if (text(1:2) == '-.') text = '-0'//text(2:)
         n = len_trim(text)
-        if (text(1:1) == '.') then
-            text = '0'//text
-            n = n + 1
-        end if
-        if (text(1:2) == '-.') then
-            text = '-0'//text(2:)
-            n = n + 1
-        end if
         mark = scan(text(:n), 'E')
         if (mark == 0) mark = n + 1
         last = mark - 1
@@ -113,26 +89,7 @@ contains
             last = last - 1
         end do
         buffer = text(:last)//text(mark:n)
-        used = last + (n - mark + 1)
-    end subroutine format_trimmed
-
-    !> Number of characters of `trimmed_real_text`.
-    pure integer function trimmed_length(x, low, high, plain_digits, science_digits)
-        !> The real.
-        real(dp), intent(in) :: x
-        !> Smallest magnitude written plainly (zero aside), in the unit of x.
-        real(dp), intent(in) :: low
-        !> Magnitude from which on x is written in scientific notation, in the unit of x.
-        real(dp), intent(in) :: high
-        !> Decimals of the plain notation.
-        integer, intent(in) :: plain_digits
-        !> Digits after the point of the scientific notation.
-        integer, intent(in) :: science_digits
-
-        character(len=buffer_length) :: buffer
-
-        call format_trimmed(x, low, high, plain_digits, science_digits, buffer, trimmed_length)
-    end function trimmed_length
+    end function trimmed_buffer
 
     !> The fewest significant digits (1 to 17) whose scientific text reads back to x.
     pure integer function exact_digits(x)
@@ -141,14 +98,14 @@ contains
 
         character(len=buffer_length) :: buffer
         real(dp) :: back
-        integer :: used, status
+        integer :: status
 
         do exact_digits = 1, 17
-            call format_sci(x, exact_digits - 1, buffer, used)
-            read (buffer(:used), *, iostat=status) back
-            if (status == 0 .and. back == x) exit
+            buffer = sci_buffer(x, exact_digits - 1)
+            read (buffer, *, iostat=status) back
+            if (status == 0 .and. back == x) return
         end do
-        exact_digits = min(exact_digits, 17)
+        exact_digits = 17
     end function exact_digits
 
     !> A default integer as text, without blanks.
@@ -156,9 +113,9 @@ contains
         !> The integer.
         integer, intent(in) :: i
         !> Its digits, with a sign when negative.
-        character(len=int_length(int(i, int64))) :: text
+        character(len=len_trim(int_buffer(int(i, int64)))) :: text
 
-        text = long_int_text(int(i, int64))
+        text = int_buffer(int(i, int64))
     end function default_int_text
 
     !> A 64-bit integer (a step count of a long run) as text, without blanks.
@@ -166,13 +123,9 @@ contains
         !> The integer.
         integer(int64), intent(in) :: i
         !> Its digits, with a sign when negative.
-        character(len=int_length(i)) :: text
+        character(len=len_trim(int_buffer(i))) :: text
 
-        character(len=buffer_length) :: buffer
-        integer :: used
-
-        call format_int(i, buffer, used)
-        text = buffer(:used)
+        text = int_buffer(i)
     end function long_int_text
 
     !> A real with up to ten significant digits, without blanks and without the trailing
@@ -182,9 +135,9 @@ contains
         !> The real.
         real(dp), intent(in) :: x
         !> Its text.
-        character(len=trimmed_length(x, 0.1_dp, 1.0e7_dp, 9, 9)) :: text
+        character(len=len_trim(trimmed_buffer(x, [0.1_dp, 1.0e7_dp], [9, 9]))) :: text
 
-        text = trimmed_real_text(x, 0.1_dp, 1.0e7_dp, 9, 9)
+        text = trimmed_buffer(x, [0.1_dp, 1.0e7_dp], [9, 9])
     end function real_text
 
     !> A real without blanks, its digits without trailing zeros (one kept after the point):
@@ -203,13 +156,9 @@ contains
         !> Digits after the point of the scientific notation before the zeros are removed.
         integer, intent(in) :: science_digits
         !> Its text.
-        character(len=trimmed_length(x, low, high, plain_digits, science_digits)) :: text
+        character(len=len_trim(trimmed_buffer(x, [low, high], [plain_digits, science_digits]))) :: text
 
-        character(len=buffer_length) :: buffer
-        integer :: used
-
-        call format_trimmed(x, low, high, plain_digits, science_digits, buffer, used)
-        text = buffer(:used)
+        text = trimmed_buffer(x, [low, high], [plain_digits, science_digits])
     end function trimmed_real_text
 
     !> A real in short scientific notation (three significant digits), without blanks.
@@ -217,9 +166,9 @@ contains
         !> The real.
         real(dp), intent(in) :: x
         !> Its text.
-        character(len=sci_length(x, 2)) :: text
+        character(len=len_trim(sci_buffer(x, 2))) :: text
 
-        text = sci_digits(x, 2)
+        text = sci_buffer(x, 2)
     end function sci_text
 
     !> A real in scientific notation with `digits` digits after the point, without blanks,
@@ -232,13 +181,9 @@ contains
         !> Digits after the decimal point (0 to 20).
         integer, intent(in) :: digits
         !> Its text.
-        character(len=sci_length(x, digits)) :: text
+        character(len=len_trim(sci_buffer(x, digits))) :: text
 
-        character(len=buffer_length) :: buffer
-        integer :: used
-
-        call format_sci(x, digits, buffer, used)
-        text = buffer(:used)
+        text = sci_buffer(x, digits)
     end function sci_digits
 
     !> Text with the letters A-Z in lower case and trailing blanks removed.
@@ -260,13 +205,13 @@ contains
     !> A real as the shortest scientific text (1 to 17 significant digits) that reads back to
     !> the same double, without blanks: `1.E-02` for 0.01, `1.5E+00`. Non-finite values are
     !> written as Fortran writes them.
-    function exact_text(x) result(text)
+    pure function exact_text(x) result(text)
         !> The number.
         real(dp), intent(in) :: x
         !> Its text.
-        character(len=sci_length(x, exact_digits(x) - 1)) :: text
+        character(len=len_trim(sci_buffer(x, exact_digits(x) - 1))) :: text
 
-        text = sci_digits(x, exact_digits(x) - 1)
+        text = sci_buffer(x, exact_digits(x) - 1)
     end function exact_text
 
 end module greenconv_core_text
