@@ -178,9 +178,12 @@ contains
         character(len=:), allocatable :: text
 
         type(structure_kind), allocatable :: models(:)
+        character(len=len(models%name)), allocatable :: names(:)
 
         models = structure_models()
-        text = quoted_list(models%name)
+        ! a contiguous copy: the component array would be passed through a temporary
+        names = models%name
+        text = quoted_list(names)
     end function model_names
 
     !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
