@@ -34,7 +34,7 @@ module greenconv_conv_builder
     private
 
     public :: new_convolver, make_convolver, make_multipoint_convolver, table_convolver
-    public :: max_kernel_values, kernel_values, check_kernel_cap
+    public :: max_kernel_values, check_kernel_values, check_kernel_cap
 
     !> Largest number of stored values of a sampled kernel: N_g*N_c^2 weights and 2*N_g*N_c
     !> past forces (10^8 values: 0.8 GB at 8 bytes each). The peak while a convolver is built
@@ -88,11 +88,12 @@ contains
         if (present(description)) description = text
     end subroutine new_convolver
 
-    !> Values a `direct` or `fft` convolver stores, N_g*N_c^2 + 2*N_g*N_c, with N_g estimated
-    !> from the slowest decay rate: the envelope exp(-sigma*t) falls to tol by
-    !> t = ln(1/tol)/sigma, and the kernel never exceeds the run (N_t samples). A real, so
-    !> that absurd sizes do not overflow.
-    pure real(dp) function kernel_values(decay_rate, dt, tol, n_steps, n_points)
+    !> Refuse (`stat_input`) a sampled kernel larger than `max_kernel_values`: a `direct` or
+    !> `fft` convolver stores N_g*N_c^2 + 2*N_g*N_c values, with N_g estimated from the slowest
+    !> decay rate (the envelope exp(-sigma*t) falls to tol by t = ln(1/tol)/sigma, and the
+    !> kernel never exceeds the run's N_t samples), counted as a real so that absurd sizes do
+    !> not overflow. The one cap check of scenes (greenconv_scene_input) and of every door.
+    subroutine check_kernel_values(decay_rate, dt, tol, n_steps, n_points, error)
         !> Slowest modal decay rate sigma = min xi_k*omega_k [1/s] (0: no decay).
         real(dp), intent(in) :: decay_rate
         !> Time step [s].
@@ -103,18 +104,24 @@ contains
         integer, intent(in) :: n_steps
         !> Number of contact points N_c.
         integer, intent(in) :: n_points
+        !> Set (`stat_input`) above the cap, with the estimate and the remedies.
+        type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: n_g
+        real(dp) :: n_g, values
 
         n_g = real(n_steps, dp)
         if (decay_rate > 0.0_dp) n_g = min(n_g, log(1.0_dp/tol)/(decay_rate*dt) + 1.0_dp)
-        kernel_values = n_g*real(n_points, dp)**2 + 2.0_dp*n_g*n_points
-    end function kernel_values
+        values = n_g*real(n_points, dp)**2 + 2.0_dp*n_g*n_points
+        if (values <= max_kernel_values) return
+        call fatal_error(error, 'expected a sampled kernel (direct, fft, auto) of at most ' &
+                         //sci_text(real(max_kernel_values, dp))//' values (8 bytes each), found ' &
+                         //sci_text(values)//' (N_t = '//int_text(n_steps)//', slowest decay rate ' &
+                         //sci_text(decay_rate)//' 1/s): use fewer steps, a larger dt or truncation_tol, ' &
+                         //'or a modal method (modal, exact)')
+    end subroutine check_kernel_values
 
-    !> Refuse (`stat_input`) a kernel method (`direct`, `fft`, `auto`) on modes whose sampled
-    !> kernel would exceed `max_kernel_values` (the check a scene makes when it is read, here
-    !> for the library's doors): an undamped mode over 10^8 steps would otherwise take
-    !> gigabytes, or end in a failed allocation.
+    !> `check_kernel_values` for a kernel method (`direct`, `fft`, `auto`) on modes, the
+    !> message naming the method; nothing for a modal method.
     subroutine check_kernel_cap(method, modes, dt, tol, n_steps, n_points, error)
         !> Method name (lower case).
         character(len=*), intent(in) :: method
@@ -128,20 +135,12 @@ contains
         integer, intent(in) :: n_steps
         !> Number of contact points N_c.
         integer, intent(in) :: n_points
-        !> Set (`stat_input`) above the cap, with the estimate and the remedies.
+        !> Set (`stat_input`) above the cap.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: values, decay_rate
-
         if (.not. method_needs_g(method) .or. modes%n_modes() < 1) return
-        decay_rate = max(minval(-real(modes%pole, dp)), 0.0_dp)
-        values = kernel_values(decay_rate, dt, tol, n_steps, n_points)
-        if (values <= max_kernel_values) return
-        call fatal_error(error, 'method '''//method//''': expected a sampled kernel of at most ' &
-                         //sci_text(real(max_kernel_values, dp))//' values (8 bytes each), found ' &
-                         //sci_text(values)//' (N_t = '//int_text(n_steps)//', slowest decay rate ' &
-                         //sci_text(decay_rate)//' 1/s): use fewer steps, a larger dt or truncation_tol, ' &
-                         //'or a modal method (modal, exact)')
+        call check_kernel_values(max(minval(-real(modes%pole, dp)), 0.0_dp), dt, tol, n_steps, n_points, error)
+        if (allocated(error)) error%message = 'method '''//method//''': '//error%message
     end subroutine check_kernel_cap
 
     !> Reject a request `make_convolver` cannot serve, the message starting "new_convolver: ".

@@ -29,7 +29,8 @@ module greenconv_scene_input
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       method_needs_g, check_method
-    use greenconv_scene_limits, only: max_kernel_values, kernel_values, max_spectrum_values, max_contact_points
+    use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
+    use greenconv_conv_builder, only: check_kernel_values
     use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
@@ -730,17 +731,14 @@ contains
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: values
         type(structure_kind) :: model
 
         model = find_model(this%model)
         if (this%task /= 'contact' .or. .not. associated(model%slowest_decay)) return
         if (.not. any(method_needs_g(this%methods))) return
-        values = kernel_values(model%slowest_decay(this), this%dt, this%truncation_tol, this%n_steps, this%n_points)
-        call require(values <= max_kernel_values, expected(this, 'convolution', 'methods', &
-                     'a sampled kernel (direct, fft, auto) of at most '//sci_text(real(max_kernel_values, dp)) &
-                     //' values (8 bytes each); use a larger dt or truncation_tol, or a modal method (modal, ' &
-                     //'exact), found '//sci_text(values)//' values'), error)
+        call check_kernel_values(model%slowest_decay(this), this%dt, this%truncation_tol, this%n_steps, &
+                                 this%n_points, error)
+        if (allocated(error)) error%message = place(this, 'convolution', 'methods')//' methods: '//error%message
     end subroutine check_kernel_size
 
     !> Whether a group reader stops after its namelist read or write: it failed (the status

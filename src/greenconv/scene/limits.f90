@@ -2,7 +2,7 @@
 !> there so that a mistyped value (an extra few zeros) gets a message before the run, rather
 !> than a failed allocation or a run of days. doc/scenes.md lists them.
 module greenconv_scene_limits
-    use greenconv_conv_builder, only: max_kernel_values, kernel_values
+    use greenconv_conv_builder, only: max_kernel_values
     implicit none
     private
 
@@ -10,7 +10,7 @@ module greenconv_scene_limits
     public :: max_spectrum_values
     !> The cap on a sampled kernel and its estimate live with the builder, which applies them
     !> at every door (C, Fortran, F77); scenes check them when read.
-    public :: max_kernel_values, kernel_values
+    public :: max_kernel_values
 
     !> Largest number of random modes (&structure n_modes).
     integer, parameter :: max_random_modes = 1000
