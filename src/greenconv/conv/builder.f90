@@ -115,7 +115,7 @@ contains
         if (values <= max_kernel_values) return
         call fatal_error(error, 'expected a sampled kernel (direct, fft, auto) of at most ' &
                          //sci_text(real(max_kernel_values, dp))//' values (8 bytes each), found ' &
-                         //sci_text(values)//' (N_t = '//int_text(n_steps)//', slowest decay rate ' &
+                         //sci_text(values)//' values (N_t = '//int_text(n_steps)//', slowest decay rate ' &
                          //sci_text(decay_rate)//' 1/s): use fewer steps, a larger dt or truncation_tol, ' &
                          //'or a modal method (modal, exact)')
     end subroutine check_kernel_values
