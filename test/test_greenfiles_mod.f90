@@ -12,7 +12,7 @@ module test_greenfiles_mod
     use greenconv_io_uff_write, only: write_uff, receptance_function, impulse_function
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points, patch_receptance
-    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file
+    use greenconv_model_road_file, only: road_file, read_road_file, sample_road, road_travel
     use greenconv_model_green_matrix_file, only: green_matrix, read_green_matrix
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
@@ -335,7 +335,7 @@ contains
 
         call read_road_file('data/road_sample.dat', road, fail)
         if (.not. allocated(fail)) &
-            call sample_road_file(road, x_start + (x - sum(x)/size(x)), 5.0_dp, dt, n_steps, heights, fail)
+            call sample_road(road, road_travel(x=x_start + (x - sum(x)/size(x)), speed=5.0_dp, dt=dt), n_steps, heights, fail)
         if (.not. allocated(fail)) &
             call run_multi_contact(conv, [(contact_law(stiffness, 1.0_dp), i=1, size(x))], heights, &
                                    [(preload/size(x), i=1, size(x))], response, fail)

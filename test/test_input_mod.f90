@@ -316,8 +316,8 @@ contains
         call expect_error(error, 'kernel.nml', tab1_scene(scene='dt = 1.0e-4, n_steps = 2000000000', &
                                                           structure=sdof('1.0', '1.0e6', '0.0'), &
                                                           convolution="methods = 'direct'"), &
-                          [character(len=piece) :: ':5: &convolution methods: expected a sampled kernel (direct, ' &
-                           //'fft, auto) of at most', 'or a modal method', 'found 6.00E+09 values'])
+                          [character(len=piece) :: ':5: &convolution methods: method ''direct'': expected a sampled ' &
+                           //'kernel (direct, fft, auto) of at most', 'or a modal method', 'found 6.00E+09 values'])
     end subroutine test_sizes
 
     !> What the scan must accept: values over lines, comments holding quotes and slashes,

@@ -15,7 +15,7 @@ module test_longrun_mod
                                  new_fft_convolver, fft_convolver, sdof_impulse, point_modes, tyre_belt, tyre_modes, &
                                  contact_positions, modal_green_matrix, new_modal_green_matrix, &
                                  multi_contact_response, run_multi_contact, multi_contact_state, start_multi_contact, &
-                                 multi_contact_block, road_file, read_road_file, sample_road_file
+                                 multi_contact_block, road_file, read_road_file, sample_road, road_travel
     implicit none
     private
 
@@ -249,8 +249,8 @@ contains
         preloads(:) = 200.0_dp
         call tyre_modes(tyre, positions, 1000.0_dp, description, failure)
         if (.not. allocated(failure)) call read_road_file('data/road_sample.dat', profile, failure)
-        if (.not. allocated(failure)) call sample_road_file(profile, 1.0_dp + positions - positions(1), speed, &
-                                                            tyre_dt, n_t, heights, failure)
+        if (.not. allocated(failure)) call sample_road(profile, road_travel(x=1.0_dp + positions - positions(1), speed=speed, &
+                                                                                    dt=tyre_dt), n_t, heights, failure)
         call check(error, .not. allocated(failure), 'tyre modes and road')
         if (allocated(error)) return
         do i = 1, size(schemes)

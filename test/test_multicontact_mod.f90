@@ -45,7 +45,7 @@ module test_multicontact_mod
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
     use greenconv_scene_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
-    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file
+    use greenconv_model_road_file, only: road_file, read_road_file, sample_road, road_travel
     implicit none
     private
 
@@ -824,7 +824,7 @@ contains
         call check(error, road%height_at(0.5_dp*(road%x(10) + road%x(11))), &
                    0.5_dp*(road%height(10) + road%height(11)), 'midpoint interpolation', thr=1.0e-18_dp)
         if (allocated(error)) return
-        call sample_road_file(road, [0.1_dp, 0.2_dp], 20.0_dp, 1.0e-4_dp, 4001, heights, failure)
+        call sample_road(road, road_travel(x=[0.1_dp, 0.2_dp], speed=20.0_dp, dt=1.0e-4_dp), 4001, heights, failure)
         call check(error, .not. allocated(failure), 'a run within the file samples')
         if (allocated(error)) return
         call check(error, heights(4000, 2), road%height_at(8.2_dp), 'x_i + V*t_n', thr=1.0e-18_dp)
@@ -863,7 +863,7 @@ contains
                    'missing file: '//failure%message)
         if (allocated(error)) return
         call read_road_file('data/road_sample.dat', road, failure)
-        call sample_road_file(road, [0.0_dp], 20.0_dp, 1.0e-4_dp, 10000, heights, failure)
+        call sample_road(road, road_travel(x=[0.0_dp], speed=20.0_dp, dt=1.0e-4_dp), 10000, heights, failure)
         call check(error, allocated(failure), 'no error for a run beyond the file')
         if (allocated(error)) return
         call check(error, index(failure%message, 'data/road_sample.dat: expected a road from x = 0') == 1 &

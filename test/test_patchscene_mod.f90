@@ -13,7 +13,7 @@ module test_patchscene_mod
     use greenconv_io_uff_write, only: write_uff, receptance_function, impulse_function
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points, patch_receptance
-    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file
+    use greenconv_model_road_file, only: road_file, read_road_file, sample_road, road_travel
     use greenconv_model_road_texture, only: road_texture, read_road_texture
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
@@ -103,7 +103,7 @@ contains
         call check(error, .not. allocated(fail), 'the scene runs: '//message_of(fail))
         if (allocated(error)) return
         call read_road_file('data/road_sample.dat', road, fail)
-        call sample_road_file(road, 1.0_dp + (x - sum(x)/4), 5.0_dp, 5.0e-4_dp, 400, heights, fail)
+        call sample_road(road, road_travel(x=1.0_dp + (x - sum(x)/4), speed=5.0_dp, dt=5.0e-4_dp), 400, heights, fail)
         call check(error, .not. allocated(fail), 'the road covers the run')
         if (allocated(error)) return
         do m = 1, size(methods)
@@ -180,8 +180,8 @@ contains
         type(road_file) :: road
 
         call read_road_file('data/road_sample.dat', road, fail)
-        if (.not. allocated(fail)) call sample_road_file(road, 0.5_dp + (x - sum(x)/size(x)), 5.0_dp, 2.0e-4_dp, &
-                                                         1000, heights, fail)
+        if (.not. allocated(fail)) call sample_road(road, road_travel(x=0.5_dp + (x - sum(x)/size(x)), speed=5.0_dp, &
+                                                                                 dt=2.0e-4_dp), 1000, heights, fail)
     end subroutine patch_road
 
     !> The shipped file is the plate of example/write_patch_green.f90 (every mode to 10 kHz,

@@ -12,7 +12,8 @@ module test_tyrepatch_mod
     use greenconv_io_columns, only: read_columns
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
-    use greenconv_model_road_texture, only: road_texture, read_road_texture, sample_texture_steps
+    use greenconv_model_road_texture, only: road_texture, read_road_texture
+    use greenconv_model_road_file, only: road_travel, sample_road_steps
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
@@ -85,7 +86,7 @@ contains
         if (.not. allocated(fail)) call read_road_texture(texture_path, texture, fail)
         call check(error, .not. allocated(fail), 'modes and texture: '//message_of(fail))
         if (allocated(error)) return
-        call sample_texture_steps(texture, 0.5_dp + (x - sum(x)/n_c), y - sum(y)/n_c, speed, dt, 0_8, n_t, road)
+        call sample_road_steps(texture, road_travel(0.5_dp + (x - sum(x)/n_c), y - sum(y)/n_c, speed, dt), 0_8, n_t, road)
         worst = 0.0_dp
         do m = 1, size(methods)
             call make_multipoint_convolver(trim(methods(m)), modes, dt, 0.01_dp, n_t, conv, accuracy, fail)

@@ -31,8 +31,8 @@ module greenconv_api_all
     use greenconv_scene_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, &
                                     contact_positions
-    use greenconv_model_road_file, only: road_file, read_road_file, sample_road_file, check_road_coverage, &
-                                         sample_road_steps, file_road
+    use greenconv_model_road_file, only: road_file, read_road_file, sample_road, check_road_coverage, &
+                                         sample_road_steps, file_road, road_travel
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
                                          structure_from_samples
     use greenconv_scene_structure, only: build_structure
@@ -64,7 +64,7 @@ module greenconv_api_all
     public :: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, write_multi_contact
     public :: multi_contact_state, start_multi_contact, multi_contact_block
     public :: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, contact_positions
-    public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
+    public :: road_file, read_road_file, sample_road, check_road_coverage, sample_road_steps, file_road, road_travel
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples, build_structure
     public :: run_scene, check_scene, make_convolver, output_path
     public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file

@@ -27,7 +27,7 @@ module greenconv_api_handle
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
     use greenconv_conv_direct, only: direct_convolver
     use greenconv_conv_fft, only: fft_convolver
-    use greenconv_conv_methods, only: method_needs_g
+    use greenconv_conv_methods, only: method_needs, needs_sampled_g
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
                                         copy_histories, start_contact, contact_block
@@ -298,7 +298,7 @@ contains
         call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
         dt_g = 0.0_dp
-        if (method_needs_g(lower_text(method))) dt_g = dt
+        if (method_needs(lower_text(method), needs_sampled_g)) dt_g = dt
         call structure_from_frf(frf, options, dt_g, structure, error)
     end subroutine frf_file_structure
 

@@ -27,7 +27,7 @@ module greenconv_api_multi_handle
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_conv_methods, only: check_method
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_cap
+    use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_contact_law, only: contact_law
@@ -96,7 +96,8 @@ contains
         description%modes%pole = cmplx(pole_re, pole_im, dp)
         description%modes%residue = cmplx(residue_re, residue_im, dp)
         description%shape = shape
-        call check_kernel_cap(lower_text(method), description%modes, dt, truncation_tol, n_steps, size(shape, 1), error)
+        if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(method), &
+            description%modes%slowest_decay(), dt, truncation_tol, n_steps, size(shape, 1), error)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return

@@ -24,8 +24,8 @@ module greenconv_conv_builder
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_structure, only: structure_model
-    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs_modes, check_method, &
-                                       method_needs_g
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs, needs_sampled_g, &
+                                       needs_modes, check_method
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_kernel, only: sample_kernel, truncation_length
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
@@ -34,7 +34,7 @@ module greenconv_conv_builder
     private
 
     public :: new_convolver, make_convolver, make_multipoint_convolver, table_convolver
-    public :: max_kernel_values, check_kernel_values, check_kernel_cap
+    public :: max_kernel_values, check_kernel_values
 
     !> Largest number of stored values of a sampled kernel: N_g*N_c^2 weights and 2*N_g*N_c
     !> past forces (10^8 values: 0.8 GB at 8 bytes each). The peak while a convolver is built
@@ -93,7 +93,9 @@ contains
     !> decay rate (the envelope exp(-sigma*t) falls to tol by t = ln(1/tol)/sigma, and the
     !> kernel never exceeds the run's N_t samples), counted as a real so that absurd sizes do
     !> not overflow. The one cap check of scenes (greenconv_scene_input) and of every door.
-    subroutine check_kernel_values(decay_rate, dt, tol, n_steps, n_points, error)
+    subroutine check_kernel_values(method, decay_rate, dt, tol, n_steps, n_points, error)
+        !> Method name (lower case): nothing is checked for one that needs no sampled g.
+        character(len=*), intent(in) :: method
         !> Slowest modal decay rate sigma = min xi_k*omega_k [1/s] (0: no decay).
         real(dp), intent(in) :: decay_rate
         !> Time step [s].
@@ -109,39 +111,17 @@ contains
 
         real(dp) :: n_g, values
 
+        if (.not. method_needs(method, needs_sampled_g)) return
         n_g = real(n_steps, dp)
         if (decay_rate > 0.0_dp) n_g = min(n_g, log(1.0_dp/tol)/(decay_rate*dt) + 1.0_dp)
         values = n_g*real(n_points, dp)**2 + 2.0_dp*n_g*n_points
         if (values <= max_kernel_values) return
-        call fatal_error(error, 'expected a sampled kernel (direct, fft, auto) of at most ' &
+        call fatal_error(error, 'method '''//method//''': expected a sampled kernel (direct, fft, auto) of at most ' &
                          //sci_text(real(max_kernel_values, dp))//' values (8 bytes each), found ' &
                          //sci_text(values)//' values (N_t = '//int_text(n_steps)//', slowest decay rate ' &
                          //sci_text(decay_rate)//' 1/s): use fewer steps, a larger dt or truncation_tol, ' &
                          //'or a modal method (modal, exact)')
     end subroutine check_kernel_values
-
-    !> `check_kernel_values` for a kernel method (`direct`, `fft`, `auto`) on modes, the
-    !> message naming the method; nothing for a modal method.
-    subroutine check_kernel_cap(method, modes, dt, tol, n_steps, n_points, error)
-        !> Method name (lower case).
-        character(len=*), intent(in) :: method
-        !> The modes g is sampled from.
-        type(modal_set), intent(in) :: modes
-        !> Time step [s].
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g|, in (0, 1).
-        real(dp), intent(in) :: tol
-        !> Number of steps N_t.
-        integer, intent(in) :: n_steps
-        !> Number of contact points N_c.
-        integer, intent(in) :: n_points
-        !> Set (`stat_input`) above the cap.
-        type(error_type), allocatable, intent(out) :: error
-
-        if (.not. method_needs_g(method) .or. modes%n_modes() < 1) return
-        call check_kernel_values(max(minval(-real(modes%pole, dp)), 0.0_dp), dt, tol, n_steps, n_points, error)
-        if (allocated(error)) error%message = 'method '''//method//''': '//error%message
-    end subroutine check_kernel_cap
 
     !> Reject a request `make_convolver` cannot serve, the message starting "new_convolver: ".
     subroutine check_request(method, structure, dt, n_steps, tol, requested, error)
@@ -168,7 +148,7 @@ contains
             call check_modes(structure%model, error)
             if (.not. allocated(error) .and. structure%has_exact) call check_modes(structure%exact, error)
             if (.not. allocated(error) .and. structure%has_exact) then
-                call check_kernel_cap(method, structure%exact, dt, tol, n_steps, 1, error)
+                call check_kernel_values(method, structure%exact%slowest_decay(), dt, tol, n_steps, 1, error)
                 if (allocated(error)) error%message = 'new_convolver: '//error%message
             end if
         end if
@@ -272,7 +252,7 @@ contains
         call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy)
         conv%name = 'auto'
         ! A kernel method on an identified structure: the identification is quoted all the same.
-        if (structure%identified .and. .not. method_needs_modes(chosen)) then
+        if (structure%identified .and. .not. method_needs(chosen, needs_modes)) then
             accuracy = accuracy//'; '//structure%fit_brief()
         end if
         accuracy = 'chose '//chosen//': '//reason//'; '//accuracy
@@ -362,7 +342,7 @@ contains
         else
             call engine%on_modes(structure%model, dt, conv)
         end if
-        if (method_needs_modes(method)) then
+        if (method_needs(method, needs_modes)) then
             accuracy = 'exact: the modes are the structure''s own'
             if (structure%identified) accuracy = structure%fit_brief()
         end if

@@ -17,7 +17,12 @@ module greenconv_conv_methods
     public :: default_truncation_tol, default_accuracy
     public :: method_name_length, n_methods
     public :: is_method, canonical_method, method_engine, method_names, method_list, method_summary
-    public :: method_needs_g, method_needs_modes, check_method, method_scheme, is_modal_recursion
+    public :: method_needs, check_method, method_scheme, is_modal_recursion
+
+    !> What a method may need of a structure (`method_needs`): the sampled impulse response g.
+    integer, parameter, public :: needs_sampled_g = 1
+    !> What a method may need of a structure (`method_needs`): modes (poles and residues).
+    integer, parameter, public :: needs_modes = 2
 
     !> Scheme of no method (an unknown name).
     integer, parameter, public :: scheme_none = 0
@@ -237,28 +242,20 @@ contains
         text = entry_field(name, field_summary)
     end function method_summary
 
-    !> Whether a method needs the sampled g (`direct`, `fft`, and `auto`, which samples it to
-    !> weigh the cost of a direct sum); false for an unknown name.
-    elemental logical function method_needs_g(name)
+    !> Whether a method needs `what` of the structure: `needs_sampled_g` (true for `direct`,
+    !> `fft`, and `auto`, which samples g to weigh the cost of a direct sum) or `needs_modes`
+    !> (the modal recursions and `auto`); false for an unknown name.
+    elemental logical function method_needs(name, what)
         !> A method name.
         character(len=*), intent(in) :: name
+        !> `needs_sampled_g` or `needs_modes`.
+        integer, intent(in) :: what
 
         type(method_entry) :: entry
 
         entry = entry_of(name)
-        method_needs_g = entry%needs_g
-    end function method_needs_g
-
-    !> Whether a method needs modes (the modal recursions and `auto`); false for an unknown name.
-    elemental logical function method_needs_modes(name)
-        !> A method name.
-        character(len=*), intent(in) :: name
-
-        type(method_entry) :: entry
-
-        entry = entry_of(name)
-        method_needs_modes = entry%needs_modes
-    end function method_needs_modes
+        method_needs = (what == needs_sampled_g .and. entry%needs_g) .or. (what == needs_modes .and. entry%needs_modes)
+    end function method_needs
 
     !> Check that method `name` can run on a structure: known, serving this kind of contact
     !> (single- or multi-point), and given what it needs (g, modes). The message says what

@@ -32,6 +32,8 @@ module greenconv_model_modal_set
         procedure :: impulse
         !> Upper bound of |g(t)| [m/(N*s)] from the decay of each mode.
         procedure :: envelope
+        !> Slowest decay rate sigma = min(-Re lambda_k) [1/s] (0 for no mode or an undamped one).
+        procedure :: slowest_decay
     end type modal_set
 
 contains
@@ -167,5 +169,13 @@ contains
 
         envelope = 2.0_dp*sum(abs(self%residue)*exp(real(self%pole, kind=dp)*t))
     end function envelope
+
+    pure real(dp) function slowest_decay(self)
+        !> The modal set.
+        class(modal_set), intent(in) :: self
+
+        slowest_decay = 0.0_dp
+        if (self%n_modes() > 0) slowest_decay = max(minval(-real(self%pole, dp)), 0.0_dp)
+    end function slowest_decay
 
 end module greenconv_model_modal_set

@@ -7,7 +7,7 @@
 !>
 !> with x strictly increasing, at least two lines. A bad file gets one message naming the
 !> file and the line (greenconv_io_columns). A body travelling at speed V [m/s] with contact
-!> points at x_i + V*t sees u_r,i(t) = height(x_i + V*t); `sample_road_file` gives those
+!> points at x_i + V*t sees u_r,i(t) = height(x_i + V*t); `sample_road_steps` gives those
 !> heights at t_n = n*dt and refuses a run that needs x beyond the file.
 module greenconv_model_road_file
     use, intrinsic :: iso_fortran_env, only: int64
@@ -19,11 +19,53 @@ module greenconv_model_road_file
     implicit none
     private
 
-    public :: road_file, read_road_file, sample_road_file, check_road_coverage, sample_road_steps, file_road
-    public :: travel_span, locate, check_run_span
+    public :: road_surface, road_file, read_road_file, check_road_coverage, sample_road, sample_road_steps, file_road
+    public :: road_travel, travel_span, travel_positions, locate, check_run_span
+
+    !> Contact points travelling over a road (a profile or a texture): where they stand at
+    !> t = 0 and how they move. Point i is at x_i + V*t_n along the road at t_n = n*dt.
+    type :: road_travel
+        !> Positions x_i [m] of the points along the road at t = 0.
+        real(dp), allocatable :: x(:)
+        !> Positions y_i [m] of the points across the road (read on a texture only).
+        real(dp), allocatable :: y(:)
+        !> Travel speed V [m/s] (the points move towards increasing x when V > 0).
+        real(dp) :: speed = 0.0_dp
+        !> Time step dt [s].
+        real(dp) :: dt = 0.0_dp
+    end type road_travel
+
+    !> A road surface contact points travel over: a height at each position along (x) and
+    !> across (y) the road.
+    type, abstract :: road_surface
+    contains
+        !> Height [m] at x along and y across the road [m].
+        procedure(surface_height_of), deferred :: surface_height
+        !> An error when a run of N_t steps needs heights beyond the surface's data.
+        procedure(coverage_check), deferred :: check_coverage
+    end type road_surface
+
+    abstract interface
+        !> Height [m] of a road surface at x along and y across the road [m].
+        elemental real(dp) function surface_height_of(self, x, y)
+            import :: road_surface, dp
+            class(road_surface), intent(in) :: self
+            real(dp), intent(in) :: x, y
+        end function surface_height_of
+
+        !> Set `error` (status 2) when the points' `travel` over n_steps steps needs heights
+        !> beyond the surface's data.
+        subroutine coverage_check(surface, travel, n_steps, error)
+            import :: road_surface, road_travel, error_type
+            class(road_surface), intent(in) :: surface
+            type(road_travel), intent(in) :: travel
+            integer, intent(in) :: n_steps
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine coverage_check
+    end interface
 
     !> A road profile: heights at increasing positions, linear in between.
-    type :: road_file
+    type, extends(road_surface) :: road_file
         !> File the profile was read from (for messages).
         character(len=:), allocatable :: path
         !> Positions x_j [m], strictly increasing.
@@ -35,6 +77,10 @@ module greenconv_model_road_file
         procedure :: height_at
         !> Whether [x_low, x_high] lies within the file.
         procedure :: covers
+        !> The profile's height as a surface's: the same at every y.
+        procedure :: surface_height => profile_surface_height
+        !> `check_road_coverage`.
+        procedure :: check_coverage => check_road_coverage
     end type road_file
 
     !> A road file seen in time by one point travelling at constant speed:
@@ -98,7 +144,7 @@ contains
     end subroutine read_road_file
 
     !> Height [m] at x [m] by linear interpolation; x outside the file gives the nearest end
-    !> value (check with `covers`, as `sample_road_file` does).
+    !> value (check with `covers`, as `check_road_coverage` does).
     elemental real(dp) function height_at(self, x)
         !> The profile.
         class(road_file), intent(in) :: self
@@ -111,6 +157,17 @@ contains
         call locate(self%x, x, low, weight)
         height_at = (1.0_dp - weight)*self%height(low) + weight*self%height(low + 1)
     end function height_at
+
+    elemental real(dp) function profile_surface_height(self, x, y)
+        !> The profile.
+        class(road_file), intent(in) :: self
+        !> Position along the road [m].
+        real(dp), intent(in) :: x
+        !> Position across the road [m] (a profile is the same at every y).
+        real(dp), intent(in) :: y
+
+        profile_surface_height = self%height_at(x)
+    end function profile_surface_height
 
     !> The interval of a grid that holds v and where v lies in it: grid(low) <= v <= grid(low + 1),
     !> v = (1 - weight)*grid(low) + weight*grid(low + 1); beyond the grid the end interval with
@@ -161,45 +218,19 @@ contains
         covers = x_low >= self%x(1) .and. x_high <= self%x(size(self%x))
     end function covers
 
-    !> Heights under N_c points travelling at speed V: heights(n, i) = height(x_i + V*n*dt),
-    !> n = 0..n_steps-1; an error when the run needs x beyond the file.
-    subroutine sample_road_file(road, positions, speed, dt, n_steps, heights, error)
-        !> The profile.
-        type(road_file), intent(in) :: road
-        !> Positions x_i [m] of the points on the road at t = 0.
-        real(dp), intent(in) :: positions(:)
-        !> Travel speed V [m/s] (the points move towards increasing x when V > 0).
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
-        !> Number of steps N_t.
-        integer, intent(in) :: n_steps
-        !> Road heights [m], (0:n_steps-1, N_c).
-        real(dp), allocatable, intent(out) :: heights(:, :)
-        !> Set when some x_i + V*t_n lies outside the file.
-        type(error_type), allocatable, intent(out) :: error
-
-        call check_road_coverage(road, positions, speed, dt, n_steps, error)
-        if (.not. allocated(error)) call sample_road_steps(road, positions, speed, dt, 0_int64, n_steps, heights)
-    end subroutine sample_road_file
-
     !> An error when a run of n_steps steps needs x beyond the file: some x_i + V*t_n,
     !> n = 0..n_steps-1, outside it.
-    subroutine check_road_coverage(road, positions, speed, dt, n_steps, error)
+    subroutine check_road_coverage(surface, travel, n_steps, error)
         !> The profile.
-        type(road_file), intent(in) :: road
-        !> Positions x_i [m] of the points on the road at t = 0.
-        real(dp), intent(in) :: positions(:)
-        !> Travel speed V [m/s].
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
+        class(road_file), intent(in) :: surface
+        !> The points and their motion.
+        type(road_travel), intent(in) :: travel
         !> Number of steps N_t.
         integer, intent(in) :: n_steps
         !> Set when some x_i + V*t_n lies outside the file.
         type(error_type), allocatable, intent(out) :: error
 
-        call check_run_span(road%path, 'road', road%x, travel_span(positions, speed, dt, n_steps), error)
+        call check_run_span(surface%path, 'road', surface%x, travel_span(travel, n_steps), error)
     end subroutine check_road_coverage
 
     !> An error when a run visits positions beyond the data along the road: `what` (`road`,
@@ -225,37 +256,68 @@ contains
 
     !> The positions [m] a run of n_steps steps visits: [min, max] of x_i + V*t_n over the
     !> points and n = 0..n_steps-1.
-    pure function travel_span(positions, speed, dt, n_steps) result(span)
-        !> Positions x_i [m] of the points on the road at t = 0.
-        real(dp), intent(in) :: positions(:)
-        !> Travel speed V [m/s].
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
+    pure function travel_span(travel, n_steps) result(span)
+        !> The points and their motion.
+        type(road_travel), intent(in) :: travel
         !> Number of steps N_t.
         integer, intent(in) :: n_steps
         !> Smallest and largest position [m].
         real(dp) :: span(2)
 
-        real(dp) :: travel
+        real(dp) :: distance
 
-        travel = speed*(n_steps - 1)*dt
-        span(1) = min(minval(positions), minval(positions) + travel)
-        span(2) = max(maxval(positions), maxval(positions) + travel)
+        distance = travel%speed*(n_steps - 1)*travel%dt
+        span(1) = min(minval(travel%x), minval(travel%x) + distance)
+        span(2) = max(maxval(travel%x), maxval(travel%x) + distance)
     end function travel_span
 
+    !> Where point i stands along the road [m] at the steps n = first..first+count-1:
+    !> x_i + V*n*dt.
+    pure function travel_positions(travel, i, first, count) result(x)
+        !> The points and their motion.
+        type(road_travel), intent(in) :: travel
+        !> Index of the point.
+        integer, intent(in) :: i
+        !> Index of the first step.
+        integer(int64), intent(in) :: first
+        !> Number of steps.
+        integer, intent(in) :: count
+        !> Positions [m], one per step.
+        real(dp) :: x(count)
+
+        integer :: j
+
+        x = [(travel%x(i) + travel%speed*((first + j)*travel%dt), j=0, count - 1)]
+    end function travel_positions
+
+    !> Heights under N_c points travelling over a road (profile or texture) for a whole run:
+    !> heights(n, i) = h(x_i + V*n*dt, y_i), n = 0..n_steps-1, once the surface's
+    !> `check_coverage` has found the run within its data.
+    subroutine sample_road(surface, travel, n_steps, heights, error)
+        !> The road: a profile or a texture.
+        class(road_surface), intent(in) :: surface
+        !> Where the points stand at t = 0 and how they move.
+        type(road_travel), intent(in) :: travel
+        !> Number of steps N_t.
+        integer, intent(in) :: n_steps
+        !> Road heights [m], (0:n_steps-1, N_c); not allocated on an error.
+        real(dp), allocatable, intent(out) :: heights(:, :)
+        !> The coverage check's error (status 2).
+        type(error_type), allocatable, intent(out) :: error
+
+        call surface%check_coverage(travel, n_steps, error)
+        if (.not. allocated(error)) call sample_road_steps(surface, travel, 0_int64, n_steps, heights)
+    end subroutine sample_road
+
     !> Heights under N_c points for the steps n = first..first+count-1 of a run (one block of
-    !> a streamed run): heights(j, i) = height(x_i + V*t_n), n = first + j; beyond the file
-    !> the end values (check the whole run once with `check_road_coverage`).
-    subroutine sample_road_steps(road, positions, speed, dt, first, count, heights)
-        !> The profile.
-        type(road_file), intent(in) :: road
-        !> Positions x_i [m] of the points on the road at t = 0.
-        real(dp), intent(in) :: positions(:)
-        !> Travel speed V [m/s].
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
+    !> a streamed run): heights(j, i) = h(x_i + V*t_n, y_i), n = first + j (y_i = 0 when the
+    !> travel gives none); beyond the data the edge values (check the whole run once first with
+    !> `check_road_coverage` or `check_texture_coverage`).
+    subroutine sample_road_steps(surface, travel, first, count, heights)
+        !> The road: a profile or a texture.
+        class(road_surface), intent(in) :: surface
+        !> The points and their motion.
+        type(road_travel), intent(in) :: travel
         !> Index of the first step.
         integer(int64), intent(in) :: first
         !> Number of steps.
@@ -263,11 +325,14 @@ contains
         !> Road heights [m], (0:count-1, N_c).
         real(dp), allocatable, intent(out) :: heights(:, :)
 
-        integer :: i, j
+        integer :: i
+        real(dp) :: across
 
-        allocate (heights(0:count - 1, size(positions)))
-        do i = 1, size(positions)
-            heights(:, i) = road%height_at([(positions(i) + speed*((first + j)*dt), j=0, count - 1)])
+        allocate (heights(0:count - 1, size(travel%x)))
+        do i = 1, size(travel%x)
+            across = 0.0_dp
+            if (allocated(travel%y)) across = travel%y(i)
+            heights(:, i) = surface%surface_height(travel_positions(travel, i, first, count), across)
         end do
     end subroutine sample_road_steps
 

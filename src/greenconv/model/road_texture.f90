@@ -26,14 +26,14 @@ module greenconv_model_road_texture
     use greenconv_core_text, only: int_text, real_text
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_io_columns, only: read_lines, parse_row, count_tokens
-    use greenconv_model_road_file, only: travel_span, locate, check_run_span
+    use greenconv_model_road_file, only: road_surface, road_travel, travel_span, locate, check_run_span
     implicit none
     private
 
-    public :: road_texture, read_road_texture, check_texture_coverage, sample_texture_steps
+    public :: road_texture, read_road_texture, check_texture_coverage
 
     !> Heights on an x-y grid, bilinear in between.
-    type :: road_texture
+    type, extends(road_surface) :: road_texture
         !> File the texture was read from (for messages).
         character(len=:), allocatable :: path
         !> Positions along the road x_i [m], strictly increasing.
@@ -45,6 +45,10 @@ module greenconv_model_road_texture
     contains
         !> Height [m] at (x, y) [m], bilinear; the nearest edge value beyond the grid.
         procedure :: height_at => texture_height
+        !> The same height, as a road surface's.
+        procedure :: surface_height => texture_height
+        !> `check_texture_coverage`.
+        procedure :: check_coverage => check_texture_coverage
     end type road_texture
 
 contains
@@ -177,58 +181,25 @@ contains
 
     !> An error when a run of n_steps steps leaves the grid: some x_i + V*t_n, n = 0..n_steps-1,
     !> or some y_i outside it.
-    subroutine check_texture_coverage(texture, x, y, speed, dt, n_steps, error)
+    subroutine check_texture_coverage(surface, travel, n_steps, error)
         !> The texture.
-        type(road_texture), intent(in) :: texture
-        !> Positions x_i [m] of the points along the road at t = 0.
-        real(dp), intent(in) :: x(:)
-        !> Positions y_i [m] of the points across the road.
-        real(dp), intent(in) :: y(:)
-        !> Travel speed V [m/s].
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
+        class(road_texture), intent(in) :: surface
+        !> The points (x_i and y_i) and their motion.
+        type(road_travel), intent(in) :: travel
         !> Number of steps N_t.
         integer, intent(in) :: n_steps
         !> Set when the run needs heights beyond the grid.
         type(error_type), allocatable, intent(out) :: error
 
-        call check_run_span(texture%path, 'texture', texture%x, travel_span(x, speed, dt, n_steps), error)
+        call check_run_span(surface%path, 'texture', surface%x, travel_span(travel, n_steps), error)
         if (allocated(error)) return
-        if (minval(y) < texture%y(1) .or. maxval(y) > texture%y(size(texture%y))) then
-            call fatal_error(error, texture%path//': expected a texture from y = '//real_text(minval(y))//' m to ' &
-                             //real_text(maxval(y))//' m (the patch), found '//real_text(texture%y(1))//' m to ' &
-                             //real_text(texture%y(size(texture%y)))//' m')
-        end if
+        associate (y => travel%y)
+            if (minval(y) < surface%y(1) .or. maxval(y) > surface%y(size(surface%y))) then
+                call fatal_error(error, surface%path//': expected a texture from y = '//real_text(minval(y))//' m to ' &
+                                 //real_text(maxval(y))//' m (the patch), found '//real_text(surface%y(1))//' m to ' &
+                                 //real_text(surface%y(size(surface%y)))//' m')
+            end if
+        end associate
     end subroutine check_texture_coverage
-
-    !> Heights under N_c points for the steps n = first..first+count-1 of a run:
-    !> heights(j, i) = h(x_i + V*t_n, y_i), n = first + j; beyond the grid the edge values
-    !> (check the whole run once with `check_texture_coverage`).
-    subroutine sample_texture_steps(texture, x, y, speed, dt, first, count, heights)
-        !> The texture.
-        type(road_texture), intent(in) :: texture
-        !> Positions x_i [m] of the points along the road at t = 0.
-        real(dp), intent(in) :: x(:)
-        !> Positions y_i [m] of the points across the road.
-        real(dp), intent(in) :: y(:)
-        !> Travel speed V [m/s].
-        real(dp), intent(in) :: speed
-        !> Time step [s].
-        real(dp), intent(in) :: dt
-        !> Index of the first step.
-        integer(int64), intent(in) :: first
-        !> Number of steps.
-        integer, intent(in) :: count
-        !> Road heights [m], (0:count-1, N_c).
-        real(dp), allocatable, intent(out) :: heights(:, :)
-
-        integer :: i, j
-
-        allocate (heights(0:count - 1, size(x)))
-        do i = 1, size(x)
-            heights(:, i) = texture%height_at([(x(i) + speed*((first + j)*dt), j=0, count - 1)], y(i))
-        end do
-    end subroutine sample_texture_steps
 
 end module greenconv_model_road_texture

@@ -18,7 +18,7 @@ module greenconv_scene_input
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
     use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
-                                         check_road_coverage
+                                         check_road_coverage, road_travel
     use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
@@ -28,7 +28,7 @@ module greenconv_scene_input
                                       multi_point_model
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
-                                      method_needs_g, check_method
+                                      check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
     use greenconv_conv_builder, only: check_kernel_values
     use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
@@ -439,14 +439,16 @@ contains
         type(error_type), allocatable, intent(inout) :: error
 
         real(dp), allocatable :: x(:)
+        type(road_travel) :: travel
 
         if (allocated(error)) return
         if (this%task /= 'contact' .or. model_requires(find_model(this%model), 'green_file')) return
         x = this%x_start + contact_positions(0.0_dp, this%patch_length, this%n_points)
+        travel = road_travel(x, spread(this%y_start, 1, size(x)), this%speed, this%dt)
         if (allocated(this%road_data%x)) then
-            call check_road_coverage(this%road_data, x, this%speed, this%dt, this%n_steps, error)
+            call check_road_coverage(this%road_data, travel, this%n_steps, error)
         else if (allocated(this%texture%x)) then
-            call check_texture_coverage(this%texture, x, [this%y_start], this%speed, this%dt, this%n_steps, error)
+            call check_texture_coverage(this%texture, travel, this%n_steps, error)
         end if
         if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
     end subroutine check_scene_road
@@ -732,13 +734,20 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(structure_kind) :: model
+        real(dp) :: decay_rate
+        integer :: i
 
         model = find_model(this%model)
         if (this%task /= 'contact' .or. .not. associated(model%slowest_decay)) return
-        if (.not. any(method_needs_g(this%methods))) return
-        call check_kernel_values(model%slowest_decay(this), this%dt, this%truncation_tol, this%n_steps, &
-                                 this%n_points, error)
-        if (allocated(error)) error%message = place(this, 'convolution', 'methods')//' methods: '//error%message
+        decay_rate = model%slowest_decay(this)
+        do i = 1, size(this%methods)
+            call check_kernel_values(trim(this%methods(i)), decay_rate, this%dt, this%truncation_tol, &
+                                     this%n_steps, this%n_points, error)
+            if (allocated(error)) then
+                error%message = place(this, 'convolution', 'methods')//' methods: '//error%message
+                return
+            end if
+        end do
     end subroutine check_kernel_size
 
     !> Whether a group reader stops after its namelist read or write: it failed (the status

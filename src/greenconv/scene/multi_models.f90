@@ -23,7 +23,7 @@ module greenconv_scene_multi_models
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
                                                sampled_kernel
-    use greenconv_conv_methods, only: check_method, method_needs_g
+    use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, input_place
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
@@ -176,7 +176,8 @@ contains
             do i = 1, size(scene%methods)
                 call check_method(trim(scene%methods(i)), .true., .true., matrix%function_type == 4, error)
                 if (.not. allocated(error) .and. matrix%function_type /= 4 .and. &
-                    method_needs_g(trim(scene%methods(i)))) call sampled_kernel(green, scene%dt, kernel, source, error)
+                    method_needs(trim(scene%methods(i)), needs_sampled_g)) &
+                    call sampled_kernel(green, scene%dt, kernel, source, error)
                 if (allocated(error)) then
                     error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
                     return

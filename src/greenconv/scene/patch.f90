@@ -18,8 +18,8 @@ module greenconv_scene_patch
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_model_road_file, only: check_road_coverage, sample_road_steps
-    use greenconv_model_road_texture, only: check_texture_coverage, sample_texture_steps
+    use greenconv_model_road_file, only: road_travel, check_road_coverage, sample_road_steps
+    use greenconv_model_road_texture, only: check_texture_coverage
     use greenconv_scene_settings, only: scene_type, input_place
     implicit none
     private
@@ -47,9 +47,9 @@ contains
         road_x = scene%x_start + (x - sum(x)/size(x))
         road_y = scene%y_start + (y - sum(y)/size(y))
         if (allocated(scene%texture%x)) then
-            call check_texture_coverage(scene%texture, road_x, road_y, scene%speed, scene%dt, scene%n_steps, error)
+            call check_texture_coverage(scene%texture, road_travel(road_x, road_y, scene%speed, scene%dt), scene%n_steps, error)
         else
-            call check_road_coverage(scene%road_data, road_x, scene%speed, scene%dt, scene%n_steps, error)
+            call check_road_coverage(scene%road_data, road_travel(road_x, road_y, scene%speed, scene%dt), scene%n_steps, error)
         end if
         if (allocated(error)) error%message = input_place(scene, 'road', 'x_start')//': '//error%message
     end subroutine place_patch
@@ -71,9 +71,9 @@ contains
         real(dp), allocatable, intent(out) :: heights(:, :)
 
         if (allocated(scene%texture%x)) then
-            call sample_texture_steps(scene%texture, road_x, road_y, scene%speed, scene%dt, first, count, heights)
+            call sample_road_steps(scene%texture, road_travel(road_x, road_y, scene%speed, scene%dt), first, count, heights)
         else
-            call sample_road_steps(scene%road_data, road_x, scene%speed, scene%dt, first, count, heights)
+            call sample_road_steps(scene%road_data, road_travel(road_x, road_y, scene%speed, scene%dt), first, count, heights)
         end if
     end subroutine sample_patch_road
 
