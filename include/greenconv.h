@@ -11,7 +11,8 @@
  * Conventions.
  * - Functions return a status: GC_OK (0) on success, GC_ERROR_INPUT (2) for a bad value,
  *   file or NULL pointer, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit, a
- *   contact run that diverged). These are the status codes of the library's Fortran error
+ *   contact run that diverged); gc_run_scene also GC_ACCURACY (4), a run outside the
+ *   accuracy asked. These are the status codes of the library's Fortran error
  *   type (greenconv_core_error).
  * - Functions that take `char *errmsg, size_t errmsg_len` write a one-line message there on
  *   failure ("" on success): the whole message when errmsg_len exceeds its length, else its
@@ -77,7 +78,10 @@ int gc_version(char *text, size_t text_len);
 enum gc_status {
     GC_OK = 0,              /**< success */
     GC_ERROR_INPUT = 2,     /**< bad input: a value out of range, an unreadable file, a NULL handle */
-    GC_ERROR_NUMERICAL = 3  /**< numerical failure: overflow, divergence, failed fit */
+    GC_ERROR_NUMERICAL = 3, /**< numerical failure: overflow, divergence, failed fit */
+    GC_ACCURACY = 4         /**< gc_run_scene only: the run ended and wrote all its files, but a method's own
+                                 accuracy estimate exceeds the scene's `accuracy` (the message and the summary
+                                 line name the method, the estimate and what to do); 2 and 3 take priority */
 };
 
 /** Opaque convolver: one structure's Green's function and one force history. */

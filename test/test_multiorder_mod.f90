@@ -63,6 +63,8 @@ module test_multiorder_mod
     private
 
     public :: collect_multiorder
+    !> For test_accuracystatus_mod (the same runs on a 12-point file).
+    public :: run_setup, wave_setup, measure
 
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> Travel speed [m/s].

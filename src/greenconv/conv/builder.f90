@@ -27,7 +27,7 @@ module greenconv_conv_builder
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs, needs_sampled_g, &
                                        needs_modes, check_method
     use greenconv_conv_convolver, only: convolver
-    use greenconv_conv_kernel, only: sample_kernel, truncation_length
+    use greenconv_conv_kernel, only: sample_kernel, truncation_length, period_end_level, beyond_nyquist
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
     use greenconv_conv_engines, only: engine_constructors, engine_of
     implicit none
@@ -209,7 +209,8 @@ contains
     !> the cheapest of these that meets `requested` (see `choose_method`; never `backward`).
     !> `accuracy` says in words how far the model is from the exact g (and, for `auto`, what it
     !> chose and why).
-    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested)
+    subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested, &
+                              estimate)
         !> Method, one of greenconv_conv_methods's `method_list()`.
         character(len=*), intent(in) :: method
         !> The structure.
@@ -228,10 +229,13 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Relative accuracy `auto` must meet (default `default_accuracy`): the largest E (eq. 7) it accepts.
         real(dp), intent(in), optional :: requested
+        !> The method's own estimate of its relative error, to compare with an accuracy asked
+        !> (see `build_method`); 0 when nothing beyond the truncation asked is neglected.
+        real(dp), intent(out), optional :: estimate
 
         character(len=:), allocatable :: chosen, reason
         type(engine_constructors) :: engine
-        real(dp) :: target
+        real(dp) :: target, own
 
         ! What the structure has is the caller's to check (`new_convolver` does; a scene's
         ! structures all have g and modes, the modes an LSCE fit may have left empty).
@@ -243,13 +247,15 @@ contains
         if (allocated(error)) return
         engine = engine_of(method)
         if (.not. engine%chooses) then
-            call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
+            call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy, own)
+            if (present(estimate)) estimate = own
             return
         end if
         target = default_accuracy
         if (present(requested)) target = requested
         call choose_method(structure, dt, truncation_tol, n_steps, target, chosen, reason)
-        call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy)
+        call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy, own)
+        if (present(estimate)) estimate = own
         conv%name = 'auto'
         ! A kernel method on an identified structure: the identification is quoted all the same.
         if (structure%identified .and. .not. method_needs(chosen, needs_modes)) then
@@ -260,7 +266,8 @@ contains
 
     !> The cheapest method whose model meets a requested accuracy, and why, in words:
     !> - `direct` when N_t*N_g is at most `direct_work_limit` (the run costs a few ms and
-    !>   its only approximation is the truncation of g);
+    !>   its only approximation is the truncation of g) and its g's own error estimate
+    !>   (`kernel_estimate`: wrap-around, or g sampled from an identified model) meets the accuracy;
     !> - otherwise `exact` (the first-order hold: a modal recursion's cost, second order in
     !>   dt, the static gain exact) on the structure's modes when they are its own, or on the
     !>   identified model when its E (eq. 7) meets the accuracy; the identification scan
@@ -281,7 +288,7 @@ contains
             chosen = 'exact'
             reason = 'g by FFT of the receptance wraps around (not decayed within 1/df), so not direct or fft; '// &
                      int_text(structure%model%n_modes())//' LSCE modes, E = '//sci_text(structure%fit%e)
-        else if (work <= direct_work_limit) then
+        else if (work <= direct_work_limit .and. kernel_estimate(structure) <= requested) then
             chosen = 'direct'
             reason = 'N_t*N_g = '//sci_text(work)//' <= '//sci_text(direct_work_limit)//' multiply-adds'
         else if (.not. structure%identified) then
@@ -303,7 +310,10 @@ contains
     end subroutine choose_method
 
     !> Build one method the registry accepted for this structure (not `auto`).
-    subroutine build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy)
+    !> Its error estimate: E (eq. 7) of an identified model for the modal methods (0 on the
+    !> structure's own modes), `kernel_estimate` for `direct` and `fft` (the truncation is the
+    !> one `truncation_tol` asks, and not counted).
+    subroutine build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy, estimate)
         character(len=*), intent(in) :: method
         type(structure_model), intent(in) :: structure
         real(dp), intent(in) :: dt
@@ -311,6 +321,7 @@ contains
         integer, intent(in) :: n_steps
         class(convolver), allocatable, intent(out) :: conv
         character(len=:), allocatable, intent(out) :: accuracy
+        real(dp), intent(out) :: estimate
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:)
@@ -339,14 +350,38 @@ contains
                                //sci_text(misfit/maxval(abs(kernel)))//' of max|g|'
                 end if
             end if
+            estimate = kernel_estimate(structure)
         else
             call engine%on_modes(structure%model, dt, conv)
         end if
         if (method_needs(method, needs_modes)) then
             accuracy = 'exact: the modes are the structure''s own'
+            estimate = 0.0_dp
             if (structure%identified) accuracy = structure%fit_brief()
+            if (structure%identified) estimate = structure%fit_e()
         end if
     end subroutine build_method
+
+    !> The own error estimate of a kernel of the structure's g, relative to max|g|: 0 for g
+    !> from its exact modes; E (eq. 7) of the identified modes when g was sampled from them
+    !> (a grid with no inverse FFT); else, g being the inverse FFT of the receptance, the
+    !> larger of how much of it is left at the end of the samples it has (half the period
+    !> 1/df: a cut there, or wrap-around; greenconv_conv_kernel's `period_end_level`) and what
+    !> the spectrum above the Nyquist frequency of its step leaves out (`beyond_nyquist`, from
+    !> the identified modes).
+    real(dp) function kernel_estimate(structure) result(estimate)
+        type(structure_model), intent(in) :: structure
+
+        estimate = 0.0_dp
+        if (structure%has_exact .or. .not. allocated(structure%sampled_g)) return
+        if (.not. structure%identified) return
+        if (.not. structure%frf%uniform_from_zero()) then
+            estimate = structure%fit_e()
+        else if (structure%sampled_step > 0.0_dp) then
+            estimate = max(period_end_level(structure%sampled_g), &
+                           beyond_nyquist(structure%model, structure%sampled_step, maxval(abs(structure%sampled_g))))
+        end if
+    end function kernel_estimate
 
     !> g sampled from a receptance reaches the convolvers by one route: the structure records
     !> the step it was sampled at, and a convolver at any other step is refused (its kernel
@@ -429,7 +464,7 @@ contains
     !> first-order hold: W0 /= 0, every step solved by Newton on the active set), `direct`
     !> (the sampled table g_ij(t_n), truncated by the paper's rule) and `fft` (the same sum by
     !> partitioned FFT; free it with its `release`, it holds FFTW plans).
-    subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error)
+    subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error, estimate)
         !> Method, one of greenconv_conv_methods's `method_list(multi_point=.true.)`.
         character(len=*), intent(in) :: method
         !> Modes and mode shapes at the points.
@@ -446,12 +481,16 @@ contains
         character(len=:), allocatable, intent(out) :: accuracy
         !> Set for a method that does not serve multi-point contact or modes that do not fit.
         type(error_type), allocatable, intent(out) :: error
+        !> Its own error estimate: 0, the modes being the structure's own and the truncation of
+        !> `direct` and `fft` the one `truncation_tol` asks.
+        real(dp), intent(out), optional :: estimate
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :)
         real(dp) :: tail
 
         accuracy = ''
+        if (present(estimate)) estimate = 0.0_dp
         call check_method(method, .true., modes%modes%n_modes() > 0, modes%modes%n_modes() > 0, error)
         if (allocated(error)) return
         engine = engine_of(method)

@@ -33,6 +33,7 @@ module greenconv_conv_green_file
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
+    use greenconv_conv_kernel, only: period_end_level
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
     use greenconv_ident_shared_poles, only: shared_receptance
@@ -120,13 +121,13 @@ contains
         call conv%model_size(report%model_size, report%size_label)
         if (structure%identified) then
             report%e_worst = maxval(structure%e_modes)
-            report%e_mean = sum(structure%e_modes)/size(structure%e_modes)
+            report%e_mean = mean_e(structure%e_modes)
         end if
     end subroutine new_green_file_convolver
 
     !> Build one method on a Green's matrix read by `read_green_structure` (see the module
     !> description); `accuracy` says in words what the model neglects.
-    subroutine green_file_convolver(structure, method, dt, truncation_tol, n_steps, conv, accuracy, error)
+    subroutine green_file_convolver(structure, method, dt, truncation_tol, n_steps, conv, accuracy, error, estimate)
         !> The structure.
         type(green_structure), intent(in) :: structure
         !> Method, one of greenconv_conv_methods's `method_list(multi_point=.true.)`.
@@ -144,20 +145,32 @@ contains
         !> Set for a method that does not serve multi-point contact or this structure, or a dt
         !> that does not fit the file's impulse responses.
         type(error_type), allocatable, intent(out) :: error
+        !> The method's own estimate of its relative error, to compare with an accuracy asked:
+        !> for the modes (`modal`, `exact`, and `direct`/`fft` sampled from them) the mean E of
+        !> eq. (7) over the receptances of the model they run on (with U when it is in W0); for
+        !> g_ij by the inverse FFT of the file, the larger of what is left at the end of its
+        !> period (wrap-around, `period_end_level`) and what the band leaves out (`extend_band`);
+        !> 0 for a file of impulse responses (their truncation is the one asked).
+        real(dp), intent(out), optional :: estimate
 
         type(engine_constructors) :: engine
-        real(dp), allocatable :: kernel(:, :, :), fitted(:, :, :)
+        real(dp), allocatable :: kernel(:, :, :), fitted(:, :, :), row_max(:)
         character(len=:), allocatable :: source, text, band
         type(green_structure) :: extended
+        real(dp) :: own, outside
+        integer :: m
 
         accuracy = ''
+        own = 0.0_dp
+        outside = 0.0_dp
+        if (present(estimate)) estimate = 0.0_dp
         call check_method(method, .true., .true., structure%identified, error)
         if (allocated(error)) return
         engine = engine_of(method)
         if (engine%samples_g()) then
             source = grid_problem(structure)
             if (len(source) == 0) then
-                call extend_band(structure, dt, extended, band)
+                call extend_band(structure, dt, extended, band, outside)
                 call sampled_kernel(extended, dt, kernel, source, error, fitted)
                 if (allocated(kernel)) source = source//band
             end if
@@ -166,30 +179,50 @@ contains
                 call table_convolver(method, kernel, dt, truncation_tol, n_steps, conv, text, error, fitted)
                 if (allocated(error)) return
                 accuracy = source//'; '//text
+                if (structure%identified) then
+                    row_max = [(maxval(abs(kernel(m, :, :))), m=lbound(kernel, 1), ubound(kernel, 1))]
+                    own = max(period_end_level(row_max), outside)
+                end if
+                if (present(estimate)) estimate = own
                 return
             end if
             call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
             if (allocated(error)) return
             accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; ' &
                        //modes_accuracy(structure, .false.)
+            own = mean_e(structure%e_modes)
             ! As in the table from the file: the fit's upper residual, U*delta(t), in W0.
             if (structure%fit%pole_fit%has_upper) then
                 call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
                 accuracy = 'g_ij sampled from the identified modes, U in W0 ('//source//'); '//text//'; ' &
                            //modes_accuracy(structure, .true.)
+                own = mean_e(structure%e_upper)
             end if
+            if (present(estimate)) estimate = own
             return
         end if
         call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
         if (allocated(error)) return
         accuracy = text//'; '//modes_accuracy(structure, .false.)
+        own = mean_e(structure%e_modes)
         ! The fit's upper residual U is an impulse U*delta(t) in g_ij: the first-order hold puts
         ! all of it in the current step's displacement, W0.
         if (engine%instant_part .and. structure%fit%pole_fit%has_upper) then
             call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
             accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
+            own = mean_e(structure%e_upper)
         end if
+        if (present(estimate)) estimate = own
     end subroutine green_file_convolver
+
+    !> Mean of the E (eq. 7) of the receptances (0 when there are none: not identified).
+    pure real(dp) function mean_e(e)
+        real(dp), allocatable, intent(in) :: e(:, :)
+
+        mean_e = 0.0_dp
+        if (.not. allocated(e)) return
+        if (size(e) > 0) mean_e = sum(e)/size(e)
+    end function mean_e
 
     !> What the file's band leaves out, from the identified model: the inverse FFT of G on the
     !> file's lines, zero above f_max up to the Nyquist frequency 1/(2*dt), gives g_ij
@@ -200,31 +233,46 @@ contains
     !> spectrum is the data in band and the model above it. Not extended (and `note` says why or
     !> is '') when dt needs no line above f_max, or the fit has a lower residual (-L/omega^2,
     !> fitted to the band alone) or the grid is not the uniform grid from 0 Hz.
-    subroutine extend_band(structure, dt, extended, note)
+    !>
+    !> `outside` estimates what the band leaves out, relative to g_ij: the share of the model's
+    !> spectrum above f_max in the whole, s = sqrt(sum_above |G_model|^2 / (sum_file |G|^2 +
+    !> sum_above |G_model|^2)) over all i, j (Parseval: the share of g_ij's energy from above the
+    !> band); when the model fills the band above f_max, its error there, s times the mean E
+    !> (eq. 7) of the model in the band (with U when the fit has it); when G stays zero above,
+    !> s itself. 0 when dt needs no line above f_max.
+    subroutine extend_band(structure, dt, extended, note, outside)
         type(green_structure), intent(in) :: structure
         real(dp), intent(in) :: dt
         type(green_structure), intent(out) :: extended
         character(len=:), allocatable, intent(out) :: note
+        real(dp), intent(out) :: outside
 
         complex(dp), allocatable :: model(:, :, :)
         real(dp), allocatable :: above(:)
-        real(dp) :: df, f_max
+        real(dp) :: df, f_max, share
         integer :: n_f, n_lines, l
 
         extended = structure
         note = ''
+        outside = 0.0_dp
         if (.not. structure%identified) return
         n_f = size(structure%matrix%frequency)
         df = structure%matrix%frequency(2) - structure%matrix%frequency(1)
         f_max = structure%matrix%frequency(n_f)
         n_lines = nint(1.0_dp/(df*dt))/2 + 1
         if (n_lines <= n_f) return
-        if (structure%fit%pole_fit%has_lower) then
-            note = '; G zero above the band (the fit has a lower residual)'
-            return
-        end if
         above = [(l*df, l=n_f, n_lines - 1)]
         call shared_receptance(structure%fit, above, model)
+        share = sum(abs(model)**2)
+        if (share > 0.0_dp) share = sqrt(share/(share + sum(abs(structure%matrix%g)**2)))
+        if (structure%fit%pole_fit%has_lower) then
+            note = '; G zero above the band (the fit has a lower residual), which leaves out about ' &
+                   //sci_text(share)//' of g_ij'
+            outside = share
+            return
+        end if
+        outside = share*mean_e(structure%e_modes)
+        if (structure%fit%pole_fit%has_upper) outside = share*mean_e(structure%e_upper)
         extended%matrix%frequency = [structure%matrix%frequency, above]
         deallocate (extended%matrix%g)
         allocate (extended%matrix%g(size(model, 1), size(model, 2), n_lines))
@@ -263,11 +311,11 @@ contains
 
         text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                //' shared poles, E of the modes alone worst '//sci_text(maxval(structure%e_modes))//', mean ' &
-               //sci_text(sum(structure%e_modes)/size(structure%e_modes))//' (eq. 7)'
+               //sci_text(mean_e(structure%e_modes))//' (eq. 7)'
         if (with_upper .and. structure%fit%pole_fit%has_upper) &
             text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                    //' shared poles and U, E worst '//sci_text(maxval(structure%e_upper))//', mean ' &
-                   //sci_text(sum(structure%e_upper)/size(structure%e_upper))//' (eq. 7)'
+                   //sci_text(mean_e(structure%e_upper))//' (eq. 7)'
     end function modes_accuracy
 
 end module greenconv_conv_green_file

@@ -15,7 +15,11 @@ module greenconv_conv_kernel
     implicit none
     private
 
-    public :: truncation_length, sample_kernel, lane_dot
+    public :: truncation_length, sample_kernel, lane_dot, period_end_level, beyond_nyquist
+
+    !> Fraction of a period at its end that `period_end_level` looks at (a tenth, as the
+    !> identification's wrap-around check).
+    real(dp), parameter :: end_fraction = 0.1_dp
 
 contains
 
@@ -76,6 +80,52 @@ contains
         if (n_g < last) tail = maxval(abs(samples(n_g + 1:last)))/peak
         if (last < n_steps - 1) tail = max(tail, modes%envelope(last*dt)/peak)
     end subroutine sample_kernel
+
+    !> How much of g is left at the end of the period it was sampled over by an inverse FFT:
+    !> max |g_j| over the last tenth of the samples, relative to max |g|. g from the inverse
+    !> FFT of a receptance on lines df apart is periodic with period 1/df, so what has not
+    !> decayed within it wraps onto its start (and a band cut at f_max rings there): a
+    !> kernel's own estimate of its wrap-around error (0 for fewer than 10 samples or g = 0).
+    pure real(dp) function period_end_level(samples) result(level)
+        !> |g_j| (or, for a table, max over i, j of |g_ij|), j over one period or half of one.
+        real(dp), intent(in) :: samples(:)
+
+        integer :: first
+        real(dp) :: peak
+
+        level = 0.0_dp
+        peak = maxval(abs(samples))
+        if (size(samples) < 10 .or. .not. peak > 0.0_dp) return
+        first = int((1.0_dp - end_fraction)*size(samples)) + 1
+        level = maxval(abs(samples(first:)))/peak
+    end function period_end_level
+
+    !> What g sampled at dt from its spectrum below the Nyquist frequency f_N = 1/(2*dt) (an
+    !> inverse FFT of a receptance measured to f_N) leaves out of the true samples g(j*dt): the
+    !> part of the spectrum above f_N changes each sample by at most 2*int_{f_N}^inf |G(f)| df,
+    !> here relative to `peak`, with G the modes' receptance (the residual flexibility the modes
+    !> of the band carry above it). Trapezoidal rule on 400 log-spaced points from f_N to
+    !> 1000*f_N, and |G(F)|*F for the rest (|G| falls as 1/f^2 there).
+    real(dp) function beyond_nyquist(modes, dt, peak) result(level)
+        !> The modes (identified in the band).
+        type(modal_set), intent(in) :: modes
+        !> Time step [s] g was sampled at.
+        real(dp), intent(in) :: dt
+        !> max |g| [m/(N*s)] the level is relative to.
+        real(dp), intent(in) :: peak
+
+        integer, parameter :: n = 400
+        real(dp), parameter :: two_pi = 2.0_dp*acos(-1.0_dp)
+        real(dp) :: f(0:n), magnitude(0:n)
+        integer :: k
+
+        level = 0.0_dp
+        if (.not. peak > 0.0_dp .or. modes%n_modes() < 1) return
+        f(:) = [(0.5_dp/dt*1000.0_dp**(real(k, dp)/n), k=0, n)]
+        magnitude(:) = abs(modes%receptance(two_pi*f))
+        level = 0.5_dp*sum((magnitude(1:) + magnitude(:n - 1))*(f(1:) - f(:n - 1))) + magnitude(n)*f(n)
+        level = 2.0_dp*level/peak
+    end function beyond_nyquist
 
     !> Dot product of the first n entries of a and b, summed in eight interleaved partial sums
     !> so that the compiler vectorises it without reassociating additions. The result differs

@@ -5,16 +5,21 @@ module greenconv_core_error
     private
 
     public :: error_type, fatal_error
-    public :: stat_input, stat_numerical
+    public :: stat_input, stat_numerical, stat_accuracy
 
     !> Status code of a bad input (file, namelist, value): the driver exits with it.
     integer, parameter :: stat_input = 2
     !> Status code of a numerical failure (overflow, divergence, failed fit).
     integer, parameter :: stat_numerical = 3
+    !> Status code of a run that ended and wrote all its output, but with a method whose own
+    !> accuracy estimate exceeds the accuracy asked (a scene's `&convolution accuracy`): the
+    !> results are there, and the summary says how far off they may be. Statuses 2 and 3 win
+    !> over it.
+    integer, parameter :: stat_accuracy = 4
 
     !> What went wrong: a status code and one line of text for the user.
     type :: error_type
-        !> Status code, `stat_input` or `stat_numerical`.
+        !> Status code, `stat_input`, `stat_numerical` or `stat_accuracy`.
         integer :: stat = stat_input
         !> One line naming the file, group or variable, what was expected and what was found.
         character(len=:), allocatable :: message

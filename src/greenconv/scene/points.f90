@@ -20,7 +20,7 @@ module greenconv_scene_points
 contains
 
     !> The convolver called `method` on a scene's points, and what its model neglects.
-    subroutine points_convolver(points, scene, method, conv, accuracy, error)
+    subroutine points_convolver(points, scene, method, conv, accuracy, error, estimate)
         !> The points (the `find_points` of the scene's model, greenconv_scene_models).
         type(scene_points), intent(in) :: points
         !> The scene (dt, n_steps, truncation_tol).
@@ -33,14 +33,20 @@ contains
         character(len=:), allocatable, intent(out) :: accuracy
         !> Set when the method cannot run on the points' structure.
         type(error_type), allocatable, intent(out) :: error
+        !> The method's own estimate of its relative error (greenconv_conv_green_file's
+        !> `green_file_convolver`, greenconv_conv_builder's `make_multipoint_convolver`).
+        real(dp), intent(out), optional :: estimate
+
+        real(dp) :: own
 
         if (points%from_file) then
             call green_file_convolver(points%green, method, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
-                                      accuracy, error)
+                                      accuracy, error, own)
         else
             call make_multipoint_convolver(method, points%modes, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
-                                           accuracy, error)
+                                           accuracy, error, own)
         end if
+        if (present(estimate)) estimate = own
     end subroutine points_convolver
 
     !> Output rows of a multi-point run (greenconv_scene_output's `multi_contact_table`): N_c

@@ -9,7 +9,8 @@
 module greenconv_scene_runner
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
+    use greenconv_conv_methods, only: method_needs_modes, method_needs_g
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
@@ -140,7 +141,11 @@ contains
     end subroutine check_scene_line
 
     !> The contact loop once per method of a scene, single- or multi-point (`run%points`
-    !> found for a multi-point one), in blocks of `block` steps.
+    !> found for a multi-point one), in blocks of `block` steps. A method whose own error
+    !> estimate exceeds the scene's `accuracy` still runs and writes its files; its summary
+    !> line starts "outside the accuracy asked: ..." and, when every method has run, `error`
+    !> is set with status `stat_accuracy` naming them (a fault or a bad input stops the loop
+    !> first, with its own status).
     subroutine run_methods(scene, structure, run, unit, block, error)
         type(scene_type), intent(in) :: scene
         type(structure_model), intent(in) :: structure
@@ -149,15 +154,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, prefix
-        real(dp) :: seconds
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside
+        real(dp) :: seconds, estimate
         integer :: i, n
 
         if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
+        outside = ''
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
-            call make_run_convolver(run, scene, structure, method, accuracy, error)
+            call make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
             if (allocated(error)) then
                 if (run%several) error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
                 return
@@ -181,9 +187,37 @@ contains
             call run%conv%release()
             if (allocated(error)) return
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
+            if (estimate > scene%accuracy) then
+                accuracy = outside_line(method, estimate, scene%accuracy)//'; '//accuracy
+                outside = outside//' '//method
+            end if
             write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, accuracy
         end do
+        if (len(outside) > 0) call fatal_error(error, scene%file//': method(s)'//outside//' ran outside the ' &
+                                               //'accuracy asked ('//sci_text(scene%accuracy)//', &convolution ' &
+                                               //'accuracy): their files are written, their summary lines say ' &
+                                               //'by how much and what to do', stat_accuracy)
     end subroutine run_methods
+
+    !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
+    !> own error estimate exceeds the accuracy asked.
+    function outside_line(method, estimate, accuracy) result(line)
+        character(len=*), intent(in) :: method
+        real(dp), intent(in) :: estimate, accuracy
+        character(len=:), allocatable :: line
+
+        line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
+               //', '
+        if (method_needs_g(method) .and. method_needs_modes(method)) then
+            line = line//'list the methods themselves (exact, fft) or ask a larger accuracy'
+        else if (method_needs_g(method)) then
+            line = line//'use a modal method (exact), G on a finer frequency grid or a wider band, or ask a larger ' &
+                   //'accuracy'
+        else
+            line = line//'use exact (with the upper residual), a model with a smaller E (a higher max_order, ' &
+                   //'less noisy data), or ask a larger accuracy'
+        end if
+    end function outside_line
 
     !> The sinks of a driver's run: the method's column file `<output_dir>/<name>_<method>.dat`
     !> (or `.bin`) with the lines `header` and rows of `n_columns` values, and the force

@@ -190,7 +190,7 @@ contains
     !> The convolver called `method` for a scene, at step 0, and what its model neglects: the
     !> Green's matrix of the points of a multi-point scene (`run%points` found already), or the
     !> structure's single-point convolver wrapped as the 1 x 1 case.
-    subroutine make_run_convolver(run, scene, structure, method, accuracy, error)
+    subroutine make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
         !> The run; its convolver made.
         type(contact_run), intent(inout) :: run
         !> The scene.
@@ -203,17 +203,24 @@ contains
         character(len=:), allocatable, intent(out) :: accuracy
         !> Set when the method cannot run on the structure.
         type(error_type), allocatable, intent(out) :: error
+        !> The method's own estimate of its relative error, to compare with the scene's
+        !> `accuracy` (greenconv_conv_builder's `make_convolver`, greenconv_scene_points's
+        !> `points_convolver`).
+        real(dp), intent(out), optional :: estimate
 
         class(convolver), allocatable :: point
+        real(dp) :: own
 
         run%several = multi_point_model(scene%model)
         if (allocated(run%conv)) deallocate (run%conv)
         if (run%several) then
-            call points_convolver(run%points, scene, method, run%conv, accuracy, error)
+            call points_convolver(run%points, scene, method, run%conv, accuracy, error, own)
+            if (present(estimate)) estimate = own
             return
         end if
         call make_convolver(method, structure, scene%dt, scene%truncation_tol, scene%n_steps, point, accuracy, &
-                            error, scene%accuracy)
+                            error, scene%accuracy, own)
+        if (present(estimate)) estimate = own
         if (allocated(error)) return
         allocate (point_matrix :: run%conv)
         select type (matrix => run%conv)
