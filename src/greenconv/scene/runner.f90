@@ -10,7 +10,7 @@ module greenconv_scene_runner
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
-    use greenconv_conv_methods, only: method_needs_modes, method_needs_g
+    use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
@@ -208,9 +208,10 @@ contains
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
-        if (method_needs_g(method) .and. method_needs_modes(method)) then
-            line = line//'list the methods themselves (exact, fft) or ask a larger accuracy'
-        else if (method_needs_g(method)) then
+        if (method_needs(method, needs_sampled_g) .and. method_needs(method, needs_modes)) then
+            line = line//'no method auto may choose meets it: a higher max_order, G on a finer grid, or ask a larger ' &
+                   //'accuracy'
+        else if (method_needs(method, needs_sampled_g)) then
             line = line//'use a modal method (exact), G on a finer frequency grid or a wider band, or ask a larger ' &
                    //'accuracy'
         else
