@@ -12,7 +12,9 @@
 !> Exit status: 0 done; 2 bad input (one line on standard error naming the file, group and
 !> variable, or an output file that could not be written, which is then absent, or standard
 !> output that could not be written, e.g. a full device: the summary is then lost); 3 a
-!> numerical fault (one line saying where; the rows before it are written). SIGINT and
+!> numerical fault (one line saying where; the rows before it are written); 4 done, every file
+!> written, but a method's own error estimate exceeds the scene's `accuracy` (its summary line
+!> says by how much, one line on standard error names the methods). SIGINT and
 !> SIGTERM delete the temporary `<out>.<pid>.<n>.part` files in flight.
 !> A sweep scene (`task = 'sweep'`, a `&sweep` group; greenconv_scene_sweep) runs its
 !> variants one after the other into `<name>_sweep.dat` (mpi/greenconv_mpi.f90 shares them

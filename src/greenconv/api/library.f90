@@ -85,7 +85,9 @@ contains
         character(len=*), intent(in) :: path
         !> Unit the summary is printed on (an open formatted unit, e.g. output_unit).
         integer, intent(in) :: unit
-        !> Set when the scene is unusable (status `stat_input`) or a run fails.
+        !> Set when the scene is unusable (status `stat_input`) or a run fails; status
+        !> `stat_accuracy` (4) when all ran and wrote their files but a method's own error estimate
+        !> exceeds the scene's `accuracy`.
         type(error_type), allocatable, intent(out) :: error
 
         type(scene_type) :: scene

@@ -42,7 +42,9 @@ contains
         type(scene_type), intent(in) :: scene
         !> Unit the summary is printed on.
         integer, intent(in) :: unit
-        !> Set when the structure cannot be built or a file cannot be written.
+        !> Set when the structure cannot be built or a file cannot be written (`stat_input`), a
+        !> run fails (`stat_numerical`), or, every method run and written, one of them is outside
+        !> the scene's `accuracy` (`stat_accuracy`).
         type(error_type), allocatable, intent(out) :: error
         !> Steps per block of the streamed run (>= 1); by default greenconv_io_files's `block_rows`
         !> (divided by N_c for a multi-point scene, at least 1). The files do not depend on it.
