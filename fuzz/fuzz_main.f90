@@ -232,7 +232,8 @@ contains
         clean = stderr_is_clean(status)
         text = file_text(work//'/leftovers.txt')
         stdout = file_text(work//'/stdout.txt')
-        ok = (any(status == statuses) .or. status == done_outside_accuracy) .and. clean .and. len_trim(text) == 0 .and. index(stdout, 'On entry to') == 0
+        ok = (any(status == statuses) .or. status == done_outside_accuracy) .and. clean .and. len_trim(text) == 0 &
+             .and. index(stdout, 'On entry to') == 0
         n_steps = 0
         at = index(stdout, 'N_t = ')
         if (at > 0) then
