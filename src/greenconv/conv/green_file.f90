@@ -159,6 +159,7 @@ contains
         type(green_structure) :: extended
         real(dp) :: own, outside
         integer :: m
+        logical :: with_upper
 
         accuracy = ''
         own = 0.0_dp
@@ -186,32 +187,25 @@ contains
                 if (present(estimate)) estimate = own
                 return
             end if
-            call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
-            if (allocated(error)) return
-            accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; ' &
-                       //modes_accuracy(structure, .false.)
-            own = mean_e(structure%e_modes)
-            ! As in the table from the file: the fit's upper residual, U*delta(t), in W0.
-            if (structure%fit%pole_fit%has_upper) then
-                call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
-                accuracy = 'g_ij sampled from the identified modes, U in W0 ('//source//'); '//text//'; ' &
-                           //modes_accuracy(structure, .true.)
-                own = mean_e(structure%e_upper)
-            end if
-            if (present(estimate)) estimate = own
-            return
         end if
         call make_multipoint_convolver(method, structure%modes, dt, truncation_tol, n_steps, conv, text, error)
         if (allocated(error)) return
-        accuracy = text//'; '//modes_accuracy(structure, .false.)
-        own = mean_e(structure%e_modes)
         ! The fit's upper residual U is an impulse U*delta(t) in g_ij: the first-order hold puts
-        ! all of it in the current step's displacement, W0.
-        if (engine%instant_part .and. structure%fit%pole_fit%has_upper) then
-            call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
-            accuracy = text//', the fit''s upper residual U added to W0; '//modes_accuracy(structure, .true.)
-            own = mean_e(structure%e_upper)
+        ! all of it in the current step's displacement, W0 (g_ij sampled from the modes too).
+        with_upper = structure%fit%pole_fit%has_upper .and. (engine%samples_g() .or. engine%instant_part)
+        if (with_upper) call conv%set_instant_matrix(conv%weight0 + structure%fit%upper)
+        if (engine%samples_g() .and. with_upper) then
+            accuracy = 'g_ij sampled from the identified modes, U in W0 ('//source//'); '//text//'; '
+        else if (engine%samples_g()) then
+            accuracy = 'g_ij sampled from the identified modes ('//source//'); '//text//'; '
+        else if (with_upper) then
+            accuracy = text//', the fit''s upper residual U added to W0; '
+        else
+            accuracy = text//'; '
         end if
+        accuracy = accuracy//modes_accuracy(structure, with_upper)
+        own = mean_e(structure%e_modes)
+        if (with_upper) own = mean_e(structure%e_upper)
         if (present(estimate)) estimate = own
     end subroutine green_file_convolver
 
