@@ -15,7 +15,7 @@ module greenconv_scene_settings
     implicit none
     private
 
-    public :: scene_type, scene_files, input_place, place, name_length
+    public :: scene_type, scene_files, file_print, input_place, place, name_length
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -133,9 +133,22 @@ module greenconv_scene_settings
         real(dp) :: accuracy
     end type scene_type
 
+    !> A file a sweep's variants read: its path, the hash of its lines when a variant first read
+    !> it (16 hexadecimal digits) and that variant's number.
+    type :: file_print
+        !> The file.
+        character(len=:), allocatable :: path
+        !> Hash of its lines when first read.
+        character(len=16) :: hash = ''
+        !> The variant that first read it.
+        integer :: variant = 0
+    end type file_print
+
     !> Road files and road textures read by scenes, each kept by its path: a caller that reads
     !> many scenes naming the same files (a sweep's variants) reads each file once.
     type :: scene_files
+        !> The files a sweep's content keys read, each as first read (an edited one is refused).
+        type(file_print), allocatable :: prints(:)
         !> The road files read, each with its path.
         type(road_file_type), allocatable :: roads(:)
         !> The road textures read, each with its path.
