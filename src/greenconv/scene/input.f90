@@ -31,13 +31,14 @@ module greenconv_scene_input
                                       method_needs_g, check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
     use greenconv_conv_builder, only: check_kernel_values
-    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
+    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
 
-    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template
+    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template, &
+              place_error
 
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
@@ -366,7 +367,7 @@ contains
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
         case ('texture')
             call read_texture_once(trim(texture_file), this%texture, error, files)
-            if (allocated(error)) error%message = input_place(this, 'road', 'texture_file')//': '//error%message
+            if (allocated(error)) call place_error(error, this, 'road', 'texture_file')
         case default
             call read_file_road(this, trim(road_file), error, files)
         end select
@@ -417,7 +418,7 @@ contains
             if (present(files) .and. .not. allocated(error)) files%roads = [files%roads, this%road_data]
         end if
         if (allocated(error)) then
-            error%message = input_place(this, 'road', 'road_file')//': '//error%message
+            call place_error(error, this, 'road', 'road_file')
             return
         end if
         ! Built in place and moved: gfortran 12 loses the allocatable components of a
@@ -447,7 +448,7 @@ contains
         else if (allocated(this%texture%x)) then
             call check_texture_coverage(this%texture, x, [this%y_start], this%speed, this%dt, this%n_steps, error)
         end if
-        if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
+        if (allocated(error)) call place_error(error, this, 'road', 'x_start')
     end subroutine check_scene_road
 
     !> A multi-point model (the tyre, a Green's matrix file) runs a contact over a road file or
@@ -717,7 +718,7 @@ contains
         do i = 1, size(this%methods)
             call check_method(trim(this%methods(i)), multi_point_model(this%model), .true., .true., error)
             if (allocated(error)) then
-                error%message = input_place(this, 'convolution', 'methods')//': '//error%message
+                call place_error(error, this, 'convolution', 'methods')
                 return
             end if
         end do
