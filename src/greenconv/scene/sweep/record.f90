@@ -171,7 +171,7 @@ contains
             if (files%prints(i)%hash /= hash) call fatal_error(error, plan%file//' (variant '//int_text(k)//'): ' &
                 //path//' changed while the sweep ran: expected its lines as variant '//int_text(files%prints(i)%variant) &
                 //' read them (hash '//files%prints(i)%hash//'), found hash '//hash &
-                //'; one table holds one version of each file: run the sweep again (finished variants are kept)')
+                //'; one table holds one version of each file: run the sweep again on the file as it is now')
             return
         end do
         files%prints = [files%prints, file_print(path, hash, k)]
