@@ -61,7 +61,7 @@
 #                   memory "definitely lost" (tools/make_helpers.sh valgrind)
 #   make thread-check  two threads through the C API (test/threads/two_threads.c: a stress
 #                   run and one under helgrind) and the check that the library holds no
-#                   static string length (tools/check_symbols.sh --static-locals); see below
+#                   writable static local (make statics-check, tools/check_statics.sh); see below
 #   make sanitize   the library and the unit tests built twice, with -fsanitize=address,undefined
 #                   and with -fcheck=all (build/sanitize-*), then the test suite and SANITIZE_FUZZ
 #                   fuzz cases (default 200) on each (`make sanitize-builds`), then `make valgrind`;
@@ -149,7 +149,8 @@ FIGDIR  := out/figures
 CHECK_SCENES ?= data/sdof_sine.nml
 
 .PHONY: all lib deps build run bench bench-data bench-smoke figures test layers links clean examples install doc doc-check \
-        fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test thread-test thread-stress thread-helgrind thread-check
+        fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test thread-test thread-stress thread-helgrind thread-check \
+        statics-check
 
 all: lib
 
@@ -335,10 +336,16 @@ thread-helgrind: $(THREAD_TEST)
 
 thread-check: $(SHLIB)
 	@status=0; \
-	bash tools/check_symbols.sh --static-locals $(SHLIB) || status=1; \
+	$(MAKE) statics-check || status=1; \
 	$(MAKE) thread-stress || status=1; \
 	$(MAKE) thread-helgrind || status=1; \
 	exit $$status
+
+# No writable static local in the library's objects (tools/check_statics.sh: each `slen.*`
+# and any other static that is not a module variable or an OpenMP critical lock, by file).
+# Not yet in `make test`: deferred-length text functions remain (231 call sites in round 28).
+statics-check: $(LIB)
+	bash tools/check_statics.sh $(BUILD)/src
 
 # ---- fuzz test of the driver -------------------------------------------------------------
 

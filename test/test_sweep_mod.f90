@@ -17,7 +17,7 @@ module test_sweep_mod
     use greenconv_io_spectra, only: band_spectrum, band_levels
     use greenconv_scene_sweep, only: sweep_text, sweep_plan, variant_outcome, read_sweep, variant_lines, &
                                      variant_key, summary_row, outcome_text, outcome_from_text, is_sweep_file, &
-                                     run_sweep, replaced_all
+                                     run_sweep, replaced_all, scene_files, take_variant, variant_ran, variant_bad
     implicit none
     private
 
@@ -41,7 +41,8 @@ contains
                      new_unittest('band levels: a tone''s closed form, the history''s spectrum', test_spectra), &
                      new_unittest('histories: only when asked, named, decimated, renumbered', test_histories), &
                      new_unittest('&sweep options: bad values and unresolvable bands refused', test_bad_options), &
-                     new_unittest('content key: an edited road file reruns its variants', test_file_key)]
+                     new_unittest('content key: an edited road file reruns its variants', test_file_key), &
+                     new_unittest('a road file edited between variants: the later ones refused', test_edited_file)]
     end subroutine collect_sweep
 
     !> A small SDOF sweep scene with the given &sweep group.
@@ -380,6 +381,48 @@ contains
         call check(error, skipped_line(scratch//'/files.nml') == '1 already done', &
                    'an edited road file reruns its variant')
     end subroutine test_file_key
+
+    !> A road file edited while a sweep runs (between its variants 1 and 2): variant 2 would run
+    !> on the road data variant 1 read (the sweep reads each road file once) under the key of
+    !> the edited file, a table mixing two versions; it is refused (status 2) with both hashes,
+    !> and variant 3, the file restored, runs.
+    subroutine test_edited_file(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: failure
+        type(sweep_plan) :: plan
+        type(scene_files) :: files
+        type(variant_outcome) :: outcome
+        character(len=:), allocatable :: text
+        integer :: what
+        character(len=*), parameter :: nl = new_line('a')
+        character(len=*), parameter :: road = '# x height'//nl//'0.0 0.0'//nl//'0.5 1.0e-4'//nl//'1.0 0.0'//nl
+
+        text = replaced_all(sweep_scene("&sweep road.speed = 10.0, 12.0, 14.0 /"), "name = 'unit'", "name = 'edit'")
+        text = replaced_all(text, "profile = 'sine'", "profile = 'file', speed = 10.0, road_file = '"//scratch &
+                            //"/road_edit.dat'")
+        call make_directory(scratch//'/out', failure)
+        call write_text(scratch//'/road_edit.dat', road)
+        call execute_command_line('rm -rf '//scratch//'/out/edit_sweep.d')
+        call read_text('edit.nml', text, plan, failure)
+        call check(error, .not. allocated(failure), 'the sweep reads')
+        if (allocated(error)) return
+        call take_variant(plan, 1, .false., outcome, what, files)
+        call check(error, what == variant_ran .and. outcome%status == 0, 'variant 1 runs: '//outcome%message)
+        if (allocated(error)) return
+        call write_text(scratch//'/road_edit.dat', replaced_all(road, '1.0e-4', '3.0e-4'))
+        call take_variant(plan, 2, .false., outcome, what, files)
+        call check(error, what == variant_bad .and. outcome%status == 2, 'variant 2 of an edited file refused')
+        if (allocated(error)) return
+        call check(error, index(outcome%message, 'edit.nml (variant 2): '//scratch//'/road_edit.dat changed while ' &
+                   //'the sweep ran: expected its lines as variant 1 read them (hash ') > 0 &
+                   .and. index(outcome%message, '), found hash ') > 0, outcome%message)
+        if (allocated(error)) return
+        call write_text(scratch//'/road_edit.dat', road)
+        call take_variant(plan, 3, .false., outcome, what, files)
+        call check(error, what == variant_ran .and. outcome%status == 0, 'the file restored, variant 3 runs: ' &
+                   //outcome%message)
+    end subroutine test_edited_file
 
     !> Run a sweep serially; what its report says it skipped ('N already done').
     function skipped_line(path) result(said)

@@ -31,13 +31,14 @@ module greenconv_scene_input
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
     use greenconv_conv_builder, only: check_kernel_values
-    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length
+    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
 
-    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template
+    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template, &
+              place_error
 
     !> Length of paths read from a namelist.
     integer, parameter :: path_length = 1024
@@ -180,8 +181,8 @@ contains
         if (source%unit == no_unit) read (source%lines, nml=scene, iostat=stat, iomsg=message)
         if (group_failed(this, 'scene', source, stat, message, error)) return
         call check_value(this, 'scene', 'task', task, error)
-        call require(len_trim(name) > 0, expected(this, 'scene', 'name', 'a file base name'), error)
-        call require(len_trim(output_dir) > 0, expected(this, 'scene', 'output_dir', 'a directory path'), error)
+        call require(len_trim(name) > 0, error, this, 'scene', 'name', 'a file base name')
+        call require(len_trim(output_dir) > 0, error, this, 'scene', 'output_dir', 'a directory path')
         call check_value(this, 'scene', 'dt', dt, error)
         call check_value(this, 'scene', 'n_steps', n_steps, error)
         call check_value(this, 'scene', 'output_every', output_every, error)
@@ -227,21 +228,21 @@ contains
         if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
         if (source%unit == no_unit) read (source%lines, nml=structure, iostat=stat, iomsg=message)
         if (group_failed(this, 'structure', source, stat, message, error)) return
-        call require(model_id(trim(model)) > 0, expected(this, 'structure', 'model', model_names(), model), error)
+        call require(model_id(trim(model)) > 0, error, this, 'structure', 'model', model_names(), model)
         call check_values(this, 'structure', [character(len=16) :: 'mass', 'stiffness', 'damping_ratio'], &
                           [mass, stiffness, damping_ratio], error)
         call check_value(this, 'structure', 'n_modes', n_modes, error)
         call require(f_low > 0.0_dp .and. f_high > f_low .and. f_high < huge(f_high), &
-                     expected(this, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high), error)
+                     error, this, 'structure', 'f_low, f_high', '0 < f_low < f_high (Hz)', f_high)
         call require(xi_low > 0.0_dp .and. xi_high >= xi_low .and. xi_high < 1.0_dp, &
-                     expected(this, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high), error)
+                     error, this, 'structure', 'xi_low, xi_high', '0 < xi_low <= xi_high < 1', xi_high)
         call require(a_low > 0.0_dp .and. a_high >= a_low .and. a_high < huge(a_high), &
-                     expected(this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high), error)
+                     error, this, 'structure', 'a_low, a_high', '0 < a_low <= a_high (1/kg)', a_high)
         call require(.not. model_requires(find_model(trim(model)), 'frf_file') .or. len_trim(frf_file) > 0, &
-                     expected(this, 'structure', 'frf_file', "a receptance file for model '"//trim(model)//"'"), error)
+                     error, this, 'structure', 'frf_file', "a receptance file for model '"//trim(model)//"'")
         call require(.not. model_requires(find_model(trim(model)), 'green_file') .or. len_trim(green_file) > 0, &
-                     expected(this, 'structure', 'green_file', "a universal file of the Green's matrix for model '" &
-                              //trim(model)//"'"), error)
+                     error, this, 'structure', 'green_file', "a universal file of the Green's matrix for model '" &
+                              //trim(model)//"'")
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
@@ -257,8 +258,8 @@ contains
         call require(all([belt_length, belt_mass] > 0.0_dp) .and. &
                      all([belt_bending, belt_tension, belt_foundation] >= 0.0_dp) .and. &
                      all([belt_length, belt_mass, belt_bending, belt_tension, belt_foundation] < huge(1.0_dp)), &
-                     expected(this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
-                              //'belt_tension, belt_foundation >= 0, all finite'), error)
+                     error, this, 'structure', 'belt_*', 'belt_length, belt_mass > 0 and belt_bending, ' &
+                              //'belt_tension, belt_foundation >= 0, all finite')
         call check_values(this, 'structure', [character(len=16) :: 'belt_width', 'plate_mass', 'plate_bending_x', &
                           'plate_bending_y', 'plate_bending_xy', 'plate_tension_x', 'plate_tension_y', &
                           'plate_foundation'], [belt_width, plate_mass, plate_bending_x, plate_bending_y, &
@@ -307,16 +308,16 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), expected(this, 'identification', 'method', &
-                     "'ml' (maximum likelihood) or 'lsce'", method), error)
-        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', expected(this, 'identification', &
+        call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), error, this, 'identification', 'method', &
+                     "'ml' (maximum likelihood) or 'lsce'", method)
+        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
                      'method', "'ml' for model 'green_file' (its shared poles are fitted by maximum likelihood)", &
-                     method), error)
+                     method)
         if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file' .or. &
                                                   this%model == 'green_file')
-        call require(order == 0 .or. trim(method) == 'lsce', expected(this, 'identification', 'order', &
+        call require(order == 0 .or. trim(method) == 'lsce', error, this, 'identification', 'order', &
                      "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
-                     //"method = 'lsce')", order), error)
+                     //"method = 'lsce')", order)
         this%order = order
         this%ident_method = trim(method)
     end subroutine read_identification_group
@@ -346,11 +347,10 @@ contains
         if (group_failed(this, 'road', source, stat, message, error)) return
         call check_value(this, 'road', 'profile', profile, error)
         call require(trim(profile) /= 'file' .or. len_trim(road_file) > 0, &
-                     expected(this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'"), &
-                     error)
+                     error, this, 'road', 'road_file', "a road file (x [m], height [m]) for profile 'file'")
         call require(trim(profile) /= 'texture' .or. len_trim(texture_file) > 0, &
-                     expected(this, 'road', 'texture_file', "a road texture file (heights [m] on an x-y grid) " &
-                              //"for profile 'texture'"), error)
+                     error, this, 'road', 'texture_file', "a road texture file (heights [m] on an x-y grid) " &
+                              //"for profile 'texture'")
         call check_values(this, 'road', [character(len=16) :: 'x_start', 'y_start', 'amplitude', 'omega', &
                           'wavelength', 'speed'], [x_start, y_start, amplitude, omega, wavelength, speed], error)
         call check_value(this, 'road', 'n_terms', n_terms, error)
@@ -367,7 +367,7 @@ contains
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
         case ('texture')
             call read_texture_once(trim(texture_file), this%texture, error, files)
-            if (allocated(error)) error%message = input_place(this, 'road', 'texture_file')//': '//error%message
+            if (allocated(error)) call place_error(error, this, 'road', 'texture_file')
         case default
             call read_file_road(this, trim(road_file), error, files)
         end select
@@ -418,7 +418,7 @@ contains
             if (present(files) .and. .not. allocated(error)) files%roads = [files%roads, this%road_data]
         end if
         if (allocated(error)) then
-            error%message = input_place(this, 'road', 'road_file')//': '//error%message
+            call place_error(error, this, 'road', 'road_file')
             return
         end if
         ! Built in place and moved: gfortran 12 loses the allocatable components of a
@@ -450,7 +450,7 @@ contains
         else if (allocated(this%texture%x)) then
             call check_texture_coverage(this%texture, travel, this%n_steps, error)
         end if
-        if (allocated(error)) error%message = input_place(this, 'road', 'x_start')//': '//error%message
+        if (allocated(error)) call place_error(error, this, 'road', 'x_start')
     end subroutine check_scene_road
 
     !> A multi-point model (the tyre, a Green's matrix file) runs a contact over a road file or
@@ -500,26 +500,26 @@ contains
         record = 'N_t = '//int_text(this%n_steps)//' steps of '//compact_real(this%dt)//' s ('//compact_real( &
                  this%n_steps*this%dt)//' s)'
         if (bottom > top) then
-            call fatal_error(error, expected(this, 'scene', 'spectra', 'a record that resolves a band below the ' &
+            call expect(error, this, 'scene', 'spectra', 'a record that resolves a band below the ' &
                 //'Nyquist frequency '//compact_real(nyquist)//' Hz: '//record//' resolve none (at ' &
-                //int_text(default_lines_per_band)//' lines in a band); raise n_steps or set spectra = .false.'))
+                //int_text(default_lines_per_band)//' lines in a band); raise n_steps or set spectra = .false.')
             return
         end if
         low = max(first_band(this%spectra_f_low), bottom)
         if (this%input%has_value('scene', 'spectra_f_low')) then
             low = first_band(this%spectra_f_low)
             if (low > top) then
-                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre below the ' &
+                call expect(error, this, 'scene', 'spectra_f_low', 'a lowest band centre below the ' &
                     //'Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (the highest band below it is ' &
-                    //band_name(top)//'); lower spectra_f_low or dt', this%spectra_f_low))
+                    //band_name(top)//'); lower spectra_f_low or dt', this%spectra_f_low)
                 return
             end if
             if (low < bottom) then
-                call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'a lowest band centre the record ' &
+                call expect(error, this, 'scene', 'spectra_f_low', 'a lowest band centre the record ' &
                     //'resolves: '//record//' resolve bands from '//band_name(bottom)//' up (the '//band_name(low) &
                     //' band needs '//int_text(segment_for_band(low, this%dt, default_lines_per_band)) &
                     //' samples for '//int_text(default_lines_per_band)//' lines in it); raise spectra_f_low ' &
-                    //'or n_steps', this%spectra_f_low))
+                    //'or n_steps', this%spectra_f_low)
                 return
             end if
         end if
@@ -527,26 +527,26 @@ contains
         if (this%input%has_value('scene', 'spectra_f_high')) then
             high = edge_band(this%spectra_f_high, 1)
             if (high > top) then
-                call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre whose band ' &
+                call expect(error, this, 'scene', 'spectra_f_high', 'a highest band centre whose band ' &
                     //'ends below the Nyquist frequency 1/(2*dt) = '//compact_real(nyquist)//' Hz (at most ' &
-                    //band_name(top)//'); lower spectra_f_high or dt', this%spectra_f_high))
+                    //band_name(top)//'); lower spectra_f_high or dt', this%spectra_f_high)
                 return
             end if
         end if
         if (high < low) then
-            call fatal_error(error, expected(this, 'scene', 'spectra_f_high', 'a highest band centre at or above ' &
+            call expect(error, this, 'scene', 'spectra_f_high', 'a highest band centre at or above ' &
                 //'the lowest, '//band_name(low)//' (no 1/3-octave band between them; default 20 kHz)', &
-                this%spectra_f_high))
+                this%spectra_f_high)
             return
         end if
         channels = 1
         if (this%spectra_points .and. multi_point_model(this%model)) channels = 1 + this%n_points
         values = real(segment_for_band(low, this%dt, default_lines_per_band), dp)*channels
         if (values > max_spectrum_values) then
-            call fatal_error(error, expected(this, 'scene', 'spectra_f_low', 'force spectra of at most ' &
+            call expect(error, this, 'scene', 'spectra_f_low', 'force spectra of at most ' &
                 //sci_text(real(max_spectrum_values, dp))//' values held (segment length times ' &
                 //int_text(channels)//' histories); raise spectra_f_low or turn spectra_points off, found ' &
-                //sci_text(values)//' values'))
+                //sci_text(values)//' values')
             return
         end if
         this%spectra_f_low = band_centre(low)
@@ -589,29 +589,29 @@ contains
                           [stiffness, exponent, gravity, preload, patch_width, stiffness_per_area], error)
         model = find_model(this%model)
         call require(preload >= 0.0_dp .or. model%has_mass .or. this%task /= 'contact', &
-                     expected(this, 'contact', 'preload', &
-                     "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload), error)
+                     error, this, 'contact', 'preload', &
+                     "a static force >= 0 N (model '"//this%model//"' has no mass to weigh)", preload)
         call check_values(this, 'contact', [character(len=16) :: 'n_points', 'n_points_x', 'n_points_y'], &
                           [n_points, n_points_x, n_points_y], error)
         call check_patch_grid(this, model, n_points, n_points_x, n_points_y, error)
         call require(.not. (model%multi_point() .and. model%grid_dimensions == 0 .and. &
-                            this%input%has_value('contact', 'patch_length')), expected(this, 'contact', &
+                            this%input%has_value('contact', 'patch_length')), error, this, 'contact', &
                      'patch_length', "no value for model '"//this%model//"' (the file's node coordinates place " &
-                     //'its points)'), error)
-        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, expected(this, 'contact', &
-                     'patch_length', 'a length > 0 m and below belt_length', patch_length), error)
+                     //'its points)')
+        call require(patch_length > 0.0_dp .and. patch_length < this%tyre%length, error, this, 'contact', &
+                     'patch_length', 'a length > 0 m and below belt_length', patch_length)
         call require(model%grid_dimensions == 2 .or. stiffness_per_area > 0.0_dp .or. &
-                     .not. this%input%has_value('contact', 'patch_width'), expected(this, 'contact', 'patch_width', &
+                     .not. this%input%has_value('contact', 'patch_width'), error, this, 'contact', 'patch_width', &
                      "no value for model '"//this%model//"' without stiffness_per_area (it is the tread width " &
-                     //'a per-area law shares out)'), error)
-        call require(model%grid_dimensions < 2 .or. patch_width < this%plate%width, expected(this, 'contact', &
-                     'patch_width', 'a width below belt_width', patch_width), error)
-        call require(stiffness_per_area == 0.0_dp .or. model%grid_dimensions > 0, expected(this, 'contact', &
+                     //'a per-area law shares out)')
+        call require(model%grid_dimensions < 2 .or. patch_width < this%plate%width, error, this, 'contact', &
+                     'patch_width', 'a width below belt_width', patch_width)
+        call require(stiffness_per_area == 0.0_dp .or. model%grid_dimensions > 0, error, this, 'contact', &
                      'stiffness_per_area', "0 for model '"//this%model//"' (a law per area needs a patch grid: " &
-                     //"model 'tyre' or 'tyre_plate'); give the stiffness per point", stiffness_per_area), error)
+                     //"model 'tyre' or 'tyre_plate'); give the stiffness per point", stiffness_per_area)
         call require(stiffness_per_area == 0.0_dp .or. .not. this%input%has_value('contact', 'stiffness'), &
-                     expected(this, 'contact', 'stiffness', 'no value beside stiffness_per_area (each point''s ' &
-                     //'stiffness is k_a times its share of the patch)'), error)
+                     error, this, 'contact', 'stiffness', 'no value beside stiffness_per_area (each point''s ' &
+                     //'stiffness is k_a times its share of the patch)')
         call check_value(this, 'contact', 'scheme', scheme, error)
         call check_value(this, 'contact', 'divergence_bound', divergence_bound, error)
         this%patch_length = patch_length
@@ -646,23 +646,23 @@ contains
         if (allocated(error)) return
         call require(.not. (model%multi_point() .and. model%grid_dimensions == 0 .and. &
                             this%input%has_value('contact', 'n_points')), &
-                     expected(this, 'contact', 'n_points', "no value for model '"//this%model//"' (its contact " &
-                              //'points are the nodes of the file)'), error)
+                     error, this, 'contact', 'n_points', "no value for model '"//this%model//"' (its contact " &
+                              //'points are the nodes of the file)')
         call require(n_points >= 1 .and. (n_points == 1 .or. model%grid_dimensions > 0), &
-                     expected(this, 'contact', 'n_points', "1, or a number of points >= 1 for model 'tyre' or " &
-                              //"'tyre_plate'", n_points), error)
+                     error, this, 'contact', 'n_points', "1, or a number of points >= 1 for model 'tyre' or " &
+                              //"'tyre_plate'", n_points)
         call require(model%grid_dimensions == 2 .or. .not. (this%input%has_value('contact', 'n_points_x') .or. &
-                     this%input%has_value('contact', 'n_points_y')), expected(this, 'contact', 'n_points_x, n_points_y', &
+                     this%input%has_value('contact', 'n_points_y')), error, this, 'contact', 'n_points_x, n_points_y', &
                      "no value for model '"//this%model//"' (a patch grid is model 'tyre_plate''s; "//"'tyre' " &
-                     //'takes n_points)'), error)
+                     //'takes n_points)')
         along = n_points
         if (n_points_x > 0) along = n_points_x
         this%n_points_x = along
         this%n_points_y = 1
         if (model%grid_dimensions == 2) this%n_points_y = n_points_y
-        call require(real(along, dp)*this%n_points_y <= max_contact_points, expected(this, 'contact', &
+        call require(real(along, dp)*this%n_points_y <= max_contact_points, error, this, 'contact', &
                      'n_points_x, n_points_y', 'at most '//int_text(max_contact_points)//' points in all, found ' &
-                     //int_text(along)//' x '//int_text(this%n_points_y)), error)
+                     //int_text(along)//' x '//int_text(this%n_points_y))
         if (.not. allocated(error)) this%n_points = along*this%n_points_y
     end subroutine check_patch_grid
 
@@ -689,16 +689,16 @@ contains
         if (group_failed(this, 'convolution', source, stat, message, error)) return
         do i = 1, max_methods
             if (methods(i) == '' .or. is_method(methods(i))) cycle
-            call fatal_error(error, expected(this, 'convolution', 'methods', method_list(), methods(i)))
+            call expect(error, this, 'convolution', 'methods', method_list(), methods(i))
             return
         end do
         call check_value(this, 'convolution', 'truncation_tol', truncation_tol, error)
         this%methods = pack(methods, methods /= '')
         call require(size(this%methods) > 0 .or. this%task /= 'contact', &
-                     expected(this, 'convolution', 'methods', 'at least one method'), error)
+                     error, this, 'convolution', 'methods', 'at least one method')
         do i = 2, size(this%methods)
-            call require(all(this%methods(:i - 1) /= this%methods(i)), expected(this, 'convolution', 'methods', &
-                         'each method once (its file would be written twice)', this%methods(i)), error)
+            call require(all(this%methods(:i - 1) /= this%methods(i)), error, this, 'convolution', 'methods', &
+                         'each method once (its file would be written twice)', this%methods(i))
         end do
         call check_value(this, 'convolution', 'accuracy', accuracy, error)
         this%truncation_tol = truncation_tol
@@ -720,7 +720,7 @@ contains
         do i = 1, size(this%methods)
             call check_method(trim(this%methods(i)), multi_point_model(this%model), .true., .true., error)
             if (allocated(error)) then
-                error%message = input_place(this, 'convolution', 'methods')//': '//error%message
+                call place_error(error, this, 'convolution', 'methods')
                 return
             end if
         end do
@@ -765,29 +765,33 @@ contains
         group_failed = allocated(error) .or. source%unit /= no_unit
     end function group_failed
 
-    !> "file:line: &group variable: expected what[, found value]", the line that of the variable
-    !> (the first of a list `a, b`) when the file sets it, else the group's; value is a real, an
-    !> integer or a text.
-    function expected(scene, group, variable, what, found) result(line)
+    !> Set `error` to "file:line: &group variable: expected what[, found value]", the line that
+    !> of the variable (the first of a list `a, b`) when the file sets it, else the group's; value
+    !> is a real, an integer or a text. A subroutine, not a text function: gfortran keeps the
+    !> length of a deferred-length function result in static storage, which threads share.
+    subroutine expect(error, scene, group, variable, what, found)
+        type(error_type), allocatable, intent(out) :: error
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: group, variable, what
         class(*), intent(in), optional :: found
-        character(len=:), allocatable :: line
 
+        character(len=:), allocatable :: line
         character(len=32) :: value
 
         line = place(scene, group, variable)//' '//variable//': expected '//what
-        if (.not. present(found)) return
-        select type (found)
-        type is (real(dp))
-            line = line//', found '//compact_real(found)
-        type is (integer)
-            write (value, '(i0)') found
-            line = line//', found '//trim(value)
-        type is (character(len=*))
-            line = line//", found '"//trim(found)//"'"
-        end select
-    end function expected
+        if (present(found)) then
+            select type (found)
+            type is (real(dp))
+                line = line//', found '//compact_real(found)
+            type is (integer)
+                write (value, '(i0)') found
+                line = line//', found '//trim(value)
+            type is (character(len=*))
+                line = line//", found '"//trim(found)//"'"
+            end select
+        end if
+        call fatal_error(error, line)
+    end subroutine expect
 
     !> Check a value a group read against its row of the scene table (greenconv_scene_schema):
     !> its range or choices; its message says what the row expects and what was found.
@@ -801,7 +805,7 @@ contains
 
         if (allocated(error)) return
         row = scene_row(group, name)
-        if (.not. admits(row, value)) call fatal_error(error, expected(this, group, name, row%expect, value))
+        if (.not. admits(row, value)) call expect(error, this, group, name, row%expect, value)
     end subroutine check_value
 
     !> `check_value` for several values of one kind, in order.
@@ -818,14 +822,16 @@ contains
         end do
     end subroutine check_values
 
-    !> Record `message` as the error unless `ok` holds or an earlier check already failed.
-    subroutine require(ok, message, error)
+    !> Unless `ok` holds or an earlier check already failed, set `error` as `expect` does.
+    subroutine require(ok, error, scene, group, variable, what, found)
         logical, intent(in) :: ok
-        character(len=*), intent(in) :: message
         type(error_type), allocatable, intent(inout) :: error
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variable, what
+        class(*), intent(in), optional :: found
 
         if (ok .or. allocated(error)) return
-        call fatal_error(error, message)
+        call expect(error, scene, group, variable, what, found)
     end subroutine require
 
 end module greenconv_scene_input

@@ -24,7 +24,7 @@ module greenconv_scene_multi_models
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
                                                sampled_kernel
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
-    use greenconv_scene_settings, only: scene_type, input_place
+    use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
     use greenconv_scene_tyre, only: tyre_points
@@ -88,7 +88,7 @@ contains
         call plate_modes(scene%plate, points%x, points%y, f_max, points%modes, error)
         if (.not. allocated(error)) call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) then
-            error%message = input_place(scene, 'structure', 'model')//': '//error%message
+            call place_error(error, scene, 'structure', 'model')
             return
         end if
         write (numbers, '(i0,a,i0,a,f0.3,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') scene%n_points_x, ' x ', scene%n_points_y, &
@@ -126,7 +126,7 @@ contains
         points%green%path = scene%green_file
         call read_green_layout(scene%green_file, points%green%matrix, error)
         if (allocated(error)) then
-            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            call place_error(error, scene, 'structure', 'green_file')
             return
         end if
         points%x = points%green%matrix%x
@@ -136,7 +136,7 @@ contains
         options%fit%max_order = scene%max_order
         call identify_green(options, points%green, error)
         if (allocated(error)) then
-            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            call place_error(error, scene, 'structure', 'green_file')
             return
         end if
         summary = '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
@@ -164,7 +164,7 @@ contains
         green%path = scene%green_file
         call read_green_layout(scene%green_file, green%matrix, error)
         if (allocated(error)) then
-            error%message = input_place(scene, 'structure', 'green_file')//': '//error%message
+            call place_error(error, scene, 'structure', 'green_file')
             return
         end if
         associate (matrix => green%matrix)
@@ -179,7 +179,7 @@ contains
                     method_needs(trim(scene%methods(i)), needs_sampled_g)) &
                     call sampled_kernel(green, scene%dt, kernel, source, error)
                 if (allocated(error)) then
-                    error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
+                    call place_error(error, scene, 'convolution', 'methods')
                     return
                 end if
             end do

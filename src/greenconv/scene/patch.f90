@@ -20,7 +20,7 @@ module greenconv_scene_patch
     use greenconv_core_error, only: error_type
     use greenconv_model_road_file, only: road_travel, check_road_coverage, sample_road_steps
     use greenconv_model_road_texture, only: check_texture_coverage
-    use greenconv_scene_settings, only: scene_type, input_place
+    use greenconv_scene_settings, only: scene_type, place_error
     implicit none
     private
 
@@ -51,7 +51,7 @@ contains
         else
             call check_road_coverage(scene%road_data, road_travel(road_x, road_y, scene%speed, scene%dt), scene%n_steps, error)
         end if
-        if (allocated(error)) error%message = input_place(scene, 'road', 'x_start')//': '//error%message
+        if (allocated(error)) call place_error(error, scene, 'road', 'x_start')
     end subroutine place_patch
 
     !> Road heights u_r,i [m] under the points at steps first..first + count - 1,

@@ -14,7 +14,7 @@ module greenconv_scene_runner
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
-    use greenconv_scene_input, only: scene_type, output_path, input_place
+    use greenconv_scene_input, only: scene_type, output_path, place_error
     use greenconv_scene_models, only: structure_kind, find_model, multi_point_model
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure
@@ -118,7 +118,7 @@ contains
         if (allocated(error)) return
         call check_output_directory(scene%output_dir, error)
         if (allocated(error)) then
-            error%message = input_place(scene, 'scene', 'output_dir')//': '//error%message
+            call place_error(error, scene, 'scene', 'output_dir')
             return
         end if
         line = 'greenconv: '//scene%file//': ok: task '//scene%task//', model '//scene%model
@@ -167,7 +167,7 @@ contains
             method = trim(scene%methods(i))
             call make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
             if (allocated(error)) then
-                if (run%several) error%message = input_place(scene, 'convolution', 'methods')//': '//error%message
+                if (run%several) call place_error(error, scene, 'convolution', 'methods')
                 return
             end if
             seconds = 0.0_dp

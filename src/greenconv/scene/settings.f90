@@ -4,6 +4,7 @@
 !> structure model's builder takes a scene without depending on the reader that checks it.
 module greenconv_scene_settings
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text
     use greenconv_model_road, only: road_profile
     use greenconv_contact_single, only: contact_law, contact_options
@@ -15,7 +16,7 @@ module greenconv_scene_settings
     implicit none
     private
 
-    public :: scene_type, scene_files, input_place, place, name_length
+    public :: scene_type, scene_files, file_print, input_place, place, name_length, place_error
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -133,9 +134,22 @@ module greenconv_scene_settings
         real(dp) :: accuracy
     end type scene_type
 
+    !> A file a sweep's variants read: its path, the hash of its lines when a variant first read
+    !> it (16 hexadecimal digits) and that variant's number.
+    type :: file_print
+        !> The file.
+        character(len=:), allocatable :: path
+        !> Hash of its lines when first read.
+        character(len=16) :: hash = ''
+        !> The variant that first read it.
+        integer :: variant = 0
+    end type file_print
+
     !> Road files and road textures read by scenes, each kept by its path: a caller that reads
     !> many scenes naming the same files (a sweep's variants) reads each file once.
     type :: scene_files
+        !> The files a sweep's content keys read, each as first read (an edited one is refused).
+        type(file_print), allocatable :: prints(:)
         !> The road files read, each with its path.
         type(road_file_type), allocatable :: roads(:)
         !> The road textures read, each with its path.
@@ -157,6 +171,21 @@ contains
 
         text = place(scene, group, variable)//' '//variable
     end function input_place
+
+    !> Put `input_place` and ': ' before an error's message (a subroutine: gfortran keeps the
+    !> length of a text function's deferred-length result in static storage, which threads share).
+    subroutine place_error(error, scene, group, variable)
+        !> The error, its message then "file:line: &group variable: message".
+        type(error_type), intent(inout) :: error
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: variable
+
+        error%message = place(scene, group, variable)//' '//variable//': '//error%message
+    end subroutine place_error
 
     !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
     !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.

@@ -18,7 +18,7 @@ module greenconv_scene_single_models
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
                                          structure_from_frf_ml
     use greenconv_conv_methods, only: method_scheme, scheme_auto
-    use greenconv_scene_settings, only: scene_type, input_place
+    use greenconv_scene_settings, only: scene_type, place_error
     implicit none
     private
 
@@ -93,7 +93,7 @@ contains
             call identify_scene(scene, frf, sampling_step(scene), structure, error)
             if (allocated(error)) error%message = scene%frf_file//': '//error%message
         end if
-        if (allocated(error)) error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
+        if (allocated(error)) call place_error(error, scene, 'structure', 'frf_file')
     end subroutine frf_file_structure
 
     !> For `--check`: read the scene's receptance file and append its lines to `line`.
@@ -111,7 +111,7 @@ contains
 
         call read_frf(scene%frf_file, frf, error, scene%frf_dataset)
         if (allocated(error)) then
-            error%message = input_place(scene, 'structure', 'frf_file')//': '//error%message
+            call place_error(error, scene, 'structure', 'frf_file')
             return
         end if
         line = line//' ('//scene%frf_file//': '//int_text(size(frf%frequency))//' lines to ' &

@@ -8,10 +8,11 @@
 !> key: reading its scene from memory and hashing its text and files.
 module greenconv_scene_sweep_record
     use, intrinsic :: iso_fortran_env, only: int64
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, write_text
     use greenconv_scene_input, only: scene_type
+    use greenconv_scene_settings, only: scene_files, file_print
     use greenconv_scene_sweep_plan, only: sweep_text, sweep_plan, variant_lines, read_text_lines, append_text
     implicit none
     private
@@ -52,13 +53,7 @@ contains
         type(sweep_text), intent(in) :: lines(:)
         character(len=16) :: key
 
-        integer(int64) :: forward, backward
-
-        forward = 2166136261_int64
-        backward = 3421674724_int64
-        call hash_forward(lines, forward)
-        call hash_backward(lines, backward)
-        write (key, '(z8.8,z8.8)') forward, backward
+        key = block_key([text_block(lines)])
     end function variant_key
 
     !> Continue the forward hash over lines (each followed by a newline).
@@ -98,17 +93,25 @@ contains
     !> every line of it. An edited road file so changes the key of every variant that reads it.
     !> With histories the key also holds k, which names the variant's files: a variant whose
     !> number an edit of the lists changed runs again and rewrites the files of its number.
-    function content_key(plan, k, scene) result(key)
+    !> Each file's lines are hashed on their own too and kept in `files` with the first
+    !> variant that read it: a file edited while the sweep runs (whose road data the sweep
+    !> read once, its receptances read again) is refused for every later variant, with both
+    !> hashes, so that no table mixes two versions of a file.
+    subroutine content_key(plan, k, scene, files, key, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Variant number.
         integer, intent(in) :: k
         !> The variant's scene, as `read_variant` gave it.
         type(scene_type), intent(in) :: scene
-        character(len=16) :: key
+        !> Files read by earlier variants, with their hashes; the files this one reads are added.
+        type(scene_files), intent(inout) :: files
+        !> The key (16 hexadecimal digits).
+        character(len=16), intent(out) :: key
+        !> Set (status 2) when a file differs from what an earlier variant read.
+        type(error_type), allocatable, intent(out) :: error
 
         type(text_block) :: blocks(9)
-        integer(int64) :: forward, backward
         integer :: n, i
 
         blocks(1)%lines = variant_lines(plan, k)
@@ -124,16 +127,55 @@ contains
         if (allocated(scene%green_file)) then
             if (len_trim(scene%green_file) > 0) call add_file(blocks, n, scene%green_file)
         end if
+        do i = 3, n, 2
+            if (.not. allocated(error)) call check_print(plan, k, blocks(i - 1)%lines(1)%text(8:), &
+                                                         block_key(blocks(i:i)), files, error)
+        end do
+        key = block_key(blocks(:n))
+    end subroutine content_key
+
+    !> Two 32-bit FNV-1a hashes (forwards and backwards) of blocks of lines, as 16 hexadecimal digits.
+    function block_key(blocks) result(key)
+        type(text_block), intent(in) :: blocks(:)
+        character(len=16) :: key
+
+        integer(int64) :: forward, backward
+        integer :: i
+
         forward = 2166136261_int64
         backward = 3421674724_int64
-        do i = 1, n
+        do i = 1, size(blocks)
             call hash_forward(blocks(i)%lines, forward)
         end do
-        do i = n, 1, -1
+        do i = size(blocks), 1, -1
             call hash_backward(blocks(i)%lines, backward)
         end do
         write (key, '(z8.8,z8.8)') forward, backward
-    end function content_key
+    end function block_key
+
+    !> Compare a file's hash with the one the first variant that read it got (kept in `files`);
+    !> a file read for the first time is kept.
+    subroutine check_print(plan, k, path, hash, files, error)
+        type(sweep_plan), intent(in) :: plan
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: path
+        character(len=16), intent(in) :: hash
+        type(scene_files), intent(inout) :: files
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: i
+
+        if (.not. allocated(files%prints)) allocate (files%prints(0))
+        do i = 1, size(files%prints)
+            if (files%prints(i)%path /= path) cycle
+            if (files%prints(i)%hash /= hash) call fatal_error(error, plan%file//' (variant '//int_text(k)//'): ' &
+                //path//' changed while the sweep ran: expected its lines as variant '//int_text(files%prints(i)%variant) &
+                //' read them (hash '//files%prints(i)%hash//'), found hash '//hash &
+                //'; one table holds one version of each file: run the sweep again on the file as it is now')
+            return
+        end do
+        files%prints = [files%prints, file_print(path, hash, k)]
+    end subroutine check_print
 
     !> Add to the blocks of a key a file's name and its lines (or that it cannot be read).
     subroutine add_file(blocks, n, path)

@@ -52,7 +52,7 @@ contains
 
         type(scene_type) :: scene
         type(error_type), allocatable :: error
-        character(len=:), allocatable :: key
+        character(len=16) :: key
         logical :: found
 
         what = variant_bad
@@ -63,7 +63,12 @@ contains
         end if
         what = variant_ran
         if (check_only) return
-        key = content_key(plan, k, scene)
+        call content_key(plan, k, scene, files, key, error)
+        if (allocated(error)) then
+            what = variant_bad
+            outcome = failed_outcome(plan, error)
+            return
+        end if
         call load_record(record_path(plan, key), outcome, found)
         if (found) then
             what = variant_done
