@@ -130,8 +130,20 @@ contains
         !> The model.
         type(model_type), intent(in) :: model
 
-        chi_square = 2.0_dp*sum(abs(data%weight*(data%g - evaluate(model, data%omega)))**2)
+        chi_square = 2.0_dp*sum(abs(weighted_residual(data, model))**2)
     end function chi_square
+
+    !> Weighted residual w*(G - G_model) of each line used (dimensionless, complex).
+    pure function weighted_residual(data, model) result(e)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> The model.
+        type(model_type), intent(in) :: model
+        !> w_l*(G_l - G_model(omega_l)).
+        complex(dp) :: e(size(data%g))
+
+        e = data%weight*(data%g - evaluate(model, data%omega))
+    end function weighted_residual
 
     !> Number of real parameters of a model.
     elemental integer function n_parameters(model)
@@ -289,7 +301,7 @@ contains
     end function stepped
 
     !> Fisher information 2*Re(J^H W J) and the gradient 2*Re(J^H W e) of -chi2/2.
-    subroutine information(data, model, fisher, gradient, jac, work)
+    subroutine information(data, model, fisher, gradient, jac, work, residual)
         !> The weighted data.
         type(data_type), intent(in) :: data
         !> The model.
@@ -303,8 +315,10 @@ contains
         real(dp), allocatable, intent(inout) :: jac(:, :)
         !> Work array of `gram`, kept between calls like jac.
         real(dp), allocatable, intent(inout) :: work(:, :)
+        !> The model's weighted residual w*(G - G_model) when the caller has it (computed when absent).
+        complex(dp), intent(in), optional :: residual(:)
 
-        real(dp), allocatable :: residual(:)
+        real(dp), allocatable :: stacked_residual(:)
         integer :: m, p
 
         m = 2*size(data%g)
@@ -314,9 +328,13 @@ contains
         end if
         if (.not. allocated(jac)) allocate (jac(m, p))
         call jacobian(data, model, jac)
-        residual = stack(data%weight*(data%g - evaluate(model, data%omega)))
+        if (present(residual)) then
+            stacked_residual = stack(residual)
+        else
+            stacked_residual = stack(weighted_residual(data, model))
+        end if
         allocate (fisher(p, p), gradient(p))
-        call gram(jac, 2.0_dp, fisher, residual, gradient, work)
+        call gram(jac, 2.0_dp, fisher, stacked_residual, gradient, work)
     end subroutine information
 
     !> Residues for the model's poles, then Levenberg-Marquardt (at most `iterations`).
@@ -359,7 +377,9 @@ contains
     !> damped by mu*I, solved by Cholesky; a step is kept when chi2 falls and every pole stays
     !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than
     !> data%tolerance + 1e-10*chi2 in an iteration (search_tolerance during the order search,
-    !> final_tolerance for the final model).
+    !> final_tolerance for the final model). The residual of the kept model is carried from the
+    !> step that made it to the next iteration's gradient (one evaluation of the model per
+    !> iteration fewer).
     subroutine refine(data, model, lm_iterations, iterations)
         !> The weighted data.
         type(data_type), intent(in) :: data
@@ -372,18 +392,21 @@ contains
 
         type(model_type) :: trial
         real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:), jac(:, :), work(:, :)
+        complex(dp), allocatable :: residual(:), residual_trial(:)
         real(dp) :: chi, chi_trial, mu
         integer :: iteration, p, small, i, last
         logical :: ok
 
         if (n_parameters(model) == 0) return
-        chi = chi_square(data, model)
+        residual = weighted_residual(data, model)
+        chi = 2.0_dp*sum(abs(residual)**2)
+        residual_trial = residual
         mu = 1.0e-4_dp
         small = 0
         last = data%max_iterations
         if (present(iterations)) last = iterations
         do iteration = 1, last
-            call information(data, model, fisher, gradient, jac, work)
+            call information(data, model, fisher, gradient, jac, work, residual)
             lm_iterations = lm_iterations + 1
             p = size(gradient)
             if (.not. allocated(scale)) allocate (scale(p))
@@ -398,7 +421,10 @@ contains
                 chi_trial = huge(1.0_dp)
                 if (ok) then
                     trial = stepped(model, y/scale)
-                    if (physical(trial, data%min_decay)) chi_trial = chi_square(data, trial)
+                    if (physical(trial, data%min_decay)) then
+                        residual_trial = weighted_residual(data, trial)
+                        chi_trial = 2.0_dp*sum(abs(residual_trial)**2)
+                    end if
                 end if
                 if (chi_trial < chi) exit
                 mu = 10.0_dp*mu
@@ -406,6 +432,7 @@ contains
             end do
             small = merge(1, 0, chi - chi_trial <= data%tolerance + 1.0e-10_dp*chi)
             model = trial
+            residual = residual_trial
             chi = chi_trial
             mu = max(0.1_dp*mu, 1.0e-12_dp)
             if (small >= 1) exit
