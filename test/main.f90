@@ -48,6 +48,7 @@ program greenconv_tests
     use test_multiorder_mod, only: collect_multiorder
     use test_greenfiles_mod, only: collect_greenfiles
     use test_accuracystatus_mod, only: collect_accuracystatus
+    use test_polyref_mod, only: collect_polyref
     implicit none
 
     integer :: n_passed, n_failed
@@ -88,6 +89,7 @@ program greenconv_tests
                        new_testsuite('patchscene', collect_patchscene), &
                        new_testsuite('tyrepatch', collect_tyrepatch), &
                        new_testsuite('greenfiles', collect_greenfiles), &
+                       new_testsuite('polyref', collect_polyref), &
                        new_testsuite('reliability', collect_reliability), &
                        new_testsuite('version', collect_version), &
                        new_testsuite('uffchecks', collect_uffchecks), &

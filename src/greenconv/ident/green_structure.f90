@@ -50,6 +50,9 @@ module greenconv_ident_green_structure
         !> Terms of a residue matrix's eigen-split below this fraction of the pole's largest
         !> are dropped (greenconv_ident_shared_poles's `shared_point_modes`).
         real(dp) :: term_tol = 1.0e-10_dp
+        !> Take the poles from all receptances by the poly-reference fit (greenconv_ident_polyref,
+        !> for modally dense structures) instead of the summed driving points.
+        logical :: poly_reference = .false.
     end type green_options
 
     !> A Green's matrix from a universal file, identified when it holds receptances.
@@ -124,7 +127,7 @@ contains
         if (structure%matrix%function_type /= 4) return
         call cpu_time(start)
         call identify_shared(structure%matrix%frequency, structure%matrix%g, structure%matrix%reciprocal, &
-                             options%fit, structure%fit, error)
+                             options%fit, structure%fit, error, options%poly_reference)
         if (allocated(error)) then
             error%message = structure%path//': '//error%message
             return
@@ -133,8 +136,15 @@ contains
         call cpu_time(finish)
         structure%cpu_time = finish - start
         structure%identified = .true.
-        structure%worst_sigma_f = structure%fit%pole_fit%worst_frequency_spread()
-        structure%worst_sigma_xi = structure%fit%pole_fit%worst_damping_spread()
+        if (structure%fit%poly_reference) then
+            associate (fit => structure%fit)
+                structure%worst_sigma_f = maxval(fit%sigma_f/(abs(fit%pole)/two_pi))
+                structure%worst_sigma_xi = maxval(fit%sigma_xi*abs(fit%pole)/max(-real(fit%pole, dp), tiny(1.0_dp)))
+            end associate
+        else
+            structure%worst_sigma_f = structure%fit%pole_fit%worst_frequency_spread()
+            structure%worst_sigma_xi = structure%fit%pole_fit%worst_damping_spread()
+        end if
         call modes_error(structure)
     end subroutine identify_green
 
@@ -363,9 +373,16 @@ contains
         if (.not. self%identified) return
         associate (fit => self%fit, ml => self%fit%pole_fit)
             worst = maxloc(fit%e_point, 1)
-            text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles (maximum ' &
-                   //'likelihood on the summed driving points, order by MDL, diagram to N = ' &
-                   //int_text(maxval([0, ml%diagram_order]))//', refined over all receptances), noise ' &
+            if (fit%poly_reference) then
+                text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles ' &
+                       //'(poly-reference fit of all receptances, matrix order '//int_text(fit%order) &
+                       //' by MDL), noise '
+            else
+                text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles (maximum ' &
+                       //'likelihood on the summed driving points, order by MDL, diagram to N = ' &
+                       //int_text(maxval([0, ml%diagram_order]))//', refined over all receptances), noise '
+            end if
+            text = text &
                    //sci_text(fit%noise_level)//' of |G|, worst sigma_f/f = '//sci_text(self%worst_sigma_f) &
                    //', worst sigma_xi/xi = '//sci_text(self%worst_sigma_xi)//'; E (eq. 7) per receptance worst ' &
                    //sci_text(fit%e_worst)//', mean '//sci_text(fit%e_mean)//'; per point worst ' &

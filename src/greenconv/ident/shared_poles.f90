@@ -45,6 +45,7 @@ module greenconv_ident_shared_poles
     use greenconv_ext_lapack, only: least_squares, solve_linear
     use greenconv_ident_lsce, only: error_e
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
+    use greenconv_ident_polyref, only: polyref_poles, pole_design, pole_covariance, pole_spread
     implicit none
     private
 
@@ -78,12 +79,20 @@ module greenconv_ident_shared_poles
         real(dp) :: e_worst = 0.0_dp, e_mean = 0.0_dp
         !> Distance of each R_k from rank one, sqrt(1 - s_1^2/sum s^2).
         real(dp), allocatable :: rank_one(:)
+        !> Whether the poles came from the poly-reference fit of all receptances
+        !> (greenconv_ident_polyref) rather than from the summed driving points.
+        logical :: poly_reference = .false.
+        !> The matrix-polynomial order the poly-reference fit kept (0 otherwise).
+        integer :: order = 0
+        !> Standard deviations of each pole's natural frequency [Hz] and damping ratio at the
+        !> Cramer-Rao bound of the shared-pole model for the estimated noise (poly-reference only).
+        real(dp), allocatable :: sigma_f(:), sigma_xi(:)
     end type shared_fit
 
 contains
 
     !> Identify a Green's matrix with shared poles (see the module description).
-    subroutine identify_shared(frequency, g, symmetric, options, fit, error)
+    subroutine identify_shared(frequency, g, symmetric, options, fit, error, poly_reference)
         !> Frequency lines f_l = l*df, l = 0..n - 1 [Hz] (uniform, from 0 Hz).
         real(dp), intent(in) :: frequency(:)
         !> Receptances g(i, j, l) = G_ij(2*pi*f_l) [m/N].
@@ -96,6 +105,9 @@ contains
         type(shared_fit), intent(out) :: fit
         !> Set when the grid is not uniform from 0 Hz, the pole fit fails or finds no mode.
         type(error_type), allocatable, intent(out) :: error
+        !> Take the poles from all receptances by the poly-reference fit (`identify_polyref`)
+        !> instead of the summed driving points (default false).
+        logical, intent(in), optional :: poly_reference
 
         type(frf_type) :: summed
         type(ml_options) :: pole_options
@@ -104,6 +116,12 @@ contains
         real(dp) :: level
         integer :: i, n_c
 
+        if (present(poly_reference)) then
+            if (poly_reference) then
+                call identify_polyref(frequency, g, symmetric, options%max_order, fit, error)
+                return
+            end if
+        end if
         n_c = size(g, 1)
         summed%frequency = frequency
         allocate (summed%receptance(size(frequency)))
@@ -145,6 +163,74 @@ contains
         call shared_receptance(fit, frequency, model)
         call report_errors(g, model, fit)
     end subroutine identify_shared
+
+    !> Identify with the poles of the poly-reference fit of all receptances (greenconv_ident_polyref,
+    !> order by MDL), the residue matrices and both residual terms by linear least squares, the
+    !> noise from the residual of that model relative to its size (noise proportional to |G|:
+    !> E|G - G_model|^2 = rho^2*|G|^2 on every line), rho^2 = sum |G - G_model|^2/sum |G_model|^2
+    !> * n/(n - K/2) over the distinct receptances' lines above 0 Hz (n complex data, K real
+    !> parameters; a reciprocal pair's mean has half the variance); the ratio of sums, not a sum
+    !> of ratios, so that anti-resonances, where |G_model| is small, do not dominate it
+    !> over the distinct receptances' lines above 0 Hz (n complex data, K real parameters), and
+    !> each pole's Cramer-Rao spread for that noise.
+    subroutine identify_polyref(frequency, g, symmetric, max_modes, fit, error)
+        real(dp), intent(in) :: frequency(:)
+        complex(dp), intent(in) :: g(:, :, :)
+        logical, intent(in) :: symmetric
+        integer, intent(in) :: max_modes
+        type(shared_fit), intent(out) :: fit
+        type(error_type), allocatable, intent(out) :: error
+
+        complex(dp), allocatable :: model(:, :, :), target(:, :, :), residue(:, :)
+        real(dp), allocatable :: sigma(:, :), covariance(:, :)
+        integer, allocatable :: lines(:)
+        type(error_type), allocatable :: no_bound
+        real(dp) :: misfit, energy
+        integer :: i, j, l, q, n_c, n_t, n_m
+
+        n_c = size(g, 1)
+        target = g
+        if (symmetric) then
+            do l = 1, size(frequency)
+                target(:, :, l) = 0.5_dp*(g(:, :, l) + transpose(g(:, :, l)))
+            end do
+        end if
+        call polyref_poles(frequency, target, max_modes, fit%pole, fit%order, error)
+        if (allocated(error)) return
+        fit%poly_reference = .true.
+        fit%symmetric = symmetric
+        fit%pole_fit%has_upper = .true.
+        fit%pole_fit%has_lower = .true.
+        call fit_residues(frequency, g, fit, error)
+        if (allocated(error)) return
+        call shared_receptance(fit, frequency, model)
+        call report_errors(g, model, fit)
+        lines = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        n_m = size(fit%pole)
+        n_t = n_c*(n_c + 1)/2
+        allocate (sigma(n_t, size(lines)), residue(n_t, n_m))
+        misfit = 0.0_dp
+        energy = 0.0_dp
+        q = 0
+        do j = 1, n_c
+            do i = j, n_c
+                q = q + 1
+                ! a reciprocal pair's mean holds two measurements: half the variance
+                sigma(q, :) = max(abs(model(i, j, lines)), tiny(1.0_dp))/merge(sqrt(2.0_dp), 1.0_dp, symmetric .and. i /= j)
+                misfit = misfit + sum(abs(target(i, j, lines) - model(i, j, lines))**2)*merge(2, 1, symmetric .and. i /= j)
+                energy = energy + sum(abs(model(i, j, lines))**2)
+                residue(q, :) = fit%residue(i, j, :)
+            end do
+        end do
+        fit%noise_level = sqrt(misfit/energy*n_t*size(lines)/max(1.0_dp, n_t*size(lines) - real(n_m + (n_m + 1)*n_t, dp)))
+        fit%pole_fit%noise_level_fit = fit%noise_level
+        sigma = fit%noise_level*sigma
+        allocate (fit%sigma_f(n_m), fit%sigma_xi(n_m))
+        fit%sigma_f(:) = huge(1.0_dp)
+        fit%sigma_xi(:) = huge(1.0_dp)
+        call pole_covariance(frequency(lines), fit%pole, residue, sigma, covariance, no_bound)
+        if (.not. allocated(no_bound)) call pole_spread(fit%pole, covariance, fit%sigma_f, fit%sigma_xi)
+    end subroutine identify_polyref
 
     !> Residue and residual matrices by linear least squares for the fit's poles.
     subroutine fit_residues(frequency, g, fit, error)
@@ -205,38 +291,6 @@ contains
             end do
         end do
     end subroutine fit_residues
-
-    !> The real design matrix of a shared-pole model on the given lines: rows the real then the
-    !> imaginary parts, columns per pole the responses to Re R_k and Im R_k,
-    !> 1/(s - lambda_k) + 1/(s - conj lambda_k) and i/(s - lambda_k) - i/(s - conj lambda_k)
-    !> [s], then 1 (upper residual) and 1/s^2 (lower residual) when kept.
-    pure function pole_design(frequency, pole, upper, lower) result(design)
-        !> Frequencies of the lines [Hz].
-        real(dp), intent(in) :: frequency(:)
-        !> Poles [rad/s].
-        complex(dp), intent(in) :: pole(:)
-        !> Whether to add the upper (constant) and the lower (1/s^2) residual column.
-        logical, intent(in) :: upper, lower
-        !> The design matrix (2*size(frequency) x 2*size(pole) + residual columns).
-        real(dp), allocatable :: design(:, :)
-
-        complex(dp), allocatable :: columns(:, :)
-        integer :: k, n_p
-
-        n_p = 2*size(pole) + merge(1, 0, upper) + merge(1, 0, lower)
-        allocate (columns(size(frequency), n_p))
-        associate (s => i_unit*two_pi*frequency)
-            do k = 1, size(pole)
-                columns(:, 2*k - 1) = 1.0_dp/(s - pole(k)) + 1.0_dp/(s - conjg(pole(k)))
-                columns(:, 2*k) = i_unit*(1.0_dp/(s - pole(k)) - 1.0_dp/(s - conjg(pole(k))))
-            end do
-            if (upper) columns(:, 2*size(pole) + 1) = 1.0_dp
-            if (lower) columns(:, n_p) = 1.0_dp/s**2
-        end associate
-        allocate (design(2*size(frequency), n_p))
-        design(1:size(frequency), :) = real(columns, kind=dp)
-        design(size(frequency) + 1:, :) = aimag(columns)
-    end function pole_design
 
     !> Refine the poles over all receptances together (variable projection): the residues are
     !> eliminated by least squares for given poles, and Levenberg-Marquardt moves the poles to

@@ -1,0 +1,512 @@
+!> Poly-reference estimation of the poles of a Green's matrix G_ij(omega) (issues 23 and 26):
+!> every row of the matrix, not only the summed driving points, takes part, so that modes whose
+!> peaks overlap are told apart by their different shapes across the points.
+!>
+!> **Model** (a right matrix-fraction description in the discrete frequency variable
+!> z = exp(i*omega*dt_z), dt_z = 1/(2*f_max), which keeps the powers of z of modulus one and the
+!> equations well conditioned): for each response point o, the row H_o(omega) (1 x N_c) is
+!>
+!>     H_o(omega)*A(z) = B_o(z),   A(z) = sum_{r=0..p} z^r*alpha_r (N_c x N_c),
+!>     B_o(z) = sum_{r=0..p} z^r*beta_o,r (1 x N_c),
+!>
+!> with real coefficients. The equation error w_o(omega)*(B_o - H_o*A) is minimised in the
+!> least-squares sense over all lines above 0 Hz, w_o = 1/rms_i|H_oi| (each line relative to the
+!> row's size there). The numerators are eliminated row by row (the reduced normal equations
+!> M = sum_o (T_o - S_o^T*R_o^-1*S_o), R, S, T the real parts of the Gram matrices of the
+!> numerator and denominator regressors), alpha_p = I fixes the scale, and the poles are the
+!> eigenvalues z_k of the block companion matrix of A, lambda_k = ln(z_k)/dt_z. One order p gives
+!> up to p*N_c poles, so a few orders cover many modes.
+!>
+!> **Order from the data**: for every order p = 1..p_max the physical poles (stable, damping
+!> ratio below `max_damping`, inside the band) are scored by MDL, with the residues of every
+!> G_ij (and an upper and a lower residual) fitted by linear least squares on one shared design
+!> (lines weighted by the targets' common relative size):
+!>
+!>     MDL(p) = N/2*ln(RSS_p) + K_p/2*ln(N),   K_p = 2*n_m + (2*n_m + 2)*n_targets,
+!>
+!> N the number of real data; the order of least MDL is kept. The Fisher information of the
+!> shared-pole model (`pole_covariance`) gives the Cramer-Rao bound of the poles for a given
+!> noise per line, with the residues and residual terms as nuisance parameters.
+module greenconv_ident_polyref
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_ext_lapack, only: eigenvalues
+    use greenconv_model_modal_set, only: sorted_order
+    use greenconv_ident_dense, only: spd_inverse
+    implicit none
+    private
+
+    public :: polyref_poles, pole_covariance, pole_design, pole_spread
+
+    real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
+    !> Poles with a larger damping ratio are taken as mathematical, not modes.
+    real(dp), parameter :: max_damping = 0.3_dp
+    !> Largest matrix-polynomial order tried.
+    integer, parameter :: max_polynomial_order = 24
+
+contains
+
+    !> Poles of a Green's matrix by poly-reference least squares, the order chosen by MDL (see
+    !> the module description).
+    subroutine polyref_poles(frequency, g, max_modes, pole, order, error)
+        !> Frequency lines [Hz], increasing, >= 0.
+        real(dp), intent(in) :: frequency(:)
+        !> Receptances g(i, j, l) = G_ij(2*pi*f_l) [m/N] (symmetrised by the caller if reciprocal).
+        complex(dp), intent(in) :: g(:, :, :)
+        !> Largest number of modes (poles with Im > 0) the orders tried may reach.
+        integer, intent(in) :: max_modes
+        !> The poles lambda_k [rad/s] of the order kept (Re < 0 < Im), by frequency.
+        complex(dp), allocatable, intent(out) :: pole(:)
+        !> The matrix-polynomial order kept.
+        integer, intent(out) :: order
+        !> Set when no order gives a pole in the band.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: r(:, :, :), s(:, :, :), t(:, :, :), targets(:, :), weight(:)
+        complex(dp), allocatable :: candidate(:)
+        integer, allocatable :: lines(:)
+        real(dp) :: dt_z, score, best
+        integer :: n_c, p, p_max, l
+
+        n_c = size(g, 1)
+        lines = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        dt_z = 0.5_dp/maxval(frequency(lines))
+        p_max = min(max_polynomial_order, max(2, (2*max_modes + n_c - 1)/n_c + 2))
+        call gram_blocks(frequency(lines), g(:, :, lines), dt_z, p_max, r, s, t)
+        call shared_targets(g(:, :, lines), targets, weight)
+        best = huge(1.0_dp)
+        order = 0
+        allocate (pole(0))
+        do p = 1, p_max
+            call poles_of_order(r, s, t, n_c, p, dt_z, frequency(lines), candidate)
+            if (size(candidate) == 0 .or. size(candidate) > max_modes) cycle
+            score = mdl_score(frequency(lines), candidate, targets, weight)
+            if (score < best) then
+                best = score
+                pole = candidate
+                order = p
+            end if
+        end do
+        if (size(pole) == 0) then
+            call fatal_error(error, 'poly-reference poles: no order up to the largest gives a stable pole ' &
+                             //'inside the band')
+            return
+        end if
+        call refine_shared(frequency(lines), targets, weight, pole)
+        call prune(frequency(lines), targets, weight, pole)
+    end subroutine polyref_poles
+
+    !> Real parts of the Gram matrices of every row's regressors at the largest order: R (numerator),
+    !> S (numerator x denominator), T (denominator), index (r, j) -> r*N_c + j.
+    subroutine gram_blocks(frequency, g, dt_z, p_max, r, s, t)
+        real(dp), intent(in) :: frequency(:), dt_z
+        complex(dp), intent(in) :: g(:, :, :)
+        integer, intent(in) :: p_max
+        real(dp), allocatable, intent(out) :: r(:, :, :), s(:, :, :), t(:, :, :)
+
+        complex(dp), allocatable :: x(:, :), y(:, :), z(:)
+        real(dp), allocatable :: w(:)
+        integer :: n_c, n_l, o, q, j
+
+        n_c = size(g, 1)
+        n_l = size(frequency)
+        z = exp(i_unit*two_pi*frequency*dt_z)
+        allocate (x(n_l, p_max + 1), y(n_l, (p_max + 1)*n_c), w(n_l))
+        allocate (r(p_max + 1, p_max + 1, n_c), s(p_max + 1, (p_max + 1)*n_c, n_c), &
+                  t((p_max + 1)*n_c, (p_max + 1)*n_c, n_c))
+        do o = 1, n_c
+            w = 1.0_dp/max(sqrt(sum(abs(g(o, :, :))**2, dim=1)/n_c), tiny(1.0_dp))
+            do q = 0, p_max
+                x(:, q + 1) = w*z**q
+                do j = 1, n_c
+                    y(:, q*n_c + j) = -x(:, q + 1)*g(o, j, :)
+                end do
+            end do
+            r(:, :, o) = real(matmul(conjg(transpose(x)), x), kind=dp)
+            s(:, :, o) = real(matmul(conjg(transpose(x)), y), kind=dp)
+            t(:, :, o) = real(matmul(conjg(transpose(y)), y), kind=dp)
+        end do
+    end subroutine gram_blocks
+
+    !> The physical poles of the matrix polynomial of order p (reduced normal equations, alpha_p = I).
+    subroutine poles_of_order(r, s, t, n_c, p, dt_z, frequency, pole)
+        real(dp), intent(in) :: r(:, :, :), s(:, :, :), t(:, :, :)
+        integer, intent(in) :: n_c, p
+        real(dp), intent(in) :: dt_z, frequency(:)
+        complex(dp), allocatable, intent(out) :: pole(:)
+
+        real(dp), allocatable :: m(:, :), rp(:, :), sol(:, :), alpha(:, :), companion(:, :)
+        complex(dp), allocatable :: z(:), lambda(:)
+        type(error_type), allocatable :: failed
+        real(dp) :: f, xi
+        integer :: n, na, o, k
+        logical :: ok
+
+        allocate (pole(0))
+        n = (p + 1)*n_c
+        na = p*n_c
+        allocate (m(n, n), sol(p + 1, n))
+        m(:, :) = 0.0_dp
+        do o = 1, n_c
+            rp = r(1:p + 1, 1:p + 1, o)
+            call spd_inverse(rp, ok)
+            if (.not. ok) return
+            sol = matmul(rp, s(1:p + 1, 1:n, o))
+            m = m + t(1:n, 1:n, o) - matmul(transpose(s(1:p + 1, 1:n, o)), sol)
+        end do
+        rp = m(1:na, 1:na)
+        call spd_inverse(rp, ok)
+        if (.not. ok) return
+        alpha = -matmul(rp, m(1:na, na + 1:n))
+        allocate (companion(na, na), z(na))
+        companion(:, :) = 0.0_dp
+        do k = 1, na - n_c
+            companion(k, k + n_c) = 1.0_dp
+        end do
+        do k = 0, p - 1
+            companion(na - n_c + 1:na, k*n_c + 1:(k + 1)*n_c) = -alpha(k*n_c + 1:(k + 1)*n_c, :)
+        end do
+        call eigenvalues(companion, z, failed)
+        if (allocated(failed)) return
+        lambda = log(pack(z, abs(z) > 0.0_dp))/dt_z
+        do k = 1, size(lambda)
+            if (aimag(lambda(k)) <= 0.0_dp .or. real(lambda(k), dp) >= 0.0_dp) cycle
+            f = abs(lambda(k))/two_pi
+            xi = -real(lambda(k), dp)/abs(lambda(k))
+            if (xi < max_damping .and. f > frequency(1) .and. f < frequency(size(frequency))) pole = [pole, lambda(k)]
+        end do
+        pole = pole(sorted_order(abs(pole)))
+    end subroutine poles_of_order
+
+    !> The distinct receptances (i >= j), each scaled by its rms and stacked real then imaginary
+    !> parts, and the lines' common weight 1/rms_t of the scaled targets.
+    subroutine shared_targets(g, targets, weight)
+        complex(dp), intent(in) :: g(:, :, :)
+        real(dp), allocatable, intent(out) :: targets(:, :), weight(:)
+
+        complex(dp), allocatable :: scaled(:, :)
+        integer :: i, j, q, n_c, n_l
+
+        n_c = size(g, 1)
+        n_l = size(g, 3)
+        allocate (scaled(n_l, n_c*(n_c + 1)/2))
+        q = 0
+        do j = 1, n_c
+            do i = j, n_c
+                q = q + 1
+                scaled(:, q) = g(i, j, :)/max(sqrt(sum(abs(g(i, j, :))**2)/n_l), tiny(1.0_dp))
+            end do
+        end do
+        weight = 1.0_dp/max(sqrt(sum(abs(scaled)**2, dim=2)/size(scaled, 2)), tiny(1.0_dp))
+        allocate (targets(2*n_l, size(scaled, 2)))
+        do q = 1, size(scaled, 2)
+            targets(:, q) = [real(scaled(:, q), dp)*weight, aimag(scaled(:, q))*weight]
+        end do
+    end subroutine shared_targets
+
+    !> MDL of the linear fit of every target for these poles with an upper and a lower residual.
+    function mdl_score(frequency, pole, targets, weight) result(score)
+        real(dp), intent(in) :: frequency(:)
+        complex(dp), intent(in) :: pole(:)
+        real(dp), intent(in) :: targets(:, :), weight(:)
+        real(dp) :: score
+
+        real(dp), allocatable :: basis(:, :), rest(:, :)
+        real(dp) :: n_data, n_parameters
+
+        basis = pole_design(frequency, pole, .true., .true.)
+        basis = basis*spread([weight, weight], 2, size(basis, 2))
+        call orthonormalise(basis)
+        rest = targets - matmul(basis, matmul(transpose(basis), targets))
+        n_data = real(size(targets), dp)
+        n_parameters = 2.0_dp*size(pole) + real(size(basis, 2)*size(targets, 2), dp)
+        score = 0.5_dp*n_data*log(max(sum(rest**2), tiny(1.0_dp))) + 0.5_dp*n_parameters*log(n_data)
+    end function mdl_score
+
+    !> Gauss-Newton refinement of the poles over all targets (variable projection with Kaufman's
+    !> Jacobian): for given poles the residues and residual terms of every target are the linear
+    !> least-squares solution on the shared weighted design B; the derivative of the projected
+    !> misfit of target t with respect to Re and Im of lambda_k is P*(R_tk*d_k + conj(R_tk)*e_k),
+    !> d_k = 1/(s - lambda_k)^2, e_k = 1/(s - conj lambda_k)^2, P the projector off B's columns.
+    !> The four real vectors per pole are projected once per iteration and every target's normal
+    !> equations are assembled from their Gram matrix. Levenberg-Marquardt damping; a step is kept
+    !> only when it lowers the misfit and keeps every pole stable, so the result is never worse.
+    subroutine refine_shared(frequency, targets, weight, pole)
+        real(dp), intent(in) :: frequency(:), targets(:, :), weight(:)
+        complex(dp), intent(inout) :: pole(:)
+
+        integer, parameter :: max_iterations = 30
+        real(dp), allocatable :: x(:, :), rest(:, :), gu(:, :), ur(:, :), normal(:, :), gradient(:), lhs(:, :)
+        real(dp), allocatable :: u(:, :), coefficient(:, :), step(:)
+        complex(dp), allocatable :: trial(:)
+        real(dp) :: cost, cost_trial, mu
+        integer :: n_m, iteration, attempt, t, k, l
+        logical :: ok, accepted
+
+        n_m = size(pole)
+        call linear_fit(frequency, pole, targets, weight, x, rest, ok)
+        if (.not. ok) return
+        cost = sum(rest**2)
+        mu = 1.0e-4_dp
+        do iteration = 1, max_iterations
+            call projected_derivatives(frequency, pole, weight, u, ok)
+            if (.not. ok) return
+            gu = matmul(transpose(u), u)
+            ur = matmul(transpose(u), rest)
+            allocate (normal(2*n_m, 2*n_m), gradient(2*n_m), coefficient(4*n_m, 2*n_m))
+            normal(:, :) = 0.0_dp
+            gradient(:) = 0.0_dp
+            do t = 1, size(targets, 2)
+                coefficient(:, :) = 0.0_dp
+                do k = 1, n_m
+                    associate (a => x(2*k - 1, t), b => x(2*k, t))
+                        ! Re lambda: R d + conj(R) e; Im lambda: i R d - i conj(R) e (R = a + i b)
+                        coefficient(4*k - 3:4*k, 2*k - 1) = [a, b, a, -b]
+                        coefficient(4*k - 3:4*k, 2*k) = [-b, a, -b, -a]
+                    end associate
+                end do
+                normal = normal + matmul(transpose(coefficient), matmul(gu, coefficient))
+                gradient = gradient + matmul(transpose(coefficient), ur(:, t))
+            end do
+            accepted = .false.
+            do attempt = 1, 10
+                lhs = normal
+                do l = 1, 2*n_m
+                    lhs(l, l) = normal(l, l)*(1.0_dp + mu)
+                end do
+                call spd_inverse(lhs, ok)
+                if (ok) then
+                    step = matmul(lhs, gradient)
+                    trial = pole + cmplx(step(1:2*n_m:2), step(2:2*n_m:2), dp)
+                    if (all(real(trial, dp) < 0.0_dp) .and. all(aimag(trial) > 0.0_dp)) then
+                        call linear_fit(frequency, trial, targets, weight, x, rest, ok)
+                        cost_trial = huge(1.0_dp)
+                        if (ok) cost_trial = sum(rest**2)
+                        if (cost_trial < cost) then
+                            accepted = .true.
+                            exit
+                        end if
+                    end if
+                end if
+                mu = 10.0_dp*mu
+            end do
+            deallocate (normal, gradient, coefficient)
+            if (.not. accepted) then
+                call linear_fit(frequency, pole, targets, weight, x, rest, ok)
+                exit
+            end if
+            pole = trial
+            mu = max(mu/10.0_dp, 1.0e-8_dp)
+            if (cost - cost_trial < 1.0e-9_dp*cost) exit
+            cost = cost_trial
+        end do
+    end subroutine refine_shared
+
+    !> Drop any pole the refinement moved out of the band or above `max_damping` and refine the
+    !> rest. (Dropping poles one at a time by the MDL of the linear fit was tried: its penalty per
+    !> pole, (2 + 2*n_targets)/2*ln N, removed real modes of the dense plate and biased their
+    !> neighbours beyond 5 sigma, so the order stays the one MDL chose among the matrix orders.)
+    subroutine prune(frequency, targets, weight, pole)
+        real(dp), intent(in) :: frequency(:), targets(:, :), weight(:)
+        complex(dp), allocatable, intent(inout) :: pole(:)
+
+        logical :: inside(size(pole))
+
+        inside = abs(pole)/two_pi > frequency(1) .and. abs(pole)/two_pi < frequency(size(frequency)) &
+                 .and. -real(pole, dp)/abs(pole) < max_damping
+        if (.not. all(inside) .and. count(inside) > 0) then
+            pole = pack(pole, inside)
+            call refine_shared(frequency, targets, weight, pole)
+        end if
+    end subroutine prune
+
+    !> Residues and residual terms x (columns per target) of the weighted linear fit and its
+    !> residual, by the normal equations of the column-scaled shared design.
+    subroutine linear_fit(frequency, pole, targets, weight, x, rest, ok)
+        real(dp), intent(in) :: frequency(:), targets(:, :), weight(:)
+        complex(dp), intent(in) :: pole(:)
+        real(dp), allocatable, intent(out) :: x(:, :), rest(:, :)
+        logical, intent(out) :: ok
+
+        real(dp), allocatable :: b(:, :), gram(:, :), scale(:)
+
+        b = pole_design(frequency, pole, .true., .true.)*spread([weight, weight], 2, 2*size(pole) + 2)
+        scale = 1.0_dp/max(norm2(b, dim=1), tiny(1.0_dp))
+        b = b*spread(scale, 1, size(b, 1))
+        gram = matmul(transpose(b), b)
+        call spd_inverse(gram, ok)
+        if (.not. ok) return
+        x = matmul(gram, matmul(transpose(b), targets))
+        rest = targets - matmul(b, x)
+        x = x*spread(scale, 2, size(x, 2))
+    end subroutine linear_fit
+
+    !> The four real vectors per pole, [Re d; Im d], [-Im d; Re d], [Re e; Im e], [-Im e; Re e],
+    !> weighted and projected off the shared design's columns.
+    subroutine projected_derivatives(frequency, pole, weight, u, ok)
+        real(dp), intent(in) :: frequency(:), weight(:)
+        complex(dp), intent(in) :: pole(:)
+        real(dp), allocatable, intent(out) :: u(:, :)
+        logical, intent(out) :: ok
+
+        real(dp), allocatable :: b(:, :), gram(:, :), scale(:), w(:)
+        complex(dp), allocatable :: d(:), e(:)
+        integer :: k
+
+        w = [weight, weight]
+        allocate (u(2*size(frequency), 4*size(pole)))
+        associate (s => i_unit*two_pi*frequency)
+            do k = 1, size(pole)
+                d = 1.0_dp/(s - pole(k))**2
+                e = 1.0_dp/(s - conjg(pole(k)))**2
+                u(:, 4*k - 3) = w*[real(d, dp), aimag(d)]
+                u(:, 4*k - 2) = w*[-aimag(d), real(d, dp)]
+                u(:, 4*k - 1) = w*[real(e, dp), aimag(e)]
+                u(:, 4*k) = w*[-aimag(e), real(e, dp)]
+            end do
+        end associate
+        b = pole_design(frequency, pole, .true., .true.)*spread(w, 2, 2*size(pole) + 2)
+        scale = 1.0_dp/max(norm2(b, dim=1), tiny(1.0_dp))
+        b = b*spread(scale, 1, size(b, 1))
+        gram = matmul(transpose(b), b)
+        call spd_inverse(gram, ok)
+        if (.not. ok) return
+        u = u - matmul(b, matmul(gram, matmul(transpose(b), u)))
+    end subroutine projected_derivatives
+
+    !> Orthonormal basis of the columns, in place (Gram-Schmidt, each column twice for round-off;
+    !> a column in the span of the previous ones becomes zero).
+    pure subroutine orthonormalise(basis)
+        !> In: the columns; out: the basis.
+        real(dp), intent(inout) :: basis(:, :)
+
+        real(dp) :: size_before
+        integer :: k, pass
+
+        do k = 1, size(basis, 2)
+            size_before = norm2(basis(:, k))
+            do pass = 1, 2
+                if (k > 1) basis(:, k) = basis(:, k) - matmul(basis(:, :k - 1), matmul(basis(:, k), basis(:, :k - 1)))
+            end do
+            if (norm2(basis(:, k)) > 1.0e-12_dp*size_before) then
+                basis(:, k) = basis(:, k)/norm2(basis(:, k))
+            else
+                basis(:, k) = 0.0_dp
+            end if
+        end do
+    end subroutine orthonormalise
+
+    !> The real design matrix of a shared-pole model on the given lines: rows the real then the
+    !> imaginary parts, columns per pole the responses to Re R_k and Im R_k,
+    !> 1/(s - lambda_k) + 1/(s - conj lambda_k) and i/(s - lambda_k) - i/(s - conj lambda_k)
+    !> [s], then 1 (upper residual) and 1/s^2 (lower residual) when kept.
+    pure function pole_design(frequency, pole, upper, lower) result(design)
+        !> Frequencies of the lines [Hz].
+        real(dp), intent(in) :: frequency(:)
+        !> Poles [rad/s].
+        complex(dp), intent(in) :: pole(:)
+        !> Whether to add the upper (constant) and the lower (1/s^2) residual column.
+        logical, intent(in) :: upper, lower
+        !> The design matrix (2*size(frequency) x 2*size(pole) + residual columns).
+        real(dp), allocatable :: design(:, :)
+
+        complex(dp), allocatable :: columns(:, :)
+        integer :: k, n_p
+
+        n_p = 2*size(pole) + merge(1, 0, upper) + merge(1, 0, lower)
+        allocate (columns(size(frequency), n_p))
+        associate (s => i_unit*two_pi*frequency)
+            do k = 1, size(pole)
+                columns(:, 2*k - 1) = 1.0_dp/(s - pole(k)) + 1.0_dp/(s - conjg(pole(k)))
+                columns(:, 2*k) = i_unit*(1.0_dp/(s - pole(k)) - 1.0_dp/(s - conjg(pole(k))))
+            end do
+            if (upper) columns(:, 2*size(pole) + 1) = 1.0_dp
+            if (lower) columns(:, n_p) = 1.0_dp/s**2
+        end associate
+        allocate (design(2*size(frequency), n_p))
+        design(1:size(frequency), :) = real(columns, kind=dp)
+        design(size(frequency) + 1:, :) = aimag(columns)
+    end function pole_design
+
+    !> Covariance of the poles (Re lambda_1, Im lambda_1, Re lambda_2, ...) [rad^2/s^2] at the
+    !> Cramer-Rao bound: the inverse of the Fisher information of the shared-pole model
+    !> G_t = sum_k [R_tk/(s - lambda_k) + conj(R_tk)/(s - conj(lambda_k))] + U_t + L_t/s^2 for
+    !> complex Gaussian noise of standard deviation sigma(t, l) on each line (half the variance
+    !> in the real, half in the imaginary part), the residues and residual terms of every target
+    !> eliminated as nuisance parameters (the Schur complement of their block).
+    subroutine pole_covariance(frequency, pole, residue, sigma, covariance, error)
+        !> Frequency lines [Hz], > 0.
+        real(dp), intent(in) :: frequency(:)
+        !> Poles lambda_k [rad/s].
+        complex(dp), intent(in) :: pole(:)
+        !> Residues residue(t, k) of target t [m/(N*s)].
+        complex(dp), intent(in) :: residue(:, :)
+        !> Noise standard deviation sigma(t, l) [m/N], > 0.
+        real(dp), intent(in) :: sigma(:, :)
+        !> The covariance (2*size(pole) square).
+        real(dp), allocatable, intent(out) :: covariance(:, :)
+        !> Set when the information matrix is singular.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: design(:, :), b(:, :), d(:, :), w(:), scale(:)
+        complex(dp), allocatable :: dl(:), dc(:)
+        integer :: n_m, n_l, q, k
+        logical :: ok
+
+        n_m = size(pole)
+        n_l = size(frequency)
+        design = pole_design(frequency, pole, .true., .true.)
+        allocate (covariance(2*n_m, 2*n_m), d(2*n_l, 2*n_m))
+        covariance(:, :) = 0.0_dp
+        associate (s => i_unit*two_pi*frequency)
+            do q = 1, size(residue, 1)
+                w = sqrt(2.0_dp)/[sigma(q, :), sigma(q, :)]
+                b = design*spread(w, 2, size(design, 2))
+                do k = 1, n_m
+                    dl = residue(q, k)/(s - pole(k))**2
+                    dc = conjg(residue(q, k))/(s - conjg(pole(k)))**2
+                    d(:, 2*k - 1) = w*[real(dl + dc, dp), aimag(dl + dc)]
+                    d(:, 2*k) = w*[real(i_unit*(dl - dc), dp), aimag(i_unit*(dl - dc))]
+                end do
+                call orthonormalise(b)
+                d = d - matmul(b, matmul(transpose(b), d))
+                covariance = covariance + matmul(transpose(d), d)
+            end do
+        end associate
+        scale = 1.0_dp/sqrt(max([(covariance(k, k), k=1, 2*n_m)], tiny(1.0_dp)))
+        covariance = covariance*spread(scale, 1, 2*n_m)*spread(scale, 2, 2*n_m)
+        call spd_inverse(covariance, ok)
+        if (.not. ok) call fatal_error(error, 'pole covariance: the poles'' information is singular', stat=3)
+        covariance = covariance*spread(scale, 1, 2*n_m)*spread(scale, 2, 2*n_m)
+    end subroutine pole_covariance
+
+    !> Standard deviations of the natural frequency f = |lambda|/(2*pi) [Hz] and of the damping
+    !> ratio xi = -Re lambda/|lambda| of each pole, from the covariance of `pole_covariance`
+    !> (first-order propagation).
+    pure subroutine pole_spread(pole, covariance, sigma_f, sigma_xi)
+        !> Poles lambda_k [rad/s].
+        complex(dp), intent(in) :: pole(:)
+        !> Covariance of (Re lambda_k, Im lambda_k) pairs [rad^2/s^2].
+        real(dp), intent(in) :: covariance(:, :)
+        !> sigma_f [Hz] per pole.
+        real(dp), intent(out) :: sigma_f(size(pole))
+        !> sigma_xi per pole.
+        real(dp), intent(out) :: sigma_xi(size(pole))
+
+        real(dp) :: a, b, m, gf(2), gx(2), c(2, 2)
+        integer :: k
+
+        do k = 1, size(pole)
+            a = real(pole(k), dp)
+            b = aimag(pole(k))
+            m = abs(pole(k))
+            c = covariance(2*k - 1:2*k, 2*k - 1:2*k)
+            gf = [a, b]/(two_pi*m)
+            gx = [-b**2, a*b]/m**3
+            sigma_f(k) = sqrt(max(0.0_dp, dot_product(gf, matmul(c, gf))))
+            sigma_xi(k) = sqrt(max(0.0_dp, dot_product(gx, matmul(c, gx))))
+        end do
+    end subroutine pole_spread
+
+end module greenconv_ident_polyref
