@@ -393,7 +393,13 @@ vg_run() {
 
 cmd_valgrind() {
     [ $# -ge 1 ] || die "usage: $0 valgrind DRIVER PROGRAM..."
-    local driver=$1 tmp scene name program failed=0 steps=${VALGRIND_STEPS:-2000}
+    # Steps per scene: at most VALGRIND_STEPS, and at most VALGRIND_POINT_STEPS point-steps
+    # (N_c * N_t), at least 50: memcheck is 30-100 times slower, and what it checks (every
+    # allocation, every code path of a step) is the same at 200 steps of a 1,000-point patch as
+    # at 2,000.
+    local driver=$1 tmp scene name program failed=0 steps cap points
+    local point_steps=${VALGRIND_POINT_STEPS:-200000}
+    steps=${VALGRIND_STEPS:-2000}
     shift
     command -v valgrind >/dev/null || die "valgrind not found (apt-get install valgrind)"
     [ -x "$driver" ] || die "$driver not built (run make lib)"
@@ -405,8 +411,14 @@ cmd_valgrind() {
     for scene in data/*.nml; do
         name=${scene##*/}
         name=${name%.nml}
+        points=$(awk 'tolower($0) ~ /^[[:space:]]*n_points(_x|_y)?[[:space:]]*=/ {
+                split($0, part, "="); n = part[2] + 0; if (n > 0) product *= n }
+                BEGIN { product = 1 } END { print product }' "$scene")
+        cap=$((point_steps / points))
+        [ "$cap" -gt "$steps" ] && cap=$steps
+        [ "$cap" -lt 50 ] && cap=50
         redirected_scene "$scene" "$tmp/$name" |
-            awk -v cap="$steps" 'tolower($0) ~ /^[[:space:]]*n_steps[[:space:]]*=/ {
+            awk -v cap="$cap" 'tolower($0) ~ /^[[:space:]]*n_steps[[:space:]]*=/ {
                 split($0, part, "="); value = part[2] + 0
                 if (value > cap) { sub(/=[[:space:]]*[0-9]+/, "= " cap) } } { print }' >"$tmp/$name.nml"
         say "valgrind: $scene"
