@@ -47,6 +47,7 @@ program greenconv_tests
     use test_uffchecks_mod, only: collect_uffchecks
     use test_multiorder_mod, only: collect_multiorder
     use test_greenfiles_mod, only: collect_greenfiles
+    use test_modesfile_mod, only: collect_modesfile
     implicit none
 
     integer :: n_passed, n_failed
@@ -91,6 +92,7 @@ program greenconv_tests
                        new_testsuite('version', collect_version), &
                        new_testsuite('uffchecks', collect_uffchecks), &
                        new_testsuite('multiorder', collect_multiorder), &
+                       new_testsuite('modesfile', collect_modesfile), &
                        new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'

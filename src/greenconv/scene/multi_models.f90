@@ -11,7 +11,12 @@
 !>   by greenconv_conv_green_file (modal methods on the identified modes, `direct` and `fft`
 !>   on g_ij from the file).
 !>
-!> Both follow the conventions of greenconv_scene_patch (preload shared evenly, the points
+!> - `modes_file`: the nodes of a universal file of normal modes from an FE model
+!>   (`&structure modes_file`, datasets 15/2411 and 55, greenconv_model_modes_file), at their
+!>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped,
+!>   those above are kept as a static flexibility the summary reports with its share.
+!>
+!> All follow the conventions of greenconv_scene_patch (preload shared evenly, the points
 !> seeing the road around x_start and y_start). The summary of a Green's file names the file,
 !> its points and the identification: E of eq. (7) per receptance (worst, mean) and per point,
 !> the worst pole uncertainty, the modes the modal methods run on.
@@ -28,12 +33,14 @@ module greenconv_scene_multi_models
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
     use greenconv_scene_tyre, only: tyre_points
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
     implicit none
     private
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
     public :: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, green_file_points, check_green_file
+    public :: modes_file_points, check_modes_file
 
 contains
 
@@ -190,5 +197,73 @@ contains
             end if
         end associate
     end subroutine check_green_file
+
+    !> The points of a `modes_file` scene: the file's nodes at their x, y, placed on the road,
+    !> with the file's modes up to the band (`f_modes`, else 1/(2*dt)); the modes above it are
+    !> counted in the summary with their share of the static flexibility at the nodes.
+    subroutine modes_file_points(scene, points, summary, error)
+        !> The scene (model 'modes_file', task 'contact').
+        type(scene_type), intent(in) :: scene
+        !> The points and the modes at them.
+        type(scene_points), intent(out) :: points
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set for a bad file, no mode in the band or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        real(dp), allocatable :: residual(:)
+        real(dp) :: f_band, share
+        character(len=240) :: numbers
+        integer :: i
+
+        call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        f_band = scene%f_modes
+        if (f_band <= 0.0_dp) f_band = 0.5_dp/scene%dt
+        if (.not. allocated(error)) call band_modes(modes, f_band, [(i, i=1, size(modes%x))], points%modes, &
+                                                    residual, share, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'modes_file')//': '//error%message
+            return
+        end if
+        points%x = modes%x
+        points%y = modes%y
+        points%across = any(modes%y /= modes%y(1))
+        call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
+        if (allocated(error)) return
+        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.1,a,i0,a,es9.2,a,i0,a)') size(points%x), &
+            ' contact points, ', points%modes%modes%n_modes(), ' modes from ', minval(modes%frequency), ' Hz to f_max = ', &
+            f_band, ' Hz (', size(modes%frequency) - points%modes%modes%n_modes(), &
+            ' above it kept as a static flexibility, ', 100.0_dp*share, ' % of the static one; damping ratio from ' &
+            //'the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
+            size(modes%frequency) - modes%n_damped_by_file, ' modes),'
+        summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//trim(numbers)//' '//run_text(scene)
+    end subroutine modes_file_points
+
+    !> For `--check`: read a scene's modes file and append its nodes and modes to `line`.
+    subroutine check_modes_file(scene, line, n_points, error)
+        !> The scene (model 'modes_file').
+        type(scene_type), intent(in) :: scene
+        !> The check's line, extended with the file's nodes and modes.
+        character(len=:), allocatable, intent(inout) :: line
+        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        integer, intent(inout) :: n_points
+        !> Set for a bad file or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        real(dp), allocatable :: road_x(:), road_y(:)
+
+        call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        if (allocated(error)) then
+            error%message = input_place(scene, 'structure', 'modes_file')//': '//error%message
+            return
+        end if
+        n_points = size(modes%x)
+        if (scene%task == 'contact') call place_patch(scene, modes%x, modes%y, road_x, road_y, error)
+        if (allocated(error)) return
+        line = line//' ('//scene%modes_file//': '//int_text(n_points)//' nodes, '//int_text(size(modes%frequency)) &
+               //' modes)'
+    end subroutine check_modes_file
 
 end module greenconv_scene_multi_models
