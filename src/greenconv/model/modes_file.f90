@@ -10,7 +10,8 @@
 !>
 !> Modes above the band of a run (its Nyquist frequency 1/(2*dt), or the band the scene names)
 !> are not stepped: their static flexibility at the nodes, R_ii = sum_k phi_ik**2/(m_k*omega_k**2)
-!> over those modes, is kept and reported with its share of the whole static flexibility.
+!> over those modes, is returned with its share of the whole static flexibility, for the
+!> summary (and for an engine that adds a static term, which none does yet).
 module greenconv_model_modes_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error

@@ -13,8 +13,9 @@
 !>
 !> - `modes_file`: the nodes of a universal file of normal modes from an FE model
 !>   (`&structure modes_file`, datasets 15/2411 and 55, greenconv_model_modes_file), at their
-!>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped,
-!>   those above are kept as a static flexibility the summary reports with its share.
+!>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped;
+!>   those above are not, and the summary says how many and their share of the static
+!>   flexibility at the points (the engines take no static term yet).
 !>
 !> All follow the conventions of greenconv_scene_patch (preload shared evenly, the points
 !> seeing the road around x_start and y_start). The summary of a Green's file names the file,
@@ -200,7 +201,8 @@ contains
 
     !> The points of a `modes_file` scene: the file's nodes at their x, y, placed on the road,
     !> with the file's modes up to the band (`f_modes`, else 1/(2*dt)); the modes above it are
-    !> counted in the summary with their share of the static flexibility at the nodes.
+    !> counted in the summary with their share of the static flexibility at the nodes (not
+    !> stepped: the engines take no static term yet).
     subroutine modes_file_points(scene, points, summary, error)
         !> The scene (model 'modes_file', task 'contact').
         type(scene_type), intent(in) :: scene
@@ -231,11 +233,11 @@ contains
         points%across = any(modes%y /= modes%y(1))
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
-        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.1,a,i0,a,es9.2,a,i0,a)') size(points%x), &
+        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.2,a,i0,a,f5.3,a,i0,a)') size(points%x), &
             ' contact points, ', points%modes%modes%n_modes(), ' modes from ', minval(modes%frequency), ' Hz to f_max = ', &
             f_band, ' Hz (', size(modes%frequency) - points%modes%modes%n_modes(), &
-            ' above it kept as a static flexibility, ', 100.0_dp*share, ' % of the static one; damping ratio from ' &
-            //'the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
+            ' above it not stepped, their static flexibility ', 100.0_dp*share, ' % of the whole at the points; ' &
+            //'damping ratio from the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
             size(modes%frequency) - modes%n_damped_by_file, ' modes),'
         summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//trim(numbers)//' '//run_text(scene)
     end subroutine modes_file_points
