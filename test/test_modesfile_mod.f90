@@ -43,7 +43,8 @@ contains
                      new_unittest('malformed datasets 55 refused with one line, status 2', test_malformed), &
                      new_unittest('modes above the band kept as a static flexibility', test_residual), &
                      new_unittest('scene on the plate''s modes: exact, modal 5e-3 of the ODE at 20 us, order', &
-                                  test_scene_orders)]
+                                  test_scene_orders), &
+                     new_unittest('a patch of the nodes: the nodes inside it are the contact points', test_patch)]
     end subroutine collect_modesfile
 
     !> The expected table: node labels and coordinates, the modes' frequency, modal mass and
@@ -317,6 +318,40 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_scene_orders
+
+    !> modes_patch_length = 70 mm by modes_patch_width = 1 mm around the nodes' centre (0.2, 0.17)
+    !> keeps the middle row of the 3 x 3 grid; a 20 mm square, the middle node.
+    subroutine test_patch(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: head = "&scene name = 'row', output_dir = '"//scratch//"', dt = 8.0e-5, " &
+            //"n_steps = 100 / &structure model = 'modes_file', modes_file = '"//plate_file//"', damping_ratio = 0.03, "
+        character(len=*), parameter :: tail = " / &road profile = 'file', road_file = '"//scratch//"/wave.dat', " &
+            //"x_start = 0.3, speed = 5.0 / &contact stiffness = 1.0e7, exponent = 1.5, preload = 300.0 / " &
+            //"&convolution methods = 'modal' /"
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: rows(:, :)
+
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        call run_scene_text(scratch, 'row.nml', head//'modes_patch_length = 0.07, modes_patch_width = 0.001'//tail, fail)
+        call check(error, .not. allocated(fail), 'the scene on a row runs: '//message_of(fail))
+        if (allocated(error)) return
+        ! one row of points: no column y
+        call read_table(scratch//'/row_modal.dat', 7, rows, fail)
+        call check(error, .not. allocated(fail) .and. size(rows, 1) == 300, '100 steps x 3 points: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, all(abs(rows(1:3, 2) - [0.17_dp, 0.2_dp, 0.23_dp]) < 1.0e-12_dp), &
+                   'the middle row, x = 0.17, 0.2, 0.23 m')
+        if (allocated(error)) return
+        call run_scene_text(scratch, 'middle.nml', head//'modes_patch_length = 0.02, modes_patch_width = 0.02'//tail, &
+                            fail)
+        call check(error, .not. allocated(fail), 'the scene on the middle node runs: '//message_of(fail))
+        if (allocated(error)) return
+        call read_table(scratch//'/row_modal.dat', 7, rows, fail)
+        call check(error, .not. allocated(fail) .and. size(rows, 1) == 100 .and. abs(rows(1, 2) - 0.2_dp) < 1.0e-12_dp, &
+                   'a 20 mm square keeps the middle node alone')
+    end subroutine test_patch
 
     !> A smooth road, 0 to 1 m every 0.1 mm: 0.1 mm at a 50 mm wavelength plus 0.05 mm at 21 mm.
     subroutine write_wave_road(path)

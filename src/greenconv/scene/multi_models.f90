@@ -23,7 +23,7 @@
 !> the worst pole uncertainty, the modes the modal methods run on.
 module greenconv_scene_multi_models
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_tyre, only: tyre_frequency, tyre_band
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
@@ -217,20 +217,20 @@ contains
         real(dp), allocatable :: residual(:)
         real(dp) :: f_band, share
         character(len=240) :: numbers
-        integer :: i
+        integer, allocatable :: selected(:)
 
         call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        if (.not. allocated(error)) call patch_nodes(scene, modes, selected, error)
         f_band = scene%f_modes
         if (f_band <= 0.0_dp) f_band = 0.5_dp/scene%dt
-        if (.not. allocated(error)) call band_modes(modes, f_band, [(i, i=1, size(modes%x))], points%modes, &
-                                                    residual, share, error)
+        if (.not. allocated(error)) call band_modes(modes, f_band, selected, points%modes, residual, share, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'structure', 'modes_file')//': '//error%message
             return
         end if
-        points%x = modes%x
-        points%y = modes%y
-        points%across = any(modes%y /= modes%y(1))
+        points%x = modes%x(selected)
+        points%y = modes%y(selected)
+        points%across = any(points%y /= points%y(1))
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
         write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.2,a,i0,a,f5.3,a,i0,a)') size(points%x), &
@@ -255,17 +255,45 @@ contains
 
         type(file_modes) :: modes
         real(dp), allocatable :: road_x(:), road_y(:)
+        integer, allocatable :: selected(:)
 
         call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        if (.not. allocated(error)) call patch_nodes(scene, modes, selected, error)
         if (allocated(error)) then
             error%message = input_place(scene, 'structure', 'modes_file')//': '//error%message
             return
         end if
-        n_points = size(modes%x)
-        if (scene%task == 'contact') call place_patch(scene, modes%x, modes%y, road_x, road_y, error)
+        n_points = size(selected)
+        if (scene%task == 'contact') call place_patch(scene, modes%x(selected), modes%y(selected), road_x, road_y, &
+                                                      error)
         if (allocated(error)) return
-        line = line//' ('//scene%modes_file//': '//int_text(n_points)//' nodes, '//int_text(size(modes%frequency)) &
-               //' modes)'
+        line = line//' ('//scene%modes_file//': '//int_text(n_points)//' of '//int_text(size(modes%x)) &
+               //' nodes, '//int_text(size(modes%frequency))//' modes)'
     end subroutine check_modes_file
+
+    !> The file's nodes inside the scene's patch, modes_patch_length along x by modes_patch_width
+    !> along y centred on the middle of the nodes' extent (a 0 leaves that coordinate unbounded).
+    subroutine patch_nodes(scene, modes, selected, error)
+        type(scene_type), intent(in) :: scene
+        type(file_modes), intent(in) :: modes
+        integer, allocatable, intent(out) :: selected(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        logical :: inside(size(modes%x))
+        real(dp) :: centre(2)
+        integer :: i
+
+        centre = 0.5_dp*[minval(modes%x) + maxval(modes%x), minval(modes%y) + maxval(modes%y)]
+        inside = .true.
+        ! half a micrometre of slack: nodes on the patch's edge, written to a few digits, are in
+        if (scene%modes_patch_length > 0.0_dp) inside = inside .and. &
+            abs(modes%x - centre(1)) <= 0.5_dp*scene%modes_patch_length + 0.5e-6_dp
+        if (scene%modes_patch_width > 0.0_dp) inside = inside .and. &
+            abs(modes%y - centre(2)) <= 0.5_dp*scene%modes_patch_width + 0.5e-6_dp
+        selected = pack([(i, i=1, size(inside))], inside)
+        if (size(selected) == 0) call fatal_error(error, 'expected nodes inside the patch of modes_patch_length x ' &
+                                                  //'modes_patch_width around the nodes'' centre, found none of ' &
+                                                  //int_text(size(inside)))
+    end subroutine patch_nodes
 
 end module greenconv_scene_multi_models

@@ -219,6 +219,12 @@ contains
             "the direction of the modes file's shapes normal to the road, '+z', '-z', '+x', '-x', '+y' " &
             //"or '-y' (modes_file)", '', &
             choices=[character(len=16) :: '+z', '-z', '+x', '-x', '+y', '-y'])
+        call add(rows, n, 'structure', 'modes_patch_length', value_real, '0.0', 'm', &
+            "the length along x of the patch whose nodes touch the road, centred on the modes file's nodes " &
+            //'(0: every node)', '', expect='a length >= 0 m (0: every node)', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'modes_patch_width', value_real, '0.0', 'm', &
+            "the width along y of the patch whose nodes touch the road, centred on the modes file's nodes " &
+            //'(0: every node)', '', expect='a width >= 0 m (0: every node)', at_least=0.0_dp)
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '', &
             expect='a frequency > 0 Hz', above=0.0_dp)

@@ -79,6 +79,9 @@ module greenconv_scene_settings
         character(len=:), allocatable :: modes_file
         !> Direction of the modes file's shapes normal to the road: +-1, +-2, +-3 for +-x, +-y, +-z.
         integer :: modes_direction = 3
+        !> Length along x and width along y [m] of the patch of the modes file's nodes that touch
+        !> the road, centred on the nodes' extent (0: no bound in that coordinate).
+        real(dp) :: modes_patch_length = 0.0_dp, modes_patch_width = 0.0_dp
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
         !> The 2D tyre belt of the tyre_plate model (its damping ratio is `damping_ratio`, its
