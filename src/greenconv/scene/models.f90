@@ -132,8 +132,10 @@ contains
                                    find_points=plate_scene_points, slowest_decay=plate_decay)
         models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
                                    find_points=green_file_points, check_file=check_green_file)
-        models(7) = structure_kind(7, 'modes_file', 'modes_file', exact_modes=.true., &
-                                   find_points=modes_file_points, check_file=check_modes_file)
+        ! a modes file's modes are known once it is read, not from the scene's values: no decay
+        ! bound before the run (its direct and fft kernels are sized when they are built)
+        models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &
+                                   check_file=check_modes_file)
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.
@@ -174,7 +176,7 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
-    !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
+    !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
     function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
         character(len=:), allocatable :: text
