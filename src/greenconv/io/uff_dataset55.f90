@@ -173,8 +173,11 @@ contains
 
         !> Fields 1..n of an I10 record.
         subroutine read_integers(record, n, found, fail)
+            !> Record number and number of fields to read.
             integer, intent(in) :: record, n
+            !> The fields read, found(1:n).
             integer, intent(inout) :: found(:)
+            !> Set (status 2) for a field that holds no integer.
             type(error_type), allocatable, intent(out) :: fail
 
             integer :: j
@@ -188,7 +191,9 @@ contains
 
         !> An error unless field `field` of record 6 is one of `allowed`.
         subroutine check_code(field, value, allowed, what, meaning)
+            !> Field number, its value and the values allowed.
             integer, intent(in) :: field, value, allowed(:)
+            !> What the field holds and what the allowed values mean, for the message.
             character(len=*), intent(in) :: what, meaning
 
             if (any(allowed == value)) return
