@@ -27,7 +27,7 @@ module greenconv_io_uff_dataset55
     use greenconv_core_text, only: int_text
     use greenconv_io_uff_types, only: uff_node
     use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, &
-                                        integer_field, real_field
+                                        integer_field, real_field, columns
     use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
     implicit none
     private
@@ -130,17 +130,17 @@ contains
         mode%damping_ratio = reals(3)
         if (.not. (reals(1) > 0.0_dp)) then
             call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the natural frequency > 0 Hz ' &
-                             //'(columns 1-13), found '//trim(adjustl(lines(line)%text(1:min(13, len(lines(line)%text))))))
+                             //'(columns 1-13), found '//trim(adjustl(columns(lines(line)%text, 1, 13))))
             return
         end if
         if (reals(2) < 0.0_dp) then
             call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the modal mass >= 0 (columns 14-26; ' &
-                             //'0: unit modal mass), found '//trim(adjustl(lines(line)%text(14:26))))
+                             //'0: unit modal mass), found '//trim(adjustl(columns(lines(line)%text, 14, 26))))
             return
         end if
         if (reals(3) < 0.0_dp .or. reals(3) >= 1.0_dp) then
             call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the viscous damping ratio in [0, 1) ' &
-                             //'(columns 27-39), found '//trim(adjustl(lines(line)%text(27:39))))
+                             //'(columns 27-39), found '//trim(adjustl(columns(lines(line)%text, 27, 39))))
             return
         end if
         ! records 9 and 10: one label line and the value lines of every node
