@@ -620,8 +620,8 @@ contains
         type(scene_variable), allocatable :: table(:)
         integer :: i, m, n
 
-        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre', 'tyre_plate' or " &
-                   //"'green_file'", model_names())
+        call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre', 'tyre_plate', " &
+                   //"'green_file' or 'modes_file'", model_names())
         if (allocated(error)) return
         models = structure_models()
         table = scene_table()

@@ -212,17 +212,19 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=name_length) :: model
-        character(len=path_length) :: frf_file, green_file
+        character(len=path_length) :: frf_file, green_file, modes_file
+        character(len=name_length) :: modes_direction
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
         real(dp) :: belt_width, plate_mass, plate_bending_x, plate_bending_y, plate_bending_xy, plate_tension_x, &
-                    plate_tension_y, plate_foundation
+                    plate_tension_y, plate_foundation, modes_patch_length, modes_patch_width
         integer :: n_modes, seed, stat, frf_dataset
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
             belt_tension, belt_foundation, belt_width, plate_mass, plate_bending_x, plate_bending_y, &
-            plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation, f_modes, green_file
+            plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation, f_modes, green_file, modes_file, &
+            modes_direction, modes_patch_length, modes_patch_width
 
         read (defaults, nml=structure)
         if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
@@ -243,6 +245,12 @@ contains
         call require(.not. model_requires(find_model(trim(model)), 'green_file') .or. len_trim(green_file) > 0, &
                      error, this, 'structure', 'green_file', "a universal file of the Green's matrix for model '" &
                               //trim(model)//"'")
+        call require(.not. model_requires(find_model(trim(model)), 'modes_file') .or. len_trim(modes_file) > 0, &
+                     error, this, 'structure', 'modes_file', "a universal file of normal modes for model '" &
+                              //trim(model)//"'")
+        call check_value(this, 'structure', 'modes_direction', modes_direction, error)
+        call check_values(this, 'structure', [character(len=18) :: 'modes_patch_length', 'modes_patch_width'], &
+                          [modes_patch_length, modes_patch_width], error)
         this%model = trim(model)
         this%mass = mass
         this%stiffness = stiffness
@@ -269,6 +277,10 @@ contains
         this%frf_file = trim(frf_file)
         this%frf_dataset = frf_dataset
         this%green_file = trim(green_file)
+        this%modes_file = trim(modes_file)
+        this%modes_patch_length = modes_patch_length
+        this%modes_patch_width = modes_patch_width
+        this%modes_direction = index('xyz', modes_direction(2:2))*merge(-1, 1, modes_direction(1:1) == '-')
         this%tyre = tyre_belt(length=belt_length, mass_per_length=belt_mass, bending_stiffness=belt_bending, &
                               tension=belt_tension, foundation_stiffness=belt_foundation, &
                               damping_ratio=damping_ratio)

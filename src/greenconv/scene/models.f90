@@ -20,7 +20,7 @@ module greenconv_scene_models
     use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
                                              frf_file_structure, check_frf_file
     use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
-                                            green_file_points, check_green_file
+                                            green_file_points, check_green_file, modes_file_points, check_modes_file
     implicit none
     private
 
@@ -118,7 +118,7 @@ contains
     !> Every structure model of the registry, in the order messages list the names.
     function structure_models() result(models)
         !> The registry.
-        type(structure_kind) :: models(6)
+        type(structure_kind) :: models(7)
 
         models(1) = structure_kind(1, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true., &
                                    build=sdof_structure, slowest_decay=sdof_decay)
@@ -132,6 +132,10 @@ contains
                                    find_points=plate_scene_points, slowest_decay=plate_decay)
         models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
                                    find_points=green_file_points, check_file=check_green_file)
+        ! a modes file's modes are known once it is read, not from the scene's values: no decay
+        ! bound before the run (its direct and fft kernels are sized when they are built)
+        models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &
+                                   check_file=check_modes_file)
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.
@@ -172,7 +176,7 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
-    !> The model names for messages: `'sdof', 'random_modes', 'frf_file', 'tyre' or 'green_file'`.
+    !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
     function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
         character(len=:), allocatable :: text

@@ -11,13 +11,19 @@
 !>   by greenconv_conv_green_file (modal methods on the identified modes, `direct` and `fft`
 !>   on g_ij from the file).
 !>
-!> Both follow the conventions of greenconv_scene_patch (preload shared evenly, the points
+!> - `modes_file`: the nodes of a universal file of normal modes from an FE model
+!>   (`&structure modes_file`, datasets 15/2411 and 55, greenconv_model_modes_file), at their
+!>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped;
+!>   those above are not, and the summary says how many and their share of the static
+!>   flexibility at the points (the engines take no static term yet).
+!>
+!> All follow the conventions of greenconv_scene_patch (preload shared evenly, the points
 !> seeing the road around x_start and y_start). The summary of a Green's file names the file,
 !> its points and the identification: E of eq. (7) per receptance (worst, mean) and per point,
 !> the worst pole uncertainty, the modes the modal methods run on.
 module greenconv_scene_multi_models
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_tyre, only: tyre_frequency, tyre_band
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
@@ -28,12 +34,14 @@ module greenconv_scene_multi_models
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
     use greenconv_scene_tyre, only: tyre_points
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
     implicit none
     private
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
     public :: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, green_file_points, check_green_file
+    public :: modes_file_points, check_modes_file
 
 contains
 
@@ -192,5 +200,102 @@ contains
             end if
         end associate
     end subroutine check_green_file
+
+    !> The points of a `modes_file` scene: the file's nodes at their x, y, placed on the road,
+    !> with the file's modes up to the band (`f_modes`, else 1/(2*dt)); the modes above it are
+    !> counted in the summary with their share of the static flexibility at the nodes (not
+    !> stepped: the engines take no static term yet).
+    subroutine modes_file_points(scene, points, summary, error)
+        !> The scene (model 'modes_file', task 'contact').
+        type(scene_type), intent(in) :: scene
+        !> The points and the modes at them.
+        type(scene_points), intent(out) :: points
+        !> The scene's summary line.
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set for a bad file, no mode in the band or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        real(dp), allocatable :: residual(:)
+        real(dp) :: f_band, share
+        character(len=240) :: numbers
+        integer, allocatable :: selected(:)
+
+        call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        if (.not. allocated(error)) call patch_nodes(scene, modes, selected, error)
+        f_band = scene%f_modes
+        if (f_band <= 0.0_dp) f_band = 0.5_dp/scene%dt
+        if (.not. allocated(error)) call band_modes(modes, f_band, selected, points%modes, residual, share, error)
+        if (allocated(error)) then
+            call place_error(error, scene, 'structure', 'modes_file')
+            return
+        end if
+        points%x = modes%x(selected)
+        points%y = modes%y(selected)
+        points%across = any(points%y /= points%y(1))
+        call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
+        if (allocated(error)) return
+        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.2,a,i0,a,f5.3,a,i0,a)') size(points%x), &
+            ' contact points, ', points%modes%modes%n_modes(), ' modes from ', minval(modes%frequency), ' Hz to f_max = ', &
+            f_band, ' Hz (', size(modes%frequency) - points%modes%modes%n_modes(), &
+            ' above it not stepped, their static flexibility ', 100.0_dp*share, ' % of the whole at the points; ' &
+            //'damping ratio from the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
+            size(modes%frequency) - modes%n_damped_by_file, ' modes),'
+        summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//trim(numbers)//' '//run_text(scene)
+    end subroutine modes_file_points
+
+    !> For `--check`: read a scene's modes file and append its nodes and modes to `line`.
+    subroutine check_modes_file(scene, line, n_points, error)
+        !> The scene (model 'modes_file').
+        type(scene_type), intent(in) :: scene
+        !> The check's line, extended with the file's nodes and modes.
+        character(len=:), allocatable, intent(inout) :: line
+        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        integer, intent(inout) :: n_points
+        !> Set for a bad file or a road that does not cover the run.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        real(dp), allocatable :: road_x(:), road_y(:)
+        integer, allocatable :: selected(:)
+
+        call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
+        if (.not. allocated(error)) call patch_nodes(scene, modes, selected, error)
+        if (allocated(error)) then
+            call place_error(error, scene, 'structure', 'modes_file')
+            return
+        end if
+        n_points = size(selected)
+        if (scene%task == 'contact') call place_patch(scene, modes%x(selected), modes%y(selected), road_x, road_y, &
+                                                      error)
+        if (allocated(error)) return
+        line = line//' ('//scene%modes_file//': '//int_text(n_points)//' of '//int_text(size(modes%x)) &
+               //' nodes, '//int_text(size(modes%frequency))//' modes)'
+    end subroutine check_modes_file
+
+    !> The file's nodes inside the scene's patch, modes_patch_length along x by modes_patch_width
+    !> along y centred on the middle of the nodes' extent (a 0 leaves that coordinate unbounded).
+    subroutine patch_nodes(scene, modes, selected, error)
+        type(scene_type), intent(in) :: scene
+        type(file_modes), intent(in) :: modes
+        integer, allocatable, intent(out) :: selected(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        logical :: inside(size(modes%x))
+        real(dp) :: centre(2)
+        integer :: i
+
+        centre = 0.5_dp*[minval(modes%x) + maxval(modes%x), minval(modes%y) + maxval(modes%y)]
+        inside = .true.
+        ! half a micrometre of slack: nodes on the patch's edge, written to a few digits, are in
+        if (scene%modes_patch_length > 0.0_dp) inside = inside .and. &
+            abs(modes%x - centre(1)) <= 0.5_dp*scene%modes_patch_length + 0.5e-6_dp
+        if (scene%modes_patch_width > 0.0_dp) inside = inside .and. &
+            abs(modes%y - centre(2)) <= 0.5_dp*scene%modes_patch_width + 0.5e-6_dp
+        selected = pack([(i, i=1, size(inside))], inside)
+        if (size(selected) == 0) call fatal_error(error, 'expected nodes inside the patch of modes_patch_length x ' &
+                                                  //'modes_patch_width around the nodes'' centre, found none of ' &
+                                                  //int_text(size(inside)))
+    end subroutine patch_nodes
 
 end module greenconv_scene_multi_models

@@ -211,6 +211,20 @@ contains
             "a universal file of the Green's matrix between the contact points: receptances G_ij(f) " &
             //'in m/N (datasets 58 of function type 4) or impulse responses g_ij(t) in m/(N*s) (type 1), ' &
             //'the points at their node coordinates (dataset 15 or 2411, m)', '')
+        call add(rows, n, 'structure', 'modes_file', value_text, '', '', &
+            'a universal file of normal modes from an FE model: nodes (dataset 15 or 2411, m) and one ' &
+            //'dataset 55 per mode (analysis type 2: frequency in Hz, modal mass, viscous damping ratio; ' &
+            //'real shapes of 3 or 6 DOF per node); its nodes are the contact points', '')
+        call add(rows, n, 'structure', 'modes_direction', value_text, '+z', '', &
+            "the direction of the modes file's shapes normal to the road, '+z', '-z', '+x', '-x', '+y' " &
+            //"or '-y' (modes_file)", '', &
+            choices=[character(len=16) :: '+z', '-z', '+x', '-x', '+y', '-y'])
+        call add(rows, n, 'structure', 'modes_patch_length', value_real, '0.0', 'm', &
+            "the length along x of the patch whose nodes touch the road, centred on the modes file's nodes " &
+            //'(0: every node)', '', expect='a length >= 0 m (0: every node)', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'modes_patch_width', value_real, '0.0', 'm', &
+            "the width along y of the patch whose nodes touch the road, centred on the modes file's nodes " &
+            //'(0: every node)', '', expect='a width >= 0 m (0: every node)', at_least=0.0_dp)
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '', &
             expect='a frequency > 0 Hz', above=0.0_dp)

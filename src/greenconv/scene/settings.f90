@@ -52,7 +52,7 @@ module greenconv_scene_settings
         real(dp) :: spectra_f_low = 0.0_dp, spectra_f_high = 0.0_dp
         !> Whether the spectra of a multi-point run also give each point's level.
         logical :: spectra_points = .false.
-        !> Structure model: `sdof`, `random_modes`, `frf_file`, `tyre` or `green_file`.
+        !> Structure model: `sdof`, `random_modes`, `frf_file`, `tyre`, `tyre_plate`, `green_file` or `modes_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.
         real(dp) :: mass
@@ -76,6 +76,13 @@ module greenconv_scene_settings
         integer :: frf_dataset = 0
         !> Universal file of the Green's matrix between the contact points (model `green_file`).
         character(len=:), allocatable :: green_file
+        !> Universal file of normal modes (datasets 15/2411 and 55) of the modes_file model.
+        character(len=:), allocatable :: modes_file
+        !> Direction of the modes file's shapes normal to the road: +-1, +-2, +-3 for +-x, +-y, +-z.
+        integer :: modes_direction = 3
+        !> Length along x and width along y [m] of the patch of the modes file's nodes that touch
+        !> the road, centred on the nodes' extent (0: no bound in that coordinate).
+        real(dp) :: modes_patch_length = 0.0_dp, modes_patch_width = 0.0_dp
         !> The tyre belt of the tyre model (its damping ratio is `damping_ratio`).
         type(tyre_belt) :: tyre
         !> The 2D tyre belt of the tyre_plate model (its damping ratio is `damping_ratio`, its

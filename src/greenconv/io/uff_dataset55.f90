@@ -1,0 +1,281 @@
+!> Dataset 55 of universal files (data at nodes) for normal modes, and a file of modes: its
+!> nodes (datasets 15 or 2411, greenconv_io_uff_nodes) and one dataset 55 per mode.
+!>
+!> Dataset 55, as this reader takes it (analysis type 2, normal mode):
+!>
+!> | record | format | holds                                                                |
+!> |--------|--------|----------------------------------------------------------------------|
+!> | 1-5    | 80A1   | ID lines (not read)                                                  |
+!> | 6      | 6I10   | model type, analysis type (2), data characteristic (2: 3 DOF         |
+!> |        |        | translation, 3: 6 DOF translation and rotation), specific data type, |
+!> |        |        | data type (2 real single, 4 real double), values per node NDV (3, 6) |
+!> | 7      | 8I10   | number of integers NINT (>= 2), number of reals NREAL (1 to 6), then |
+!> |        |        | NINT integers: load case, mode number                                |
+!> | 8      | 6E13.5 | NREAL reals: frequency [Hz], modal mass, viscous damping ratio,      |
+!> |        |        | hysteretic damping ratio (missing ones are 0)                        |
+!> | 9      | I10    | node label                                                           |
+!> | 10     | 6E13.5 | NDV values at the node (data type 4: 4E20.12, on as many lines as    |
+!> |        |        | needed); X, Y, Z translations first                                  |
+!>
+!> Records 9 and 10 repeat for every node. The lines of record 10 are counted from NDV and the
+!> data type before anything is allocated, so the number of nodes is bounded by the lines the
+!> file holds. Every malformed dataset gets one line with status 2 naming the file, the line,
+!> the dataset and record, the field, what was expected and what was found.
+module greenconv_io_uff_dataset55
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_io_uff_types, only: uff_node
+    use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, &
+                                        integer_field, real_field, columns
+    use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
+    implicit none
+    private
+
+    public :: uff_mode_shape, read_mode_shape, read_modes_file
+
+    !> One normal mode of a dataset 55: its record 7 and 8 values and one component of its shape.
+    type :: uff_mode_shape
+        !> Line of the file where the dataset starts (its opening `-1`), for messages.
+        integer :: line = 0
+        !> Record 7: load case and mode number.
+        integer :: load_case = 0, mode_number = 0
+        !> Record 8 field 1: natural frequency [Hz].
+        real(dp) :: frequency = 0.0_dp
+        !> Record 8 field 2: modal mass (0 when the file gives none) [kg, with the shapes' units].
+        real(dp) :: modal_mass = 0.0_dp
+        !> Record 8 field 3: viscous damping ratio (0 when the file gives none).
+        real(dp) :: damping_ratio = 0.0_dp
+        !> Record 6 field 3: data characteristic (2: 3 DOF per node, 3: 6 DOF).
+        integer :: data_characteristic = 0
+        !> Record 9 of every node, in file order.
+        integer, allocatable :: node(:)
+        !> Record 10's component in the chosen direction at every node, times the direction's sign.
+        real(dp), allocatable :: value(:)
+    end type uff_mode_shape
+
+contains
+
+    !> Read one dataset 55 of a normal mode, keeping component |direction| (1 x, 2 y, 3 z) of
+    !> each node's values times the sign of `direction`.
+    subroutine read_mode_shape(path, lines, set, direction, mode, error)
+        !> File the lines come from (for messages).
+        character(len=*), intent(in) :: path
+        !> The file's lines.
+        type(text_line), intent(in) :: lines(:)
+        !> Where the dataset 55 lies in them.
+        type(dataset_extent), intent(in) :: set
+        !> Direction of the shape kept: +-1, +-2, +-3 for +-X, +-Y, +-Z.
+        integer, intent(in) :: direction
+        !> The mode read.
+        type(uff_mode_shape), intent(out) :: mode
+        !> Set (status 2) for a malformed dataset or one that is not a real normal mode.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer, parameter :: record_line(8) = [2, 3, 4, 5, 6, 7, 8, 9]
+        integer :: numbers(6), n_integers, n_reals, per_line, width, lines_per_node, n_nodes, k, i, line, values
+        real(dp) :: reals(6), component(6)
+
+        mode%line = set%first
+        if (set%last - set%first < 12) then
+            call fatal_error(error, path//':'//int_text(set%last)//': universal file dataset 55: expected records ' &
+                             //'1 to 8 and a node (at least 10 lines), found '//int_text(set%last - set%first - 2) &
+                             //' lines before the -1 that ends the dataset')
+            return
+        end if
+        line = set%first + record_line(6)
+        call read_integers(6, 6, numbers, error)
+        if (allocated(error)) return
+        call check_code(2, numbers(2), [2], 'the analysis type', 'of a normal mode')
+        if (.not. allocated(error)) call check_code(3, numbers(3), [2, 3], 'the data characteristic', &
+                                                    'of 3 DOF (2) or 6 DOF (3) per node')
+        if (.not. allocated(error)) call check_code(5, numbers(5), [2, 4], 'the data type', &
+                                                    'real single (2) or real double (4); complex modes are not read')
+        if (allocated(error)) return
+        mode%data_characteristic = numbers(3)
+        values = merge(3, 6, numbers(3) == 2)
+        call check_code(6, numbers(6), [values], 'the number of values per node', &
+                        'for data characteristic '//int_text(numbers(3)))
+        if (allocated(error)) return
+        width = merge(13, 20, numbers(5) == 2)
+        per_line = merge(6, 4, numbers(5) == 2)
+        line = set%first + record_line(7)
+        call read_integers(7, 2, numbers, error)
+        if (allocated(error)) return
+        n_integers = numbers(1)
+        n_reals = numbers(2)
+        if (n_integers < 2 .or. n_integers > 6) then
+            call fatal_error(error, record_prefix(path, line, 55, 7)//'expected the number of integer values from 2 ' &
+                             //'to 6 (columns 1-10), found '//int_text(n_integers))
+            return
+        end if
+        if (n_reals < 1 .or. n_reals > 6) then
+            call fatal_error(error, record_prefix(path, line, 55, 7)//'expected the number of real values from 1 ' &
+                             //'to 6 (columns 11-20), found '//int_text(n_reals))
+            return
+        end if
+        call read_integers(7, 2 + n_integers, numbers, error)
+        if (allocated(error)) return
+        mode%load_case = numbers(3)
+        mode%mode_number = numbers(4)
+        line = set%first + record_line(8)
+        reals = 0.0_dp
+        do i = 1, n_reals
+            call real_field(record_prefix(path, line, 55, 8), lines(line)%text, 13*i - 12, 13*i, &
+                            'real value '//int_text(i), '6E13.5', .true., reals(i), error)
+            if (allocated(error)) return
+        end do
+        mode%frequency = reals(1)
+        mode%modal_mass = reals(2)
+        mode%damping_ratio = reals(3)
+        if (.not. (reals(1) > 0.0_dp)) then
+            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the natural frequency > 0 Hz ' &
+                             //'(columns 1-13), found '//trim(adjustl(columns(lines(line)%text, 1, 13))))
+            return
+        end if
+        if (reals(2) < 0.0_dp) then
+            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the modal mass >= 0 (columns 14-26; ' &
+                             //'0: unit modal mass), found '//trim(adjustl(columns(lines(line)%text, 14, 26))))
+            return
+        end if
+        if (reals(3) < 0.0_dp .or. reals(3) >= 1.0_dp) then
+            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the viscous damping ratio in [0, 1) ' &
+                             //'(columns 27-39), found '//trim(adjustl(columns(lines(line)%text, 27, 39))))
+            return
+        end if
+        ! records 9 and 10: one label line and the value lines of every node
+        lines_per_node = 1 + (values + per_line - 1)/per_line
+        n_nodes = (set%last - set%first - 10)/lines_per_node
+        if (n_nodes < 1 .or. mod(set%last - set%first - 10, lines_per_node) /= 0) then
+            call fatal_error(error, record_prefix(path, set%last, 55, 9 + mod(set%last - set%first - 10, &
+                             lines_per_node))//'expected records 9 and 10 ('//int_text(lines_per_node)//' lines) ' &
+                             //'for every node, found '//int_text(set%last - set%first - 10)//' lines after record 8')
+            return
+        end if
+        allocate (mode%node(n_nodes), mode%value(n_nodes))
+        do k = 1, n_nodes
+            line = set%first + 10 + (k - 1)*lines_per_node
+            call integer_field(record_prefix(path, line, 55, 9), lines(line)%text, 1, 10, 'the node label', .true., &
+                               mode%node(k), error)
+            if (allocated(error)) return
+            do i = 1, values
+                call real_field(record_prefix(path, line + 1 + (i - 1)/per_line, 55, 10), &
+                                lines(line + 1 + (i - 1)/per_line)%text, width*mod(i - 1, per_line) + 1, &
+                                width*(mod(i - 1, per_line) + 1), 'value '//int_text(i)//' of node ' &
+                                //int_text(mode%node(k)), trim(merge('6E13.5 ', '4E20.12', width == 13)), .true., &
+                                component(i), error)
+                if (allocated(error)) return
+            end do
+            mode%value(k) = sign(1.0_dp, real(direction, dp))*component(abs(direction))
+        end do
+
+    contains
+
+        !> Fields 1..n of an I10 record.
+        subroutine read_integers(record, n, found, fail)
+            !> Record number and number of fields to read.
+            integer, intent(in) :: record, n
+            !> The fields read, found(1:n).
+            integer, intent(inout) :: found(:)
+            !> Set (status 2) for a field that holds no integer.
+            type(error_type), allocatable, intent(out) :: fail
+
+            integer :: j
+
+            do j = 1, n
+                call integer_field(record_prefix(path, line, 55, record), lines(line)%text, 10*j - 9, 10*j, &
+                                   'field '//int_text(j), .true., found(j), fail)
+                if (allocated(fail)) return
+            end do
+        end subroutine read_integers
+
+        !> An error unless field `field` of record 6 is one of `allowed`.
+        subroutine check_code(field, value, allowed, what, meaning)
+            !> Field number, its value and the values allowed.
+            integer, intent(in) :: field, value, allowed(:)
+            !> What the field holds and what the allowed values mean, for the message.
+            character(len=*), intent(in) :: what, meaning
+
+            if (any(allowed == value)) return
+            call fatal_error(error, record_prefix(path, line, 55, 6)//'expected '//what//' '//meaning//' (columns ' &
+                             //int_text(10*field - 9)//'-'//int_text(10*field)//'), found '//int_text(value))
+        end subroutine check_code
+    end subroutine read_mode_shape
+
+    !> Read a file of normal modes: its nodes (datasets 15, 2411) and every dataset 55, each
+    !> mode at the same nodes, every node defined; other datasets are ignored.
+    subroutine read_modes_file(path, direction, nodes, modes, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> Direction of the shapes kept: +-1, +-2, +-3 for +-X, +-Y, +-Z.
+        integer, intent(in) :: direction
+        !> The nodes of the modes, in the order of the first dataset 55's records 9.
+        type(uff_node), allocatable, intent(out) :: nodes(:)
+        !> The modes, in file order.
+        type(uff_mode_shape), allocatable, intent(out) :: modes(:)
+        !> Set (status 2) for an unreadable or malformed file, no mode, a mode at other nodes
+        !> than the first or a node without coordinates.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(text_line), allocatable :: lines(:)
+        type(dataset_extent), allocatable :: sets(:)
+        type(uff_node), allocatable :: defined(:)
+        character(len=40) :: where
+        integer :: i, k, j, n_defined, n_modes
+
+        call load_lines(path, lines, error)
+        if (allocated(error)) return
+        call find_datasets(path, lines, sets, error)
+        if (allocated(error)) return
+        allocate (defined(0), modes(count(sets%number == 55)))
+        n_defined = 0
+        n_modes = 0
+        do i = 1, size(sets)
+            select case (sets(i)%number)
+            case (15, 2411)
+                call read_nodes(path, lines, sets(i), defined, n_defined, error)
+            case (55)
+                n_modes = n_modes + 1
+                call read_mode_shape(path, lines, sets(i), direction, modes(n_modes), error)
+            case (2414)
+                call fatal_error(error, path//':'//int_text(sets(i)%first)//': universal file dataset 2414: ' &
+                                 //'expected normal modes as datasets 55, found a dataset 2414 (not read yet); ' &
+                                 //'export the modes as datasets 55')
+            end select
+            if (allocated(error)) return
+        end do
+        defined = defined(1:n_defined)
+        call check_node_labels(path, defined, error)
+        if (allocated(error)) return
+        if (n_modes == 0) then
+            call fatal_error(error, path//':1: universal file: expected normal modes (datasets 55 of analysis ' &
+                             //'type 2), found none')
+            return
+        end if
+        do k = 2, n_modes
+            where = ''
+            if (size(modes(k)%node) == size(modes(1)%node)) then
+                if (all(modes(k)%node == modes(1)%node)) cycle
+                j = findloc(modes(k)%node /= modes(1)%node, .true., 1)
+                where = ', node '//int_text(modes(k)%node(j))//' in place '//int_text(j)
+            end if
+            call fatal_error(error, path//':'//int_text(modes(k)%line)//': universal file dataset 55: expected mode ' &
+                             //int_text(modes(k)%mode_number)//' at the '//int_text(size(modes(1)%node)) &
+                             //' nodes of the dataset at line '//int_text(modes(1)%line)//' in the same order, found ' &
+                             //int_text(size(modes(k)%node))//' nodes'//trim(where))
+            return
+        end do
+        allocate (nodes(size(modes(1)%node)))
+        do k = 1, size(nodes)
+            j = findloc(defined%label, modes(1)%node(k), 1)
+            if (j == 0) then
+                call fatal_error(error, path//':'//int_text(modes(1)%line)//': universal file dataset 55: expected ' &
+                                 //'node '//int_text(modes(1)%node(k))//' in a dataset 15 or 2411, found no ' &
+                                 //'coordinates for it')
+                return
+            end if
+            nodes(k) = defined(j)
+        end do
+    end subroutine read_modes_file
+
+end module greenconv_io_uff_dataset55

@@ -1,0 +1,135 @@
+!> A structure's normal modes from the user's finite-element model, read from a universal file
+!> (datasets 15 or 2411 for the nodes, one dataset 55 per mode, greenconv_io_uff_dataset55),
+!> as the multi-point engines take them (greenconv_model_point_modes):
+!>
+!>     g_ij(t) = sum_k phi_ik*phi_jk/m_k * exp(-xi_k*omega_k*t)*sin(omega_k^d*t)/omega_k^d,
+!>
+!> phi_ik the shape of mode k at node i in the direction the scene names, m_k its modal mass
+!> (1 where the file gives 0: mass-normalised shapes), omega_k = 2*pi*f_k, xi_k the file's
+!> viscous damping ratio or the scene's where the file gives 0.
+!>
+!> Modes above the band of a run (its Nyquist frequency 1/(2*dt), or the band the scene names)
+!> are not stepped: their static flexibility at the nodes, R_ii = sum_k phi_ik**2/(m_k*omega_k**2)
+!> over those modes, is returned with its share of the whole static flexibility, for the
+!> summary (and for an engine that adds a static term, which none does yet).
+module greenconv_model_modes_file
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_io_uff_types, only: uff_node
+    use greenconv_io_uff_dataset55, only: uff_mode_shape, read_modes_file
+    use greenconv_model_modal_set, only: modes_from_paper
+    use greenconv_model_point_modes, only: point_modes
+    implicit none
+    private
+
+    public :: file_modes, read_file_modes, band_modes
+
+    real(dp), parameter :: pi = acos(-1.0_dp)
+
+    !> The modes of a universal file at its nodes.
+    type :: file_modes
+        !> Node labels, in the order of the file's first dataset 55.
+        integer, allocatable :: label(:)
+        !> Node coordinates x, y, z [m], as the file gives them.
+        real(dp), allocatable :: x(:), y(:), z(:)
+        !> Natural frequencies f_k [Hz].
+        real(dp), allocatable :: frequency(:)
+        !> Modal masses m_k [kg] (1 where the file gives 0).
+        real(dp), allocatable :: modal_mass(:)
+        !> Viscous damping ratios xi_k (the default where the file gives 0).
+        real(dp), allocatable :: damping_ratio(:)
+        !> Shapes phi_ik at the nodes in the chosen direction, shape(i, k), as the file gives
+        !> them (dimensionless with m_k in kg; 1/sqrt(kg) for mass-normalised shapes).
+        real(dp), allocatable :: shape(:, :)
+        !> Number of modes whose damping ratio came from the file.
+        integer :: n_damped_by_file = 0
+    end type file_modes
+
+contains
+
+    !> Read the modes of a universal file: nodes and shapes in `direction`, the default damping
+    !> ratio where the file gives none.
+    subroutine read_file_modes(path, direction, damping_ratio, modes, error)
+        !> The universal file (datasets 15/2411 and 55).
+        character(len=*), intent(in) :: path
+        !> Direction of the shapes: +-1, +-2, +-3 for +-X, +-Y, +-Z.
+        integer, intent(in) :: direction
+        !> Damping ratio applied where the file gives 0, 0 <= xi < 1.
+        real(dp), intent(in) :: damping_ratio
+        !> The modes read.
+        type(file_modes), intent(out) :: modes
+        !> Set (status 2) for an unreadable or malformed file.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(uff_node), allocatable :: nodes(:)
+        type(uff_mode_shape), allocatable :: shapes(:)
+        integer :: k
+
+        call read_modes_file(path, direction, nodes, shapes, error)
+        if (allocated(error)) return
+        modes%label = nodes%label
+        modes%x = nodes%position(1)
+        modes%y = nodes%position(2)
+        modes%z = nodes%position(3)
+        modes%frequency = shapes%frequency
+        modes%modal_mass = merge(shapes%modal_mass, 1.0_dp, shapes%modal_mass > 0.0_dp)
+        modes%damping_ratio = merge(shapes%damping_ratio, damping_ratio, shapes%damping_ratio > 0.0_dp)
+        modes%n_damped_by_file = count(shapes%damping_ratio > 0.0_dp)
+        allocate (modes%shape(size(nodes), size(shapes)))
+        do k = 1, size(shapes)
+            modes%shape(:, k) = shapes(k)%value
+        end do
+    end subroutine read_file_modes
+
+    !> The modes up to f_band [Hz] at the nodes `selected`, and the static flexibility of the
+    !> modes above it at those nodes.
+    subroutine band_modes(modes, f_band, selected, description, residual, static_share, error)
+        !> The file's modes.
+        type(file_modes), intent(in) :: modes
+        !> Highest frequency stepped [Hz].
+        real(dp), intent(in) :: f_band
+        !> Nodes kept (indices into the file's nodes).
+        integer, intent(in) :: selected(:)
+        !> Modes up to f_band and their shapes at the selected nodes.
+        type(point_modes), intent(out) :: description
+        !> Static flexibility R_ii [m/N] of the modes above f_band at each selected node.
+        real(dp), allocatable, intent(out) :: residual(:)
+        !> Share of the residual in the whole static flexibility, sum R_ii over sum of all modes'.
+        real(dp), intent(out) :: static_share
+        !> Set (status 2) when no mode lies in the band.
+        type(error_type), allocatable, intent(out) :: error
+
+        logical :: kept(size(modes%frequency))
+        real(dp) :: stiffness(size(modes%frequency)), total
+        integer :: k
+
+        kept = modes%frequency <= f_band
+        if (.not. any(kept)) then
+            call fatal_error(error, 'modes file: expected a mode at or below the band''s '//trim(hz(f_band)) &
+                             //', found the lowest at '//trim(hz(minval(modes%frequency))))
+            return
+        end if
+        stiffness = modes%modal_mass*(2.0_dp*pi*modes%frequency)**2
+        description%modes = modes_from_paper(1.0_dp/pack(modes%modal_mass, kept), &
+                                             2.0_dp*pi*pack(modes%frequency, kept), pack(modes%damping_ratio, kept))
+        allocate (description%shape(size(selected), count(kept)), residual(size(selected)))
+        residual = 0.0_dp
+        total = 0.0_dp
+        do k = 1, size(kept)
+            total = total + sum(modes%shape(selected, k)**2)/stiffness(k)
+            if (.not. kept(k)) residual = residual + modes%shape(selected, k)**2/stiffness(k)
+        end do
+        description%shape = modes%shape(selected, pack([(k, k=1, size(kept))], kept))
+        static_share = 0.0_dp
+        if (total > 0.0_dp) static_share = sum(residual)/total
+    end subroutine band_modes
+
+    !> A frequency as `1234.5 Hz` in a fixed buffer.
+    pure function hz(f) result(text)
+        real(dp), intent(in) :: f
+        character(len=32) :: text
+
+        write (text, '(f0.1,a)') f, ' Hz'
+    end function hz
+
+end module greenconv_model_modes_file

@@ -1,0 +1,373 @@
+!> The modes_file model (issue 25): normal modes of a user's FE model in a universal file
+!> (datasets 15 and 55), on a plate the project does not ship (aluminium 0.5 x 0.4 m x 5 mm,
+!> simply supported on four edges, 32 modes to 3 kHz, written by pyuff: tools/make_modes_plate.py).
+!>
+!> - the reader against Python's parse of the same fields (test/data/uff/modes_plate.expected), to 1e-12;
+!> - each malformed dataset refused with one line (file, line, dataset, record, field, found), status 2;
+!> - the modes above a band kept as a static flexibility, its share checked against the sum
+!>   over the expected table;
+!> - the scene `&structure model = 'modes_file'` run with `exact` and `modal` at 80, 40 and
+!>   20 us against the independent modal ODE of greenconv_verify_contact (adaptive
+!>   Dormand-Prince, rtol 1e-10) on the file's modes: e = ||F - F_ref||/||F_ref - F0|| <= 5e-3
+!>   at 20 us and the observed order log2(e(2 dt)/e(dt)) >= 1.8 for both halvings.
+module test_modesfile_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use scene_text_mod, only: run_scene_text, read_table, message_of, write_text
+    use greenconv_core_error, only: error_type, stat_input
+    use greenconv_io_files, only: make_directory
+    use greenconv_io_uff_types, only: uff_node
+    use greenconv_io_uff_dataset55, only: uff_mode_shape, read_modes_file
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_road_file, only: road_file, read_road_file, file_road
+    use greenconv_contact_single, only: contact_law
+    use greenconv_verify_contact, only: multi_contact_reference
+    implicit none
+    private
+
+    public :: collect_modesfile
+
+    character(len=*), parameter :: scratch = 'build/test_scratch/modesfile'
+    character(len=*), parameter :: plate_file = 'test/data/uff/modes_plate.uff'
+    character(len=*), parameter :: expected_file = 'test/data/uff/modes_plate.expected'
+    real(dp), parameter :: pi = acos(-1.0_dp)
+
+contains
+
+    !> Tests of the modes_file model.
+    subroutine collect_modesfile(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('dataset 55 read to 1e-12 of Python''s parse; direction and sign', test_read), &
+                     new_unittest('malformed datasets 55 refused with one line, status 2', test_malformed), &
+                     new_unittest('modes above the band kept as a static flexibility', test_residual), &
+                     new_unittest('scene on the plate''s modes: exact, modal 5e-3 of the ODE at 20 us, order', &
+                                  test_scene_orders), &
+                     new_unittest('a patch of the nodes: the nodes inside it are the contact points', test_patch)]
+    end subroutine collect_modesfile
+
+    !> The expected table: node labels and coordinates, the modes' frequency, modal mass and
+    !> damping ratio, and the Z shapes (node, mode).
+    subroutine read_expected(label, position, mode_values, shape)
+        integer, allocatable, intent(out) :: label(:)
+        real(dp), allocatable, intent(out) :: position(:, :), mode_values(:, :), shape(:, :)
+
+        character(len=200) :: line
+        character(len=8) :: word
+        integer :: unit, stat, n_nodes, n_modes, number, node, i
+        real(dp) :: values(3)
+
+        allocate (label(100), position(3, 100), mode_values(3, 100), shape(100, 100))
+        n_nodes = 0
+        n_modes = 0
+        i = 0
+        open (newunit=unit, file=expected_file, status='old', action='read')
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (line(1:1) == '#') cycle
+            read (line, *) word
+            select case (trim(word))
+            case ('node')
+                n_nodes = n_nodes + 1
+                read (line, *) word, label(n_nodes), position(:, n_nodes)
+            case ('mode')
+                n_modes = n_modes + 1
+                read (line, *) word, number, values
+                mode_values(:, n_modes) = values
+                i = 0
+            case ('shape')
+                i = i + 1
+                read (line, *) word, node, shape(i, n_modes)
+            end select
+        end do
+        close (unit)
+        label = label(:n_nodes)
+        position = position(:, :n_nodes)
+        mode_values = mode_values(:, :n_modes)
+        shape = shape(:n_nodes, :n_modes)
+    end subroutine read_expected
+
+    !> Every frequency, modal mass, damping ratio, coordinate and Z shape as Python parsed
+    !> them, to 1e-12 relative; -Z flips the shapes, +X reads the zeros of column 1.
+    subroutine test_read(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, allocatable :: label(:)
+        real(dp), allocatable :: position(:, :), mode_values(:, :), shape(:, :)
+        type(uff_node), allocatable :: nodes(:)
+        type(uff_mode_shape), allocatable :: modes(:)
+        type(error_type), allocatable :: fail
+        real(dp) :: worst
+        integer :: k, i
+
+        call read_expected(label, position, mode_values, shape)
+        call read_modes_file(plate_file, 3, nodes, modes, fail)
+        call check(error, .not. allocated(fail), 'the plate file reads: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, size(modes) == 32 .and. size(nodes) == 9 .and. size(mode_values, 2) == 32, &
+                   '32 modes at 9 nodes')
+        if (allocated(error)) return
+        call check(error, all(nodes%label == label), 'the node labels in the order of the first dataset 55')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do i = 1, 9
+            worst = max(worst, maxval(abs(nodes(i)%position - position(:, i))))
+        end do
+        do k = 1, size(modes)
+            worst = max(worst, abs(modes(k)%frequency/mode_values(1, k) - 1.0_dp), &
+                        abs(modes(k)%modal_mass/mode_values(2, k) - 1.0_dp), &
+                        abs(modes(k)%damping_ratio - mode_values(3, k)), &
+                        maxval(abs(modes(k)%value - shape(:, k)))/maxval(abs(shape(:, k))))
+        end do
+        call note('worst relative difference from Python''s parse', worst)
+        call check(error, worst <= 1.0e-12_dp, 'frequencies, masses, damping, coordinates and shapes to 1e-12')
+        if (allocated(error)) return
+        call read_modes_file(plate_file, -3, nodes, modes, fail)
+        call check(error, .not. allocated(fail), '-Z reads')
+        if (allocated(error)) return
+        call check(error, all([(all(modes(k)%value == -shape(:, k)), k=1, size(modes))]), '-Z flips every shape')
+        if (allocated(error)) return
+        call read_modes_file(plate_file, 1, nodes, modes, fail)
+        call check(error, .not. allocated(fail) .and. all([(all(modes(k)%value == 0.0_dp), k=1, size(modes))]), &
+                   '+X reads the in-plane zeros')
+    end subroutine test_read
+
+    !> The plate file with line `at` replaced by `text` (deleted when `text` is '<delete>').
+    subroutine write_variant(name, at, text)
+        character(len=*), intent(in) :: name, text
+        integer, intent(in) :: at
+
+        character(len=200) :: line
+        integer :: in, out, stat, n
+
+        open (newunit=in, file=plate_file, status='old', action='read')
+        open (newunit=out, file=scratch//'/'//name, status='replace', action='write')
+        n = 0
+        do
+            read (in, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            n = n + 1
+            if (n /= at) then
+                write (out, '(a)') trim(line)
+            else if (text /= '<delete>') then
+                write (out, '(a)') text
+            end if
+        end do
+        close (in)
+        close (out)
+    end subroutine write_variant
+
+    !> One variant per fault, each refused with status 2 and a message holding `expect`.
+    subroutine test_malformed(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_cases = 7
+        character(len=*), parameter :: r6 = '         1'
+        character(len=24) :: names(n_cases)
+        character(len=80) :: lines(n_cases)
+        character(len=120) :: expect(n_cases)
+        integer :: at(n_cases), k
+        type(uff_node), allocatable :: nodes(:)
+        type(uff_mode_shape), allocatable :: modes(:)
+        type(error_type), allocatable :: fail
+
+        call make_directory(scratch, fail)
+        names = [character(len=24) :: 'analysis.uff', 'complex.uff', 'frequency.uff', 'mismatch.uff', &
+                 'no_coordinates.uff', 'value.uff', 'truncated.uff']
+        at = [20, 20, 22, 23, 3, 24, 24]
+        lines(1) = r6//'         3         3         8         2         6'
+        lines(2) = r6//'         2         3         8         5         6'
+        lines(3) = '  0.00000e+00  6.75000e-01  2.00000e-02  0.00000e+00'
+        lines(4) = '       199'
+        lines(5) = ''
+        lines(6) = '  0.00000e+00  0.00000e+00  x.80795e-01  3.12459e+00 -2.69703e+00  0.00000e+00'
+        lines(7) = '<delete>'
+        expect(1) = 'modes_plate_analysis.uff:20: universal file dataset 55 record 6: expected the analysis type'
+        expect(2) = ':20: universal file dataset 55 record 6: expected the data type real single (2) or real'
+        expect(3) = ':22: universal file dataset 55 record 8: expected the natural frequency > 0 Hz'
+        expect(4) = ':42: universal file dataset 55: expected mode 2 at the 9 nodes'
+        expect(5) = ':13: universal file dataset 55: expected node 101 in a dataset 15 or 2411'
+        expect(6) = ':24: universal file dataset 55 record 10: expected value 3 of node 101 (a number in columns 27-39'
+        expect(7) = 'universal file dataset 55 record 10: expected records 9 and 10 (2 lines) for every node'
+        do k = 1, n_cases
+            call write_variant('modes_plate_'//trim(names(k)), at(k), trim(lines(k)))
+            call read_modes_file(scratch//'/modes_plate_'//trim(names(k)), 3, nodes, modes, fail)
+            call check(error, allocated(fail), trim(names(k))//': refused')
+            if (allocated(error)) return
+            call check(error, fail%stat == stat_input .and. index(fail%message, trim(expect(k))) > 0 .and. &
+                       index(fail%message, new_line('a')) == 0, trim(names(k))//': expected "'//trim(expect(k)) &
+                       //'", found "'//fail%message//'"')
+            if (allocated(error)) return
+        end do
+    end subroutine test_malformed
+
+    !> A band of 1 kHz keeps the modes below it; those above give R_ii = sum phi_ik**2/(m_k*omega_k**2),
+    !> summed here from the expected table, and their share of the whole.
+    subroutine test_residual(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, allocatable :: label(:)
+        real(dp), allocatable :: position(:, :), mode_values(:, :), shape(:, :), residual(:), expected(:)
+        real(dp) :: share, total, stiffness
+        type(file_modes) :: modes
+        type(point_modes) :: description
+        type(error_type), allocatable :: fail
+        integer :: k
+
+        call read_expected(label, position, mode_values, shape)
+        call read_file_modes(plate_file, 3, 0.05_dp, modes, fail)
+        call check(error, .not. allocated(fail), 'reads')
+        if (allocated(error)) return
+        call check(error, modes%n_damped_by_file == 16 .and. all(modes%damping_ratio(2:32:2) == 0.05_dp) .and. &
+                   all(modes%damping_ratio(1:31:2) == 0.02_dp), 'the file''s damping where given, the scene''s elsewhere')
+        if (allocated(error)) return
+        call band_modes(modes, 1000.0_dp, [1, 5, 9], description, residual, share, fail)
+        call check(error, .not. allocated(fail), 'band of 1 kHz')
+        if (allocated(error)) return
+        allocate (expected(3))
+        expected = 0.0_dp
+        total = 0.0_dp
+        do k = 1, size(mode_values, 2)
+            stiffness = mode_values(2, k)*(2.0_dp*pi*mode_values(1, k))**2
+            total = total + sum(shape([1, 5, 9], k)**2)/stiffness
+            if (mode_values(1, k) > 1000.0_dp) expected = expected + shape([1, 5, 9], k)**2/stiffness
+        end do
+        call note('modes in the band', real(description%modes%n_modes(), dp))
+        call note('static share of the residual', share)
+        call check(error, description%modes%n_modes() == count(mode_values(1, :) <= 1000.0_dp) .and. &
+                   size(description%shape, 1) == 3, 'the modes up to 1 kHz at the three nodes')
+        if (allocated(error)) return
+        call check(error, maxval(abs(residual/expected - 1.0_dp)) <= 1.0e-12_dp .and. &
+                   abs(share/(sum(expected)/total) - 1.0_dp) <= 1.0e-12_dp, 'R_ii and its share to 1e-12')
+        if (allocated(error)) return
+        call band_modes(modes, 100.0_dp, [1], description, residual, share, fail)
+        call check(error, allocated(fail), 'a band below every mode is refused')
+    end subroutine test_residual
+
+    !> The scene at 80, 40 and 20 us against the ODE reference at 20 us (its samples every
+    !> stride at the coarser steps).
+    subroutine test_scene_orders(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: methods(2) = ['exact', 'modal']
+        real(dp), parameter :: duration = 0.04_dp, speed = 5.0_dp, x_start = 0.3_dp, preload = 900.0_dp
+        real(dp), parameter :: steps(3) = [8.0e-5_dp, 4.0e-5_dp, 2.0e-5_dp]
+        type(file_modes) :: modes
+        type(point_modes) :: description
+        type(road_file) :: road
+        type(file_road), allocatable :: roads(:)
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: residual(:), u(:, :), reference(:, :), rows(:, :)
+        real(dp) :: share, e(3), numerator, denominator
+        character(len=16) :: dt_text, steps_text
+        character(len=800) :: text
+        integer :: m, s, n_steps, stride, n, i, n_c
+
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        call read_file_modes(plate_file, 3, 0.03_dp, modes, fail)
+        if (.not. allocated(fail)) call band_modes(modes, 0.5_dp/steps(3), [(i, i=1, 9)], description, residual, &
+                                                   share, fail)
+        if (.not. allocated(fail)) call read_road_file(scratch//'/wave.dat', road, fail)
+        call check(error, .not. allocated(fail), 'modes and road: '//message_of(fail))
+        if (allocated(error)) return
+        n_c = 9
+        allocate (roads(n_c))
+        do i = 1, n_c
+            roads(i)%profile = road
+            roads(i)%x_start = x_start + modes%x(i) - sum(modes%x)/n_c
+            roads(i)%speed = speed
+        end do
+        call multi_contact_reference(description, [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)], roads, &
+                                     [(preload/n_c, i=1, n_c)], steps(3), nint(duration/steps(3)), u, reference, &
+                                     1.0e-10_dp)
+        do m = 1, size(methods)
+            do s = 1, size(steps)
+                n_steps = nint(duration/steps(s))
+                stride = nint(steps(s)/steps(3))
+                write (dt_text, '(es9.2)') steps(s)
+                write (steps_text, '(i0)') n_steps
+                text = "&scene name = 'plate', output_dir = '"//scratch//"', dt = "//trim(dt_text)//", n_steps = " &
+                       //trim(steps_text)//" / &structure model = 'modes_file', modes_file = '"//plate_file &
+                       //"', damping_ratio = 0.03 / &road profile = 'file', road_file = '"//scratch &
+                       //"/wave.dat', x_start = 0.3, speed = 5.0 / &contact stiffness = 1.0e7, exponent = 1.5, " &
+                       //"preload = 900.0 / &convolution methods = '"//trim(methods(m))//"' /"
+                call run_scene_text(scratch, 'plate.nml', trim(text), fail)
+                call check(error, .not. allocated(fail), trim(methods(m))//': the scene runs: '//message_of(fail))
+                if (allocated(error)) return
+                call read_table(scratch//'/plate_'//trim(methods(m))//'.dat', 8, rows, fail)
+                call check(error, .not. allocated(fail) .and. size(rows, 1) == n_steps*n_c, trim(methods(m)) &
+                           //': N_t*N_c rows of 8 columns: '//message_of(fail))
+                if (allocated(error)) return
+                numerator = 0.0_dp
+                denominator = 0.0_dp
+                do n = 0, n_steps - 1
+                    numerator = numerator + sum((rows(n_c*n + 1:n_c*n + n_c, 5) - reference(n*stride, :))**2)
+                    denominator = denominator + sum((reference(n*stride, :) - preload/n_c)**2)
+                end do
+                e(s) = sqrt(numerator/denominator)
+                call note(trim(methods(m))//' e at dt = '//trim(dt_text)//' s', e(s))
+            end do
+            call note(trim(methods(m))//' order 80 -> 40 us', log(e(1)/e(2))/log(2.0_dp))
+            call note(trim(methods(m))//' order 40 -> 20 us', log(e(2)/e(3))/log(2.0_dp))
+            call check(error, e(3) <= 5.0e-3_dp, trim(methods(m))//': e <= 5e-3 at 20 us')
+            if (allocated(error)) return
+            call check(error, all(log(e(1:2)/e(2:3))/log(2.0_dp) >= 1.8_dp), trim(methods(m))//': order >= 1.8')
+            if (allocated(error)) return
+        end do
+    end subroutine test_scene_orders
+
+    !> modes_patch_length = 70 mm by modes_patch_width = 1 mm around the nodes' centre (0.2, 0.17)
+    !> keeps the middle row of the 3 x 3 grid; a 20 mm square, the middle node.
+    subroutine test_patch(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: head = "&scene name = 'row', output_dir = '"//scratch//"', dt = 8.0e-5, " &
+            //"n_steps = 100 / &structure model = 'modes_file', modes_file = '"//plate_file//"', damping_ratio = 0.03, "
+        character(len=*), parameter :: tail = " / &road profile = 'file', road_file = '"//scratch//"/wave.dat', " &
+            //"x_start = 0.3, speed = 5.0 / &contact stiffness = 1.0e7, exponent = 1.5, preload = 300.0 / " &
+            //"&convolution methods = 'modal' /"
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: rows(:, :)
+
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        call run_scene_text(scratch, 'row.nml', head//'modes_patch_length = 0.07, modes_patch_width = 0.001'//tail, fail)
+        call check(error, .not. allocated(fail), 'the scene on a row runs: '//message_of(fail))
+        if (allocated(error)) return
+        ! one row of points: no column y
+        call read_table(scratch//'/row_modal.dat', 7, rows, fail)
+        call check(error, .not. allocated(fail) .and. size(rows, 1) == 300, '100 steps x 3 points: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, all(abs(rows(1:3, 2) - [0.17_dp, 0.2_dp, 0.23_dp]) < 1.0e-12_dp), &
+                   'the middle row, x = 0.17, 0.2, 0.23 m')
+        if (allocated(error)) return
+        call run_scene_text(scratch, 'middle.nml', head//'modes_patch_length = 0.02, modes_patch_width = 0.02'//tail, &
+                            fail)
+        call check(error, .not. allocated(fail), 'the scene on the middle node runs: '//message_of(fail))
+        if (allocated(error)) return
+        call read_table(scratch//'/row_modal.dat', 7, rows, fail)
+        call check(error, .not. allocated(fail) .and. size(rows, 1) == 100 .and. abs(rows(1, 2) - 0.2_dp) < 1.0e-12_dp, &
+                   'a 20 mm square keeps the middle node alone')
+    end subroutine test_patch
+
+    !> A smooth road, 0 to 1 m every 0.1 mm: 0.1 mm at a 50 mm wavelength plus 0.05 mm at 21 mm.
+    subroutine write_wave_road(path)
+        character(len=*), intent(in) :: path
+
+        integer :: unit, j
+        real(dp) :: x
+
+        open (newunit=unit, file=path, status='replace', action='write')
+        write (unit, '(a)') '# x [m], height [m]: test_modesfile_mod''s wave road'
+        do j = 0, 10000
+            x = 1.0e-4_dp*j
+            write (unit, '(es24.16,1x,es24.16)') x, 1.0e-4_dp*sin(2.0_dp*pi*x/0.05_dp) &
+                + 0.5e-4_dp*sin(2.0_dp*pi*x/0.021_dp)
+        end do
+        close (unit)
+    end subroutine write_wave_road
+
+end module test_modesfile_mod
