@@ -654,11 +654,10 @@ contains
     !> real location (symbolic links and `..` resolved, so that two spellings of one file
     !> are one) lies there would be lost. Checked before anything is written; an input or
     !> output directory that does not exist yet cannot collide and passes.
-    subroutine check_input_kept(input, what, output_dir, prefix, error)
-        !> Path of the input file, as the scene gives it.
+    subroutine check_input_kept(input, output_dir, prefix, error)
+        !> Path of the input file, as the scene gives it (the caller puts what names it, e.g.
+        !> "data/id.nml:4: &structure frf_file: ", before the message).
         character(len=*), intent(in) :: input
-        !> What names it in a message, e.g. "data/id.nml:4: &structure frf_file".
-        character(len=*), intent(in) :: what
         !> Directory the run writes to.
         character(len=*), intent(in) :: output_dir
         !> Start of the name of every file the run writes there, e.g. "<name>_".
@@ -677,7 +676,7 @@ contains
         ! What the run writes there ends in .dat, .bin or .bin.txt, or is in a folder of its own
         ! (a sweep's records): other names (a scene file, a universal file) are left alone.
         if (index(rest, '/') == 0 .and. .not. any(ends_with(rest, ['.dat    ', '.bin    ', '.bin.txt']))) return
-        call fatal_error(error, what//' = '''//input//''': this input lies where the run writes its outputs (' &
+        call fatal_error(error, ''''//input//''': this input lies where the run writes its outputs (' &
                          //output_dir//'/'//prefix//'*) and would be overwritten: move it, or change the ' &
                          //'scene''s name or output_dir')
     end subroutine check_input_kept

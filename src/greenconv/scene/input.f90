@@ -31,13 +31,13 @@ module greenconv_scene_input
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
     use greenconv_conv_builder, only: check_kernel_values
-    use greenconv_scene_settings, only: scene_type, scene_files, input_place, place, name_length, place_error
+    use greenconv_scene_settings, only: scene_type, scene_files, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
                                     lowest_resolved_band, highest_band_below, default_lines_per_band
     implicit none
     private
 
-    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, input_place, write_scene_template, &
+    public :: scene_type, scene_files, read_scene, read_scene_lines, output_path, write_scene_template, &
               place_error
 
     !> Length of paths read from a namelist.
@@ -480,17 +480,21 @@ contains
 
         on_file = allocated(this%road_data%x) .or. allocated(this%texture%x)
         if (.not. multi_point_model(this%model)) then
-            if (allocated(this%texture%x)) call fatal_error(error, input_place(this, 'road', 'profile') &
-                //": expected 'sine', 'random' or 'file' for model '"//this%model//"' (one contact point), found " &
-                //"'texture' (a texture needs a patch of points: model 'tyre' or 'green_file')")
+            if (allocated(this%texture%x)) then
+                call fatal_error(error, "expected 'sine', 'random' or 'file' for model '"//this%model &
+                                 //"' (one contact point), found 'texture' (a texture needs a patch of points: " &
+                                 //"model 'tyre' or 'green_file')")
+                call place_error(error, this, 'road', 'profile')
+            end if
             return
         end if
         if (this%task == 'contact' .and. on_file) return
         road = ' and no road file'
         if (on_file) road = ' with a road file'
-        call fatal_error(error, input_place(this, 'structure', 'model')//": expected task = 'contact' and " &
-                         //"&road profile = 'file' or 'texture' for model '"//this%model//"' (its contact points " &
-                         //"are spread over a road file), found task '"//this%task//"'"//road)
+        call fatal_error(error, "expected task = 'contact' and &road profile = 'file' or 'texture' for model '" &
+                         //this%model//"' (its contact points are spread over a road file), found task '" &
+                         //this%task//"'"//road)
+        call place_error(error, this, 'structure', 'model')
     end subroutine check_multipoint_scene
 
     !> The band range of the force spectra of a contact run (&scene spectra): every band must

@@ -5,7 +5,7 @@ module greenconv_scene_output
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_io_files, only: write_columns, check_input_kept
-    use greenconv_scene_input, only: scene_type, input_place
+    use greenconv_scene_input, only: scene_type, place_error
     use greenconv_contact_multi, only: multi_contact_response
     implicit none
     private
@@ -28,23 +28,27 @@ contains
         character(len=:), allocatable :: prefix
 
         prefix = scene%name//'_'
-        call check_input_kept(scene%file, scene%file//': the scene file', scene%output_dir, prefix, error)
-        if (.not. allocated(error) .and. allocated(scene%frf_file)) then
-            call check_input_kept(scene%frf_file, input_place(scene, 'structure', 'frf_file'), scene%output_dir, &
-                                  prefix, error)
+        call check_input_kept(scene%file, scene%output_dir, prefix, error)
+        if (allocated(error)) then
+            error%message = scene%file//': the scene file '//error%message
+            return
         end if
-        if (.not. allocated(error) .and. allocated(scene%green_file)) then
-            call check_input_kept(scene%green_file, input_place(scene, 'structure', 'green_file'), &
-                                  scene%output_dir, prefix, error)
-        end if
-        if (.not. allocated(error) .and. allocated(scene%road_data%path)) then
-            call check_input_kept(scene%road_data%path, input_place(scene, 'road', 'road_file'), scene%output_dir, &
-                                  prefix, error)
-        end if
-        if (.not. allocated(error) .and. allocated(scene%texture%path)) then
-            call check_input_kept(scene%texture%path, input_place(scene, 'road', 'texture_file'), &
-                                  scene%output_dir, prefix, error)
-        end if
+        call check_named(scene%frf_file, 'structure', 'frf_file')
+        call check_named(scene%green_file, 'structure', 'green_file')
+        call check_named(scene%road_data%path, 'road', 'road_file')
+        call check_named(scene%texture%path, 'road', 'texture_file')
+
+    contains
+
+        !> The input a scene variable names, its place put before a refusal.
+        subroutine check_named(path, group, variable)
+            character(len=:), allocatable, intent(in) :: path
+            character(len=*), intent(in) :: group, variable
+
+            if (allocated(error) .or. .not. allocated(path)) return
+            call check_input_kept(path, scene%output_dir, prefix, error)
+            if (allocated(error)) call place_error(error, scene, group, variable)
+        end subroutine check_named
     end subroutine check_inputs_kept
 
     !> Write a run as one row per step and point, time-major, with a blank-free layout that

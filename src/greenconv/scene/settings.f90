@@ -1,5 +1,5 @@
 !> What a scene is once read: `scene_type`, every value a run needs in SI units, and where
-!> each value stood in its file (`input_place`, for messages). Below the registry of structure
+!> each value stood in its file (`place_error`, for messages). Below the registry of structure
 !> models (greenconv_scene_models) and the scene reader (greenconv_scene_input), so that each
 !> structure model's builder takes a scene without depending on the reader that checks it.
 module greenconv_scene_settings
@@ -16,7 +16,7 @@ module greenconv_scene_settings
     implicit none
     private
 
-    public :: scene_type, scene_files, file_print, input_place, place, name_length, place_error
+    public :: scene_type, scene_files, file_print, place, name_length, place_error
 
     !> Length of names read from a namelist.
     integer, parameter :: name_length = 64
@@ -165,22 +165,10 @@ module greenconv_scene_settings
 
 contains
 
-    !> "file:line: &group variable" for messages about a value of the scene (the line of the
-    !> variable when the file sets it, else of its group), e.g. before a file it names.
-    function input_place(scene, group, variable) result(text)
-        !> The scene.
-        type(scene_type), intent(in) :: scene
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-        character(len=:), allocatable :: text
-
-        text = place(scene, group, variable)//' '//variable
-    end function input_place
-
-    !> Put `input_place` and ': ' before an error's message (a subroutine: gfortran keeps the
-    !> length of a text function's deferred-length result in static storage, which threads share).
+    !> Put "file:line: &group variable: " before an error's message (the line of the variable
+    !> when the file sets it, else of its group), for messages about a value of the scene or a
+    !> file it names. A subroutine, not a text function: gfortran keeps the length of a
+    !> function's deferred-length result in static storage, which threads share.
     subroutine place_error(error, scene, group, variable)
         !> The error, its message then "file:line: &group variable: message".
         type(error_type), intent(inout) :: error

@@ -5,7 +5,7 @@
 module greenconv_scene_structure
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_settings, only: scene_type, input_place
+    use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_models, only: structure_kind, find_model
     implicit none
     private
@@ -31,8 +31,9 @@ contains
         if (associated(model%build)) then
             call model%build(scene, structure, error)
         else
-            call fatal_error(error, input_place(scene, 'structure', 'model')//": '"//scene%model &
-                             //"' builds no single-point structure (a multi-point model, or an unknown one)")
+            call fatal_error(error, "'"//scene%model//"' builds no single-point structure (a multi-point model, " &
+                             //"or an unknown one)")
+            call place_error(error, scene, 'structure', 'model')
         end if
     end subroutine build_structure
 
