@@ -12,8 +12,13 @@
 !> - a whole run (tyre, 120 points, exact engine, Hertz points losing and regaining contact)
 !>   with the factors against the same run kept dense: 1e-10 of the peak force on every force,
 !>   the Newton tolerance being 1e-12 of the compression scale;
-!> - W0 of rank >= N_c/2 (fewer points than modes) is left dense, so results stay bit for bit.
+!> - W0 of rank >= N_c/2 (fewer points than modes) is left dense, so results stay bit for bit;
+!> - threads (a build with -fopenmp): the modal step of 1,000 points on 1 thread, on 2 and from
+!>   inside a host's parallel region against the modal forces and history displacements summed
+!>   here by plain loops in the serial order: equal bit for bit (tolerance 0). Without OpenMP
+!>   the three runs are the serial one.
 module test_lowrank_mod
+    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
@@ -45,7 +50,8 @@ contains
         testsuite = [new_unittest('Woodbury equals dgesv on I + U V^T diag(t)', test_woodbury), &
                      new_unittest('modal W0 factored: rank at most N_m, U V^T equals W0', test_factors), &
                      new_unittest('tyre run, 120 points: low-rank forces equal the dense run', test_run), &
-                     new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback)]
+                     new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback), &
+                     new_unittest('modal step on 1, 2 threads and in a host region: bit for bit', test_threads)]
     end subroutine collect_lowrank
 
     !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
@@ -216,5 +222,98 @@ contains
         call check(error, all(low_rank%force == dense%force) .and. all(low_rank%displacement == dense%displacement), &
                    'dense: bit for bit the same run')
     end subroutine test_dense_fallback
+
+    !> Step the modal matrix of `description` over n_t random loads; every history [m] kept.
+    subroutine step_modal(description, n_t, in_region, histories)
+        type(point_modes), intent(in) :: description
+        integer, intent(in) :: n_t
+        logical, intent(in) :: in_region
+        real(dp), intent(out) :: histories(:, :)
+
+        type(modal_green_matrix) :: conv
+        type(random_stream) :: stream
+        real(dp) :: load(description%n_points())
+        integer :: n, i
+
+        conv = exact_matrix(description)
+        stream = random_stream(7)
+        do n = 1, n_t
+            do i = 1, size(load)
+                load(i) = stream%uniform() - 0.5_dp
+            end do
+            if (in_region) then
+                !$omp parallel num_threads(2) default(shared)
+                !$omp single
+                call conv%push(load)
+                call conv%history(histories(:, n))
+                !$omp end single
+                !$omp end parallel
+            else
+                call conv%push(load)
+                call conv%history(histories(:, n))
+            end if
+        end do
+    end subroutine step_modal
+
+    subroutine test_threads(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_t = 20
+        type(point_modes) :: description
+        type(modal_green_matrix) :: conv
+        type(random_stream) :: stream
+        real(dp), allocatable :: one(:, :), two(:, :), hosted(:, :), by_loops(:, :)
+        real(dp) :: load(1000), modal(2000), re_before, modal_re(2000), modal_im(2000)
+        integer :: n, i, k, threads
+
+        description = tyre_points(1000, 3000.0_dp)
+        associate (n_c => description%n_points(), n_m => size(description%shape, 2))
+            call note('N_c*N_m', real(n_c*n_m, dp))
+            call check(error, n_c*n_m >= 20000 .and. n_m <= size(modal), 'the step is large enough for threads')
+            if (allocated(error)) return
+            allocate (one(n_c, n_t), two(n_c, n_t), hosted(n_c, n_t), by_loops(n_c, n_t))
+            threads = 1
+            !$ threads = omp_get_max_threads()
+            !$ call omp_set_num_threads(1)
+            call step_modal(description, n_t, .false., one)
+            !$ call omp_set_num_threads(2)
+            call step_modal(description, n_t, .false., two)
+            call step_modal(description, n_t, .true., hosted)
+            !$ call omp_set_num_threads(threads)
+            ! The same recursion by plain loops, in the serial order of every sum.
+            conv = exact_matrix(description)
+            stream = random_stream(7)
+            modal_re(:) = 0.0_dp
+            modal_im(:) = 0.0_dp
+            do n = 1, n_t
+                do i = 1, n_c
+                    load(i) = stream%uniform() - 0.5_dp
+                end do
+                if (n == 1) load(1:n_c) = 0.5_dp*load(1:n_c)
+                do k = 1, n_m
+                    modal(k) = dot_product(description%shape(:, k), load(1:n_c))
+                    associate (e => conv%engine)
+                        re_before = modal_re(k)
+                        modal_re(k) = e%decay_re(k)*re_before - e%decay_im(k)*modal_im(k) + e%input_re(k)*modal(k)
+                        modal_im(k) = e%decay_re(k)*modal_im(k) + e%decay_im(k)*re_before + e%input_im(k)*modal(k)
+                    end associate
+                end do
+                do i = 1, n_c
+                    by_loops(i, n) = 0.0_dp
+                    do k = 1, n_m
+                        by_loops(i, n) = by_loops(i, n) + description%shape(i, k)*modal_re(k)
+                    end do
+                end do
+            end do
+        end associate
+        call note('max|u_1 - u_loops| [m]', maxval(abs(one - by_loops)))
+        call note('max|u_2 - u_1| [m]', maxval(abs(two - one)))
+        call note('max|u_hosted - u_1| [m]', maxval(abs(hosted - one)))
+        call check(error, all(one == by_loops), '1 thread against the plain loops: bit for bit')
+        if (allocated(error)) return
+        call check(error, all(two == one), '2 threads against 1: bit for bit')
+        if (allocated(error)) return
+        call check(error, all(hosted == one), 'inside a host''s parallel region against 1 thread: bit for bit')
+    end subroutine test_threads
 
 end module test_lowrank_mod

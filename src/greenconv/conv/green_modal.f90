@@ -16,7 +16,16 @@
 !> A step costs
 !> N_c*N_m multiplications for the modal forces, 4*N_m for the states and N_c*N_m for the
 !> displacements: O(N_c*N_m) instead of the O(N_c^2*N_g) of the sampled table.
+!>
+!> Threads (a build with OpenMP, `-fopenmp`: the Makefile's): the modal forces are shared out
+!> over the modes and the history displacements over the points, as many threads as
+!> OMP_NUM_THREADS says. Each Q_k and each u_h,i is summed by one thread in the order of the
+!> serial loop, so the results are those of one thread bit for bit. The loops stay serial when
+!> the step is called from inside a parallel region of a host (`omp_in_parallel`: each host
+!> thread then steps its own convolvers alone) and when N_c*N_m is below `threads_from` (a
+!> region costs a few microseconds).
 module greenconv_conv_green_modal
+    !$ use omp_lib, only: omp_in_parallel
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_multipoint, only: multipoint_convolver
@@ -27,6 +36,9 @@ module greenconv_conv_green_modal
     private
 
     public :: modal_green_matrix, new_modal_green_matrix, modal_green_matrix_on
+
+    !> The smallest N_c*N_m (multiplications per modal-force pass) shared out over threads.
+    integer, parameter :: threads_from = 20000
 
     !> Shared modes stepped by one decaying recursion per mode (`recursive` or `exact`).
     type, extends(multipoint_convolver) :: modal_green_matrix
@@ -132,12 +144,19 @@ contains
         class(modal_green_matrix), intent(in) :: self
         real(dp), intent(out) :: u(:)
 
-        integer :: k
+        integer :: i, k
+        logical :: share
 
-        u(:) = 0.0_dp
-        do k = 1, size(self%shape, 2)
-            u(:) = u + self%shape(:, k)*self%engine%state_re(k)
+        share = size(self%shape) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(self, u) private(k)
+        do i = 1, size(self%shape, 1)
+            u(i) = 0.0_dp
+            do k = 1, size(self%shape, 2)
+                u(i) = u(i) + self%shape(i, k)*self%engine%state_re(k)
+            end do
         end do
+        !$omp end parallel do
     end subroutine modal_history
 
     !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance.
@@ -145,12 +164,18 @@ contains
         class(modal_green_matrix), intent(inout) :: self
         real(dp), intent(in) :: forces(:)
 
-        real(dp) :: old_re(size(self%modal_force))
+        real(dp) :: old_re(size(self%modal_force)), load(size(forces))
         integer :: k
+        logical :: share
 
+        load(:) = self%recorded_load(forces)
+        share = size(self%shape) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(self, load)
         do k = 1, size(self%shape, 2)
-            self%modal_force(k) = dot_product(self%shape(:, k), self%recorded_load(forces))
+            self%modal_force(k) = dot_product(self%shape(:, k), load)
         end do
+        !$omp end parallel do
         associate (e => self%engine, q => self%modal_force)
             old_re(:) = e%state_re
             e%state_re(:) = e%decay_re*old_re - e%decay_im*e%state_im + e%input_re*q
