@@ -4,6 +4,7 @@
 !> result (a dropped pole, a warning). Every part of the identification fills its own fields.
 module greenconv_ident_ml_types
     use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_lsce, only: natural_frequency, damping_ratio
@@ -13,7 +14,6 @@ module greenconv_ident_ml_types
     public :: ml_options, ml_result, record_drop, add_warning
     public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
 
-    real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
 
     !> Reason code of a dropped mode: its removal lowered the MDL criterion.
     integer, parameter :: dropped_by_criterion = 1

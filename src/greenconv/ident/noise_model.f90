@@ -5,6 +5,7 @@
 !> (repaired by their neighbours' cubic) and the line spacing of a grid.
 module greenconv_ident_noise_model
     use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: pi, two_pi
     use greenconv_core_sorting, only: median, heap_sort
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_ml_types, only: ml_options, ml_result
@@ -15,8 +16,6 @@ module greenconv_ident_noise_model
     public :: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, interpolated
     public :: line_spacing, spacing_at
 
-    real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
-    real(dp), parameter :: two_pi = 2.0_dp*pi
 
     !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
     real(dp), parameter :: gross_ratio = 1.0e100_dp

@@ -5,6 +5,7 @@
 !> modes the Fisher information does not determine).
 module greenconv_ident_order_search
     use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: two_pi, i_unit
     use greenconv_core_error, only: error_type
     use greenconv_ident_lsce, only: natural_frequency
     use greenconv_ident_ml_types, only: ml_options, ml_result, record_drop, dropped_by_criterion, &
@@ -16,8 +17,6 @@ module greenconv_ident_order_search
 
     public :: choose_order, drop_outside, drop_needles, drop_undetermined
 
-    real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
-    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
 
     !> Half-power half-width xi*f of a pole, as a fraction of the line spacing df, from which
     !> it is taken for a mode rather than for an outlier line when both explain a line that

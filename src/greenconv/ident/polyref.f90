@@ -29,6 +29,7 @@
 !> noise per line, with the residues and residual terms as nuisance parameters.
 module greenconv_ident_polyref
     use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: two_pi, i_unit
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_ext_lapack, only: eigenvalues
     use greenconv_model_modal_set, only: sorted_order
@@ -38,8 +39,6 @@ module greenconv_ident_polyref
 
     public :: polyref_poles, pole_covariance, pole_design, pole_spread
 
-    real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
-    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
     !> Poles with a larger damping ratio are taken as mathematical, not modes.
     real(dp), parameter :: max_damping = 0.3_dp
     !> Largest matrix-polynomial order tried.

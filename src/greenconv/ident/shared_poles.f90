@@ -37,6 +37,7 @@
 !>    modal recursion: they are neglected there and reported.
 module greenconv_ident_shared_poles
     use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: two_pi, i_unit
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
@@ -51,8 +52,6 @@ module greenconv_ident_shared_poles
 
     public :: shared_fit, identify_shared, shared_point_modes, shared_receptance
 
-    real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
-    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
 
     !> A Green's matrix identified with shared poles.
     type :: shared_fit
