@@ -42,7 +42,9 @@ contains
 
         !> The input a scene variable names, its place put before a refusal.
         subroutine check_named(path, group, variable)
+            !> The input's path (not allocated: the scene names none).
             character(len=:), allocatable, intent(in) :: path
+            !> Group and variable that name it, lower case.
             character(len=*), intent(in) :: group, variable
 
             if (allocated(error) .or. .not. allocated(path)) return
