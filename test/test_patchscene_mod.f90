@@ -52,8 +52,6 @@ contains
                                   test_impulse_file), &
                      new_unittest('scene on a file of g_ij(t): --check refuses what the run refuses', &
                                   test_impulse_scene), &
-                     new_unittest('scene: method = ''poly_reference'' runs the poly-reference fit, only for green_file', &
-                                  test_poly_reference_scene), &
                      new_unittest('scene: a green_file scene''s bad values refused with their line', &
                                   test_scene_refusals), &
                      new_unittest('texture: each malformed file refused with file:line', test_texture_malformed), &
@@ -437,49 +435,6 @@ contains
         call check(error, fail%stat == stat_input .and. index(fail%message, "off_texture.nml:1: &road x_start: " &
                    //"data/road_texture.dat: expected a texture from x =") > 0, 'message: '//fail%message)
     end subroutine test_scene_refusals
-
-    !> `&identification method = 'poly_reference'` on a Green's matrix file: the scene runs and
-    !> its summary names the poly-reference fit (the option reaches the identification); a
-    !> single-point model refuses it with the file and line.
-    subroutine test_poly_reference_scene(error)
-        type(test_error), allocatable, intent(out) :: error
-
-        character(len=*), parameter :: head = "&scene dt = 2.0e-4, n_steps = 10 / &structure model = 'green_file', " &
-            //"green_file = 'data/patch_green.uff' / &identification method = 'poly_reference' / &road profile = " &
-            //"'file', road_file = 'data/road_sample.dat', x_start = 1.0 / &contact stiffness = 5.0e4, exponent = 1.0, " &
-            //"preload = 3000.0 / &convolution methods = 'exact', accuracy = 0.5 /"
-        type(scene_type) :: scene
-        type(error_type), allocatable :: fail
-        character(len=4096) :: line
-        integer :: unit, stat
-        logical :: named
-
-        call read_scene_text(scratch, 'polyref_sdof.nml', "&scene dt = 1.0e-4, n_steps = 100 / &structure " &
-                             //"model = 'sdof', mass = 1.0, stiffness = 1.0e6, damping_ratio = 0.02 / " &
-                             //"&identification method = 'poly_reference' / &road profile = 'sine' / &contact stiffness = 1.0e6, " &
-                             //"exponent = 1.5 / &convolution methods = 'modal' /", scene, fail)
-        call check(error, allocated(fail), 'poly_reference accepted for one contact point')
-        if (allocated(error)) return
-        call check(error, index(fail%message, "polyref_sdof.nml:1: &identification method: expected 'ml' or " &
-                                //"'lsce' for model 'sdof'") > 0, 'message: '//fail%message)
-        if (allocated(error)) return
-        call read_scene_text(scratch, 'polyref.nml', head, scene, fail)
-        call check(error, .not. allocated(fail), 'poly_reference refused for green_file: '//message_of(fail))
-        if (allocated(error)) return
-        open (newunit=unit, status='scratch', action='readwrite')
-        call run_scene(scene, unit, fail)
-        rewind (unit)
-        named = .false.
-        do
-            read (unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            named = named .or. index(line, 'poly-reference fit of all receptances') > 0
-        end do
-        close (unit)
-        call check(error, .not. allocated(fail), 'the poly-reference patch run: '//message_of(fail))
-        if (allocated(error)) return
-        call check(error, named, 'the summary names the poly-reference fit')
-    end subroutine test_poly_reference_scene
 
     ! ---- road texture --------------------------------------------------------------------------
 

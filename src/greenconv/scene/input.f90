@@ -320,11 +320,8 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        call require(any(trim(method) == [character(len=14) :: '', 'ml', 'lsce', 'poly_reference']), error, this, &
-                     'identification', 'method', "'ml' (maximum likelihood), 'lsce' or 'poly_reference'", method)
-        call require(trim(method) /= 'poly_reference' .or. this%model == 'green_file', error, this, &
-                     'identification', 'method', "'ml' or 'lsce' for model '"//trim(this%model) &
-                     //"' ('poly_reference' fits a Green's matrix file's shared poles)", method)
+        call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), error, this, 'identification', 'method', &
+                     "'ml' (maximum likelihood) or 'lsce'", method)
         call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
                      'method', "'ml' for model 'green_file' (its shared poles are fitted by maximum likelihood)", &
                      method)
