@@ -39,6 +39,8 @@ module greenconv_conv_green_modal
 
     !> The smallest N_c*N_m (multiplications per modal-force pass) shared out over threads.
     integer, parameter :: threads_from = 20000
+    !> Points per block of the history displacements (one thread's share at a time).
+    integer, parameter :: history_block = 256
 
     !> Shared modes stepped by one decaying recursion per mode (`recursive` or `exact`).
     type, extends(multipoint_convolver) :: modal_green_matrix
@@ -144,16 +146,20 @@ contains
         class(modal_green_matrix), intent(in) :: self
         real(dp), intent(out) :: u(:)
 
-        integer :: i, k
+        integer :: block, first, last, k
         logical :: share
 
         share = size(self%shape) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
-        !$omp parallel do if (share) default(none) shared(self, u) private(k)
-        do i = 1, size(self%shape, 1)
-            u(i) = 0.0_dp
+        ! Blocks of points, each summed over the modes column by column (contiguous in shape):
+        ! every u_i is the serial loop's sum, in its order.
+        !$omp parallel do if (share) default(none) shared(self, u) private(first, last, k)
+        do block = 1, (size(u) + history_block - 1)/history_block
+            first = (block - 1)*history_block + 1
+            last = min(block*history_block, size(u))
+            u(first:last) = 0.0_dp
             do k = 1, size(self%shape, 2)
-                u(i) = u(i) + self%shape(i, k)*self%engine%state_re(k)
+                u(first:last) = u(first:last) + self%shape(first:last, k)*self%engine%state_re(k)
             end do
         end do
         !$omp end parallel do
