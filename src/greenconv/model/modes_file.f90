@@ -9,9 +9,10 @@
 !> viscous damping ratio or the scene's where the file gives 0.
 !>
 !> Modes above the band of a run (its Nyquist frequency 1/(2*dt), or the band the scene names)
-!> are not stepped: their static flexibility at the nodes, R_ii = sum_k phi_ik**2/(m_k*omega_k**2)
-!> over those modes, is returned with its share of the whole static flexibility, for the
-!> summary (and for an engine that adds a static term, which none does yet).
+!> are not stepped: at the run's frequencies, well below theirs, they respond without lag, as
+!> a static compliance R_ij = sum_k phi_ik*phi_jk/(m_k*omega_k**2) over those modes (the
+!> residual flexibility), returned with its share of the whole static flexibility at the
+!> nodes; a caller adds R to the instant compliance W0 of the convolver of the modes in band.
 module greenconv_model_modes_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -81,8 +82,8 @@ contains
         end do
     end subroutine read_file_modes
 
-    !> The modes up to f_band [Hz] at the nodes `selected`, and the static flexibility of the
-    !> modes above it at those nodes.
+    !> The modes up to f_band [Hz] at the nodes `selected`, and the static compliance (residual
+    !> flexibility) of the modes above it between those nodes.
     subroutine band_modes(modes, f_band, selected, description, residual, static_share, error)
         !> The file's modes.
         type(file_modes), intent(in) :: modes
@@ -92,9 +93,11 @@ contains
         integer, intent(in) :: selected(:)
         !> Modes up to f_band and their shapes at the selected nodes.
         type(point_modes), intent(out) :: description
-        !> Static flexibility R_ii [m/N] of the modes above f_band at each selected node.
-        real(dp), allocatable, intent(out) :: residual(:)
-        !> Share of the residual in the whole static flexibility, sum R_ii over sum of all modes'.
+        !> Static compliance R_ij [m/N] of the modes above f_band between the selected nodes
+        !> (N_c x N_c; zero when every mode lies in the band).
+        real(dp), allocatable, intent(out) :: residual(:, :)
+        !> Share of the residual in the whole static flexibility at the nodes: the trace of R
+        !> over the trace of all modes' static compliance.
         real(dp), intent(out) :: static_share
         !> Set (status 2) when no mode lies in the band.
         type(error_type), allocatable, intent(out) :: error
@@ -112,16 +115,17 @@ contains
         stiffness = modes%modal_mass*(2.0_dp*pi*modes%frequency)**2
         description%modes = modes_from_paper(1.0_dp/pack(modes%modal_mass, kept), &
                                              2.0_dp*pi*pack(modes%frequency, kept), pack(modes%damping_ratio, kept))
-        allocate (description%shape(size(selected), count(kept)), residual(size(selected)))
+        allocate (description%shape(size(selected), count(kept)), residual(size(selected), size(selected)))
         residual = 0.0_dp
         total = 0.0_dp
         do k = 1, size(kept)
             total = total + sum(modes%shape(selected, k)**2)/stiffness(k)
-            if (.not. kept(k)) residual = residual + modes%shape(selected, k)**2/stiffness(k)
+            if (.not. kept(k)) residual = residual + spread(modes%shape(selected, k), 2, size(selected)) &
+                                          *spread(modes%shape(selected, k)/stiffness(k), 1, size(selected))
         end do
         description%shape = modes%shape(selected, pack([(k, k=1, size(kept))], kept))
         static_share = 0.0_dp
-        if (total > 0.0_dp) static_share = sum(residual)/total
+        if (total > 0.0_dp) static_share = sum([(residual(k, k), k=1, size(selected))])/total
     end subroutine band_modes
 
     !> A frequency as `1234.5 Hz` in a fixed buffer.

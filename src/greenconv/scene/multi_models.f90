@@ -14,8 +14,9 @@
 !> - `modes_file`: the nodes of a universal file of normal modes from an FE model
 !>   (`&structure modes_file`, datasets 15/2411 and 55, greenconv_model_modes_file), at their
 !>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped;
-!>   those above are not, and the summary says how many and their share of the static
-!>   flexibility at the points (the engines take no static term yet).
+!>   those above are kept as their static compliance (residual flexibility), added to the
+!>   instant compliance W0 of the methods that have one (greenconv_scene_points), and the
+!>   summary says how many and their share of the static flexibility at the points.
 !>
 !> All follow the conventions of greenconv_scene_patch (preload shared evenly, the points
 !> seeing the road around x_start and y_start). The summary of a Green's file names the file,
@@ -202,8 +203,8 @@ contains
 
     !> The points of a `modes_file` scene: the file's nodes at their x, y, placed on the road,
     !> with the file's modes up to the band (`f_modes`, else 1/(2*dt)); the modes above it are
-    !> counted in the summary with their share of the static flexibility at the nodes (not
-    !> stepped: the engines take no static term yet).
+    !> kept as their static compliance between the nodes (`points%static`), counted in the
+    !> summary with their share of the static flexibility at the nodes.
     subroutine modes_file_points(scene, points, summary, error)
         !> The scene (model 'modes_file', task 'contact').
         type(scene_type), intent(in) :: scene
@@ -215,7 +216,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(file_modes) :: modes
-        real(dp), allocatable :: residual(:)
+        real(dp), allocatable :: residual(:, :)
         real(dp) :: f_band, share
         character(len=240) :: numbers
         integer, allocatable :: selected(:)
@@ -229,6 +230,7 @@ contains
             call place_error(error, scene, 'structure', 'modes_file')
             return
         end if
+        if (points%modes%modes%n_modes() < size(modes%frequency)) points%static = residual
         points%x = modes%x(selected)
         points%y = modes%y(selected)
         points%across = any(points%y /= points%y(1))
@@ -237,7 +239,7 @@ contains
         write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.2,a,i0,a,f5.3,a,i0,a)') size(points%x), &
             ' contact points, ', points%modes%modes%n_modes(), ' modes from ', minval(modes%frequency), ' Hz to f_max = ', &
             f_band, ' Hz (', size(modes%frequency) - points%modes%modes%n_modes(), &
-            ' above it not stepped, their static flexibility ', 100.0_dp*share, ' % of the whole at the points; ' &
+            ' above it as a static compliance, ', 100.0_dp*share, ' % of the static flexibility at the points; ' &
             //'damping ratio from the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
             size(modes%frequency) - modes%n_damped_by_file, ' modes),'
         summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//trim(numbers)//' '//run_text(scene)

@@ -24,6 +24,9 @@ module greenconv_scene_point_set
         logical :: across = .false.
         !> The structure's modes and their shapes at the points.
         type(point_modes) :: modes
+        !> Static compliance [m/N] (N_c x N_c) of the structure's modes above the band, added
+        !> to W0 of the methods with an instant part (unallocated: none).
+        real(dp), allocatable :: static(:, :)
         !> The Green's matrix read from the file, identified.
         type(green_structure) :: green
     contains
