@@ -36,6 +36,7 @@ module test_modesfile_mod
     character(len=*), parameter :: scratch = 'build/test_scratch/modesfile'
     character(len=*), parameter :: plate_file = 'test/data/uff/modes_plate.uff'
     character(len=*), parameter :: expected_file = 'test/data/uff/modes_plate.expected'
+    character(len=*), parameter :: plate_2414 = 'test/data/uff/modes_plate_2414.uff'
     real(dp), parameter :: pi = acos(-1.0_dp)
 
 contains
@@ -46,6 +47,8 @@ contains
 
         testsuite = [new_unittest('dataset 55 read to 1e-12 of Python''s parse; direction and sign', test_read), &
                      new_unittest('malformed datasets 55 refused with one line, status 2', test_malformed), &
+                     new_unittest('pyuff''s datasets 2411 + 2414 give the dataset-55 file''s modes', test_read_2414), &
+                     new_unittest('malformed datasets 2414 refused with one line, status 2', test_malformed_2414), &
                      new_unittest('modes above the band kept as a static flexibility', test_residual), &
                      new_unittest('scene on the plate''s modes: exact, modal 5e-3 of the ODE at 20 us, order', &
                                   test_scene_orders), &
@@ -141,15 +144,15 @@ contains
                    '+X reads the in-plane zeros')
     end subroutine test_read
 
-    !> The plate file with line `at` replaced by `text` (deleted when `text` is '<delete>').
-    subroutine write_variant(name, at, text)
-        character(len=*), intent(in) :: name, text
+    !> The file `source` with line `at` replaced by `text` (deleted when `text` is '<delete>').
+    subroutine write_variant(name, at, text, source)
+        character(len=*), intent(in) :: name, text, source
         integer, intent(in) :: at
 
         character(len=200) :: line
         integer :: in, out, stat, n
 
-        open (newunit=in, file=plate_file, status='old', action='read')
+        open (newunit=in, file=source, status='old', action='read')
         open (newunit=out, file=scratch//'/'//name, status='replace', action='write')
         n = 0
         do
@@ -175,12 +178,8 @@ contains
         character(len=24) :: names(n_cases)
         character(len=80) :: lines(n_cases)
         character(len=120) :: expect(n_cases)
-        integer :: at(n_cases), k
-        type(uff_node), allocatable :: nodes(:)
-        type(uff_mode_shape), allocatable :: modes(:)
-        type(error_type), allocatable :: fail
+        integer :: at(n_cases)
 
-        call make_directory(scratch, fail)
         names = [character(len=24) :: 'analysis.uff', 'complex.uff', 'frequency.uff', 'mismatch.uff', &
                  'no_coordinates.uff', 'value.uff', 'truncated.uff']
         at = [20, 20, 22, 23, 3, 24, 24]
@@ -198,9 +197,25 @@ contains
         expect(5) = ':13: universal file dataset 55: expected node 101 in a dataset 15 or 2411'
         expect(6) = ':24: universal file dataset 55 record 10: expected value 3 of node 101 (a number in columns 27-39'
         expect(7) = 'universal file dataset 55 record 10: expected records 9 and 10 (2 lines) for every node'
-        do k = 1, n_cases
-            call write_variant('modes_plate_'//trim(names(k)), at(k), trim(lines(k)))
-            call read_modes_file(scratch//'/modes_plate_'//trim(names(k)), 3, nodes, modes, fail)
+        call check_refusals(plate_file, 'modes_plate_', names, at, lines, expect, error)
+    end subroutine test_malformed
+
+    !> Each variant of `source` (line at(k) replaced by lines(k)) refused by the reader with
+    !> status 2 and one line holding expect(k).
+    subroutine check_refusals(source, stem, names, at, lines, expect, error)
+        character(len=*), intent(in) :: source, stem, names(:), lines(:), expect(:)
+        integer, intent(in) :: at(:)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(uff_node), allocatable :: nodes(:)
+        type(uff_mode_shape), allocatable :: modes(:)
+        type(error_type), allocatable :: fail
+        integer :: k
+
+        call make_directory(scratch, fail)
+        do k = 1, size(names)
+            call write_variant(stem//trim(names(k)), at(k), trim(lines(k)), source)
+            call read_modes_file(scratch//'/'//stem//trim(names(k)), 3, nodes, modes, fail)
             call check(error, allocated(fail), trim(names(k))//': refused')
             if (allocated(error)) return
             call check(error, fail%stat == stat_input .and. index(fail%message, trim(expect(k))) > 0 .and. &
@@ -208,7 +223,74 @@ contains
                        //'", found "'//fail%message//'"')
             if (allocated(error)) return
         end do
-    end subroutine test_malformed
+    end subroutine check_refusals
+
+    !> The plate written by pyuff as datasets 2411 and 2414 (tools/make_modes_2414.py) reads as
+    !> the same modes as its datasets 15 and 55: the same labels, coordinates to 1e-12 (2411
+    !> holds them to 17 digits, 15 to 6), and identical frequencies, masses, damping ratios and
+    !> shapes in every direction.
+    subroutine test_read_2414(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(uff_node), allocatable :: nodes(:), nodes_55(:)
+        type(uff_mode_shape), allocatable :: modes(:), modes_55(:)
+        type(error_type), allocatable :: fail
+        integer :: direction, k, i
+        logical :: same
+
+        do direction = -3, 3
+            if (direction == 0) cycle
+            call read_modes_file(plate_file, direction, nodes_55, modes_55, fail)
+            if (.not. allocated(fail)) call read_modes_file(plate_2414, direction, nodes, modes, fail)
+            call check(error, .not. allocated(fail), 'both files read: '//message_of(fail))
+            if (allocated(error)) return
+            call check(error, size(modes) == 32 .and. size(nodes) == 9 .and. all(nodes%label == nodes_55%label) &
+                       .and. all(nodes%dataset == 2411), '32 modes at the same 9 nodes, from a dataset 2411')
+            if (allocated(error)) return
+            call check(error, all([(maxval(abs(nodes(i)%position - nodes_55(i)%position)) <= 1.0e-12_dp, &
+                                    i=1, 9)]), 'coordinates to 1e-12')
+            if (allocated(error)) return
+            same = .true.
+            do k = 1, 32
+                same = same .and. modes(k)%frequency == modes_55(k)%frequency .and. &
+                       modes(k)%modal_mass == modes_55(k)%modal_mass .and. &
+                       modes(k)%damping_ratio == modes_55(k)%damping_ratio .and. &
+                       modes(k)%mode_number == modes_55(k)%mode_number .and. all(modes(k)%node == modes_55(k)%node) &
+                       .and. all(modes(k)%value == modes_55(k)%value)
+            end do
+            call check(error, same, 'frequencies, masses, damping ratios and shapes identical, direction ' &
+                       //achar(48 + abs(direction)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_read_2414
+
+    !> One variant of the 2414 file per fault, each refused with status 2 and a message naming
+    !> the line, the dataset, the record, the field and what was found.
+    subroutine test_malformed_2414(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: r9 = '         1', r12 = '  0.00000e+00  1.25351e+02  6.20317e+05'
+
+        call check_refusals(plate_2414, 'plate_2414_', &
+            [character(len=24) :: 'location.uff', 'analysis.uff', 'complex.uff', 'stress.uff', 'per_node.uff', &
+             'frequency.uff', 'damping.uff', 'value.uff'], [26, 32, 32, 32, 32, 35, 35, 38], &
+            [character(len=80) :: '         2', r9//'         5         3         8         2         6', &
+             r9//'         2         3         8         5         6', &
+             r9//'         2         3         2         2         6', &
+             r9//'         2         3         8         2         3', &
+             '  0.00000e+00 -1.25351e+02  6.20317e+05  6.75000e-01  2.00000e-02  0.00000e+00', &
+             r12//'  6.75000e-01  1.20000e+00  0.00000e+00', &
+             '  0.00000e+00  0.00000e+00  7.8x795e-01  3.12459e+00 -2.69703e+00  0.00000e+00'], &
+            [character(len=120) :: &
+             ':26: universal file dataset 2414 record 3: expected the dataset location 1 (data at nodes', &
+             ':32: universal file dataset 2414 record 9: expected the analysis type of a normal mode', &
+             ':32: universal file dataset 2414 record 9: expected the data type real single (2) or real', &
+             ':32: universal file dataset 2414 record 9: expected the result type of a displacement', &
+             ':32: universal file dataset 2414 record 9: expected the number of values per node for data', &
+             ':35: universal file dataset 2414 record 12: expected the natural frequency > 0 Hz (columns 14-26)', &
+             ':35: universal file dataset 2414 record 12: expected the viscous damping ratio in [0, 1) (columns 53', &
+             ':38: universal file dataset 2414 record 15: expected value 3 of node 101'], error)
+    end subroutine test_malformed_2414
 
     !> A band of 1 kHz keeps the modes below it; those above give R_ii = sum phi_ik**2/(m_k*omega_k**2),
     !> summed here from the expected table, and their share of the whole.

@@ -45,14 +45,26 @@ def modes():
     return sorted(found)
 
 
-def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else 'test/data/uff'
-    path = os.path.join(out, 'modes_plate.uff')
-    if os.path.exists(path):
-        os.remove(path)
+def nodes():
+    """Labels and x, y [m] of the 3 x 3 nodes, 30 mm apart, around (0.2, 0.17) m."""
     labels = np.arange(1, 10) + 100
     x = np.array([0.17 + 0.03*(i % 3) for i in range(9)])
     y = np.array([0.14 + 0.03*(i // 3) for i in range(9)])
+    return labels, x, y
+
+
+def fresh(out, name):
+    """The path of a file to write in `out`, removed first (pyuff appends)."""
+    path = os.path.join(out, name)
+    if os.path.exists(path):
+        os.remove(path)
+    return path
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else 'test/data/uff'
+    path = fresh(out, 'modes_plate.uff')
+    labels, x, y = nodes()
     uff = pyuff.UFF(path)
     uff.write_sets({'type': 15, 'node_nums': labels, 'def_cs': np.zeros(9), 'disp_cs': np.zeros(9),
                     'color': np.ones(9), 'x': x, 'y': y, 'z': np.zeros(9)}, mode='add')

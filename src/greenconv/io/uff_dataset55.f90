@@ -1,5 +1,6 @@
 !> Dataset 55 of universal files (data at nodes) for normal modes, and a file of modes: its
-!> nodes (datasets 15 or 2411, greenconv_io_uff_nodes) and one dataset 55 per mode.
+!> nodes (datasets 15 or 2411, greenconv_io_uff_nodes) and one dataset 55 or 2414
+!> (greenconv_io_uff_dataset2414) per mode.
 !>
 !> Dataset 55, as this reader takes it (analysis type 2, normal mode):
 !>
@@ -26,33 +27,14 @@ module greenconv_io_uff_dataset55
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_io_uff_types, only: uff_node
-    use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, &
-                                        integer_field, real_field, columns
+    use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, real_field
     use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
+    use greenconv_io_uff_dataset2414, only: uff_mode_shape, read_analysis_mode, check_mode_values, read_node_records, &
+                                            integer_fields, check_mode_codes
     implicit none
     private
 
     public :: uff_mode_shape, read_mode_shape, read_modes_file
-
-    !> One normal mode of a dataset 55: its record 7 and 8 values and one component of its shape.
-    type :: uff_mode_shape
-        !> Line of the file where the dataset starts (its opening `-1`), for messages.
-        integer :: line = 0
-        !> Record 7: load case and mode number.
-        integer :: load_case = 0, mode_number = 0
-        !> Record 8 field 1: natural frequency [Hz].
-        real(dp) :: frequency = 0.0_dp
-        !> Record 8 field 2: modal mass (0 when the file gives none) [kg, with the shapes' units].
-        real(dp) :: modal_mass = 0.0_dp
-        !> Record 8 field 3: viscous damping ratio (0 when the file gives none).
-        real(dp) :: damping_ratio = 0.0_dp
-        !> Record 6 field 3: data characteristic (2: 3 DOF per node, 3: 6 DOF).
-        integer :: data_characteristic = 0
-        !> Record 9 of every node, in file order.
-        integer, allocatable :: node(:)
-        !> Record 10's component in the chosen direction at every node, times the direction's sign.
-        real(dp), allocatable :: value(:)
-    end type uff_mode_shape
 
 contains
 
@@ -73,8 +55,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         integer, parameter :: record_line(8) = [2, 3, 4, 5, 6, 7, 8, 9]
-        integer :: numbers(6), n_integers, n_reals, per_line, width, lines_per_node, n_nodes, k, i, line, values
-        real(dp) :: reals(6), component(6)
+        integer :: numbers(6), n_integers, n_reals, per_line, width, i, line, values
+        real(dp) :: reals(6)
 
         mode%line = set%first
         if (set%last - set%first < 12) then
@@ -85,18 +67,9 @@ contains
         end if
         line = set%first + record_line(6)
         call read_integers(6, 6, numbers, error)
-        if (allocated(error)) return
-        call check_code(2, numbers(2), [2], 'the analysis type', 'of a normal mode')
-        if (.not. allocated(error)) call check_code(3, numbers(3), [2, 3], 'the data characteristic', &
-                                                    'of 3 DOF (2) or 6 DOF (3) per node')
-        if (.not. allocated(error)) call check_code(5, numbers(5), [2, 4], 'the data type', &
-                                                    'real single (2) or real double (4); complex modes are not read')
+        if (.not. allocated(error)) call check_mode_codes(record_prefix(path, line, 55, 6), numbers, values, error)
         if (allocated(error)) return
         mode%data_characteristic = numbers(3)
-        values = merge(3, 6, numbers(3) == 2)
-        call check_code(6, numbers(6), [values], 'the number of values per node', &
-                        'for data characteristic '//int_text(numbers(3)))
-        if (allocated(error)) return
         width = merge(13, 20, numbers(5) == 2)
         per_line = merge(6, 4, numbers(5) == 2)
         line = set%first + record_line(7)
@@ -128,46 +101,11 @@ contains
         mode%frequency = reals(1)
         mode%modal_mass = reals(2)
         mode%damping_ratio = reals(3)
-        if (.not. (reals(1) > 0.0_dp)) then
-            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the natural frequency > 0 Hz ' &
-                             //'(columns 1-13), found '//trim(adjustl(columns(lines(line)%text, 1, 13))))
-            return
-        end if
-        if (reals(2) < 0.0_dp) then
-            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the modal mass >= 0 (columns 14-26; ' &
-                             //'0: unit modal mass), found '//trim(adjustl(columns(lines(line)%text, 14, 26))))
-            return
-        end if
-        if (reals(3) < 0.0_dp .or. reals(3) >= 1.0_dp) then
-            call fatal_error(error, record_prefix(path, line, 55, 8)//'expected the viscous damping ratio in [0, 1) ' &
-                             //'(columns 27-39), found '//trim(adjustl(columns(lines(line)%text, 27, 39))))
-            return
-        end if
+        call check_mode_values(record_prefix(path, line, 55, 8), lines(line)%text, [1, 14, 27], mode, error)
+        if (allocated(error)) return
         ! records 9 and 10: one label line and the value lines of every node
-        lines_per_node = 1 + (values + per_line - 1)/per_line
-        n_nodes = (set%last - set%first - 10)/lines_per_node
-        if (n_nodes < 1 .or. mod(set%last - set%first - 10, lines_per_node) /= 0) then
-            call fatal_error(error, record_prefix(path, set%last, 55, 9 + mod(set%last - set%first - 10, &
-                             lines_per_node))//'expected records 9 and 10 ('//int_text(lines_per_node)//' lines) ' &
-                             //'for every node, found '//int_text(set%last - set%first - 10)//' lines after record 8')
-            return
-        end if
-        allocate (mode%node(n_nodes), mode%value(n_nodes))
-        do k = 1, n_nodes
-            line = set%first + 10 + (k - 1)*lines_per_node
-            call integer_field(record_prefix(path, line, 55, 9), lines(line)%text, 1, 10, 'the node label', .true., &
-                               mode%node(k), error)
-            if (allocated(error)) return
-            do i = 1, values
-                call real_field(record_prefix(path, line + 1 + (i - 1)/per_line, 55, 10), &
-                                lines(line + 1 + (i - 1)/per_line)%text, width*mod(i - 1, per_line) + 1, &
-                                width*(mod(i - 1, per_line) + 1), 'value '//int_text(i)//' of node ' &
-                                //int_text(mode%node(k)), trim(merge('6E13.5 ', '4E20.12', width == 13)), .true., &
-                                component(i), error)
-                if (allocated(error)) return
-            end do
-            mode%value(k) = sign(1.0_dp, real(direction, dp))*component(abs(direction))
-        end do
+        call read_node_records(path, lines, set, set%first + 10, 9, values, per_line, width, &
+                               trim(merge('6E13.5 ', '4E20.12', width == 13)), direction, mode, error)
 
     contains
 
@@ -180,30 +118,12 @@ contains
             !> Set (status 2) for a field that holds no integer.
             type(error_type), allocatable, intent(out) :: fail
 
-            integer :: j
-
-            do j = 1, n
-                call integer_field(record_prefix(path, line, 55, record), lines(line)%text, 10*j - 9, 10*j, &
-                                   'field '//int_text(j), .true., found(j), fail)
-                if (allocated(fail)) return
-            end do
+            call integer_fields(record_prefix(path, line, 55, record), lines(line)%text, n, found, fail)
         end subroutine read_integers
-
-        !> An error unless field `field` of record 6 is one of `allowed`.
-        subroutine check_code(field, value, allowed, what, meaning)
-            !> Field number, its value and the values allowed.
-            integer, intent(in) :: field, value, allowed(:)
-            !> What the field holds and what the allowed values mean, for the message.
-            character(len=*), intent(in) :: what, meaning
-
-            if (any(allowed == value)) return
-            call fatal_error(error, record_prefix(path, line, 55, 6)//'expected '//what//' '//meaning//' (columns ' &
-                             //int_text(10*field - 9)//'-'//int_text(10*field)//'), found '//int_text(value))
-        end subroutine check_code
     end subroutine read_mode_shape
 
-    !> Read a file of normal modes: its nodes (datasets 15, 2411) and every dataset 55, each
-    !> mode at the same nodes, every node defined; other datasets are ignored.
+    !> Read a file of normal modes: its nodes (datasets 15, 2411) and every dataset 55 or 2414,
+    !> each mode at the same nodes, every node defined; other datasets are ignored.
     subroutine read_modes_file(path, direction, nodes, modes, error)
         !> File to read.
         character(len=*), intent(in) :: path
@@ -227,7 +147,7 @@ contains
         if (allocated(error)) return
         call find_datasets(path, lines, sets, error)
         if (allocated(error)) return
-        allocate (defined(0), modes(count(sets%number == 55)))
+        allocate (defined(0), modes(count(sets%number == 55 .or. sets%number == 2414)))
         n_defined = 0
         n_modes = 0
         do i = 1, size(sets)
@@ -238,9 +158,8 @@ contains
                 n_modes = n_modes + 1
                 call read_mode_shape(path, lines, sets(i), direction, modes(n_modes), error)
             case (2414)
-                call fatal_error(error, path//':'//int_text(sets(i)%first)//': universal file dataset 2414: ' &
-                                 //'expected normal modes as datasets 55, found a dataset 2414 (not read yet); ' &
-                                 //'export the modes as datasets 55')
+                n_modes = n_modes + 1
+                call read_analysis_mode(path, lines, sets(i), direction, modes(n_modes), error)
             end select
             if (allocated(error)) return
         end do
@@ -248,7 +167,7 @@ contains
         call check_node_labels(path, defined, error)
         if (allocated(error)) return
         if (n_modes == 0) then
-            call fatal_error(error, path//':1: universal file: expected normal modes (datasets 55 of analysis ' &
+            call fatal_error(error, path//':1: universal file: expected normal modes (datasets 55 or 2414 of analysis ' &
                              //'type 2), found none')
             return
         end if
@@ -259,7 +178,8 @@ contains
                 j = findloc(modes(k)%node /= modes(1)%node, .true., 1)
                 where = ', node '//int_text(modes(k)%node(j))//' in place '//int_text(j)
             end if
-            call fatal_error(error, path//':'//int_text(modes(k)%line)//': universal file dataset 55: expected mode ' &
+            call fatal_error(error, path//':'//int_text(modes(k)%line)//': universal file dataset ' &
+                             //int_text(modes(k)%dataset)//': expected mode ' &
                              //int_text(modes(k)%mode_number)//' at the '//int_text(size(modes(1)%node)) &
                              //' nodes of the dataset at line '//int_text(modes(1)%line)//' in the same order, found ' &
                              //int_text(size(modes(k)%node))//' nodes'//trim(where))
@@ -269,7 +189,8 @@ contains
         do k = 1, size(nodes)
             j = findloc(defined%label, modes(1)%node(k), 1)
             if (j == 0) then
-                call fatal_error(error, path//':'//int_text(modes(1)%line)//': universal file dataset 55: expected ' &
+                call fatal_error(error, path//':'//int_text(modes(1)%line)//': universal file dataset ' &
+                                 //int_text(modes(1)%dataset)//': expected ' &
                                  //'node '//int_text(modes(1)%node(k))//' in a dataset 15 or 2411, found no ' &
                                  //'coordinates for it')
                 return
