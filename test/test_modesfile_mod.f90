@@ -54,7 +54,8 @@ contains
                                   test_scene_orders), &
                      new_unittest('modes above 1 kHz as a static compliance in W0: error of exact drops, order', &
                                   test_static_residual), &
-                     new_unittest('a patch of the nodes: the nodes inside it are the contact points', test_patch)]
+                     new_unittest('a patch of the nodes: the nodes inside it are the contact points', test_patch), &
+                     new_unittest('nodes off a grid run at their own x, y; a law per area refused', test_off_grid)]
     end subroutine collect_modesfile
 
     !> The expected table: node labels and coordinates, the modes' frequency, modal mass and
@@ -544,6 +545,42 @@ contains
         call check(error, .not. allocated(fail) .and. size(rows, 1) == 100 .and. abs(rows(1, 2) - 0.2_dp) < 1.0e-12_dp, &
                    'a 20 mm square keeps the middle node alone')
     end subroutine test_patch
+
+    !> The plate's middle node moved off the 3 x 3 grid, to (201.3, 168.8) mm: the contact points
+    !> need no grid (each has its own law and road), so the scene runs on the nodes as they are;
+    !> a contact law per area, which needs each point's share of a patch grid, is refused.
+    subroutine test_off_grid(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: head = "&scene name = 'scattered', output_dir = '"//scratch//"', dt = 8.0e-5, " &
+            //"n_steps = 50 / &structure model = 'modes_file', modes_file = '"//scratch//"/scattered.uff', " &
+            //"damping_ratio = 0.03 / &road profile = 'file', road_file = '"//scratch//"/wave.dat', x_start = 0.3, " &
+            //"speed = 5.0 / &contact exponent = 1.5, preload = 900.0, "
+        character(len=*), parameter :: tail = " / &convolution methods = 'exact' /"
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: rows(:, :)
+
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        call write_variant('scattered.uff', 7, '       105         0         0         1  2.01300E-01  1.68800E-01' &
+                           //'  0.00000E+00', plate_file)
+        call run_scene_text(scratch, 'scattered.nml', head//'stiffness = 1.0e7'//tail, fail)
+        call check(error, .not. allocated(fail), 'the scene on nodes off a grid runs: '//message_of(fail))
+        if (allocated(error)) return
+        call read_table(scratch//'/scattered_exact.dat', 8, rows, fail)
+        call check(error, .not. allocated(fail) .and. size(rows, 1) == 450, '50 steps x 9 points, with y: ' &
+                   //message_of(fail))
+        if (allocated(error)) return
+        call check(error, abs(rows(5, 2) - 0.2013_dp) < 1.0e-12_dp .and. abs(rows(5, 8) - 0.1688_dp) < 1.0e-12_dp, &
+                   'node 105 at its own x = 201.3 mm, y = 168.8 mm')
+        if (allocated(error)) return
+        call run_scene_text(scratch, 'scattered.nml', head//'stiffness_per_area = 1.0e9, patch_width = 0.1'//tail, fail)
+        call check(error, allocated(fail), 'a law per area on a modes file is refused')
+        if (allocated(error)) return
+        call check(error, index(fail%message, 'stiffness_per_area') > 0 .and. index(fail%message, 'grid') > 0 .and. &
+                   index(fail%message, new_line('a')) == 0, 'one line naming stiffness_per_area and the grid: ' &
+                   //fail%message)
+    end subroutine test_off_grid
 
     !> A smooth road, 0 to 1 m every 0.1 mm: 0.1 mm at a 50 mm wavelength plus 0.05 mm at 21 mm.
     subroutine write_wave_road(path)
