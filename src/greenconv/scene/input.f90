@@ -572,7 +572,7 @@ contains
     !> "400 Hz", the nominal name of band x.
     function band_name(x) result(text)
         integer, intent(in) :: x
-        character(len=:), allocatable :: text
+        character(len=len(compact_real(nominal_frequency(band_centre(x)))) + 3) :: text
 
         text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
     end function band_name
