@@ -64,7 +64,7 @@ contains
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: path
+        character(len=len(scene%output_dir) + len(scene%name) + len(method) + 6) :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
         if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
