@@ -112,6 +112,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(structure_kind) :: model
+        character(len=:), allocatable :: spectra
         integer :: i, n_c
 
         call check_inputs_kept(scene, error)
@@ -138,7 +139,10 @@ contains
             do i = 1, size(scene%methods)
                 line = line//' '//trim(scene%methods(i))
             end do
-            if (scene%spectra) line = line//', '//spectra_line(scene)
+            if (scene%spectra) then
+                call spectra_line(scene, spectra)
+                line = line//', '//spectra
+            end if
         end if
     end subroutine check_scene_line
 
@@ -156,11 +160,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text
         real(dp) :: seconds, estimate
         integer :: i, n
 
-        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
+        if (scene%spectra) then
+            call spectra_line(scene, text)
+            write (unit, '(a)') '# '//text//': '//spectra_path(scene, '<method>')
+        end if
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         outside = ''
         do i = 1, size(scene%methods)
@@ -176,8 +183,8 @@ contains
             if (allocated(error)) then
                 if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
             else if (run%several) then
-                sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), &
-                                                                         run%points%across), &
+                call title(scene, method, text)
+                sinks = column_sinks(scene, method, multi_contact_header(text, run%points%across), &
                                      merge(8, 7, run%points%across))
                 prefix = scene%file//': '//method//': '
             else
@@ -190,7 +197,8 @@ contains
             if (allocated(error)) return
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (estimate > scene%accuracy) then
-                accuracy = outside_line(method, estimate, scene%accuracy)//'; '//accuracy
+                call outside_line(method, estimate, scene%accuracy, text)
+                accuracy = text//'; '//accuracy
                 outside = outside//' '//method
             end if
             write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, accuracy
@@ -203,10 +211,10 @@ contains
 
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
-    function outside_line(method, estimate, accuracy) result(line)
+    subroutine outside_line(method, estimate, accuracy, line)
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: estimate, accuracy
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
@@ -220,7 +228,7 @@ contains
             line = line//'use exact (with the upper residual), a model with a smaller E (a higher max_order, ' &
                    //'less noisy data), or ask a larger accuracy'
         end if
-    end function outside_line
+    end subroutine outside_line
 
     !> The sinks of a driver's run: the method's column file `<output_dir>/<name>_<method>.dat`
     !> (or `.bin`) with the lines `header` and rows of `n_columns` values, and the force
@@ -259,10 +267,10 @@ contains
     end function response_header
 
     !> First header line of a multi-point method's file; with `output_every` > 1, which steps the rows are.
-    function title(scene, method) result(line)
+    subroutine title(scene, method, line)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         line = 'greenconv tyre/road scene '//scene%name//', method '//method
         if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
@@ -270,6 +278,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end function title
+    end subroutine title
 
 end module greenconv_scene_runner
