@@ -93,17 +93,41 @@ contains
     function run_text(scene) result(text)
         !> The scene.
         type(scene_type), intent(in) :: scene
-        character(len=:), allocatable :: text
+        character(len=len_trim(run_numbers(scene)) + len(run_road(scene))) :: text
 
+        text = trim(run_numbers(scene))//run_road(scene)
+    end function run_text
+
+    !> "N steps of dt s at V m/s", blank-padded.
+    pure function run_numbers(scene) result(numbers)
+        type(scene_type), intent(in) :: scene
         character(len=80) :: numbers
 
         write (numbers, '(i0,a,es9.2,a,f0.1,a)') scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
-        text = trim(numbers)
+    end function run_numbers
+
+    !> " over the texture <path>", " over <path>" or '': the road of `run_text`.
+    pure function run_road(scene) result(text)
+        type(scene_type), intent(in) :: scene
+        character(len=road_length(scene)) :: text
+
         if (allocated(scene%texture%x)) then
-            text = text//' over the texture '//scene%texture%path
+            text = ' over the texture '//scene%texture%path
         else if (allocated(scene%road_data%path)) then
-            text = text//' over '//scene%road_data%path
+            text = ' over '//scene%road_data%path
         end if
-    end function run_text
+    end function run_road
+
+    !> Length of `run_road(scene)`.
+    pure integer function road_length(scene)
+        type(scene_type), intent(in) :: scene
+
+        road_length = 0
+        if (allocated(scene%texture%x)) then
+            road_length = 18 + len(scene%texture%path)
+        else if (allocated(scene%road_data%path)) then
+            road_length = 6 + len(scene%road_data%path)
+        end if
+    end function road_length
 
 end module greenconv_scene_patch
