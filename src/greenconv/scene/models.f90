@@ -181,13 +181,13 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
-    !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
-    function model_names() result(text)
-        !> The quoted names, comma-separated, the last after `or`.
-        character(len=quoted_length(model_name_list())) :: text
+    !> Length of `quoted_list(names)`.
+    pure integer function quoted_length(names)
+        !> The names (at least one).
+        character(len=*), intent(in) :: names(:)
 
-        text = quoted_list(model_name_list())
-    end function model_names
+        quoted_length = sum(len_trim(names)) + 4*size(names) - 2 + merge(2, 0, size(names) > 1)
+    end function quoted_length
 
     !> The registry's model names, in its order.
     pure function model_name_list() result(names)
@@ -199,6 +199,14 @@ contains
         models = structure_models()
         names = models%name
     end function model_name_list
+
+    !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
+    function model_names() result(text)
+        !> The quoted names, comma-separated, the last after `or`.
+        character(len=quoted_length(model_name_list())) :: text
+
+        text = quoted_list(model_name_list())
+    end function model_names
 
     !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
     pure function quoted_list(names) result(text)
@@ -222,14 +230,6 @@ contains
             n = n + len_trim(names(i))
         end do
     end function quoted_list
-
-    !> Length of `quoted_list(names)`.
-    pure integer function quoted_length(names)
-        !> The names (at least one).
-        character(len=*), intent(in) :: names(:)
-
-        quoted_length = sum(len_trim(names)) + 4*size(names) - 2 + merge(2, 0, size(names) > 1)
-    end function quoted_length
 
     !> Whether a model requires a `&structure` variable.
     pure logical function model_requires(model, variable)

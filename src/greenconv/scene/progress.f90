@@ -129,31 +129,14 @@ contains
         if (last_shown >= 0.0_dp) progress_due = progress_due .and. elapsed - last_shown >= refresh_seconds
     end function progress_due
 
-    !> The progress line after `done` of `total` steps in `elapsed` seconds: label, percent,
-    !> steps per second and the time left at that rate (h:mm:ss; `--:--:--` before any step).
-    pure function progress_line(label, done, total, elapsed) result(line)
-        !> Name of what runs (the method).
-        character(len=*), intent(in) :: label
-        !> Steps done.
+    !> Steps per second so far; 0 before any time has passed.
+    pure real(dp) function steps_per_second(done, elapsed)
         integer(int64), intent(in) :: done
-        !> Steps of the whole run, >= 1.
-        integer(int64), intent(in) :: total
-        !> Wall time since the start [s].
-        real(dp), intent(in) :: elapsed
-        character(len=progress_length(label, done, total, elapsed)) :: line
-
-        line = 'greenconv: '//label//'  '//trim(progress_numbers(done, total, elapsed))//'  '//time_left(done, total, elapsed)
-    end function progress_line
-
-    !> Length of `progress_line(label, done, total, elapsed)`.
-    pure integer function progress_length(label, done, total, elapsed)
-        character(len=*), intent(in) :: label
-        integer(int64), intent(in) :: done, total
         real(dp), intent(in) :: elapsed
 
-        progress_length = 15 + len(label) + len_trim(progress_numbers(done, total, elapsed)) &
-                          + len_trim(time_left(done, total, elapsed))
-    end function progress_length
+        steps_per_second = 0.0_dp
+        if (elapsed > 0.0_dp) steps_per_second = real(done, dp)/elapsed
+    end function steps_per_second
 
     !> Percent done and steps per second of a progress line.
     pure function progress_numbers(done, total, elapsed) result(buffer)
@@ -166,15 +149,6 @@ contains
         percent = 100.0_dp*real(done, dp)/real(max(total, 1_int64), dp)
         write (buffer, '(f6.1,a,es10.2,a)') percent, ' %  ', steps_per_second(done, elapsed), ' steps/s  '
     end function progress_numbers
-
-    !> Steps per second so far; 0 before any time has passed.
-    pure real(dp) function steps_per_second(done, elapsed)
-        integer(int64), intent(in) :: done
-        real(dp), intent(in) :: elapsed
-
-        steps_per_second = 0.0_dp
-        if (elapsed > 0.0_dp) steps_per_second = real(done, dp)/elapsed
-    end function steps_per_second
 
     !> "h:mm:ss left" at the rate so far (hours unbounded, rounded to the second); "--:--:-- left"
     !> before any step, padded with blanks.
@@ -195,6 +169,33 @@ contains
             buffer = '--:--:-- left'
         end if
     end function time_left
+
+    !> Length of `progress_line(label, done, total, elapsed)`.
+    pure integer function progress_length(label, done, total, elapsed)
+        character(len=*), intent(in) :: label
+        integer(int64), intent(in) :: done, total
+        real(dp), intent(in) :: elapsed
+
+        progress_length = 15 + len(label) + len_trim(progress_numbers(done, total, elapsed)) &
+                          + len_trim(time_left(done, total, elapsed))
+    end function progress_length
+
+    !> The progress line after `done` of `total` steps in `elapsed` seconds: label, percent,
+    !> steps per second and the time left at that rate (h:mm:ss; `--:--:--` before any step).
+    pure function progress_line(label, done, total, elapsed) result(line)
+        !> Name of what runs (the method).
+        character(len=*), intent(in) :: label
+        !> Steps done.
+        integer(int64), intent(in) :: done
+        !> Steps of the whole run, >= 1.
+        integer(int64), intent(in) :: total
+        !> Wall time since the start [s].
+        real(dp), intent(in) :: elapsed
+        character(len=progress_length(label, done, total, elapsed)) :: line
+
+        line = 'greenconv: '//label//'  '//trim(progress_numbers(done, total, elapsed))//'  ' &
+               //time_left(done, total, elapsed)
+    end function progress_line
 
     !> Write the line in place of the previous one.
     subroutine show(meter, done, elapsed)

@@ -528,29 +528,6 @@ contains
         end do
     end function listed
 
-    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
-    !> enough (at most 2 edits, or a third of the name); '' otherwise.
-    pure function suggestion(name, names, prefix) result(text)
-        character(len=*), intent(in) :: name, names(:), prefix
-        character(len=suggestion_length(name, names, prefix)) :: text
-
-        integer :: best
-
-        best = closest_name(name, names)
-        if (best > 0) text = "; did you mean '"//prefix//trim(names(best))//"'?"
-    end function suggestion
-
-    !> Length of `suggestion(name, names, prefix)`: 0 when no name is close enough.
-    pure integer function suggestion_length(name, names, prefix)
-        character(len=*), intent(in) :: name, names(:), prefix
-
-        integer :: best
-
-        suggestion_length = 0
-        best = closest_name(name, names)
-        if (best > 0) suggestion_length = 18 + len(prefix) + len_trim(names(best))
-    end function suggestion_length
-
     !> The index of the name closest to `name` by edit distance when close enough (at most 2
     !> edits, or a third of the name); 0 otherwise.
     pure integer function closest_name(name, names)
@@ -571,6 +548,29 @@ contains
         if (best > 0 .and. best_distance <= max(2, len(name)/3)) closest_name = best
     end function closest_name
 
+    !> Length of `suggestion(name, names, prefix)`: 0 when no name is close enough.
+    pure integer function suggestion_length(name, names, prefix)
+        character(len=*), intent(in) :: name, names(:), prefix
+
+        integer :: best
+
+        suggestion_length = 0
+        best = closest_name(name, names)
+        if (best > 0) suggestion_length = 18 + len(prefix) + len_trim(names(best))
+    end function suggestion_length
+
+    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
+    !> enough (at most 2 edits, or a third of the name); '' otherwise.
+    pure function suggestion(name, names, prefix) result(text)
+        character(len=*), intent(in) :: name, names(:), prefix
+        character(len=suggestion_length(name, names, prefix)) :: text
+
+        integer :: best
+
+        best = closest_name(name, names)
+        if (best > 0) text = "; did you mean '"//prefix//trim(names(best))//"'?"
+    end function suggestion
+
     !> Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
     pure integer function edit_distance(a, b)
         character(len=*), intent(in) :: a, b
@@ -589,6 +589,22 @@ contains
         end do
         edit_distance = row(len(b))
     end function edit_distance
+
+    !> Length of `shown(token)`.
+    pure integer function shown_length(token)
+        type(token_type), intent(in) :: token
+
+        select case (token%kind)
+        case (token_text)
+            shown_length = len(token%text) + 2
+        case (token_equals, token_comma, token_slash)
+            shown_length = 1
+        case (token_group)
+            shown_length = len(token%text) + 1
+        case default
+            shown_length = len(token%text)
+        end select
+    end function shown_length
 
     !> A token as the user wrote it, for messages.
     pure function shown(token) result(text)
@@ -610,22 +626,6 @@ contains
             text = token%text
         end select
     end function shown
-
-    !> Length of `shown(token)`.
-    pure integer function shown_length(token)
-        type(token_type), intent(in) :: token
-
-        select case (token%kind)
-        case (token_text)
-            shown_length = len(token%text) + 2
-        case (token_equals, token_comma, token_slash)
-            shown_length = 1
-        case (token_group)
-            shown_length = len(token%text) + 1
-        case default
-            shown_length = len(token%text)
-        end select
-    end function shown_length
 
     !> Append an entry.
     pure subroutine add_entry(scan, entry)
@@ -812,34 +812,6 @@ contains
         has_value = self%line_of(group, variable) > 0
     end function has_value
 
-    !> The first value given to a variable, a text without its quotes, trimmed; '' when absent.
-    pure function value_of(self, group, variable) result(value)
-        !> The scan.
-        class(namelist_scan), intent(in) :: self
-        !> Group name, lower case.
-        character(len=*), intent(in) :: group
-        !> Variable name, lower case.
-        character(len=*), intent(in) :: variable
-        character(len=value_length(self, group, variable)) :: value
-
-        integer :: i
-
-        i = first_entry(self, group, variable)
-        if (i > 0) value = adjustl(self%entries(i)%value)
-    end function value_of
-
-    !> Length of `value_of(self, group, variable)`.
-    pure integer function value_length(self, group, variable)
-        class(namelist_scan), intent(in) :: self
-        character(len=*), intent(in) :: group, variable
-
-        integer :: i
-
-        value_length = 0
-        i = first_entry(self, group, variable)
-        if (i > 0) value_length = len_trim(adjustl(self%entries(i)%value))
-    end function value_length
-
     !> Index of the first entry giving a value to `group`'s `variable`; 0 when none does.
     pure integer function first_entry(self, group, variable)
         class(namelist_scan), intent(in) :: self
@@ -856,5 +828,33 @@ contains
             end if
         end do
     end function first_entry
+
+    !> Length of `value_of(self, group, variable)`.
+    pure integer function value_length(self, group, variable)
+        class(namelist_scan), intent(in) :: self
+        character(len=*), intent(in) :: group, variable
+
+        integer :: i
+
+        value_length = 0
+        i = first_entry(self, group, variable)
+        if (i > 0) value_length = len_trim(adjustl(self%entries(i)%value))
+    end function value_length
+
+    !> The first value given to a variable, a text without its quotes, trimmed; '' when absent.
+    pure function value_of(self, group, variable) result(value)
+        !> The scan.
+        class(namelist_scan), intent(in) :: self
+        !> Group name, lower case.
+        character(len=*), intent(in) :: group
+        !> Variable name, lower case.
+        character(len=*), intent(in) :: variable
+        character(len=value_length(self, group, variable)) :: value
+
+        integer :: i
+
+        i = first_entry(self, group, variable)
+        if (i > 0) value = adjustl(self%entries(i)%value)
+    end function value_of
 
 end module greenconv_scene_scan

@@ -440,6 +440,15 @@ contains
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
+    !> Length of `required_text(variable, when)`.
+    pure integer function required_length(variable, when)
+        type(scene_variable), intent(in) :: variable
+        character(len=*), intent(in) :: when
+
+        required_length = len(variable%meaning) + merge(4 + len(variable%units), 0, len(variable%units) > 0) &
+                          + merge(11, 16 + len(when), when == 'always')
+    end function required_length
+
     !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
     function required_text(variable, when) result(text)
         !> The table row.
@@ -460,15 +469,6 @@ contains
             text(n + 1:) = ' (required for '//when//')'
         end if
     end function required_text
-
-    !> Length of `required_text(variable, when)`.
-    pure integer function required_length(variable, when)
-        type(scene_variable), intent(in) :: variable
-        character(len=*), intent(in) :: when
-
-        required_length = len(variable%meaning) + merge(4 + len(variable%units), 0, len(variable%units) > 0) &
-                          + merge(11, 16 + len(when), when == 'always')
-    end function required_length
 
     !> The required groups and values, in table order: a group, then its variables.
     subroutine check_required(scan, error)
