@@ -137,7 +137,7 @@ contains
         do
             read (unit, '(a)', iostat=stat) line
             if (stat /= 0) exit
-            lines = [lines, line]
+            lines = [character(len=240) :: lines, line]
         end do
         close (unit)
     end subroutine printed_lines
