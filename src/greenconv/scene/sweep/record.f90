@@ -27,7 +27,8 @@ module greenconv_scene_sweep_record
         character(len=:), allocatable :: result
         !> CPU seconds of the contact loop of each method, blank-separated.
         character(len=:), allocatable :: cpu
-        !> Worst status of its methods: 0 done, 2 bad input, 3 numerical fault.
+        !> Worst status of its methods (greenconv_scene_sweep_report's `worse_status`): 0 done, 4 ran
+        !> outside the accuracy asked, 2 bad input, 3 numerical fault.
         integer :: status = 0
         !> The first failure's message ('' when none).
         character(len=:), allocatable :: message

@@ -7,7 +7,7 @@
 module greenconv_scene_sweep_report
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, write_text
     use greenconv_io_spectra, only: band_spectrum, band_levels
@@ -19,7 +19,7 @@ module greenconv_scene_sweep_report
     private
 
     public :: summary_row, write_sweep_table, report_check, finish_report, add_method, &
-              failed_outcome, band_text
+              failed_outcome, band_text, worse_status
 
     !> Width of a band level's column.
     integer, parameter :: level_width = 11
@@ -79,7 +79,8 @@ contains
         table = '# greenconv sweep '//plan%name//' of '//plan%file//': '//int_text(size(outcomes)) &
                 //' variants, rows in variant order'//new_line('a') &
                 //'# per method: max, mean, rms of the total contact force [N], fraction of steps in ' &
-                //'contact, status (0 done, 2 bad input, 3 numerical fault), step of the fault (0: none)'
+                //'contact, status (0 done, 2 bad input, 3 numerical fault, 4 ran outside the accuracy asked), step of the ' &
+                //'fault (0: none)'
         if (plan%spectra) table = table//new_line('a')//'# then per method and 1/3-octave band L<f_c>_<method>: ' &
             //'level of the total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
             //real_text(plan%f_high)//' Hz; Welch PSD, Hann window, 50 % overlap; nan: the method failed)'
@@ -132,7 +133,8 @@ contains
     !> Write the table and say where it is and how many variants failed. A sweep with failed
     !> variants is not a success even though every other variant completed and the table is
     !> whole: `error` then says how many failed, with the worst status of theirs (3 when one
-    !> met a numerical fault, else 2), which the drivers return.
+    !> met a numerical fault, else 2), which the drivers return. Without a failed variant, one
+    !> that ran outside the accuracy asked (status 4 in its row) sets `error` with status 4.
     subroutine finish_report(plan, outcomes, unit, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -140,21 +142,53 @@ contains
         type(variant_outcome), intent(in) :: outcomes(:)
         !> Unit of the line.
         integer, intent(in) :: unit
-        !> Set when the table cannot be written, or when a variant failed.
+        !> Set when the table cannot be written, or when a variant failed or ran outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: n_failed
+        character(len=:), allocatable :: line
+        integer :: n_failed, n_outside, worst, k
 
         call write_sweep_table(plan, outcomes, error)
         if (allocated(error)) return
-        n_failed = count(outcomes%status /= 0)
-        write (unit, '(a)') 'greenconv: sweep '//plan%name//': '//int_text(size(outcomes))//' variants, ' &
-            //int_text(n_failed)//' failed; table '//plan%output_dir//'/'//plan%name//'_sweep.dat'
-        if (n_failed > 0) call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_failed)//' of ' &
-                                           //int_text(size(outcomes))//' variants failed (each named above, its ' &
-                                           //'status and step in its row of the table); the others are done', &
-                                           maxval(outcomes%status))
+        n_outside = count(outcomes%status == stat_accuracy)
+        n_failed = count(outcomes%status /= 0) - n_outside
+        worst = 0
+        do k = 1, size(outcomes)
+            worst = worse_status(worst, outcomes(k)%status)
+        end do
+        line = 'greenconv: sweep '//plan%name//': '//int_text(size(outcomes))//' variants, '//int_text(n_failed) &
+               //' failed'
+        if (n_outside > 0) line = line//', '//int_text(n_outside)//' outside the accuracy asked (status 4)'
+        write (unit, '(a)') line//'; table '//plan%output_dir//'/'//plan%name//'_sweep.dat'
+        if (n_failed > 0) then
+            call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_failed)//' of ' &
+                             //int_text(size(outcomes))//' variants failed (each named above, its ' &
+                             //'status and step in its row of the table); the others are done', worst)
+        else if (n_outside > 0) then
+            call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_outside)//' of '//int_text(size(outcomes)) &
+                             //' variants ran outside the accuracy asked (each named above, status 4 in its row ' &
+                             //'of the table): their rows are whole; use a method inside it or ask a larger ' &
+                             //'accuracy', stat_accuracy)
+        end if
     end subroutine finish_report
+
+    !> The worse of two statuses of a method or a variant: 3 (numerical fault) before 2 (bad
+    !> input) before 4 (ran, but outside the accuracy asked) before 0 (done).
+    pure integer function worse_status(a, b) result(worse)
+        !> One status (0, 2, 3 or 4).
+        integer, intent(in) :: a
+        !> The other.
+        integer, intent(in) :: b
+
+        worse = merge(a, b, severity(a) >= severity(b))
+    contains
+        pure integer function severity(status)
+            integer, intent(in) :: status
+
+            severity = status
+            if (status == stat_accuracy) severity = 1
+        end function severity
+    end function worse_status
 
     !> Append one method's columns (and CPU time) to an outcome; a failure sets the status.
     subroutine add_method(outcome, summary, seconds, error, step, prefix)
@@ -164,7 +198,8 @@ contains
         type(force_summary), intent(in) :: summary
         !> CPU seconds of its contact loop.
         real(dp), intent(in) :: seconds
-        !> Its failure, if any (its status is the method's).
+        !> Its failure, if any (its status is the method's; `stat_accuracy`: it ran whole, outside the
+        !> accuracy asked, and its step column stays 0).
         type(error_type), allocatable, intent(in) :: error
         !> Steps it did (the fault's step when it failed).
         integer(int64), intent(in) :: step
@@ -188,10 +223,13 @@ contains
             fraction = padded('nan', 9)
         end if
         outcome%result = outcome%result//' '//peak(:15)//' '//mean(:15)//' '//rms(:15)//' '//fraction(:9) &
-                         //' '//int_text(status)//' '//int_text(merge(step, 0_int64, status /= 0))
+                         //' '//int_text(status)//' '//int_text(merge(step, 0_int64, status /= 0 .and. &
+                                                                    status /= stat_accuracy))
         outcome%cpu = outcome%cpu//' '//cpu_text(seconds)
-        if (status /= 0 .and. outcome%status == 0) outcome%message = prefix//error%message
-        outcome%status = max(outcome%status, status)
+        ! the first failure's message, or the first failure after methods outside the accuracy
+        if (status /= 0 .and. (outcome%status == 0 .or. (outcome%status == stat_accuracy .and. &
+                                                          status /= stat_accuracy))) outcome%message = prefix//error%message
+        outcome%status = worse_status(outcome%status, status)
     end subroutine add_method
 
     !> An outcome whose every method failed before running (the variant's check).

@@ -10,8 +10,8 @@
 module greenconv_scene_sweep_variant
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
-    use greenconv_core_text, only: int_text, real_text
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
+    use greenconv_core_text, only: int_text, real_text, sci_text
     use greenconv_io_files, only: make_directory, block_rows
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_input, only: scene_type
@@ -84,7 +84,9 @@ contains
     end subroutine take_variant
 
     !> Run variant k's scene: every method, summarised. A fault (bad input, divergence) is
-    !> kept in the outcome.
+    !> kept in the outcome; so is a method that ran whole but whose own error estimate
+    !> (greenconv_scene_stream's `make_run_convolver`) exceeds the scene's `accuracy`, with
+    !> status 4 (`stat_accuracy`), as the driver's runner says it.
     subroutine run_variant(plan, k, scene, outcome)
         type(sweep_plan), intent(in) :: plan
         integer, intent(in) :: k
@@ -96,10 +98,10 @@ contains
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
         character(len=:), allocatable :: accuracy, levels, method, summary
-        real(dp) :: seconds
+        real(dp) :: seconds, estimate
         integer(int64) :: step
         integer :: i, n_c, block
-        logical :: several
+        logical :: several, whole
         type(structure_kind) :: model
 
         outcome%result = ''
@@ -122,10 +124,11 @@ contains
             sinks = variant_sinks(plan, scene, k, method, several, run%points%across)
             seconds = 0.0_dp
             step = 0
+            estimate = 0.0_dp
             if (allocated(failure)) then
                 error = failure
             else
-                call make_run_convolver(run, scene, structure, method, accuracy, error)
+                call make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
                 if (.not. allocated(error)) call start_run(run, scene, error)
                 if (.not. allocated(error)) then
                     call stream_run(run, scene, method, block, sinks, '', seconds, error)
@@ -136,8 +139,12 @@ contains
                     deallocate (run%conv)
                 end if
             end if
+            whole = .not. allocated(error)
+            if (whole .and. estimate > scene%accuracy) call fatal_error(error, 'ran outside the accuracy asked: its ' &
+                //'own error estimate '//sci_text(estimate)//' > accuracy '//sci_text(scene%accuracy) &
+                //' (&convolution accuracy); its row is whole', stat_accuracy)
             call add_method(outcome, sinks%summary, seconds, error, step, 'variant '//int_text(k)//': '//method//': ')
-            levels = levels//band_text(plan, sinks%history, scene, .not. allocated(error))
+            levels = levels//band_text(plan, sinks%history, scene, whole)
             if (allocated(error)) deallocate (error)
         end do
         outcome%result = outcome%result//levels
