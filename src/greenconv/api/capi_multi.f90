@@ -19,7 +19,7 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes
+                                          file_e_modes, box_points
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
@@ -30,6 +30,7 @@ module greenconv_capi_multi
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
     public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
+    public :: start_handle, made, tolerance_of, null_handle
 
     !> What a NULL handle's message says.
     character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
@@ -326,7 +327,8 @@ contains
 
     !> int gc_multi_points(const gc_multi_convolver *conv, int n_points, int *node, double *x,
     !> double *y, char *errmsg, size_t errmsg_len): the node labels and positions of the points
-    !> of a convolver made from a file, in the convolver's order (any output may be NULL).
+    !> of a convolver made from a file (a Green's matrix or a modes file), in the convolver's
+    !> order (any output may be NULL).
     function gc_multi_points(conv, n_points, node, x, y, errmsg, errmsg_len) bind(c, name='gc_multi_points') &
         result(status)
         !> A convolver made by gc_multi_new_file or gc_multi_new_method.
@@ -349,22 +351,24 @@ contains
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: labels(:)
         real(c_double), pointer :: out(:)
+        integer, allocatable :: nodes(:)
+        real(dp), allocatable :: x_points(:), y_points(:)
 
         box => box_at(conv)
         call check_box('gc_multi_points', null_handle, box, int(n_points), error)
-        if (.not. allocated(error)) call check_file_box('gc_multi_points', box, error)
+        if (.not. allocated(error)) call box_points('gc_multi_points', box, nodes, x_points, y_points, error)
         if (.not. allocated(error)) then
             if (c_associated(node)) then
                 call c_f_pointer(node, labels, [n_points])
-                labels(:) = int(box%green%matrix%node, c_int)
+                labels(:) = int(nodes, c_int)
             end if
             if (c_associated(x)) then
                 call c_f_pointer(x, out, [n_points])
-                out(:) = box%green%matrix%x
+                out(:) = x_points
             end if
             if (c_associated(y)) then
                 call c_f_pointer(y, out, [n_points])
-                out(:) = box%green%matrix%y
+                out(:) = y_points
             end if
         end if
         status = finish(error, errmsg, errmsg_len)
