@@ -19,10 +19,10 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, box_points
+                                          file_e_modes, box_points, describe_multi, file_summary
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box
     implicit none
     private
 
@@ -399,6 +399,7 @@ contains
         type(convolver_box), pointer :: box
         real(c_double), pointer :: value_out
         integer(c_int), pointer :: count_out
+        character(len=:), allocatable :: summary
         real(dp) :: worst, mean
         integer :: poles
 
@@ -420,7 +421,8 @@ contains
             call c_f_pointer(n_poles, count_out)
             count_out = int(poles, c_int)
         end if
-        call to_c(box%green%summary(), text, text_len)
+        call file_summary(box, summary)
+        call to_c(summary, text, text_len)
     end function gc_multi_file_summary
 
     !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing); the one
@@ -591,13 +593,15 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
+        character(len=:), allocatable :: description
         integer :: n
 
         box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, error=error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call to_c(describe_box(box, n), text, text_len)
+        call describe_multi(box, n, description)
+        call to_c(description, text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)
             size_out = int(n, c_int)

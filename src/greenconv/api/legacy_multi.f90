@@ -22,9 +22,10 @@ module greenconv_legacy_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, modes_file_box, box_points, set_box_accuracy
+                                          file_e_modes, modes_file_box, box_points, set_box_accuracy, describe_multi, &
+                                          file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box
     use greenconv_legacy, only: gcfree
     implicit none
     private
@@ -302,6 +303,7 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: summary
 
         eworst = 0.0_dp
         emean = 0.0_dp
@@ -311,7 +313,8 @@ contains
         call report(error, ierr, text)
         if (allocated(error)) return
         call file_e_modes(box%green, eworst, emean, npole)
-        text = box%green%summary()
+        call file_summary(box, summary)
+        text = summary
     end subroutine gcmsum
 
     !> Modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
@@ -501,12 +504,14 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: description
 
         nsize = 0
         box => checked('gcmdsc', handle, error=error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        text = describe_box(box, nsize)
+        call describe_multi(box, nsize, description)
+        text = description
     end subroutine gcmdsc
 
     !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).

@@ -27,14 +27,15 @@ module greenconv_scene_sweep_report
 contains
 
     !> The row of variant k in the table: its number, its values, its result.
-    function summary_row(plan, k, result) result(row)
+    subroutine summary_row(plan, k, result, row)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Variant number.
         integer, intent(in) :: k
         !> Its result columns (`variant_outcome%result`).
         character(len=*), intent(in) :: result
-        character(len=:), allocatable :: row
+        !> The row.
+        character(len=:), allocatable, intent(out) :: row
 
         integer :: j
 
@@ -43,7 +44,7 @@ contains
             row = row//'  '//padded(plan%values(k, j)%text, column_width(plan, j))
         end do
         row = row//result
-    end function summary_row
+    end subroutine summary_row
 
     !> Write `<name>_sweep.dat` (one row per variant, in order) and `<name>_sweep_cpu.dat`
     !> (the CPU seconds of each method), each atomically.
@@ -55,7 +56,7 @@ contains
         !> Set when a file cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: names, cpu_names, table, cpu
+        character(len=:), allocatable :: names, cpu_names, table, cpu, nominal, row
         integer :: j, k, b
 
         names = '# variant'
@@ -72,8 +73,8 @@ contains
         end do
         do j = 1, size(plan%methods)
             do b = 1, size(plan%band_centre)
-                names = names//' '//padded('L'//nominal_text(plan%band_centre(b))//'_'//plan%methods(j)%text, &
-                                           level_width)
+                call nominal_text(plan%band_centre(b), nominal)
+                names = names//' '//padded('L'//nominal//'_'//plan%methods(j)%text, level_width)
             end do
         end do
         table = '# greenconv sweep '//plan%name//' of '//plan%file//': '//int_text(size(outcomes)) &
@@ -88,7 +89,8 @@ contains
         cpu = '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method'//new_line('a') &
               //cpu_names
         do k = 1, size(outcomes)
-            table = table//new_line('a')//summary_row(plan, k, outcomes(k)%result)
+            call summary_row(plan, k, outcomes(k)%result, row)
+            table = table//new_line('a')//row
             cpu = cpu//new_line('a')//padded(int_text(k), len('# variant') - 2)//outcomes(k)%cpu
         end do
         call make_directory(plan%output_dir, error)
@@ -258,7 +260,7 @@ contains
 
     !> One method's band levels as table columns: ' ' and the level [dB re 1 N] per band of
     !> the sweep; 'nan' for a method that failed (its history is not whole). Empty without spectra.
-    function band_text(plan, history, scene, ok) result(text)
+    subroutine band_text(plan, history, scene, ok, text)
         !> The sweep (its bands).
         type(sweep_plan), intent(in) :: plan
         !> The method's total contact force [N] at every step (allocated with `spectra`).
@@ -268,7 +270,7 @@ contains
         !> Whether the method completed (else every level is nan).
         logical, intent(in) :: ok
         !> The columns, each after a blank.
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         type(band_spectrum) :: spectrum
         type(error_type), allocatable :: error
@@ -287,13 +289,13 @@ contains
             if (ok .and. .not. allocated(error)) write (level, '(f11.4)') spectrum%level(b)
             text = text//' '//level
         end do
-    end function band_text
+    end subroutine band_text
 
     !> The nominal name of a 1/3-octave band (100, 125, 160, ..., 1000, 1250, ...) from its
     !> exact centre 1000*10^(x/10) Hz: the preferred numbers of IEC 61260-1, three digits.
-    function nominal_text(centre) result(text)
+    subroutine nominal_text(centre, text)
         real(dp), intent(in) :: centre
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         real(dp), parameter :: preferred(0:9) = [1.0_dp, 1.25_dp, 1.6_dp, 2.0_dp, 2.5_dp, 3.15_dp, 4.0_dp, 5.0_dp, &
                                                  6.3_dp, 8.0_dp]
@@ -316,17 +318,22 @@ contains
             if (text(len(text):len(text)) == '.') text = text(:len(text) - 1)
         end if
         if (text(1:1) == '.') text = '0'//text
-    end function nominal_text
+    end subroutine nominal_text
 
-    !> CPU seconds as the CPU file shows them.
-    function cpu_text(seconds) result(text)
+    !> CPU seconds in a fixed buffer.
+    pure function cpu_buffer(seconds) result(buffer)
         real(dp), intent(in) :: seconds
-        character(len=:), allocatable :: text
-
         character(len=12) :: buffer
 
         write (buffer, '(f12.4)') seconds
-        text = trim(adjustl(buffer))
+    end function cpu_buffer
+
+    !> CPU seconds as the CPU file shows them.
+    pure function cpu_text(seconds) result(text)
+        real(dp), intent(in) :: seconds
+        character(len=len_trim(adjustl(cpu_buffer(seconds)))) :: text
+
+        text = adjustl(cpu_buffer(seconds))
     end function cpu_text
 
 end module greenconv_scene_sweep_report

@@ -97,7 +97,7 @@ contains
         type(contact_run) :: run
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
-        character(len=:), allocatable :: accuracy, levels, method, summary
+        character(len=:), allocatable :: accuracy, levels, method, summary, bands
         real(dp) :: seconds, estimate
         integer(int64) :: step
         integer :: i, n_c, block
@@ -144,7 +144,8 @@ contains
                 //'own error estimate '//sci_text(estimate)//' > accuracy '//sci_text(scene%accuracy) &
                 //' (&convolution accuracy); its row is whole', stat_accuracy)
             call add_method(outcome, sinks%summary, seconds, error, step, 'variant '//int_text(k)//': '//method//': ')
-            levels = levels//band_text(plan, sinks%history, scene, whole)
+            call band_text(plan, sinks%history, scene, whole, bands)
+            levels = levels//bands
             if (allocated(error)) deallocate (error)
         end do
         outcome%result = outcome%result//levels
@@ -169,7 +170,7 @@ contains
         sinks%binary = scene%output_format == 'binary'
         sinks%path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method &
                      //merge('.bin', '.dat', sinks%binary)
-        title = history_title(plan, scene, k, method)
+        call history_title(plan, scene, k, method, title)
         if (several) then
             sinks%header = multi_contact_header(title, across)
             sinks%n_columns = merge(8, 7, across)
@@ -184,12 +185,12 @@ contains
 
     !> First header line of a variant's history file: the sweep, the variant and its values,
     !> the method, the steps; with `output_every` > 1, which steps the rows are.
-    function history_title(plan, scene, k, method) result(line)
+    subroutine history_title(plan, scene, k, method, line)
         type(sweep_plan), intent(in) :: plan
         type(scene_type), intent(in) :: scene
         integer, intent(in) :: k
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         integer :: j
 
@@ -202,6 +203,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end function history_title
+    end subroutine history_title
 
 end module greenconv_scene_sweep_variant
