@@ -804,8 +804,11 @@ contains
 
     !> Check the handle and method pointers of a constructor and clear *conv.
     subroutine start_handle(caller, conv, method, error)
+        !> Name of the front-door function, first word of a message.
         character(len=*), intent(in) :: caller
+        !> The caller's `gc_multi_convolver **` (set to NULL here) and its method string.
         type(c_ptr), intent(in) :: conv, method
+        !> Set (`stat_input`) when either is NULL.
         type(error_type), allocatable, intent(out) :: error
 
         type(c_ptr), pointer :: handle
@@ -824,7 +827,9 @@ contains
 
     !> The truncation fraction of C build options (the library's default for NULL).
     function tolerance_of(options) result(tol)
+        !> A `const gc_build_options *`, or NULL.
         type(c_ptr), intent(in) :: options
+        !> Its truncation fraction of max |g_ij|.
         real(dp) :: tol
 
         type(gc_build_options), pointer :: settings
@@ -837,10 +842,15 @@ contains
 
     !> Store a new box at *conv (when made) and return the status with the message.
     function made(box, conv, error, errmsg, errmsg_len) result(status)
+        !> The new box, or null.
         type(convolver_box), pointer, intent(in) :: box
+        !> The caller's `gc_multi_convolver **`, and its message buffer (or NULL).
         type(c_ptr), intent(in) :: conv, errmsg
+        !> The constructor's failure, if any.
         type(error_type), allocatable, intent(in) :: error
+        !> Size of the message buffer [bytes].
         integer(c_size_t), intent(in) :: errmsg_len
+        !> 0, or the failure's status.
         integer(c_int) :: status
 
         type(c_ptr), pointer :: handle

@@ -182,14 +182,12 @@ contains
         !> The other.
         integer, intent(in) :: b
 
-        worse = merge(a, b, severity(a) >= severity(b))
-    contains
-        pure integer function severity(status)
-            integer, intent(in) :: status
+        integer :: rank_a, rank_b
 
-            severity = status
-            if (status == stat_accuracy) severity = 1
-        end function severity
+        ! status 4 ranks between 0 and 2
+        rank_a = merge(1, a, a == stat_accuracy)
+        rank_b = merge(1, b, b == stat_accuracy)
+        worse = merge(a, b, rank_a >= rank_b)
     end function worse_status
 
     !> Append one method's columns (and CPU time) to an outcome; a failure sets the status.
