@@ -34,7 +34,7 @@ module greenconv_capi_multi
 
     !> What a NULL handle's message says.
     character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
-                                                 //'gc_multi_new_samples or gc_multi_new_file'
+                                                 //'gc_multi_new_samples, gc_multi_new_file or gc_multi_new_modes_file'
 
 contains
 

@@ -34,7 +34,7 @@ module greenconv_legacy_multi
     public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum, gcmmfl, gcmest, gcmacc
 
     !> What a 0 handle's message says.
-    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP or GCMFIL'
+    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP, GCMFIL or GCMMFL'
 
 contains
 
