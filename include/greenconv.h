@@ -11,9 +11,9 @@
  * Conventions.
  * - Functions return a status: GC_OK (0) on success, GC_ERROR_INPUT (2) for a bad value,
  *   file or NULL pointer, GC_ERROR_NUMERICAL (3) for a numerical failure (a failed fit, a
- *   contact run that diverged); gc_run_scene also GC_ACCURACY (4), a run outside the
- *   accuracy asked. These are the status codes of the library's Fortran error
- *   type (greenconv_core_error).
+ *   contact run that diverged); gc_run_scene and the multi-point doors also GC_ACCURACY
+ *   (4), a run outside the accuracy asked. These are the status codes of the library's
+ *   Fortran error type (greenconv_core_error).
  * - Functions that take `char *errmsg, size_t errmsg_len` write a one-line message there on
  *   failure ("" on success): the whole message when errmsg_len exceeds its length, else its
  *   first errmsg_len - 1 bytes; always NUL-terminated when errmsg_len >= 1. errmsg may be
@@ -79,9 +79,13 @@ enum gc_status {
     GC_OK = 0,              /**< success */
     GC_ERROR_INPUT = 2,     /**< bad input: a value out of range, an unreadable file, a NULL handle */
     GC_ERROR_NUMERICAL = 3, /**< numerical failure: overflow, divergence, failed fit */
-    GC_ACCURACY = 4         /**< gc_run_scene only: the run ended and wrote all its files, but a method's own
-                                 accuracy estimate exceeds the scene's `accuracy` (the message and the summary
-                                 line name the method, the estimate and what to do); 2 and 3 take priority */
+    GC_ACCURACY = 4         /**< ran, but outside the accuracy asked: gc_run_scene when the run ended and wrote
+                                 all its files but a method's own accuracy estimate exceeds the scene's
+                                 `accuracy` (the message and the summary line name the method, the estimate and
+                                 what to do; 2 and 3 take priority); gc_multi_set_accuracy,
+                                 gc_multi_contact_start and gc_multi_run_contact when the host asked an accuracy
+                                 that the multi-point convolver's own estimate (gc_multi_estimate) exceeds, their
+                                 results whole */
 };
 
 /** Opaque convolver: one structure's Green's function and one force history. */
@@ -321,7 +325,7 @@ int gc_run_scene(const char *path, char *errmsg, size_t errmsg_len);
  * W0 the N_c x N_c instant compliance (zero for the explicit methods "modal"/"recursive",
  * "direct" and "fft" on modal g; non-zero for "exact", solved by Newton at every step).
  *
- * Conventions as above (status GC_OK / GC_ERROR_INPUT / GC_ERROR_NUMERICAL, a message in
+ * Conventions as above (status GC_OK / GC_ERROR_INPUT / GC_ERROR_NUMERICAL / GC_ACCURACY, a message in
  * errmsg on every call, NULL checked). Arrays are laid out first index fastest (as Fortran
  * stores them):
  *     shape[k*n_points + i]                 = phi_ik, mode k at point i
@@ -461,7 +465,8 @@ int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iter
                         double divergence_bound, char *errmsg, size_t errmsg_len);
 
 /** Reset the convolver and start a contact run stepped by gc_multi_contact_step: per point,
- *  k_c [N/m^p] > 0, p > 0 and preload F0 [N] >= 0 (the message names a bad point). */
+ *  k_c [N/m^p] > 0, p > 0 and preload F0 [N] >= 0 (the message names a bad point). GC_ACCURACY
+ *  when the run started but the method is outside the accuracy asked (gc_multi_set_accuracy). */
 int gc_multi_contact_start(gc_multi_convolver *conv, int n_points, const double *k_c, const double *p,
                            const double *preload, char *errmsg, size_t errmsg_len);
 /** The next step: road heights u_r,i [m] in; displacements, forces and compressions out
@@ -470,10 +475,49 @@ int gc_multi_contact_start(gc_multi_convolver *conv, int n_points, const double 
 int gc_multi_contact_step(gc_multi_convolver *conv, int n_points, const double *road, double *displacement,
                           double *force, double *compression, char *errmsg, size_t errmsg_len);
 /** A whole run over n_steps (the convolver reset first); outputs 0 from a fault on
- *  (compression may be NULL). */
+ *  (compression may be NULL). GC_ACCURACY when the run is whole but the method is outside the
+ *  accuracy asked (gc_multi_set_accuracy). */
 int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps, const double *k_c,
                          const double *p, const double *preload, const double *road, double *displacement,
                          double *force, double *compression, char *errmsg, size_t errmsg_len);
+
+/**
+ * A multi-point convolver on a universal file of normal modes from an FE model (path: nodes
+ * with their coordinates in dataset 15 or 2411, one dataset 55 per mode: analysis type 2,
+ * natural frequency, modal mass (0: mass-normalised shapes), viscous damping ratio; shapes at
+ * the nodes), the same convolver as a scene with `&structure model = 'modes_file'` on every
+ * node of the file: its points are the file's nodes in the file's order (gc_multi_points);
+ * the shapes are taken in `direction` (1, 2, 3 for X, Y, Z, negative for the opposite sense);
+ * damping_ratio in [0, 1) applies to the modes the file gives none; the modes up to f_band [Hz]
+ * (0: the Nyquist frequency 1/(2*dt)) are stepped, those above are not (gc_multi_describe says
+ * how many and their share of the static flexibility at the points). method: "modal"
+ * (= "recursive"), "exact", "direct" or "fft"; options: truncation_tol, NULL for the
+ * defaults. Stepped from the host's loop with gc_multi_contact_start/_step (or
+ * gc_multi_history/_push) as every multi-point convolver. GC_ERROR_INPUT for a bad argument or
+ * an unreadable or malformed file, with the reader's message (the file, dataset, record and
+ * field), or no mode in the band.
+ */
+int gc_multi_new_modes_file(const char *path, int direction, double damping_ratio, double f_band,
+                            const char *method, double dt, int n_steps, const gc_build_options *options,
+                            gc_multi_convolver **conv, char *errmsg, size_t errmsg_len);
+
+/**
+ * The method's own estimate of its relative error, relative to the largest |g_ij|, into
+ * *estimate: 0 for modes given exactly (gc_multi_new_modes, gc_multi_new_modes_file), E of
+ * eq. (7) of the identified modes (gc_multi_new_file with "modal"), what a sampled kernel
+ * leaves out ("direct"/"fft" on a band-limited file). GC_ERROR_INPUT for a NULL pointer.
+ */
+int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg, size_t errmsg_len);
+
+/**
+ * The relative accuracy the host asks of the convolver's runs (> 0; 0: none, the default).
+ * Returns GC_ACCURACY at once (the accuracy kept) when gc_multi_estimate exceeds it; from then
+ * on gc_multi_contact_start and gc_multi_run_contact return GC_ACCURACY (their results whole,
+ * the run started) with a message naming the estimate, the accuracy and what to do;
+ * gc_multi_contact_step returns GC_OK for the steps. GC_ERROR_INPUT for a negative or
+ * non-finite accuracy.
+ */
+int gc_multi_set_accuracy(gc_multi_convolver *conv, double accuracy, char *errmsg, size_t errmsg_len);
 
 #ifdef __cplusplus
 }

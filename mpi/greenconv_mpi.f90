@@ -32,7 +32,7 @@ program greenconv_mpi
     character(len=*), parameter :: usage = 'usage: mpirun -np N greenconv-mpi [--check] [--quiet] SWEEP.nml'
     character(len=:), allocatable :: path, argument
     logical :: check_only, quiet
-    integer :: i, length, rank, ranks, status
+    integer :: i, length, rank, ranks, status, severity
 
     call MPI_Init()
     call MPI_Comm_rank(MPI_COMM_WORLD, rank)
@@ -64,11 +64,41 @@ program greenconv_mpi
     else if (rank == 0) then
         call run_alone(path, check_only, quiet, status)
     end if
-    call MPI_Allreduce(MPI_IN_PLACE, status, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
+    ! The worst status over the ranks: a failure (3 numerical, then 2 input) before 4 (ran outside
+    ! the accuracy asked) before 0, so the statuses are ranked by severity, not by value.
+    severity = severity_of(status)
+    call MPI_Allreduce(MPI_IN_PLACE, severity, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
+    status = status_of_severity(severity)
     call MPI_Finalize()
     if (status /= 0) stop status, quiet=.true.
 
 contains
+
+    !> The rank of an exit status by severity: 0 success, 1 outside the accuracy (4), 2 bad
+    !> input (2), 3 numerical fault (3); any other status counts as a fault.
+    pure integer function severity_of(status)
+        integer, intent(in) :: status
+
+        select case (status)
+        case (0)
+            severity_of = 0
+        case (4)
+            severity_of = 1
+        case (2)
+            severity_of = 2
+        case default
+            severity_of = 3
+        end select
+    end function severity_of
+
+    !> The exit status of a severity from `severity_of`.
+    pure integer function status_of_severity(severity)
+        integer, intent(in) :: severity
+
+        integer, parameter :: statuses(0:3) = [0, 4, 2, 3]
+
+        status_of_severity = statuses(max(0, min(3, severity)))
+    end function status_of_severity
 
     !> A scene that is not a sweep, on this rank alone.
     subroutine run_alone(path, check_only, quiet, status)

@@ -50,6 +50,7 @@ program greenconv_tests
     use test_accuracystatus_mod, only: collect_accuracystatus
     use test_polyref_mod, only: collect_polyref
     use test_modesfile_mod, only: collect_modesfile
+    use test_checkcost_mod, only: collect_checkcost
     implicit none
 
     integer :: n_passed, n_failed
@@ -97,7 +98,8 @@ program greenconv_tests
                        new_testsuite('multiorder', collect_multiorder), &
                        new_testsuite('accuracystatus', collect_accuracystatus), &
                        new_testsuite('modesfile', collect_modesfile), &
-                       new_testsuite('longrun', collect_longrun)], output_unit, n_passed, n_failed, valid)
+                       new_testsuite('longrun', collect_longrun), &
+                       new_testsuite('checkcost', collect_checkcost)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.

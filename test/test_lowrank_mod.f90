@@ -5,7 +5,9 @@
 !> Tolerances, each against something computed another way:
 !> - Woodbury against dgesv on the same system I + U*V^T*diag(t) (random, conditioned below
 !>   1e3, a third of the slopes zero as off the active set): 1e-12 of max|s|, a few hundred
-!>   roundings of an O(r) elimination;
+!>   roundings of an O(r) elimination; the same with the kept factors solved again, and with 5
+!>   active points, where the system on the active set is the cheaper (its path checked), for
+!>   two sets of slopes (the kept factors must not serve the second);
 !> - the factors: rank found at most the number of modes (mode shapes sampled over a short
 !>   patch are nearly dependent: 11 of 34 tyre modes leave a remainder below round-off) and
 !>   |W0 - U*V^T| at most 1e-13 of max|W0| (the elimination stops at 1e-14 of it);
@@ -47,7 +49,7 @@ contains
     subroutine collect_lowrank(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
-        testsuite = [new_unittest('Woodbury equals dgesv on I + U V^T diag(t)', test_woodbury), &
+        testsuite = [new_unittest('Woodbury and active-set solves equal dgesv on I + U V^T diag(t)', test_woodbury), &
                      new_unittest('modal W0 factored: rank at most N_m, U V^T equals W0', test_factors), &
                      new_unittest('tyre run, 120 points: low-rank forces equal the dense run', test_run), &
                      new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback), &
@@ -82,10 +84,8 @@ contains
 
         integer, parameter :: n = 60, r = 7
         type(lowrank_compliance) :: factors
-        type(lowrank_compliance) :: dense
         type(random_stream) :: stream
-        type(error_type), allocatable :: failure
-        real(dp) :: weight0(n, n), slopes(n), b(n), by_woodbury(n), by_lu(n)
+        real(dp) :: weight0(n, n), slopes(n), b(n)
         integer :: i, k
 
         stream = random_stream(25)
@@ -105,20 +105,49 @@ contains
         factors%low_rank = .true.
         factors%rank = r
         weight0 = matmul(factors%left, transpose(factors%right))
-        dense%checked = .true.
-        call newton_solve(factors, weight0, slopes, b, by_woodbury, failure)
-        call check(error, .not. allocated(failure), 'Woodbury solve failed')
+        ! 40 of 60 points active: M of Woodbury (40*49 + 343/3 operations against 40^3/3).
+        call compare_with_dense('40 active, Woodbury', factors, weight0, slopes, b, .false., error)
         if (allocated(error)) return
-        call newton_solve(dense, weight0, slopes, b, by_lu, failure)
-        call check(error, .not. allocated(failure), 'dense solve failed')
+        ! Solved again with the same slopes: the factors kept serve.
+        call compare_with_dense('40 active, factors kept', factors, weight0, slopes, 2*b, .false., error)
         if (allocated(error)) return
-        call note('max|s_woodbury - s_lu|/max|s|', maxval(abs(by_woodbury - by_lu))/maxval(abs(by_lu)))
-        call check(error, maxval(abs(by_woodbury - by_lu)), 0.0_dp, 'Woodbury against dgesv', &
-                   thr=1.0e-12_dp*maxval(abs(by_lu)))
+        ! 5 active points: the system on the active set (125/3 against 5*49 + 343/3).
+        where (slopes(6:) /= 0.0_dp) slopes(6:) = 0.0_dp
+        call compare_with_dense('5 active, on the active set', factors, weight0, slopes, b, .true., error)
+        if (allocated(error)) return
+        ! The same active set, other slopes: factored again, not the kept factors.
+        slopes(1:5) = 3*slopes(1:5)
+        call compare_with_dense('5 active, new slopes', factors, weight0, slopes, b, .true., error)
         if (allocated(error)) return
         call check(error, maxval(abs(apply_compliance(factors, weight0, b) - matmul(weight0, b))), 0.0_dp, &
                    'U*(V^T*x) against W0*x', thr=1.0e-13_dp*maxval(abs(matmul(weight0, b))))
     end subroutine test_woodbury
+
+    !> The low-rank Newton step against dgesv on the dense I + W0*diag(t), and the path taken.
+    subroutine compare_with_dense(case, factors, weight0, slopes, b, on_active_set, error)
+        character(len=*), intent(in) :: case
+        type(lowrank_compliance), intent(inout) :: factors
+        real(dp), intent(in) :: weight0(:, :), slopes(:), b(:)
+        logical, intent(in) :: on_active_set
+        type(test_error), allocatable, intent(out) :: error
+
+        type(lowrank_compliance) :: dense
+        type(error_type), allocatable :: failure
+        real(dp) :: by_lowrank(size(b)), by_lu(size(b))
+
+        call newton_solve(factors, weight0, slopes, b, by_lowrank, failure)
+        call check(error, .not. allocated(failure), case//': low-rank solve failed')
+        if (allocated(error)) return
+        call check(error, factors%newton%on_active_set .eqv. on_active_set, case//': not the path expected')
+        if (allocated(error)) return
+        dense%checked = .true.
+        call newton_solve(dense, weight0, slopes, b, by_lu, failure)
+        call check(error, .not. allocated(failure), case//': dense solve failed')
+        if (allocated(error)) return
+        call note(case//': max|s_lowrank - s_lu|/max|s|', maxval(abs(by_lowrank - by_lu))/maxval(abs(by_lu)))
+        call check(error, maxval(abs(by_lowrank - by_lu)), 0.0_dp, case//': against dgesv', &
+                   thr=1.0e-12_dp*maxval(abs(by_lu)))
+    end subroutine compare_with_dense
 
     subroutine test_factors(error)
         type(test_error), allocatable, intent(out) :: error

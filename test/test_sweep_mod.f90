@@ -4,13 +4,15 @@
 !> table's row, the record's text, and the messages for a bad &sweep group or option. Serial
 !> runs of small sweeps: the band level columns against a tone's closed form and against the
 !> spectrum of the history file the histories option writes; history files only when asked,
-!> named and decimated; the content key following an edited road file. The runs on 1 and
+!> named and decimated; the content key following an edited road file; a variant whose
+!> method runs outside the accuracy asked (status 4 in its row and of the sweep, a worse
+!> status of another variant first). The runs on 1 and
 !> 2 MPI ranks, resume and failures are checked by tools/test_sweep.sh (make sweep-test).
 module test_sweep_mod
     use, intrinsic :: iso_fortran_env, only: int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
     use scene_text_mod, only: write_text
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, stat_input, stat_accuracy
     use greenconv_core_kinds, only: dp
     use greenconv_io_files, only: make_directory
     use greenconv_io_columns, only: read_line
@@ -42,7 +44,9 @@ contains
                      new_unittest('histories: only when asked, named, decimated, renumbered', test_histories), &
                      new_unittest('&sweep options: bad values and unresolvable bands refused', test_bad_options), &
                      new_unittest('content key: an edited road file reruns its variants', test_file_key), &
-                     new_unittest('a road file edited between variants: the later ones refused', test_edited_file)]
+                     new_unittest('a road file edited between variants: the later ones refused', test_edited_file), &
+                     new_unittest('a variant outside its accuracy: status 4 in its row, the sweep ends 4', &
+                                  test_accuracy_status)]
     end subroutine collect_sweep
 
     !> A small SDOF sweep scene with the given &sweep group.
@@ -164,6 +168,7 @@ contains
         type(sweep_plan) :: plan
         type(error_type), allocatable :: failure
         type(variant_outcome) :: outcome, back
+        character(len=:), allocatable :: row
         logical :: ok
 
         call read_text('row.nml', sweep_scene("&sweep road.amplitude = 1.0e-3, 2.5e-3 /"), plan, failure)
@@ -173,8 +178,8 @@ contains
         outcome%cpu = ' 0.0100'
         outcome%status = 3
         outcome%message = 'diverged'
-        call check(error, summary_row(plan, 2, outcome%result) == '2        2.5e-3         1.0 2.0 3.0 0.5 0 0', &
-                   'the row: '//summary_row(plan, 2, outcome%result))
+        call summary_row(plan, 2, outcome%result, row)
+        call check(error, row == '2        2.5e-3         1.0 2.0 3.0 0.5 0 0', 'the row: '//row)
         if (allocated(error)) return
         call outcome_from_text(outcome_text(outcome), back, ok)
         call check(error, ok .and. back%result == outcome%result .and. back%cpu == outcome%cpu .and. &
@@ -423,6 +428,71 @@ contains
         call check(error, what == variant_ran .and. outcome%status == 0, 'the file restored, variant 3 runs: ' &
                    //outcome%message)
     end subroutine test_edited_file
+
+    !> One mode (100 Hz, xi = 9.4e-3) measured from 0 to 500 Hz by 1 Hz, run at dt = 1 ms:
+    !> `direct` on g from the inverse FFT of the band estimates its own error at about 7e-2
+    !> (greenconv_conv_builder's `kernel_estimate`; test_accuracystatus_mod checks that it is
+    !> the kernel's real error), `exact` on the identified mode about 0. Swept over
+    !> `convolution.accuracy = 0.5, 1.0e-3`: variant 2's direct runs whole but outside (status 4
+    !> in its row, step 0, its numbers those of variant 1), its exact 0, and the sweep ends with
+    !> status 4. With a bad variant beside it (contact exponent -1), the sweep ends with 2.
+    subroutine test_accuracy_status(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: nl = new_line('a')
+        type(error_type), allocatable :: failure
+        character(len=:), allocatable :: text, header, row_1, row_2
+        character(len=32) :: words(14), first(14)
+        real(dp) :: omega0, omega
+        integer :: unit, l
+
+        call make_directory(scratch, failure)
+        if (allocated(failure)) then
+            call check(error, .false., 'scratch directory: '//failure%message)
+            return
+        end if
+        omega0 = 2.0_dp*acos(-1.0_dp)*100.0_dp
+        open (newunit=unit, file=scratch//'/one_mode.frf', status='replace', action='write')
+        write (unit, '(a)') '# one mode, 100 Hz, xi = 9.4e-3: f [Hz], Re G, Im G [m/N]'
+        do l = 0, 500
+            omega = 2.0_dp*acos(-1.0_dp)*l
+            write (unit, '(f6.1,2es25.16e3)') real(l, dp), 1.0_dp/cmplx(omega0**2 - omega**2, &
+                                                                         2.0_dp*9.4e-3_dp*omega0*omega, dp)
+        end do
+        close (unit)
+        text = "&scene task = 'sweep', name = 'acc', output_dir = '"//scratch//"/out', dt = 1.0e-3, " &
+               //"n_steps = 100 /"//nl//"&structure model = 'frf_file', frf_file = '"//scratch//"/one_mode.frf' /" &
+               //nl//"&road profile = 'sine', amplitude = 1.0e-4, omega = 300.0 /"//nl &
+               //"&contact stiffness = 1.0e6, exponent = 1.5, preload = 10.0 /"//nl &
+               //"&convolution methods = 'direct', 'exact' /"//nl
+        call run_fresh('acc', text//"&sweep convolution.accuracy = 0.5, 1.0e-3 /"//nl, failure)
+        call check(error, allocated(failure), 'a variant outside its accuracy: the sweep ends with an error')
+        if (allocated(error)) return
+        call check(error, failure%stat == stat_accuracy .and. index(failure%message, 'outside the accuracy') > 0, &
+                   'status 4 saying why, found '//failure%message)
+        if (allocated(error)) return
+        call table_lines(scratch//'/out/acc_sweep.dat', header, row_1, 1)
+        call table_lines(scratch//'/out/acc_sweep.dat', header, row_2, 2)
+        read (row_1, *) first
+        read (row_2, *) words
+        call check(error, all(first([7, 8, 13, 14]) == ['0', '0', '0', '0']), 'variant 1 (accuracy 0.5): direct and ' &
+                   //'exact status 0, found '//row_1)
+        if (allocated(error)) return
+        call check(error, all(words([7, 8, 13, 14]) == ['4', '0', '0', '0']), 'variant 2 (accuracy 1e-3): direct ' &
+                   //'status 4 with step 0, exact 0, found '//row_2)
+        if (allocated(error)) return
+        call check(error, all(words(3:6) == first(3:6)), 'direct outside its accuracy still ran whole: its row''s ' &
+                   //'numbers are those of variant 1')
+        if (allocated(error)) return
+        call check(error, index(header, 'status_direct') > 0, 'a status column per method: '//header)
+        if (allocated(error)) return
+        call run_fresh('accbad', replaced_all(text, "name = 'acc'", "name = 'accbad'") &
+                       //"&sweep convolution.accuracy = 1.0e-3, contact.exponent = 1.5, -1.0 /"//nl, failure)
+        call check(error, allocated(failure), 'a variant outside and a bad one: an error')
+        if (allocated(error)) return
+        call check(error, failure%stat == stat_input, 'the bad variant''s status 2 before status 4, found ' &
+                   //failure%message)
+    end subroutine test_accuracy_status
 
     !> Run a sweep serially; what its report says it skipped ('N already done').
     function skipped_line(path) result(said)

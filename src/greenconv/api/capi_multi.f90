@@ -19,10 +19,10 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes
+                                          file_e_modes, box_points, describe_multi, file_summary
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box
     implicit none
     private
 
@@ -30,10 +30,11 @@ module greenconv_capi_multi
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
     public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
+    public :: start_handle, made, tolerance_of, null_handle
 
     !> What a NULL handle's message says.
     character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
-                                                 //'gc_multi_new_samples or gc_multi_new_file'
+                                                 //'gc_multi_new_samples, gc_multi_new_file or gc_multi_new_modes_file'
 
 contains
 
@@ -326,7 +327,8 @@ contains
 
     !> int gc_multi_points(const gc_multi_convolver *conv, int n_points, int *node, double *x,
     !> double *y, char *errmsg, size_t errmsg_len): the node labels and positions of the points
-    !> of a convolver made from a file, in the convolver's order (any output may be NULL).
+    !> of a convolver made from a file (a Green's matrix or a modes file), in the convolver's
+    !> order (any output may be NULL).
     function gc_multi_points(conv, n_points, node, x, y, errmsg, errmsg_len) bind(c, name='gc_multi_points') &
         result(status)
         !> A convolver made by gc_multi_new_file or gc_multi_new_method.
@@ -349,22 +351,24 @@ contains
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: labels(:)
         real(c_double), pointer :: out(:)
+        integer, allocatable :: nodes(:)
+        real(dp), allocatable :: x_points(:), y_points(:)
 
         box => box_at(conv)
         call check_box('gc_multi_points', null_handle, box, int(n_points), error)
-        if (.not. allocated(error)) call check_file_box('gc_multi_points', box, error)
+        if (.not. allocated(error)) call box_points('gc_multi_points', box, nodes, x_points, y_points, error)
         if (.not. allocated(error)) then
             if (c_associated(node)) then
                 call c_f_pointer(node, labels, [n_points])
-                labels(:) = int(box%green%matrix%node, c_int)
+                labels(:) = int(nodes, c_int)
             end if
             if (c_associated(x)) then
                 call c_f_pointer(x, out, [n_points])
-                out(:) = box%green%matrix%x
+                out(:) = x_points
             end if
             if (c_associated(y)) then
                 call c_f_pointer(y, out, [n_points])
-                out(:) = box%green%matrix%y
+                out(:) = y_points
             end if
         end if
         status = finish(error, errmsg, errmsg_len)
@@ -395,6 +399,7 @@ contains
         type(convolver_box), pointer :: box
         real(c_double), pointer :: value_out
         integer(c_int), pointer :: count_out
+        character(len=:), allocatable :: summary
         real(dp) :: worst, mean
         integer :: poles
 
@@ -416,7 +421,8 @@ contains
             call c_f_pointer(n_poles, count_out)
             count_out = int(poles, c_int)
         end if
-        call to_c(box%green%summary(), text, text_len)
+        call file_summary(box, summary)
+        call to_c(summary, text, text_len)
     end function gc_multi_file_summary
 
     !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing); the one
@@ -587,13 +593,15 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
+        character(len=:), allocatable :: description
         integer :: n
 
         box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, error=error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call to_c(describe_box(box, n), text, text_len)
+        call describe_multi(box, n, description)
+        call to_c(description, text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)
             size_out = int(n, c_int)
@@ -796,8 +804,11 @@ contains
 
     !> Check the handle and method pointers of a constructor and clear *conv.
     subroutine start_handle(caller, conv, method, error)
+        !> Name of the front-door function, first word of a message.
         character(len=*), intent(in) :: caller
+        !> The caller's `gc_multi_convolver **` (set to NULL here) and its method string.
         type(c_ptr), intent(in) :: conv, method
+        !> Set (`stat_input`) when either is NULL.
         type(error_type), allocatable, intent(out) :: error
 
         type(c_ptr), pointer :: handle
@@ -816,7 +827,9 @@ contains
 
     !> The truncation fraction of C build options (the library's default for NULL).
     function tolerance_of(options) result(tol)
+        !> A `const gc_build_options *`, or NULL.
         type(c_ptr), intent(in) :: options
+        !> Its truncation fraction of max |g_ij|.
         real(dp) :: tol
 
         type(gc_build_options), pointer :: settings
@@ -829,10 +842,15 @@ contains
 
     !> Store a new box at *conv (when made) and return the status with the message.
     function made(box, conv, error, errmsg, errmsg_len) result(status)
+        !> The new box, or null.
         type(convolver_box), pointer, intent(in) :: box
+        !> The caller's `gc_multi_convolver **`, and its message buffer (or NULL).
         type(c_ptr), intent(in) :: conv, errmsg
+        !> The constructor's failure, if any.
         type(error_type), allocatable, intent(in) :: error
+        !> Size of the message buffer [bytes].
         integer(c_size_t), intent(in) :: errmsg_len
+        !> 0, or the failure's status.
         integer(c_int) :: status
 
         type(c_ptr), pointer :: handle

@@ -63,6 +63,16 @@ module greenconv_api_handle
         !> The Green's matrix file the convolver was built from, read and identified (its points:
         !> node labels, x_i, y_i [m]); unallocated for a convolver made otherwise.
         type(green_structure), allocatable :: green
+        !> The method's own estimate of its relative error (greenconv_conv_builder,
+        !> greenconv_conv_green_file), 0 when it has none; compared with `accuracy`.
+        real(dp) :: estimate = 0.0_dp
+        !> Relative accuracy the host asked (gc_multi_set_accuracy, GCMACC); 0: none asked.
+        real(dp) :: accuracy = 0.0_dp
+        !> Node labels of the points of a convolver made from a modes file (gc_multi_new_modes_file,
+        !> GCMMFL); unallocated otherwise.
+        integer, allocatable :: node(:)
+        !> x_i and y_i [m] of those nodes.
+        real(dp), allocatable :: node_x(:), node_y(:)
     end type convolver_box
 
 contains

@@ -4,9 +4,11 @@
 !>
 !> A multi-point convolver is an `INTEGER*8` handle (0: none), made by `GCMMOD` (poles,
 !> residues and mode shapes at the points), `GCMSMP` (samples g_ij(m*dt)) or `GCMFIL` (a
-!> universal file of a Green's matrix; `GCMMTH` another method on the file already read),
-!> freed by `GCMFRE`. Every routine returns `IERR` (0 success, 2 bad input or a 0 handle, 3 a step
-!> that diverged or did not converge) and a message `ERRMSG` (blank on success). Arrays are
+!> universal file of a Green's matrix; `GCMMTH` another method on the file already read) or
+!> `GCMMFL` (a universal file of normal modes, datasets 15/2411 and 55), freed by `GCMFRE`.
+!> Every routine returns `IERR` (0 success, 2 bad input or a 0 handle, 3 a step that diverged
+!> or did not converge, 4 a run outside the accuracy asked with `GCMACC`: the method's own
+!> estimate, `GCMEST`, exceeds it) and a message `ERRMSG` (blank on success). Arrays are
 !> Fortran's: SHAPE(NC, NMODE), G(NSAMP, NC, NC) with G(M+1, I, J) = g_ij(M*DT),
 !> ROAD(NSTEP, NC), W0(NC, NC). SI units: poles [rad/s], g [m/(N*s)], k_c [N/m^p], forces [N],
 !> displacements and heights [m].
@@ -20,18 +22,19 @@ module greenconv_legacy_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes
+                                          file_e_modes, modes_file_box, box_points, set_box_accuracy, describe_multi, &
+                                          file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box
     use greenconv_legacy, only: gcfree
     implicit none
     private
 
     public :: gcmmod, gcmsmp, gcmplt, gcmfre, gcmnpt, gcmhis, gcmpsh, gcmw0, gcmrst, gcmdsc
-    public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum
+    public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum, gcmmfl, gcmest, gcmacc
 
     !> What a 0 handle's message says.
-    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP or GCMFIL'
+    character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP, GCMFIL or GCMMFL'
 
 contains
 
@@ -146,6 +149,81 @@ contains
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmfil
 
+    !> Multi-point convolver on a universal file of normal modes (nodes in dataset 15 or 2411,
+    !> one dataset 55 per mode): every node a point (GCMPTS gives them), the modes up to FBAND
+    !> stepped, as a scene's `&structure model = 'modes_file'`.
+    subroutine gcmmfl(path, idir, xi, fband, method, dt, nstep, tol, handle, ierr, errmsg)
+        !> Path of the universal file (trailing blanks ignored).
+        character(len=*), intent(in) :: path
+        !> Direction of the shapes at the contact: 1, 2, 3 for X, Y, Z, negative for the opposite sense.
+        integer, intent(in) :: idir
+        !> Viscous damping ratio of the modes the file gives none, in [0, 1).
+        real(dp), intent(in) :: xi
+        !> Highest natural frequency stepped [Hz], or 0 for the Nyquist frequency 1/(2*DT).
+        real(dp), intent(in) :: fband
+        !> Method: 'modal' (= 'recursive'), 'exact', 'direct' or 'fft' (any case).
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Truncation fraction of max |g_ij| for 'direct' and 'fft', in [0, 1) (0.01: the paper's).
+        real(dp), intent(in) :: tol
+        !> Handle of the new convolver on the file's modes; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input or file (the reader's message).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        call modes_file_box('gcmmfl', trim(path), idir, xi, fband, trim(method), dt, tol, nstep, box, error)
+        call new_handle(box, handle, error, ierr, errmsg)
+    end subroutine gcmmfl
+
+    !> The method's own estimate of its relative error (0 for modes given exactly, E of eq. (7)
+    !> of an identified model, what a sampled kernel leaves out).
+    subroutine gcmest(handle, est, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> The estimate, relative to the largest |g_ij| (0 on failure).
+        real(dp), intent(out) :: est
+        !> Status: 0, or 2 for a 0 handle.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        est = 0.0_dp
+        box => checked('gcmest', handle, error=error)
+        if (.not. allocated(error)) est = box%estimate
+        call report(error, ierr, errmsg)
+    end subroutine gcmest
+
+    !> The relative accuracy the host asks (0: none): IERR = 4 at once when the method's own
+    !> estimate exceeds it, and from GCMBEG and GCMRUN afterwards (their results whole).
+    subroutine gcmacc(handle, acc, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(dp), intent(in) :: acc
+        !> Status: 0, 2 for a 0 handle or a bad ACC, 4 when the method is outside ACC.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        box => checked('gcmacc', handle, error=error)
+        if (.not. allocated(error)) call set_box_accuracy('gcmacc', box, acc, error)
+        call report(error, ierr, errmsg)
+    end subroutine gcmacc
+
     !> Another method (or time step) on the file GCMFIL read into HFROM, without a second identification.
     subroutine gcmmth(hfrom, method, dt, nstep, tol, handle, ierr, errmsg)
         !> A handle made by GCMFIL (or GCMMTH).
@@ -193,13 +271,15 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        integer, allocatable :: nodes(:)
+        real(dp), allocatable :: x_points(:), y_points(:)
 
         box => checked('gcmpts', handle, nc, error)
-        if (.not. allocated(error)) call check_file_box('gcmpts', box, error)
+        if (.not. allocated(error)) call box_points('gcmpts', box, nodes, x_points, y_points, error)
         if (.not. allocated(error)) then
-            node(1:nc) = box%green%matrix%node
-            x(1:nc) = box%green%matrix%x
-            y(1:nc) = box%green%matrix%y
+            node(1:nc) = nodes
+            x(1:nc) = x_points
+            y(1:nc) = y_points
         end if
         call report(error, ierr, errmsg)
     end subroutine gcmpts
@@ -223,6 +303,7 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: summary
 
         eworst = 0.0_dp
         emean = 0.0_dp
@@ -232,7 +313,8 @@ contains
         call report(error, ierr, text)
         if (allocated(error)) return
         call file_e_modes(box%green, eworst, emean, npole)
-        text = box%green%summary()
+        call file_summary(box, summary)
+        text = summary
     end subroutine gcmsum
 
     !> Modes of the library's tyre belt (a pre-tensioned orthotropic plate on an elastic
@@ -422,12 +504,14 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: description
 
         nsize = 0
         box => checked('gcmdsc', handle, error=error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        text = describe_box(box, nsize)
+        call describe_multi(box, nsize, description)
+        text = description
     end subroutine gcmdsc
 
     !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).

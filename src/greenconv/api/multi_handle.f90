@@ -13,23 +13,30 @@
 !> - a universal file of a Green's matrix (greenconv_conv_green_file: its receptances
 !>   identified with shared poles, or its impulse responses), kept read and identified in the
 !>   box, so that another method or time step on the same file costs no second identification;
+!> - a universal file of normal modes from an FE model (datasets 15/2411 and 55,
+!>   greenconv_model_modes_file), its nodes the points and its modes up to a band stepped, as
+!>   a scene's `&structure model = 'modes_file'` takes them (all of the file's nodes);
 !>
 !> with what its model neglects, the Newton and divergence settings of its contact runs and
-!> the state of a run stepped one call at a time. The arrays the doors pass are laid out as
+!> the state of a run stepped one call at a time. Each box keeps its method's own estimate
+!> of its relative error; when the host asks an accuracy (`set_box_accuracy`), a box whose
+!> estimate exceeds it makes the calls that run contact end with status 4 (`stat_accuracy`,
+!> "ran, but outside the accuracy asked"), as a scene's runner does. The arrays the doors pass are laid out as
 !> Fortran stores them: shape(i, k) = phi_ik, g(m, i, j) = g_ij(m*dt), road(n, i) = u_r,i(t_n).
 !> There is no module state.
 module greenconv_api_multi_handle
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
     use greenconv_core_text, only: lower_text, sci_text, int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
     use greenconv_conv_methods, only: check_method
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
     use greenconv_conv_green_file, only: green_file_convolver
-    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
+    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, summary_text
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
@@ -40,7 +47,8 @@ module greenconv_api_multi_handle
     private
 
     public :: modes_multi_box, samples_multi_box, patch_modes, file_multi_box
-    public :: method_multi_box, check_file_box, file_e_modes
+    public :: method_multi_box, check_file_box, file_e_modes, modes_file_box, box_points
+    public :: set_box_accuracy, outside_accuracy, describe_multi, file_summary
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
 
 contains
@@ -96,17 +104,104 @@ contains
         description%modes%pole = cmplx(pole_re, pole_im, dp)
         description%modes%residue = cmplx(residue_re, residue_im, dp)
         description%shape = shape
+        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+    end subroutine modes_multi_box
+
+    !> A new box for checked modes at the points: the kernel's size checked against the cap,
+    !> the convolver and its own error estimate made; null on failure.
+    subroutine modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+        character(len=*), intent(in) :: caller, method
+        type(point_modes), intent(in) :: description
+        real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
+        type(convolver_box), pointer, intent(out) :: box
+        type(error_type), allocatable, intent(out) :: error
+
+        box => null()
         if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(method), &
-            description%modes%slowest_decay(), dt, truncation_tol, n_steps, size(shape, 1), error)
+            description%modes%slowest_decay(), dt, truncation_tol, n_steps, description%n_points(), error)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
         end if
         allocate (box)
         call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
-                                       box%description, error)
+                                       box%description, error, box%estimate)
         call keep_or_drop(caller, box, error)
-    end subroutine modes_multi_box
+    end subroutine modes_box
+
+    !> A new box on a universal file of normal modes (greenconv_model_modes_file): every node of
+    !> the file a point (in the file's order), the modes up to `f_band` stepped by `method`,
+    !> those above it counted in the description with their share of the static flexibility at
+    !> the points; the same convolver as a scene with `&structure model = 'modes_file'` makes on
+    !> those nodes. Null on failure.
+    subroutine modes_file_box(caller, path, direction, damping_ratio, f_band, method, dt, truncation_tol, n_steps, &
+                              box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The universal file (nodes in dataset 15 or 2411, one dataset 55 per mode).
+        character(len=*), intent(in) :: path
+        !> Direction of the shapes at the contact: +-1, +-2, +-3 for +-X, +-Y, +-Z.
+        integer, intent(in) :: direction
+        !> Viscous damping ratio of the modes the file gives none, in [0, 1).
+        real(dp), intent(in) :: damping_ratio
+        !> Highest natural frequency stepped [Hz], > 0; 0 for the Nyquist frequency 1/(2*dt).
+        real(dp), intent(in) :: f_band
+        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
+        character(len=*), intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(dp), intent(in) :: dt
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1).
+        real(dp), intent(in) :: truncation_tol
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: n_steps
+        !> The new box; null when `error` is set.
+        type(convolver_box), pointer, intent(out) :: box
+        !> Set (`stat_input`) for a bad argument or file, with the reader's message.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        type(point_modes) :: description
+        real(dp), allocatable :: residual(:)
+        real(dp) :: band, share
+        integer :: i
+
+        box => null()
+        call check_run(caller, dt, truncation_tol, n_steps, error)
+        if (allocated(error)) return
+        if (all(abs(direction) /= [1, 2, 3])) then
+            call fatal_error(error, caller//': direction = '//int_text(direction)//': give 1, 2 or 3 (X, Y, Z), ' &
+                             //'negative for the opposite sense')
+        else if (.not. (damping_ratio >= 0.0_dp .and. damping_ratio < 1.0_dp)) then
+            call fatal_error(error, caller//': damping_ratio = '//sci_text(damping_ratio)//': give a ratio in [0, 1)')
+        else if (.not. (f_band >= 0.0_dp .and. ieee_is_finite(f_band))) then
+            call fatal_error(error, caller//': f_band = '//sci_text(f_band)//' Hz: give a finite band >= 0 Hz ' &
+                             //'(0: the Nyquist frequency 1/(2*dt))')
+        else
+            call check_method(lower_text(method), .true., .true., .true., error)
+        end if
+        if (allocated(error)) then
+            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
+            return
+        end if
+        band = f_band
+        if (band <= 0.0_dp) band = 0.5_dp/dt
+        call read_file_modes(path, direction, damping_ratio, modes, error)
+        if (.not. allocated(error)) call band_modes(modes, band, [(i, i=1, size(modes%x))], description, residual, &
+                                                    share, error)
+        if (allocated(error)) then
+            error%message = caller//': '//error%message
+            return
+        end if
+        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+        if (allocated(error)) return
+        box%node = modes%label
+        box%node_x = modes%x
+        box%node_y = modes%y
+        box%description = box%description//'; '//int_text(size(modes%frequency) - description%modes%n_modes()) &
+                          //' mode(s) of '//path//' above '//sci_text(band)//' Hz not stepped ('//sci_text(100*share) &
+                          //' % of the static flexibility at the points)'
+    end subroutine modes_file_box
 
     !> A new box convolving with samples g(m, i, j) = g_ij(m*dt) (`direct` or `fft`), the
     !> table truncated by the paper's rule over max_ij |g_ij(t_m)| and never beyond the run;
@@ -246,6 +341,63 @@ contains
                                                          //'and no identification')
     end subroutine check_file_box
 
+    !> The node labels and positions x_i, y_i [m] of the points of a box made from a file (a
+    !> Green's matrix or a modes file), in the convolver's order.
+    subroutine box_points(caller, box, node, x, y, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box (checked by `check_box`).
+        type(convolver_box), intent(in) :: box
+        !> Node labels.
+        integer, allocatable, intent(out) :: node(:)
+        !> x_i [m], along the travel.
+        real(dp), allocatable, intent(out) :: x(:)
+        !> y_i [m], across.
+        real(dp), allocatable, intent(out) :: y(:)
+        !> Set (`stat_input`) when the box was made from no file.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (allocated(box%node)) then
+            node = box%node
+            x = box%node_x
+            y = box%node_y
+            return
+        end if
+        call check_file_box(caller, box, error)
+        if (allocated(error)) return
+        node = box%green%matrix%node
+        x = box%green%matrix%x
+        y = box%green%matrix%y
+    end subroutine box_points
+
+    !> "method: what the model neglects, N_g (or N_m) = size" of a box and the model's size
+    !> (greenconv_api_handle's `describe_box` with its size), into an intent(out) text, which
+    !> keeps no static length between threads.
+    subroutine describe_multi(box, n, text)
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> The model's size (N_g kernel samples or N_m modes).
+        integer, intent(out) :: n
+        !> The description.
+        character(len=:), allocatable, intent(out) :: text
+
+        character(len=:), allocatable :: label
+
+        call box%conv%model_size(n, label)
+        text = box%conv%name//': '//box%description//', '//label//' = '//int_text(n)
+    end subroutine describe_multi
+
+    !> The summary in "# " lines of the file a box was made from (greenconv_ident_green_structure's
+    !> `summary_text`), into an intent(out) text.
+    subroutine file_summary(box, text)
+        !> The box, made from a Green's matrix file.
+        type(convolver_box), intent(in) :: box
+        !> The summary, lines joined by line ends.
+        character(len=:), allocatable, intent(out) :: text
+
+        call summary_text(box%green, text)
+    end subroutine file_summary
+
     !> E of eq. (7) of the identified modes alone against the file's receptances, worst and
     !> mean over the receptances, and the number of shared poles (all 0 for impulse responses).
     subroutine file_e_modes(green, e_worst, e_mean, n_poles)
@@ -275,7 +427,8 @@ contains
         type(convolver_box), intent(inout) :: box
         type(error_type), allocatable, intent(out) :: error
 
-        call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error)
+        call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error, &
+                                  box%estimate)
     end subroutine build_on_file
 
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
@@ -372,6 +525,44 @@ contains
         end if
     end subroutine set_multi_options
 
+    !> Set the relative accuracy the host asks of a box's runs (0: none); `error` says, with
+    !> status 4, when the box's method is already outside it (`outside_accuracy`).
+    subroutine set_box_accuracy(caller, box, accuracy, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(convolver_box), intent(inout) :: box
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(dp), intent(in) :: accuracy
+        !> Set (`stat_input`) for an accuracy out of range, (`stat_accuracy`) when outside it.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (accuracy >= 0.0_dp .and. ieee_is_finite(accuracy))) then
+            call fatal_error(error, caller//': accuracy = '//sci_text(accuracy)//': give a finite relative ' &
+                             //'accuracy > 0, or 0 to ask none')
+            return
+        end if
+        box%accuracy = accuracy
+        call outside_accuracy(caller, box, error)
+    end subroutine set_box_accuracy
+
+    !> Status 4 (`stat_accuracy`) when the host asked an accuracy and the box's method's own
+    !> error estimate exceeds it: the message names both and what to do.
+    subroutine outside_accuracy(caller, box, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> Set (`stat_accuracy`) when outside the accuracy asked.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. (box%accuracy > 0.0_dp .and. box%estimate > box%accuracy)) return
+        call fatal_error(error, caller//': outside the accuracy asked: the method''s own error estimate ' &
+                         //sci_text(box%estimate)//' > accuracy '//sci_text(box%accuracy)//' (the results are ' &
+                         //'whole); use exact on identified modes, a model with a smaller E, or ask a larger ' &
+                         //'accuracy', stat_accuracy)
+    end subroutine outside_accuracy
+
     !> Start a contact run stepped one call at a time (`advance_multi_box`): laws and preloads
     !> checked point by point, the convolver reset.
     subroutine start_multi_box(caller, box, stiffness, exponent, preload, error)
@@ -385,7 +576,8 @@ contains
         real(dp), intent(in) :: exponent(:)
         !> Static preload F0_i [N] of each point, >= 0.
         real(dp), intent(in) :: preload(:)
-        !> Set (`stat_input`) naming the point whose law is out of range.
+        !> Set (`stat_input`) naming the point whose law is out of range; (`stat_accuracy`) when
+        !> the run started but the method is outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
         box%stepping = .false.
@@ -394,6 +586,7 @@ contains
         call start_multi_contact(box%conv, laws_of(stiffness, exponent), preload, box%contact, error, box%settings)
         if (allocated(error)) error%message = caller//': '//error%message
         box%stepping = .not. allocated(error)
+        if (box%stepping) call outside_accuracy(caller, box, error)
     end subroutine start_multi_box
 
     !> The next step of the run `start_multi_box` began, exactly as `run_multi_contact` takes
@@ -458,7 +651,8 @@ contains
         real(dp), intent(out) :: force(0:, :)
         !> Compressions delta_i(t_n) [m]; zero after a fault.
         real(dp), intent(out) :: compression(0:, :)
-        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`).
+        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`); (`stat_accuracy`)
+        !> when the run is whole but the method outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
         type(multi_contact_response) :: response
@@ -478,6 +672,7 @@ contains
         displacement(0:n_done - 1, :) = response%displacement
         force(0:n_done - 1, :) = response%force
         compression(0:n_done - 1, :) = response%compression
+        if (.not. allocated(error)) call outside_accuracy(caller, box, error)
     end subroutine run_multi_box
 
     !> The contact laws of the points.

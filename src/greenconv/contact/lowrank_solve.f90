@@ -22,11 +22,28 @@
 module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_ext_lapack, only: solve_linear
+    use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
+    !$ use omp_lib, only: omp_in_parallel
     implicit none
     private
 
     public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve
+
+    !> The factored Newton matrix of the low-rank solve, kept for the slopes it was formed for.
+    type :: newton_matrix
+        !> Whether the factors below are those of the last slopes.
+        logical :: ready = .false.
+        !> Whether it is the matrix on the active set (I + W0_AA*diag(t_A)), else M of Woodbury.
+        logical :: on_active_set = .false.
+        !> The slopes t [N/m] (N_c) the factors were formed for.
+        real(dp), allocatable :: slopes(:)
+        !> The active set A: indices of the points with t_i /= 0.
+        integer, allocatable :: active(:)
+        !> LU factors (N_a x N_a or r x r) from dgetrf.
+        real(dp), allocatable :: factors(:, :)
+        !> dgetrf's row interchanges.
+        integer, allocatable :: pivot(:)
+    end type newton_matrix
 
     !> W0 [m/N] of a run as the step uses it: dense, or U*V^T.
     type :: lowrank_compliance
@@ -40,10 +57,15 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: left(:, :)
         !> V (N_c x r) [dimensionless]: W0 = U*V^T.
         real(dp), allocatable :: right(:, :)
+        !> The last Newton matrix factored (low-rank case only).
+        type(newton_matrix) :: newton
     end type lowrank_compliance
 
     !> The remainder of the elimination counts as round-off below this fraction of max|W0_ij|.
     real(dp), parameter :: rank_tolerance = 1.0e-14_dp
+    !> Products of fewer multiply-adds than this stay on one thread (a parallel region costs
+    !> some microseconds).
+    real(dp), parameter :: thread_work = 2.0e5_dp
 
 contains
 
@@ -113,11 +135,11 @@ contains
         end if
     end function apply_compliance
 
-    !> The Newton step s [m] solving (I + W0*diag(t))*s = b: Woodbury with the factors, or a
-    !> dense LU.
+    !> The Newton step s [m] solving (I + W0*diag(t))*s = b: on the active set or by Woodbury
+    !> with the factors, or a dense LU when W0 has no low-rank factors.
     subroutine newton_solve(compliance, weight0, slopes, b, s, error)
-        !> W0 as the run uses it.
-        type(lowrank_compliance), intent(in) :: compliance
+        !> W0 as the run uses it; keeps the last factored Newton matrix.
+        type(lowrank_compliance), intent(inout) :: compliance
         !> The dense W0 [m/N] (N_c x N_c).
         real(dp), intent(in) :: weight0(:, :)
         !> t_i = dF_i/ddelta_i [N/m] (N_c), zero off the active set.
@@ -129,7 +151,7 @@ contains
         !> Set when the system is singular.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: jacobian(:, :), scaled(:, :), small(:, :), y(:)
+        real(dp), allocatable :: jacobian(:, :), y(:), scaled_b(:)
         integer :: j
 
         if (.not. compliance%low_rank) then
@@ -141,19 +163,106 @@ contains
             call solve_linear(jacobian, b, s, error)
             return
         end if
-        if (compliance%rank == 0) then
+        if (compliance%rank == 0 .or. all(slopes == 0.0_dp)) then
             s(:) = b
             return
         end if
-        scaled = compliance%right*spread(slopes, 2, compliance%rank)
-        small = matmul(transpose(scaled), compliance%left)
-        do j = 1, compliance%rank
-            small(j, j) = small(j, j) + 1.0_dp
-        end do
-        allocate (y(compliance%rank))
-        call solve_linear(small, matmul(b, scaled), y, error)
+        call form_newton_matrix(compliance, weight0, slopes, error)
         if (allocated(error)) return
-        s(:) = b - matmul(compliance%left, y)
+        associate (newton => compliance%newton, r => compliance%rank)
+            allocate (y(size(newton%factors, 1)))
+            if (newton%on_active_set) then
+                call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
+                if (allocated(error)) return
+                y(:) = slopes(newton%active)*y
+                call subtract_product(compliance%left, matmul(y, compliance%right(newton%active, :)), b, s)
+            else
+                scaled_b = slopes(newton%active)*b(newton%active)
+                call lu_solve(newton%factors, newton%pivot, matmul(scaled_b, compliance%right(newton%active, :)), &
+                              y, error)
+                if (allocated(error)) return
+                call subtract_product(compliance%left, y, b, s)
+            end if
+        end associate
     end subroutine newton_solve
+
+    !> Factor the Newton matrix of `slopes` unless it is the one kept: on the active set
+    !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper.
+    subroutine form_newton_matrix(compliance, weight0, slopes, error)
+        type(lowrank_compliance), intent(inout) :: compliance
+        real(dp), intent(in) :: weight0(:, :), slopes(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: scaled(:, :)
+        real(dp) :: n_a, rank
+        integer :: i, j
+
+        associate (newton => compliance%newton)
+            if (newton%ready) then
+                if (all(newton%slopes == slopes)) return
+            end if
+            newton%ready = .false.
+            newton%slopes = slopes
+            newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
+            n_a = real(size(newton%active), dp)
+            rank = real(compliance%rank, dp)
+            newton%on_active_set = n_a**3/3 < n_a*rank**2 + rank**3/3
+            if (newton%on_active_set) then
+                newton%factors = weight0(newton%active, newton%active)
+                do j = 1, size(newton%active)
+                    newton%factors(:, j) = newton%factors(:, j)*slopes(newton%active(j))
+                    newton%factors(j, j) = newton%factors(j, j) + 1.0_dp
+                end do
+            else
+                scaled = compliance%right(newton%active, :)*spread(slopes(newton%active), 2, compliance%rank)
+                call transposed_product(scaled, compliance%left(newton%active, :), newton%factors)
+                do j = 1, compliance%rank
+                    newton%factors(j, j) = newton%factors(j, j) + 1.0_dp
+                end do
+            end if
+            if (allocated(newton%pivot)) deallocate (newton%pivot)
+            allocate (newton%pivot(size(newton%factors, 1)))
+            call lu_factor(newton%factors, newton%pivot, error)
+            if (allocated(error)) return
+            newton%ready = .true.
+        end associate
+    end subroutine form_newton_matrix
+
+    !> c = a^T*b (a: n x p, b: n x q), by columns of c shared among threads.
+    subroutine transposed_product(a, b, c)
+        real(dp), intent(in) :: a(:, :), b(:, :)
+        real(dp), allocatable, intent(out) :: c(:, :)
+
+        logical :: share
+        integer :: j
+
+        allocate (c(size(a, 2), size(b, 2)))
+        share = real(size(a, 1), dp)*size(a, 2)*size(b, 2) >= thread_work
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(a, b, c) schedule(static)
+        do j = 1, size(b, 2)
+            c(:, j) = matmul(b(:, j), a)
+        end do
+        !$omp end parallel do
+    end subroutine transposed_product
+
+    !> s = b - u*y, by rows shared among threads.
+    subroutine subtract_product(u, y, b, s)
+        real(dp), intent(in) :: u(:, :), y(:), b(:)
+        real(dp), intent(out) :: s(:)
+
+        logical :: share
+        integer :: first, last, block
+
+        block = 256
+        share = real(size(u, 1), dp)*size(u, 2) >= thread_work
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(u, y, b, s, block) private(last) schedule(static)
+        do first = 1, size(u, 1), block
+            last = min(first + block - 1, size(u, 1))
+            s(first:last) = b(first:last) - matmul(u(first:last, :), y)
+        end do
+        !$omp end parallel do
+    end subroutine subtract_product
 
 end module greenconv_contact_lowrank_solve

@@ -6,6 +6,8 @@
 !>   rank-deficient or ill-conditioned system gives a bounded answer; no normal equations.
 !> - dgeev: eigenvalues of a general real matrix (balanced, then Hessenberg QR).
 !> - dgesv: a square linear system by LU factorisation with partial pivoting.
+!> - dgetrf, dgetrs: the same factorisation kept, then solved again for other right-hand sides
+!>   (`lu_factor`, `lu_solve`: a Newton matrix that repeats from one iteration to the next).
 !>
 !> LAPACK reports a bad argument through XERBLA, whose reference version prints a line and
 !> stops the program, and which belongs to the host program (it may have its own): greenconv
@@ -23,7 +25,7 @@ module greenconv_ext_lapack
     implicit none
     private
 
-    public :: least_squares, eigenvalues, solve_linear
+    public :: least_squares, eigenvalues, solve_linear, lu_factor, lu_solve
 
     interface
         !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
@@ -61,6 +63,28 @@ module greenconv_ext_lapack
             integer, intent(out) :: ipiv(*)
             integer, intent(out) :: info
         end subroutine dgesv
+
+        !> LU factorisation with partial pivoting of a general matrix, in place (LAPACK).
+        subroutine dgetrf(m, n, a, lda, ipiv, info)
+            import :: dp
+            implicit none
+            integer, intent(in) :: m, n, lda
+            real(dp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: ipiv(*)
+            integer, intent(out) :: info
+        end subroutine dgetrf
+
+        !> Solution of A X = B from dgetrf's factors of A (LAPACK).
+        subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(in) :: a(lda, *)
+            integer, intent(in) :: ipiv(*)
+            real(dp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dgetrs
     end interface
 
 contains
@@ -216,6 +240,62 @@ contains
         if (allocated(error)) return
         x(:) = b_work(:, 1)
     end subroutine solve_linear
+
+    !> The LU factors of a square A in place by dgetrf (partial pivoting), for `lu_solve`.
+    subroutine lu_factor(a, pivot, error)
+        !> On entry A (n x n, n >= 1); on return its factors L and U.
+        real(dp), intent(inout) :: a(:, :)
+        !> The row interchanges (n).
+        integer, intent(out) :: pivot(:)
+        !> Set on a size mismatch, a NaN or Inf in A, or when A is exactly singular.
+        type(error_type), allocatable, intent(out) :: error
+
+        integer :: n, info
+
+        n = size(a, 1)
+        call check_arguments('dgetrf', [n >= 1, size(a, 2) == n, size(pivot) == n], error)
+        if (allocated(error)) return
+        call require_finite('dgetrf', 'input', [all(ieee_is_finite(a))], error)
+        if (allocated(error)) return
+        call dgetrf(n, n, a, n, pivot, info)
+        if (info > 0) then
+            call fatal_error(error, 'dgetrf: singular matrix (zero pivot in column '//int_text(info)//')', &
+                             stat_numerical)
+        else if (info < 0) then
+            call lapack_error(error, 'dgetrf', info)
+        end if
+    end subroutine lu_factor
+
+    !> x = A^-1*b from `lu_factor`'s factors of A by dgetrs.
+    subroutine lu_solve(factors, pivot, b, x, error)
+        !> The factors of A (n x n) from `lu_factor`.
+        real(dp), intent(in) :: factors(:, :)
+        !> The row interchanges from `lu_factor` (n).
+        integer, intent(in) :: pivot(:)
+        !> Right-hand side b (n).
+        real(dp), intent(in) :: b(:)
+        !> Solution x (n).
+        real(dp), intent(out) :: x(:)
+        !> Set on a size mismatch or a result that overflowed.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: b_work(:, :)
+        integer :: n, info
+
+        n = size(factors, 1)
+        call check_arguments('dgetrs', [n >= 1, size(factors, 2) == n, size(pivot) == n, size(b) == n, &
+                                        size(x) == n], error)
+        if (allocated(error)) return
+        b_work = reshape(b, [n, 1])
+        call dgetrs('N', n, 1, factors, n, pivot, b_work, n, info)
+        if (info < 0) then
+            call lapack_error(error, 'dgetrs', info)
+            return
+        end if
+        call require_finite('dgetrs', 'result', [all(ieee_is_finite(b_work))], error)
+        if (allocated(error)) return
+        x(:) = b_work(:, 1)
+    end subroutine lu_solve
 
     !> An error (status `stat_numerical`) unless every array checked is finite.
     pure subroutine require_finite(routine, what, finite, error)

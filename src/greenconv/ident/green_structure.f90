@@ -34,6 +34,7 @@ module greenconv_ident_green_structure
     private
 
     public :: green_options, green_structure, read_green_structure, read_green_layout, identify_green, sampled_kernel
+    public :: summary_text
 
     real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
     !> Relative tolerance on a time step that must fit a grid (record 7 of a universal file
@@ -352,6 +353,17 @@ contains
         class(green_structure), intent(in) :: self
         character(len=:), allocatable :: text
 
+        call summary_text(self, text)
+    end function structure_summary
+
+    !> The summary of `structure_summary` into an intent(out) text: a caller that two threads
+    !> may run at once takes it so, without the static length a deferred-length result keeps.
+    subroutine summary_text(self, text)
+        !> The structure.
+        class(green_structure), intent(in) :: self
+        !> Its summary in "# " lines, joined by line ends.
+        character(len=:), allocatable, intent(out) :: text
+
         character(len=*), parameter :: nl = new_line('a')
         integer :: worst
 
@@ -400,6 +412,6 @@ contains
         if (allocated(self%matrix%warning)) then
             if (len(self%matrix%warning) > 0) text = text//nl//'# warning: '//self%matrix%warning
         end if
-    end function structure_summary
+    end subroutine summary_text
 
 end module greenconv_ident_green_structure

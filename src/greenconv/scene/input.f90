@@ -64,7 +64,7 @@ contains
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: path
+        character(len=len(scene%output_dir) + len(scene%name) + len(method) + 6) :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'.dat'
         if (scene%output_format == 'binary') path = scene%output_dir//'/'//scene%name//'_'//method//'.bin'
@@ -572,7 +572,7 @@ contains
     !> "400 Hz", the nominal name of band x.
     function band_name(x) result(text)
         integer, intent(in) :: x
-        character(len=:), allocatable :: text
+        character(len=len(compact_real(nominal_frequency(band_centre(x)))) + 3) :: text
 
         text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
     end function band_name

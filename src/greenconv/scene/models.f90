@@ -77,12 +77,17 @@ module greenconv_scene_models
         end subroutine file_check
     end interface
 
+    !> Longest model name a scene may write.
+    integer, parameter :: model_name_length = 16
+    !> Number of models in the registry (`structure_models`).
+    integer, parameter :: model_count = 7
+
     !> One structure model: what it requires and provides, and its procedures.
     type :: structure_kind
         !> Row of the registry; 0 for a name not in the registry.
         integer :: id = 0
         !> Name a scene writes, `&structure model = '<name>'`.
-        character(len=16) :: name = ''
+        character(len=model_name_length) :: name = ''
         !> The `&structure` variables the model requires, blank-separated.
         character(len=48) :: requires = ''
         !> Whether the model has a mass M [kg], so that `&contact preload` may default to M*g.
@@ -116,9 +121,9 @@ module greenconv_scene_models
 contains
 
     !> Every structure model of the registry, in the order messages list the names.
-    function structure_models() result(models)
+    pure function structure_models() result(models)
         !> The registry.
-        type(structure_kind) :: models(7)
+        type(structure_kind) :: models(model_count)
 
         models(1) = structure_kind(1, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true., &
                                    build=sdof_structure, slowest_decay=sdof_decay)
@@ -176,18 +181,31 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
+    !> Length of `quoted_list(names)`.
+    pure integer function quoted_length(names)
+        !> The names (at least one).
+        character(len=*), intent(in) :: names(:)
+
+        quoted_length = sum(len_trim(names)) + 4*size(names) - 2 + merge(2, 0, size(names) > 1)
+    end function quoted_length
+
+    !> The registry's model names, in its order.
+    pure function model_name_list() result(names)
+        !> The names, each padded to the registry's name length.
+        character(len=model_name_length) :: names(model_count)
+
+        type(structure_kind) :: models(model_count)
+
+        models = structure_models()
+        names = models%name
+    end function model_name_list
+
     !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
     function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
-        character(len=:), allocatable :: text
+        character(len=quoted_length(model_name_list())) :: text
 
-        type(structure_kind), allocatable :: models(:)
-        character(len=len(models%name)), allocatable :: names(:)
-
-        models = structure_models()
-        ! a contiguous copy: the component array would be passed through a temporary
-        names = models%name
-        text = quoted_list(names)
+        text = quoted_list(model_name_list())
     end function model_names
 
     !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
@@ -195,17 +213,21 @@ contains
         !> The names (at least one).
         character(len=*), intent(in) :: names(:)
         !> The list.
-        character(len=:), allocatable :: text
+        character(len=quoted_length(names)) :: text
 
-        integer :: i
+        integer :: i, n
 
         text = "'"//trim(names(1))//"'"
+        n = len_trim(names(1)) + 2
         do i = 2, size(names)
             if (i < size(names)) then
-                text = text//", '"//trim(names(i))//"'"
+                text(n + 1:) = ", '"//trim(names(i))//"'"
+                n = n + 4
             else
-                text = text//" or '"//trim(names(i))//"'"
+                text(n + 1:) = " or '"//trim(names(i))//"'"
+                n = n + 6
             end if
+            n = n + len_trim(names(i))
         end do
     end function quoted_list
 

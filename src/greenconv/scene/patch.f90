@@ -89,21 +89,45 @@ contains
         end if
     end function road_step
 
+    !> "N steps of dt s at V m/s", blank-padded.
+    pure function run_numbers(scene) result(numbers)
+        type(scene_type), intent(in) :: scene
+        character(len=80) :: numbers
+
+        write (numbers, '(i0,a,es9.2,a,f0.1,a)') scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
+    end function run_numbers
+
+    !> Length of `run_road(scene)`.
+    pure integer function road_length(scene)
+        type(scene_type), intent(in) :: scene
+
+        road_length = 0
+        if (allocated(scene%texture%x)) then
+            road_length = 18 + len(scene%texture%path)
+        else if (allocated(scene%road_data%path)) then
+            road_length = 6 + len(scene%road_data%path)
+        end if
+    end function road_length
+
+    !> " over the texture <path>", " over <path>" or '': the road of `run_text`.
+    pure function run_road(scene) result(text)
+        type(scene_type), intent(in) :: scene
+        character(len=road_length(scene)) :: text
+
+        if (allocated(scene%texture%x)) then
+            text = ' over the texture '//scene%texture%path
+        else if (allocated(scene%road_data%path)) then
+            text = ' over '//scene%road_data%path
+        end if
+    end function run_road
+
     !> The end of a multi-point scene's summary line: "N steps of dt s at V m/s over <road>".
     function run_text(scene) result(text)
         !> The scene.
         type(scene_type), intent(in) :: scene
-        character(len=:), allocatable :: text
+        character(len=len_trim(run_numbers(scene)) + len(run_road(scene))) :: text
 
-        character(len=80) :: numbers
-
-        write (numbers, '(i0,a,es9.2,a,f0.1,a)') scene%n_steps, ' steps of ', scene%dt, ' s at ', scene%speed, ' m/s'
-        text = trim(numbers)
-        if (allocated(scene%texture%x)) then
-            text = text//' over the texture '//scene%texture%path
-        else if (allocated(scene%road_data%path)) then
-            text = text//' over '//scene%road_data%path
-        end if
+        text = trim(run_numbers(scene))//run_road(scene)
     end function run_text
 
 end module greenconv_scene_patch

@@ -129,6 +129,57 @@ contains
         if (last_shown >= 0.0_dp) progress_due = progress_due .and. elapsed - last_shown >= refresh_seconds
     end function progress_due
 
+    !> Steps per second so far; 0 before any time has passed.
+    pure real(dp) function steps_per_second(done, elapsed)
+        integer(int64), intent(in) :: done
+        real(dp), intent(in) :: elapsed
+
+        steps_per_second = 0.0_dp
+        if (elapsed > 0.0_dp) steps_per_second = real(done, dp)/elapsed
+    end function steps_per_second
+
+    !> Percent done and steps per second of a progress line.
+    pure function progress_numbers(done, total, elapsed) result(buffer)
+        integer(int64), intent(in) :: done, total
+        real(dp), intent(in) :: elapsed
+        character(len=80) :: buffer
+
+        real(dp) :: percent
+
+        percent = 100.0_dp*real(done, dp)/real(max(total, 1_int64), dp)
+        write (buffer, '(f6.1,a,es10.2,a)') percent, ' %  ', steps_per_second(done, elapsed), ' steps/s  '
+    end function progress_numbers
+
+    !> "h:mm:ss left" at the rate so far (hours unbounded, rounded to the second); "--:--:-- left"
+    !> before any step, padded with blanks.
+    pure function time_left(done, total, elapsed) result(buffer)
+        integer(int64), intent(in) :: done, total
+        real(dp), intent(in) :: elapsed
+        character(len=40) :: buffer
+
+        real(dp) :: rate
+        integer(int64) :: whole
+
+        rate = steps_per_second(done, elapsed)
+        if (rate > 0.0_dp) then
+            whole = nint(min(max(real(total - done, dp)/rate, 0.0_dp), 3.6e9_dp), int64)
+            write (buffer, '(i0,a,i2.2,a,i2.2,a)') whole/3600, ':', mod(whole/60, 60_int64), ':', &
+                mod(whole, 60_int64), ' left'
+        else
+            buffer = '--:--:-- left'
+        end if
+    end function time_left
+
+    !> Length of `progress_line(label, done, total, elapsed)`.
+    pure integer function progress_length(label, done, total, elapsed)
+        character(len=*), intent(in) :: label
+        integer(int64), intent(in) :: done, total
+        real(dp), intent(in) :: elapsed
+
+        progress_length = 15 + len(label) + len_trim(progress_numbers(done, total, elapsed)) &
+                          + len_trim(time_left(done, total, elapsed))
+    end function progress_length
+
     !> The progress line after `done` of `total` steps in `elapsed` seconds: label, percent,
     !> steps per second and the time left at that rate (h:mm:ss; `--:--:--` before any step).
     pure function progress_line(label, done, total, elapsed) result(line)
@@ -140,35 +191,11 @@ contains
         integer(int64), intent(in) :: total
         !> Wall time since the start [s].
         real(dp), intent(in) :: elapsed
-        character(len=:), allocatable :: line
+        character(len=progress_length(label, done, total, elapsed)) :: line
 
-        character(len=80) :: buffer
-        real(dp) :: rate, percent
-
-        percent = 100.0_dp*real(done, dp)/real(max(total, 1_int64), dp)
-        rate = 0.0_dp
-        if (elapsed > 0.0_dp) rate = real(done, dp)/elapsed
-        write (buffer, '(f6.1,a,es10.2,a)') percent, ' %  ', rate, ' steps/s  '
-        line = 'greenconv: '//label//'  '//trim(buffer)//'  '
-        if (rate > 0.0_dp) then
-            line = line//clock_text(real(total - done, dp)/rate)//' left'
-        else
-            line = line//'--:--:-- left'
-        end if
+        line = 'greenconv: '//label//'  '//trim(progress_numbers(done, total, elapsed))//'  ' &
+               //time_left(done, total, elapsed)
     end function progress_line
-
-    !> A duration [s] as h:mm:ss (hours unbounded), rounded to the second.
-    pure function clock_text(seconds) result(text)
-        real(dp), intent(in) :: seconds
-        character(len=:), allocatable :: text
-
-        character(len=32) :: buffer
-        integer(int64) :: whole
-
-        whole = nint(min(max(seconds, 0.0_dp), 3.6e9_dp), int64)
-        write (buffer, '(i0,a,i2.2,a,i2.2)') whole/3600, ':', mod(whole/60, 60_int64), ':', mod(whole, 60_int64)
-        text = trim(buffer)
-    end function clock_text
 
     !> Write the line in place of the previous one.
     subroutine show(meter, done, elapsed)

@@ -22,14 +22,10 @@ module greenconv_scene_report
 
 contains
 
-    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
-    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
-    !> CPU time, dropped poles, warnings.
-    function identification_summary(structure) result(text)
-        !> The identified structure.
+    !> The lines of `identification_summary`, built in a deferred-length text.
+    pure subroutine summary_lines(structure, text)
         type(structure_model), intent(in) :: structure
-        !> The lines.
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         character(len=400) :: buffer
 
@@ -53,10 +49,35 @@ contains
                 if (len(fit%warning) > 0) call add_line(text, '# warning: '//fit%warning)
             end if
         end associate
+    end subroutine summary_lines
+
+    !> Length of `identification_summary(structure)`.
+    pure integer function summary_length(structure)
+        type(structure_model), intent(in) :: structure
+
+        character(len=:), allocatable :: lines
+
+        call summary_lines(structure, lines)
+        summary_length = len(lines)
+    end function summary_length
+
+    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
+    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
+    !> CPU time, dropped poles, warnings.
+    function identification_summary(structure) result(text)
+        !> The identified structure.
+        type(structure_model), intent(in) :: structure
+        !> The lines.
+        character(len=summary_length(structure)) :: text
+
+        character(len=:), allocatable :: lines
+
+        call summary_lines(structure, lines)
+        text = lines
     end function identification_summary
 
     !> Append a line to a text of lines.
-    subroutine add_line(text, line)
+    pure subroutine add_line(text, line)
         character(len=:), allocatable, intent(inout) :: text
         character(len=*), intent(in) :: line
 
@@ -69,7 +90,7 @@ contains
     !>     # identification: maximum likelihood, 12 modes (order by MDL), noise 1.01E-02 of |G| (estimated
     !>     #   from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02, diagram to N = 30,
     !>     #   E = 8.95E-03 (eq. 7), CPU 9.70E-01 s
-    subroutine ml_summary(structure, text)
+    pure subroutine ml_summary(structure, text)
         type(structure_model), intent(in) :: structure
         character(len=:), allocatable, intent(inout) :: text
 
@@ -90,8 +111,9 @@ contains
                 line = '# dropped:'
                 do k = 1, size(ml%dropped_pole)
                     if (k > 1) line = line//';'
-                    line = line//' '//sci_text(abs(ml%dropped_pole(k))/two_pi)//' Hz ('//reason(ml%dropped_reason(k)) &
-                           //')'
+                    line = line//' '//sci_text(abs(ml%dropped_pole(k))/two_pi)//' Hz ('
+                    call add_reason(line, ml%dropped_reason(k))
+                    line = line//')'
                 end do
                 call add_line(text, line)
             end if
@@ -100,23 +122,24 @@ contains
             end if
         end associate
     contains
-        pure function reason(code) result(text)
+        !> Append why a pole was dropped to `text`.
+        pure subroutine add_reason(text, code)
+            character(len=:), allocatable, intent(inout) :: text
             integer, intent(in) :: code
-            character(len=:), allocatable :: text
 
             select case (code)
             case (dropped_by_criterion)
-                text = 'its removal lowered MDL'
+                text = text//'its removal lowered MDL'
             case (dropped_left_band)
-                text = 'moved out of the band'
+                text = text//'moved out of the band'
             case (dropped_degenerate)
-                text = 'singular information, merged'
+                text = text//'singular information, merged'
             case (dropped_boundary)
-                text = 'narrowed to a single line, a spike'
+                text = text//'narrowed to a single line, a spike'
             case default
-                text = 'code '//int_text(code)
+                text = text//'code '//int_text(code)
             end select
-        end function reason
+        end subroutine add_reason
     end subroutine ml_summary
 
     !> Write `<name>_modes.dat` (identified), `<name>_modes_true.dat` (when the exact modes are

@@ -22,15 +22,21 @@ module greenconv_scene_runner
     use greenconv_scene_output, only: multi_contact_header, check_inputs_kept
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
+    use greenconv_scene_point_set, only: scene_points
+    use greenconv_scene_limits, only: work_rate, projected_run
     implicit none
     private
 
-    public :: run_scene, check_scene, check_scene_line, make_convolver, output_path
+    public :: run_scene, check_scene, check_scene_line, check_cost_lines, make_convolver, output_path
 
     !> Layout of the summary line of a method.
     character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
     !> Column titles of the summary lines.
     character(len=*), parameter :: summary_titles = '(a,t12,a,t24,a,t36,a,t48,a)'
+    !> Longest line of `check_cost_lines`.
+    integer, parameter :: cost_line_length = 240
+    !> Bytes of one value of a text column file (a field of 25 characters).
+    real(dp), parameter :: text_value_bytes = 25.0_dp
 
 contains
 
@@ -83,9 +89,11 @@ contains
         call run_methods(scene, structure, run, unit, block_size, error)
     end subroutine run_scene
 
-    !> Check a scene without running it and print `check_scene_line`'s line on `unit`.
+    !> Check a scene without running it and print `check_scene_line`'s line on `unit`, then
+    !> `check_cost_lines`' projected time and memory of each method.
     !>
     !>     greenconv: data/sdof_sine.nml: ok: task contact, model sdof, N_t = 2000 steps of 1.000E-04 s, ...
+    !>     greenconv: check: method 'direct': about 2.3E-03 s, 1.2E-02 MB in memory, ...
     subroutine check_scene(scene, unit, error)
         !> The scene, as `read_scene` returned it.
         type(scene_type), intent(in) :: scene
@@ -95,23 +103,116 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: line
+        character(len=cost_line_length), allocatable :: costs(:)
+        integer :: i, n_c
 
-        call check_scene_line(scene, line, error)
-        if (.not. allocated(error)) write (unit, '(a)') line
+        call check_scene_line(scene, line, error, n_c)
+        if (allocated(error)) return
+        call check_cost_lines(scene, n_c, costs, error)
+        if (allocated(error)) return
+        write (unit, '(a)') line
+        do i = 1, size(costs)
+            write (unit, '(a)') trim(costs(i))
+        end do
     end subroutine check_scene
+
+    !> What a contact scene's methods are projected to cost, one line each (none for another
+    !> task): the CPU time, from the work of the method's steps (greenconv_scene_limits'
+    !> `projected_run`) at `work_rate` multiply-adds per second, the memory the run holds and
+    !> the bytes of its files, with the sizes they come from, e.g.
+    !>
+    !>     greenconv: check: method 'exact': about 1.10E+01 s, 1.73E+01 MB in memory, 4.21E+02 MB of files
+    !>     (N_c 1000, N_m 229, N_g 5000, 5000 steps)
+    !>
+    !> N_m of a model identified at the run is its bound, `max_order` ("N_m <= 60"); its N_g,
+    !> N_t. The modes of a tyre, plate or modes file are found here (closed form, or the file).
+    subroutine check_cost_lines(scene, n_c, lines, error)
+        !> The scene, as `read_scene` returned it.
+        type(scene_type), intent(in) :: scene
+        !> Number of contact points N_c (`check_scene_line`'s).
+        integer, intent(in) :: n_c
+        !> One line a method.
+        character(len=cost_line_length), allocatable, intent(out) :: lines(:)
+        !> Set when the model's points or modes cannot be found.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(structure_kind) :: model
+        type(scene_points) :: points
+        character(len=:), allocatable :: summary, bound
+        real(dp) :: n_g, work, bytes, file_bytes
+        integer :: i, n_m, n_terms
+
+        if (scene%task /= 'contact') then
+            allocate (lines(0))
+            return
+        end if
+        model = find_model(scene%model)
+        bound = ''
+        select case (scene%model)
+        case ('sdof')
+            n_m = 1
+        case ('random_modes')
+            n_m = scene%n_modes
+        case ('frf_file', 'green_file')
+            n_m = scene%max_order
+            bound = '<= '
+        case default
+            n_m = scene%n_modes
+            if (associated(model%find_points)) then
+                call model%find_points(scene, points, summary, error)
+                if (allocated(error)) return
+                n_m = points%modes%modes%n_modes()
+            end if
+        end select
+        n_g = real(scene%n_steps, dp)
+        if (associated(model%slowest_decay)) then
+            if (model%slowest_decay(scene) > 0.0_dp) n_g = min(n_g, log(1.0_dp/scene%truncation_tol) &
+                                                                /(model%slowest_decay(scene)*scene%dt) + 1.0_dp)
+        end if
+        ! a Green's matrix's modal terms: each mode with its residues at every pair of points
+        n_terms = n_m
+        if (scene%model == 'green_file') n_terms = n_m*n_c
+        file_bytes = output_bytes(scene, n_c)
+        allocate (lines(size(scene%methods)))
+        do i = 1, size(scene%methods)
+            call projected_run(trim(scene%methods(i)), n_c, n_m, n_terms, n_g, scene%n_steps, work, bytes)
+            lines(i) = "greenconv: check: method '"//trim(scene%methods(i))//"': about "//sci_text(work/work_rate) &
+                       //' s, '//sci_text(bytes/1.0e6_dp)//' MB in memory, '//sci_text(file_bytes/1.0e6_dp) &
+                       //' MB of files (N_c '//int_text(n_c)//', N_m '//bound//int_text(n_m)//', N_g ' &
+                       //int_text(nint(n_g))//', '//int_text(scene%n_steps)//' steps)'
+        end do
+    end subroutine check_cost_lines
+
+    !> Bytes a method's column file will hold: a row every `output_every` steps, of 5 values
+    !> for one point or of N_c rows of 7 (the tyre's line) or 8 (with y) values, each
+    !> `text_value_bytes` in text and 8 in binary.
+    real(dp) function output_bytes(scene, n_c)
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: n_c
+
+        real(dp) :: rows, values
+
+        rows = real(scene%n_steps/max(scene%output_every, 1) + 1, dp)
+        values = 5.0_dp
+        if (multi_point_model(scene%model)) values = merge(7.0_dp, 8.0_dp, scene%model == 'tyre')*n_c
+        output_bytes = rows*values*merge(8.0_dp, text_value_bytes, scene%output_format == 'binary')
+    end function output_bytes
 
     !> Check a scene without running it: the scene was read and checked by `read_scene`
     !> (with its road file); this also reads and checks a receptance file the structure
     !> names, and says in `line` what a run would do. Nothing is written or printed.
-    subroutine check_scene_line(scene, line, error)
+    subroutine check_scene_line(scene, line, error, n_points)
         !> The scene, as `read_scene` returned it.
         type(scene_type), intent(in) :: scene
         !> "greenconv: FILE: ok: task ..., model ..., ..." (set when the scene is usable).
         character(len=:), allocatable, intent(out) :: line
         !> Set when a file the scene names is unusable.
         type(error_type), allocatable, intent(out) :: error
+        !> Number of contact points N_c (the file's for a Green's matrix or modes file).
+        integer, intent(out), optional :: n_points
 
         type(structure_kind) :: model
+        character(len=:), allocatable :: spectra
         integer :: i, n_c
 
         call check_inputs_kept(scene, error)
@@ -126,6 +227,7 @@ contains
         model = find_model(scene%model)
         if (associated(model%check_file)) call model%check_file(scene, line, n_c, error)
         if (allocated(error)) return
+        if (present(n_points)) n_points = n_c
         if (scene%task == 'contact') then
             line = line//', N_t = '//int_text(scene%n_steps)//' steps of '//sci_text(scene%dt)//' s, ' &
                    //int_text(n_c)//' contact point(s), '
@@ -138,7 +240,10 @@ contains
             do i = 1, size(scene%methods)
                 line = line//' '//trim(scene%methods(i))
             end do
-            if (scene%spectra) line = line//', '//spectra_line(scene)
+            if (scene%spectra) then
+                call spectra_line(scene, spectra)
+                line = line//', '//spectra
+            end if
         end if
     end subroutine check_scene_line
 
@@ -156,11 +261,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text
         real(dp) :: seconds, estimate
         integer :: i, n
 
-        if (scene%spectra) write (unit, '(a)') '# '//spectra_line(scene)//': '//spectra_path(scene, '<method>')
+        if (scene%spectra) then
+            call spectra_line(scene, text)
+            write (unit, '(a)') '# '//text//': '//spectra_path(scene, '<method>')
+        end if
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         outside = ''
         do i = 1, size(scene%methods)
@@ -176,8 +284,8 @@ contains
             if (allocated(error)) then
                 if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
             else if (run%several) then
-                sinks = column_sinks(scene, method, multi_contact_header(title(scene, method), &
-                                                                         run%points%across), &
+                call title(scene, method, text)
+                sinks = column_sinks(scene, method, multi_contact_header(text, run%points%across), &
                                      merge(8, 7, run%points%across))
                 prefix = scene%file//': '//method//': '
             else
@@ -190,7 +298,8 @@ contains
             if (allocated(error)) return
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (estimate > scene%accuracy) then
-                accuracy = outside_line(method, estimate, scene%accuracy)//'; '//accuracy
+                call outside_line(method, estimate, scene%accuracy, text)
+                accuracy = text//'; '//accuracy
                 outside = outside//' '//method
             end if
             write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, accuracy
@@ -203,10 +312,10 @@ contains
 
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
-    function outside_line(method, estimate, accuracy) result(line)
+    subroutine outside_line(method, estimate, accuracy, line)
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: estimate, accuracy
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
@@ -220,7 +329,7 @@ contains
             line = line//'use exact (with the upper residual), a model with a smaller E (a higher max_order, ' &
                    //'less noisy data), or ask a larger accuracy'
         end if
-    end function outside_line
+    end subroutine outside_line
 
     !> The sinks of a driver's run: the method's column file `<output_dir>/<name>_<method>.dat`
     !> (or `.bin`) with the lines `header` and rows of `n_columns` values, and the force
@@ -259,10 +368,10 @@ contains
     end function response_header
 
     !> First header line of a multi-point method's file; with `output_every` > 1, which steps the rows are.
-    function title(scene, method) result(line)
+    subroutine title(scene, method, line)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         line = 'greenconv tyre/road scene '//scene%name//', method '//method
         if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
@@ -270,6 +379,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end function title
+    end subroutine title
 
 end module greenconv_scene_runner

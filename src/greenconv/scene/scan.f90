@@ -47,6 +47,10 @@ module greenconv_scene_scan
     !> Longest group or variable name shown in a list.
     integer, parameter :: name_width = 32
 
+    !> What a value of each kind is, for messages (`kind_text`).
+    character(len=*), parameter :: kind_texts(value_real:value_text_list) = [character(len=17) :: &
+        'a real number', 'an integer', '.true. or .false.', 'a text in quotes', 'a text in quotes']
+
     integer, parameter :: token_word = 1, token_text = 2, token_equals = 3, token_comma = 4, &
                           token_slash = 5, token_group = 6, token_end = 7
 
@@ -304,7 +308,7 @@ contains
                 cycle
             end if
             call repeated_value(state, value, repeat, problem)
-            if (len(problem) == 0 .and. value%kind /= token_end) problem = kind_problem(variable%kind, value)
+            if (len(problem) == 0 .and. value%kind /= token_end) call kind_problem(variable%kind, value, problem)
             if (len(problem) > 0) then
                 call fatal_error(error, state%path//':'//int_text(value%line)//': &'//group%name//' ' &
                                  //variable%name//': '//problem)
@@ -359,10 +363,10 @@ contains
     end function is_value
 
     !> What is wrong with a value for a variable of this kind; '' when it fits.
-    function kind_problem(kind, value) result(problem)
+    subroutine kind_problem(kind, value, problem)
         integer, intent(in) :: kind
         type(token_type), intent(in) :: value
-        character(len=:), allocatable :: problem
+        character(len=:), allocatable, intent(out) :: problem
 
         problem = ''
         if (value%kind == token_text .and. .not. value%closed) then
@@ -373,18 +377,18 @@ contains
         else if (value%kind == token_text) then
             problem = 'expected '//kind_text(kind)//", found the text '"//value%text//"'"
         else if (kind == value_real .or. kind == value_integer) then
-            problem = number_problem(kind, value%text)
+            call number_problem(kind, value%text, problem)
         else if (.not. is_logical(value%text)) then
             problem = "expected .true. or .false., found '"//value%text//"'"
         end if
-    end function kind_problem
+    end subroutine kind_problem
 
     !> What is wrong with a word given as a real (a finite double) or an integer (a default
     !> integer); '' when it fits.
-    function number_problem(kind, word) result(problem)
+    subroutine number_problem(kind, word, problem)
         integer, intent(in) :: kind
         character(len=*), intent(in) :: word
-        character(len=:), allocatable :: problem
+        character(len=:), allocatable, intent(out) :: problem
 
         real(dp) :: real_value
         integer :: integer_value
@@ -408,7 +412,7 @@ contains
             if (.not. ok) problem = 'expected an integer within +-'//int_text(huge(integer_value))//", found '" &
                                     //word//"'"
         end if
-    end function number_problem
+    end subroutine number_problem
 
     !> Whether a word is a logical value: t, f, true, false, with or without periods.
     pure logical function is_logical(word)
@@ -423,12 +427,9 @@ contains
     !> What a value of this kind is, for messages.
     pure function kind_text(kind) result(text)
         integer, intent(in) :: kind
-        character(len=:), allocatable :: text
+        character(len=len_trim(kind_texts(kind))) :: text
 
-        character(len=*), parameter :: texts(value_real:value_text_list) = [character(len=17) :: &
-            'a real number', 'an integer', '.true. or .false.', 'a text in quotes', 'a text in quotes']
-
-        text = trim(texts(kind))
+        text = kind_texts(kind)
     end function kind_text
 
     !> The index of `name(i)` (1 without a subscript): a scalar takes none, an array 1..size.
@@ -508,29 +509,32 @@ contains
     !> `a, b, c or d` (each name after `prefix`), or `a, b, c` without a prefix.
     pure function listed(names, prefix) result(text)
         character(len=*), intent(in) :: names(:), prefix
-        character(len=:), allocatable :: text
+        character(len=size(names)*len(prefix) + sum(len_trim(names)) + 2*(size(names) - 1) &
+                      + merge(2, 0, size(names) > 1 .and. len(prefix) > 0)) :: text
 
-        integer :: i
+        integer :: i, n
 
         text = prefix//trim(names(1))
+        n = len(prefix) + len_trim(names(1))
         do i = 2, size(names)
             if (i == size(names) .and. len(prefix) > 0) then
-                text = text//' or '//prefix//trim(names(i))
+                text(n + 1:) = ' or '//prefix//trim(names(i))
+                n = n + 4
             else
-                text = text//', '//prefix//trim(names(i))
+                text(n + 1:) = ', '//prefix//trim(names(i))
+                n = n + 2
             end if
+            n = n + len(prefix) + len_trim(names(i))
         end do
     end function listed
 
-    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
-    !> enough (at most 2 edits, or a third of the name); '' otherwise.
-    pure function suggestion(name, names, prefix) result(text)
-        character(len=*), intent(in) :: name, names(:), prefix
-        character(len=:), allocatable :: text
+    !> The index of the name closest to `name` by edit distance when close enough (at most 2
+    !> edits, or a third of the name); 0 otherwise.
+    pure integer function closest_name(name, names)
+        character(len=*), intent(in) :: name, names(:)
 
         integer :: i, best, distance, best_distance
 
-        text = ''
         best = 0
         best_distance = huge(best)
         do i = 1, size(names)
@@ -540,8 +544,31 @@ contains
                 best_distance = distance
             end if
         end do
-        if (best > 0 .and. best_distance <= max(2, len(name)/3)) text = "; did you mean '"//prefix &
-                                                                         //trim(names(best))//"'?"
+        closest_name = 0
+        if (best > 0 .and. best_distance <= max(2, len(name)/3)) closest_name = best
+    end function closest_name
+
+    !> Length of `suggestion(name, names, prefix)`: 0 when no name is close enough.
+    pure integer function suggestion_length(name, names, prefix)
+        character(len=*), intent(in) :: name, names(:), prefix
+
+        integer :: best
+
+        suggestion_length = 0
+        best = closest_name(name, names)
+        if (best > 0) suggestion_length = 18 + len(prefix) + len_trim(names(best))
+    end function suggestion_length
+
+    !> `; did you mean 'x'?` for the name closest to `name` by edit distance, when close
+    !> enough (at most 2 edits, or a third of the name); '' otherwise.
+    pure function suggestion(name, names, prefix) result(text)
+        character(len=*), intent(in) :: name, names(:), prefix
+        character(len=suggestion_length(name, names, prefix)) :: text
+
+        integer :: best
+
+        best = closest_name(name, names)
+        if (best > 0) text = "; did you mean '"//prefix//trim(names(best))//"'?"
     end function suggestion
 
     !> Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
@@ -563,10 +590,26 @@ contains
         edit_distance = row(len(b))
     end function edit_distance
 
+    !> Length of `shown(token)`.
+    pure integer function shown_length(token)
+        type(token_type), intent(in) :: token
+
+        select case (token%kind)
+        case (token_text)
+            shown_length = len(token%text) + 2
+        case (token_equals, token_comma, token_slash)
+            shown_length = 1
+        case (token_group)
+            shown_length = len(token%text) + 1
+        case default
+            shown_length = len(token%text)
+        end select
+    end function shown_length
+
     !> A token as the user wrote it, for messages.
     pure function shown(token) result(text)
         type(token_type), intent(in) :: token
-        character(len=:), allocatable :: text
+        character(len=shown_length(token)) :: text
 
         select case (token%kind)
         case (token_text)
@@ -753,12 +796,8 @@ contains
         integer :: i
 
         line_of = 0
-        if (.not. allocated(self%entries)) return
-        do i = size(self%entries), 1, -1
-            if (self%entries(i)%group == group .and. self%entries(i)%variable == variable) then
-                line_of = self%entries(i)%line
-            end if
-        end do
+        i = first_entry(self, group, variable)
+        if (i > 0) line_of = self%entries(i)%line
     end function line_of
 
     !> Whether the file assigns a variable of a group, or, for variable '', holds the group.
@@ -773,6 +812,35 @@ contains
         has_value = self%line_of(group, variable) > 0
     end function has_value
 
+    !> Index of the first entry giving a value to `group`'s `variable`; 0 when none does.
+    pure integer function first_entry(self, group, variable)
+        class(namelist_scan), intent(in) :: self
+        character(len=*), intent(in) :: group, variable
+
+        integer :: i
+
+        first_entry = 0
+        if (.not. allocated(self%entries)) return
+        do i = 1, size(self%entries)
+            if (self%entries(i)%group == group .and. self%entries(i)%variable == variable) then
+                first_entry = i
+                return
+            end if
+        end do
+    end function first_entry
+
+    !> Length of `value_of(self, group, variable)`.
+    pure integer function value_length(self, group, variable)
+        class(namelist_scan), intent(in) :: self
+        character(len=*), intent(in) :: group, variable
+
+        integer :: i
+
+        value_length = 0
+        i = first_entry(self, group, variable)
+        if (i > 0) value_length = len_trim(adjustl(self%entries(i)%value))
+    end function value_length
+
     !> The first value given to a variable, a text without its quotes, trimmed; '' when absent.
     pure function value_of(self, group, variable) result(value)
         !> The scan.
@@ -781,18 +849,12 @@ contains
         character(len=*), intent(in) :: group
         !> Variable name, lower case.
         character(len=*), intent(in) :: variable
-        character(len=:), allocatable :: value
+        character(len=value_length(self, group, variable)) :: value
 
         integer :: i
 
-        value = ''
-        if (.not. allocated(self%entries)) return
-        do i = 1, size(self%entries)
-            if (self%entries(i)%group == group .and. self%entries(i)%variable == variable) then
-                value = trim(adjustl(self%entries(i)%value))
-                return
-            end if
-        end do
+        i = first_entry(self, group, variable)
+        if (i > 0) value = adjustl(self%entries(i)%value)
     end function value_of
 
 end module greenconv_scene_scan

@@ -440,20 +440,33 @@ contains
         if (.not. allocated(error)) call check_required(scan, error)
     end subroutine scan_scene
 
+    !> Length of `required_text(variable, when)`.
+    pure integer function required_length(variable, when)
+        type(scene_variable), intent(in) :: variable
+        character(len=*), intent(in) :: when
+
+        required_length = len(variable%meaning) + merge(4 + len(variable%units), 0, len(variable%units) > 0) &
+                          + merge(11, 16 + len(when), when == 'always')
+    end function required_length
+
     !> "<meaning> in <units> (required[ for <when>])", what a message expects of a required value.
     function required_text(variable, when) result(text)
         !> The table row.
         type(scene_variable), intent(in) :: variable
         !> The condition that makes it required ('always': none to name).
         character(len=*), intent(in) :: when
-        character(len=:), allocatable :: text
+        character(len=required_length(variable, when)) :: text
+
+        integer :: n
 
         text = variable%meaning
-        if (len(variable%units) > 0) text = text//' in '//variable%units
+        n = len(variable%meaning)
+        if (len(variable%units) > 0) text(n + 1:) = ' in '//variable%units
+        if (len(variable%units) > 0) n = n + 4 + len(variable%units)
         if (when == 'always') then
-            text = text//' (required)'
+            text(n + 1:) = ' (required)'
         else
-            text = text//' (required for '//when//')'
+            text(n + 1:) = ' (required for '//when//')'
         end if
     end function required_text
 

@@ -182,6 +182,38 @@ contains
         error%message = place(scene, group, variable)//' '//variable//': '//error%message
     end subroutine place_error
 
+    !> The line `place` names: of the first of `variables` the file sets, else of the group;
+    !> 0 when the file has neither.
+    pure integer function place_line(scene, group, variables)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variables
+
+        character(len=:), allocatable :: rest
+        integer :: comma
+
+        place_line = 0
+        rest = variables
+        do while (place_line == 0 .and. len_trim(rest) > 0)
+            comma = index(rest, ',')
+            if (comma == 0) comma = len(rest) + 1
+            place_line = scene%input%line_of(group, trim(adjustl(rest(:comma - 1))))
+            rest = rest(min(comma + 1, len(rest) + 1):)
+        end do
+        if (place_line == 0) place_line = scene%input%line_of(group, '')
+    end function place_line
+
+    !> Length of `place(scene, group, variables)`.
+    pure integer function place_length(scene, group, variables)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: group, variables
+
+        integer :: line
+
+        line = place_line(scene, group, variables)
+        place_length = len(scene%file) + 3 + len(group)
+        if (line > 0) place_length = place_length + 1 + len(int_text(line))
+    end function place_length
+
     !> "file:line: &group" with the line of the first variable of `variables` (a name or a list
     !> `a, b`) that the file sets, else that of the group, "file: &group" without the group.
     function place(scene, group, variables) result(text)
@@ -192,20 +224,11 @@ contains
         !> Variable names, lower case, comma-separated.
         character(len=*), intent(in) :: variables
         !> The place.
-        character(len=:), allocatable :: text
+        character(len=place_length(scene, group, variables)) :: text
 
-        character(len=:), allocatable :: rest
-        integer :: line, comma
+        integer :: line
 
-        line = 0
-        rest = variables
-        do while (line == 0 .and. len_trim(rest) > 0)
-            comma = index(rest, ',')
-            if (comma == 0) comma = len(rest) + 1
-            line = scene%input%line_of(group, trim(adjustl(rest(:comma - 1))))
-            rest = rest(min(comma + 1, len(rest) + 1):)
-        end do
-        if (line == 0) line = scene%input%line_of(group, '')
+        line = place_line(scene, group, variables)
         if (line > 0) then
             text = scene%file//':'//int_text(line)//': &'//group
         else

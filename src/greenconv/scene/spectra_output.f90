@@ -57,17 +57,18 @@ contains
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: path
+        character(len=len(scene%output_dir) + len(scene%name) + len(method) + 14) :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'_spectra.dat'
     end function spectra_path
 
     !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
     !> e.g. "force spectra 400 Hz to 4000 Hz (11 bands), 2 Hann segments of 1024 samples".
-    function spectra_line(scene) result(line)
+    subroutine spectra_line(scene, line)
         !> The scene, read by `read_scene`.
         type(scene_type), intent(in) :: scene
-        character(len=:), allocatable :: line
+        !> The line.
+        character(len=:), allocatable, intent(out) :: line
 
         real(dp), allocatable :: centre(:), lower(:), upper(:)
         integer :: n
@@ -80,7 +81,7 @@ contains
                //compact_real(nominal_frequency(scene%spectra_f_high))//' Hz ('//int_text(size(centre)) &
                //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segment' &
                //trim(merge('s', ' ', segments(int(scene%n_steps, int64), n) > 1))//' of '//int_text(n)//' samples'
-    end function spectra_line
+    end subroutine spectra_line
 
     !> Get ready for a method's run of `scene`.
     subroutine start_force_spectra(spectra, scene)

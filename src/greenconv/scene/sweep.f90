@@ -15,7 +15,9 @@
 !> the driver's streaming loop (greenconv_scene_stream), keeping only a summary of the total
 !> contact force: max,
 !> mean, rms, the fraction of steps in contact, the status (0, 2 bad input, 3 numerical
-!> fault) and the step of a fault, with its CPU time. Every model of a contact scene can be
+!> fault, 4 ran whole but outside the scene's `accuracy` by the method's own estimate, as
+!> the driver's status 4) and the step of a fault, with its CPU time. The sweep ends with the
+!> worst status of its variants, 3 before 2 before 4. Every model of a contact scene can be
 !> swept: one point (sdof, random_modes, frf_file), the tyre's line of points, and the nodes
 !> of a Green's matrix file (`green_file`, identified once per variant) on a road file or a
 !> 2D texture.
@@ -54,7 +56,7 @@
 !> `run_sweep` and gives the pieces the drivers use; the MPI driver (mpi/) hands the variants
 !> out to the ranks one at a time.
 module greenconv_scene_sweep
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, stat_accuracy
     use greenconv_core_text, only: int_text
     use greenconv_scene_sweep_plan, only: sweep_text, sweep_plan, scene_files, is_sweep_file, read_sweep, &
                                           variant_lines, replaced_all
@@ -134,8 +136,13 @@ contains
             n_done = n_done + 1
         case default
             if (.not. allocated(outcome%key)) return
-            if (outcome%status /= 0) write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k) &
-                //' failed (status '//int_text(outcome%status)//', recorded in its row): '//outcome%message
+            if (outcome%status == stat_accuracy) then
+                write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k)//' ran outside the accuracy ' &
+                    //'asked (status 4, recorded in its row): '//outcome%message
+            else if (outcome%status /= 0) then
+                write (unit, '(a)') 'greenconv: '//plan%file//' variant '//int_text(k)//' failed (status ' &
+                    //int_text(outcome%status)//', recorded in its row): '//outcome%message
+            end if
             call save_record(plan, outcome, error)
             if (allocated(error)) error%message = 'variant '//int_text(k)//': '//error%message
         end select

@@ -135,7 +135,7 @@ contains
         !> The variant's scene text, one line per element.
         type(sweep_text), allocatable :: lines(:)
 
-        character(len=:), allocatable :: group, variable, assignment
+        character(len=:), allocatable :: group, variable, assignment, changed
         integer :: j, line
 
         lines = plan%base
@@ -144,7 +144,8 @@ contains
             assignment = variable//' = '//plan%values(k, j)%text
             if (plan%value_line(j) > 0) then
                 line = plan%value_line(j)
-                lines(line)%text = replaced_value(lines(line)%text, variable, plan%values(k, j)%text)
+                call replace_value(lines(line)%text, variable, plan%values(k, j)%text, changed)
+                lines(line)%text = changed
                 cycle
             end if
             line = plan%group_line(j)
@@ -152,7 +153,8 @@ contains
             if (line == 0) then
                 call append_text(lines, '&'//group//' '//assignment//' /')
             else
-                lines(line)%text = after_group_name(lines(line)%text, group, assignment)
+                call after_group_name(lines(line)%text, group, assignment, changed)
+                lines(line)%text = changed
             end if
         end do
     end function variant_lines
@@ -686,15 +688,21 @@ contains
         is_value = scan(token(1:1), '0123456789+-.''"') > 0
     end function is_value
 
+    !> Whether a text is between two equal quotes.
+    pure logical function quoted(text)
+        character(len=*), intent(in) :: text
+
+        quoted = .false.
+        if (len(text) >= 2) quoted = scan(text(1:1), '''"') > 0 .and. text(len(text):len(text)) == text(1:1)
+    end function quoted
+
     !> A text without its quotes.
     pure function unquoted(text) result(bare)
         character(len=*), intent(in) :: text
-        character(len=:), allocatable :: bare
+        character(len=len(text) - merge(2, 0, quoted(text))) :: bare
 
         bare = text
-        if (len(text) >= 2) then
-            if (scan(text(1:1), '''"') > 0 .and. text(len(text):len(text)) == text(1:1)) bare = text(2:len(text) - 1)
-        end if
+        if (quoted(text)) bare = text(2:len(text) - 1)
     end function unquoted
 
     !> `group.variable` split in two.
@@ -708,9 +716,9 @@ contains
 
     !> A line with the value of `variable = ...` replaced by `value` (up to a comment, the
     !> group's `/` or the next assignment on the line).
-    function replaced_value(line, variable, value) result(changed)
+    subroutine replace_value(line, variable, value, changed)
         character(len=*), intent(in) :: line, variable, value
-        character(len=:), allocatable :: changed
+        character(len=:), allocatable, intent(out) :: changed
 
         character(len=:), allocatable :: low, rest
         integer :: at, start, finish, i, j
@@ -763,18 +771,18 @@ contains
             end select
         end do
         changed = line(:at)//' '//value//line(finish + 1:)
-    end function replaced_value
+    end subroutine replace_value
 
     !> A line with `assignment` written right after its `&group`.
-    function after_group_name(line, group, assignment) result(changed)
+    subroutine after_group_name(line, group, assignment, changed)
         character(len=*), intent(in) :: line, group, assignment
-        character(len=:), allocatable :: changed
+        character(len=:), allocatable, intent(out) :: changed
 
         integer :: at
 
         at = index(lower_text(line), '&'//group) + len(group)
         changed = line(:at)//' '//assignment//' '//line(at + 1:)
-    end function after_group_name
+    end subroutine after_group_name
 
     !> The line of a group added at the end of a variant (0 when none was added).
     integer function added_group_line(lines, group)

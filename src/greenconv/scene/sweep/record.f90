@@ -27,7 +27,8 @@ module greenconv_scene_sweep_record
         character(len=:), allocatable :: result
         !> CPU seconds of the contact loop of each method, blank-separated.
         character(len=:), allocatable :: cpu
-        !> Worst status of its methods: 0 done, 2 bad input, 3 numerical fault.
+        !> Worst status of its methods (greenconv_scene_sweep_report's `worse_status`): 0 done, 4 ran
+        !> outside the accuracy asked, 2 bad input, 3 numerical fault.
         integer :: status = 0
         !> The first failure's message ('' when none).
         character(len=:), allocatable :: message
@@ -192,11 +193,21 @@ contains
         n = n + 2
     end subroutine add_file
 
-    !> An outcome as one text (its record, and what an MPI rank sends): four lines.
-    function outcome_text(outcome) result(text)
+    !> Length of `outcome_text`'s text.
+    pure integer function outcome_length(outcome)
         !> The outcome.
         type(variant_outcome), intent(in) :: outcome
-        character(len=:), allocatable :: text
+
+        outcome_length = len(outcome%result) + len(outcome%cpu) + len(int_text(outcome%status)) &
+                         + len(outcome%message) + 3
+    end function outcome_length
+
+    !> An outcome as one text (its record, and what an MPI rank sends): four lines.
+    pure function outcome_text(outcome) result(text)
+        !> The outcome.
+        type(variant_outcome), intent(in) :: outcome
+        !> Result, CPU times, status and message, a line each.
+        character(len=outcome_length(outcome)) :: text
 
         text = outcome%result//new_line('a')//outcome%cpu//new_line('a')//int_text(outcome%status)//new_line('a') &
                //outcome%message
@@ -225,6 +236,13 @@ contains
         outcome%message = text(c + 1:)
     end subroutine outcome_from_text
 
+    !> Length of `record_directory`'s path.
+    pure integer function directory_length(plan)
+        type(sweep_plan), intent(in) :: plan
+
+        directory_length = len(plan%output_dir) + len(plan%name) + len('/_sweep.d')
+    end function directory_length
+
     !> Record a variant's outcome, atomically, under its content key (nothing when the
     !> outcome has none: the variant failed its check, a fixed file reruns it).
     subroutine save_record(plan, outcome, error)
@@ -242,20 +260,21 @@ contains
     end subroutine save_record
 
     !> The directory of the records of finished variants.
-    function record_directory(plan) result(path)
+    pure function record_directory(plan) result(path)
         type(sweep_plan), intent(in) :: plan
-        character(len=:), allocatable :: path
+        character(len=directory_length(plan)) :: path
 
         path = plan%output_dir//'/'//plan%name//'_sweep.d'
     end function record_directory
 
     !> The record of a variant, named by its content key.
-    function record_path(plan, key) result(path)
+    pure function record_path(plan, key) result(path)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> The variant's content key (hex digits).
         character(len=*), intent(in) :: key
-        character(len=:), allocatable :: path
+        !> `<output_dir>/<name>_sweep.d/<key>.rec`.
+        character(len=directory_length(plan) + len(key) + len('/.rec')) :: path
 
         path = record_directory(plan)//'/'//key//'.rec'
     end function record_path

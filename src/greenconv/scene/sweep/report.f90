@@ -7,7 +7,7 @@
 module greenconv_scene_sweep_report
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, write_text
     use greenconv_io_spectra, only: band_spectrum, band_levels
@@ -19,7 +19,7 @@ module greenconv_scene_sweep_report
     private
 
     public :: summary_row, write_sweep_table, report_check, finish_report, add_method, &
-              failed_outcome, band_text
+              failed_outcome, band_text, worse_status
 
     !> Width of a band level's column.
     integer, parameter :: level_width = 11
@@ -27,14 +27,15 @@ module greenconv_scene_sweep_report
 contains
 
     !> The row of variant k in the table: its number, its values, its result.
-    function summary_row(plan, k, result) result(row)
+    subroutine summary_row(plan, k, result, row)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
         !> Variant number.
         integer, intent(in) :: k
         !> Its result columns (`variant_outcome%result`).
         character(len=*), intent(in) :: result
-        character(len=:), allocatable :: row
+        !> The row.
+        character(len=:), allocatable, intent(out) :: row
 
         integer :: j
 
@@ -43,7 +44,7 @@ contains
             row = row//'  '//padded(plan%values(k, j)%text, column_width(plan, j))
         end do
         row = row//result
-    end function summary_row
+    end subroutine summary_row
 
     !> Write `<name>_sweep.dat` (one row per variant, in order) and `<name>_sweep_cpu.dat`
     !> (the CPU seconds of each method), each atomically.
@@ -55,7 +56,7 @@ contains
         !> Set when a file cannot be written.
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=:), allocatable :: names, cpu_names, table, cpu
+        character(len=:), allocatable :: names, cpu_names, table, cpu, nominal, row
         integer :: j, k, b
 
         names = '# variant'
@@ -72,14 +73,15 @@ contains
         end do
         do j = 1, size(plan%methods)
             do b = 1, size(plan%band_centre)
-                names = names//' '//padded('L'//nominal_text(plan%band_centre(b))//'_'//plan%methods(j)%text, &
-                                           level_width)
+                call nominal_text(plan%band_centre(b), nominal)
+                names = names//' '//padded('L'//nominal//'_'//plan%methods(j)%text, level_width)
             end do
         end do
         table = '# greenconv sweep '//plan%name//' of '//plan%file//': '//int_text(size(outcomes)) &
                 //' variants, rows in variant order'//new_line('a') &
                 //'# per method: max, mean, rms of the total contact force [N], fraction of steps in ' &
-                //'contact, status (0 done, 2 bad input, 3 numerical fault), step of the fault (0: none)'
+                //'contact, status (0 done, 2 bad input, 3 numerical fault, 4 ran outside the accuracy asked), step of the ' &
+                //'fault (0: none)'
         if (plan%spectra) table = table//new_line('a')//'# then per method and 1/3-octave band L<f_c>_<method>: ' &
             //'level of the total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
             //real_text(plan%f_high)//' Hz; Welch PSD, Hann window, 50 % overlap; nan: the method failed)'
@@ -87,7 +89,8 @@ contains
         cpu = '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method'//new_line('a') &
               //cpu_names
         do k = 1, size(outcomes)
-            table = table//new_line('a')//summary_row(plan, k, outcomes(k)%result)
+            call summary_row(plan, k, outcomes(k)%result, row)
+            table = table//new_line('a')//row
             cpu = cpu//new_line('a')//padded(int_text(k), len('# variant') - 2)//outcomes(k)%cpu
         end do
         call make_directory(plan%output_dir, error)
@@ -132,7 +135,8 @@ contains
     !> Write the table and say where it is and how many variants failed. A sweep with failed
     !> variants is not a success even though every other variant completed and the table is
     !> whole: `error` then says how many failed, with the worst status of theirs (3 when one
-    !> met a numerical fault, else 2), which the drivers return.
+    !> met a numerical fault, else 2), which the drivers return. Without a failed variant, one
+    !> that ran outside the accuracy asked (status 4 in its row) sets `error` with status 4.
     subroutine finish_report(plan, outcomes, unit, error)
         !> The sweep.
         type(sweep_plan), intent(in) :: plan
@@ -140,21 +144,51 @@ contains
         type(variant_outcome), intent(in) :: outcomes(:)
         !> Unit of the line.
         integer, intent(in) :: unit
-        !> Set when the table cannot be written, or when a variant failed.
+        !> Set when the table cannot be written, or when a variant failed or ran outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: n_failed
+        character(len=:), allocatable :: line
+        integer :: n_failed, n_outside, worst, k
 
         call write_sweep_table(plan, outcomes, error)
         if (allocated(error)) return
-        n_failed = count(outcomes%status /= 0)
-        write (unit, '(a)') 'greenconv: sweep '//plan%name//': '//int_text(size(outcomes))//' variants, ' &
-            //int_text(n_failed)//' failed; table '//plan%output_dir//'/'//plan%name//'_sweep.dat'
-        if (n_failed > 0) call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_failed)//' of ' &
-                                           //int_text(size(outcomes))//' variants failed (each named above, its ' &
-                                           //'status and step in its row of the table); the others are done', &
-                                           maxval(outcomes%status))
+        n_outside = count(outcomes%status == stat_accuracy)
+        n_failed = count(outcomes%status /= 0) - n_outside
+        worst = 0
+        do k = 1, size(outcomes)
+            worst = worse_status(worst, outcomes(k)%status)
+        end do
+        line = 'greenconv: sweep '//plan%name//': '//int_text(size(outcomes))//' variants, '//int_text(n_failed) &
+               //' failed'
+        if (n_outside > 0) line = line//', '//int_text(n_outside)//' outside the accuracy asked (status 4)'
+        write (unit, '(a)') line//'; table '//plan%output_dir//'/'//plan%name//'_sweep.dat'
+        if (n_failed > 0) then
+            call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_failed)//' of ' &
+                             //int_text(size(outcomes))//' variants failed (each named above, its ' &
+                             //'status and step in its row of the table); the others are done', worst)
+        else if (n_outside > 0) then
+            call fatal_error(error, 'sweep '//plan%name//': '//int_text(n_outside)//' of '//int_text(size(outcomes)) &
+                             //' variants ran outside the accuracy asked (each named above, status 4 in its row ' &
+                             //'of the table): their rows are whole; use a method inside it or ask a larger ' &
+                             //'accuracy', stat_accuracy)
+        end if
     end subroutine finish_report
+
+    !> The worse of two statuses of a method or a variant: 3 (numerical fault) before 2 (bad
+    !> input) before 4 (ran, but outside the accuracy asked) before 0 (done).
+    pure integer function worse_status(a, b) result(worse)
+        !> One status (0, 2, 3 or 4).
+        integer, intent(in) :: a
+        !> The other.
+        integer, intent(in) :: b
+
+        integer :: rank_a, rank_b
+
+        ! status 4 ranks between 0 and 2
+        rank_a = merge(1, a, a == stat_accuracy)
+        rank_b = merge(1, b, b == stat_accuracy)
+        worse = merge(a, b, rank_a >= rank_b)
+    end function worse_status
 
     !> Append one method's columns (and CPU time) to an outcome; a failure sets the status.
     subroutine add_method(outcome, summary, seconds, error, step, prefix)
@@ -164,7 +198,8 @@ contains
         type(force_summary), intent(in) :: summary
         !> CPU seconds of its contact loop.
         real(dp), intent(in) :: seconds
-        !> Its failure, if any (its status is the method's).
+        !> Its failure, if any (its status is the method's; `stat_accuracy`: it ran whole, outside the
+        !> accuracy asked, and its step column stays 0).
         type(error_type), allocatable, intent(in) :: error
         !> Steps it did (the fault's step when it failed).
         integer(int64), intent(in) :: step
@@ -188,10 +223,13 @@ contains
             fraction = padded('nan', 9)
         end if
         outcome%result = outcome%result//' '//peak(:15)//' '//mean(:15)//' '//rms(:15)//' '//fraction(:9) &
-                         //' '//int_text(status)//' '//int_text(merge(step, 0_int64, status /= 0))
+                         //' '//int_text(status)//' '//int_text(merge(step, 0_int64, status /= 0 .and. &
+                                                                    status /= stat_accuracy))
         outcome%cpu = outcome%cpu//' '//cpu_text(seconds)
-        if (status /= 0 .and. outcome%status == 0) outcome%message = prefix//error%message
-        outcome%status = max(outcome%status, status)
+        ! the first failure's message, or the first failure after methods outside the accuracy
+        if (status /= 0 .and. (outcome%status == 0 .or. (outcome%status == stat_accuracy .and. &
+                                                          status /= stat_accuracy))) outcome%message = prefix//error%message
+        outcome%status = worse_status(outcome%status, status)
     end subroutine add_method
 
     !> An outcome whose every method failed before running (the variant's check).
@@ -220,7 +258,7 @@ contains
 
     !> One method's band levels as table columns: ' ' and the level [dB re 1 N] per band of
     !> the sweep; 'nan' for a method that failed (its history is not whole). Empty without spectra.
-    function band_text(plan, history, scene, ok) result(text)
+    subroutine band_text(plan, history, scene, ok, text)
         !> The sweep (its bands).
         type(sweep_plan), intent(in) :: plan
         !> The method's total contact force [N] at every step (allocated with `spectra`).
@@ -230,7 +268,7 @@ contains
         !> Whether the method completed (else every level is nan).
         logical, intent(in) :: ok
         !> The columns, each after a blank.
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         type(band_spectrum) :: spectrum
         type(error_type), allocatable :: error
@@ -249,13 +287,13 @@ contains
             if (ok .and. .not. allocated(error)) write (level, '(f11.4)') spectrum%level(b)
             text = text//' '//level
         end do
-    end function band_text
+    end subroutine band_text
 
     !> The nominal name of a 1/3-octave band (100, 125, 160, ..., 1000, 1250, ...) from its
     !> exact centre 1000*10^(x/10) Hz: the preferred numbers of IEC 61260-1, three digits.
-    function nominal_text(centre) result(text)
+    subroutine nominal_text(centre, text)
         real(dp), intent(in) :: centre
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         real(dp), parameter :: preferred(0:9) = [1.0_dp, 1.25_dp, 1.6_dp, 2.0_dp, 2.5_dp, 3.15_dp, 4.0_dp, 5.0_dp, &
                                                  6.3_dp, 8.0_dp]
@@ -278,17 +316,22 @@ contains
             if (text(len(text):len(text)) == '.') text = text(:len(text) - 1)
         end if
         if (text(1:1) == '.') text = '0'//text
-    end function nominal_text
+    end subroutine nominal_text
 
-    !> CPU seconds as the CPU file shows them.
-    function cpu_text(seconds) result(text)
+    !> CPU seconds in a fixed buffer.
+    pure function cpu_buffer(seconds) result(buffer)
         real(dp), intent(in) :: seconds
-        character(len=:), allocatable :: text
-
         character(len=12) :: buffer
 
         write (buffer, '(f12.4)') seconds
-        text = trim(adjustl(buffer))
+    end function cpu_buffer
+
+    !> CPU seconds as the CPU file shows them.
+    pure function cpu_text(seconds) result(text)
+        real(dp), intent(in) :: seconds
+        character(len=len_trim(adjustl(cpu_buffer(seconds)))) :: text
+
+        text = adjustl(cpu_buffer(seconds))
     end function cpu_text
 
 end module greenconv_scene_sweep_report

@@ -10,8 +10,8 @@
 module greenconv_scene_sweep_variant
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
-    use greenconv_core_text, only: int_text, real_text
+    use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
+    use greenconv_core_text, only: int_text, real_text, sci_text
     use greenconv_io_files, only: make_directory, block_rows
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_input, only: scene_type
@@ -84,7 +84,9 @@ contains
     end subroutine take_variant
 
     !> Run variant k's scene: every method, summarised. A fault (bad input, divergence) is
-    !> kept in the outcome.
+    !> kept in the outcome; so is a method that ran whole but whose own error estimate
+    !> (greenconv_scene_stream's `make_run_convolver`) exceeds the scene's `accuracy`, with
+    !> status 4 (`stat_accuracy`), as the driver's runner says it.
     subroutine run_variant(plan, k, scene, outcome)
         type(sweep_plan), intent(in) :: plan
         integer, intent(in) :: k
@@ -95,11 +97,11 @@ contains
         type(contact_run) :: run
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
-        character(len=:), allocatable :: accuracy, levels, method, summary
-        real(dp) :: seconds
+        character(len=:), allocatable :: accuracy, levels, method, summary, bands
+        real(dp) :: seconds, estimate
         integer(int64) :: step
         integer :: i, n_c, block
-        logical :: several
+        logical :: several, whole
         type(structure_kind) :: model
 
         outcome%result = ''
@@ -122,10 +124,11 @@ contains
             sinks = variant_sinks(plan, scene, k, method, several, run%points%across)
             seconds = 0.0_dp
             step = 0
+            estimate = 0.0_dp
             if (allocated(failure)) then
                 error = failure
             else
-                call make_run_convolver(run, scene, structure, method, accuracy, error)
+                call make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
                 if (.not. allocated(error)) call start_run(run, scene, error)
                 if (.not. allocated(error)) then
                     call stream_run(run, scene, method, block, sinks, '', seconds, error)
@@ -136,8 +139,13 @@ contains
                     deallocate (run%conv)
                 end if
             end if
+            whole = .not. allocated(error)
+            if (whole .and. estimate > scene%accuracy) call fatal_error(error, 'ran outside the accuracy asked: its ' &
+                //'own error estimate '//sci_text(estimate)//' > accuracy '//sci_text(scene%accuracy) &
+                //' (&convolution accuracy); its row is whole', stat_accuracy)
             call add_method(outcome, sinks%summary, seconds, error, step, 'variant '//int_text(k)//': '//method//': ')
-            levels = levels//band_text(plan, sinks%history, scene, .not. allocated(error))
+            call band_text(plan, sinks%history, scene, whole, bands)
+            levels = levels//bands
             if (allocated(error)) deallocate (error)
         end do
         outcome%result = outcome%result//levels
@@ -162,7 +170,7 @@ contains
         sinks%binary = scene%output_format == 'binary'
         sinks%path = plan%output_dir//'/'//plan%name//'_v'//int_text(k)//'_'//method &
                      //merge('.bin', '.dat', sinks%binary)
-        title = history_title(plan, scene, k, method)
+        call history_title(plan, scene, k, method, title)
         if (several) then
             sinks%header = multi_contact_header(title, across)
             sinks%n_columns = merge(8, 7, across)
@@ -177,12 +185,12 @@ contains
 
     !> First header line of a variant's history file: the sweep, the variant and its values,
     !> the method, the steps; with `output_every` > 1, which steps the rows are.
-    function history_title(plan, scene, k, method) result(line)
+    subroutine history_title(plan, scene, k, method, line)
         type(sweep_plan), intent(in) :: plan
         type(scene_type), intent(in) :: scene
         integer, intent(in) :: k
         character(len=*), intent(in) :: method
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         integer :: j
 
@@ -195,6 +203,6 @@ contains
         if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
                                            //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
                                            //', ...)'
-    end function history_title
+    end subroutine history_title
 
 end module greenconv_scene_sweep_variant

@@ -1,0 +1,255 @@
+/*
+ * multi_modes_file.c - gc_multi_new_modes_file (issue 25) and the accuracy doors
+ * gc_multi_estimate / gc_multi_set_accuracy (issue 23).
+ *
+ * The modes file test/data/uff/modes_plate.uff (9 nodes of a plate, 32 modes in datasets 55):
+ * a scene with `&structure model = 'modes_file'` on it is run by gc_run_scene ("exact" and
+ * "modal", 100 steps of 80 us, a road file this program writes); the door's convolver, made on
+ * the same file with the same damping ratio, direction and band, is stepped from this
+ * program's loop (gc_multi_contact_step) on the road heights the scene wrote, with the scene's
+ * contact (k_c per point, the preload shared evenly); its displacements and forces must be
+ * those of the scene's file to 1e-12 (bit for bit expected: the same routines on the same
+ * doubles, the file printed with 17 digits). Then bad files (missing, truncated) end
+ * GC_ERROR_INPUT with the reader's message, and bad arguments are named. Last, the accuracy:
+ * modes given exactly estimate 0 (any accuracy met); "fft" on a receptance file cut at
+ * 200 Hz and run at 1 kHz estimates what the band leaves out, and an accuracy below that
+ * estimate gives GC_ACCURACY from gc_multi_set_accuracy and gc_multi_run_contact (whose
+ * results stay whole), an accuracy above it GC_OK.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <greenconv.h>
+#include "check.h"
+
+#define NC 9
+#define NT 100
+#define MAX_ROWS (NC * NT)
+
+static const char *modes_path = "test/data/uff/modes_plate.uff";
+static const double dt = 8.0e-5, k_contact = 1.0e7, exponent = 1.5, total_preload = 300.0, xi = 0.03;
+static double rows[MAX_ROWS][8];
+
+/* A wavy road: "x height" lines, 0 to 1 m by 0.1 mm. */
+static int write_road(const char *path)
+{
+    const double pi = 3.14159265358979323846;
+    FILE *file = fopen(path, "w");
+    if (file == NULL) return 0;
+    fprintf(file, "# x [m], height [m]\n");
+    for (int j = 0; j <= 10000; j++) {
+        double x = 1.0e-4 * j;
+        fprintf(file, "%.17e %.17e\n", x, 1.0e-4 * sin(2.0 * pi * x / 0.05) + 0.5e-4 * sin(2.0 * pi * x / 0.021));
+    }
+    fclose(file);
+    return 1;
+}
+
+/* The rows (t x u_road u f_contact delta f_total y) of a multi-point column file. */
+static int read_rows(const char *path)
+{
+    char line[1024];
+    int n = 0;
+    FILE *file = fopen(path, "r");
+    if (file == NULL) return -1;
+    while (fgets(line, sizeof line, file) != NULL && n < MAX_ROWS) {
+        if (line[strspn(line, " \t")] == '#') continue;
+        double *r = rows[n];
+        if (sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf", &r[0], &r[1], &r[2], &r[3], &r[4], &r[5], &r[6], &r[7]) == 8)
+            n++;
+    }
+    fclose(file);
+    return n;
+}
+
+/* The scene's run of `method` against the door's convolver stepped from this loop. */
+static void compare_with_scene(const char *method)
+{
+    char msg[1024], path[256], what[256];
+    gc_multi_convolver *conv = NULL;
+    double k_c[NC], p[NC], preload[NC], road[NC], u[NC], f[NC], x[NC], y[NC];
+    int node[NC], status, n_points = 0;
+
+    snprintf(path, sizeof path, "build/ctest_modes_file/plate_%s.dat", method);
+    int n_rows = read_rows(path);
+    snprintf(what, sizeof what, "%s: the scene wrote %d rows (N_t*N_c = %d)", method, n_rows, NC * NT);
+    check(n_rows == NC * NT, what, path);
+    if (n_rows != NC * NT) return;
+    status = gc_multi_new_modes_file(modes_path, 3, xi, 0.0, method, dt, NT, NULL, &conv, msg, sizeof msg);
+    snprintf(what, sizeof what, "%s: gc_multi_new_modes_file on %s", method, modes_path);
+    check_status(status, GC_OK, msg, "", what);
+    if (status != GC_OK) return;
+    status = gc_multi_n_points(conv, &n_points, msg, sizeof msg);
+    check(status == GC_OK && n_points == NC, "its points: the file's 9 nodes", msg);
+    status = gc_multi_points(conv, NC, node, x, y, msg, sizeof msg);
+    int same_points = status == GC_OK && node[0] == 101 && node[8] == 109;
+    for (int i = 0; i < NC && same_points; i++) same_points = x[i] == rows[i][1] && y[i] == rows[i][7];
+    check(same_points, "gc_multi_points: nodes 101..109 at the x, y of the scene's rows", msg);
+    for (int i = 0; i < NC; i++) {
+        k_c[i] = k_contact;
+        p[i] = exponent;
+        preload[i] = total_preload / NC;
+    }
+    status = gc_multi_contact_start(conv, NC, k_c, p, preload, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "the contact run starts");
+    double worst_u = 0.0, worst_f = 0.0, peak_u = 0.0, peak_f = 0.0;
+    for (int n = 0; n < NT && status == GC_OK; n++) {
+        for (int i = 0; i < NC; i++) road[i] = rows[n * NC + i][2];
+        status = gc_multi_contact_step(conv, NC, road, u, f, NULL, msg, sizeof msg);
+        for (int i = 0; i < NC && status == GC_OK; i++) {
+            worst_u = fmax(worst_u, fabs(u[i] - rows[n * NC + i][3]));
+            worst_f = fmax(worst_f, fabs(f[i] - rows[n * NC + i][4]));
+            peak_u = fmax(peak_u, fabs(rows[n * NC + i][3]));
+            peak_f = fmax(peak_f, fabs(rows[n * NC + i][4]));
+        }
+    }
+    snprintf(msg, sizeof msg, "status %d, max |du| %.3g of %.3g m, max |dF| %.3g of %.3g N", status, worst_u, peak_u,
+             worst_f, peak_f);
+    snprintf(what, sizeof what, "%s: the door stepped from C = the scene's run, 100 steps, to 1e-12", method);
+    check(status == GC_OK && peak_u > 0.0 && worst_u <= 1e-12 * peak_u && worst_f <= 1e-12 * peak_f, what, msg);
+    double estimate = -1.0;
+    status = gc_multi_estimate(conv, &estimate, msg, sizeof msg);
+    check(status == GC_OK && estimate == 0.0, "modes given exactly: the estimate is 0", msg);
+    status = gc_multi_set_accuracy(conv, 1e-15, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "an estimate of 0 meets any accuracy");
+    gc_multi_delete(&conv);
+}
+
+/* A receptance file of one mass-spring system at one node (as multi_file.c writes it), to
+ * 200 Hz by 2.5 Hz. */
+static int write_receptance(const char *path)
+{
+    const double pi = 3.14159265358979323846, mass = 1.5, f_n = 50.0, zeta = 0.02, df = 2.5;
+    const double w_n = 2.0 * pi * f_n, k = mass * w_n * w_n, c = 2.0 * zeta * mass * w_n;
+    const int lines = 81;
+    FILE *file = fopen(path, "w");
+    if (file == NULL) return 0;
+    fprintf(file, "    -1\n    15\n         1         0         0         1  0.00000E+00  0.00000E+00  0.00000E+00\n"
+                  "    -1\n    -1\n    58\nmulti_modes_file test\nSDOF\nNONE\nNONE\nNONE\n"
+                  "    4         0    0         0       NONE         1   3       NONE         1   3\n"
+                  "         6%10d         1  0.00000e+00  %.5e  0.00000e+00\n"
+                  "        18    0    0    0 NONE                 Hz                  \n"
+                  "         8    1    0    0 NONE                 m                   \n"
+                  "        13    0    1    0 NONE                 N                   \n"
+                  "         0    0    0    0 NONE                 NONE                \n",
+            lines, df);
+    for (int l = 0; l < lines; l++) {
+        double w = 2.0 * pi * df * l, re = k - mass * w * w, im = c * w, d = re * re + im * im;
+        fprintf(file, "%20.11e%20.11e%s", re / d, -im / d, l % 2 == 1 || l == lines - 1 ? "\n" : "");
+    }
+    fprintf(file, "    -1\n");
+    fclose(file);
+    return 1;
+}
+
+static void check_accuracy(void)
+{
+    const char *path = "build/ctest_modes_file/sdof_band.uff";
+    char msg[1024];
+    gc_multi_convolver *conv = NULL;
+    double estimate = -1.0, k_c = 1.0e6, p = 1.5, preload = 10.0, road[200], u[200], f[200];
+
+    if (!write_receptance(path)) {
+        check(0, "writing the receptance file", path);
+        return;
+    }
+    int status = gc_multi_new_file(path, "fft", 1.0e-3, 200, NULL, 6, &conv, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "fft on a receptance to 200 Hz, dt = 1 ms");
+    if (status != GC_OK) return;
+    status = gc_multi_estimate(conv, &estimate, msg, sizeof msg);
+    snprintf(msg, sizeof msg, "status %d, estimate %.3g", status, estimate);
+    check(status == GC_OK && estimate > 0.0 && estimate < 1.0, "its own estimate: what the band leaves out, in (0, 1)",
+          msg);
+    status = gc_multi_set_accuracy(conv, 2.0 * estimate, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "an accuracy above the estimate: GC_OK");
+    for (int n = 0; n < 200; n++) road[n] = 1.0e-5 * sin(0.3 * n);
+    status = gc_multi_run_contact(conv, 1, 200, &k_c, &p, &preload, road, u, f, NULL, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "a run inside the accuracy: GC_OK");
+    double kept = f[199];
+    status = gc_multi_set_accuracy(conv, 0.5 * estimate, msg, sizeof msg);
+    check_status(status, GC_ACCURACY, msg, "outside the accuracy asked", "an accuracy below it: GC_ACCURACY at once");
+    status = gc_multi_run_contact(conv, 1, 200, &k_c, &p, &preload, road, u, f, NULL, msg, sizeof msg);
+    check_status(status, GC_ACCURACY, msg, "estimate", "the run outside it: GC_ACCURACY naming the estimate");
+    check(f[199] == kept && f[199] > 0.0, "its results whole, the same as inside", "");
+    status = gc_multi_contact_start(conv, 1, &k_c, &p, &preload, msg, sizeof msg);
+    check_status(status, GC_ACCURACY, msg, "accuracy", "gc_multi_contact_start outside it: GC_ACCURACY");
+    status = gc_multi_contact_step(conv, 1, road, u, f, NULL, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "the run started all the same: its steps GC_OK");
+    status = gc_multi_set_accuracy(conv, 0.0, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "accuracy 0: none asked");
+    status = gc_multi_set_accuracy(conv, -1.0, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "accuracy", "a negative accuracy -> 2 naming it");
+    status = gc_multi_set_accuracy(NULL, 1.0, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "conv is NULL", "gc_multi_set_accuracy: conv NULL -> 2");
+    status = gc_multi_estimate(conv, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "estimate is NULL", "gc_multi_estimate: estimate NULL -> 2");
+    gc_multi_delete(&conv);
+    remove(path);
+}
+
+int main(void)
+{
+    const char *scene = "build/ctest_modes_file/plate.nml", *truncated = "build/ctest_modes_file/truncated.uff";
+    char msg[1024], line[512];
+    gc_multi_convolver *conv = NULL;
+    FILE *file;
+
+    if (system("mkdir -p build/ctest_modes_file") != 0 || !write_road("build/ctest_modes_file/wave.dat")) {
+        check(0, "writing the test files in build/ctest_modes_file", "");
+        return check_exit();
+    }
+    file = fopen(scene, "w");
+    if (file == NULL) {
+        check(0, "writing the scene", scene);
+        return check_exit();
+    }
+    fprintf(file, "&scene name = 'plate', output_dir = 'build/ctest_modes_file', dt = 8.0e-5, n_steps = %d /\n"
+                  "&structure model = 'modes_file', modes_file = '%s', damping_ratio = %g /\n"
+                  "&road profile = 'file', road_file = 'build/ctest_modes_file/wave.dat', x_start = 0.3, speed = 5.0 /\n"
+                  "&contact stiffness = %g, exponent = %g, preload = %g /\n"
+                  "&convolution methods = 'exact', 'modal' /\n",
+            NT, modes_path, xi, k_contact, exponent, total_preload);
+    fclose(file);
+    fflush(stdout);
+    int status = gc_run_scene(scene, msg, sizeof msg);
+    check_status(status, GC_OK, msg, "", "the modes_file scene runs (exact, modal)");
+    if (status == GC_OK) {
+        compare_with_scene("exact");
+        compare_with_scene("modal");
+    }
+
+    /* Bad files and arguments. */
+    status = gc_multi_new_modes_file("no/such/modes.uff", 3, xi, 0.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "no/such/modes.uff", "missing file -> 2 naming the file");
+    check(conv == NULL, "no handle after a failed gc_multi_new_modes_file", "");
+    FILE *in = fopen(modes_path, "r"), *out = fopen(truncated, "w");
+    int n_lines = 0;
+    while (in != NULL && out != NULL && fgets(line, sizeof line, in) != NULL && n_lines < 40) {
+        fputs(line, out);
+        n_lines++;
+    }
+    if (in != NULL) fclose(in);
+    if (out != NULL) fclose(out);
+    status = gc_multi_new_modes_file(truncated, 3, xi, 0.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, truncated, "a file cut after 40 lines -> 2 naming the file");
+    check(strchr(msg, '\n') == NULL, "the reader's message on one line", msg);
+    status = gc_multi_new_modes_file(modes_path, 4, xi, 0.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "direction", "direction 4 -> 2 naming it");
+    status = gc_multi_new_modes_file(modes_path, 3, 1.5, 0.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "damping_ratio", "damping ratio 1.5 -> 2 naming it");
+    status = gc_multi_new_modes_file(modes_path, 3, xi, 10.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "band", "f_band below the lowest mode -> 2");
+    status = gc_multi_new_modes_file(modes_path, 3, xi, 0.0, "paper", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "multi-point", "a single-point method -> 2");
+    status = gc_multi_new_modes_file(NULL, 3, xi, 0.0, "modal", dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "path is NULL", "path NULL -> 2");
+    status = gc_multi_new_modes_file(modes_path, 3, xi, 0.0, NULL, dt, NT, NULL, &conv, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "method is NULL", "method NULL -> 2");
+    status = gc_multi_new_modes_file(modes_path, 3, xi, 0.0, "modal", dt, NT, NULL, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "conv is NULL", "conv NULL -> 2");
+    remove(truncated);
+
+    check_accuracy();
+    return check_exit();
+}
