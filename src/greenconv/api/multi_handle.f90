@@ -162,7 +162,7 @@ contains
 
         type(file_modes) :: modes
         type(point_modes) :: description
-        real(dp), allocatable :: residual(:)
+        real(dp), allocatable :: residual(:, :)
         real(dp) :: band, share
         integer :: i
 
