@@ -69,7 +69,7 @@ contains
         integer, intent(in) :: max_modes
         !> The poles lambda_k [rad/s] of the order kept (Re < 0 < Im), by frequency.
         complex(dp), allocatable, intent(out) :: pole(:)
-        !> The matrix-polynomial order kept.
+        !> The order kept: the matrix-polynomial order p > 0, or -p for the common denominator.
         integer, intent(out) :: order
         !> Set when no order gives a pole in the band.
         type(error_type), allocatable, intent(out) :: error
@@ -111,6 +111,7 @@ contains
 
         !> Keep the candidate poles of order `label` when their MDL is the least so far.
         subroutine keep_best(label)
+            !> The order: a matrix order p > 0, or -p for the common denominator of order p.
             integer, intent(in) :: label
 
             if (size(candidate) == 0 .or. size(candidate) > max_modes) return

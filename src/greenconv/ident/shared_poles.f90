@@ -81,7 +81,8 @@ module greenconv_ident_shared_poles
         !> Whether the poles came from the poly-reference fit of all receptances
         !> (greenconv_ident_polyref) rather than from the summed driving points.
         logical :: poly_reference = .false.
-        !> The matrix-polynomial order the poly-reference fit kept (0 otherwise).
+        !> The order the poly-reference fit kept: matrix order p > 0, -p for the common
+        !> denominator of order p (0 for the summed driving points).
         integer :: order = 0
         !> Standard deviations of each pole's natural frequency [Hz] and damping ratio at the
         !> Cramer-Rao bound of the shared-pole model for the estimated noise (poly-reference only).

@@ -324,7 +324,7 @@ contains
                      this, 'identification', 'method', "'ml' (maximum likelihood), 'lsce', 'poly_reference' or 'auto'", &
                      method)
         call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
-                     'method', "'ml', 'poly_reference' or 'auto' for model 'green_file' (its shared poles)", method)
+                     'method', "'ml' for model 'green_file' (or 'poly_reference', 'auto': its shared poles)", method)
         call require(all(trim(method) /= [character(len=14) :: 'poly_reference', 'auto']) .or. this%model == &
                      'green_file', error, this, 'identification', 'method', "'ml' or 'lsce' for model '" &
                      //trim(this%model)//"' ('poly_reference' and 'auto' are for a Green's matrix file)", method)
