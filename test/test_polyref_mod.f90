@@ -190,7 +190,7 @@ contains
         type(plate_case), intent(in) :: case
         character(len=*), intent(in) :: label
         type(test_error), allocatable, intent(out) :: error
-        !> Whether the wall time is checked (< 10 s; default true).
+        !> Whether the CPU time is checked (< 10 s; default true).
         logical, intent(in), optional :: timed
 
         type(point_modes) :: truth
@@ -289,7 +289,8 @@ contains
         if (present(timed)) then
             if (.not. timed) return
         end if
-        call check(error, real(tock - tick, dp)/rate < 10.0_dp, label//': slower than 10 s')
+        ! CPU time: the wall time on a machine shared by several builds says more about the load
+        call check(error, cpu_end - cpu_start < 10.0_dp, label//': slower than 10 s of CPU')
     end subroutine check_case
 
     !> The dense plate's measured matrix written as a universal file, read and identified as a
