@@ -28,7 +28,10 @@ module test_polyref_mod
     use greenconv_ident_shared_poles, only: shared_fit, identify_shared
     use greenconv_ident_polyref, only: pole_covariance, pole_spread
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
+    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_runner, only: run_scene
     use test_patch_mod, only: message_of
+    use scene_text_mod, only: read_scene_text, read_table
     implicit none
     private
 
@@ -55,6 +58,14 @@ module test_polyref_mod
         procedure :: height => wave_height
     end type wave_road
 
+    !> The road a scene ran on, from its output's u_road samples at t_n = n*dt, linear between them.
+    type, extends(road_profile) :: sampled_road
+        real(dp) :: dt = 1.0_dp
+        real(dp), allocatable :: height_at(:)
+    contains
+        procedure :: height => sampled_height
+    end type sampled_road
+
 contains
 
     !> Tests of the poly-reference identification.
@@ -63,8 +74,13 @@ contains
 
         testsuite = [new_unittest('dense plate (38 modes 130-695 Hz, 0.5 %): poles within 5 sigma_CRB, none invented, ' &
                                   //'E <= 1e-2, < 10 s', test_dense_plate), &
+                     new_unittest('dense plate with modes above the band (to 1.1 kHz, file to 800 Hz): poles within ' &
+                                  //'5 sigma_CRB, none invented, E <= 1e-2', test_above_band), &
                      new_unittest('dense plate: exact and modal on the identified model within 1e-2 of the modal ODE', &
-                                  test_dense_contact)]
+                                  test_dense_contact), &
+                     new_unittest('dense plate scene (method auto, ml): the best method within 1e-2 of the modal ' &
+                                  //'ODE, none with status 0 beyond 3e-2', &
+                                  test_dense_scene)]
     end subroutine collect_polyref
 
     !> The plate the identification was developed on: 1.0 m x 0.41 m, foundation 126 Hz, the
@@ -81,6 +97,16 @@ contains
             case%y(i) = 0.41_dp*(0.2_dp + 0.6_dp*modulo(0.618034_dp*i, 1.0_dp))
         end do
     end function dense_case
+
+    !> The dense plate with its modes up to 1.1 kHz while the file stops at 800 Hz: the modes
+    !> above the band act in it as a residual (as a real structure's do), another draw of noise.
+    pure function above_band_case() result(case)
+        type(plate_case) :: case
+
+        case = dense_case()
+        case%f_top = 1100.0_dp
+        case%seed = 977
+    end function above_band_case
 
     !> The plate's modes below f_top and their shapes at the points, damping ratios drawn.
     function plate_truth(case) result(truth)
@@ -148,16 +174,24 @@ contains
         call check_case(dense_case(), 'dense', error)
     end subroutine test_dense_plate
 
+    subroutine test_above_band(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call check_case(above_band_case(), 'above band', error, timed=.false.)
+    end subroutine test_above_band
+
     !> Identify the case's noisy matrix and compare every pole with the bound: the bound's
     !> sigma_f, sigma_xi of each true pole (Fisher information of the shared-pole model at the
     !> truth, the true noise: a reciprocal pair's mean has half the variance), the nearest
     !> identified pole's normalised errors; a pole the data determine (sigma_xi/xi < 0.3) must
     !> be found within 5 sigma in f and xi; an identified pole is invented when no true pole lies
     !> within the half-power bandwidth 2*|Re lambda| [rad/s] of the nearest true pole.
-    subroutine check_case(case, label, error)
+    subroutine check_case(case, label, error, timed)
         type(plate_case), intent(in) :: case
         character(len=*), intent(in) :: label
         type(test_error), allocatable, intent(out) :: error
+        !> Whether the CPU time is checked (< 10 s; default true).
+        logical, intent(in), optional :: timed
 
         type(point_modes) :: truth
         type(shared_fit) :: fit
@@ -223,7 +257,8 @@ contains
             z_xi = abs(xi_hat - xi_true)/sigma_xi(k)
             write (line, '(i6, f9.2, f8.4, es10.2, es10.2, f8.3, f9.2, f10.2)') k, f_true, xi_true, sigma_f(k), &
                 sigma_xi(k), sigma_xi(k)/xi_true, z_f, z_xi
-            if (sigma_xi(k)/xi_true < 0.3_dp) then
+            ! a pole above the file's band is not the identification's to find (it is dropped there)
+            if (sigma_xi(k)/xi_true < 0.3_dp .and. f_true < case%f_max) then
                 determined = determined + 1
                 worst = max(worst, z_f, z_xi)
                 if (max(z_f, z_xi) <= 5.0_dp) found = found + 1
@@ -251,7 +286,11 @@ contains
         if (allocated(error)) return
         call check(error, fit%e_worst <= 1.0e-2_dp, label//': E worst above 1e-2')
         if (allocated(error)) return
-        call check(error, real(tock - tick, dp)/rate < 10.0_dp, label//': slower than 10 s')
+        if (present(timed)) then
+            if (.not. timed) return
+        end if
+        ! CPU time: the wall time on a machine shared by several builds says more about the load
+        call check(error, cpu_end - cpu_start < 10.0_dp, label//': slower than 10 s of CPU')
     end subroutine check_case
 
     !> The dense plate's measured matrix written as a universal file, read and identified as a
@@ -270,29 +309,18 @@ contains
         type(green_structure) :: structure
         type(green_options) :: options
         type(error_type), allocatable :: fail
-        type(uff_function) :: functions(144)
-        type(uff_node) :: nodes(12)
         type(wave_road) :: roads(12)
         type(contact_law) :: laws(12)
         type(multi_contact_response) :: response
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy
-        real(dp), allocatable :: frequency(:), u(:, :), reference(:, :), road(:, :)
-        complex(dp), allocatable :: exact(:, :, :), g(:, :, :)
+        real(dp), allocatable :: u(:, :), reference(:, :), road(:, :)
         real(dp) :: preload(12), e
-        integer :: i, j, m, n
+        integer :: i, m, n
 
         case = dense_case()
         truth = plate_truth(case)
-        call measured_matrix(case, truth, frequency, exact, g)
-        do i = 1, 12
-            do j = 1, 12
-                functions((i - 1)*12 + j) = receptance_function([i, 3], [j, 3], 0.0_dp, case%df, g(i, j, :), 'G')
-            end do
-            nodes(i) = uff_node(label=i, position=[case%x(i), case%y(i), 0.0_dp])
-        end do
-        call make_directory(scratch, fail)
-        if (.not. allocated(fail)) call write_uff(path, functions, nodes, fail, node_dataset=2411)
+        call write_case_file(case, truth, path, fail)
         options%fit%max_order = 60
         options%poly_reference = .true.
         if (.not. allocated(fail)) call read_green_structure(path, options, structure, fail)
@@ -318,6 +346,135 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_dense_contact
+
+    !> The case's measured matrix written as a universal file (144 receptances, nodes by 2411).
+    subroutine write_case_file(case, truth, path, fail)
+        type(plate_case), intent(in) :: case
+        type(point_modes), intent(in) :: truth
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: fail
+
+        type(uff_function) :: functions(144)
+        type(uff_node) :: nodes(12)
+        real(dp), allocatable :: frequency(:)
+        complex(dp), allocatable :: exact(:, :, :), g(:, :, :)
+        integer :: i, j
+
+        call measured_matrix(case, truth, frequency, exact, g)
+        do i = 1, 12
+            do j = 1, 12
+                functions((i - 1)*12 + j) = receptance_function([i, 3], [j, 3], 0.0_dp, case%df, g(i, j, :), 'G')
+            end do
+            nodes(i) = uff_node(label=i, position=[case%x(i), case%y(i), 0.0_dp])
+        end do
+        call make_directory(scratch, fail)
+        if (.not. allocated(fail)) call write_uff(path, functions, nodes, fail, node_dataset=2411)
+    end subroutine write_case_file
+
+    !> Issue 23's done-when at scene level: the dense plate's measured matrix (0.5 % noise) as a
+    !> universal file, rolled by the scene driver over data/road_sample.dat at 2 m/s (Hertz contact
+    !> 1e7 N/m^1.5, 2 kN shared, 20 us, 40 ms, accuracy 3e-2) with the four multi-point methods;
+    !> each method's contact forces against the true structure's modal ODE on the road the scene
+    !> ran on (greenconv_verify_contact), e = ||F - F_ODE||_2/||F_ODE - F0||_2. With `method = 'auto'`
+    !> the best e must be <= 1e-2 and no method that ends inside the accuracy (status 0, its
+    !> summary line not "outside the accuracy asked") may be beyond 3e-2; the same for the summed
+    !> driving points (`method = 'ml'`, which now keeps 25 poles, E worst 1.2e-2, on this file).
+    subroutine test_dense_scene(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = scratch//'/dense_scene.uff'
+        character(len=*), parameter :: methods(4) = ['exact ', 'modal ', 'direct', 'fft   ']
+        character(len=*), parameter :: choices(2) = ['auto', 'ml  ']
+        real(dp), parameter :: dt = 2.0e-5_dp
+        integer, parameter :: n_steps = 2000, n_c = 12
+        type(plate_case) :: case
+        type(point_modes) :: truth
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail
+        type(sampled_road) :: roads(n_c)
+        type(contact_law) :: laws(n_c)
+        real(dp), allocatable :: rows(:, :), u(:, :), reference(:, :), force(:, :)
+        real(dp) :: preload(n_c), e(4), cpu_start, cpu_end
+        logical :: outside(4), passed(2)
+        character(len=2048) :: line
+        character(len=:), allocatable :: name
+        integer :: c, m, i, unit, stat
+
+        case = dense_case()
+        truth = plate_truth(case)
+        call write_case_file(case, truth, path, fail)
+        call check(error, .not. allocated(fail), path//': '//message_of(fail))
+        if (allocated(error)) return
+        laws = [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)]
+        preload = 2000.0_dp/n_c
+        do c = 1, size(choices)
+            name = 'dense_'//trim(choices(c))
+            call read_scene_text(scratch, name//'.nml', "&scene name = '"//name//"', output_dir = '"//scratch &
+                                 //"', dt = 2.0e-5, n_steps = 2000 / &structure model = 'green_file', green_file = '" &
+                                 //path//"' / &identification max_order = 60, method = '"//trim(choices(c)) &
+                                 //"' / &road profile = 'file', road_file = 'data/road_sample.dat', x_start = 1.0, " &
+                                 //"speed = 2.0 / &contact stiffness = 1.0e7, exponent = 1.5, preload = 2000.0 / " &
+                                 //"&convolution methods = 'exact', 'modal', 'direct', 'fft', accuracy = 3.0e-2 /", &
+                                 scene, fail)
+            call check(error, .not. allocated(fail), name//': '//message_of(fail))
+            if (allocated(error)) return
+            open (newunit=unit, status='scratch', action='readwrite')
+            call cpu_time(cpu_start)
+            call run_scene(scene, unit, fail)
+            call cpu_time(cpu_end)
+            call note(name//': scene CPU time [s]', cpu_end - cpu_start)
+            ! status 4 (some method outside the accuracy) is expected; another failure is not
+            call check(error, .not. allocated(fail) .or. index(message_of(fail), 'outside the accuracy') > 0, &
+                       name//': '//message_of(fail))
+            if (allocated(error)) return
+            rewind (unit)
+            outside(:) = .false.
+            do
+                read (unit, '(a)', iostat=stat) line
+                if (stat /= 0) exit
+                if (line(1:1) == '#') write (*, '(a)') trim(line)
+                do m = 1, size(methods)
+                    if (index(line, trim(methods(m))//' ') == 1) outside(m) = index(line, 'outside the accuracy') > 0
+                end do
+            end do
+            close (unit)
+            do m = 1, size(methods)
+                call read_table(scratch//'/'//name//'_'//trim(methods(m))//'.dat', 8, rows, fail)
+                call check(error, .not. allocated(fail) .and. size(rows, 1) == n_c*n_steps, name//': '//methods(m) &
+                           //' output: '//message_of(fail))
+                if (allocated(error)) return
+                force = transpose(reshape(rows(:, 5), [n_c, n_steps]))
+                if (.not. allocated(reference)) then
+                    do i = 1, n_c
+                        roads(i)%dt = dt
+                        roads(i)%height_at = rows(i::n_c, 3)
+                    end do
+                    call multi_contact_reference(truth, laws, roads, preload, dt, n_steps, u, reference, 1.0e-10_dp)
+                end if
+                e(m) = norm2(force - reference)/norm2(reference - spread(preload, 1, n_steps))
+                call note(name//': '//trim(methods(m))//' ||F - F_ODE||/||F_ODE - F0||'//trim(merge( &
+                          ' (status 4: outside the accuracy asked)', '                                       ', &
+                          outside(m))), e(m))
+            end do
+            passed(c) = minval(e) <= 1.0e-2_dp .and. .not. any(.not. outside .and. e > 3.0e-2_dp)
+        end do
+        call check(error, passed(1), "method 'auto': the best method beyond 1e-2, or one with status 0 beyond 3e-2")
+        if (allocated(error)) return
+        call check(error, passed(2), "method 'ml': the best method beyond 1e-2, or one with status 0 beyond 3e-2")
+    end subroutine test_dense_scene
+
+    !> Road height [m] at t [s], linear between the samples (the last one held).
+    elemental real(dp) function sampled_height(self, t)
+        class(sampled_road), intent(in) :: self
+        real(dp), intent(in) :: t
+
+        real(dp) :: position
+        integer :: n
+
+        position = max(0.0_dp, t/self%dt)
+        n = min(int(position), size(self%height_at) - 2)
+        sampled_height = self%height_at(n + 1) + (position - n)*(self%height_at(n + 2) - self%height_at(n + 1))
+    end function sampled_height
 
     !> 6e-5*sin(2*pi*(x0 + 8 t)/0.25 + 0.7) + 2e-5*sin(2*pi*(x0 + 8 t)/0.04 - 1.1) [m].
     elemental real(dp) function wave_height(self, t)

@@ -54,6 +54,9 @@ module greenconv_ident_green_structure
         !> Take the poles from all receptances by the poly-reference fit (greenconv_ident_polyref,
         !> for modally dense structures) instead of the summed driving points.
         logical :: poly_reference = .false.
+        !> Fit both (the summed driving points and poly-reference) and keep the one of smaller
+        !> worst E of eq. (7) over the receptances (`poly_reference` is then ignored).
+        logical :: choose_poles = .false.
     end type green_options
 
     !> A Green's matrix from a universal file, identified when it holds receptances.
@@ -78,6 +81,8 @@ module greenconv_ident_green_structure
         real(dp) :: worst_sigma_f = 0.0_dp, worst_sigma_xi = 0.0_dp
         !> CPU time of the identification [s].
         real(dp) :: cpu_time = 0.0_dp
+        !> With `choose_poles`: the worst E of the fit not kept (-1 when only one was fitted).
+        real(dp) :: e_other = -1.0_dp
     contains
         !> Number of contact points N_c.
         procedure :: n_points => structure_n_points
@@ -123,12 +128,31 @@ contains
         !> Set when the identification fails, the message naming the file.
         type(error_type), allocatable, intent(out) :: error
 
+        type(shared_fit) :: other
+        type(error_type), allocatable :: other_error
         real(dp) :: start, finish
 
         if (structure%matrix%function_type /= 4) return
         call cpu_time(start)
         call identify_shared(structure%matrix%frequency, structure%matrix%g, structure%matrix%reciprocal, &
-                             options%fit, structure%fit, error, options%poly_reference)
+                             options%fit, structure%fit, error, options%poly_reference .and. .not. options%choose_poles)
+        if (options%choose_poles) then
+            ! the poly-reference fit may fail or fit worse (a structure with more modes than its
+            ! matrix orders resolve): the summed driving points' fit is kept unless E says otherwise
+            call identify_shared(structure%matrix%frequency, structure%matrix%g, structure%matrix%reciprocal, &
+                                 options%fit, other, other_error, .true.)
+            if (.not. allocated(other_error)) then
+                if (allocated(error)) then
+                    structure%fit = other
+                    deallocate (error)
+                else if (other%e_worst < structure%fit%e_worst) then
+                    structure%e_other = structure%fit%e_worst
+                    structure%fit = other
+                else
+                    structure%e_other = other%e_worst
+                end if
+            end if
+        end if
         if (allocated(error)) then
             error%message = structure%path//': '//error%message
             return
@@ -387,8 +411,11 @@ contains
             worst = maxloc(fit%e_point, 1)
             if (fit%poly_reference) then
                 text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles ' &
-                       //'(poly-reference fit of all receptances, matrix order '//int_text(fit%order) &
-                       //' by MDL), noise '
+                       //'(poly-reference fit of all receptances, '//trim(merge('matrix order      ', &
+                       'common denominator', fit%order > 0))//' '//int_text(abs(fit%order))//' by MDL'
+                if (self%e_other >= 0.0_dp) text = text//'; chosen over the summed driving points, E worst ' &
+                                                  //sci_text(self%e_other)
+                text = text//'), noise '
             else
                 text = text//nl//'# identification: shared poles, '//int_text(size(fit%pole))//' poles (maximum ' &
                        //'likelihood on the summed driving points, order by MDL, diagram to N = ' &

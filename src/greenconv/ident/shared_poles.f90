@@ -81,7 +81,8 @@ module greenconv_ident_shared_poles
         !> Whether the poles came from the poly-reference fit of all receptances
         !> (greenconv_ident_polyref) rather than from the summed driving points.
         logical :: poly_reference = .false.
-        !> The matrix-polynomial order the poly-reference fit kept (0 otherwise).
+        !> The order the poly-reference fit kept: matrix order p > 0, -p for the common
+        !> denominator of order p (0 for the summed driving points).
         integer :: order = 0
         !> Standard deviations of each pole's natural frequency [Hz] and damping ratio at the
         !> Cramer-Rao bound of the shared-pole model for the estimated noise (poly-reference only).
@@ -180,7 +181,8 @@ contains
         type(shared_fit), intent(out) :: fit
         type(error_type), allocatable, intent(out) :: error
 
-        complex(dp), allocatable :: model(:, :, :), target(:, :, :), residue(:, :)
+        complex(dp), allocatable :: model(:, :, :), target(:, :, :), residue(:, :), trial_model(:, :, :)
+        type(shared_fit) :: trial
         real(dp), allocatable :: sigma(:, :), covariance(:, :)
         integer, allocatable :: lines(:)
         type(error_type), allocatable :: no_bound
@@ -202,9 +204,26 @@ contains
         fit%pole_fit%has_lower = .true.
         call fit_residues(frequency, g, fit, error)
         if (allocated(error)) return
-        call shared_receptance(fit, frequency, model)
-        call report_errors(g, model, fit)
         lines = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
+        call shared_receptance(fit, frequency, model)
+        ! the lower residual only when the data ask for it (MDL: n_t more parameters): a structure
+        ! with no mode below the band gets none, so that its g from the model is not skewed by a
+        ! -L/omega^2 fitted to noise
+        trial = fit
+        trial%pole_fit%has_lower = .false.
+        deallocate (trial%residue, trial%upper, trial%lower)
+        call fit_residues(frequency, g, trial, no_bound)
+        if (.not. allocated(no_bound)) then
+            call shared_receptance(trial, frequency, trial_model)
+            misfit = relative_misfit(target(:, :, lines), model(:, :, lines))
+            energy = relative_misfit(target(:, :, lines), trial_model(:, :, lines))
+            n_t = n_c*(n_c + 1)/2
+            if (n_t*size(lines)*log(energy/max(misfit, tiny(1.0_dp))) <= 0.5_dp*n_t*log(2.0_dp*n_t*size(lines))) then
+                fit = trial
+                model = trial_model
+            end if
+        end if
+        call report_errors(g, model, fit)
         n_m = size(fit%pole)
         n_t = n_c*(n_c + 1)/2
         allocate (sigma(n_t, size(lines)), residue(n_t, n_m))
@@ -230,6 +249,20 @@ contains
         call pole_covariance(frequency(lines), fit%pole, residue, sigma, covariance, no_bound)
         if (.not. allocated(no_bound)) call pole_spread(fit%pole, covariance, fit%sigma_f, fit%sigma_xi)
     end subroutine identify_polyref
+
+    !> sum |target - model|^2/|target|^2 over the distinct receptances (i >= j) and the lines given.
+    pure real(dp) function relative_misfit(target, model) result(misfit)
+        complex(dp), intent(in) :: target(:, :, :), model(:, :, :)
+
+        integer :: i, j
+
+        misfit = 0.0_dp
+        do j = 1, size(target, 1)
+            do i = j, size(target, 1)
+                misfit = misfit + sum(abs(target(i, j, :) - model(i, j, :))**2/max(abs(target(i, j, :)), tiny(1.0_dp))**2)
+            end do
+        end do
+    end function relative_misfit
 
     !> Residue and residual matrices by linear least squares for the fit's poles.
     subroutine fit_residues(frequency, g, fit, error)

@@ -320,13 +320,16 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        call require(any(trim(method) == ['    ', 'ml  ', 'lsce']), error, this, 'identification', 'method', &
-                     "'ml' (maximum likelihood) or 'lsce'", method)
-        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
-                     'method', "'ml' for model 'green_file' (its shared poles are fitted by maximum likelihood)", &
+        call require(any(trim(method) == [character(len=14) :: '', 'ml', 'lsce', 'poly_reference', 'auto']), error, &
+                     this, 'identification', 'method', "'ml' (maximum likelihood), 'lsce', 'poly_reference' or 'auto'", &
                      method)
-        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file' .or. &
-                                                  this%model == 'green_file')
+        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
+                     'method', "'ml' for model 'green_file' (or 'poly_reference', 'auto': its shared poles)", method)
+        call require(all(trim(method) /= [character(len=14) :: 'poly_reference', 'auto']) .or. this%model == &
+                     'green_file', error, this, 'identification', 'method', "'ml' or 'lsce' for model '" &
+                     //trim(this%model)//"' ('poly_reference' and 'auto' are for a Green's matrix file)", method)
+        if (len_trim(method) == 0 .and. this%model == 'green_file') method = 'auto'
+        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file')
         call require(order == 0 .or. trim(method) == 'lsce', error, this, 'identification', 'order', &
                      "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
                      //"method = 'lsce')", order)

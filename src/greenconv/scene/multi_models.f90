@@ -143,6 +143,8 @@ contains
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
         options%fit%max_order = scene%max_order
+        if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
+        if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
         call identify_green(options, points%green, error)
         if (allocated(error)) then
             call place_error(error, scene, 'structure', 'green_file')

@@ -244,7 +244,9 @@ contains
             expect='a number of modes from 0 (chosen by tol_e) to '//int_text(max_lsce_modes), &
             at_least=0.0_dp, at_most=real(max_lsce_modes, dp))
         call add(rows, n, 'identification', 'method', value_text, '', '', &
-            "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
+            "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes); for green_file " &
+            //"the shared poles: 'ml' (summed driving points), 'poly_reference' (every column) or 'auto' ('': " &
+            //"both, the smaller worst E kept)", '')
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
             "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
             choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])
