@@ -25,6 +25,8 @@ module test_outofband_mod
     use greenconv_ident_lsce, only: natural_frequency, damping_ratio
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     use test_mlfit_mod, only: cramer_rao
+    use greenconv_scene_input, only: scene_type
+    use scene_text_mod, only: read_scene_text
     implicit none
     private
 
@@ -64,7 +66,9 @@ contains
                      new_unittest('beam: free-free transfer 0.3 L to 0.85 L, another band (not tuned on); 0.1/1/3 %', &
                                   test_beam_transfer), &
                      new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz on all three FRFs', &
-                                  test_measured_beam)]
+                                  test_measured_beam), &
+                     new_unittest('scene: &identification noise_model read, a value not offered refused', &
+                                  test_scene_noise_model)]
     end subroutine collect_outofband
 
     !> beta_n*L of a free-free beam (cos x cosh x = 1), n = 1.. .
@@ -292,5 +296,35 @@ contains
         end do
         call check(error, len(problem) == 0, problem)
     end subroutine test_measured_beam
+
+    !> `&identification noise_model` reaches the scene ('floor'); 'auto' is refused with the
+    !> group, the variable and the values offered.
+    subroutine test_scene_noise_model(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: dir = 'build/test_scratch'
+        type(scene_type) :: scene
+        type(error_type), allocatable :: failure
+
+        call read_scene_text(dir, 'noise_model.nml', scene_text('floor'), scene, failure)
+        if (allocated(failure)) call check(error, .false., failure%message)
+        if (allocated(error)) return
+        call check(error, scene%ident_noise == 'floor', 'noise_model read: '//scene%ident_noise)
+        if (allocated(error)) return
+        call read_scene_text(dir, 'noise_model.nml', scene_text('auto'), scene, failure)
+        call check(error, allocated(failure), 'noise_model = ''auto'' refused')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'noise_model') > 0 .and. index(failure%message, 'floor') > 0, &
+                   'the message names the variable and the values: '//failure%message)
+    contains
+        function scene_text(model) result(text)
+            character(len=*), intent(in) :: model
+            character(len=:), allocatable :: text
+
+            text = "&scene task = 'identify', name = 'noise_model', output_dir = '"//dir//"' /"//new_line('a') &
+                   //"&structure model = 'frf_file', frf_file = '"//beam_file//"', frf_dataset = 1 /"//new_line('a') &
+                   //"&identification noise_model = '"//model//"' /"
+        end function scene_text
+    end subroutine test_scene_noise_model
 
 end module test_outofband_mod

@@ -245,6 +245,9 @@ contains
             at_least=0.0_dp, at_most=real(max_lsce_modes, dp))
         call add(rows, n, 'identification', 'method', value_text, '', '', &
             "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes)", '')
+        call add(rows, n, 'identification', 'noise_model', value_text, 'relative', '', &
+            "the noise of G for method 'ml': 'relative' (of |G|) or 'floor' (relative plus a floor)", '', &
+            choices=[character(len=16) :: 'relative', 'floor'])
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
             "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
             choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])
