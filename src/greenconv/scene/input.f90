@@ -332,6 +332,8 @@ contains
                      //"method = 'lsce')", order)
         this%order = order
         this%ident_method = trim(method)
+        call require(any(trim(noise_model) == ['relative', 'floor   ']), error, this, 'identification', &
+                     'noise_model', "'relative' or 'floor'", noise_model)
         this%ident_noise = trim(noise_model)
     end subroutine read_identification_group
 
