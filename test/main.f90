@@ -36,6 +36,7 @@ program greenconv_tests
     use test_mlfit_mod, only: collect_mlfit
     use test_identgrid_mod, only: collect_identgrid
     use test_identreal_mod, only: collect_identreal
+    use test_outofband_mod, only: collect_outofband
     use test_identdense_mod, only: collect_identdense
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
@@ -84,6 +85,7 @@ program greenconv_tests
                        new_testsuite('mlfit', collect_mlfit), &
                        new_testsuite('identgrid', collect_identgrid), &
                        new_testsuite('identreal', collect_identreal), &
+                       new_testsuite('outofband', collect_outofband), &
                        new_testsuite('identdense', collect_identdense), &
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &

@@ -19,6 +19,7 @@ module test_identreal_mod
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_frf, only: frf_from_modes, add_relative_noise
     use test_mlfit_mod, only: cramer_rao, case_a
+    use test_outofband_mod, only: judge_fit
     implicit none
     private
 
@@ -244,10 +245,9 @@ contains
         type(error_type), allocatable :: failure
         type(random_stream) :: stream
         real(dp), allocatable :: sigma_f(:), sigma_xi(:)
-        real(dp) :: floor, worst_f, worst_xi, radius, angle
-        integer, allocatable :: match(:)
+        real(dp) :: floor, radius, angle
         character(len=120) :: text
-        integer :: i, seed, k, l
+        integer :: i, seed, l
 
         truth = case_a()
         clean = frf_from_modes(truth, 5000.0_dp, 8193)
@@ -272,29 +272,7 @@ contains
                 write (text, '(a,es8.1,a,i0,a,i0,a)') 'noise ', levels(i), ', seed ', seed, ': ', &
                     result%modes%n_modes(), ' modes'
                 call note(trim(text)//', estimated floor/true', result%noise_floor_level/floor)
-                ! Each found mode is the nearest of one true mode: none invented.
-                match = [(minloc(abs(truth%pole - result%modes%pole(k)), 1), k=1, result%modes%n_modes())]
-                do k = 1, size(match)
-                    call check(error, count(match == match(k)) == 1, trim(text)//': a spurious mode')
-                    if (allocated(error)) return
-                end do
-                worst_f = 0.0_dp
-                worst_xi = 0.0_dp
-                do k = 1, truth%n_modes()
-                    if (.not. any(match == k)) then
-                        call check(error, sigma_xi(k) >= 0.3_dp*(-real(truth%pole(k), dp)/abs(truth%pole(k))), &
-                                   trim(text)//': a mode the data determine was missed')
-                        if (allocated(error)) return
-                        cycle
-                    end if
-                    associate (found => result%modes%pole(findloc(match, k, 1)), pole => truth%pole(k))
-                        worst_f = max(worst_f, abs(abs(found) - abs(pole))/two_pi/sigma_f(k))
-                        worst_xi = max(worst_xi, abs(real(found, dp)/abs(found) - real(pole, dp)/abs(pole))/sigma_xi(k))
-                    end associate
-                end do
-                call note(trim(text)//', worst f/CRB', worst_f)
-                call note(trim(text)//', worst xi/CRB', worst_xi)
-                call check(error, max(worst_f, worst_xi) <= 5.0_dp, trim(text)//': a mode beyond 5 CRB sigma')
+                call judge_fit(error, trim(text), truth, sigma_f, sigma_xi, result)
                 if (allocated(error)) return
             end do
         end do

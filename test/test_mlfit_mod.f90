@@ -131,17 +131,20 @@ contains
     end function model_of
 
     !> Cramér-Rao standard deviations of f [Hz] and xi of each true mode for noise level*|G|
-    !> (and a floor: sigma^2 = (level*|G|)^2 + floor^2 [m/N], when given).
-    subroutine cramer_rao(truth, frf, level, sigma_f, sigma_xi, error, floor)
+    !> (and a floor: sigma^2 = (level*|G|)^2 + floor^2 [m/N], when given). A `background` [m/N]
+    !> per line (terms of the data outside `truth`, known: rigid-body motion, modes above the
+    !> band) is added to the model whose |G| sets the noise.
+    subroutine cramer_rao(truth, frf, level, sigma_f, sigma_xi, error, floor, background)
         type(modal_set), intent(in) :: truth
         type(frf_type), intent(in) :: frf
         real(dp), intent(in) :: level
         real(dp), allocatable, intent(out) :: sigma_f(:), sigma_xi(:)
         type(test_error), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: floor
+        complex(dp), intent(in), optional :: background(:)
 
         real(dp), allocatable :: theta(:), omega(:), fisher(:, :), x(:), e(:), w(:), scale(:)
-        complex(dp), allocatable :: jac(:, :)
+        complex(dp), allocatable :: jac(:, :), g(:)
         type(error_type), allocatable :: failure
         real(dp) :: h
         integer :: n, p, i, j, k
@@ -163,8 +166,10 @@ contains
             e(i) = h
             jac(:, i) = (model_of(theta + e, omega) - model_of(theta - e, omega))/(2.0_dp*h)
         end do
-        w = 2.0_dp/(level*abs(model_of(theta, omega)))**2
-        if (present(floor)) w = 2.0_dp/((level*abs(model_of(theta, omega)))**2 + floor**2)
+        g = model_of(theta, omega)
+        if (present(background)) g = g + background
+        w = 2.0_dp/(level*abs(g))**2
+        if (present(floor)) w = 2.0_dp/((level*abs(g))**2 + floor**2)
         do j = 1, p
             do i = 1, p
                 fisher(i, j) = sum(w*real(conjg(jac(:, i))*jac(:, j), dp))

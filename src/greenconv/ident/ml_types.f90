@@ -41,6 +41,9 @@ module greenconv_ident_ml_types
         real(dp) :: noise_floor = 1.0e-13_dp
         !> Residual terms: 'auto' (kept when MDL accepts them), 'none', 'upper', 'lower' or 'both'.
         character(len=8) :: residual_terms = 'auto'
+        !> Modes above the band: 'auto' (pseudo-modes, poles above f_max with their residues, kept
+        !> when MDL accepts them; the constant R_u alone stands for them otherwise) or 'none'.
+        character(len=8) :: outside_modes = 'auto'
         !> Stability across consecutive orders: relative tolerance on the natural frequency.
         real(dp) :: stable_frequency = 0.01_dp
         !> Stability across consecutive orders: relative tolerance on the damping ratio.
@@ -78,6 +81,10 @@ module greenconv_ident_ml_types
         real(dp) :: upper_residual = 0.0_dp
         !> Lower residual R_l [1/kg] of the term -R_l/omega^2 (0 unless kept).
         real(dp) :: lower_residual = 0.0_dp
+        !> Pseudo-modes above the band (poles above f_max [rad/s], residues [m/(N*s)]): the modes
+        !> past the upper edge the data ask for (outside_modes = 'auto'); part of `receptance`,
+        !> not of `modes` (the data do not determine them as modes).
+        type(modal_set) :: outside
         !> Whether R_u is part of the model.
         logical :: has_upper = .false.
         !> Whether R_l is part of the model (the 0 Hz line is then left out).
@@ -156,6 +163,7 @@ contains
         ml_receptance = self%upper_residual
         if (self%modes%n_modes() > 0) ml_receptance = ml_receptance + self%modes%receptance(omega)
         if (self%has_lower) ml_receptance = ml_receptance - self%lower_residual/omega**2
+        if (self%outside%n_modes() > 0) ml_receptance = ml_receptance + self%outside%receptance(omega)
     end function ml_receptance
 
     !> Largest relative standard deviation of a natural frequency, sigma_f/f.
@@ -223,6 +231,8 @@ contains
             text = text//', worst sigma_f/f = '//sci_text(self%worst_frequency_spread())//', worst sigma_xi/xi = ' &
                    //sci_text(self%worst_damping_spread())
         end if
+        if (self%outside%n_modes() > 0) text = text//', '//int_text(self%outside%n_modes()) &
+                                               //' pseudo-mode(s) above the band'
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
                                                 //' outlier line(s) left out'

@@ -113,6 +113,16 @@
 !>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
+!> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
+!>    the modes past f_max; a mode just above the edge (a free-free beam's next bending mode
+!>    at 1.1*f_max) bends G near the edge far more than a constant: the fit then pulls the
+!>    highest modes (635 CRB sigma at 0.1 % on suite outofband's beam, chi2/nu 7e3). After the
+!>    model above is final, one pole is started at 1.05, 1.2, 1.5 and 2.5*f_max (xi 0.02) and
+!>    fitted with it; the best is kept when it lowers the MDL criterion (4*ln(2L) for its four
+!>    parameters) and stays above f_max, the order search runs again with poles up to 10*f_max
+!>    allowed (a heavily damped in-band pole that stood for the missing term is then dropped),
+!>    and the model is refined as before; then another, at most 3. The poles above f_max are
+!>    the result's `outside` pseudo-modes: part of its receptance, not of its modes.
 !>
 !> ## Grids
 !> Any increasing frequencies >= 0 Hz. The fit, the order search and the uncertainty use the
@@ -153,7 +163,7 @@ module greenconv_ident_mlfit
     use greenconv_ident_ml_types, only: ml_options, ml_result, add_warning, dropped_by_criterion, &
                                         dropped_left_band, dropped_degenerate, dropped_boundary
     use greenconv_ident_lm_fit, only: model_type, data_type, final_tolerance, evaluate, chi_square, &
-                                      n_parameters, fit, reweight, information, covariance, widened
+                                      n_parameters, fit, reweight, information, covariance, widened, criterion
     use greenconv_ident_noise_model, only: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, &
                                            interpolated, spacing_at
     use greenconv_ident_diagram, only: build_diagram
@@ -172,6 +182,14 @@ module greenconv_ident_mlfit
     !> Fall of chi2 in one iteration below which a fit of the order search stops: a fortieth of
     !> a mode's MDL price 4*ln(2L), too little to change a decision.
     real(dp), parameter :: search_tolerance = 1.0_dp
+    !> Start frequencies of a pseudo-mode above the band, as multiples of f_max, and its start
+    !> damping ratio: the fit moves it where the data ask.
+    real(dp), parameter :: outside_start(4) = [1.05_dp, 1.2_dp, 1.5_dp, 2.5_dp]
+    real(dp), parameter :: outside_damping = 0.02_dp
+    !> Poles up to this multiple of f_max stay in the model as pseudo-modes once they are tried.
+    real(dp), parameter :: outside_ceiling = 10.0_dp
+    !> Most pseudo-modes tried above the band, one at a time.
+    integer, parameter :: max_outside = 3
 
 contains
 
@@ -233,6 +251,80 @@ contains
             if (outlier == 0) exit
             repaired%receptance(outlier) = interpolated(repaired%receptance, result%outlier_line, outlier)
         end do
+        call refine_final(data, options, model, result, error)
+        if (allocated(error)) return
+        if (options%outside_modes == 'auto') then
+            call try_outside(data, options, candidates, model, result, error)
+            if (allocated(error)) return
+        end if
+        call finish(frf, data, options, model, result)
+    end subroutine identify_ml
+
+    !> Modes above the band as pseudo-modes (step 8 of the description): one pole started above
+    !> f_max at each of outside_start, fitted with the model; the best kept when it lowers the
+    !> MDL criterion (its four parameters paid for) and stays above f_max, and tried again for
+    !> another one, at most max_outside, while the model has fewer than max_modes poles. After each the order search runs again with poles up to outside_ceiling*f_max allowed (a mode near the upper edge
+    !> that the constant R_u could not stand for was missed or bent before) and the model is
+    !> refined as the first time. The model is unchanged when no pseudo-mode pays.
+    subroutine try_outside(data, options, candidates, model, result, error)
+        type(data_type), intent(inout) :: data
+        type(ml_options), intent(in) :: options
+        complex(dp), intent(in) :: candidates(:)
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        type(error_type), allocatable, intent(out) :: error
+
+        type(model_type) :: trial, best
+        real(dp) :: f_band, best_criterion, trial_criterion
+        integer :: i, n, outlier, added
+
+        f_band = data%f_max
+        data%max_iterations = min(options%max_iterations, search_iterations)
+        data%tolerance = search_tolerance
+        data%f_max = outside_ceiling*f_band
+        do added = 0, max_outside - 1
+            ! A pseudo-mode counts as a mode of the model: never more than max_modes poles.
+            if (size(model%pole) >= data%max_modes) exit
+            best_criterion = criterion(data, model, chi_square(data, model))
+            if (allocated(best%pole)) deallocate (best%pole, best%residue)
+            n = size(model%pole) + 1
+            do i = 1, size(outside_start)
+                trial = model
+                trial%pole = [model%pole, two_pi*outside_start(i)*f_band &
+                              *cmplx(-outside_damping, sqrt(1.0_dp - outside_damping**2), dp)]
+                trial%residue = [model%residue, (0.0_dp, 0.0_dp)]
+                call fit(data, trial, result%iterations, error)
+                if (allocated(error)) return
+                trial_criterion = criterion(data, trial, chi_square(data, trial))
+                if (trial_criterion < best_criterion .and. natural_frequency(trial%pole(n)) > two_pi*f_band) then
+                    best = trial
+                    best_criterion = trial_criterion
+                end if
+            end do
+            if (.not. allocated(best%pole)) exit
+            model = best
+            call choose_order(data, options, candidates, model, result, outlier, .true., error)
+            if (allocated(error)) return
+        end do
+        if (added == 0) then
+            data%max_iterations = options%max_iterations
+            data%tolerance = final_tolerance
+            data%f_max = f_band
+            return
+        end if
+        call refine_final(data, options, model, result, error)
+    end subroutine try_outside
+
+    !> The model the search chose, refined with the final weights and settings (all iterations,
+    !> final_tolerance), then cleaned: poles outside the allowed band, needles, modes the data
+    !> do not determine.
+    subroutine refine_final(data, options, model, result, error)
+        type(data_type), intent(inout) :: data
+        type(ml_options), intent(in) :: options
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        type(error_type), allocatable, intent(out) :: error
+
         data%max_iterations = options%max_iterations
         data%tolerance = final_tolerance
         call reweight(data, model, result%iterations)
@@ -241,9 +333,7 @@ contains
         call drop_needles(data, model, result, error)
         if (allocated(error)) return
         call drop_undetermined(data, model, result, error)
-        if (allocated(error)) return
-        call finish(frf, data, options, model, result)
-    end subroutine identify_ml
+    end subroutine refine_final
 
     !> Reject inputs that cannot be used.
     subroutine check_input(frf, options, error)
@@ -270,6 +360,9 @@ contains
         else if (all(options%noise_model /= [character(len=8) :: 'relative', 'absolute', 'floor'])) then
             call fatal_error(error, "identify_ml: noise_model must be 'relative', 'absolute' or 'floor', found '" &
                              //trim(options%noise_model)//"'")
+        else if (all(options%outside_modes /= [character(len=8) :: 'auto', 'none'])) then
+            call fatal_error(error, "identify_ml: outside_modes must be 'auto' or 'none', found '" &
+                             //trim(options%outside_modes)//"'")
         end if
         if (allocated(error)) return
         if (allocated(options%sigma)) then
@@ -294,10 +387,16 @@ contains
         integer :: k, c, n, j
         integer, allocatable :: index(:)
         logical :: ok
-        type(modal_set) :: unsorted
+        logical, allocatable :: inside(:)
+        type(modal_set) :: unsorted, outside
         character(len=:), allocatable :: excess
 
-        n = size(model%pole)
+        ! Poles above the band are the pseudo-modes of try_outside: part of the model, not modes.
+        inside = natural_frequency(model%pole) <= two_pi*frf%f_max()
+        n = count(inside)
+        outside%pole = pack(model%pole, .not. inside)
+        outside%residue = pack(model%residue, .not. inside)
+        result%outside = sorted_by_frequency(outside)
         result%chi_square = chi_square(data, model)
         result%dof = 2*size(data%g) - n_parameters(model)
         result%explained = result%chi_square/result%dof <= 1.0_dp + 3.0_dp*sqrt(2.0_dp/result%dof)
@@ -308,9 +407,8 @@ contains
         result%has_lower = model%lower
         result%upper_residual = model%r_u
         result%lower_residual = model%r_l
-        allocate (unsorted%pole(n), unsorted%residue(n))
-        unsorted%pole(:) = model%pole
-        unsorted%residue(:) = model%residue
+        unsorted%pole = pack(model%pole, inside)
+        unsorted%residue = pack(model%residue, inside)
         result%modes = sorted_by_frequency(unsorted)
         allocate (result%sigma_frequency(n), result%sigma_damping(n), result%sigma_residue(n))
         result%sigma_frequency = huge(1.0_dp)

@@ -134,6 +134,9 @@ contains
         ! near an anti-resonance of the sum its |G| is far below the noise of its terms, and
         ! a noise taken relative to the sum alone lets the fit put spurious poles there.
         pole_options = options
+        ! The residues of every G_ij are fitted later with R_u and R_l only: no pseudo-modes above
+        ! the band for the sum either (issue 26's are for a single FRF).
+        pole_options%outside_modes = 'none'
         level = 1.0_dp
         if (.not. allocated(options%sigma)) then
             level = estimate_noise(summed%receptance, 'relative')

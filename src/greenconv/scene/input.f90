@@ -301,9 +301,9 @@ contains
 
         real(dp) :: f_max, tol_e
         integer :: n_freq, max_order, order, stat
-        character(len=name_length) :: method
+        character(len=name_length) :: method, noise_model
         character(len=512) :: message
-        namelist /identification/ f_max, n_freq, tol_e, max_order, order, method
+        namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
         f_max = 0.5_dp/this%dt
@@ -335,6 +335,9 @@ contains
                      //"method = 'lsce')", order)
         this%order = order
         this%ident_method = trim(method)
+        call require(any(trim(noise_model) == ['relative', 'floor   ']), error, this, 'identification', &
+                     'noise_model', "'relative' or 'floor'", noise_model)
+        this%ident_noise = trim(noise_model)
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.

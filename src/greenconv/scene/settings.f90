@@ -102,6 +102,8 @@ module greenconv_scene_settings
         integer :: order
         !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
         character(len=:), allocatable :: ident_method
+        !> Noise model of the 'ml' identification: 'relative' or 'floor' (ml_options%noise_model).
+        character(len=:), allocatable :: ident_noise
         !> Road profile.
         class(road_profile), allocatable :: road
         !> The road file of profile 'file' (heights over x), for the multi-point scene.

@@ -133,6 +133,7 @@ contains
         if (allocated(scene%ident_method)) ml = scene%ident_method == 'ml'
         if (ml) then
             options%max_order = scene%max_order
+            if (allocated(scene%ident_noise)) options%noise_model = scene%ident_noise
             call structure_from_frf_ml(frf, options, dt, structure, error)
         else
             call structure_from_frf(frf, scene_options(scene), dt, structure, error)
