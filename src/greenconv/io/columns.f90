@@ -328,7 +328,8 @@ contains
     function long_line(path, line_number) result(text)
         character(len=*), intent(in) :: path
         integer, intent(in) :: line_number
-        character(len=:), allocatable :: text
+        character(len=len(path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
+                          //' characters, found a longer one (a binary file, or a file without line ends?)')) :: text
 
         text = path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
                //' characters, found a longer one (a binary file, or a file without line ends?)'

@@ -370,7 +370,7 @@ contains
     pure function binary_header(path) result(header)
         !> The binary column file.
         character(len=*), intent(in) :: path
-        character(len=:), allocatable :: header
+        character(len=len(path) + 4) :: header
 
         header = path//'.txt'
     end function binary_header
