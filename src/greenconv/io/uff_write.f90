@@ -445,12 +445,18 @@ contains
     !> `NONE` when empty or unset.
     pure function entity(name) result(text)
         character(len=:), allocatable, intent(in) :: name
-        character(len=:), allocatable :: text
+        character(len=merge(given_length(name), 4, given_length(name) > 0)) :: text
 
         text = 'NONE'
-        if (allocated(name)) then
-            if (len_trim(name) > 0) text = trim(adjustl(name))
-        end if
+        if (given_length(name) > 0) text = adjustl(name)
     end function entity
+
+    !> Length of a name without its leading and trailing blanks, 0 when it is unset.
+    pure integer function given_length(name)
+        character(len=:), allocatable, intent(in) :: name
+
+        given_length = 0
+        if (allocated(name)) given_length = len_trim(adjustl(name))
+    end function given_length
 
 end module greenconv_io_uff_write
