@@ -452,7 +452,17 @@ contains
         !> The sampled receptance.
         type(frf_type), intent(in) :: frf
         !> The problem in a phrase ('' when none).
-        character(len=:), allocatable :: problem
+        character(len=len_trim(receptance_problem_buffer(frf))) :: problem
+
+        problem = receptance_problem_buffer(frf)
+    end function receptance_problem
+
+    !> `receptance_problem` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function receptance_problem_buffer(frf) result(problem)
+        !> The sampled receptance.
+        type(frf_type), intent(in) :: frf
+        !> The problem in a phrase ('' when none).
+        character(len=96) :: problem
 
         problem = ''
         if (frf%n_freq() < min_frf_lines) then
@@ -465,7 +475,7 @@ contains
         else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
             problem = 'the FRF holds a NaN or infinite receptance; remove or repair those lines'
         end if
-    end function receptance_problem
+    end function receptance_problem_buffer
 
     !> Reject inputs the identification cannot use.
     subroutine check_input(frf, options, error)
