@@ -413,16 +413,6 @@ contains
         call fatal_error(fault, message, stat_numerical)
     end subroutine step_fault
 
-    !> "at step n (t = t_n s)", and " at point i" when the run has more than one point and
-    !> i > 0.
-    pure function where(state, point) result(text)
-        type(contact_state), intent(in) :: state
-        integer, intent(in) :: point
-        character(len=len_trim(where_buffer(state, point))) :: text
-
-        text = where_buffer(state, point)
-    end function where
-
     !> `where` blank-padded to a fixed length, which gives that function a result of spec length.
     pure function where_buffer(state, point) result(text)
         type(contact_state), intent(in) :: state
@@ -432,6 +422,16 @@ contains
         text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
         if (size(state%laws) > 1 .and. point > 0) text = trim(text)//' at point '//int_text(point)
     end function where_buffer
+
+    !> "at step n (t = t_n s)", and " at point i" when the run has more than one point and
+    !> i > 0.
+    pure function where(state, point) result(text)
+        type(contact_state), intent(in) :: state
+        integer, intent(in) :: point
+        character(len=len_trim(where_buffer(state, point))) :: text
+
+        text = where_buffer(state, point)
+    end function where
 
     !> One line on an implicit step that did not converge: where, and the residual left [m].
     pure subroutine convergence_message(state, point, residual, message)

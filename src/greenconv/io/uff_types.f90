@@ -132,15 +132,6 @@ module greenconv_io_uff_types
 
 contains
 
-    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
-    pure function uff_kind_name(kind) result(name)
-        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
-        integer, intent(in) :: kind
-        character(len=len_trim(uff_kind_name_buffer(kind))) :: name
-
-        name = uff_kind_name_buffer(kind)
-    end function uff_kind_name
-
     !> `uff_kind_name` blank-padded to a fixed length, which gives that function a result of spec length.
     pure function uff_kind_name_buffer(kind) result(name)
         !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
@@ -154,15 +145,14 @@ contains
         if (kind >= lbound(names, 1) .and. kind <= ubound(names, 1)) name = trim(names(kind))
     end function uff_kind_name_buffer
 
-    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
-    !> `type N` for a code the format does not list.
-    pure function uff_data_type_name(code) result(name)
-        !> Specific data type (record 8-11 field 1).
-        integer, intent(in) :: code
-        character(len=len_trim(uff_data_type_name_buffer(code))) :: name
+    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
+    pure function uff_kind_name(kind) result(name)
+        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
+        integer, intent(in) :: kind
+        character(len=len_trim(uff_kind_name_buffer(kind))) :: name
 
-        name = uff_data_type_name_buffer(code)
-    end function uff_data_type_name
+        name = uff_kind_name_buffer(kind)
+    end function uff_kind_name
 
     !> `uff_data_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
     pure function uff_data_type_name_buffer(code) result(name)
@@ -192,15 +182,15 @@ contains
         end select
     end function uff_data_type_name_buffer
 
-    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
-    !> function`, ...); `type N` for a code the format does not list.
-    pure function uff_function_type_name(code) result(name)
-        !> Function type (record 6 field 1).
+    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
+    !> `type N` for a code the format does not list.
+    pure function uff_data_type_name(code) result(name)
+        !> Specific data type (record 8-11 field 1).
         integer, intent(in) :: code
-        character(len=len_trim(uff_function_type_name_buffer(code))) :: name
+        character(len=len_trim(uff_data_type_name_buffer(code))) :: name
 
-        name = uff_function_type_name_buffer(code)
-    end function uff_function_type_name
+        name = uff_data_type_name_buffer(code)
+    end function uff_data_type_name
 
     !> `uff_function_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
     pure function uff_function_type_name_buffer(code) result(name)
@@ -222,5 +212,15 @@ contains
             name = 'type '//int_text(code)
         end if
     end function uff_function_type_name_buffer
+
+    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
+    !> function`, ...); `type N` for a code the format does not list.
+    pure function uff_function_type_name(code) result(name)
+        !> Function type (record 6 field 1).
+        integer, intent(in) :: code
+        character(len=len_trim(uff_function_type_name_buffer(code))) :: name
+
+        name = uff_function_type_name_buffer(code)
+    end function uff_function_type_name
 
 end module greenconv_io_uff_types

@@ -441,6 +441,14 @@ contains
         end select
     end function number_field
 
+    !> Length of a name without its leading and trailing blanks, 0 when it is unset.
+    pure integer function given_length(name)
+        character(len=:), allocatable, intent(in) :: name
+
+        given_length = 0
+        if (allocated(name)) given_length = len_trim(adjustl(name))
+    end function given_length
+
     !> An entity name (record 6) or an axis label or units (records 8 to 11) as written:
     !> `NONE` when empty or unset.
     pure function entity(name) result(text)
@@ -450,13 +458,5 @@ contains
         text = 'NONE'
         if (given_length(name) > 0) text = adjustl(name)
     end function entity
-
-    !> Length of a name without its leading and trailing blanks, 0 when it is unset.
-    pure integer function given_length(name)
-        character(len=:), allocatable, intent(in) :: name
-
-        given_length = 0
-        if (allocated(name)) given_length = len_trim(adjustl(name))
-    end function given_length
 
 end module greenconv_io_uff_write

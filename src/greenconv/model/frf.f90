@@ -130,16 +130,6 @@ contains
         frf_uniform_from_zero = off_grid(self%frequency) == 0
     end function frf_uniform_from_zero
 
-    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
-    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
-    pure function frf_fft_grid_problem(self) result(text)
-        !> The FRF.
-        class(frf_type), intent(in) :: self
-        character(len=len_trim(grid_problem_buffer(self))) :: text
-
-        text = grid_problem_buffer(self)
-    end function frf_fft_grid_problem
-
     !> `frf_fft_grid_problem` blank-padded to a fixed length (numbers only, so it fits), which
     !> gives that function a result of spec length.
     pure function grid_problem_buffer(self) result(text)
@@ -167,6 +157,16 @@ contains
         text(len_trim(text) + 2:) = 'expected the uniform grid from 0 Hz (f = '//real_text((j - 1)*df)//' Hz there, step ' &
                //real_text(df)//' Hz), found '//real_text(self%frequency(j))//' Hz'
     end function grid_problem_buffer
+
+    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
+    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
+    pure function frf_fft_grid_problem(self) result(text)
+        !> The FRF.
+        class(frf_type), intent(in) :: self
+        character(len=len_trim(grid_problem_buffer(self))) :: text
+
+        text = grid_problem_buffer(self)
+    end function frf_fft_grid_problem
 
     !> First index j whose frequency is off the uniform grid (j - 1)*df from 0 Hz by more than
     !> grid_tolerance*df (df = f(n)/(n - 1)); 0 when none is.
@@ -380,14 +380,6 @@ contains
         end do
     end subroutine list_functions
 
-    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
-    pure function dof_text(node, direction) result(text)
-        integer, intent(in) :: node, direction
-        character(len=len_trim(dof_buffer(node, direction))) :: text
-
-        text = dof_buffer(node, direction)
-    end function dof_text
-
     !> `dof_text` blank-padded to a fixed length, which gives that function a result of spec length.
     pure function dof_buffer(node, direction) result(text)
         integer, intent(in) :: node, direction
@@ -399,6 +391,14 @@ contains
         if (direction == 0) return
         text = int_text(node)//merge('+', '-', direction > 0)//trim(axes(min(abs(direction), 6)))
     end function dof_buffer
+
+    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
+    pure function dof_text(node, direction) result(text)
+        integer, intent(in) :: node, direction
+        character(len=len_trim(dof_buffer(node, direction))) :: text
+
+        text = dof_buffer(node, direction)
+    end function dof_text
 
     !> A receptance from one dataset 58 of a universal file (function type 4, frequency
     !> abscissa), converted from mobility or accelerance as the module description says.
