@@ -588,12 +588,14 @@ contains
         type(convolver_box), pointer :: box
         integer(c_int), pointer :: size_out
         integer :: n
+        character(len=:), allocatable :: description
 
         box => box_at(conv)
         call check_box('gc_multi_describe', null_handle, box, error=error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call to_c(describe_box(box, n), text, text_len)
+        call describe_box(box, description, n)
+        call to_c(description, text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)
             size_out = int(n, c_int)

@@ -422,12 +422,14 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: description
 
         nsize = 0
         box => checked('gcmdsc', handle, error=error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        text = describe_box(box, nsize)
+        call describe_box(box, description, nsize)
+        text = description
     end subroutine gcmdsc
 
     !> Newton and divergence settings of the next contact runs (defaults 1D-12, 50, 1 m).
