@@ -510,6 +510,7 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: description
 
         box => box_at(conv)
         status = stat_input
@@ -517,7 +518,8 @@ contains
             call to_c('', text, text_len)
             return
         end if
-        call to_c(describe_box(box), text, text_len)
+        call describe_box(box, description)
+        call to_c(description, text, text_len)
         status = 0
     end function gc_convolver_describe
 

@@ -19,10 +19,10 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, box_points, describe_multi, file_summary
+                                          file_e_modes, box_points, file_summary
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     implicit none
     private
 
@@ -600,7 +600,7 @@ contains
         call check_box('gc_multi_describe', null_handle, box, error=error)
         status = finish(error, text, text_len)
         if (allocated(error)) return
-        call describe_multi(box, n, description)
+        call describe_box(box, description, n)
         call to_c(description, text, text_len)
         if (c_associated(model_size)) then
             call c_f_pointer(model_size, size_out)

@@ -152,12 +152,13 @@ contains
 
     !> "method: what the model neglects", and with `n` present ", N_g = n" (or N_m): the model's
     !> size, returned in `n` too.
-    function describe_box(box, n) result(text)
+    subroutine describe_box(box, text, n)
         !> The box.
         type(convolver_box), intent(in) :: box
+        !> The description.
+        character(len=:), allocatable, intent(out) :: text
         !> The model's size (N_g kernel samples or N_m modes); absent: not in the text.
         integer, intent(out), optional :: n
-        character(len=:), allocatable :: text
 
         character(len=:), allocatable :: label
 
@@ -165,7 +166,7 @@ contains
         if (.not. present(n)) return
         call box%conv%model_size(n, label)
         text = text//', '//label//' = '//int_text(n)
-    end function describe_box
+    end subroutine describe_box
 
     !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
     !> was cut at the n_steps it was made for (g not decayed by then) would give a short,

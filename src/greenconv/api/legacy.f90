@@ -315,10 +315,13 @@ contains
         integer, intent(out) :: ierr
 
         type(convolver_box), pointer :: box
+        character(len=:), allocatable :: description
 
         box => checked_box(handle, ierr)
         text = ' '
-        if (associated(box)) text = describe_box(box)
+        if (.not. associated(box)) return
+        call describe_box(box, description)
+        text = description
     end subroutine gcdesc
 
     !> One explicit step of the contact loop (eqs. 20-24), as the driver takes it: from the

@@ -22,10 +22,10 @@ module greenconv_legacy_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, modes_file_box, box_points, set_box_accuracy, describe_multi, &
+                                          file_e_modes, modes_file_box, box_points, set_box_accuracy, &
                                           file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     use greenconv_legacy, only: gcfree
     implicit none
     private
@@ -510,7 +510,7 @@ contains
         box => checked('gcmdsc', handle, error=error)
         call report(error, ierr, text)
         if (allocated(error)) return
-        call describe_multi(box, nsize, description)
+        call describe_box(box, description, nsize)
         text = description
     end subroutine gcmdsc
 

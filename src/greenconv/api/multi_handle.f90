@@ -48,7 +48,7 @@ module greenconv_api_multi_handle
 
     public :: modes_multi_box, samples_multi_box, patch_modes, file_multi_box
     public :: method_multi_box, check_file_box, file_e_modes, modes_file_box, box_points
-    public :: set_box_accuracy, outside_accuracy, describe_multi, file_summary
+    public :: set_box_accuracy, outside_accuracy, file_summary
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
 
 contains
@@ -369,23 +369,6 @@ contains
         x = box%green%matrix%x
         y = box%green%matrix%y
     end subroutine box_points
-
-    !> "method: what the model neglects, N_g (or N_m) = size" of a box and the model's size
-    !> (greenconv_api_handle's `describe_box` with its size), into an intent(out) text, which
-    !> keeps no static length between threads.
-    subroutine describe_multi(box, n, text)
-        !> The box.
-        type(convolver_box), intent(in) :: box
-        !> The model's size (N_g kernel samples or N_m modes).
-        integer, intent(out) :: n
-        !> The description.
-        character(len=:), allocatable, intent(out) :: text
-
-        character(len=:), allocatable :: label
-
-        call box%conv%model_size(n, label)
-        text = box%conv%name//': '//box%description//', '//label//' = '//int_text(n)
-    end subroutine describe_multi
 
     !> The summary in "# " lines of the file a box was made from (greenconv_ident_green_structure's
     !> `summary_text`), into an intent(out) text.

@@ -163,6 +163,7 @@ contains
 
         real(dp) :: free(size(u_h)), residual
         integer :: point
+        character(len=:), allocatable :: message
 
         free(:) = state%delta0 + road - u_h
         iterations = 0
@@ -187,7 +188,8 @@ contains
             end if
         end if
         if (iterations > state%settings%max_iterations) then
-            call step_fault(state, road, point, convergence_message(state, point, residual), fault)
+            call convergence_message(state, point, residual, message)
+            call step_fault(state, road, point, message, fault)
             return
         end if
         force(:) = state%laws%force(state%delta)
@@ -379,11 +381,13 @@ contains
         type(error_type), allocatable, intent(out) :: fault
 
         integer :: i
+        character(len=:), allocatable :: message
 
         do i = 1, size(displacement)
             if (abs(displacement(i)) <= state%settings%divergence_bound .and. ieee_is_finite(force(i)) &
                 .and. ieee_is_finite(state%delta(i))) cycle
-            call step_fault(state, road, i, divergence_message(state, i, displacement(i)), fault)
+            call divergence_message(state, i, displacement(i), message)
+            call step_fault(state, road, i, message, fault)
             return
         end do
     end subroutine divergence_guard
@@ -409,35 +413,44 @@ contains
         call fatal_error(fault, message, stat_numerical)
     end subroutine step_fault
 
+    !> `where` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function where_buffer(state, point) result(text)
+        type(contact_state), intent(in) :: state
+        integer, intent(in) :: point
+        character(len=96) :: text
+
+        text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
+        if (size(state%laws) > 1 .and. point > 0) text = trim(text)//' at point '//int_text(point)
+    end function where_buffer
+
     !> "at step n (t = t_n s)", and " at point i" when the run has more than one point and
     !> i > 0.
     pure function where(state, point) result(text)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
-        character(len=:), allocatable :: text
+        character(len=len_trim(where_buffer(state, point))) :: text
 
-        text = 'at step '//int_text(state%step)//' (t = '//sci_text(state%step*state%dt)//' s)'
-        if (size(state%laws) > 1 .and. point > 0) text = text//' at point '//int_text(point)
+        text = where_buffer(state, point)
     end function where
 
     !> One line on an implicit step that did not converge: where, and the residual left [m].
-    pure function convergence_message(state, point, residual) result(message)
+    pure subroutine convergence_message(state, point, residual, message)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
         real(dp), intent(in) :: residual
-        character(len=:), allocatable :: message
+        character(len=:), allocatable, intent(out) :: message
 
         message = 'implicit contact step did not converge '//where(state, point)//': residual |r| = ' &
                   //sci_text(abs(residual))//' m after '//int_text(state%settings%max_iterations) &
                   //' iterations (tolerance '//sci_text(state%settings%tolerance)//' of the compression scale)'
-    end function convergence_message
+    end subroutine convergence_message
 
     !> One line on a divergent run at a point: where, how large, and what to change.
-    pure function divergence_message(state, point, u) result(message)
+    pure subroutine divergence_message(state, point, u, message)
         type(contact_state), intent(in) :: state
         integer, intent(in) :: point
         real(dp), intent(in) :: u
-        character(len=:), allocatable :: message
+        character(len=:), allocatable, intent(out) :: message
 
         message = 'contact run diverged '//where(state, point)//': '
         if (ieee_is_finite(u)) then
@@ -460,6 +473,6 @@ contains
             message = message//'the explicit step is stable only for omega_c*dt < 2: reduce dt below ' &
                       //'~2/omega_c or use scheme = ''implicit'' with an engine whose w0 > 0 (exact)'
         end if
-    end function divergence_message
+    end subroutine divergence_message
 
 end module greenconv_contact_step

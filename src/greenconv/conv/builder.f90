@@ -233,7 +233,7 @@ contains
         !> (see `build_method`); 0 when nothing beyond the truncation asked is neglected.
         real(dp), intent(out), optional :: estimate
 
-        character(len=:), allocatable :: chosen, reason
+        character(len=:), allocatable :: chosen, reason, brief
         type(engine_constructors) :: engine
         real(dp) :: target, own
 
@@ -259,7 +259,8 @@ contains
         conv%name = 'auto'
         ! A kernel method on an identified structure: the identification is quoted all the same.
         if (structure%identified .and. .not. method_needs(chosen, needs_modes)) then
-            accuracy = accuracy//'; '//structure%fit_brief()
+            call structure%fit_brief(brief)
+            accuracy = accuracy//'; '//brief
         end if
         accuracy = 'chose '//chosen//': '//reason//'; '//accuracy
     end subroutine make_convolver
@@ -357,7 +358,7 @@ contains
         if (method_needs(method, needs_modes)) then
             accuracy = 'exact: the modes are the structure''s own'
             estimate = 0.0_dp
-            if (structure%identified) accuracy = structure%fit_brief()
+            if (structure%identified) call structure%fit_brief(accuracy)
             if (structure%identified) estimate = structure%fit_e()
         end if
     end subroutine build_method

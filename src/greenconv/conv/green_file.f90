@@ -169,7 +169,7 @@ contains
         if (allocated(error)) return
         engine = engine_of(method)
         if (engine%samples_g()) then
-            source = grid_problem(structure)
+            call grid_problem(structure, source)
             if (len(source) == 0) then
                 call extend_band(structure, dt, extended, band, outside)
                 call sampled_kernel(extended, dt, kernel, source, error, fitted)
@@ -203,7 +203,8 @@ contains
         else
             accuracy = text//'; '
         end if
-        accuracy = accuracy//modes_accuracy(structure, with_upper)
+        call modes_accuracy(structure, with_upper, text)
+        accuracy = accuracy//text
         own = mean_e(structure%e_modes)
         if (with_upper) own = mean_e(structure%e_upper)
         if (present(estimate)) estimate = own
@@ -280,9 +281,9 @@ contains
     !> uniform grid from 0 Hz (a band starting above 0 Hz, or uneven lines), on which the FFT
     !> would put line l at l*df and so at a frequency it does not have; '' when they are (or
     !> for a file of impulse responses). The text names the band the modes were fitted on.
-    function grid_problem(structure) result(text)
+    subroutine grid_problem(structure, text)
         type(green_structure), intent(in) :: structure
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         type(frf_type) :: grid
 
@@ -294,14 +295,14 @@ contains
         text = 'not from the inverse FFT of G: '//text//'; the modes are fitted on the file''s band ' &
                //sci_text(grid%frequency(1))//' to '//sci_text(grid%f_max())//' Hz ('//int_text(grid%n_freq()) &
                //' lines), g_ij outside it is the modes'' extrapolation'
-    end function grid_problem
+    end subroutine grid_problem
 
     !> "N terms of K shared poles, E of the modes alone worst ..., mean ... (eq. 7)", or of the
     !> modes with the upper residual.
-    function modes_accuracy(structure, with_upper) result(text)
+    subroutine modes_accuracy(structure, with_upper, text)
         type(green_structure), intent(in) :: structure
         logical, intent(in) :: with_upper
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                //' shared poles, E of the modes alone worst '//sci_text(maxval(structure%e_modes))//', mean ' &
@@ -310,6 +311,6 @@ contains
             text = int_text(structure%modes%modes%n_modes())//' terms of '//int_text(size(structure%fit%pole)) &
                    //' shared poles and U, E worst '//sci_text(maxval(structure%e_upper))//', mean ' &
                    //sci_text(mean_e(structure%e_upper))//' (eq. 7)'
-    end function modes_accuracy
+    end subroutine modes_accuracy
 
 end module greenconv_conv_green_file

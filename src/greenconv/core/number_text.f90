@@ -127,7 +127,7 @@ contains
     pure function compact_real(x) result(text)
         !> The real.
         real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
+        character(len=len(trimmed_real_text(x, 1.0e-3_dp, 1.0e6_dp, 6, 5))) :: text
 
         text = trimmed_real_text(x, 1.0e-3_dp, 1.0e6_dp, 6, 5)
     end function compact_real

@@ -35,7 +35,7 @@ contains
     !> greenconv's version, "major.minor.patch" as fpm.toml states it (for example "0.1.0").
     pure function greenconv_version() result(text)
         !> The version text, without blanks.
-        character(len=:), allocatable :: text
+        character(len=len(version_text)) :: text
 
         text = version_text
     end function greenconv_version

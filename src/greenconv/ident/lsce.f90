@@ -445,14 +445,12 @@ contains
         call finish(frf, g_raw, options, result, error)
     end subroutine identify
 
-    !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
-    !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
-    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
-    pure function receptance_problem(frf) result(problem)
+    !> `receptance_problem` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function receptance_problem_buffer(frf) result(problem)
         !> The sampled receptance.
         type(frf_type), intent(in) :: frf
         !> The problem in a phrase ('' when none).
-        character(len=:), allocatable :: problem
+        character(len=96) :: problem
 
         problem = ''
         if (frf%n_freq() < min_frf_lines) then
@@ -465,6 +463,18 @@ contains
         else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
             problem = 'the FRF holds a NaN or infinite receptance; remove or repair those lines'
         end if
+    end function receptance_problem_buffer
+
+    !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
+    !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
+    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
+    pure function receptance_problem(frf) result(problem)
+        !> The sampled receptance.
+        type(frf_type), intent(in) :: frf
+        !> The problem in a phrase ('' when none).
+        character(len=len_trim(receptance_problem_buffer(frf))) :: problem
+
+        problem = receptance_problem_buffer(frf)
     end function receptance_problem
 
     !> Reject inputs the identification cannot use.

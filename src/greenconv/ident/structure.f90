@@ -214,10 +214,11 @@ contains
     !> The identification in one phrase, e.g. "ML fit of G: 12 modes (order by MDL), noise 1.01E-02
     !> of |G| (estimated from the data), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02,
     !> E = 8.95E-03 (eq. 7)" or "LSCE fit of G: E = 1.00E-06 (eq. 7)"; '' when not identified.
-    pure function structure_fit_brief(self) result(text)
+    pure subroutine structure_fit_brief(self, text)
         !> The structure.
         class(structure_model), intent(in) :: self
-        character(len=:), allocatable :: text
+        !> The phrase.
+        character(len=:), allocatable, intent(out) :: text
 
         select case (self%method)
         case ('lsce')
@@ -227,7 +228,7 @@ contains
         case default
             text = ''
         end select
-    end function structure_fit_brief
+    end subroutine structure_fit_brief
 
     !> Receptance of the identified model [m/N] at omega [rad/s] (0 when not identified).
     elemental complex(dp) function structure_fitted(self, omega)

@@ -141,11 +141,13 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         integer :: first(size(names)), last(size(names)), n_tokens, i, stat
+        character(len=:), allocatable :: list
 
         call split(line, first, last, n_tokens)
         if (n_tokens /= size(names)) then
+            call list_columns(names, units, list)
             call fatal_error(error, prefix//'expected '//int_text(size(names))//' columns (' &
-                             //column_list(names, units)//'), found '//int_text(n_tokens)//': "' &
+                             //list//'), found '//int_text(n_tokens)//': "' &
                              //trim(adjustl(line))//'"')
             return
         end if
@@ -170,9 +172,11 @@ contains
     end subroutine parse_row
 
     !> `name [unit], name [unit], ...` for messages.
-    pure function column_list(names, units) result(text)
+    pure subroutine list_columns(names, units, text)
+        !> Names and units of the columns.
         character(len=*), intent(in) :: names(:), units(:)
-        character(len=:), allocatable :: text
+        !> The list.
+        character(len=:), allocatable, intent(out) :: text
 
         integer :: i
 
@@ -181,7 +185,7 @@ contains
             if (i > 1) text = text//', '
             text = text//trim(names(i))//' ['//trim(units(i))//']'
         end do
-    end function column_list
+    end subroutine list_columns
 
     !> Number of blank- or tab-separated tokens of a line.
     pure integer function count_tokens(line)
@@ -328,7 +332,8 @@ contains
     function long_line(path, line_number) result(text)
         character(len=*), intent(in) :: path
         integer, intent(in) :: line_number
-        character(len=:), allocatable :: text
+        character(len=len(path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
+                          //' characters, found a longer one (a binary file, or a file without line ends?)')) :: text
 
         text = path//':'//int_text(line_number)//': expected lines of at most '//int_text(max_line_length) &
                //' characters, found a longer one (a binary file, or a file without line ends?)'

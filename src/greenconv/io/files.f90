@@ -275,7 +275,7 @@ contains
             if (c_part_name_taken(fd) == 0) exit
         end do
         if (fd < 0) then
-            call fatal_error(error, path//': cannot write: '//error_text(-fd)//' (creating '//writer%part//')')
+            call fatal_error(error, path//': cannot write: '//trim(error_text(-fd))//' (creating '//writer%part//')')
             return
         end if
         writer%fd = fd
@@ -370,7 +370,7 @@ contains
     pure function binary_header(path) result(header)
         !> The binary column file.
         character(len=*), intent(in) :: path
-        character(len=:), allocatable :: header
+        character(len=len(path) + 4) :: header
 
         header = path//'.txt'
     end function binary_header
@@ -503,7 +503,7 @@ contains
             line = line//new_line('a')
             number = c_part_write(1_c_int, line, int(len(line), c_size_t))
             if (number /= 0) then
-                call fatal_error(error, 'standard output: writing the summary failed: '//error_text(number) &
+                call fatal_error(error, 'standard output: writing the summary failed: '//trim(error_text(number)) &
                                  //'; the output files of the run are written, its summary is lost')
                 exit
             end if
@@ -511,17 +511,15 @@ contains
         close (unit)
     end subroutine relay_to_standard_output
 
-    !> The system's text for an errno value.
+    !> The system's text for an errno value, blank-padded (a fixed length keeps the result off
+    !> static storage; trim it).
     function error_text(number) result(text)
         integer(c_int), intent(in) :: number
-        character(len=:), allocatable :: text
+        character(len=200) :: text
 
-        character(len=200) :: buffer
-
-        buffer = ''
-        call c_part_strerror(number, buffer, int(len(buffer), c_size_t))
-        text = trim(buffer(1:max(index(buffer, c_null_char) - 1, 0)))
-        if (index(buffer, c_null_char) == 0) text = trim(buffer)
+        text = ''
+        call c_part_strerror(number, text, int(len(text), c_size_t))
+        if (index(text, c_null_char) > 0) text(index(text, c_null_char):) = ''
     end function error_text
 
     !> End the file of a run streamed in blocks. After a failed write (`error` already set)
@@ -667,8 +665,8 @@ contains
 
         character(len=:), allocatable :: input_real, dir_real, rest
 
-        input_real = real_path(input)
-        dir_real = real_path(output_dir)
+        call real_path(input, input_real)
+        call real_path(output_dir, dir_real)
         if (len(input_real) == 0 .or. len(dir_real) == 0) return
         if (dir_real /= '/') dir_real = dir_real//'/'
         if (index(input_real, dir_real//prefix) /= 1) return
@@ -694,9 +692,11 @@ contains
 
     !> The canonical absolute path of an existing file or directory (POSIX realpath), or ''
     !> when it does not exist or cannot be resolved.
-    function real_path(path) result(resolved)
+    subroutine real_path(path, resolved)
+        !> The file or directory.
         character(len=*), intent(in) :: path
-        character(len=:), allocatable :: resolved
+        !> Its canonical absolute path, or ''.
+        character(len=:), allocatable, intent(out) :: resolved
 
         character(kind=c_char, len=4097) :: buffer
         integer :: n
@@ -706,7 +706,7 @@ contains
         if (.not. c_associated(c_realpath(path//c_null_char, buffer))) return
         n = index(buffer, c_null_char) - 1
         if (n > 0) resolved = buffer(1:n)
-    end function real_path
+    end subroutine real_path
 
     !> Make SIGINT and SIGTERM delete the temporary files of the column files being written,
     !> then end the program by that signal (for a program such as the driver; a host program

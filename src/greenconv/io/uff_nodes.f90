@@ -165,13 +165,21 @@ contains
         end do
     end function locate
 
-    !> A node's coordinates as `x, y, z = 0.1, 0.0, 0.0`.
-    pure function position_text(node) result(text)
+    !> `position_text` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function position_text_buffer(node) result(text)
         type(uff_node), intent(in) :: node
-        character(len=:), allocatable :: text
+        character(len=96) :: text
 
         text = 'x, y, z = '//real_text(node%position(1))//', '//real_text(node%position(2))//', ' &
                //real_text(node%position(3))
+    end function position_text_buffer
+
+    !> A node's coordinates as `x, y, z = 0.1, 0.0, 0.0`.
+    pure function position_text(node) result(text)
+        type(uff_node), intent(in) :: node
+        character(len=len_trim(position_text_buffer(node))) :: text
+
+        text = position_text_buffer(node)
     end function position_text
 
 end module greenconv_io_uff_nodes

@@ -157,13 +157,9 @@ contains
     !> The first blank-separated word of a line ('' when blank).
     pure function first_token(line) result(token)
         character(len=*), intent(in) :: line
-        character(len=:), allocatable :: token
+        character(len=merge(index(adjustl(line), ' ') - 1, len(line), index(adjustl(line), ' ') > 0)) :: token
 
-        integer :: last
-
-        token = trim(adjustl(line))
-        last = index(token, ' ')
-        if (last > 0) token = token(:last - 1)
+        token = adjustl(line)
     end function first_token
 
     !> `path:line: universal file dataset N record R: `, the start of every message about a record.
@@ -172,7 +168,8 @@ contains
         character(len=*), intent(in) :: path
         !> Line of the file, dataset number and record number.
         integer, intent(in) :: line, dataset, record
-        character(len=:), allocatable :: prefix
+        character(len=len(path//':'//int_text(line)//': universal file dataset '//int_text(dataset)//' record ' &
+                          //int_text(record)//': ')) :: prefix
 
         prefix = path//':'//int_text(line)//': universal file dataset '//int_text(dataset)//' record ' &
                  //int_text(record)//': '
@@ -194,7 +191,7 @@ contains
     pure function span(first, last) result(text)
         !> First and last column.
         integer, intent(in) :: first, last
-        character(len=:), allocatable :: text
+        character(len=len('columns '//int_text(first)//'-'//int_text(last))) :: text
 
         text = 'columns '//int_text(first)//'-'//int_text(last)
     end function span
@@ -205,13 +202,13 @@ contains
         character(len=*), intent(in) :: line
         !> First and last column.
         integer, intent(in) :: first, last
-        character(len=:), allocatable :: text
+        character(len=merge(len_trim(line(first:min(last, len(line)))) - verify(line(first:min(last, len(line))), ' ') &
+                            + 3, 6, len_trim(line(first:min(last, len(line)))) > 0)) :: text
 
-        text = trim(adjustl(columns(line, first, last)))
-        if (len(text) == 0) then
+        if (len_trim(columns(line, first, last)) == 0) then
             text = 'blanks'
         else
-            text = '"'//text//'"'
+            text = '"'//trim(adjustl(columns(line, first, last)))//'"'
         end if
     end function quoted
 
@@ -219,7 +216,7 @@ contains
     pure function number_words(status) result(text)
         !> Status 1 (not a number) or 2 (not finite) of `parse_real`.
         integer, intent(in) :: status
-        character(len=:), allocatable :: text
+        character(len=merge(15, 8, status == 2)) :: text
 
         text = 'a number'
         if (status == 2) text = 'a finite number'

@@ -132,25 +132,33 @@ module greenconv_io_uff_types
 
 contains
 
-    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
-    pure function uff_kind_name(kind) result(name)
+    !> `uff_kind_name` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function uff_kind_name_buffer(kind) result(name)
         !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
         integer, intent(in) :: kind
-        character(len=:), allocatable :: name
+        character(len=16) :: name
 
         character(len=*), parameter :: names(uff_other:uff_accelerance) = [character(len=11) :: 'other', &
             'receptance', 'mobility', 'accelerance']
 
         name = 'other'
         if (kind >= lbound(names, 1) .and. kind <= ubound(names, 1)) name = trim(names(kind))
+    end function uff_kind_name_buffer
+
+    !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
+    pure function uff_kind_name(kind) result(name)
+        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
+        integer, intent(in) :: kind
+        character(len=len_trim(uff_kind_name_buffer(kind))) :: name
+
+        name = uff_kind_name_buffer(kind)
     end function uff_kind_name
 
-    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
-    !> `type N` for a code the format does not list.
-    pure function uff_data_type_name(code) result(name)
+    !> `uff_data_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function uff_data_type_name_buffer(code) result(name)
         !> Specific data type (record 8-11 field 1).
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
+        character(len=32) :: name
 
         select case (code)
         case (0); name = 'unknown'
@@ -172,14 +180,23 @@ contains
         case (20); name = 'order'
         case default; name = 'type '//int_text(code)
         end select
+    end function uff_data_type_name_buffer
+
+    !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
+    !> `type N` for a code the format does not list.
+    pure function uff_data_type_name(code) result(name)
+        !> Specific data type (record 8-11 field 1).
+        integer, intent(in) :: code
+        character(len=len_trim(uff_data_type_name_buffer(code))) :: name
+
+        name = uff_data_type_name_buffer(code)
     end function uff_data_type_name
 
-    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
-    !> function`, ...); `type N` for a code the format does not list.
-    pure function uff_function_type_name(code) result(name)
+    !> `uff_function_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function uff_function_type_name_buffer(code) result(name)
         !> Function type (record 6 field 1).
         integer, intent(in) :: code
-        character(len=:), allocatable :: name
+        character(len=40) :: name
 
         character(len=*), parameter :: names(0:27) = [character(len=34) :: 'general or unknown', 'time response', &
             'auto spectrum', 'cross spectrum', 'frequency response function', 'transmissibility', 'coherence', &
@@ -194,6 +211,16 @@ contains
         else
             name = 'type '//int_text(code)
         end if
+    end function uff_function_type_name_buffer
+
+    !> Name of a function type of record 6 field 1 (`time response`, `frequency response
+    !> function`, ...); `type N` for a code the format does not list.
+    pure function uff_function_type_name(code) result(name)
+        !> Function type (record 6 field 1).
+        integer, intent(in) :: code
+        character(len=len_trim(uff_function_type_name_buffer(code))) :: name
+
+        name = uff_function_type_name_buffer(code)
     end function uff_function_type_name
 
 end module greenconv_io_uff_types

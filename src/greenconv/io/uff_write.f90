@@ -272,12 +272,12 @@ contains
                 return
             end if
         end do
-        if (len(entity(function%response_entity)) > 10 .or. len(entity(function%reference_entity)) > 10) then
+        if (given_length(function%response_entity) > 10 .or. given_length(function%reference_entity) > 10) then
             call fatal_error(error, prefix//'the entity names of record 6 have at most 10 characters; shorten them')
-        else if (max(len(entity(function%abscissa_axis%label)), len(entity(function%abscissa_axis%units)), &
-                     len(entity(function%numerator%label)), len(entity(function%numerator%units)), &
-                     len(entity(function%denominator%label)), len(entity(function%denominator%units)), &
-                     len(entity(function%z_axis%label)), len(entity(function%z_axis%units))) > 20) then
+        else if (max(given_length(function%abscissa_axis%label), given_length(function%abscissa_axis%units), &
+                     given_length(function%numerator%label), given_length(function%numerator%units), &
+                     given_length(function%denominator%label), given_length(function%denominator%units), &
+                     given_length(function%z_axis%label), given_length(function%z_axis%units)) > 20) then
             call fatal_error(error, prefix//'the axis labels and units of records 8 to 11 have at most 20 ' &
                              //'characters; shorten them')
         end if
@@ -343,6 +343,7 @@ contains
 
         integer :: n, k
         real(dp) :: step
+        character(len=:), allocatable :: response, reference
 
         n = size(function%ordinate)
         step = 0.0_dp
@@ -352,9 +353,11 @@ contains
             if (stat == 0) write (unit, '(a)', iostat=stat) trim(function%id_lines(k))
         end do
         if (stat /= 0) return
+        call entity(function%response_entity, response)
+        call entity(function%reference_entity, reference)
         write (unit, '(i5,i10,i5,i10,1x,a10,i10,i4,1x,a10,i10,i4)', iostat=stat) function%function_type, &
-            function%function_id, function%version, function%load_case, entity(function%response_entity), &
-            function%response_node, function%response_direction, entity(function%reference_entity), &
+            function%function_id, function%version, function%load_case, response, &
+            function%response_node, function%response_direction, reference, &
             function%reference_node, function%reference_direction
         if (stat /= 0) return
         write (unit, '(3i10,3a)', iostat=stat) function%ordinate_type, n, merge(1, 0, function%even), &
@@ -374,8 +377,12 @@ contains
         type(uff_axis), intent(in) :: axis
         integer, intent(out) :: stat
 
+        character(len=:), allocatable :: label, units
+
+        call entity(axis%label, label)
+        call entity(axis%units, units)
         write (unit, '(i10,3i5,1x,a20,1x,a20)', iostat=stat) axis%data_type, axis%length_exponent, &
-            axis%force_exponent, axis%temperature_exponent, entity(axis%label), entity(axis%units)
+            axis%force_exponent, axis%temperature_exponent, label, units
     end subroutine write_axis
 
     !> Record 12 in the layout of the ordinate type and spacing (see the module description).
@@ -441,16 +448,24 @@ contains
         end select
     end function number_field
 
+    !> Length of a name without its leading and trailing blanks, 0 when it is unset.
+    pure integer function given_length(name)
+        character(len=:), allocatable, intent(in) :: name
+
+        given_length = 0
+        if (allocated(name)) given_length = len_trim(adjustl(name))
+    end function given_length
+
     !> An entity name (record 6) or an axis label or units (records 8 to 11) as written:
     !> `NONE` when empty or unset.
-    pure function entity(name) result(text)
+    pure subroutine entity(name, text)
+        !> The name, unset or blank for `NONE`.
         character(len=:), allocatable, intent(in) :: name
-        character(len=:), allocatable :: text
+        !> The name as written.
+        character(len=:), allocatable, intent(out) :: text
 
         text = 'NONE'
-        if (allocated(name)) then
-            if (len_trim(name) > 0) text = trim(adjustl(name))
-        end if
-    end function entity
+        if (given_length(name) > 0) text = trim(adjustl(name))
+    end subroutine entity
 
 end module greenconv_io_uff_write

@@ -130,12 +130,12 @@ contains
         frf_uniform_from_zero = off_grid(self%frequency) == 0
     end function frf_uniform_from_zero
 
-    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
-    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
-    pure function frf_fft_grid_problem(self) result(text)
+    !> `frf_fft_grid_problem` blank-padded to a fixed length (numbers only, so it fits), which
+    !> gives that function a result of spec length.
+    pure function grid_problem_buffer(self) result(text)
         !> The FRF.
         class(frf_type), intent(in) :: self
-        character(len=:), allocatable :: text
+        character(len=256) :: text
 
         real(dp) :: df
         integer :: j, n
@@ -150,12 +150,22 @@ contains
         if (j == 0) return
         df = self%frequency(n)/(n - 1)
         if (allocated(self%line)) then
-            text = 'line '//int_text(self%line(j))//': '
+            text = 'line '//int_text(self%line(j))//':'
         else
-            text = 'grid line '//int_text(j)//': '
+            text = 'grid line '//int_text(j)//':'
         end if
-        text = text//'expected the uniform grid from 0 Hz (f = '//real_text((j - 1)*df)//' Hz there, step ' &
+        text(len_trim(text) + 2:) = 'expected the uniform grid from 0 Hz (f = '//real_text((j - 1)*df)//' Hz there, step ' &
                //real_text(df)//' Hz), found '//real_text(self%frequency(j))//' Hz'
+    end function grid_problem_buffer
+
+    !> Why the grid is not the uniform grid from 0 Hz, e.g. "line 12: expected the uniform grid
+    !> from 0 Hz (f = j*df, df = 5 Hz), found the first line at 5 Hz", '' when it is.
+    pure function frf_fft_grid_problem(self) result(text)
+        !> The FRF.
+        class(frf_type), intent(in) :: self
+        character(len=len_trim(grid_problem_buffer(self))) :: text
+
+        text = grid_problem_buffer(self)
     end function frf_fft_grid_problem
 
     !> First index j whose frequency is off the uniform grid (j - 1)*df from 0 Hz by more than
@@ -330,12 +340,13 @@ contains
             return
         end if
         if (dataset > n) then
+            call list_functions(file, list)
             call fatal_error(error, path//': frf_dataset = '//int_text(dataset)//' asks for dataset 58 number ' &
-                             //int_text(dataset)//', but the file holds '//int_text(n)//': '//listing(file))
+                             //int_text(dataset)//', but the file holds '//int_text(n)//': '//list)
             return
         end if
         if (dataset < 1 .and. n > 1) then
-            list = listing(file)
+            call list_functions(file, list)
             call fatal_error(error, path//': the file holds '//int_text(n)//' datasets 58; say which one with ' &
                              //'&structure frf_dataset = N (1 to '//int_text(n)//'): '//list)
             return
@@ -349,9 +360,11 @@ contains
 
     !> The datasets 58 of a file in one line: `#1 line 1: frequency response function,
     !> receptance, 3+Z/1+Z; #2 ...`.
-    pure function listing(file) result(text)
+    pure subroutine list_functions(file, text)
+        !> The universal file.
         type(uff_file), intent(in) :: file
-        character(len=:), allocatable :: text
+        !> The listing.
+        character(len=:), allocatable, intent(out) :: text
 
         integer :: i
 
@@ -365,18 +378,26 @@ contains
                        //dof_text(f%reference_node, f%reference_direction)
             end associate
         end do
-    end function listing
+    end subroutine list_functions
 
-    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
-    pure function dof_text(node, direction) result(text)
+    !> `dof_text` blank-padded to a fixed length, which gives that function a result of spec length.
+    pure function dof_buffer(node, direction) result(text)
         integer, intent(in) :: node, direction
-        character(len=:), allocatable :: text
+        character(len=16) :: text
 
         character(len=*), parameter :: axes(6) = ['X ', 'Y ', 'Z ', 'RX', 'RY', 'RZ']
 
         text = int_text(node)
         if (direction == 0) return
-        text = text//merge('+', '-', direction > 0)//trim(axes(min(abs(direction), 6)))
+        text = int_text(node)//merge('+', '-', direction > 0)//trim(axes(min(abs(direction), 6)))
+    end function dof_buffer
+
+    !> A node and direction as `3+Z` (translation), `3-RX` (rotation) or `3` (scalar).
+    pure function dof_text(node, direction) result(text)
+        integer, intent(in) :: node, direction
+        character(len=len_trim(dof_buffer(node, direction))) :: text
+
+        text = dof_buffer(node, direction)
     end function dof_text
 
     !> A receptance from one dataset 58 of a universal file (function type 4, frequency

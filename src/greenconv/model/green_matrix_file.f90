@@ -121,7 +121,7 @@ contains
 
         integer, allocatable :: frfs(:), found(:, :)
         integer :: f, first, i, j, k, n_c, n_f, sign
-        character(len=:), allocatable :: place, functions, grid_name, source
+        character(len=:), allocatable :: place, functions, grid_name, source, omitted
         complex(dp), allocatable :: values(:)
         type(frf_type) :: grid
 
@@ -204,10 +204,11 @@ contains
         do j = 1, n_c
             do i = 1, n_c
                 if (found(i, j) == 0) then
+                    call left_out(file, matrix%function_type, matrix%node(i), matrix%node(j), omitted)
                     call fatal_error(error, file%path//': missing G for response node '//int_text(matrix%node(i)) &
                                      //', reference node '//int_text(matrix%node(j))//' (the contact points are ' &
                                      //'the '//int_text(n_c)//' nodes given as response and reference); add it' &
-                                     //left_out(file, matrix%function_type, matrix%node(i), matrix%node(j)))
+                                     //omitted)
                     return
                 end if
             end do
@@ -284,7 +285,10 @@ contains
     pure function one_way(path, line, node, given, missing) result(text)
         character(len=*), intent(in) :: path, given, missing
         integer, intent(in) :: line, node
-        character(len=:), allocatable :: text
+        character(len=len(path//':'//int_text(line + 7)//': universal file dataset 58 record 6: node '//int_text(node) &
+               //' is a '//given//' node here but never a '//missing//' node, so it is no contact point (those ' &
+               //'are the nodes given both ways) and this G would be dropped, leaving the matrix not square; ' &
+               //'give G_ij both ways for every contact point, or remove the dataset')) :: text
 
         text = path//':'//int_text(line + 7)//': universal file dataset 58 record 6: node '//int_text(node) &
                //' is a '//given//' node here but never a '//missing//' node, so it is no contact point (those ' &
@@ -294,10 +298,10 @@ contains
 
     !> For the message on a missing G_ij: the datasets 58 of the pair that were left out for
     !> their function type ('' when there is none).
-    pure function left_out(file, function_type, response, reference) result(text)
+    pure subroutine left_out(file, function_type, response, reference, text)
         type(uff_file), intent(in) :: file
         integer, intent(in) :: function_type, response, reference
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         integer :: f
 
@@ -315,7 +319,7 @@ contains
             if (f == 1) text = text//'; datasets the reader does not read were skipped:'
             text = text//' '//int_text(file%skipped(f)%dataset)//' (line '//int_text(file%skipped(f)%line)//')'
         end do
-    end function left_out
+    end subroutine left_out
 
     !> x_i, y_i of every point from the file's nodes.
     subroutine point_layout(file, matrix, error)
