@@ -895,7 +895,7 @@ contains
         end do
         singular = built%ml
         singular%sigma_frequency(1) = huge(1.0_dp)
-        text = singular%brief()
+        call singular%brief(text)
         call check(error, index(text, 'uncertainty not available') > 0 .and. index(text, 'Infinity') == 0, &
                    'a singular information said in words: '//text)
     contains

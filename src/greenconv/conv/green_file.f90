@@ -35,7 +35,8 @@ module greenconv_conv_green_file
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver
     use greenconv_conv_kernel, only: period_end_level
     use greenconv_model_frf, only: frf_type
-    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel
+    use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, sampled_kernel, &
+                                               summary_text
     use greenconv_ident_shared_poles, only: shared_receptance
     implicit none
     private
@@ -117,7 +118,7 @@ contains
         report%node = structure%matrix%node
         report%x = structure%matrix%x
         report%y = structure%matrix%y
-        report%summary = structure%summary()
+        call summary_text(structure, report%summary)
         call conv%model_size(report%model_size, report%size_label)
         if (structure%identified) then
             report%e_worst = maxval(structure%e_modes)

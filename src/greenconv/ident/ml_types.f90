@@ -212,10 +212,11 @@ contains
     !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
     !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
     !> and the outlier lines left out.
-    pure function ml_brief(self) result(text)
+    pure subroutine ml_brief(self, text)
         !> The result.
         class(ml_result), intent(in) :: self
-        character(len=:), allocatable :: text
+        !> The phrase (an intent(out) text: no static length between threads).
+        character(len=:), allocatable, intent(out) :: text
 
         text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
         if (self%noise_floor_level > 0.0_dp) then
@@ -236,7 +237,7 @@ contains
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
                                                 //' outlier line(s) left out'
-    end function ml_brief
+    end subroutine ml_brief
 
     !> Append dropped poles to the result.
     pure subroutine record_drop(result, poles, reason)

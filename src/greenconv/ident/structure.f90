@@ -224,7 +224,8 @@ contains
         case ('lsce')
             text = 'LSCE fit of G: E = '//sci_text(self%fit%e)//' (eq. 7)'
         case ('ml')
-            text = 'ML fit of G: '//self%ml%brief()//', E = '//sci_text(self%ml%e)//' (eq. 7)'
+            call self%ml%brief(text)
+            text = 'ML fit of G: '//text//', E = '//sci_text(self%ml%e)//' (eq. 7)'
         case default
             text = ''
         end select

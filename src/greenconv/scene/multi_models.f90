@@ -29,7 +29,7 @@ module greenconv_scene_multi_models
     use greenconv_model_tyre, only: tyre_frequency, tyre_band
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
-                                               sampled_kernel
+                                               sampled_kernel, summary_text
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_point_set, only: scene_points
@@ -129,6 +129,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(green_options) :: options
+        character(len=:), allocatable :: fit_summary
 
         points%from_file = .true.
         points%across = .true.
@@ -150,9 +151,10 @@ contains
             call place_error(error, scene, 'structure', 'green_file')
             return
         end if
+        call summary_text(points%green, fit_summary)
         summary = '# scene '//scene%name//': Green''s matrix of '//scene%green_file//', ' &
                   //int_text(points%n_points())//' contact points, '//run_text(scene)//new_line('a') &
-                  //points%green%summary()
+                  //fit_summary
     end subroutine green_file_points
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its

@@ -98,7 +98,8 @@ contains
         integer :: k
 
         associate (ml => structure%ml)
-            call add_line(text, '# identification: maximum likelihood, '//ml%brief()//', diagram to N = ' &
+            call ml%brief(line)
+            call add_line(text, '# identification: maximum likelihood, '//line//', diagram to N = ' &
                 //int_text(maxval([0, ml%diagram_order]))//', E = '//sci_text(ml%e)//' (eq. 7), CPU ' &
                 //sci_text(structure%cpu_time)//' s')
             call add_line(text, '# residual: chi2/nu = '//sci_text(ml%chi_square/max(ml%dof, 1))//' ('// &
