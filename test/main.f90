@@ -37,6 +37,7 @@ program greenconv_tests
     use test_identgrid_mod, only: collect_identgrid
     use test_identreal_mod, only: collect_identreal
     use test_identdense_mod, only: collect_identdense
+    use test_identsearch_mod, only: collect_identsearch
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
@@ -84,6 +85,7 @@ program greenconv_tests
                        new_testsuite('identgrid', collect_identgrid), &
                        new_testsuite('identreal', collect_identreal), &
                        new_testsuite('identdense', collect_identdense), &
+                       new_testsuite('identsearch', collect_identsearch), &
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &
