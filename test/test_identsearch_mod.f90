@@ -113,6 +113,7 @@ contains
         character(len=120) :: label
         integer :: i, s, k, j
 
+        options%global_search = .true.
         clean = frf_from_modes(truth, f_max, n_freq)
         worst_excess = -huge(1.0_dp)
         worst_f = 0.0_dp
@@ -195,6 +196,7 @@ contains
         data%min_decay = two_pi*0.5e-3_dp*data%df
         data%max_iterations = 200
         data%tolerance = 1.0e-4_dp
+        data%projection = .true.
         iterations = 0
         model%pole = result%modes%pole
         model%upper = result%has_upper

@@ -79,6 +79,8 @@ module greenconv_ident_lm_fit
         real(dp) :: outlier_sigma = 0.0_dp
         !> A Levenberg-Marquardt fit stops when chi2 falls by less than this (plus 1e-10*chi2) in an iteration.
         real(dp) :: tolerance = final_tolerance
+        !> Whether `refine` projects out the residues (variable projection; the global order search).
+        logical :: projection = .false.
     end type data_type
 
 contains
@@ -166,67 +168,47 @@ contains
     end function criterion
 
     !> Weighted linear least squares for the residues and residual terms of the model's poles.
-    !> Every trial step of the variable projection calls it, so the columns are written once,
-    !> stacked, and scaled to unit norm through their Gram matrix rather than in place.
     subroutine fit_linear(data, model, error)
         type(data_type), intent(in) :: data
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: a(:, :), b(:), x(:), norms(:), normal(:, :), low(:, :), projection(:), work(:, :)
-        real(dp), allocatable :: start(:)
-        integer :: k, n, col, m
+        complex(dp), allocatable :: column(:, :)
+        integer :: k, n, col
         logical :: ok
 
         n = size(model%pole)
-        m = 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)
-        if (m == 0) then
+        allocate (column(size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
+        call linear_columns(data, model, column)
+        if (size(column, 2) == 0) then
             if (allocated(model%residue)) deallocate (model%residue)
             allocate (model%residue(0))
             return
         end if
-        allocate (a(2*size(data%g), m))
-        call linear_columns(data, model, a)
+        a = stacked(column)
+        allocate (norms(size(a, 2)))
+        norms(:) = sqrt(sum(a**2, dim=1))
+        where (.not. (norms > 0.0_dp)) norms = 1.0_dp
+        do col = 1, size(a, 2)
+            a(:, col) = a(:, col)/norms(col)
+        end do
         b = stack(data%weight*data%g)
-        ! The model's own values are the start (one step of iterative refinement): the normal
-        ! equations solve only for the correction, so clean data are still fitted to round-off.
-        allocate (start(m))
-        start = 0.0_dp
-        if (allocated(model%residue)) then
-            if (size(model%residue) == n) then
-                start(1:2*n:2) = real(model%residue, dp)
-                start(2:2*n:2) = aimag(model%residue)
-                col = 2*n
-                if (model%upper) then
-                    col = col + 1
-                    start(col) = model%r_u
-                end if
-                if (model%lower) start(col + 1) = model%r_l
-                b = b - matmul(a, start)
-            end if
-        end if
         ! Normal equations of the unit-norm columns by Cholesky (a tenth of the SVD's time);
         ! the SVD when a pivot shows a condition beyond 1e8 (near-duplicate poles).
-        allocate (normal(m, m), projection(m), norms(m))
+        allocate (normal(size(a, 2), size(a, 2)), projection(size(a, 2)))
         call gram(a, 1.0_dp, normal, b, projection, work)
-        norms(:) = [(sqrt(normal(col, col)), col=1, m)]
-        where (.not. (norms > 0.0_dp)) norms = 1.0_dp
-        normal = normal/spread(norms, 1, m)/spread(norms, 2, m)
-        projection = projection/norms
         low = normal
         call spd_factor(low, ok)
-        if (ok) ok = minval([(low(col, col), col=1, m)])**2 > 1.0e-8_dp
+        if (ok) ok = minval([(low(col, col), col=1, size(low, 1))])**2 > 1.0e-8_dp
         if (ok) call spd_solve(normal, projection, x, ok)
         if (.not. ok) then
             if (allocated(x)) deallocate (x)
-            allocate (x(m))
-            do col = 1, m
-                a(:, col) = a(:, col)/norms(col)
-            end do
+            allocate (x(size(a, 2)))
             call least_squares(a, b, x, error, rcond=1.0e-13_dp)
             if (allocated(error)) return
         end if
-        x = start + x/norms
+        x = x/norms
         model%residue = [(cmplx(x(2*k - 1), x(2*k), dp), k=1, n)]
         col = 2*n
         if (model%upper) then
@@ -236,33 +218,28 @@ contains
         if (model%lower) model%r_l = x(col + 1)
     end subroutine fit_linear
 
-    !> Weighted columns of the linear part, real parts in rows 1..L, imaginary parts below: per
-    !> pole the responses to r = 1 and r = i, then R_u and R_l.
+    !> Weighted columns of the linear part: per pole the responses to r = 1 and r = i, then
+    !> R_u and R_l.
     pure subroutine linear_columns(data, model, column)
         type(data_type), intent(in) :: data
         type(model_type), intent(in) :: model
-        real(dp), intent(out) :: column(:, :)
+        complex(dp), intent(out) :: column(:, :)
 
-        complex(dp) :: direct, mirror
-        integer :: k, col, l, n
+        complex(dp) :: direct(size(data%omega)), mirror(size(data%omega))
+        integer :: k, col
 
-        n = size(data%omega)
         do k = 1, size(model%pole)
-            do l = 1, n
-                direct = data%weight(l)*reciprocal(data%omega(l), model%pole(k))
-                mirror = data%weight(l)*reciprocal(data%omega(l), conjg(model%pole(k)))
-                column(l, 2*k - 1) = real(direct + mirror, dp)
-                column(n + l, 2*k - 1) = aimag(direct + mirror)
-                column(l, 2*k) = -aimag(direct - mirror)
-                column(n + l, 2*k) = real(direct - mirror, dp)
-            end do
+            direct = reciprocal(data%omega, model%pole(k))
+            mirror = reciprocal(data%omega, conjg(model%pole(k)))
+            column(:, 2*k - 1) = data%weight*(direct + mirror)
+            column(:, 2*k) = data%weight*i_unit*(direct - mirror)
         end do
         col = 2*size(model%pole)
         if (model%upper) then
             col = col + 1
-            call put(column, col, cmplx(data%weight, 0.0_dp, dp))
+            column(:, col) = data%weight
         end if
-        if (model%lower) call put(column, col + 1, cmplx(-data%weight/data%omega**2, 0.0_dp, dp))
+        if (model%lower) column(:, col + 1) = -data%weight/data%omega**2
     end subroutine linear_columns
 
     !> Weighted Jacobian of G_model, columns per mode (Re lambda, Im lambda, Re r, Im r), then
@@ -398,7 +375,9 @@ contains
         call refine(data, model, lm_iterations)
     end subroutine reweight
 
-    !> Levenberg-Marquardt with variable projection (issue 26): the poles are the only
+    !> Levenberg-Marquardt on all parameters (the step of every parameter from the information,
+    !> scaled to unit diagonal, damped by mu*I, by Cholesky), or, when data%projection (the
+    !> global order search), with variable projection (issue 26): the poles are the only
     !> nonlinear parameters; at every trial the residues and residual terms are the weighted
     !> linear least squares for the trial poles (`fit_linear`), and the poles' step solves the
     !> Gauss-Newton system of the projected problem (`projected`: Kaufman's J^T J, the Schur
@@ -446,8 +425,18 @@ contains
         do iteration = 1, last
             call information(data, model, fisher, gradient, jac, work, residual)
             lm_iterations = lm_iterations + 1
-            call projected(fisher, gradient, nonlinear, reduced, pull, ok)
-            if (.not. ok) return
+            if (data%projection) then
+                call projected(fisher, gradient, nonlinear, reduced, pull, ok)
+                if (.not. ok) return
+            else
+                reduced = fisher
+                pull = gradient
+            end if
+            q = size(pull)
+            if (size(scale) /= q) then
+                deallocate (scale)
+                allocate (scale(q))
+            end if
             do i = 1, q
                 scale(i) = sqrt(reduced(i, i))
             end do
@@ -458,11 +447,15 @@ contains
                 call spd_solve(a, pull/scale, y, ok)
                 chi_trial = huge(1.0_dp)
                 if (ok) then
-                    step = 0.0_dp
-                    step(nonlinear) = y/scale
+                    if (data%projection) then
+                        step = 0.0_dp
+                        step(nonlinear) = y/scale
+                    else
+                        step = y/scale
+                    end if
                     trial = stepped(model, step)
                     if (physical(trial, data%min_decay)) then
-                        call fit_linear(data, trial, failure)
+                        if (data%projection) call fit_linear(data, trial, failure)
                         if (.not. allocated(failure)) then
                             residual_trial = weighted_residual(data, trial)
                             chi_trial = 2.0_dp*sum(abs(residual_trial)**2)
@@ -591,5 +584,14 @@ contains
         data%floor = pack(data%floor, keep)
         data%penalty = log(2.0_dp*size(data%g))
     end subroutine leave_out
+
+    !> Real and imaginary parts of each column stacked: [Re; Im].
+    pure function stacked(z) result(a)
+        complex(dp), intent(in) :: z(:, :)
+        real(dp) :: a(2*size(z, 1), size(z, 2))
+
+        a(1:size(z, 1), :) = real(z, dp)
+        a(size(z, 1) + 1:, :) = aimag(z)
+    end function stacked
 
 end module greenconv_ident_lm_fit

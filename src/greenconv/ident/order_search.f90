@@ -11,7 +11,8 @@
 !> barely separates from zero or from another's, refits, and keeps the first removal that
 !> lowers MDL; the greedy rounds start again from it (births at the residual's peaks). When
 !> the best rejected removal is within `close_call` (10) of the chosen model's MDL, a warning
-!> says so: the data barely decide between the two orders.
+!> says so: the data barely decide between the two orders. Death moves and the variable
+!> projection of the fits (data%projection) run only with ml_options%global_search.
 module greenconv_ident_order_search
     use greenconv_core_kinds, only: dp
     use greenconv_core_constants, only: two_pi, i_unit
@@ -84,6 +85,7 @@ contains
         real(dp) :: closest
 
         outlier = 0
+        data%projection = options%global_search
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
         changes = 0
@@ -115,7 +117,7 @@ contains
             ! The greedy rounds end in a local optimum of MDL when the fit split one mode over
             ! two poles or kept a pole on noise that the others would take up: a death move,
             ! then the rounds again from the model it leaves.
-            if (changes >= options%max_changes) exit
+            if (changes >= options%max_changes .or. .not. options%global_search) exit
             call death_move(data, model, result, changed, closest, error)
             if (allocated(error)) return
             if (.not. changed) exit
