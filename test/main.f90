@@ -38,6 +38,7 @@ program greenconv_tests
     use test_identreal_mod, only: collect_identreal
     use test_outofband_mod, only: collect_outofband
     use test_identdense_mod, only: collect_identdense
+    use test_identsearch_mod, only: collect_identsearch
     use test_multidoors_mod, only: collect_multidoors
     use test_sweep_mod, only: collect_sweep
     use test_patch_mod, only: collect_patch
@@ -87,6 +88,7 @@ program greenconv_tests
                        new_testsuite('identreal', collect_identreal), &
                        new_testsuite('outofband', collect_outofband), &
                        new_testsuite('identdense', collect_identdense), &
+                       new_testsuite('identsearch', collect_identsearch), &
                        new_testsuite('multidoors', collect_multidoors), &
                        new_testsuite('sweep', collect_sweep), &
                        new_testsuite('patch', collect_patch), &

@@ -79,6 +79,8 @@ module greenconv_ident_lm_fit
         real(dp) :: outlier_sigma = 0.0_dp
         !> A Levenberg-Marquardt fit stops when chi2 falls by less than this (plus 1e-10*chi2) in an iteration.
         real(dp) :: tolerance = final_tolerance
+        !> Whether `refine` projects out the residues (variable projection; the global order search).
+        logical :: projection = .false.
     end type data_type
 
 contains
@@ -373,13 +375,21 @@ contains
         call refine(data, model, lm_iterations)
     end subroutine reweight
 
-    !> Levenberg-Marquardt on all parameters: the Gauss-Newton system scaled to unit diagonal,
-    !> damped by mu*I, solved by Cholesky; a step is kept when chi2 falls and every pole stays
-    !> physical (Re < 0 < Im). Stops when mu grows past 1e12 or chi2 falls by less than
-    !> data%tolerance + 1e-10*chi2 in an iteration (search_tolerance during the order search,
-    !> final_tolerance for the final model). The residual of the kept model is carried from the
-    !> step that made it to the next iteration's gradient (one evaluation of the model per
-    !> iteration fewer).
+    !> Levenberg-Marquardt on all parameters (the step of every parameter from the information,
+    !> scaled to unit diagonal, damped by mu*I, by Cholesky), or, when data%projection (the
+    !> global order search), with variable projection (issue 26): the poles are the only
+    !> nonlinear parameters; at every trial the residues and residual terms are the weighted
+    !> linear least squares for the trial poles (`fit_linear`), and the poles' step solves the
+    !> Gauss-Newton system of the projected problem (`projected`: Kaufman's J^T J, the Schur
+    !> complement of the information), scaled to unit diagonal, damped by mu*I, by Cholesky.
+    !> A step is kept when chi2 falls and every pole stays physical (Re < 0 < Im). Stops when
+    !> mu grows past 1e12 or chi2 falls by less than data%tolerance + 1e-10*chi2 in an
+    !> iteration (search_tolerance during the order search, final_tolerance for the final
+    !> model). Against the step in all parameters it replaced, a cluster of overlapping modes
+    !> converges in a few iterations instead of stalling (three modes at 400-455 Hz, xi up to
+    !> 0.09, 3 % noise: 61 iterations left 10 sigma_CRB off, now 2), and the 50-mode bench fit
+    !> takes 158-168 iterations instead of 262. The residual of the kept model is carried from
+    !> the step that made it to the next iteration's gradient.
     subroutine refine(data, model, lm_iterations, iterations)
         !> The weighted data.
         type(data_type), intent(in) :: data
@@ -391,10 +401,13 @@ contains
         integer, intent(in), optional :: iterations
 
         type(model_type) :: trial
+        type(error_type), allocatable :: failure
         real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:), jac(:, :), work(:, :)
+        real(dp), allocatable :: reduced(:, :), pull(:), step(:)
         complex(dp), allocatable :: residual(:), residual_trial(:)
+        integer, allocatable :: nonlinear(:)
         real(dp) :: chi, chi_trial, mu
-        integer :: iteration, p, small, i, last
+        integer :: iteration, p, small, i, last, q
         logical :: ok
 
         if (n_parameters(model) == 0) return
@@ -405,25 +418,49 @@ contains
         small = 0
         last = data%max_iterations
         if (present(iterations)) last = iterations
+        p = n_parameters(model)
+        nonlinear = [(4*((i - 1)/2) + 1 + mod(i - 1, 2), i=1, 2*size(model%pole))]
+        q = size(nonlinear)
+        allocate (step(p), scale(q))
         do iteration = 1, last
             call information(data, model, fisher, gradient, jac, work, residual)
             lm_iterations = lm_iterations + 1
-            p = size(gradient)
-            if (.not. allocated(scale)) allocate (scale(p))
-            do i = 1, p
-                scale(i) = sqrt(fisher(i, i))
+            if (data%projection) then
+                call projected(fisher, gradient, nonlinear, reduced, pull, ok)
+                if (.not. ok) return
+            else
+                reduced = fisher
+                pull = gradient
+            end if
+            q = size(pull)
+            if (size(scale) /= q) then
+                deallocate (scale)
+                allocate (scale(q))
+            end if
+            do i = 1, q
+                scale(i) = sqrt(reduced(i, i))
             end do
             where (.not. (scale > 0.0_dp)) scale = 1.0_dp
             do
-                a = fisher/spread(scale, 1, p)/spread(scale, 2, p)
-                a = a + mu*identity(p)
-                call spd_solve(a, gradient/scale, y, ok)
+                a = reduced/spread(scale, 1, q)/spread(scale, 2, q)
+                a = a + mu*identity(q)
+                call spd_solve(a, pull/scale, y, ok)
                 chi_trial = huge(1.0_dp)
                 if (ok) then
-                    trial = stepped(model, y/scale)
+                    if (data%projection) then
+                        step = 0.0_dp
+                        step(nonlinear) = y/scale
+                    else
+                        step = y/scale
+                    end if
+                    trial = stepped(model, step)
                     if (physical(trial, data%min_decay)) then
-                        residual_trial = weighted_residual(data, trial)
-                        chi_trial = 2.0_dp*sum(abs(residual_trial)**2)
+                        if (data%projection) call fit_linear(data, trial, failure)
+                        if (.not. allocated(failure)) then
+                            residual_trial = weighted_residual(data, trial)
+                            chi_trial = 2.0_dp*sum(abs(residual_trial)**2)
+                        end if
+                        if (allocated(failure)) deallocate (failure)
                     end if
                 end if
                 if (chi_trial < chi) exit
@@ -438,6 +475,43 @@ contains
             if (small >= 1) exit
         end do
     end subroutine refine
+
+    !> Variable projection (Golub-Pereyra with Kaufman's Jacobian) from the information of all
+    !> parameters: the linear ones (residues, residual terms) eliminated, the Gauss-Newton
+    !> system of the poles alone is the Schur complement F_pp - F_pl inv(F_ll) F_lp (Kaufman's
+    !> J^T J of the projected pole columns) and its right side g_p - F_pl inv(F_ll) g_l.
+    pure subroutine projected(fisher, gradient, nonlinear, reduced, pull, ok)
+        !> Information of all parameters, laid out as in `jacobian`.
+        real(dp), intent(in) :: fisher(:, :)
+        !> Gradient of all parameters.
+        real(dp), intent(in) :: gradient(:)
+        !> Indices of the nonlinear parameters (Re, Im of each pole).
+        integer, intent(in) :: nonlinear(:)
+        !> Reduced information of the nonlinear parameters.
+        real(dp), allocatable, intent(out) :: reduced(:, :)
+        !> Reduced gradient of the nonlinear parameters.
+        real(dp), allocatable, intent(out) :: pull(:)
+        !> False when the information of the linear parameters is singular.
+        logical, intent(out) :: ok
+
+        real(dp), allocatable :: inverse(:, :), coupling(:, :)
+        logical :: linear(size(gradient))
+        integer, allocatable :: other(:)
+        integer :: i
+
+        linear = .true.
+        linear(nonlinear) = .false.
+        other = pack([(i, i=1, size(gradient))], linear)
+        reduced = fisher(nonlinear, nonlinear)
+        pull = gradient(nonlinear)
+        ok = .true.
+        if (size(other) == 0) return
+        call covariance(fisher(other, other), inverse, ok)
+        if (.not. ok) return
+        coupling = matmul(fisher(nonlinear, other), inverse)
+        reduced = reduced - matmul(coupling, fisher(other, nonlinear))
+        pull = pull - matmul(coupling, gradient(other))
+    end subroutine projected
 
     !> Every pole with Re <= -min_decay < 0 < Im.
     pure logical function physical(model, min_decay)

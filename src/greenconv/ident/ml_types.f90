@@ -56,6 +56,10 @@ module greenconv_ident_ml_types
         integer :: max_iterations = 60
         !> Most modes added or dropped in the order search.
         integer :: max_changes = 40
+        !> Global order search (issue 26): variable projection in the fits of the search and death
+        !> moves after its greedy rounds (greenconv_ident_order_search); off until it holds on
+        !> the shipped patch file (it keeps 21 shared poles of 29 there).
+        logical :: global_search = .false.
         !> A mode is reported as under-resolved when its half-power band 2*xi*f holds fewer lines.
         real(dp) :: min_band_lines = 2.0_dp
         !> A line whose weighted residual |G_l - G_model|/sigma_l exceeds this, alone among its

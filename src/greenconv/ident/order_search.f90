@@ -3,12 +3,23 @@
 !> the residual terms kept or removed, outlier lines left out when MDL prefers that to a mode,
 !> and the clean-up of the final model (poles outside the band, needles at the narrowest band,
 !> modes the Fisher information does not determine).
+!>
+!> The greedy rounds (add while MDL falls, then drop) can end in a local optimum: a mode split
+!> over two poles with large residues of opposite sign, or a pole on a noise bump that the
+!> others would take up once it is gone (issue 26: 12 modes kept for 8, 149 above the true
+!> model's MDL). `death_move` then removes, in turn, each mode whose residue the information
+!> barely separates from zero or from another's, refits, and keeps the first removal that
+!> lowers MDL; the greedy rounds start again from it (births at the residual's peaks). When
+!> the best rejected removal is within `close_call` (10) of the chosen model's MDL, a warning
+!> says so: the data barely decide between the two orders. Death moves and the variable
+!> projection of the fits (data%projection) run only with ml_options%global_search.
 module greenconv_ident_order_search
     use greenconv_core_kinds, only: dp
     use greenconv_core_constants, only: two_pi, i_unit
     use greenconv_core_error, only: error_type
     use greenconv_ident_lsce, only: natural_frequency
-    use greenconv_ident_ml_types, only: ml_options, ml_result, record_drop, dropped_by_criterion, &
+    use greenconv_core_text, only: real_text
+    use greenconv_ident_ml_types, only: ml_options, ml_result, record_drop, add_warning, dropped_by_criterion, &
                                         dropped_left_band, dropped_degenerate, dropped_boundary
     use greenconv_ident_lm_fit, only: model_type, data_type, evaluate, chi_square, criterion, fit, refine, &
                                       information, covariance, widened, narrowest, leave_out
@@ -35,6 +46,12 @@ module greenconv_ident_order_search
     !> Levenberg-Marquardt iterations of a trial fit (a mode added or removed, a residual term)
     !> before the criterion decides; the kept model is then refined fully.
     integer, parameter :: trial_iterations = 3
+
+    !> Death moves (`escape`) try the modes whose Wald statistic for r_k = 0 is below this
+    !> many MDL prices of a mode.
+    real(dp), parameter :: death_wald = 25.0_dp
+    !> A rejected model within this of the chosen model's MDL criterion is reported.
+    real(dp), parameter :: close_call = 10.0_dp
 
 contains
 
@@ -65,40 +82,115 @@ contains
         integer, parameter :: adding = 1, dropping = 2
         integer :: changes, line, phase
         logical :: changed, removed
+        real(dp) :: closest
 
         outlier = 0
+        data%projection = options%global_search
         call drop_outside(data, model, result, error)
         if (allocated(error)) return
         changes = 0
-        ! Adding stops when no candidate is accepted; only a removal can make a new addition
-        ! worth trying (the residual changed), so the rounds end with a round that removes nothing.
+        closest = huge(1.0_dp)
         do
-            removed = .false.
-            do phase = adding, dropping
-                do while (changes < options%max_changes)
-                    if (phase == adding) then
-                        call add_mode(data, candidates, model, result, changed, line, error)
-                    else
-                        call drop_mode(data, model, result, changed, line, error)
-                    end if
-                    if (allocated(error)) return
-                    if (.not. changed) exit
-                    removed = removed .or. phase == dropping
-                    changes = changes + 1
-                    if (line > 0) then
-                        call take_outlier(data, model, result, line, keep_going, outlier, error)
-                        if (allocated(error) .or. outlier > 0) return
-                    end if
+            ! Adding stops when no candidate is accepted; only a removal can make a new addition
+            ! worth trying (the residual changed), so the rounds end with a round that removes nothing.
+            do
+                removed = .false.
+                do phase = adding, dropping
+                    do while (changes < options%max_changes)
+                        if (phase == adding) then
+                            call add_mode(data, candidates, model, result, changed, line, error)
+                        else
+                            call drop_mode(data, model, result, changed, line, error)
+                        end if
+                        if (allocated(error)) return
+                        if (.not. changed) exit
+                        removed = removed .or. phase == dropping
+                        changes = changes + 1
+                        if (line > 0) then
+                            call take_outlier(data, model, result, line, keep_going, outlier, error)
+                            if (allocated(error) .or. outlier > 0) return
+                        end if
+                    end do
                 end do
+                if (.not. removed .or. changes >= options%max_changes) exit
             end do
-            if (.not. removed .or. changes >= options%max_changes) exit
+            ! The greedy rounds end in a local optimum of MDL when the fit split one mode over
+            ! two poles or kept a pole on noise that the others would take up: a death move,
+            ! then the rounds again from the model it leaves.
+            if (changes >= options%max_changes .or. .not. options%global_search) exit
+            call death_move(data, model, result, changed, closest, error)
+            if (allocated(error)) return
+            if (.not. changed) exit
+            changes = changes + 1
         end do
+        if (closest < close_call) then
+            call add_warning(result, 'a model with one mode fewer is within '//trim(real_text(closest)) &
+                             //' of the chosen model''s MDL (the data barely decide between them)')
+        end if
         if (options%residual_terms == 'auto') then
             call drop_term(data, model, result, .true., error)
             if (allocated(error)) return
             call drop_term(data, model, result, .false., error)
         end if
     end subroutine choose_order
+
+    !> A death move out of a local optimum of the greedy search: each mode whose Wald statistic
+    !> for r_k = 0 lies below death_wald prices of a mode (a pole sharing its mode with another
+    !> has a residue the information barely separates, so a small statistic) is removed in
+    !> turn, smallest statistic first, and the rest refitted (search iterations); the first
+    !> removal that lowers the MDL criterion is kept and refined. `closest` returns the least
+    !> rise of the criterion among the removals rejected (huge when none was tried).
+    subroutine death_move(data, model, result, removed, closest, error)
+        !> The weighted data.
+        type(data_type), intent(in) :: data
+        !> The model, without the mode when a removal is kept.
+        type(model_type), intent(inout) :: model
+        !> The result: the mode removed (dropped_by_criterion), LM iterations.
+        type(ml_result), intent(inout) :: result
+        !> Whether a mode was removed.
+        logical, intent(out) :: removed
+        !> Least rise of the MDL criterion among the rejected removals (dimensionless).
+        real(dp), intent(out) :: closest
+        !> Set when a refit fails.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), work(:, :)
+        type(model_type) :: trial
+        real(dp) :: before, after
+        integer :: k, c, worst
+        logical :: ok
+
+        removed = .false.
+        closest = huge(1.0_dp)
+        if (size(model%pole) < 2) return
+        call information(data, model, fisher, gradient, jac, work)
+        call covariance(fisher, cov, ok)
+        if (.not. ok) return
+        allocate (wald(size(model%pole)))
+        do k = 1, size(model%pole)
+            c = 4*(k - 1)
+            wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), [real(model%residue(k), dp), aimag(model%residue(k))])
+        end do
+        before = criterion(data, model, chi_square(data, model))
+        do
+            worst = minloc(wald, 1)
+            if (.not. (wald(worst) < death_wald*4.0_dp*data%penalty)) return
+            trial = model
+            trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
+            call fit(data, trial, result%iterations, error)
+            if (allocated(error)) return
+            after = criterion(data, trial, chi_square(data, trial))
+            wald(worst) = huge(1.0_dp)
+            if (after < before) then
+                call record_drop(result, [model%pole(worst)], dropped_by_criterion)
+                model = trial
+                call refine(data, model, result%iterations)
+                removed = .true.
+                return
+            end if
+            closest = min(closest, after - before)
+        end do
+    end subroutine death_move
 
     !> An outlier line (index in data) the search found: recorded, then either left out of the
     !> data and the model refitted, or, when its effect on the diagram outweighs the noise
