@@ -35,7 +35,30 @@ contains
 
     !> Read all data lines of a file into table(:, 1:N), N = size(names), with the file line
     !> number of each row in line_of.
+    !> Files are read one at a time in the process (the critical section greenconv_input_files):
+    !> a file may be connected to one Fortran unit only, so two threads opening the same file
+    !> at once would see "File already opened in another unit".
     subroutine read_columns(path, names, units, table, line_of, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> Short name of each column, for messages (e.g. `x`, `height`).
+        character(len=*), intent(in) :: names(:)
+        !> Unit of each column, for messages (e.g. `m`).
+        character(len=*), intent(in) :: units(:)
+        !> The numbers, one row per data line.
+        real(dp), allocatable, intent(out) :: table(:, :)
+        !> Line number in the file of each row.
+        integer, allocatable, intent(out) :: line_of(:)
+        !> Set when the file cannot be opened or a data line does not hold N finite numbers.
+        type(error_type), allocatable, intent(out) :: error
+
+        !$omp critical (greenconv_input_files)
+        call read_columns_alone(path, names, units, table, line_of, error)
+        !$omp end critical (greenconv_input_files)
+    end subroutine read_columns
+
+    !> `read_columns` without the lock.
+    subroutine read_columns_alone(path, names, units, table, line_of, error)
         !> File to read.
         character(len=*), intent(in) :: path
         !> Short name of each column, for messages (e.g. `x`, `height`).
@@ -85,7 +108,7 @@ contains
         close (unit)
         if (allocated(error)) return
         call shrink(table, line_of, n)
-    end subroutine read_columns
+    end subroutine read_columns_alone
 
     !> Keep the first n rows of the row storage.
     pure subroutine shrink(table, line_of, n)
@@ -275,7 +298,26 @@ contains
     !> CR alone (old Mac text): gfortran's runtime ends a record at each. Refused with a
     !> message: a file that cannot be opened, a line longer than `max_line_length`, more than
     !> `max_text_bytes` in all.
+    !> Files are read one at a time in the process (the critical section greenconv_input_files):
+    !> a file may be connected to one Fortran unit only, so two threads opening the same file
+    !> at once would see "File already opened in another unit".
     subroutine read_lines(path, what, lines, error)
+        !> The file.
+        character(len=*), intent(in) :: path
+        !> What the file is, for messages (e.g. `scene file`).
+        character(len=*), intent(in) :: what
+        !> Its lines, without their ends, padded with blanks to the longest.
+        character(len=:), allocatable, intent(out) :: lines(:)
+        !> Set when the file cannot be read, naming it (and the line).
+        type(error_type), allocatable, intent(out) :: error
+
+        !$omp critical (greenconv_input_files)
+        call read_lines_alone(path, what, lines, error)
+        !$omp end critical (greenconv_input_files)
+    end subroutine read_lines
+
+    !> `read_lines` without the lock.
+    subroutine read_lines_alone(path, what, lines, error)
         !> The file.
         character(len=*), intent(in) :: path
         !> What the file is, for messages (e.g. `scene file`).
@@ -326,7 +368,7 @@ contains
         do n = 1, size(lines)
             lines(n) = list(n)%text
         end do
-    end subroutine read_lines
+    end subroutine read_lines_alone
 
     !> The message on a line longer than `max_line_length`.
     function long_line(path, line_number) result(text)

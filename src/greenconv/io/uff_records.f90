@@ -31,7 +31,24 @@ module greenconv_io_uff_records
 contains
 
     !> Read every line of a file (a trailing carriage return and a UTF-8 byte-order mark at its start removed).
+    !> Files are read one at a time in the process (the critical section greenconv_input_files):
+    !> a file may be connected to one Fortran unit only, so two threads opening the same file
+    !> at once would see "File already opened in another unit".
     subroutine load_lines(path, lines, error)
+        !> File to read.
+        character(len=*), intent(in) :: path
+        !> Its lines, in order.
+        type(text_line), allocatable, intent(out) :: lines(:)
+        !> Set (status 2) when the file cannot be opened or is empty.
+        type(error_type), allocatable, intent(out) :: error
+
+        !$omp critical (greenconv_input_files)
+        call load_lines_alone(path, lines, error)
+        !$omp end critical (greenconv_input_files)
+    end subroutine load_lines
+
+    !> `load_lines` without the lock.
+    subroutine load_lines_alone(path, lines, error)
         !> File to read.
         character(len=*), intent(in) :: path
         !> Its lines, in order.
@@ -73,7 +90,7 @@ contains
             lines(i)%text = line
         end do
         close (unit)
-    end subroutine load_lines
+    end subroutine load_lines_alone
 
     !> Whether a line is a dataset delimiter: `-1` ending within columns 1-6, nothing else.
     pure logical function is_delimiter(line)

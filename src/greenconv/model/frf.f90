@@ -308,16 +308,20 @@ contains
         end do
         universal = extension == '.uff' .or. extension == '.unv'
         if (universal) return
+        ! One file open at a time in the process, as greenconv_io_columns and _uff_records read.
+        !$omp critical (greenconv_input_files)
         open (newunit=unit, file=path, status='old', action='read', iostat=stat)
-        if (stat /= 0) return
-        do
-            read (unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            if (len_trim(line) == 0) cycle
-            universal = line(1:6) == '    -1' .and. len_trim(line(7:)) == 0
-            exit
-        end do
-        close (unit)
+        if (stat == 0) then
+            do
+                read (unit, '(a)', iostat=stat) line
+                if (stat /= 0) exit
+                if (len_trim(line) == 0) cycle
+                universal = line(1:6) == '    -1' .and. len_trim(line(7:)) == 0
+                exit
+            end do
+            close (unit)
+        end if
+        !$omp end critical (greenconv_input_files)
     end function is_universal_file
 
     !> Read a universal file and take one of its datasets 58 as the FRF.
