@@ -141,6 +141,23 @@ cmd_deps() {
         as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${packages[@]}" >/dev/null
     fi
 
+    # An optimised BLAS/LAPACK (issue 26: the field's default; the identification's Gram matrices
+    # and the LU of the implicit step run through it). Debian's OpenMP build of OpenBLAS becomes
+    # the system's libblas.so.3/liblapack.so.3 by update-alternatives, so the link line stays
+    # -llapack -lblas, and it runs serially inside greenconv's (or a host's) parallel regions.
+    # Optional: without it (no apt, no root) the reference BLAS gives the same results, slower.
+    if ! have_lib openblas; then
+        if command -v apt-get >/dev/null 2>&1 && { [ "$(id -u)" -eq 0 ] || command -v sudo >/dev/null 2>&1; }; then
+            say "installing libopenblas-openmp-dev (an optimised BLAS/LAPACK; optional)"
+            as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libopenblas-openmp-dev >/dev/null 2>&1 \
+                || { as_root apt-get update -qq >/dev/null 2>&1 \
+                     && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libopenblas-openmp-dev >/dev/null; } \
+                || say "could not install OpenBLAS; the reference BLAS/LAPACK is used (slower; results equal to round-off)"
+        else
+            say "no OpenBLAS and no apt/root: the reference BLAS/LAPACK is used (slower; results equal to round-off)"
+        fi
+    fi
+
     if ! have_fpm; then
         say "installing fpm with pip (fpm not found on PATH; the build and the tests use it)"
         pip_install "fpm==$FPM_VERSION"
