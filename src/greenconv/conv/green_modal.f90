@@ -153,7 +153,7 @@ contains
         !$ share = share .and. .not. omp_in_parallel()
         ! Blocks of points, each summed over the modes column by column (contiguous in shape):
         ! every u_i is the serial loop's sum, in its order.
-        !$omp parallel do if (share) default(none) shared(self, u) private(first, last, k)
+        !$omp parallel do if (share) default(none) shared(self, u) private(first, last, k) schedule(static)
         do block = 1, (size(u) + history_block - 1)/history_block
             first = (block - 1)*history_block + 1
             last = min(block*history_block, size(u))
@@ -165,30 +165,42 @@ contains
         !$omp end parallel do
     end subroutine modal_history
 
-    !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance.
+    !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance. Both by modes in one
+    !> loop: the thread that sums Q_k steps p_k, with no barrier between.
     subroutine modal_push(self, forces)
         class(modal_green_matrix), intent(inout) :: self
         real(dp), intent(in) :: forces(:)
 
-        real(dp) :: old_re(size(self%modal_force)), load(size(forces))
+        real(dp) :: load(size(forces))
         integer :: k
         logical :: share
 
         load(:) = self%recorded_load(forces)
         share = size(self%shape) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
-        !$omp parallel do if (share) default(none) shared(self, load)
+        !$omp parallel do if (share) default(none) shared(self, load) schedule(static)
         do k = 1, size(self%shape, 2)
             self%modal_force(k) = dot_product(self%shape(:, k), load)
+            call step_mode(self%engine, k, self%modal_force(k))
         end do
         !$omp end parallel do
-        associate (e => self%engine, q => self%modal_force)
-            old_re(:) = e%state_re
-            e%state_re(:) = e%decay_re*old_re - e%decay_im*e%state_im + e%input_re*q
-            e%state_im(:) = e%decay_re*e%state_im + e%decay_im*old_re + e%input_im*q
-        end associate
         self%step = self%step + 1
     end subroutine modal_push
+
+    !> p_k <- z_k*p_k + c_k*Q_k for one mode k, Q_k [N] its modal force.
+    pure subroutine step_mode(engine, k, force)
+        type(recursive_convolver), intent(inout) :: engine
+        integer, intent(in) :: k
+        real(dp), intent(in) :: force
+
+        real(dp) :: old_re
+
+        old_re = engine%state_re(k)
+        engine%state_re(k) = engine%decay_re(k)*old_re - engine%decay_im(k)*engine%state_im(k) &
+                             + engine%input_re(k)*force
+        engine%state_im(k) = engine%decay_re(k)*engine%state_im(k) + engine%decay_im(k)*old_re &
+                             + engine%input_im(k)*force
+    end subroutine step_mode
 
     !> Clear the modal states.
     subroutine modal_clear(self)
