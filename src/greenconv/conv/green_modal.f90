@@ -124,7 +124,8 @@ contains
         type(modal_green_matrix), intent(inout) :: conv
 
         real(dp), allocatable :: weight0(:, :)
-        integer :: n_c, n_m, k
+        integer :: n_c, n_m, j, k
+        logical :: share
 
         n_c = description%n_points()
         n_m = description%modes%n_modes()
@@ -132,11 +133,18 @@ contains
         call conv%set_model(conv%engine%name, dt, n_m, 'N_m')
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape
-        weight0(:, :) = 0.0_dp
-        do k = 1, n_m
-            weight0(:, :) = weight0 + conv%engine%mode_weight(k)*spread(conv%shape(:, k), 2, n_c) &
-                            *spread(conv%shape(:, k), 1, n_c)
+        ! W0_ij = sum_k (w_k*phi_ik)*phi_jk in the order of k, column by column (N_c^2*N_m
+        ! multiply-adds once, without temporaries; columns shared among threads).
+        share = size(conv%shape) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(conv, weight0, n_c, n_m) private(k) schedule(static)
+        do j = 1, n_c
+            weight0(:, j) = 0.0_dp
+            do k = 1, n_m
+                weight0(:, j) = weight0(:, j) + conv%engine%mode_weight(k)*conv%shape(:, k)*conv%shape(j, k)
+            end do
         end do
+        !$omp end parallel do
         call conv%set_instant_matrix(weight0)
         call conv%reset()
     end subroutine set_up_matrix
