@@ -23,7 +23,7 @@ module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
-    !$ use omp_lib, only: omp_in_parallel
+    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads
     implicit none
     private
 
@@ -191,6 +191,17 @@ contains
         !$omp end parallel do
     end subroutine gathered_product
 
+    !> Whether an LU (dgesv, dgetrf) is to be called from one thread of a parallel region of
+    !> ours: when OpenMP would give it more than one thread. A threaded LAPACK (OpenBLAS's
+    !> OpenMP build) factors in parallel outside a region, with other round-off than on one
+    !> thread (a 441 x 441 LU differs in its last bits), and serially inside one; called so,
+    !> the factors and the run's results do not depend on the number of threads, and inside a
+    !> host's region (where it is serial already) nothing changes.
+    logical function lapack_alone()
+        lapack_alone = .false.
+        !$ lapack_alone = omp_get_max_threads() > 1 .and. .not. omp_in_parallel()
+    end function lapack_alone
+
     !> Whether a loop of `work` multiply-adds is shared among threads: large enough to pay for
     !> a parallel region, and not called from inside one (no nested threads in a host's region).
     logical function sharing(work)
@@ -227,7 +238,11 @@ contains
                 jacobian(:, j) = weight0(:, j)*slopes(j)
                 jacobian(j, j) = jacobian(j, j) + 1.0_dp
             end do
+            !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(jacobian, b, s, error)
+            !$omp single
             call solve_linear(jacobian, b, s, error)
+            !$omp end single
+            !$omp end parallel
             return
         end if
         if (compliance%rank == 0 .or. all(slopes == 0.0_dp)) then
@@ -290,7 +305,11 @@ contains
             end if
             if (allocated(newton%pivot)) deallocate (newton%pivot)
             allocate (newton%pivot(size(newton%factors, 1)))
+            !$omp parallel num_threads(2) if (lapack_alone()) default(shared)
+            !$omp single
             call lu_factor(newton%factors, newton%pivot, error)
+            !$omp end single
+            !$omp end parallel
             if (allocated(error)) return
             newton%ready = .true.
         end associate
