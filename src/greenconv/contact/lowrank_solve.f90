@@ -19,6 +19,11 @@
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
+!>
+!> Threads (a build with OpenMP): W0*x, the Woodbury products and the Newton matrix are shared
+!> out by fixed blocks of rows or columns, each sum done by one thread in the serial order, and
+!> the LU is called from one thread of a region (`lapack_alone`), so that any number of threads
+!> gives the one-thread results bit for bit; inside a host's parallel region all stays serial.
 module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type

@@ -17,9 +17,9 @@
 !> N_c*N_m multiplications for the modal forces, 4*N_m for the states and N_c*N_m for the
 !> displacements: O(N_c*N_m) instead of the O(N_c^2*N_g) of the sampled table.
 !>
-!> Threads (a build with OpenMP, `-fopenmp`: the Makefile's): the modal forces are shared out
-!> over the modes and the history displacements over the points, as many threads as
-!> OMP_NUM_THREADS says. Each Q_k and each u_h,i is summed by one thread in the order of the
+!> Threads (a build with OpenMP, `-fopenmp`: the Makefile's): the modal forces, each with its
+!> mode's recursion, are shared out over the modes, the history displacements over the points
+!> and W0 (once) over its columns, as many threads as OMP_NUM_THREADS says. Each Q_k and each u_h,i is summed by one thread in the order of the
 !> serial loop, so the results are those of one thread bit for bit. The loops stay serial when
 !> the step is called from inside a parallel region of a host (`omp_in_parallel`: each host
 !> thread then steps its own convolvers alone) and when N_c*N_m is below `threads_from` (a
