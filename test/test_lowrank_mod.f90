@@ -18,7 +18,14 @@
 !> - threads (a build with -fopenmp): the modal step of 1,000 points on 1 thread, on 2 and from
 !>   inside a host's parallel region against the modal forces and history displacements summed
 !>   here by plain loops in the serial order: equal bit for bit (tolerance 0). Without OpenMP
-!>   the three runs are the serial one.
+!>   the three runs are the serial one;
+!> - threads in the implicit step (W0*x by blocks of V's columns and of U's rows, the Woodbury
+!>   products, the Newton matrix, the fused modal push): a plate patch of 500 points, W0 of
+!>   rank r with N_c*r above the threads' threshold, Hertz points losing and regaining contact,
+!>   run on 1 thread, on 2, and twice at once on two host threads (where the library and
+!>   LAPACK stay serial): forces and displacements equal bit for bit (tolerance 0). The modes
+!>   to 3 kHz give r above 100, where OpenBLAS's OpenMP build threads an r x r LU by itself
+!>   (with other round-off) unless called from inside a parallel region.
 module test_lowrank_mod
     !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     use, intrinsic :: iso_fortran_env, only: dp => real64
@@ -28,6 +35,7 @@ module test_lowrank_mod
     use greenconv_ext_lapack, only: solve_linear
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, contact_positions
+    use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_model_road, only: random_road, new_random_road
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_contact_law, only: contact_law
@@ -53,7 +61,9 @@ contains
                      new_unittest('modal W0 factored: rank at most N_m, U V^T equals W0', test_factors), &
                      new_unittest('tyre run, 120 points: low-rank forces equal the dense run', test_run), &
                      new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback), &
-                     new_unittest('modal step on 1, 2 threads and in a host region: bit for bit', test_threads)]
+                     new_unittest('modal step on 1, 2 threads and in a host region: bit for bit', test_threads), &
+                     new_unittest('implicit plate patch on 1, 2 and two host threads: bit for bit', &
+                                  test_implicit_threads)]
     end subroutine collect_lowrank
 
     !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
@@ -170,21 +180,18 @@ contains
                    'U V^T against W0', thr=1.0e-13_dp*maxval(abs(conv%weight0)))
     end subroutine test_factors
 
-    !> The same run twice, the factors used and the dense W0 forced.
-    subroutine run_twice(description, n_t, low_rank, dense, used)
+    !> The exact engine, Hertz laws (2 mm static compression) and a rough road under the points
+    !> of `description` for n_t steps: points lose and regain contact.
+    subroutine set_up_run(description, n_t, conv, laws, preloads, road)
         type(point_modes), intent(in) :: description
         integer, intent(in) :: n_t
-        type(multi_contact_response), intent(out) :: low_rank, dense
-        type(lowrank_compliance), intent(out) :: used
+        type(modal_green_matrix), intent(out) :: conv
+        type(contact_law), allocatable, intent(out) :: laws(:)
+        real(dp), allocatable, intent(out) :: preloads(:), road(:, :)
 
-        type(modal_green_matrix) :: conv
-        type(multi_contact_state) :: state
-        type(error_type), allocatable :: failure
-        type(contact_law), allocatable :: laws(:)
-        real(dp), allocatable :: road(:, :), preloads(:)
         type(random_road) :: profile
         real(dp) :: positions(description%n_points())
-        integer :: n_c, i, m, pass
+        integer :: n_c, i, m
 
         n_c = description%n_points()
         positions = contact_positions(0.5_dp, 0.12_dp, n_c)
@@ -196,19 +203,43 @@ contains
         preloads(:) = 3000.0_dp/n_c
         laws(:) = contact_law(preloads(1)/(2.0e-3_dp)**1.5_dp, 1.5_dp)
         conv = exact_matrix(description)
-        do pass = 1, 2
-            call start_multi_contact(conv, laws, preloads, state, failure)
-            if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
-            if (pass == 2) state%compliance%checked = .true.
-            if (pass == 1) then
-                call multi_contact_block(conv, state, road, low_rank, failure)
-                used = state%compliance
-            else
-                call multi_contact_block(conv, state, road, dense, failure)
-            end if
-            if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
-        end do
+    end subroutine set_up_run
+
+    !> The same run twice, the factors used and the dense W0 forced.
+    subroutine run_twice(description, n_t, low_rank, dense, used)
+        type(point_modes), intent(in) :: description
+        integer, intent(in) :: n_t
+        type(multi_contact_response), intent(out) :: low_rank, dense
+        type(lowrank_compliance), intent(out) :: used
+
+        type(lowrank_compliance) :: unused
+
+        call implicit_run(description, n_t, low_rank, used)
+        call implicit_run(description, n_t, dense, unused, forced_dense=.true.)
     end subroutine run_twice
+
+    !> One implicit run of `description` over n_t steps (`set_up_run`), with the factors it
+    !> used; `forced_dense`: W0 kept dense whatever its rank.
+    subroutine implicit_run(description, n_t, response, used, forced_dense)
+        type(point_modes), intent(in) :: description
+        integer, intent(in) :: n_t
+        type(multi_contact_response), intent(out) :: response
+        type(lowrank_compliance), intent(out) :: used
+        logical, intent(in), optional :: forced_dense
+
+        type(modal_green_matrix) :: conv
+        type(multi_contact_state) :: state
+        type(error_type), allocatable :: failure
+        type(contact_law), allocatable :: laws(:)
+        real(dp), allocatable :: road(:, :), preloads(:)
+
+        call set_up_run(description, n_t, conv, laws, preloads, road)
+        call start_multi_contact(conv, laws, preloads, state, failure)
+        if (present(forced_dense)) state%compliance%checked = forced_dense
+        if (.not. allocated(failure)) call multi_contact_block(conv, state, road, response, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        used = state%compliance
+    end subroutine implicit_run
 
     subroutine test_run(error)
         type(test_error), allocatable, intent(out) :: error
@@ -344,5 +375,54 @@ contains
         if (allocated(error)) return
         call check(error, all(hosted == one), 'inside a host''s parallel region against 1 thread: bit for bit')
     end subroutine test_threads
+
+    subroutine test_implicit_threads(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_t = 40
+        type(point_modes) :: description
+        type(error_type), allocatable :: failure
+        type(multi_contact_response) :: one, two, hosted(2)
+        type(lowrank_compliance) :: used, used_hosted(2)
+        real(dp) :: x(500), y(500)
+        integer :: threads, host
+
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        threads = 1
+        !$ threads = omp_get_max_threads()
+        !$ call omp_set_num_threads(1)
+        call implicit_run(description, n_t, one, used)
+        !$ call omp_set_num_threads(2)
+        call implicit_run(description, n_t, two, used)
+        ! Two host threads, each with its own run (the library's steps and LAPACK serial there).
+        !$omp parallel do num_threads(2) default(shared) schedule(static, 1)
+        do host = 1, 2
+            call implicit_run(description, n_t, hosted(host), used_hosted(host))
+        end do
+        !$omp end parallel do
+        !$ call omp_set_num_threads(threads)
+        call note('N_m', real(size(description%shape, 2), dp))
+        call note('rank used', real(used%rank, dp))
+        call note('N_c*r', real(description%n_points()*used%rank, dp))
+        call check(error, used%low_rank .and. description%n_points()*used%rank >= 20000 .and. used%rank > 100, &
+                   'the run used the factors, with N_c*r large enough for threads and r > 100')
+        if (allocated(error)) return
+        call check(error, any(one%force <= 0.0_dp) .and. any(one%force > 0.0_dp), &
+                   'some points lose contact, others keep it')
+        if (allocated(error)) return
+        call note('max|F_2 - F_1| [N]', maxval(abs(two%force - one%force)))
+        call check(error, all(two%force == one%force) .and. all(two%displacement == one%displacement), &
+                   '2 threads against 1: bit for bit')
+        if (allocated(error)) return
+        do host = 1, 2
+            call note('max|F_host - F_1| [N]', maxval(abs(hosted(host)%force - one%force)))
+            call check(error, all(hosted(host)%force == one%force) .and. &
+                       all(hosted(host)%displacement == one%displacement), &
+                       'a run on a host thread against 1 thread: bit for bit')
+            if (allocated(error)) return
+        end do
+    end subroutine test_implicit_threads
 
 end module test_lowrank_mod

@@ -19,11 +19,16 @@
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
+!>
+!> Threads (a build with OpenMP): W0*x, the Woodbury products and the Newton matrix are shared
+!> out by fixed blocks of rows or columns, each sum done by one thread in the serial order, and
+!> the LU is called from one thread of a region (`lapack_alone`), so that any number of threads
+!> gives the one-thread results bit for bit; inside a host's parallel region all stays serial.
 module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
-    !$ use omp_lib, only: omp_in_parallel
+    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads
     implicit none
     private
 
@@ -64,8 +69,12 @@ module greenconv_contact_lowrank_solve
     !> The remainder of the elimination counts as round-off below this fraction of max|W0_ij|.
     real(dp), parameter :: rank_tolerance = 1.0e-14_dp
     !> Products of fewer multiply-adds than this stay on one thread (a parallel region costs
-    !> some microseconds).
-    real(dp), parameter :: thread_work = 2.0e5_dp
+    !> some microseconds): the N_c*N_m rule of greenconv_conv_green_modal.
+    real(dp), parameter :: thread_work = 2.0e4_dp
+    !> Rows per block of the products by rows (one thread's share at a time).
+    integer, parameter :: row_block = 256
+    !> Columns of V per block of the products V^T*x.
+    integer, parameter :: column_block = 16
 
 contains
 
@@ -118,8 +127,14 @@ contains
         end do
     end subroutine subtract_outer
 
-    !> W0*x [m] for loads x [N], from the factors when there are any.
-    pure function apply_compliance(compliance, weight0, x) result(y)
+    !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors, else the dense product.
+    !>
+    !> Threads: V^T*x by fixed blocks of `column_block` columns, then U*z (or W0*x) by fixed
+    !> blocks of `row_block` rows, in one parallel region. Every y_i and z_k is the same
+    !> ordered sum (MATMUL on a block of rows or columns) whoever does its block, so any number
+    !> of threads gives the one-thread result bit for bit; small products and calls from inside
+    !> a parallel region (a host's, or ours) stay on the calling thread.
+    function apply_compliance(compliance, weight0, x) result(y)
         !> W0 as the run uses it.
         type(lowrank_compliance), intent(in) :: compliance
         !> The dense W0 [m/N] (N_c x N_c).
@@ -128,12 +143,79 @@ contains
         real(dp), intent(in) :: x(:)
         real(dp) :: y(size(x))
 
-        if (compliance%low_rank) then
-            y(:) = matmul(compliance%left, matmul(x, compliance%right))
-        else
-            y(:) = matmul(weight0, x)
+        real(dp) :: z(compliance%rank)
+        integer :: first, last
+
+        if (.not. compliance%low_rank) then
+            !$omp parallel do if (sharing(real(size(weight0), dp))) default(none) shared(weight0, x, y) &
+            !$omp private(last) schedule(static)
+            do first = 1, size(x), row_block
+                last = min(first + row_block - 1, size(x))
+                y(first:last) = matmul(weight0(first:last, :), x)
+            end do
+            !$omp end parallel do
+            return
         end if
+        !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) shared(compliance, x, y, z) &
+        !$omp private(last)
+        !$omp do schedule(static)
+        do first = 1, compliance%rank, column_block
+            last = min(first + column_block - 1, compliance%rank)
+            z(first:last) = matmul(x, compliance%right(:, first:last))
+        end do
+        !$omp end do
+        !$omp do schedule(static)
+        do first = 1, size(x), row_block
+            last = min(first + row_block - 1, size(x))
+            y(first:last) = matmul(compliance%left(first:last, :), z)
+        end do
+        !$omp end do
+        !$omp end parallel
     end function apply_compliance
+
+    !> z = V_A^T*x, V_A the rows `active` of V (N_c x r), by fixed blocks of columns shared
+    !> among threads: each z_k is MATMUL's ordered sum whoever computes it.
+    subroutine gathered_product(x, right, active, z)
+        !> Values at the active points (N_a).
+        real(dp), intent(in) :: x(:)
+        !> V (N_c x r).
+        real(dp), intent(in) :: right(:, :)
+        !> The active points (N_a).
+        integer, intent(in) :: active(:)
+        !> V_A^T*x (r).
+        real(dp), intent(out) :: z(:)
+
+        integer :: first, last
+
+        !$omp parallel do if (sharing(real(size(active), dp)*size(right, 2))) default(none) &
+        !$omp shared(x, right, active, z) private(last) schedule(static)
+        do first = 1, size(right, 2), column_block
+            last = min(first + column_block - 1, size(right, 2))
+            z(first:last) = matmul(x, right(active, first:last))
+        end do
+        !$omp end parallel do
+    end subroutine gathered_product
+
+    !> Whether an LU (dgesv, dgetrf) is to be called from one thread of a parallel region of
+    !> ours: when OpenMP would give it more than one thread. A threaded LAPACK (OpenBLAS's
+    !> OpenMP build) factors in parallel outside a region, with other round-off than on one
+    !> thread (a 441 x 441 LU differs in its last bits), and serially inside one; called so,
+    !> the factors and the run's results do not depend on the number of threads, and inside a
+    !> host's region (where it is serial already) nothing changes.
+    logical function lapack_alone()
+        lapack_alone = .false.
+        !$ lapack_alone = omp_get_max_threads() > 1 .and. .not. omp_in_parallel()
+    end function lapack_alone
+
+    !> Whether a loop of `work` multiply-adds is shared among threads: large enough to pay for
+    !> a parallel region, and not called from inside one (no nested threads in a host's region).
+    logical function sharing(work)
+        !> Multiply-adds (or comparable operations) of the loop.
+        real(dp), intent(in) :: work
+
+        sharing = work >= thread_work
+        !$ sharing = sharing .and. .not. omp_in_parallel()
+    end function sharing
 
     !> The Newton step s [m] solving (I + W0*diag(t))*s = b: on the active set or by Woodbury
     !> with the factors, or a dense LU when W0 has no low-rank factors.
@@ -152,6 +234,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: jacobian(:, :), y(:), scaled_b(:)
+        real(dp) :: z(compliance%rank)
         integer :: j
 
         if (.not. compliance%low_rank) then
@@ -160,7 +243,11 @@ contains
                 jacobian(:, j) = weight0(:, j)*slopes(j)
                 jacobian(j, j) = jacobian(j, j) + 1.0_dp
             end do
+            !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(jacobian, b, s, error)
+            !$omp single
             call solve_linear(jacobian, b, s, error)
+            !$omp end single
+            !$omp end parallel
             return
         end if
         if (compliance%rank == 0 .or. all(slopes == 0.0_dp)) then
@@ -175,11 +262,12 @@ contains
                 call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
                 if (allocated(error)) return
                 y(:) = slopes(newton%active)*y
-                call subtract_product(compliance%left, matmul(y, compliance%right(newton%active, :)), b, s)
+                call gathered_product(y, compliance%right, newton%active, z)
+                call subtract_product(compliance%left, z, b, s)
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
-                call lu_solve(newton%factors, newton%pivot, matmul(scaled_b, compliance%right(newton%active, :)), &
-                              y, error)
+                call gathered_product(scaled_b, compliance%right, newton%active, z)
+                call lu_solve(newton%factors, newton%pivot, z, y, error)
                 if (allocated(error)) return
                 call subtract_product(compliance%left, y, b, s)
             end if
@@ -222,7 +310,11 @@ contains
             end if
             if (allocated(newton%pivot)) deallocate (newton%pivot)
             allocate (newton%pivot(size(newton%factors, 1)))
+            !$omp parallel num_threads(2) if (lapack_alone()) default(shared)
+            !$omp single
             call lu_factor(newton%factors, newton%pivot, error)
+            !$omp end single
+            !$omp end parallel
             if (allocated(error)) return
             newton%ready = .true.
         end associate
@@ -233,33 +325,28 @@ contains
         real(dp), intent(in) :: a(:, :), b(:, :)
         real(dp), allocatable, intent(out) :: c(:, :)
 
-        logical :: share
         integer :: j
 
         allocate (c(size(a, 2), size(b, 2)))
-        share = real(size(a, 1), dp)*size(a, 2)*size(b, 2) >= thread_work
-        !$ share = share .and. .not. omp_in_parallel()
-        !$omp parallel do if (share) default(none) shared(a, b, c) schedule(static)
+        !$omp parallel do if (sharing(real(size(a, 1), dp)*size(a, 2)*size(b, 2))) default(none) shared(a, b, c) &
+        !$omp schedule(static)
         do j = 1, size(b, 2)
             c(:, j) = matmul(b(:, j), a)
         end do
         !$omp end parallel do
     end subroutine transposed_product
 
-    !> s = b - u*y, by rows shared among threads.
+    !> s = b - u*y, by fixed blocks of rows shared among threads.
     subroutine subtract_product(u, y, b, s)
         real(dp), intent(in) :: u(:, :), y(:), b(:)
         real(dp), intent(out) :: s(:)
 
-        logical :: share
-        integer :: first, last, block
+        integer :: first, last
 
-        block = 256
-        share = real(size(u, 1), dp)*size(u, 2) >= thread_work
-        !$ share = share .and. .not. omp_in_parallel()
-        !$omp parallel do if (share) default(none) shared(u, y, b, s, block) private(last) schedule(static)
-        do first = 1, size(u, 1), block
-            last = min(first + block - 1, size(u, 1))
+        !$omp parallel do if (sharing(real(size(u), dp))) default(none) shared(u, y, b, s) private(last) &
+        !$omp schedule(static)
+        do first = 1, size(u, 1), row_block
+            last = min(first + row_block - 1, size(u, 1))
             s(first:last) = b(first:last) - matmul(u(first:last, :), y)
         end do
         !$omp end parallel do

@@ -177,7 +177,7 @@ contains
         else if (.not. state%coupled) then
             state%delta(:) = free
         else
-            call solve_compressions(weight0, state, free, force, iterations, residual, point, fault)
+            call solve_compressions(weight0, state, free, force, displacement, iterations, residual, point, fault)
             if (allocated(fault)) then
                 if (all(ieee_is_finite(road))) then
                     fault%message = fault%message//' '//where(state, 0)
@@ -193,11 +193,15 @@ contains
             return
         end if
         force(:) = state%laws%force(state%delta)
-        displacement(:) = u_h
         if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
+        else if (state%coupled .and. state%settings%scheme == 'implicit') then
+            ! W0*(F - F0) of these forces is the last residual's coupling, left in displacement
+            displacement(:) = u_h + displacement
         else if (state%coupled) then
             displacement(:) = u_h + apply_compliance(state%compliance, weight0, force - state%preload)
+        else
+            displacement(:) = u_h
         end if
         call divergence_guard(state, road, displacement, force, fault)
         if (.not. allocated(fault)) state%step = state%step + 1
@@ -302,19 +306,21 @@ contains
 
     !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2, from
     !> the free compression corrected by the previous step's forces (`load` is work space).
+    !> `coupling` is W0*(F(delta) - F0) [m] of the compressions left in state%delta, the
+    !> residual's own product (the step's displacements less the history: no product more).
     !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
     !> at `point`. `error` is set only when a Newton system cannot be solved.
-    subroutine solve_compressions(weight0, state, free, load, iterations, largest, point, error)
+    subroutine solve_compressions(weight0, state, free, load, coupling, iterations, largest, point, error)
         real(dp), intent(in) :: weight0(:, :)
         type(contact_state), intent(inout) :: state
         real(dp), intent(in) :: free(:)
-        real(dp), intent(out) :: load(:)
+        real(dp), intent(out) :: load(:), coupling(:)
         integer, intent(out) :: iterations, point
         real(dp), intent(out) :: largest
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
-        real(dp) :: alpha, scale
+        real(dp) :: coupling_trial(size(free)), alpha, scale
         integer :: halvings
 
         largest = 0.0_dp
@@ -324,7 +330,7 @@ contains
                    compliance => state%compliance)
             load(:) = laws%force(delta) - state%preload
             delta(:) = free - apply_compliance(compliance, weight0, load)
-            call residual(compliance, weight0, laws, state%preload, free, delta, r, scale)
+            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
                 if (maxval(abs(r)) <= options%tolerance*scale) return
@@ -334,12 +340,14 @@ contains
                 alpha = 1.0_dp
                 do halvings = 0, max_halvings
                     trial(:) = delta + alpha*step
-                    call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, scale)
+                    call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling_trial, &
+                                  scale)
                     if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
                     alpha = alpha/2
                 end do
                 delta(:) = trial
                 r(:) = r_trial
+                coupling(:) = coupling_trial
                 scale = max(scale, maxval(state%delta0))
             end do
         end associate
@@ -348,15 +356,16 @@ contains
         largest = r(point)
     end subroutine solve_compressions
 
-    !> R = delta - a + W0*(F(delta) - F0) [m], and the size of its terms [m].
-    subroutine residual(compliance, weight0, laws, preload, free, delta, r, scale)
+    !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], and the
+    !> size of its terms [m].
+    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, scale)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
         type(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
-        real(dp), intent(out) :: r(:), scale
+        real(dp), intent(out) :: r(:), coupling(:), scale
 
-        real(dp) :: load(size(delta)), coupling(size(delta))
+        real(dp) :: load(size(delta))
 
         load(:) = laws%force(delta) - preload
         coupling(:) = apply_compliance(compliance, weight0, load)

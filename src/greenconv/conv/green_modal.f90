@@ -17,9 +17,9 @@
 !> N_c*N_m multiplications for the modal forces, 4*N_m for the states and N_c*N_m for the
 !> displacements: O(N_c*N_m) instead of the O(N_c^2*N_g) of the sampled table.
 !>
-!> Threads (a build with OpenMP, `-fopenmp`: the Makefile's): the modal forces are shared out
-!> over the modes and the history displacements over the points, as many threads as
-!> OMP_NUM_THREADS says. Each Q_k and each u_h,i is summed by one thread in the order of the
+!> Threads (a build with OpenMP, `-fopenmp`: the Makefile's): the modal forces, each with its
+!> mode's recursion, are shared out over the modes, the history displacements over the points
+!> and W0 (once) over its columns, as many threads as OMP_NUM_THREADS says. Each Q_k and each u_h,i is summed by one thread in the order of the
 !> serial loop, so the results are those of one thread bit for bit. The loops stay serial when
 !> the step is called from inside a parallel region of a host (`omp_in_parallel`: each host
 !> thread then steps its own convolvers alone) and when N_c*N_m is below `threads_from` (a
@@ -124,7 +124,8 @@ contains
         type(modal_green_matrix), intent(inout) :: conv
 
         real(dp), allocatable :: weight0(:, :)
-        integer :: n_c, n_m, k
+        integer :: n_c, n_m, j, k
+        logical :: share
 
         n_c = description%n_points()
         n_m = description%modes%n_modes()
@@ -132,11 +133,18 @@ contains
         call conv%set_model(conv%engine%name, dt, n_m, 'N_m')
         allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
         conv%shape(:, :) = description%shape
-        weight0(:, :) = 0.0_dp
-        do k = 1, n_m
-            weight0(:, :) = weight0 + conv%engine%mode_weight(k)*spread(conv%shape(:, k), 2, n_c) &
-                            *spread(conv%shape(:, k), 1, n_c)
+        ! W0_ij = sum_k (w_k*phi_ik)*phi_jk in the order of k, column by column (N_c^2*N_m
+        ! multiply-adds once, without temporaries; columns shared among threads).
+        share = size(conv%shape) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(conv, weight0, n_c, n_m) private(k) schedule(static)
+        do j = 1, n_c
+            weight0(:, j) = 0.0_dp
+            do k = 1, n_m
+                weight0(:, j) = weight0(:, j) + conv%engine%mode_weight(k)*conv%shape(:, k)*conv%shape(j, k)
+            end do
         end do
+        !$omp end parallel do
         call conv%set_instant_matrix(weight0)
         call conv%reset()
     end subroutine set_up_matrix
@@ -153,7 +161,7 @@ contains
         !$ share = share .and. .not. omp_in_parallel()
         ! Blocks of points, each summed over the modes column by column (contiguous in shape):
         ! every u_i is the serial loop's sum, in its order.
-        !$omp parallel do if (share) default(none) shared(self, u) private(first, last, k)
+        !$omp parallel do if (share) default(none) shared(self, u) private(first, last, k) schedule(static)
         do block = 1, (size(u) + history_block - 1)/history_block
             first = (block - 1)*history_block + 1
             last = min(block*history_block, size(u))
@@ -165,30 +173,42 @@ contains
         !$omp end parallel do
     end subroutine modal_history
 
-    !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance.
+    !> Q_k = sum_j phi_jk*q_j, then p_k <- z_k*p_k + c_k*Q_k, and advance. Both by modes in one
+    !> loop: the thread that sums Q_k steps p_k, with no barrier between.
     subroutine modal_push(self, forces)
         class(modal_green_matrix), intent(inout) :: self
         real(dp), intent(in) :: forces(:)
 
-        real(dp) :: old_re(size(self%modal_force)), load(size(forces))
+        real(dp) :: load(size(forces))
         integer :: k
         logical :: share
 
         load(:) = self%recorded_load(forces)
         share = size(self%shape) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
-        !$omp parallel do if (share) default(none) shared(self, load)
+        !$omp parallel do if (share) default(none) shared(self, load) schedule(static)
         do k = 1, size(self%shape, 2)
             self%modal_force(k) = dot_product(self%shape(:, k), load)
+            call step_mode(self%engine, k, self%modal_force(k))
         end do
         !$omp end parallel do
-        associate (e => self%engine, q => self%modal_force)
-            old_re(:) = e%state_re
-            e%state_re(:) = e%decay_re*old_re - e%decay_im*e%state_im + e%input_re*q
-            e%state_im(:) = e%decay_re*e%state_im + e%decay_im*old_re + e%input_im*q
-        end associate
         self%step = self%step + 1
     end subroutine modal_push
+
+    !> p_k <- z_k*p_k + c_k*Q_k for one mode k, Q_k [N] its modal force.
+    pure subroutine step_mode(engine, k, force)
+        type(recursive_convolver), intent(inout) :: engine
+        integer, intent(in) :: k
+        real(dp), intent(in) :: force
+
+        real(dp) :: old_re
+
+        old_re = engine%state_re(k)
+        engine%state_re(k) = engine%decay_re(k)*old_re - engine%decay_im(k)*engine%state_im(k) &
+                             + engine%input_re(k)*force
+        engine%state_im(k) = engine%decay_re(k)*engine%state_im(k) + engine%decay_im(k)*old_re &
+                             + engine%input_im(k)*force
+    end subroutine step_mode
 
     !> Clear the modal states.
     subroutine modal_clear(self)
