@@ -10,7 +10,8 @@
 !> Every call has its dimensions right by construction (n >= 1, leading dimensions the
 !> arrays' own), so LAPACK's XERBLA is never reached; a matrix that is not positive definite
 !> (dpotrf's info > 0) is reported by `ok`, never stopped on. A NaN in the input gives a NaN
-!> pivot, which dpotrf reports as not positive definite.
+!> pivot; the reference LAPACK's dpotrf reported it as not positive definite, OpenBLAS's does
+!> not (info = 0), so `spd_factor` also rejects a factor whose diagonal is not positive.
 module greenconv_ident_dense
     use greenconv_core_kinds, only: dp
     implicit none
@@ -111,12 +112,14 @@ contains
         !> False when A is not positive definite (a pivot <= 0 or NaN).
         logical, intent(out) :: ok
 
-        integer :: info
+        integer :: info, i
 
         ok = .true.
         if (size(a, 1) == 0) return
         call dpotrf('U', size(a, 1), a, size(a, 1), info)
         ok = info == 0
+        ! A NaN pivot fails the comparison (OpenBLAS's dpotrf returns info = 0 for it).
+        if (ok) ok = all([(a(i, i) > 0.0_dp, i=1, size(a, 1))])
     end subroutine spd_factor
 
     !> Solution x of A x = b for a symmetric positive definite A by Cholesky.
