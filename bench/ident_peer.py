@@ -228,6 +228,8 @@ def speed_table():
                                                                         count(modes[:, 0], f) + (ours, ours / peer)))
         print('| %d | sdypy LSCF, own stabilisation | %d | %d | %d | %.2f | |' % ((n, SPEED_PEER_ORDER[n]) +
                                                                         count(found_f, f) + (peer,)), flush=True)
+    # The machine may be shared: the ratio is of one run, the load says how far to trust the seconds.
+    print('\n(load average %.2f %.2f %.2f at the end of the speed rows; both tools one thread)' % os.getloadavg())
 
 
 def main():

@@ -1,17 +1,17 @@
 !> Dense symmetric linear algebra of the identification fits (issue 26: the Gram matrices
 !> J^T J of the Levenberg-Marquardt steps took 40 % of a 50-mode fit in gfortran's general
-!> matmul, the hand-written Cholesky 10 %): the Gram matrix by blocks of matmul, the Cholesky
-!> factor, solve and inverse by the LAPACK the library links.
+!> matmul, the hand-written Cholesky 10 %): the Gram matrix, the Cholesky factor, solve and
+!> inverse by the BLAS and LAPACK the library links.
 !>
-!> - `gram`: A^T A and A^T b, one triangle computed by blocks of 16 rows (54 % of the work of
-!>   matmul(transpose(A), A) for 50 modes), the other copied;
+!> - `gram`: A^T A by dsyrk (one triangle, the other copied) and A^T b by dgemv;
 !> - `spd_solve`: A x = b for symmetric positive definite A by dpotrf and dpotrs;
 !> - `spd_inverse`: inv(A) by dpotrf and dpotri.
 !>
 !> Every call has its dimensions right by construction (n >= 1, leading dimensions the
 !> arrays' own), so LAPACK's XERBLA is never reached; a matrix that is not positive definite
 !> (dpotrf's info > 0) is reported by `ok`, never stopped on. A NaN in the input gives a NaN
-!> pivot, which dpotrf reports as not positive definite.
+!> pivot; the reference LAPACK's dpotrf reported it as not positive definite, OpenBLAS's does
+!> not (info = 0), so `spd_factor` also rejects a factor whose diagonal is not positive.
 module greenconv_ident_dense
     use greenconv_core_kinds, only: dp
     implicit none
@@ -19,11 +19,27 @@ module greenconv_ident_dense
 
     public :: gram, spd_factor, spd_solve, spd_inverse, identity
 
-    !> Rows of A^T A computed per call of matmul in `gram` (16: 10.0 s on the 50-mode fit, 32: 11.0 s,
-    !> 64: 12.0 s; smaller blocks cost more in calls than they save).
-    integer, parameter :: block = 16
-
     interface
+        !> C = alpha*A^T A + beta*C, one triangle of C (BLAS; trans = 'T': A is k x n).
+        pure subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+            import :: dp
+            character(len=1), intent(in) :: uplo, trans
+            integer, intent(in) :: n, k, lda, ldc
+            real(dp), intent(in) :: alpha, beta
+            real(dp), intent(in) :: a(lda, *)
+            real(dp), intent(inout) :: c(ldc, *)
+        end subroutine dsyrk
+
+        !> y = alpha*op(A) x + beta*y (BLAS).
+        pure subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+            import :: dp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: m, n, lda, incx, incy
+            real(dp), intent(in) :: alpha, beta
+            real(dp), intent(in) :: a(lda, *), x(*)
+            real(dp), intent(inout) :: y(*)
+        end subroutine dgemv
+
         !> Cholesky factor of a symmetric positive definite matrix, in place (LAPACK).
         pure subroutine dpotrf(uplo, n, a, lda, info)
             import :: dp
@@ -56,10 +72,11 @@ module greenconv_ident_dense
 contains
 
     !> scale*A^T A and scale*A^T b for a real m x n matrix A: the upper triangle of A^T A by
-    !> blocks of `block` rows, each one call of matmul on a transposed copy of the block's
-    !> columns (gfortran's matmul picks the vector unit at run time; the reference BLAS's
-    !> dsyrk, unblocked, took 2.6 times as long on a 50-mode fit), the lower triangle copied.
-    subroutine gram(a, scale, product, b, projection, work)
+    !> BLAS's dsyrk, the lower triangle copied, A^T b by dgemv. With the system's OpenBLAS
+    !> (one thread) dsyrk takes about half the time of the blocks of gfortran's matmul it
+    !> replaced (16,386 x 202, the 50-mode bench fit: 41 against 74 ms per call); with the
+    !> reference BLAS it took 2.6 times as long as those blocks.
+    pure subroutine gram(a, scale, product, b, projection)
         !> The matrix A (m x n).
         real(dp), intent(in) :: a(:, :)
         !> Factor of both results (units of 1 per unit of A squared).
@@ -70,24 +87,19 @@ contains
         real(dp), intent(in) :: b(:)
         !> scale*A^T b (n).
         real(dp), intent(out) :: projection(:)
-        !> Work array (block x m), kept by the caller between calls (its fresh allocation at every
-        !> call of a fit costs page faults).
-        real(dp), allocatable, intent(inout) :: work(:, :)
 
-        integer :: m, n, i, j, last
+        integer :: m, n, j
 
         m = size(a, 1)
         n = size(a, 2)
-        if (allocated(work)) then
-            if (size(work, 2) /= m) deallocate (work)
+        if (n == 0) return
+        if (m == 0) then
+            product = 0.0_dp
+            projection = 0.0_dp
+            return
         end if
-        if (.not. allocated(work)) allocate (work(block, m))
-        do i = 1, n, block
-            last = min(n, i + block - 1)
-            work(1:last - i + 1, :) = transpose(a(:, i:last))
-            product(i:last, i:n) = scale*matmul(work(1:last - i + 1, :), a(:, i:n))
-            projection(i:last) = scale*matmul(work(1:last - i + 1, :), b)
-        end do
+        call dsyrk('U', 'T', n, m, scale, a, m, 0.0_dp, product, n)
+        call dgemv('T', m, n, scale, a, m, b, 1, 0.0_dp, projection, 1)
         do j = 1, n - 1
             product(j + 1:n, j) = product(j, j + 1:n)
         end do
@@ -100,12 +112,14 @@ contains
         !> False when A is not positive definite (a pivot <= 0 or NaN).
         logical, intent(out) :: ok
 
-        integer :: info
+        integer :: info, i
 
         ok = .true.
         if (size(a, 1) == 0) return
         call dpotrf('U', size(a, 1), a, size(a, 1), info)
         ok = info == 0
+        ! A NaN pivot fails the comparison (OpenBLAS's dpotrf returns info = 0 for it).
+        if (ok) ok = all([(a(i, i) > 0.0_dp, i=1, size(a, 1))])
     end subroutine spd_factor
 
     !> Solution x of A x = b for a symmetric positive definite A by Cholesky.

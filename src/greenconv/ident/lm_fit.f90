@@ -173,7 +173,7 @@ contains
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: a(:, :), b(:), x(:), norms(:), normal(:, :), low(:, :), projection(:), work(:, :)
+        real(dp), allocatable :: a(:, :), b(:), x(:), norms(:), normal(:, :), low(:, :), projection(:)
         complex(dp), allocatable :: column(:, :)
         integer :: k, n, col
         logical :: ok
@@ -197,7 +197,7 @@ contains
         ! Normal equations of the unit-norm columns by Cholesky (a tenth of the SVD's time);
         ! the SVD when a pivot shows a condition beyond 1e8 (near-duplicate poles).
         allocate (normal(size(a, 2), size(a, 2)), projection(size(a, 2)))
-        call gram(a, 1.0_dp, normal, b, projection, work)
+        call gram(a, 1.0_dp, normal, b, projection)
         low = normal
         call spd_factor(low, ok)
         if (ok) ok = minval([(low(col, col), col=1, size(low, 1))])**2 > 1.0e-8_dp
@@ -303,7 +303,7 @@ contains
     end function stepped
 
     !> Fisher information 2*Re(J^H W J) and the gradient 2*Re(J^H W e) of -chi2/2.
-    subroutine information(data, model, fisher, gradient, jac, work, residual)
+    subroutine information(data, model, fisher, gradient, jac, residual)
         !> The weighted data.
         type(data_type), intent(in) :: data
         !> The model.
@@ -315,8 +315,6 @@ contains
         !> Work array for the Jacobian, kept between calls of one fit (its fresh allocation at
         !> every iteration cost 15 % of the time in page faults).
         real(dp), allocatable, intent(inout) :: jac(:, :)
-        !> Work array of `gram`, kept between calls like jac.
-        real(dp), allocatable, intent(inout) :: work(:, :)
         !> The model's weighted residual w*(G - G_model) when the caller has it (computed when absent).
         complex(dp), intent(in), optional :: residual(:)
 
@@ -336,7 +334,7 @@ contains
             stacked_residual = stack(weighted_residual(data, model))
         end if
         allocate (fisher(p, p), gradient(p))
-        call gram(jac, 2.0_dp, fisher, stacked_residual, gradient, work)
+        call gram(jac, 2.0_dp, fisher, stacked_residual, gradient)
     end subroutine information
 
     !> Residues for the model's poles, then Levenberg-Marquardt (at most `iterations`).
@@ -402,7 +400,7 @@ contains
 
         type(model_type) :: trial
         type(error_type), allocatable :: failure
-        real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:), jac(:, :), work(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), scale(:), a(:, :), y(:), jac(:, :)
         real(dp), allocatable :: reduced(:, :), pull(:), step(:)
         complex(dp), allocatable :: residual(:), residual_trial(:)
         integer, allocatable :: nonlinear(:)
@@ -423,7 +421,7 @@ contains
         q = size(nonlinear)
         allocate (step(p), scale(q))
         do iteration = 1, last
-            call information(data, model, fisher, gradient, jac, work, residual)
+            call information(data, model, fisher, gradient, jac, residual)
             lm_iterations = lm_iterations + 1
             if (data%projection) then
                 call projected(fisher, gradient, nonlinear, reduced, pull, ok)

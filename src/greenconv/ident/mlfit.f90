@@ -382,7 +382,7 @@ contains
         type(model_type), intent(in) :: model
         type(ml_result), intent(inout) :: result
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :), work(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :)
         real(dp) :: scale, a, b, m, gf(2), gx(2), band, spacing
         integer :: k, c, n, j
         integer, allocatable :: index(:)
@@ -414,7 +414,7 @@ contains
         result%sigma_frequency = huge(1.0_dp)
         result%sigma_damping = huge(1.0_dp)
         result%sigma_residue = huge(1.0_dp)
-        call information(data, model, fisher, gradient, jac, work)
+        call information(data, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
         allocate (index(n))
         do k = 1, n

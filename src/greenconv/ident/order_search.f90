@@ -154,7 +154,7 @@ contains
         !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), work(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
         type(model_type) :: trial
         real(dp) :: before, after
         integer :: k, c, worst
@@ -163,7 +163,7 @@ contains
         removed = .false.
         closest = huge(1.0_dp)
         if (size(model%pole) < 2) return
-        call information(data, model, fisher, gradient, jac, work)
+        call information(data, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
         if (.not. ok) return
         allocate (wald(size(model%pole)))
@@ -292,11 +292,11 @@ contains
         !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :), work(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :)
         logical :: ok
 
         do while (size(model%pole) > 0)
-            call information(data, model, fisher, gradient, jac, work)
+            call information(data, model, fisher, gradient, jac)
             call covariance(fisher, cov, ok)
             if (ok) return
             call drop_pole(data, merged(model), dropped_degenerate, model, result, error)
@@ -608,7 +608,7 @@ contains
         integer, intent(out) :: outlier
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :), work(:, :)
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
         real(dp) :: block2(2, 2), before
         type(model_type) :: trial
         logical :: ok
@@ -623,7 +623,7 @@ contains
             removed = .true.
             return
         end if
-        call information(data, model, fisher, gradient, jac, work)
+        call information(data, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
         allocate (wald(size(model%pole)))
         if (.not. ok) then
