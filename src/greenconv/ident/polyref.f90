@@ -370,7 +370,7 @@ contains
         real(dp), intent(in) :: frequency(:), targets(:, :), weight(:)
         complex(dp), intent(inout) :: pole(:)
 
-        call levenberg_marquardt(shared_system, pole, 30)
+        call levenberg_marquardt(shared_system, pole, 30, 1.0e-9_dp)
 
     contains
 
@@ -417,14 +417,16 @@ contains
     !> equations of `system`: the damping mu starts at 1e-4, a trial is kept only when it lowers
     !> the misfit and keeps every pole stable (so the result is never worse than the start), mu
     !> rises tenfold per refused trial (at most 10) and falls tenfold per kept one; it stops when
-    !> a step gains less than 1e-9 of the misfit.
-    subroutine levenberg_marquardt(system, pole, max_iterations)
+    !> a step gains less than `tolerance` of the misfit.
+    subroutine levenberg_marquardt(system, pole, max_iterations, tolerance)
         !> The misfit of given poles and, when asked, its normal matrix and gradient.
         procedure(pole_system) :: system
         !> In: the start; out: the refined poles [rad/s].
         complex(dp), intent(inout) :: pole(:)
         !> Largest number of iterations.
         integer, intent(in) :: max_iterations
+        !> Relative gain of the misfit below which it stops.
+        real(dp), intent(in) :: tolerance
 
         real(dp), allocatable :: normal(:, :), gradient(:)
         complex(dp), allocatable :: trial(:)
@@ -451,7 +453,7 @@ contains
             if (.not. accepted) exit
             pole = trial
             mu = max(mu/10.0_dp, 1.0e-8_dp)
-            if (cost - cost_trial < 1.0e-9_dp*cost) exit
+            if (cost - cost_trial < tolerance*cost) exit
         end do
     end subroutine levenberg_marquardt
 
@@ -475,6 +477,9 @@ contains
         complex(dp), allocatable, intent(inout) :: pole(:)
 
         integer, parameter :: passes = 2
+        !> The misfit is about rho^2 per complex datum, so a relative gain of 1e-7 is below a
+        !> hundredth of one unit of log-likelihood on 1e5 data: converged.
+        real(dp), parameter :: tolerance = 1.0e-7_dp
         complex(dp), allocatable :: y(:, :), model(:, :)
         real(dp), allocatable :: w(:, :), factor(:), least(:), gain(:)
         logical, allocatable :: inside(:)
@@ -499,7 +504,7 @@ contains
             do pass = 1, passes
                 if (size(pole) == 0) return
                 w = spread(factor, 1, size(frequency))/max(abs(model), spread(least, 1, size(frequency)))
-                call levenberg_marquardt(system, pole, 20)
+                call levenberg_marquardt(system, pole, 20, tolerance)
                 call weighted_system(frequency, y, w, pole, cost, model, ok)
                 if (.not. ok) return
             end do
@@ -519,7 +524,7 @@ contains
             rho2 = cost/max(1.0_dp, size(y) - 0.5_dp*(2*size(pole) + size(y, 2)*(2*size(pole) + 2)))
             if (gain(k)/rho2 >= size(y, 2) + 1 + 5.0_dp*sqrt(size(y, 2) + 1.0_dp)) exit
             pole = [pole(:k - 1), pole(k + 1:)]
-            call levenberg_marquardt(system, pole, 20)
+            call levenberg_marquardt(system, pole, 20, tolerance)
         end do
 
     contains
