@@ -199,7 +199,7 @@ contains
                 target(:, :, l) = 0.5_dp*(g(:, :, l) + transpose(g(:, :, l)))
             end do
         end if
-        call polyref_poles(frequency, target, max_modes, fit%pole, fit%order, error)
+        call polyref_poles(frequency, target, max_modes, fit%pole, fit%order, error, averaged=symmetric)
         if (allocated(error)) return
         fit%poly_reference = .true.
         fit%symmetric = symmetric
