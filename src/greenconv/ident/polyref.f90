@@ -594,7 +594,7 @@ contains
         !> C = the inverse Gram matrix of target t, S the pole's columns.
         real(dp), allocatable, intent(out), optional :: gain(:)
 
-        real(dp), allocatable :: design(:, :), b(:, :), jac(:, :), gbb(:, :), gjj(:, :), gbj(:, :), work(:, :)
+        real(dp), allocatable :: design(:, :), b(:, :), jac(:, :), gbb(:, :), gjj(:, :), gbj(:, :)
         real(dp), allocatable :: rhs(:), projection(:), x(:), rest(:), w2(:), scale(:), gj(:), fitted(:)
         complex(dp), allocatable :: dl(:, :), dc(:, :), pl(:), pc(:)
         complex(dp) :: residue
@@ -628,7 +628,7 @@ contains
             w2 = [w(:, t), w(:, t)]
             b = design*spread(w2, 2, n_p)
             rhs = w2*[real(y(:, t), dp), aimag(y(:, t))]
-            call gram_product(b, 1.0_dp, gbb, rhs, projection, work)
+            call gram_product(b, 1.0_dp, gbb, rhs, projection)
             scale = 1.0_dp/sqrt(max([(gbb(k, k), k=1, n_p)], tiny(1.0_dp)))
             gbb = gbb*spread(scale, 1, n_p)*spread(scale, 2, n_p)
             call spd_inverse(gbb, ok)
@@ -660,7 +660,7 @@ contains
                 jac(:, 2*k) = w2*[real(i_unit*(pl - pc), dp), aimag(i_unit*(pl - pc))]
             end do
             gbj = matmul(transpose(b), jac)
-            call gram_product(jac, 1.0_dp, gjj, rest, gj, work)
+            call gram_product(jac, 1.0_dp, gjj, rest, gj)
             normal = normal + gjj - matmul(transpose(gbj), matmul(gbb, gbj))
             gradient = gradient + gj
         end do
