@@ -151,7 +151,8 @@ contains
 
     !> Multi-point convolver on a universal file of normal modes (nodes in dataset 15 or 2411,
     !> one dataset 55 per mode): every node a point (GCMPTS gives them), the modes up to FBAND
-    !> stepped, as a scene's `&structure model = 'modes_file'`.
+    !> stepped and those above kept as their static compliance in W0 (not in the explicit
+    !> 'modal'), the same convolver as a scene's `&structure model = 'modes_file'`.
     subroutine gcmmfl(path, idir, xi, fband, method, dt, nstep, tol, handle, ierr, errmsg)
         !> Path of the universal file (trailing blanks ignored).
         character(len=*), intent(in) :: path
