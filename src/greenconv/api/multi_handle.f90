@@ -33,7 +33,7 @@ module greenconv_api_multi_handle
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band
-    use greenconv_conv_methods, only: check_method
+    use greenconv_api_doors, only: need_method, need_count
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
     use greenconv_conv_green_file, only: green_file_convolver
@@ -86,10 +86,10 @@ contains
         type(point_modes) :: description
 
         box => null()
-        if (size(pole_re) < 1) then
-            call fatal_error(error, caller//': n_modes = '//int_text(size(pole_re))//': give at least 1 mode')
-        else if (size(shape, 1) < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(size(shape, 1))//': give at least 1 point')
+        call need_count(caller, 'n_modes', size(pole_re), 1, 'mode', error)
+        call need_count(caller, 'n_points', size(shape, 1), 1, 'point', error)
+        if (allocated(error)) then
+            return
         else if (.not. all(pole_re < 0.0_dp .and. pole_im > 0.0_dp .and. ieee_is_finite(pole_re) &
                            .and. ieee_is_finite(pole_im))) then
             call fatal_error(error, caller//': pole_re, pole_im: give every pole a finite real part < 0 and ' &
@@ -182,13 +182,9 @@ contains
         else if (.not. (f_band >= 0.0_dp .and. ieee_is_finite(f_band))) then
             call fatal_error(error, caller//': f_band = '//sci_text(f_band)//' Hz: give a finite band >= 0 Hz ' &
                              //'(0: the Nyquist frequency 1/(2*dt))')
-        else
-            call check_method(lower_text(method), .true., .true., .true., error)
         end if
-        if (allocated(error)) then
-            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .true., error)
+        if (allocated(error)) return
         band = f_band
         if (band <= 0.0_dp) band = 0.5_dp/dt
         call read_file_modes(path, direction, damping_ratio, modes, error)
@@ -228,21 +224,17 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         box => null()
-        if (size(g, 2) < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(size(g, 2))//': give at least 1 point')
-        else if (size(g, 1) < 2) then
-            call fatal_error(error, caller//': n_samples = '//int_text(size(g, 1)) &
-                             //': give at least 2 samples of every g_ij')
+        call need_count(caller, 'n_points', size(g, 2), 1, 'point', error)
+        call need_count(caller, 'n_samples', size(g, 1), 2, 'samples of every g_ij', error)
+        if (allocated(error)) then
+            return
         else if (.not. all(ieee_is_finite(g))) then
             call fatal_error(error, caller//': g: give finite samples [m/(N*s)]')
         else
             call check_run(caller, dt, truncation_tol, n_steps, error)
         end if
-        if (.not. allocated(error)) call check_method(lower_text(method), .true., .true., .false., error)
-        if (allocated(error)) then
-            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .false., error)
+        if (allocated(error)) return
         allocate (box)
         call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
@@ -283,11 +275,8 @@ contains
         end if
         if (allocated(error)) return
         ! A method no file serves is refused before the identification, which takes seconds.
-        call check_method(lower_text(method), .true., .true., .true., error)
-        if (allocated(error)) then
-            error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .true., error)
+        if (allocated(error)) return
         if (max_order > 0) options%fit%max_order = max_order
         allocate (box)
         allocate (box%green)
@@ -700,9 +689,8 @@ contains
         else if (.not. (truncation_tol >= 0.0_dp .and. truncation_tol < 1.0_dp)) then
             call fatal_error(error, caller//': truncation_tol = '//sci_text(truncation_tol) &
                              //': give a fraction of max|g_ij| in [0, 1)')
-        else if (n_steps < 1) then
-            call fatal_error(error, caller//': n_steps = '//int_text(n_steps)//': give at least 1 step')
         end if
+        call need_count(caller, 'n_steps', n_steps, 1, 'step', error)
     end subroutine check_run
 
     !> Keep a box whose convolver was made; otherwise free it and put the caller's name in front.
