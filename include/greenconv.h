@@ -489,8 +489,11 @@ int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps, co
  * node of the file: its points are the file's nodes in the file's order (gc_multi_points);
  * the shapes are taken in `direction` (1, 2, 3 for X, Y, Z, negative for the opposite sense);
  * damping_ratio in [0, 1) applies to the modes the file gives none; the modes up to f_band [Hz]
- * (0: the Nyquist frequency 1/(2*dt)) are stepped, those above are not (gc_multi_describe says
- * how many and their share of the static flexibility at the points). method: "modal"
+ * (0: the Nyquist frequency 1/(2*dt)) are stepped, those above are kept as their static
+ * compliance R_ij = sum phi_ik*phi_jk/(m_k*omega_k^2) [m/N] in the instant matrix W0 of "exact",
+ * "direct" and "fft" (the explicit "modal" leaves R out and says so), the same convolver as the
+ * scene's; gc_multi_describe says how many modes are above the band, R's share of the static
+ * flexibility at the points and its largest diagonal term. method: "modal"
  * (= "recursive"), "exact", "direct" or "fft"; options: truncation_tol, NULL for the
  * defaults. Stepped from the host's loop with gc_multi_contact_start/_step (or
  * gc_multi_history/_push) as every multi-point convolver. GC_ERROR_INPUT for a bad argument or

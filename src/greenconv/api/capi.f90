@@ -31,7 +31,7 @@ module greenconv_capi
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
                                     step_box, start_point_box, advance_point_box, point_history, point_push, &
                                     reset_box, describe_box
-    use greenconv_api_doors, only: finish, from_c, to_c, put
+    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door
     implicit none
     private
 
@@ -229,14 +229,10 @@ contains
         integer :: n
 
         n = max(int(n_modes), 0)
-        if (n_modes < 1) then
-            call fatal_error(error, 'gc_convolver_new_modes: n_modes = '//int_text(int(n_modes)) &
-                             //': give at least 1 mode')
-        else if (.not. all([c_associated(pole_re), c_associated(pole_im), c_associated(residue_re), &
-                            c_associated(residue_im)])) then
-            call fatal_error(error, 'gc_convolver_new_modes: pole_re, pole_im, residue_re and residue_im must not ' &
-                             //'be NULL: pass arrays of n_modes values')
-        else
+        call need_count('gc_convolver_new_modes', 'n_modes', int(n_modes), 1, 'mode', error)
+        call need_pointers('gc_convolver_new_modes', [pole_re, pole_im, residue_re, residue_im], &
+                           'pole_re, pole_im, residue_re and residue_im', 'pass arrays of n_modes values', error)
+        if (.not. allocated(error)) then
             call c_f_pointer(pole_re, p_re, [n])
             call c_f_pointer(pole_im, p_im, [n])
             call c_f_pointer(residue_re, r_re, [n])
@@ -914,17 +910,7 @@ contains
         type(gc_build_options), target :: defaults
         type(convolver_box), pointer :: box
 
-        handle => null()
-        if (c_associated(conv)) then
-            call c_f_pointer(conv, handle)
-            handle = c_null_ptr
-        else if (.not. allocated(error)) then
-            call fatal_error(error, caller//': conv is NULL: pass the address of a gc_convolver * to receive ' &
-                             //'the convolver')
-        end if
-        if (.not. allocated(error) .and. .not. c_associated(method)) then
-            call fatal_error(error, caller//': method is NULL: pass a method name such as "modal"')
-        end if
+        call start_door(caller, conv, 'gc_convolver', method, error)
         if (.not. allocated(error)) then
             defaults = gc_build_options(default_truncation_tol, default_accuracy)
             settings => defaults
@@ -933,7 +919,10 @@ contains
                          settings%accuracy)
             if (allocated(error)) error%message = caller//': '//error%message
         end if
-        if (.not. allocated(error)) handle = c_loc(box)
+        if (.not. allocated(error)) then
+            call c_f_pointer(conv, handle)
+            handle = c_loc(box)
+        end if
         status = finish(error, errmsg, errmsg_len)
     end function made
 
@@ -947,10 +936,7 @@ contains
         integer :: i
 
         do i = 1, size(pointers)
-            if (.not. c_associated(pointers(i))) then
-                call fatal_error(error, caller//': '//trim(names(i))//' is NULL: pass where it should go')
-                return
-            end if
+            call need_pointer(caller, pointers(i), trim(names(i)), 'pass where it should go', error)
         end do
     end subroutine check_outputs
 

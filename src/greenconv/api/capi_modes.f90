@@ -11,12 +11,12 @@
 !> Conventions are those of greenconv_capi_multi (status 0, 2, 3 or 4, a message in `errmsg`,
 !> NULL checked); the handle is the one `convolver_box` behind every handle.
 module greenconv_capi_modes
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_associated, c_f_pointer
-    use greenconv_core_error, only: error_type, fatal_error
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_f_pointer
+    use greenconv_core_error, only: error_type
     use greenconv_api_multi_handle, only: modes_file_box, check_box, set_box_accuracy
-    use greenconv_api_doors, only: finish, from_c
+    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer
     use greenconv_api_handle, only: convolver_box, box_at
-    use greenconv_capi_multi, only: start_handle, made, tolerance_of, null_handle
+    use greenconv_capi_multi, only: made, tolerance_of, null_handle
     implicit none
     private
 
@@ -59,12 +59,9 @@ contains
         type(convolver_box), pointer :: box
 
         box => null()
-        call start_handle(caller, conv, method, error)
-        if (allocated(error)) then
-            continue
-        else if (.not. c_associated(path)) then
-            call fatal_error(error, caller//': path is NULL: pass the name of a universal file of normal modes')
-        else
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
+        call need_pointer(caller, path, 'path', 'pass the name of a universal file of normal modes', error)
+        if (.not. allocated(error)) then
             call modes_file_box(caller, from_c(path), int(direction), damping_ratio, f_band, from_c(method), dt, &
                                 tolerance_of(options), int(n_steps), box, error)
         end if
@@ -91,9 +88,7 @@ contains
 
         box => box_at(conv)
         call check_box('gc_multi_estimate', null_handle, box, error=error)
-        if (.not. allocated(error) .and. .not. c_associated(estimate)) then
-            call fatal_error(error, 'gc_multi_estimate: estimate is NULL: pass the address of a double')
-        end if
+        call need_pointer('gc_multi_estimate', estimate, 'estimate', 'pass the address of a double', error)
         if (.not. allocated(error)) then
             call c_f_pointer(estimate, value_out)
             value_out = box%estimate

@@ -9,7 +9,7 @@
 !> (the first index fastest): shape[k*n_points + i] = phi_ik, g[(j*n_points + i)*n_samples + m]
 !> = g_ij(m*dt), road[i*n_steps + n] = u_r,i(t_n), W0[j*n_points + i] = W0_ij. SI units.
 module greenconv_capi_multi
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_null_ptr, c_associated, &
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_associated, &
                                            c_f_pointer, c_loc
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -21,7 +21,7 @@ module greenconv_capi_multi
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes, box_points, file_summary
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
-    use greenconv_api_doors, only: finish, from_c, to_c
+    use greenconv_api_doors, only: finish, from_c, to_c, start_door, need_pointer, need_pointers, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     implicit none
     private
@@ -30,7 +30,7 @@ module greenconv_capi_multi
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
     public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
-    public :: start_handle, made, tolerance_of, null_handle
+    public :: made, tolerance_of, null_handle
 
     !> What a NULL handle's message says.
     character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
@@ -81,18 +81,13 @@ contains
         real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :)
 
         box => null()
-        call start_handle(caller, conv, method, error)
-        if (allocated(error)) then
-            continue
-        else if (n_points < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(int(n_points))//': give at least 1 point')
-        else if (n_modes < 1) then
-            call fatal_error(error, caller//': n_modes = '//int_text(int(n_modes))//': give at least 1 mode')
-        else if (.not. all([c_associated(pole_re), c_associated(pole_im), c_associated(residue_re), &
-                            c_associated(residue_im), c_associated(shape)])) then
-            call fatal_error(error, caller//': pole_re, pole_im, residue_re, residue_im and shape must not be ' &
-                             //'NULL: pass arrays of n_modes (shape: n_points*n_modes) values')
-        else
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
+        call need_count(caller, 'n_points', int(n_points), 1, 'point', error)
+        call need_count(caller, 'n_modes', int(n_modes), 1, 'mode', error)
+        call need_pointers(caller, [pole_re, pole_im, residue_re, residue_im, shape], &
+                           'pole_re, pole_im, residue_re, residue_im and shape', &
+                           'pass arrays of n_modes (shape: n_points*n_modes) values', error)
+        if (.not. allocated(error)) then
             call c_f_pointer(pole_re, p_re, [n_modes])
             call c_f_pointer(pole_im, p_im, [n_modes])
             call c_f_pointer(residue_re, r_re, [n_modes])
@@ -137,17 +132,11 @@ contains
         real(c_double), pointer :: samples(:, :, :)
 
         box => null()
-        call start_handle(caller, conv, method, error)
-        if (allocated(error)) then
-            continue
-        else if (n_points < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(int(n_points))//': give at least 1 point')
-        else if (n_samples < 2) then
-            call fatal_error(error, caller//': n_samples = '//int_text(int(n_samples)) &
-                             //': give at least 2 samples of every g_ij')
-        else if (.not. c_associated(g)) then
-            call fatal_error(error, caller//': g is NULL: pass n_points*n_points*n_samples samples')
-        else
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
+        call need_count(caller, 'n_points', int(n_points), 1, 'point', error)
+        call need_count(caller, 'n_samples', int(n_samples), 2, 'samples of every g_ij', error)
+        call need_pointer(caller, g, 'g', 'pass n_points*n_points*n_samples samples', error)
+        if (.not. allocated(error)) then
             call c_f_pointer(g, samples, [n_samples, n_points, n_points])
             call samples_multi_box(caller, from_c(method), samples, dt, tolerance_of(options), int(n_steps), box, &
                                    error)
@@ -203,11 +192,9 @@ contains
         real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :), out(:)
         integer :: n_m, n_c
 
-        if (.not. all([c_associated(n_modes), c_associated(pole_re), c_associated(pole_im), &
-                       c_associated(residue_re), c_associated(residue_im), c_associated(shape)])) then
-            call fatal_error(error, caller//': n_modes, pole_re, pole_im, residue_re, residue_im and shape must ' &
-                             //'not be NULL')
-        else
+        call need_pointers(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, shape], &
+                           'n_modes, pole_re, pole_im, residue_re, residue_im and shape', '', error)
+        if (.not. allocated(error)) then
             call patch_modes(caller, int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
                              x_points, y_points, error)
         end if
@@ -274,12 +261,9 @@ contains
         type(convolver_box), pointer :: box
 
         box => null()
-        call start_handle(caller, conv, method, error)
-        if (allocated(error)) then
-            continue
-        else if (.not. c_associated(path)) then
-            call fatal_error(error, caller//': path is NULL: pass the name of a universal file')
-        else
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
+        call need_pointer(caller, path, 'path', 'pass the name of a universal file', error)
+        if (.not. allocated(error)) then
             call file_multi_box(caller, from_c(path), from_c(method), dt, tolerance_of(options), int(n_steps), &
                                 int(max_order), box, error)
         end if
@@ -315,7 +299,7 @@ contains
         type(convolver_box), pointer :: box, from
 
         box => null()
-        call start_handle(caller, conv, method, error)
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
         if (.not. allocated(error)) then
             from => box_at(source)
             call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, error=error)
@@ -461,9 +445,7 @@ contains
 
         box => box_at(conv)
         call check_box('gc_multi_n_points', null_handle, box, error=error)
-        if (.not. allocated(error) .and. .not. c_associated(n_points)) then
-            call fatal_error(error, 'gc_multi_n_points: n_points is NULL: pass the address of an int')
-        end if
+        call need_pointer('gc_multi_n_points', n_points, 'n_points', 'pass the address of an int', error)
         if (.not. allocated(error)) then
             call c_f_pointer(n_points, count)
             count = int(box%conv%n_points(), c_int)
@@ -758,9 +740,7 @@ contains
 
         box => checked(caller, conv, n_points, [k_c, p, preload, road, displacement, force], &
                        'k_c, p, preload, road, displacement and force', error)
-        if (.not. allocated(error) .and. n_steps < 1) then
-            call fatal_error(error, caller//': n_steps = '//int_text(int(n_steps))//': give at least 1 step')
-        end if
+        call need_count(caller, 'n_steps', int(n_steps), 1, 'step', error)
         if (.not. allocated(error)) then
             allocate (delta(n_steps, n_points))
             call c_f_pointer(k_c, stiffness, [n_points])
@@ -789,41 +769,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(convolver_box), pointer :: box
 
-        integer :: i
-
         box => box_at(conv)
         call check_box(caller, null_handle, box, int(n_points), error)
-        if (allocated(error)) return
-        do i = 1, size(arrays)
-            if (.not. c_associated(arrays(i))) then
-                call fatal_error(error, caller//': '//names//' must not be NULL: pass arrays of n_points values')
-                return
-            end if
-        end do
+        call need_pointers(caller, arrays, names, 'pass arrays of n_points values', error)
     end function checked
-
-    !> Check the handle and method pointers of a constructor and clear *conv.
-    subroutine start_handle(caller, conv, method, error)
-        !> Name of the front-door function, first word of a message.
-        character(len=*), intent(in) :: caller
-        !> The caller's `gc_multi_convolver **` (set to NULL here) and its method string.
-        type(c_ptr), intent(in) :: conv, method
-        !> Set (`stat_input`) when either is NULL.
-        type(error_type), allocatable, intent(out) :: error
-
-        type(c_ptr), pointer :: handle
-
-        if (.not. c_associated(conv)) then
-            call fatal_error(error, caller//': conv is NULL: pass the address of a gc_multi_convolver * to ' &
-                             //'receive the convolver')
-            return
-        end if
-        call c_f_pointer(conv, handle)
-        handle = c_null_ptr
-        if (.not. c_associated(method)) then
-            call fatal_error(error, caller//': method is NULL: pass a method name such as "modal"')
-        end if
-    end subroutine start_handle
 
     !> The truncation fraction of C build options (the library's default for NULL).
     function tolerance_of(options) result(tol)

@@ -1,17 +1,24 @@
 !> What the foreign front doors share, whatever the object behind their handles: C strings
 !> and values for the C API (greenconv_capi, greenconv_capi_multi), status and message for
 !> the Fortran 77 layer (greenconv_legacy, greenconv_legacy_multi), and the `INTEGER*8`
-!> handle of the Fortran 77 layer as the C address it stands for. No module state.
+!> handle of the Fortran 77 layer as the C address it stands for; and the checks of their
+!> arguments (a pointer given, a count large enough, a method the registry serves, a new
+!> handle cleared), so that every door refuses a bad argument with the same logic and words.
+!> Each check keeps the first failure: it does nothing when `error` is already set, so a door
+!> chains them and reports the first argument out of place. No module state.
 module greenconv_api_doors
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_size_t, c_ptr, c_null_ptr, c_null_char, &
                                            c_associated, c_f_pointer, c_intptr_t
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text, lower_text
+    use greenconv_conv_methods, only: check_method
     implicit none
     private
 
     public :: finish, from_c, to_c, put, report, handle_address, address_handle
+    public :: need_pointer, need_pointers, need_count, need_method, start_door
 
     interface
         !> size_t strlen(const char *s)
@@ -144,5 +151,118 @@ contains
         handle = 0_int64
         if (c_associated(address)) handle = int(transfer(address, 0_c_intptr_t), int64)
     end function address_handle
+
+    ! ---- argument checks: each keeps the first failure ----------------------------------
+
+    !> Refuse (status 2) a NULL pointer: "<caller>: <name> is NULL: <hint>".
+    subroutine need_pointer(caller, address, name, hint, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The pointer the caller passed.
+        type(c_ptr), intent(in) :: address
+        !> The argument's name.
+        character(len=*), intent(in) :: name
+        !> What to pass instead, e.g. "pass the address of a double".
+        character(len=*), intent(in) :: hint
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error) .or. c_associated(address)) return
+        call fatal_error(error, caller//': '//name//' is NULL: '//hint)
+    end subroutine need_pointer
+
+    !> Refuse (status 2) a NULL among arrays given together: "<caller>: <names> must not be
+    !> NULL[: <hint>]".
+    subroutine need_pointers(caller, addresses, names, hint, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The pointers the caller passed.
+        type(c_ptr), intent(in) :: addresses(:)
+        !> Their names as the message lists them, e.g. "x, y and z".
+        character(len=*), intent(in) :: names
+        !> What to pass, e.g. "pass arrays of n_points values"; '' for none.
+        character(len=*), intent(in) :: hint
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        integer :: i
+
+        if (allocated(error)) return
+        if (all([(c_associated(addresses(i)), i=1, size(addresses))])) return
+        if (len(hint) > 0) then
+            call fatal_error(error, caller//': '//names//' must not be NULL: '//hint)
+        else
+            call fatal_error(error, caller//': '//names//' must not be NULL')
+        end if
+    end subroutine need_pointers
+
+    !> Refuse (status 2) a count below its least: "<caller>: <name> = <value>: give at least
+    !> <least>[ <what>]".
+    subroutine need_count(caller, name, value, least, what, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The count's name as the door spells it (`n_points`, `NC`).
+        character(len=*), intent(in) :: name
+        !> The count given.
+        integer, intent(in) :: value
+        !> The least count accepted.
+        integer, intent(in) :: least
+        !> What is counted, e.g. "point" or "samples of every g_ij"; '' for nothing.
+        character(len=*), intent(in) :: what
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error) .or. value >= least) return
+        if (len(what) > 0) then
+            call fatal_error(error, caller//': '//name//' = '//int_text(value)//': give at least '//int_text(least) &
+                             //' '//what)
+        else
+            call fatal_error(error, caller//': '//name//' = '//int_text(value)//': give at least '//int_text(least))
+        end if
+    end subroutine need_count
+
+    !> Refuse (status 2) a method the registry does not serve for multi-point contact on the
+    !> door's structure (any case), with the registry's message after "<caller>: ".
+    subroutine need_method(caller, method, has_g, has_modes, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The method name.
+        character(len=*), intent(in) :: method
+        !> Whether the structure has a sampled g (or modes to sample it from).
+        logical, intent(in) :: has_g
+        !> Whether the structure has modes.
+        logical, intent(in) :: has_modes
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error)) return
+        call check_method(lower_text(method), .true., has_g, has_modes, error)
+        if (allocated(error)) error%message = caller//': '//error%message
+    end subroutine need_method
+
+    !> The start of a C constructor: clear the caller's handle (*conv = NULL) and refuse a NULL
+    !> `conv` or `method`.
+    subroutine start_door(caller, conv, handle_type, method, error)
+        !> Name of the front-door function, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The caller's `<handle_type> **`, where the new handle goes.
+        type(c_ptr), intent(in) :: conv
+        !> The C type of the handle, `gc_convolver` or `gc_multi_convolver`.
+        character(len=*), intent(in) :: handle_type
+        !> The method string.
+        type(c_ptr), intent(in) :: method
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(c_ptr), pointer :: handle
+
+        if (c_associated(conv)) then
+            call c_f_pointer(conv, handle)
+            handle = c_null_ptr
+        end if
+        call need_pointer(caller, conv, 'conv', 'pass the address of a '//handle_type//' * to receive the convolver', &
+                          error)
+        call need_pointer(caller, method, 'method', 'pass a method name such as "modal"', error)
+    end subroutine start_door
 
 end module greenconv_api_doors

@@ -24,7 +24,7 @@ module greenconv_legacy_multi
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes, modes_file_box, box_points, set_box_accuracy, &
                                           file_summary
-    use greenconv_api_doors, only: report, handle_address, address_handle
+    use greenconv_api_doors, only: report, handle_address, address_handle, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
     use greenconv_legacy, only: gcfree
     implicit none
@@ -76,9 +76,8 @@ contains
 
         box => null()
         n_m = max(nmode, 0)
-        if (nc < 1) then
-            call fatal_error(error, 'gcmmod: NC = '//int_text(nc)//': give at least 1 point')
-        else
+        call need_count('gcmmod', 'NC', nc, 1, 'point', error)
+        if (.not. allocated(error)) then
             call modes_multi_box('gcmmod', method, polre(1:n_m), polim(1:n_m), resre(1:n_m), resim(1:n_m), &
                                  shape(:, 1:n_m), dt, tol, nstep, box, error)
         end if
@@ -112,9 +111,8 @@ contains
         type(convolver_box), pointer :: box
 
         box => null()
-        if (nc < 1) then
-            call fatal_error(error, 'gcmsmp: NC = '//int_text(nc)//': give at least 1 point')
-        else
+        call need_count('gcmsmp', 'NC', nc, 1, 'point', error)
+        if (.not. allocated(error)) then
             call samples_multi_box('gcmsmp', method, g(:, :, 1:nc), dt, tol, nstep, box, error)
         end if
         call new_handle(box, handle, error, ierr, errmsg)
@@ -151,7 +149,8 @@ contains
 
     !> Multi-point convolver on a universal file of normal modes (nodes in dataset 15 or 2411,
     !> one dataset 55 per mode): every node a point (GCMPTS gives them), the modes up to FBAND
-    !> stepped, as a scene's `&structure model = 'modes_file'`.
+    !> stepped and those above kept as their static compliance in W0 (not in the explicit
+    !> 'modal'), the same convolver as a scene's `&structure model = 'modes_file'`.
     subroutine gcmmfl(path, idir, xi, fband, method, dt, nstep, tol, handle, ierr, errmsg)
         !> Path of the universal file (trailing blanks ignored).
         character(len=*), intent(in) :: path
@@ -625,9 +624,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => checked('gcmrun', handle, nc, error)
-        if (.not. allocated(error) .and. nstep < 1) then
-            call fatal_error(error, 'gcmrun: NSTEP = '//int_text(nstep)//': give at least 1 step')
-        end if
+        call need_count('gcmrun', 'NSTEP', nstep, 1, 'step', error)
         if (.not. allocated(error)) call run_multi_box('gcmrun', box, kc(1:nc), p(1:nc), f0(1:nc), road(:, 1:nc), &
                                                        u(:, 1:nc), f(:, 1:nc), delta(:, 1:nc), error)
         call report(error, ierr, errmsg)

@@ -14,8 +14,9 @@
 !>   identified with shared poles, or its impulse responses), kept read and identified in the
 !>   box, so that another method or time step on the same file costs no second identification;
 !> - a universal file of normal modes from an FE model (datasets 15/2411 and 55,
-!>   greenconv_model_modes_file), its nodes the points and its modes up to a band stepped, as
-!>   a scene's `&structure model = 'modes_file'` takes them (all of the file's nodes);
+!>   greenconv_model_modes_file), its nodes the points and its modes up to a band stepped,
+!>   those above as their static compliance in W0, as a scene's `&structure model =
+!>   'modes_file'` takes them (all of the file's nodes);
 !>
 !> with what its model neglects, the Newton and divergence settings of its contact runs and
 !> the state of a run stepped one call at a time. Each box keeps its method's own estimate
@@ -31,8 +32,8 @@ module greenconv_api_multi_handle
     use greenconv_core_text, only: lower_text, sci_text, int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
-    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
-    use greenconv_conv_methods, only: check_method
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band
+    use greenconv_api_doors, only: need_method, need_count
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
     use greenconv_conv_green_file, only: green_file_convolver
@@ -85,10 +86,10 @@ contains
         type(point_modes) :: description
 
         box => null()
-        if (size(pole_re) < 1) then
-            call fatal_error(error, caller//': n_modes = '//int_text(size(pole_re))//': give at least 1 mode')
-        else if (size(shape, 1) < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(size(shape, 1))//': give at least 1 point')
+        call need_count(caller, 'n_modes', size(pole_re), 1, 'mode', error)
+        call need_count(caller, 'n_points', size(shape, 1), 1, 'point', error)
+        if (allocated(error)) then
+            return
         else if (.not. all(pole_re < 0.0_dp .and. pole_im > 0.0_dp .and. ieee_is_finite(pole_re) &
                            .and. ieee_is_finite(pole_im))) then
             call fatal_error(error, caller//': pole_re, pole_im: give every pole a finite real part < 0 and ' &
@@ -109,13 +110,15 @@ contains
 
     !> A new box for checked modes at the points: the kernel's size checked against the cap,
     !> the convolver and its own error estimate made; null on failure.
-    subroutine modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+    subroutine modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error, residual)
         character(len=*), intent(in) :: caller, method
         type(point_modes), intent(in) :: description
         real(dp), intent(in) :: dt, truncation_tol
         integer, intent(in) :: n_steps
         type(convolver_box), pointer, intent(out) :: box
         type(error_type), allocatable, intent(out) :: error
+        !> Static compliance [m/N] of modes left out of `description` (a modes file's above its band).
+        real(dp), intent(in), optional :: residual(:, :)
 
         box => null()
         if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(method), &
@@ -126,15 +129,16 @@ contains
         end if
         allocate (box)
         call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
-                                       box%description, error, box%estimate)
+                                       box%description, error, box%estimate, residual)
         call keep_or_drop(caller, box, error)
     end subroutine modes_box
 
     !> A new box on a universal file of normal modes (greenconv_model_modes_file): every node of
     !> the file a point (in the file's order), the modes up to `f_band` stepped by `method`,
-    !> those above it counted in the description with their share of the static flexibility at
-    !> the points; the same convolver as a scene with `&structure model = 'modes_file'` makes on
-    !> those nodes. Null on failure.
+    !> those above it kept as their static compliance R (greenconv_model_modes_file's
+    !> `split_band`, added to W0 by greenconv_conv_builder) and reported in the description as
+    !> a scene's summary reports them: the same convolver as a scene with `&structure model =
+    !> 'modes_file'` makes on those nodes. Null on failure.
     subroutine modes_file_box(caller, path, direction, damping_ratio, f_band, method, dt, truncation_tol, n_steps, &
                               box, error)
         !> Name of the front-door routine, first word of a message.
@@ -163,7 +167,8 @@ contains
         type(file_modes) :: modes
         type(point_modes) :: description
         real(dp), allocatable :: residual(:, :)
-        real(dp) :: band, share
+        character(len=:), allocatable :: summary
+        real(dp) :: band
         integer :: i
 
         box => null()
@@ -177,30 +182,24 @@ contains
         else if (.not. (f_band >= 0.0_dp .and. ieee_is_finite(f_band))) then
             call fatal_error(error, caller//': f_band = '//sci_text(f_band)//' Hz: give a finite band >= 0 Hz ' &
                              //'(0: the Nyquist frequency 1/(2*dt))')
-        else
-            call check_method(lower_text(method), .true., .true., .true., error)
         end if
-        if (allocated(error)) then
-            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .true., error)
+        if (allocated(error)) return
         band = f_band
         if (band <= 0.0_dp) band = 0.5_dp/dt
         call read_file_modes(path, direction, damping_ratio, modes, error)
-        if (.not. allocated(error)) call band_modes(modes, band, [(i, i=1, size(modes%x))], description, residual, &
-                                                    share, error)
+        if (.not. allocated(error)) call split_band(modes, band, [(i, i=1, size(modes%x))], damping_ratio, description, &
+                                                    residual, summary, error)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
         end if
-        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error, residual)
         if (allocated(error)) return
         box%node = modes%label
         box%node_x = modes%x
         box%node_y = modes%y
-        box%description = box%description//'; '//int_text(size(modes%frequency) - description%modes%n_modes()) &
-                          //' mode(s) of '//path//' above '//sci_text(band)//' Hz not stepped ('//sci_text(100*share) &
-                          //' % of the static flexibility at the points)'
+        box%description = box%description//'; modes of '//path//', '//summary
     end subroutine modes_file_box
 
     !> A new box convolving with samples g(m, i, j) = g_ij(m*dt) (`direct` or `fft`), the
@@ -225,21 +224,17 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         box => null()
-        if (size(g, 2) < 1) then
-            call fatal_error(error, caller//': n_points = '//int_text(size(g, 2))//': give at least 1 point')
-        else if (size(g, 1) < 2) then
-            call fatal_error(error, caller//': n_samples = '//int_text(size(g, 1)) &
-                             //': give at least 2 samples of every g_ij')
+        call need_count(caller, 'n_points', size(g, 2), 1, 'point', error)
+        call need_count(caller, 'n_samples', size(g, 1), 2, 'samples of every g_ij', error)
+        if (allocated(error)) then
+            return
         else if (.not. all(ieee_is_finite(g))) then
             call fatal_error(error, caller//': g: give finite samples [m/(N*s)]')
         else
             call check_run(caller, dt, truncation_tol, n_steps, error)
         end if
-        if (.not. allocated(error)) call check_method(lower_text(method), .true., .true., .false., error)
-        if (allocated(error)) then
-            if (index(error%message, caller) /= 1) error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .false., error)
+        if (allocated(error)) return
         allocate (box)
         call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
@@ -280,11 +275,8 @@ contains
         end if
         if (allocated(error)) return
         ! A method no file serves is refused before the identification, which takes seconds.
-        call check_method(lower_text(method), .true., .true., .true., error)
-        if (allocated(error)) then
-            error%message = caller//': '//error%message
-            return
-        end if
+        call need_method(caller, method, .true., .true., error)
+        if (allocated(error)) return
         if (max_order > 0) options%fit%max_order = max_order
         allocate (box)
         allocate (box%green)
@@ -697,9 +689,8 @@ contains
         else if (.not. (truncation_tol >= 0.0_dp .and. truncation_tol < 1.0_dp)) then
             call fatal_error(error, caller//': truncation_tol = '//sci_text(truncation_tol) &
                              //': give a fraction of max|g_ij| in [0, 1)')
-        else if (n_steps < 1) then
-            call fatal_error(error, caller//': n_steps = '//int_text(n_steps)//': give at least 1 step')
         end if
+        call need_count(caller, 'n_steps', n_steps, 1, 'step', error)
     end subroutine check_run
 
     !> Keep a box whose convolver was made; otherwise free it and put the caller's name in front.

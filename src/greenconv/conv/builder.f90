@@ -464,8 +464,14 @@ contains
     !> `modal`/`recursive` (the rectangle-rule recursion, explicit: W0 = 0), `exact` (the
     !> first-order hold: W0 /= 0, every step solved by Newton on the active set), `direct`
     !> (the sampled table g_ij(t_n), truncated by the paper's rule) and `fft` (the same sum by
-    !> partitioned FFT; free it with its `release`, it holds FFTW plans).
-    subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error, estimate)
+    !> partitioned FFT; free it with its `release`, it holds FFTW plans). With `residual`, the
+    !> static compliance R of modes left out of `modes` (a modes file's modes above its band,
+    !> greenconv_model_modes_file) is part of the structure: those modes respond without lag at
+    !> the run's frequencies, an impulse R*delta(t) in g_ij, so R is added to the instant
+    !> compliance W0 of the methods that have one (`exact`, `direct`, `fft`); the explicit
+    !> `modal` (W0 = 0) cannot take it, and its accuracy says so.
+    subroutine make_multipoint_convolver(method, modes, dt, truncation_tol, n_steps, conv, accuracy, error, estimate, &
+                                         residual)
         !> Method, one of greenconv_conv_methods's `method_list(multi_point=.true.)`.
         character(len=*), intent(in) :: method
         !> Modes and mode shapes at the points.
@@ -485,6 +491,9 @@ contains
         !> Its own error estimate: 0, the modes being the structure's own and the truncation of
         !> `direct` and `fft` the one `truncation_tol` asks.
         real(dp), intent(out), optional :: estimate
+        !> Static compliance R_ij [m/N] (N_c x N_c) of the modes left out of `modes`; absent (or
+        !> an unallocated actual argument) when there are none.
+        real(dp), intent(in), optional :: residual(:, :)
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :)
@@ -505,6 +514,13 @@ contains
             if (allocated(error)) return
             accuracy = 'exact on the model''s modes (explicit step)'
             if (engine%instant_part) accuracy = 'first-order hold, implicit step (Newton, all points)'
+        end if
+        if (.not. present(residual)) return
+        if (engine%samples_g() .or. engine%instant_part) then
+            call conv%set_instant_matrix(conv%weight0 + residual)
+            accuracy = accuracy//'; the static compliance of the modes above the band added to W0'
+        else
+            accuracy = accuracy//'; the static compliance of the modes above the band left out (explicit step)'
         end if
     end subroutine make_multipoint_convolver
 

@@ -12,7 +12,11 @@
 !> are not stepped: at the run's frequencies, well below theirs, they respond without lag, as
 !> a static compliance R_ij = sum_k phi_ik*phi_jk/(m_k*omega_k**2) over those modes (the
 !> residual flexibility), returned with its share of the whole static flexibility at the
-!> nodes; a caller adds R to the instant compliance W0 of the convolver of the modes in band.
+!> nodes. `split_band` is what a scene (greenconv_scene_multi_models) and the C and F77 doors
+!> (greenconv_api_multi_handle) both call: the modes in band, R when any mode lies above, and
+!> the one line that reports them; both then give R to greenconv_conv_builder's
+!> `make_multipoint_convolver`, which adds it to the instant compliance W0 of the convolver
+!> of the modes in band, so the same file makes the same structure through either door.
 module greenconv_model_modes_file
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -23,7 +27,7 @@ module greenconv_model_modes_file
     implicit none
     private
 
-    public :: file_modes, read_file_modes, band_modes
+    public :: file_modes, read_file_modes, band_modes, split_band
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -127,6 +131,51 @@ contains
         static_share = 0.0_dp
         if (total > 0.0_dp) static_share = sum([(residual(k, k), k=1, size(selected))])/total
     end subroutine band_modes
+
+    !> The modes up to f_band [Hz] at the nodes `selected`, R of those above it (unallocated
+    !> when none is above) and the line that reports them, e.g. `9 contact points, 9 modes from
+    !> 125.4 Hz to f_max = 1000.0 Hz (23 above it as a static compliance, 3.22 % of the static
+    !> flexibility at the points, largest R_ii 1.23E-09 m/N; damping ratio from the file for
+    !> 16, 0.030 for 16 modes)`.
+    subroutine split_band(modes, f_band, selected, damping_ratio, description, residual, summary, error)
+        !> The file's modes, as `band_modes` takes them.
+        type(file_modes), intent(in) :: modes
+        !> The band's top [Hz], as `band_modes` takes it.
+        real(dp), intent(in) :: f_band
+        !> The contact points: indices into the file's nodes.
+        integer, intent(in) :: selected(:)
+        !> Damping ratio applied where the file gives none (for the line).
+        real(dp), intent(in) :: damping_ratio
+        !> The modes stepped (`band_modes`'s description).
+        type(point_modes), intent(out) :: description
+        !> Static compliance R_ij [m/N] of the modes above f_band (N_c x N_c), unallocated when
+        !> every mode lies in the band.
+        real(dp), allocatable, intent(out) :: residual(:, :)
+        !> The report of the split, without a final comma.
+        character(len=:), allocatable, intent(out) :: summary
+        !> Set (status 2) when no mode lies in the band.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: static(:, :)
+        real(dp) :: share, largest
+        character(len=320) :: numbers
+        character(len=6) :: percent
+        integer :: n_above, i
+
+        call band_modes(modes, f_band, selected, description, static, share, error)
+        if (allocated(error)) return
+        n_above = size(modes%frequency) - description%modes%n_modes()
+        largest = maxval([(static(i, i), i=1, size(selected))])
+        if (n_above > 0) call move_alloc(static, residual)
+        write (percent, '(f6.2)') 100.0_dp*share
+        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,a,a,es8.2,a,i0,a,f5.3,a,i0,a)') size(selected), &
+            ' contact points, ', description%modes%n_modes(), ' modes from ', minval(modes%frequency), &
+            ' Hz to f_max = ', f_band, ' Hz (', n_above, ' above it as a static compliance, ', trim(adjustl(percent)), &
+            ' % of the static flexibility at the points, largest R_ii ', largest, ' m/N; ' &
+            //'damping ratio from the file for ', modes%n_damped_by_file, ', ', damping_ratio, ' for ', &
+            size(modes%frequency) - modes%n_damped_by_file, ' modes)'
+        summary = trim(numbers)
+    end subroutine split_band
 
     !> A frequency as `1234.5 Hz` in a fixed buffer.
     pure function hz(f) result(text)

@@ -35,7 +35,7 @@ module greenconv_scene_multi_models
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
     use greenconv_scene_tyre, only: tyre_points
-    use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band
     implicit none
     private
 
@@ -220,33 +220,26 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(file_modes) :: modes
-        real(dp), allocatable :: residual(:, :)
-        real(dp) :: f_band, share
-        character(len=240) :: numbers
+        real(dp) :: f_band
+        character(len=:), allocatable :: band
         integer, allocatable :: selected(:)
 
         call read_file_modes(scene%modes_file, scene%modes_direction, scene%damping_ratio, modes, error)
         if (.not. allocated(error)) call patch_nodes(scene, modes, selected, error)
         f_band = scene%f_modes
         if (f_band <= 0.0_dp) f_band = 0.5_dp/scene%dt
-        if (.not. allocated(error)) call band_modes(modes, f_band, selected, points%modes, residual, share, error)
+        if (.not. allocated(error)) call split_band(modes, f_band, selected, scene%damping_ratio, points%modes, &
+                                                    points%static, band, error)
         if (allocated(error)) then
             call place_error(error, scene, 'structure', 'modes_file')
             return
         end if
-        if (points%modes%modes%n_modes() < size(modes%frequency)) points%static = residual
         points%x = modes%x(selected)
         points%y = modes%y(selected)
         points%across = any(points%y /= points%y(1))
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
-        write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,f0.2,a,i0,a,f5.3,a,i0,a)') size(points%x), &
-            ' contact points, ', points%modes%modes%n_modes(), ' modes from ', minval(modes%frequency), ' Hz to f_max = ', &
-            f_band, ' Hz (', size(modes%frequency) - points%modes%modes%n_modes(), &
-            ' above it as a static compliance, ', 100.0_dp*share, ' % of the static flexibility at the points; ' &
-            //'damping ratio from the file for ', modes%n_damped_by_file, ', ', scene%damping_ratio, ' for ', &
-            size(modes%frequency) - modes%n_damped_by_file, ' modes),'
-        summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//trim(numbers)//' '//run_text(scene)
+        summary = '# scene '//scene%name//': modes of '//scene%modes_file//', '//band//', '//run_text(scene)
     end subroutine modes_file_points
 
     !> For `--check`: read a scene's modes file and append its nodes and modes to `line`.

@@ -8,7 +8,6 @@ module greenconv_scene_points
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_conv_green_file, only: green_file_convolver
-    use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_output, only: multi_contact_table
@@ -38,27 +37,18 @@ contains
         !> `green_file_convolver`, greenconv_conv_builder's `make_multipoint_convolver`).
         real(dp), intent(out), optional :: estimate
 
-        type(engine_constructors) :: engine
         real(dp) :: own
 
         if (points%from_file) then
             call green_file_convolver(points%green, method, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
                                       accuracy, error, own)
         else
+            ! `points%static`, the modes file's modes above the band, is absent when unallocated:
+            ! the builder adds it to W0 as it does for the C and F77 doors (one structure).
             call make_multipoint_convolver(method, points%modes, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
-                                           accuracy, error, own)
+                                           accuracy, error, own, residual=points%static)
         end if
         if (present(estimate)) estimate = own
-        if (allocated(error) .or. .not. allocated(points%static)) return
-        ! The modes above the band respond without lag: their static compliance belongs to the
-        ! current step's displacement, W0, which an explicit scheme (W0 = 0) does not have.
-        engine = engine_of(method)
-        if (engine%samples_g() .or. engine%instant_part) then
-            call conv%set_instant_matrix(conv%weight0 + points%static)
-            accuracy = accuracy//'; the static compliance of the modes above the band added to W0'
-        else
-            accuracy = accuracy//'; the static compliance of the modes above the band left out (explicit step)'
-        end if
     end subroutine points_convolver
 
     !> Output rows of a multi-point run (greenconv_scene_output's `multi_contact_table`): N_c
