@@ -145,7 +145,7 @@ contains
         call add(rows, n, 'scene', 'point_every', value_integer, '0', '', &
             'the steps between rows of the per-point histories (0: output_every)', '', &
             expect='a number of steps >= 0 (0: output_every)', at_least=0.0_dp)
-        call add(rows, n, 'scene', 'map_times', value_real, '', 's', &
+        call add(rows, n, 'scene', 'map_times', value_real, 'none', 's', &
             'the times of the force maps of a multi-point run (<name>_<method>_maps.dat), increasing, ' &
             //'within the run', '', count=max_map_times)
         call add(rows, n, 'structure', 'model', value_text, '', '', &
