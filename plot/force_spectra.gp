@@ -7,9 +7,10 @@
 # Reads DATADIR/<scene>_<method>_spectra.dat (not the contact area's _area_spectra.dat) for
 # the scenes sdof_sine, mdof_random and tyre_road (columns f_nominal f_centre f_lower f_upper
 # power level spread_db [level_1 ...], in Hz Hz Hz Hz N^2 dB dB) and writes
-# FIGDIR/force_spectra.png. Each band is drawn as a step from its lower to its upper edge; the error bars on the first method are the statistical
-# spread of a level (one standard deviation, for a noise-like force); the tyre's panel also
-# shows each contact point's levels (thin grey, first method) when the file holds them.
+# FIGDIR/force_spectra.png. Each band is drawn as a step from its lower to its upper edge; the
+# error bars on the first method are the statistical spread of a level (one standard
+# deviation, for a noise-like force); the tyre's panel also shows each contact point's levels
+# (thin grey, first method) when the file holds them.
 
 if (!exists("datadir")) datadir = 'out'
 if (!exists("figdir")) figdir = 'out/figures'
