@@ -4,12 +4,13 @@
 #   gnuplot plot/force_spectra.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'" plot/force_spectra.gp
 #
-# Reads DATADIR/<scene>_<method>_spectra.dat for the scenes sdof_sine, mdof_random and
-# tyre_road (columns f_nominal f_centre f_lower f_upper power level spread_db [level_1 ...],
-# in Hz Hz Hz Hz N^2 dB dB) and writes FIGDIR/force_spectra.png. Each band is drawn as a step
-# from its lower to its upper edge; the error bars on the first method are the statistical
-# spread of a level (one standard deviation, for a noise-like force); the tyre's panel also
-# shows each contact point's levels (thin grey, first method) when the file holds them.
+# Reads DATADIR/<scene>_<method>_spectra.dat (not the contact area's _area_spectra.dat) for
+# the scenes sdof_sine, mdof_random and tyre_road (columns f_nominal f_centre f_lower f_upper
+# power level spread_db [level_1 ...], in Hz Hz Hz Hz N^2 dB dB) and writes
+# FIGDIR/force_spectra.png. Each band is drawn as a step from its lower to its upper edge; the
+# error bars on the first method are the statistical spread of a level (one standard
+# deviation, for a noise-like force); the tyre's panel also shows each contact point's levels
+# (thin grey, first method) when the file holds them.
 
 if (!exists("datadir")) datadir = 'out'
 if (!exists("figdir")) figdir = 'out/figures'
@@ -17,7 +18,7 @@ if (!exists("scenes")) scenes = 'sdof_sine mdof_random tyre_road'
 output = sprintf('%s/force_spectra.png', figdir)
 
 # The spectra files of a scene, one per method, and the method of a file.
-spectra_files(scene) = system(sprintf("ls %s/%s_*_spectra.dat 2>/dev/null | tr '\\n' ' '", datadir, scene))
+spectra_files(scene) = system(sprintf("ls %s/%s_*_spectra.dat 2>/dev/null | grep -v '_area_spectra[.]dat$' | tr '\\n' ' '", datadir, scene))
 method_of(file, scene) = file[strlen(datadir) + strlen(scene) + 3:strlen(file) - strlen('_spectra.dat')]
 # The Welch parameters of a file, from its header: "segments of N samples ..., K segments averaged".
 header_number(file, pattern) = int(system(sprintf("sed -n 's/.*%s.*/\\1/p' '%s' | head -n 1", pattern, file)))

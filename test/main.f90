@@ -44,6 +44,7 @@ program greenconv_tests
     use test_patch_mod, only: collect_patch
     use test_patchscene_mod, only: collect_patchscene
     use test_tyrepatch_mod, only: collect_tyrepatch
+    use test_scaleoutput_mod, only: collect_scaleoutput
     use test_reliability_mod, only: collect_reliability
     use test_version_mod, only: collect_version
     use test_uffchecks_mod, only: collect_uffchecks
@@ -103,7 +104,8 @@ program greenconv_tests
                        new_testsuite('accuracystatus', collect_accuracystatus), &
                        new_testsuite('modesfile', collect_modesfile), &
                        new_testsuite('longrun', collect_longrun), &
-                       new_testsuite('checkcost', collect_checkcost)], output_unit, n_passed, n_failed, valid)
+                       new_testsuite('checkcost', collect_checkcost), &
+                       new_testsuite('scaleoutput', collect_scaleoutput)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.

@@ -27,7 +27,7 @@ module test_tyrepatch_mod
     implicit none
     private
 
-    public :: collect_tyrepatch
+    public :: collect_tyrepatch, bumps
 
     !> Scratch directory for the files the tests write.
     character(len=*), parameter :: scratch = 'build/test_scratch/tyrepatch'

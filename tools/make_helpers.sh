@@ -437,7 +437,8 @@ cmd_valgrind() {
         redirected_scene "$scene" "$tmp/$name" |
             awk -v cap="$cap" 'tolower($0) ~ /^[[:space:]]*n_steps[[:space:]]*=/ {
                 split($0, part, "="); value = part[2] + 0
-                if (value > cap) { sub(/=[[:space:]]*[0-9]+/, "= " cap) } } { print }' >"$tmp/$name.nml"
+                if (value > cap) { sub(/=[[:space:]]*[0-9]+/, "= " cap); cut = 1 } }
+                cut && tolower($0) ~ /^[[:space:]]*map_times[[:space:]]*=/ { next } { print }' >"$tmp/$name.nml"
         say "valgrind: $scene"
         vg_run "$tmp/$name.log" "$driver" --quiet "$tmp/$name.nml" || failed=1
     done

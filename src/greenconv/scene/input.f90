@@ -8,6 +8,7 @@
 !> lists every variable with its units; doc/scenes.md shows it.
 module greenconv_scene_input
     use, intrinsic :: iso_fortran_env, only: iostat_end
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text, int_text, sci_text
@@ -22,7 +23,7 @@ module greenconv_scene_input
     use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
-                                      scene_row, admits
+                                      scene_row, admits, max_map_times
     use greenconv_io_columns, only: read_lines
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                       multi_point_model
@@ -113,6 +114,7 @@ contains
         if (.not. allocated(error)) call check_scene_road(scene, error)
         if (.not. allocated(error)) call check_multipoint_scene(scene, error)
         if (.not. allocated(error)) call check_spectra(scene, error)
+        if (.not. allocated(error)) call check_map_times(scene, error)
     end subroutine read_scene_lines
 
     !> Write every group of a scene file with its namelist, each variable at its default (a
@@ -167,15 +169,17 @@ contains
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
 
-        character(len=name_length) :: task, name, output_format
+        character(len=name_length) :: task, name, output_format, point_histories
         character(len=path_length) :: output_dir
-        real(dp) :: dt, spectra_f_low, spectra_f_high
-        integer :: n_steps, output_every, stat
+        real(dp) :: dt, spectra_f_low, spectra_f_high, map_times(max_map_times)
+        integer :: n_steps, output_every, stat, point_every
         logical :: progress, spectra, spectra_points
         character(len=512) :: message
         namelist /scene/ task, name, output_dir, dt, n_steps, output_every, output_format, progress, spectra, &
-            spectra_f_low, spectra_f_high, spectra_points
+            spectra_f_low, spectra_f_high, spectra_points, point_histories, point_every, map_times
 
+        ! a time no file can give (the scan refuses NaN) marks the map times not given
+        map_times = ieee_value(1.0_dp, ieee_quiet_nan)
         read (defaults, nml=scene)
         if (source%unit /= no_unit) write (source%unit, nml=scene, delim='quote', iostat=stat, iomsg=message)
         if (source%unit == no_unit) read (source%lines, nml=scene, iostat=stat, iomsg=message)
@@ -187,6 +191,8 @@ contains
         call check_value(this, 'scene', 'n_steps', n_steps, error)
         call check_value(this, 'scene', 'output_every', output_every, error)
         call check_value(this, 'scene', 'output_format', output_format, error)
+        call check_value(this, 'scene', 'point_histories', point_histories, error)
+        call check_value(this, 'scene', 'point_every', point_every, error)
         call check_values(this, 'scene', [character(len=16) :: 'spectra_f_low', 'spectra_f_high'], &
                           [spectra_f_low, spectra_f_high], error)
         this%task = trim(task)
@@ -201,6 +207,11 @@ contains
         this%spectra_f_low = spectra_f_low
         this%spectra_f_high = spectra_f_high
         this%spectra_points = spectra_points
+        this%point_histories = trim(point_histories)
+        this%point_every = point_every
+        this%map_times = map_times(:count(.not. ieee_is_nan(map_times)))
+        if (.not. allocated(error) .and. any(ieee_is_nan(this%map_times))) &
+            call expect(error, this, 'scene', 'map_times', 'the times given from the first element on, without gaps')
     end subroutine read_scene_group
 
     !> &structure: the model and its parameters.
@@ -499,6 +510,37 @@ contains
                          //this%task//"'"//road)
         call place_error(error, this, 'structure', 'model')
     end subroutine check_multipoint_scene
+
+    !> The times of the force maps (&scene map_times [s]): a multi-point contact run's, each
+    !> within the run (0 to (N_t - 1)*dt), increasing, each at a step of its own (the nearest).
+    subroutine check_map_times(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: last
+        integer :: k
+
+        if (size(this%map_times) == 0) return
+        if (.not. multi_point_model(this%model) .or. this%task /= 'contact') then
+            call expect(error, this, 'scene', 'map_times', "no value for model '"//this%model//"' (maps are of a " &
+                        //'multi-point contact run)')
+            return
+        end if
+        last = (this%n_steps - 1)*this%dt
+        do k = 1, size(this%map_times)
+            if (this%map_times(k) < 0.0_dp) then
+                call expect(error, this, 'scene', 'map_times', 'times >= 0 s', this%map_times(k))
+            else if (this%map_times(k) > last*(1.0_dp + epsilon(1.0_dp))) then
+                call expect(error, this, 'scene', 'map_times', 'times within the run, at most (n_steps - 1)*dt = ' &
+                            //sci_text(last)//' s', this%map_times(k))
+            else if (k > 1) then
+                if (nint(this%map_times(k)/this%dt) <= nint(this%map_times(k - 1)/this%dt)) &
+                    call expect(error, this, 'scene', 'map_times', 'increasing times, each at a step of its own ' &
+                                //'(dt = '//sci_text(this%dt)//' s)', this%map_times(k))
+            end if
+            if (allocated(error)) return
+        end do
+    end subroutine check_map_times
 
     !> The band range of the force spectra of a contact run (&scene spectra): every band must
     !> lie below the Nyquist frequency 1/(2*dt), and the record (N_t steps) must hold a Welch

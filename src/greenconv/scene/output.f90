@@ -1,6 +1,8 @@
 !> Column files of the contact runs: the layout of a multi-point run's histories (one row
 !> per step and point) that the multi-point scenes stream and `write_multi_contact` writes
-!> whole; a 2D patch (a Green's matrix file's points) adds the column y [m] last.
+!> whole; a 2D patch (a Green's matrix file's points) adds the column y [m] last. And the
+!> totals of a multi-point run (one row per kept step: t, the total force, the contact area,
+!> the points in contact), which it writes whatever its per-point histories.
 module greenconv_scene_output
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -11,6 +13,7 @@ module greenconv_scene_output
     private
 
     public :: write_multi_contact, multi_contact_header, multi_contact_table, check_inputs_kept
+    public :: totals_header, totals_table
 
 contains
 
@@ -124,5 +127,47 @@ contains
         end do
     end function multi_contact_table
 
+
+    !> The header lines of a totals file: the title, the units, the columns.
+    pure function totals_header(title, share) result(comments)
+        !> First header line, e.g. the scene and method.
+        character(len=*), intent(in) :: title
+        !> Area [m^2] each point in contact counts.
+        real(dp), intent(in) :: share
+        character(len=200) :: comments(4)
+
+        comments(1) = title
+        write (comments(2), '(a,es24.17,a)') 'contact area: the points with a force > 0, each counting ', share, &
+            ' m^2 (its share of the patch)'
+        comments(3) = 'units: s N m^2 1'
+        comments(4) = 't f_total area n_contact'
+    end function totals_header
+
+    !> The totals of the steps j = first, first + stride, ... of `response`: t [s], the total
+    !> contact force [N], the contact area [m^2] (`share` times the points in contact) and the
+    !> number of points in contact (a force > 0).
+    pure function totals_table(response, first, stride, share) result(table)
+        !> Histories (of a run or of one block).
+        type(multi_contact_response), intent(in) :: response
+        !> Index (from 0) of the first step written.
+        integer, intent(in) :: first
+        !> Steps between two rows written, >= 1.
+        integer, intent(in) :: stride
+        !> Area [m^2] each point in contact counts.
+        real(dp), intent(in) :: share
+        real(dp), allocatable :: table(:, :)
+
+        integer :: n, row
+
+        allocate (table(size(response%time(first::stride)), 4))
+        row = 0
+        do n = first, size(response%time) - 1, stride
+            row = row + 1
+            table(row, 1) = response%time(n)
+            table(row, 2) = response%total_force(n)
+            table(row, 4) = real(count(response%force(n, :) > 0.0_dp), dp)
+            table(row, 3) = share*table(row, 4)
+        end do
+    end function totals_table
 
 end module greenconv_scene_output

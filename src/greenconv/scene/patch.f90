@@ -24,7 +24,7 @@ module greenconv_scene_patch
     implicit none
     private
 
-    public :: place_patch, sample_patch_road, run_text, road_step
+    public :: place_patch, sample_patch_road, run_text, road_step, point_share
 
 contains
 
@@ -76,6 +76,42 @@ contains
             call sample_road_steps(scene%road_data, road_travel(road_x, road_y, scene%speed, scene%dt), first, count, heights)
         end if
     end subroutine sample_patch_road
+
+    !> The area [m^2] each of a multi-point scene's N_c points stands for, what it adds to the
+    !> contact area when in contact: on a patch grid (models 'tyre', 'tyre_plate') its share
+    !> patch_length*patch_width/N_c, the share a law per area gives its spring; on the nodes of
+    !> a file, the cell of the nodes' grid, the smallest gaps between their distinct x and
+    !> between their distinct y (patch_width across for nodes on one line).
+    pure real(dp) function point_share(scene, x, y, on_grid)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Positions x_i, y_i [m] of the points on the body.
+        real(dp), intent(in) :: x(:), y(:)
+        !> Whether the scene's model places its points on a patch grid (greenconv_scene_models's
+        !> `grid_dimensions` > 0).
+        logical, intent(in) :: on_grid
+
+        if (on_grid) then
+            point_share = scene%patch_length*scene%patch_width/size(x)
+        else
+            point_share = smallest_gap(x, scene%patch_length)*smallest_gap(y, scene%patch_width)
+        end if
+    end function point_share
+
+    !> The smallest positive gap between two of the values; `none` when they are all equal.
+    pure real(dp) function smallest_gap(values, none)
+        real(dp), intent(in) :: values(:), none
+
+        integer :: i, j
+
+        smallest_gap = huge(1.0_dp)
+        do i = 1, size(values)
+            do j = 1, size(values)
+                if (values(j) > values(i)) smallest_gap = min(smallest_gap, values(j) - values(i))
+            end do
+        end do
+        if (smallest_gap == huge(1.0_dp)) smallest_gap = none
+    end function smallest_gap
 
     !> The smallest step [m] between the positions x of the scene's road file or texture.
     pure real(dp) function road_step(scene)

@@ -6,7 +6,15 @@
 !> greenconv_scene_points) are one `contact_run` each, streamed by greenconv_scene_stream's
 !> `stream_run` into the method's column file (and its force spectra with `&scene spectra`);
 !> this module starts each method's run, in one loop for both, and prints its summary line.
+!>
+!> A multi-point run writes, per method, its totals `<name>_<method>_totals.dat` (t, total
+!> force, contact area, points in contact, a row every `output_every` steps) and, with
+!> `spectra`, the spectra of both; its per-point histories `<name>_<method>.dat` (or `.bin`)
+!> as `point_histories` asks (`auto`: for at most `auto_history_points` points), a row every
+!> `point_every` steps; and with `map_times`, `<name>_<method>_maps.dat`, the per-point rows
+!> at the steps nearest those times, one block of N_c rows a time.
 module greenconv_scene_runner
+    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
@@ -16,10 +24,11 @@ module greenconv_scene_runner
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_input, only: scene_type, output_path, place_error
     use greenconv_scene_models, only: structure_kind, find_model, multi_point_model
+    use greenconv_scene_patch, only: point_share
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_report, only: write_identification, identification_summary
-    use greenconv_scene_output, only: multi_contact_header, check_inputs_kept
+    use greenconv_scene_output, only: multi_contact_header, check_inputs_kept, totals_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     use greenconv_scene_point_set, only: scene_points
@@ -28,6 +37,7 @@ module greenconv_scene_runner
     private
 
     public :: run_scene, check_scene, check_scene_line, check_cost_lines, make_convolver, output_path
+    public :: auto_history_points, writes_point_histories
 
     !> Layout of the summary line of a method.
     character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
@@ -37,6 +47,8 @@ module greenconv_scene_runner
     integer, parameter :: cost_line_length = 240
     !> Bytes of one value of a text column file (a field of 25 characters).
     real(dp), parameter :: text_value_bytes = 25.0_dp
+    !> Most points whose histories `point_histories = 'auto'` writes.
+    integer, parameter :: auto_history_points = 100
 
 contains
 
@@ -183,19 +195,27 @@ contains
         end do
     end subroutine check_cost_lines
 
-    !> Bytes a method's column file will hold: a row every `output_every` steps, of 5 values
-    !> for one point or of N_c rows of 7 (the tyre's line) or 8 (with y) values, each
-    !> `text_value_bytes` in text and 8 in binary.
+    !> Bytes a method's files will hold: a row every `output_every` steps, of 5 values for one
+    !> point; for several, the totals (4 values a row, text), the maps (N_c rows of 7 or 8
+    !> values a map, text) and, when written, the per-point histories (N_c rows of 7, the tyre's
+    !> line, or 8 values, with y, every `point_every` steps); each value `text_value_bytes` in
+    !> text and 8 in binary.
     real(dp) function output_bytes(scene, n_c)
         type(scene_type), intent(in) :: scene
         integer, intent(in) :: n_c
 
-        real(dp) :: rows, values
+        real(dp) :: rows, values, value_bytes
 
+        value_bytes = merge(8.0_dp, text_value_bytes, scene%output_format == 'binary')
         rows = real(scene%n_steps/max(scene%output_every, 1) + 1, dp)
-        values = 5.0_dp
-        if (multi_point_model(scene%model)) values = merge(7.0_dp, 8.0_dp, scene%model == 'tyre')*n_c
-        output_bytes = rows*values*merge(8.0_dp, text_value_bytes, scene%output_format == 'binary')
+        if (.not. multi_point_model(scene%model)) then
+            output_bytes = rows*5.0_dp*value_bytes
+            return
+        end if
+        values = merge(7.0_dp, 8.0_dp, scene%model == 'tyre')*n_c
+        output_bytes = rows*4.0_dp*text_value_bytes + size(scene%map_times)*values*text_value_bytes
+        if (writes_point_histories(scene, n_c)) output_bytes = output_bytes &
+            + real(scene%n_steps/point_every(scene) + 1, dp)*values*value_bytes
     end function output_bytes
 
     !> Check a scene without running it: the scene was read and checked by `read_scene`
@@ -284,9 +304,10 @@ contains
             if (allocated(error)) then
                 if (.not. run%several) error%message = scene%file//': '//method//': '//error%message
             else if (run%several) then
-                call title(scene, method, text)
+                call title(scene, method, point_every(scene), text)
                 sinks = column_sinks(scene, method, multi_contact_header(text, run%points%across), &
                                      merge(8, 7, run%points%across))
+                call patch_sinks(scene, method, run, sinks)
                 prefix = scene%file//': '//method//': '
             else
                 sinks = column_sinks(scene, method, response_header(scene, run%conv), 5)
@@ -347,6 +368,60 @@ contains
         sinks%scene_spectra = .true.
     end function column_sinks
 
+    !> Whether a multi-point run of N_c points writes its per-point histories
+    !> (`&scene point_histories`: `all`, `none`, or `auto`, for at most `auto_history_points`).
+    pure logical function writes_point_histories(scene, n_c)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        !> Number of contact points N_c.
+        integer, intent(in) :: n_c
+
+        select case (scene%point_histories)
+        case ('all')
+            writes_point_histories = .true.
+        case ('none')
+            writes_point_histories = .false.
+        case default
+            writes_point_histories = n_c <= auto_history_points
+        end select
+    end function writes_point_histories
+
+    !> Steps between two rows of the per-point histories: `point_every`, 0 meaning `output_every`.
+    pure integer function point_every(scene)
+        type(scene_type), intent(in) :: scene
+
+        point_every = merge(scene%point_every, scene%output_every, scene%point_every > 0)
+    end function point_every
+
+    !> The sinks of a multi-point run beside its column file: the file dropped when the scene
+    !> asks for no per-point histories; the totals file; the map file at the steps nearest
+    !> `map_times`.
+    subroutine patch_sinks(scene, method, run, sinks)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        type(contact_run), intent(in) :: run
+        type(stream_sinks), intent(inout) :: sinks
+
+        character(len=:), allocatable :: line
+        character(len=200) :: header(3)
+        type(structure_kind) :: model
+
+        model = find_model(scene%model)
+        sinks%every = point_every(scene)
+        if (.not. writes_point_histories(scene, run%points%n_points())) deallocate (sinks%path)
+        sinks%share = point_share(scene, run%points%x, run%points%y, model%grid_dimensions > 0)
+        sinks%totals_path = scene%output_dir//'/'//scene%name//'_'//method//'_totals.dat'
+        call title(scene, method, scene%output_every, line)
+        sinks%totals_header = totals_header(line//': totals', sinks%share)
+        if (size(scene%map_times) == 0) return
+        sinks%maps_path = scene%output_dir//'/'//scene%name//'_'//method//'_maps.dat'
+        call title(scene, method, 1, line)
+        header = multi_contact_header(line//': force maps, N_c rows at each step nearest map_times, ' &
+                                      //int_text(size(scene%map_times))//' blocks', run%points%across)
+        sinks%maps_header = header
+        sinks%map_steps = nint(scene%map_times/scene%dt, int64)
+    end subroutine patch_sinks
+
     !> The header of a method's column file: what ran, the units, the columns (t, u_road,
     !> u, f_contact, delta); with `output_every` > 1, which steps the rows are.
     function response_header(scene, conv) result(comments)
@@ -367,18 +442,19 @@ contains
         comments(3) = 't u_road u f_contact delta'
     end function response_header
 
-    !> First header line of a multi-point method's file; with `output_every` > 1, which steps the rows are.
-    subroutine title(scene, method, line)
+    !> First header line of a multi-point method's file; with a row every `every` > 1 steps, which
+    !> steps the rows are.
+    subroutine title(scene, method, every, line)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
+        integer, intent(in) :: every
         character(len=:), allocatable, intent(out) :: line
 
         line = 'greenconv tyre/road scene '//scene%name//', method '//method
         if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
                                           //method
-        if (scene%output_every > 1) line = line//', a row every '//int_text(scene%output_every)//' steps (steps 0, ' &
-                                           //int_text(scene%output_every)//', '//int_text(2*scene%output_every) &
-                                           //', ...)'
+        if (every > 1) line = line//', a row every '//int_text(every)//' steps (steps 0, '//int_text(every)//', ' &
+                              //int_text(2*every)//', ...)'
     end subroutine title
 
 end module greenconv_scene_runner

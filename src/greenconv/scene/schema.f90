@@ -33,11 +33,13 @@ module greenconv_scene_schema
     implicit none
     private
 
-    public :: scan_scene, max_methods, scene_variable, scene_table, scene_group_names, scene_groups
+    public :: scan_scene, max_methods, max_map_times, scene_variable, scene_table, scene_group_names, scene_groups
     public :: scene_default, group_defaults, required_text, scene_row, admits
 
     !> Largest number of methods one scene may list.
     integer, parameter :: max_methods = 8
+    !> Largest number of force maps (`&scene map_times`) one scene may ask for.
+    integer, parameter :: max_map_times = 16
 
     !> One variable of a scene file.
     type :: scene_variable
@@ -136,6 +138,16 @@ contains
             expect='a frequency > 0 Hz', above=0.0_dp)
         call add(rows, n, 'scene', 'spectra_points', value_logical, '.false.', '', &
             'whether the force spectra of a multi-point run also give the level of each point', '')
+        call add(rows, n, 'scene', 'point_histories', value_text, 'auto', '', &
+            "which per-point histories a multi-point run writes (<name>_<method>.dat or .bin): 'auto' " &
+            //"(all for at most 100 points, none above), 'all' or 'none'; the totals file is always written", '', &
+            choices=[character(len=16) :: 'auto', 'all', 'none'])
+        call add(rows, n, 'scene', 'point_every', value_integer, '0', '', &
+            'the steps between rows of the per-point histories (0: output_every)', '', &
+            expect='a number of steps >= 0 (0: output_every)', at_least=0.0_dp)
+        call add(rows, n, 'scene', 'map_times', value_real, 'none', 's', &
+            'the times of the force maps of a multi-point run (<name>_<method>_maps.dat), increasing, ' &
+            //'within the run', '', count=max_map_times)
         call add(rows, n, 'structure', 'model', value_text, '', '', &
             "the structure model, "//model_names(), 'always')
         call add(rows, n, 'structure', 'mass', value_real, '1.0', 'kg', &
@@ -331,7 +343,7 @@ contains
     !> Append a row to the table; a checked value has its message `expect` and its range
     !> (`above` or `at_least`, `below` or `at_most`), a text its `choices`.
     subroutine add(rows, n, group, name, kind, default, units, meaning, required, expect, above, at_least, &
-                   below, at_most, choices, unless)
+                   below, at_most, choices, unless, count)
         type(scene_variable), intent(inout) :: rows(:)
         integer, intent(inout) :: n
         character(len=*), intent(in) :: group, name, default, units, meaning, required
@@ -340,6 +352,7 @@ contains
         real(dp), intent(in), optional :: above, at_least, below, at_most
         character(len=*), intent(in), optional :: choices(:)
         character(len=*), intent(in), optional :: unless
+        integer, intent(in), optional :: count
 
         n = n + 1
         rows(n)%group = group
@@ -347,6 +360,7 @@ contains
         rows(n)%kind = kind
         rows(n)%size = 1
         if (kind == value_text_list) rows(n)%size = max_methods
+        if (present(count)) rows(n)%size = count
         rows(n)%default = default
         rows(n)%units = units
         rows(n)%meaning = meaning

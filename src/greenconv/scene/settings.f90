@@ -52,6 +52,13 @@ module greenconv_scene_settings
         real(dp) :: spectra_f_low = 0.0_dp, spectra_f_high = 0.0_dp
         !> Whether the spectra of a multi-point run also give each point's level.
         logical :: spectra_points = .false.
+        !> Per-point histories of a multi-point run: `auto` (all for N_c <= 100, none above),
+        !> `all` or `none` (greenconv_scene_runner).
+        character(len=8) :: point_histories = 'auto'
+        !> Steps between two rows of the per-point histories (0: `output_every`).
+        integer :: point_every = 0
+        !> Times [s] of the force maps of a multi-point run, increasing (none: no map file).
+        real(dp), allocatable :: map_times(:)
         !> Structure model: `sdof`, `random_modes`, `frf_file`, `tyre`, `tyre_plate`, `green_file` or `modes_file`.
         character(len=:), allocatable :: model
         !> Mass M [kg] of the sdof model.

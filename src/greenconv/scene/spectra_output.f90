@@ -2,7 +2,9 @@
 !> writes `<output_dir>/<name>_<method>_spectra.dat`, the 1/3-octave band levels of its
 !> total contact force in dB re 1 N (greenconv_io_spectra: IEC 61260-1 bands, Welch's PSD
 !> with a Hann window and 50 % overlap), and with `spectra_points` those of each contact
-!> point of a multi-point run.
+!> point of a multi-point run. A multi-point run also writes
+!> `<output_dir>/<name>_<method>_area_spectra.dat`, the band levels of its contact area in
+!> dB re 1 m^2 (the same columns, power in m^4).
 !>
 !> The force of every step is analysed (not only the rows `output_every` keeps), as the run
 !> streams: each block's forces go into a Welch accumulator that holds one segment per
@@ -41,6 +43,9 @@ module greenconv_scene_spectra_output
         logical :: started = .false.
         !> Whether each point's level is written too.
         logical :: per_point = .false.
+        !> Whether the history is the contact area [m^2] (`<name>_<method>_area_spectra.dat`)
+        !> rather than the contact force [N].
+        logical :: area = .false.
         !> Segment length N [samples].
         integer :: segment_length = 0
         !> Steps analysed so far.
@@ -51,15 +56,21 @@ module greenconv_scene_spectra_output
 
 contains
 
-    !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`.
-    function spectra_path(scene, method) result(path)
+    !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`, or of its
+    !> contact area's, `<output_dir>/<name>_<method>_area_spectra.dat`.
+    function spectra_path(scene, method, area) result(path)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
-        character(len=len(scene%output_dir) + len(scene%name) + len(method) + 14) :: path
+        !> Whether the contact area's file is meant.
+        logical, intent(in), optional :: area
+        character(len=:), allocatable :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'_spectra.dat'
+        if (present(area)) then
+            if (area) path = scene%output_dir//'/'//scene%name//'_'//method//'_area_spectra.dat'
+        end if
     end function spectra_path
 
     !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
@@ -84,15 +95,19 @@ contains
     end subroutine spectra_line
 
     !> Get ready for a method's run of `scene`.
-    subroutine start_force_spectra(spectra, scene)
+    subroutine start_force_spectra(spectra, scene, area)
         !> The spectra, emptied.
         type(force_spectra), intent(inout) :: spectra
         !> The scene.
         type(scene_type), intent(in) :: scene
+        !> Whether the history analysed is the contact area [m^2] (default: the force).
+        logical, intent(in), optional :: area
 
         spectra%active = scene%spectra .and. scene%task == 'contact'
         spectra%started = .false.
-        spectra%per_point = scene%spectra_points
+        spectra%area = .false.
+        if (present(area)) spectra%area = area
+        spectra%per_point = scene%spectra_points .and. .not. spectra%area
         spectra%steps = 0
         if (spectra%active) spectra%segment_length = segment_length(scene)
     end subroutine start_force_spectra
@@ -146,7 +161,7 @@ contains
         if (.not. spectra%active) return
         if (allocated(error) .or. .not. spectra%started) then
             call spectra%welch%plans%release()
-            open (newunit=unit, file=spectra_path(scene, method), status='old', iostat=stat)
+            open (newunit=unit, file=spectra_path(scene, method, spectra%area), status='old', iostat=stat)
             if (stat == 0) close (unit, status='delete', iostat=stat)
             return
         end if
@@ -174,7 +189,7 @@ contains
         end do
         table(:, 7) = level_spread(lower, upper, df, spectra%welch%n_segments)
         call spectra_header(scene, method, spectra, df, n_channels - 1, table(:, 7), comments)
-        call write_columns(spectra_path(scene, method), comments, table, error)
+        call write_columns(spectra_path(scene, method, spectra%area), comments, table, error)
     end subroutine finish_force_spectra
 
     !> The header lines of a spectra file.
@@ -186,17 +201,24 @@ contains
         integer, intent(in) :: n_points
         character(len=:), allocatable, intent(out) :: comments(:)
 
-        character(len=:), allocatable :: lines(:), names, units, what
+        character(len=:), allocatable :: lines(:), names, units, what, power_unit, level_unit
         integer :: n, k, unused, i
 
         n = spectra%segment_length
         k = spectra%welch%n_segments
         unused = int(spectra%steps - (int(k - 1, int64)*(n/2) + n))
         what = 'the total contact force'
+        power_unit = 'N^2'
+        level_unit = 'dB_re_1N'
+        if (spectra%area) then
+            what = 'the contact area (the shares of the points in contact)'
+            power_unit = 'm^4'
+            level_unit = 'dB_re_1m^2'
+        end if
         if (n_points > 0) what = what//' and of each of the '//int_text(n_points)//' points (level_i: the i-th ' &
                                  //'point of the column file)'
         names = 'f_nominal f_centre f_lower f_upper power level spread_db'
-        units = 'Hz Hz Hz Hz N^2 dB_re_1N dB'
+        units = 'Hz Hz Hz Hz '//power_unit//' '//level_unit//' dB'
         do i = 1, n_points
             names = names//' level_'//int_text(i)
             units = units//' dB_re_1N'
@@ -207,6 +229,8 @@ contains
                    //' s, f_s = '//compact_real(1.0_dp/scene%dt)//' Hz)'
         lines(2) = 'bands: IEC 61260-1 base 10, exact centres f_centre = 1000*10^(x/10) Hz, f_nominal their ' &
                    //'preferred-number names, edges f_centre*10^(+-1/20); level = 10*log10(power/1 N^2) dB re 1 N'
+        if (spectra%area) lines(2) = lines(2)(:index(lines(2), 'level =') - 1)//'level = 10*log10(power/1 m^4) ' &
+                                     //'dB re 1 m^2'
         lines(3) = 'PSD: Welch, Hann window (periodic, sin^2), segments of '//int_text(n)//' samples (' &
                    //compact_real(n*scene%dt)//' s, line spacing df = '//compact_real(df)//' Hz, at least ' &
                    //int_text(default_lines_per_band)//' lines in the lowest band), 50 % overlap, ' &

@@ -5,7 +5,10 @@
 !> caller asked for:
 !>
 !> - a column file (text `.dat`, or binary `.bin` with its header `.bin.txt`) of the rows of
-!>   every `output_every`-th step;
+!>   every `output_every`-th step (a multi-point run's per-point histories: every `point_every`-th);
+!> - a multi-point run's totals file (t, total force, contact area, points in contact, every
+!>   `output_every`-th step), its map file (the per-point rows at the steps of `map_times`) and,
+!>   with the spectra, the spectra of its contact area;
 !> - the scene's force spectra (`&scene spectra`, greenconv_scene_spectra_output);
 !> - a force summary (max, mean, rms of the total contact force, steps in contact: a sweep row);
 !> - the whole total-force history (a sweep's band levels).
@@ -28,13 +31,14 @@ module greenconv_scene_stream
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
                                        start_multi_contact, newton_options
-    use greenconv_io_files, only: column_writer, open_columns, append_rows, close_run_file, first_kept
+    use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
     use greenconv_scene_models, only: multi_point_model
     use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
                                               finish_force_spectra
     use greenconv_scene_points, only: scene_points, point_rows, points_convolver
+    use greenconv_scene_output, only: totals_table
     use greenconv_scene_patch, only: sample_patch_road
     implicit none
     private
@@ -70,6 +74,8 @@ module greenconv_scene_stream
         procedure :: rows => run_rows
         !> The contact forces of the block stepped last.
         procedure :: forces => run_forces
+        !> The totals rows of the block stepped last that are written.
+        procedure :: totals => run_totals
     end type contact_run
 
     !> Running summary of a total-force history.
@@ -90,6 +96,21 @@ module greenconv_scene_stream
         integer :: n_columns = 0
         !> Whether the column file is binary float64 (`.bin` with `.bin.txt`) rather than text.
         logical :: binary = .false.
+        !> Steps between two rows of the column file (0: the scene's `output_every`).
+        integer :: every = 0
+        !> Totals file of a multi-point run (text): its path (unallocated: none) and header lines.
+        character(len=:), allocatable :: totals_path
+        !> Header lines of the totals file (written after `# `).
+        character(len=:), allocatable :: totals_header(:)
+        !> Area [m^2] a point in contact adds to the contact area (totals file, area spectra).
+        real(dp) :: share = 0.0_dp
+        !> Map file of a multi-point run (text, the column file's rows at `map_steps`): its path
+        !> (unallocated: none) and header lines.
+        character(len=:), allocatable :: maps_path
+        !> Header lines of the map file (written after `# `).
+        character(len=:), allocatable :: maps_header(:)
+        !> Steps (from 0, increasing) of the maps.
+        integer(int64), allocatable :: map_steps(:)
         !> Whether the scene's force spectra (`&scene spectra`) are computed and written.
         logical :: scene_spectra = .false.
         !> Whether the total force is summarised into `summary`.
@@ -124,22 +145,32 @@ contains
         !> Set for a failed write or a numerical fault.
         type(error_type), allocatable, intent(out) :: error
 
-        type(column_writer) :: writer
+        type(column_writer) :: writers(3)
         type(progress_meter) :: meter
-        type(force_spectra) :: spectra
+        type(force_spectra) :: spectra, area_spectra
         type(error_type), allocatable :: fault
-        real(dp), allocatable :: table(:, :), total(:), points(:, :)
+        real(dp), allocatable :: table(:, :), total(:), points(:, :), no_points(:, :)
         integer(int64) :: first
         real(dp) :: start, finish
-        integer :: m
+        integer :: m, every, k, j
 
         seconds = 0.0_dp
-        if (allocated(sinks%path)) then
-            call open_columns(writer, sinks%path, sinks%header, sinks%n_columns, error, binary=sinks%binary)
-            if (allocated(error)) return
+        every = merge(sinks%every, scene%output_every, sinks%every > 0)
+        if (allocated(sinks%path)) call open_columns(writers(1), sinks%path, sinks%header, sinks%n_columns, error, &
+                                                     binary=sinks%binary)
+        if (allocated(sinks%totals_path) .and. .not. allocated(error)) &
+            call open_columns(writers(2), sinks%totals_path, sinks%totals_header, 4, error)
+        if (allocated(sinks%maps_path) .and. .not. allocated(error)) &
+            call open_columns(writers(3), sinks%maps_path, sinks%maps_header, sinks%n_columns, error)
+        if (allocated(error)) then
+            call discard_all()
+            return
         end if
         call start_progress(meter, method, int(scene%n_steps, int64), scene%progress)
         if (sinks%scene_spectra) call start_force_spectra(spectra, scene)
+        if (sinks%scene_spectra .and. allocated(sinks%totals_path)) call start_force_spectra(area_spectra, scene, &
+                                                                                             area=.true.)
+        allocate (no_points(0, 0))
         do while (run%step() < scene%n_steps)
             first = run%step()
             m = int(min(int(block, int64), scene%n_steps - first))
@@ -148,26 +179,72 @@ contains
             call run%advance(fault)
             call cpu_time(finish)
             seconds = seconds + (finish - start)
-            if ((spectra%active .and. .not. allocated(fault)) .or. sinks%summarise .or. allocated(sinks%history)) &
-                call run%forces(total, points)
+            if (((spectra%active .or. area_spectra%active) .and. .not. allocated(fault)) .or. sinks%summarise .or. &
+                allocated(sinks%history)) call run%forces(total, points)
             if (spectra%active .and. .not. allocated(fault)) call add_contact_forces(spectra, total, points)
+            if (area_spectra%active .and. .not. allocated(fault)) &
+                call add_contact_forces(area_spectra, sinks%share*count(points > 0.0_dp, dim=2), no_points)
             if (sinks%summarise) call add_forces(sinks%summary, total)
             if (allocated(sinks%history)) sinks%history(first + 1:first + size(total)) = total
-            if (writer%opened) then
-                call run%rows(first, scene%output_every, table)
-                call append_rows(writer, table, error)
+            if (writers(1)%opened) then
+                call run%rows(first, every, table)
+                call append_rows(writers(1), table, error)
+            end if
+            if (writers(2)%opened .and. .not. allocated(error)) then
+                call run%totals(first, scene%output_every, sinks%share, table)
+                call append_rows(writers(2), table, error)
+            end if
+            if (writers(3)%opened .and. .not. allocated(error)) then
+                do k = 1, size(sinks%map_steps)
+                    j = int(sinks%map_steps(k) - first)
+                    if (j < 0 .or. j >= size(run%response%time)) cycle
+                    call append_rows(writers(3), point_rows(run%points, run%response, j, huge(j)), error)
+                    if (allocated(error)) exit
+                end do
             end if
             if (allocated(error) .or. allocated(fault)) exit
             call update_progress(meter, run%step())
         end do
         call finish_progress(meter, run%step())
-        if (allocated(sinks%path)) then
-            call close_run_file(writer, fault, prefix, error)
-        else if (allocated(fault)) then
+        call close_all()
+        if (sinks%scene_spectra) call finish_force_spectra(spectra, scene, method, error)
+        if (area_spectra%active) call finish_force_spectra(area_spectra, scene, method, error)
+
+    contains
+
+        !> End the files: after a failed write, every one is deleted; else each is closed and
+        !> renamed, and a numerical fault becomes `error`, naming the first file, which holds
+        !> the rows before it.
+        subroutine close_all()
+            character(len=:), allocatable :: kept
+
+            if (allocated(error)) then
+                call discard_all()
+                return
+            end if
+            do k = 1, size(writers)
+                if (.not. writers(k)%opened) cycle
+                if (.not. allocated(kept)) kept = writers(k)%path
+                call close_columns(writers(k), error)
+                if (allocated(error)) then
+                    call discard_all()
+                    return
+                end if
+            end do
+            if (.not. allocated(fault)) return
             call move_alloc(fault, error)
             error%message = prefix//error%message
-        end if
-        if (sinks%scene_spectra) call finish_force_spectra(spectra, scene, method, error)
+            if (allocated(kept)) error%message = error%message//' (rows up to then in '//kept//')'
+        end subroutine close_all
+
+        !> Delete the files still open.
+        subroutine discard_all()
+            integer :: w
+
+            do w = 1, size(writers)
+                if (writers(w)%opened) call discard_columns(writers(w))
+            end do
+        end subroutine discard_all
     end subroutine stream_run
 
     !> Add a block's forces to a summary.
@@ -304,6 +381,18 @@ contains
                              response%compression(j::every, 1)], [size(response%time(j::every)), 5])
         end associate
     end subroutine run_rows
+
+    !> The totals rows (t, total force, contact area of `share` [m^2] a point in contact, points
+    !> in contact) of the steps of the block that are multiples of `every` (a multi-point run).
+    subroutine run_totals(self, first, every, share, table)
+        class(contact_run), intent(in) :: self
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: every
+        real(dp), intent(in) :: share
+        real(dp), allocatable, intent(out) :: table(:, :)
+
+        table = totals_table(self%response, first_kept(first, every), every, share)
+    end subroutine run_totals
 
     !> The total contact force of each step of the block and, for a multi-point scene, each
     !> point's, points(step, point) (no columns for one point).
