@@ -118,9 +118,9 @@ module greenconv_ident_ml_types
         !> parameter of the model and of the noise model and 2*ln(2L) per outlier line: it compares
         !> noise models, which chi2 alone does not.
         real(dp) :: likelihood_criterion = 0.0_dp
-        !> In-band poles the data do not determine (sigma_xi/xi >= undetermined_spread or the
-        !> residue within two of its sigma of 0): part of `receptance`, not reported as modes.
-        type(modal_set) :: undetermined
+        !> Whether the data determine each mode (false: sigma_xi/xi >= 0.3 or the residue within two
+        !> of its sigma of 0; such a pole is part of the fitted receptance, not a mode the data give).
+        logical, allocatable :: determined(:)
         !> chi2 of the final model with the weights used (before the chi2/nu rescaling).
         real(dp) :: chi_square = 0.0_dp
         !> Degrees of freedom nu = 2L - P.
@@ -186,7 +186,6 @@ contains
         if (self%modes%n_modes() > 0) ml_receptance = ml_receptance + self%modes%receptance(omega)
         if (self%has_lower) ml_receptance = ml_receptance - self%lower_residual/omega**2
         if (self%outside%n_modes() > 0) ml_receptance = ml_receptance + self%outside%receptance(omega)
-        if (self%undetermined%n_modes() > 0) ml_receptance = ml_receptance + self%undetermined%receptance(omega)
     end function ml_receptance
 
     !> Largest relative standard deviation of a natural frequency, sigma_f/f.
@@ -260,8 +259,10 @@ contains
         end if
         if (self%outside%n_modes() > 0) text = text//', '//int_text(self%outside%n_modes()) &
                                                //' pseudo-mode(s) above the band'
-        if (self%undetermined%n_modes() > 0) text = text//', '//int_text(self%undetermined%n_modes()) &
-                                                    //' pole(s) the data do not determine'
+        if (allocated(self%determined)) then
+            if (.not. all(self%determined)) text = text//', '//int_text(count(.not. self%determined)) &
+                                                   //' of them not determined by the data'
+        end if
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
                                                 //' outlier line(s) left out'

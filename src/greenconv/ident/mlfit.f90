@@ -21,7 +21,11 @@
 !>    a_l = sum_j c_j^2*|G_{l+j}|^2: rho and s from those medians in 16 groups of lines sorted
 !>    by a_l (noise_model's estimate_floor_noise); the weights and the final fit use both, the
 !>    uncertainty too. Suite identreal: 0.1 and 1 % plus a floor of 1e-3 of the peak, the 12
-!>    modes of (a) within 2.7 CRB sigma, the floor within 20 %; `relative` invents modes there. Bias: the lines near sharp resonances, where the difference sees
+!>    modes of (a) within 2.7 CRB sigma, the floor within 20 %; `relative` invents modes there.
+!>    For `band` (sigma_l = rho_b*|G_l|, a measurement whose noise changes along the band) rho_b
+!>    from the median of the relative differences in each of at most 32 bands of lines. `auto`
+!>    runs the whole identification under `relative`, `floor` and `band` and keeps the one of the
+!>    smallest full likelihood criterion (full_criterion: chi2 alone cannot compare noise models). Bias: the lines near sharp resonances, where the difference sees
 !>    the signal, are outliers the median mostly ignores; a fraction eps of them raises the
 !>    median to the 0.5/(1 - eps) quantile, rho^2 too high by about 1.4*eps (7 % for 5 % of
 !>    the lines); the measured |G| in the denominator adds O(rho^2). A floor `noise_floor`*|G_l|
@@ -111,6 +115,8 @@
 !>    information of the final model is singular (two poles merged, a residue the data do not
 !>    see) the mode `merged` names is dropped and the model refitted, so every mode returned has
 !>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
+!>    An in-band pole whose sigma_xi/xi reaches 0.3 or whose residue is within 2 sigma of 0 is
+!>    not determined by the data: result%determined is false for it (it stays in the model).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 !> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
@@ -475,8 +481,8 @@ contains
         end if
         result%e = error_e(data%g, evaluate(model, data%omega))
         result%likelihood_criterion = full_criterion(data, model, result)
-        if (ok) call set_apart_undetermined(result)
-        n = result%modes%n_modes()
+        result%determined = spread(.true., 1, n)
+        if (ok) call mark_undetermined(result)
         do k = 1, n
             band = 2.0_dp*damping_ratio(result%modes%pole(k))*natural_frequency(result%modes%pole(k))/two_pi
             spacing = frf%df()
@@ -521,31 +527,23 @@ contains
                 + (n_parameters(model) + result%noise_parameters + 2*size(result%outlier_line))*data%penalty
     end function full_criterion
 
-    !> Move the modes the data do not determine (sigma_xi/xi >= undetermined_spread, or |r| within
-    !> residue_separation sigma_r of 0) from result%modes to result%undetermined, with their
-    !> standard deviations: the receptance keeps them, the list of modes does not.
-    pure subroutine set_apart_undetermined(result)
+    !> Mark the modes the data do not determine (sigma_xi/xi >= undetermined_spread, or |r| within
+    !> residue_separation sigma_r of 0) in result%determined and say so in a warning: they stay
+    !> in result%modes (the fitted receptance, the engines' structure and the shared poles keep
+    !> them) but are not counted as modes the data give.
+    pure subroutine mark_undetermined(result)
         type(ml_result), intent(inout) :: result
 
-        logical, allocatable :: determined(:)
-
         associate (pole => result%modes%pole, residue => result%modes%residue)
-            determined = result%sigma_damping < undetermined_spread*damping_ratio(pole) &
-                         .and. abs(residue) > residue_separation*result%sigma_residue
-            if (all(determined)) return
-            result%undetermined%pole = pack(pole, .not. determined)
-            result%undetermined%residue = pack(residue, .not. determined)
+            result%determined = result%sigma_damping < undetermined_spread*damping_ratio(pole) &
+                                .and. abs(residue) > residue_separation*result%sigma_residue
         end associate
-        result%modes%pole = pack(result%modes%pole, determined)
-        result%modes%residue = pack(result%modes%residue, determined)
-        result%sigma_frequency = pack(result%sigma_frequency, determined)
-        result%sigma_damping = pack(result%sigma_damping, determined)
-        result%sigma_residue = pack(result%sigma_residue, determined)
-        call add_warning(result, int_text(size(determined) - count(determined))//' pole(s) in the band the data do ' &
+        if (all(result%determined)) return
+        call add_warning(result, int_text(count(.not. result%determined))//' pole(s) in the band the data do ' &
                          //'not determine (sigma_xi/xi >= '//real_text(undetermined_spread)//' or the residue within ' &
-                         //real_text(residue_separation)//' sigma of 0): part of the fitted receptance, not listed ' &
-                         //'as modes')
-    end subroutine set_apart_undetermined
+                         //real_text(residue_separation)//' sigma of 0): part of the fitted receptance, not modes ' &
+                         //'the data give')
+    end subroutine mark_undetermined
 
     !> |G_l - G_model|/sigma_l of each outlier line against the final model (sigma_l as the
     !> fit's weights take it: given, absolute, or level*|G_model|), at most huge.

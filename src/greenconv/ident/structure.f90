@@ -191,13 +191,7 @@ contains
             structure%model = sorted_by_frequency(structure%fit%modes)
         else
             structure%method = 'ml'
-            ! The poles the data do not determine are part of the fitted receptance: the engines keep them.
             structure%model = structure%ml%modes
-            if (structure%ml%undetermined%n_modes() > 0) then
-                structure%model%pole = [structure%model%pole, structure%ml%undetermined%pole]
-                structure%model%residue = [structure%model%residue, structure%ml%undetermined%residue]
-                structure%model = sorted_by_frequency(structure%model)
-            end if
         end if
         structure%identified = .true.
     end subroutine identify_timed
