@@ -65,7 +65,7 @@ contains
                                   '0.1/1/3 %', test_beam_end), &
                      new_unittest('beam: free-free transfer 0.3 L to 0.85 L, another band (not tuned on); 0.1/1/3 %', &
                                   test_beam_transfer), &
-                     new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz on FRFs 1 and 2', &
+                     new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz on FRFs 1 and 2, no other on 1', &
                                   test_measured_beam), &
                      new_unittest('scene: &identification noise_model read, a value not offered refused', &
                                   test_scene_noise_model)]
@@ -254,10 +254,11 @@ contains
 
     !> pyuff's measured beam accelerances (three FRFs, 1..1000 Hz by 1 Hz): the six modes sdypy
     !> finds, 51.5 to 958.5 Hz (their values here as greenconv finds them on FRF 1, within 0.2 %
-    !> of a free-free beam's ratios), each within 0.5 % on FRFs 1 and 2. Not yet checked: FRF 3
-    !> (its fit changes with the build's rounding), the other
-    !> poles found (noted; the lines below 6 Hz and between the modes do not follow the relative
-    !> noise model, issue 26).
+    !> of a free-free beam's ratios), each within 0.5 % among the poles fitted in the band on
+    !> FRFs 1 and 2 (determined by the data or not), and on FRF 1 no further mode the data
+    !> determine. Noted, not checked (issue 26): FRF 3 (its fit changes with the build's
+    !> rounding), the poles the data determine on FRF 2 (chi2/nu 21: the relative model does not
+    !> hold there, its inflated sigma leaves 51.5 and 278.7 Hz undetermined), the time.
     subroutine test_measured_beam(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -266,43 +267,52 @@ contains
         type(ml_options) :: options
         type(ml_result) :: result
         type(error_type), allocatable :: failure
-        real(dp), allocatable :: f(:)
+        real(dp), allocatable :: f(:), fitted(:)
+        real(dp) :: start, finish
         character(len=40) :: text
         character(len=:), allocatable :: problem
-        integer :: j, k
+        integer :: j, k, extra
 
         problem = ''
         do j = 1, 3
             call read_frf(beam_file, frf, failure, j)
             if (allocated(failure)) call check(error, .false., failure%message)
             if (allocated(error)) return
+            call cpu_time(start)
             call identify_ml(frf, options, result, failure)
+            call cpu_time(finish)
             if (allocated(failure)) call check(error, .false., failure%message)
             if (allocated(error)) return
-            f = natural_frequency(result%modes%pole)/two_pi
+            fitted = natural_frequency(result%modes%pole)/two_pi
+            f = pack(fitted, result%determined)
+            extra = size(f)
+            do k = 1, size(expected)
+                if (minval(abs(f - expected(k)), 1) <= 0.005_dp*expected(k)) extra = extra - 1
+            end do
             write (text, '(a,i0)') 'measured beam, FRF ', j
-            call note(trim(text)//': modes found', real(size(f), dp))
+            call note(trim(text)//': modes determined', real(size(f), dp))
             do k = 1, size(f)
                 call note(trim(text)//': f [Hz]', f(k))
-                call note(trim(text)//': xi', damping_ratio(result%modes%pole(k)))
             end do
+            call note(trim(text)//': determined modes besides the six', real(extra, dp))
+            call note(trim(text)//': poles not determined', real(count(.not. result%determined), dp))
             call note(trim(text)//': chi2/nu', result%chi_square/max(result%dof, 1))
             call note(trim(text)//': noise', result%noise_level_fit)
-            call note(trim(text)//': poles besides the six', real(size(f) - size(expected), dp))
-            ! FRF 3 is noted, not checked: its fit depends on the build (release: the six and 16 other
-            ! poles; -O0 -fcheck=all: no mode at all), issue 26.
+            call note(trim(text)//': cpu [s]', finish - start)
             if (j == 3) cycle
             do k = 1, size(expected)
-                if (minval(abs(f - expected(k))) > 0.005_dp*expected(k)) problem = problem//' '//trim(text) &
-                                                                             //': no mode within 0.5 % of ' &
-                                                                             //real_text(expected(k))//' Hz'
+                if (minval(abs(fitted - expected(k)), 1) > 0.005_dp*expected(k)) problem = problem//' '//trim(text) &
+                                                                                   //': no pole within 0.5 % of ' &
+                                                                                   //real_text(expected(k))//' Hz'
             end do
+            if (j == 1 .and. extra > 0) problem = problem//' '//trim(text)//': '//real_text(real(extra, dp)) &
+                                                  //' determined mode(s) besides the six'
         end do
         call check(error, len(problem) == 0, problem)
     end subroutine test_measured_beam
 
-    !> `&identification noise_model` reaches the scene ('floor'); 'auto' is refused with the
-    !> group, the variable and the values offered.
+    !> `&identification noise_model` reaches the scene ('floor', 'auto'); another value is refused
+    !> with the group, the variable and the values offered.
     subroutine test_scene_noise_model(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -316,7 +326,12 @@ contains
         call check(error, scene%ident_noise == 'floor', 'noise_model read: '//scene%ident_noise)
         if (allocated(error)) return
         call read_scene_text(dir, 'noise_model.nml', scene_text('auto'), scene, failure)
-        call check(error, allocated(failure), 'noise_model = ''auto'' refused')
+        if (allocated(failure)) call check(error, .false., failure%message)
+        if (allocated(error)) return
+        call check(error, scene%ident_noise == 'auto', 'noise_model read: '//scene%ident_noise)
+        if (allocated(error)) return
+        call read_scene_text(dir, 'noise_model.nml', scene_text('coherence'), scene, failure)
+        call check(error, allocated(failure), 'noise_model = ''coherence'' refused')
         if (allocated(error)) return
         call check(error, index(failure%message, 'noise_model') > 0 .and. index(failure%message, 'floor') > 0, &
                    'the message names the variable and the values: '//failure%message)

@@ -71,6 +71,8 @@ module greenconv_ident_lm_fit
         logical :: relative = .false.
         !> Noise floor s [m/N] of the 'floor' model: sigma_l^2 = (level*|G_l|)^2 + s^2 (0: none).
         real(dp) :: absolute_floor = 0.0_dp
+        !> Level rho_b of each line used, for the 'band' noise model (not allocated otherwise).
+        real(dp), allocatable :: line_level(:)
         !> Most Levenberg-Marquardt iterations of a fit.
         integer :: max_iterations = 60
         !> Most modes of a model in the order search.
@@ -367,6 +369,8 @@ contains
 
         if (data%relative .and. data%absolute_floor > 0.0_dp) then
             data%weight = 1.0_dp/max(hypot(data%level*abs(evaluate(model, data%omega)), data%absolute_floor), data%floor)
+        else if (data%relative .and. allocated(data%line_level)) then
+            data%weight = 1.0_dp/max(data%line_level*abs(evaluate(model, data%omega)), data%floor)
         else if (data%relative) then
             data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
         end if
@@ -580,6 +584,7 @@ contains
         data%g = pack(data%g, keep)
         data%weight = pack(data%weight, keep)
         data%floor = pack(data%floor, keep)
+        if (allocated(data%line_level)) data%line_level = pack(data%line_level, keep)
         data%penalty = log(2.0_dp*size(data%g))
     end subroutine leave_out
 

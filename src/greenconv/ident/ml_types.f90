@@ -33,9 +33,12 @@ module greenconv_ident_ml_types
         integer :: max_order = 30
         !> Noise standard deviation per line [m/N] (E|n_l|^2 = sigma_l^2); estimated when not allocated.
         real(dp), allocatable :: sigma(:)
-        !> Noise model of the estimate: 'relative' (sigma_l = rho*|G_l|), 'absolute' (sigma_l = sigma)
-        !> or 'floor' (sigma_l^2 = (rho*|G_l|)^2 + s^2: a measurement's coherence-limited floor s [m/N]
-        !> under its relative noise, both estimated from the data).
+        !> Noise model of the estimate: 'relative' (sigma_l = rho*|G_l|), 'absolute' (sigma_l = sigma),
+        !> 'floor' (sigma_l^2 = (rho*|G_l|)^2 + s^2: a measurement's coherence-limited floor s [m/N]
+        !> under its relative noise, both estimated from the data), 'band' (sigma_l = rho_b*|G_l|, one
+        !> level rho_b per band of lines: a measurement whose noise changes along the band) or 'auto'
+        !> (each of 'relative', 'floor' and 'band' fitted, the one of the smallest full likelihood
+        !> criterion kept: result%noise_model says which).
         character(len=16) :: noise_model = 'relative'
         !> Smallest noise level, relative to |G_l| (clean data are fitted to round-off above it).
         real(dp) :: noise_floor = 1.0e-13_dp
@@ -103,6 +106,21 @@ module greenconv_ident_ml_types
         logical :: noise_estimated = .false.
         !> Noise floor s [m/N] of the 'floor' noise model, estimated with noise_level (0 otherwise).
         real(dp) :: noise_floor_level = 0.0_dp
+        !> Noise model used: 'relative', 'absolute', 'floor', 'band' (the one 'auto' chose) or 'given'.
+        character(len=16) :: noise_model = ''
+        !> Parameters of the noise model estimated from the data (rho; rho and s; one rho_b per band).
+        integer :: noise_parameters = 0
+        !> Noise levels estimated per band of lines (the 'band' model; empty otherwise): the
+        !> smallest and largest rho_b.
+        real(dp) :: band_level_range(2) = 0.0_dp
+        !> Full likelihood criterion of the final model: -2 ln(likelihood) with the noise scale
+        !> refitted, 2L*ln(chi2/(2L)) + 2L + 2*sum ln sigma_l^2 (sigma_l [m/N]), plus ln(2L) per
+        !> parameter of the model and of the noise model and 2*ln(2L) per outlier line: it compares
+        !> noise models, which chi2 alone does not.
+        real(dp) :: likelihood_criterion = 0.0_dp
+        !> Whether the data determine each mode (false: sigma_xi/xi >= 0.3 or the residue within two
+        !> of its sigma of 0; such a pole is part of the fitted receptance, not a mode the data give).
+        logical, allocatable :: determined(:)
         !> chi2 of the final model with the weights used (before the chi2/nu rescaling).
         real(dp) :: chi_square = 0.0_dp
         !> Degrees of freedom nu = 2L - P.
@@ -225,6 +243,9 @@ contains
         text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
         if (self%noise_floor_level > 0.0_dp) then
             text = text//' of |G| and a floor of '//sci_text(self%noise_floor_level)//' m/N (estimated from the data)'
+        else if (self%noise_model == 'band') then
+            text = text//' of |G| (rms; estimated per band of lines, from '//sci_text(self%band_level_range(1)) &
+                   //' to '//sci_text(self%band_level_range(2))//')'
         else if (self%noise_estimated) then
             text = text//' of |G| (estimated from the data)'
         else
@@ -238,6 +259,10 @@ contains
         end if
         if (self%outside%n_modes() > 0) text = text//', '//int_text(self%outside%n_modes()) &
                                                //' pseudo-mode(s) above the band'
+        if (allocated(self%determined)) then
+            if (.not. all(self%determined)) text = text//', '//int_text(count(.not. self%determined)) &
+                                                   //' of them not determined by the data'
+        end if
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
                                                 //' outlier line(s) left out'

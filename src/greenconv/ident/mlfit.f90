@@ -21,7 +21,11 @@
 !>    a_l = sum_j c_j^2*|G_{l+j}|^2: rho and s from those medians in 16 groups of lines sorted
 !>    by a_l (noise_model's estimate_floor_noise); the weights and the final fit use both, the
 !>    uncertainty too. Suite identreal: 0.1 and 1 % plus a floor of 1e-3 of the peak, the 12
-!>    modes of (a) within 2.7 CRB sigma, the floor within 20 %; `relative` invents modes there. Bias: the lines near sharp resonances, where the difference sees
+!>    modes of (a) within 2.7 CRB sigma, the floor within 20 %; `relative` invents modes there.
+!>    For `band` (sigma_l = rho_b*|G_l|, a measurement whose noise changes along the band) rho_b
+!>    from the median of the relative differences in each of at most 32 bands of lines. `auto`
+!>    runs the whole identification under `relative`, `floor` and `band` and keeps the one of the
+!>    smallest full likelihood criterion (full_criterion: chi2 alone cannot compare noise models). Bias: the lines near sharp resonances, where the difference sees
 !>    the signal, are outliers the median mostly ignores; a fraction eps of them raises the
 !>    median to the 0.5/(1 - eps) quantile, rho^2 too high by about 1.4*eps (7 % for 5 % of
 !>    the lines); the measured |G| in the denominator adds O(rho^2). A floor `noise_floor`*|G_l|
@@ -111,6 +115,8 @@
 !>    information of the final model is singular (two poles merged, a residue the data do not
 !>    see) the mode `merged` names is dropped and the model refitted, so every mode returned has
 !>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
+!>    An in-band pole whose sigma_xi/xi reaches 0.3 or whose residue is within 2 sigma of 0 is
+!>    not determined by the data: result%determined is false for it (it stays in the model).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 !> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
@@ -190,6 +196,11 @@ module greenconv_ident_mlfit
     real(dp), parameter :: outside_ceiling = 10.0_dp
     !> Most pseudo-modes tried above the band, one at a time.
     integer, parameter :: max_outside = 3
+    !> The noise models noise_model = 'auto' compares by the full likelihood.
+    character(len=8), parameter :: auto_models(3) = [character(len=8) :: 'relative', 'floor', 'band']
+    !> An in-band pole whose sigma_xi/xi reaches this (or whose residue is within
+    !> residue_separation sigma of 0) is not determined by the data: not reported as a mode.
+    real(dp), parameter :: undetermined_spread = 0.3_dp, residue_separation = 2.0_dp
 
 contains
 
@@ -205,6 +216,38 @@ contains
         !> Set on bad input or a numerical failure.
         type(error_type), allocatable, intent(out) :: error
 
+        type(ml_options) :: trial_options
+        type(ml_result) :: trial
+        integer :: i
+
+        call check_input(frf, options, error)
+        if (allocated(error)) return
+        if (options%noise_model /= 'auto' .or. allocated(options%sigma)) then
+            call identify_with(frf, options, result, error)
+            return
+        end if
+        ! 'auto': the whole identification under each noise model; the full likelihood (with the
+        ! noise scale refitted and every parameter priced, noise model included) decides.
+        trial_options = options
+        do i = 1, size(auto_models)
+            trial_options%noise_model = auto_models(i)
+            call identify_with(frf, trial_options, trial, error)
+            if (allocated(error)) return
+            if (i == 1) then
+                result = trial
+            else if (trial%likelihood_criterion < result%likelihood_criterion) then
+                result = trial
+            end if
+        end do
+    end subroutine identify_ml
+
+    !> identify_ml under one noise model (not 'auto'), the input checked.
+    subroutine identify_with(frf, options, result, error)
+        type(frf_type), intent(in) :: frf
+        type(ml_options), intent(in) :: options
+        type(ml_result), intent(out) :: result
+        type(error_type), allocatable, intent(out) :: error
+
         type(data_type) :: data
         type(model_type) :: model
         type(frf_type) :: repaired
@@ -212,8 +255,6 @@ contains
         integer :: outlier, pass
         logical :: allow_lower
 
-        call check_input(frf, options, error)
-        if (allocated(error)) return
         allocate (result%outlier_line(0), result%outlier_frequency(0), result%outlier_excess(0))
         allow_lower = any(options%residual_terms == [character(len=8) :: 'auto', 'lower', 'both'])
         repaired = frf
@@ -258,7 +299,7 @@ contains
             if (allocated(error)) return
         end if
         call finish(frf, data, options, model, result)
-    end subroutine identify_ml
+    end subroutine identify_with
 
     !> Modes above the band as pseudo-modes (step 8 of the description): one pole started above
     !> f_max at each of outside_start, fitted with the model; the best kept when it lowers the
@@ -357,9 +398,9 @@ contains
                                                       'both'])) then
             call fatal_error(error, "identify_ml: residual_terms must be 'auto', 'none', 'upper', 'lower' or " &
                              //"'both', found '"//trim(options%residual_terms)//"'")
-        else if (all(options%noise_model /= [character(len=8) :: 'relative', 'absolute', 'floor'])) then
-            call fatal_error(error, "identify_ml: noise_model must be 'relative', 'absolute' or 'floor', found '" &
-                             //trim(options%noise_model)//"'")
+        else if (all(options%noise_model /= [character(len=8) :: 'relative', 'absolute', 'floor', 'band', 'auto'])) then
+            call fatal_error(error, "identify_ml: noise_model must be 'relative', 'absolute', 'floor', 'band' or " &
+                             //"'auto', found '"//trim(options%noise_model)//"'")
         else if (all(options%outside_modes /= [character(len=8) :: 'auto', 'none'])) then
             call fatal_error(error, "identify_ml: outside_modes must be 'auto' or 'none', found '" &
                              //trim(options%outside_modes)//"'")
@@ -439,6 +480,9 @@ contains
                              //'term the data do not determine): uncertainties not available (written as huge)')
         end if
         result%e = error_e(data%g, evaluate(model, data%omega))
+        result%likelihood_criterion = full_criterion(data, model, result)
+        result%determined = spread(.true., 1, n)
+        if (ok) call mark_undetermined(result)
         do k = 1, n
             band = 2.0_dp*damping_ratio(result%modes%pole(k))*natural_frequency(result%modes%pole(k))/two_pi
             spacing = frf%df()
@@ -466,6 +510,41 @@ contains
         end if
     end subroutine finish
 
+    !> The full likelihood criterion of the final model (ml_result%likelihood_criterion): with
+    !> sigma_l = c*s_l (s_l the fit's 1/weight) and the scale c refitted, -2 ln(likelihood) is
+    !> 2L*ln(chi2/(2L)) + 2L + 2*sum ln s_l^2 up to a constant (each line's complex Gaussian has
+    !> density exp(-|e_l|^2/sigma_l^2)/(pi*sigma_l^2)); MDL adds ln(2L) per parameter of the model
+    !> and of the noise model and 2*ln(2L) per outlier line left out.
+    pure real(dp) function full_criterion(data, model, result) result(value)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(in) :: model
+        type(ml_result), intent(in) :: result
+
+        real(dp) :: two_l
+
+        two_l = 2.0_dp*size(data%g)
+        value = two_l*log(max(result%chi_square, tiny(1.0_dp))/two_l) + two_l - 4.0_dp*sum(log(data%weight)) &
+                + (n_parameters(model) + result%noise_parameters + 2*size(result%outlier_line))*data%penalty
+    end function full_criterion
+
+    !> Mark the modes the data do not determine (sigma_xi/xi >= undetermined_spread, or |r| within
+    !> residue_separation sigma_r of 0) in result%determined and say so in a warning: they stay
+    !> in result%modes (the fitted receptance, the engines' structure and the shared poles keep
+    !> them) but are not counted as modes the data give.
+    pure subroutine mark_undetermined(result)
+        type(ml_result), intent(inout) :: result
+
+        associate (pole => result%modes%pole, residue => result%modes%residue)
+            result%determined = result%sigma_damping < undetermined_spread*damping_ratio(pole) &
+                                .and. abs(residue) > residue_separation*result%sigma_residue
+        end associate
+        if (all(result%determined)) return
+        call add_warning(result, int_text(count(.not. result%determined))//' pole(s) in the band the data do ' &
+                         //'not determine (sigma_xi/xi >= '//real_text(undetermined_spread)//' or the residue within ' &
+                         //real_text(residue_separation)//' sigma of 0): part of the fitted receptance, not modes ' &
+                         //'the data give')
+    end subroutine mark_undetermined
+
     !> |G_l - G_model|/sigma_l of each outlier line against the final model (sigma_l as the
     !> fit's weights take it: given, absolute, or level*|G_model|), at most huge.
     pure subroutine outlier_excess(frf, data, options, model, result)
@@ -486,6 +565,8 @@ contains
                 sigma = options%sigma(l)
             else if (data%relative .and. data%absolute_floor > 0.0_dp) then
                 sigma = hypot(data%level*abs(g_model(1)), data%absolute_floor)
+            else if (data%relative .and. allocated(data%line_level)) then
+                sigma = data%line_level(minloc(abs(data%line - l), 1))*abs(g_model(1))
             else if (data%relative) then
                 sigma = max(data%level, options%noise_floor)*abs(g_model(1))
             else

@@ -30,6 +30,8 @@ module greenconv_ident_noise_model
     !> mode lost); with it the same FRFs give the five modes to 1e-7 in 30-70 iterations.
     !> Where the estimated noise spans less than 80 dB nothing changes.
     real(dp), parameter :: dynamic_range = 1.0e-4_dp
+    !> The 'band' noise model: at most this many bands, each of at least band_lines lines.
+    integer, parameter :: max_bands = 32, band_lines = 32
 
 contains
 
@@ -42,22 +44,38 @@ contains
         character(len=*), intent(in) :: noise_model
 
         real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
-        real(dp) :: q(size(receptance) - 4), m
-        complex(dp) :: d
+        real(dp) :: q(size(receptance) - 4)
+        integer :: l
+
+        if (noise_model == 'absolute') then
+            do l = 1, size(q)
+                q(l) = abs(sum(c*receptance(l:l + 4)))**2
+            end do
+        else
+            q = relative_differences(receptance)
+        end if
+        level = sqrt(median(q)/log(2.0_dp))
+    end function estimate_noise
+
+    !> The squared 4th differences of G relative to the lines they span, |d_l|^2/sum_j c_j^2*|G_{l+j}|^2
+    !> (d_l = sum_j c_j*G_{l+j}, sum c_j^2 = 1): rho^2 times an exponential variable where G is
+    !> smooth over five lines and the noise relative.
+    pure function relative_differences(receptance) result(q)
+        !> Receptance lines [m/N] on a uniform grid (at least 5).
+        complex(dp), intent(in) :: receptance(:)
+        !> One value per difference, size(receptance) - 4.
+        real(dp) :: q(size(receptance) - 4)
+
+        real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
+        real(dp) :: m
         integer :: l
 
         do l = 1, size(q)
-            d = sum(c*receptance(l:l + 4))
-            if (noise_model == 'absolute') then
-                q(l) = abs(d)**2
-            else
-                ! Scaled by the largest |G| of the five lines: no overflow for any finite G.
-                m = max(maxval(abs(receptance(l:l + 4))), tiny(1.0_dp))
-                q(l) = abs(d/m)**2/max(sum(c**2*abs(receptance(l:l + 4)/m)**2), tiny(1.0_dp))
-            end if
+            ! Scaled by the largest |G| of the five lines: no overflow for any finite G.
+            m = max(maxval(abs(receptance(l:l + 4))), tiny(1.0_dp))
+            q(l) = abs(sum(c*receptance(l:l + 4))/m)**2/max(sum(c**2*abs(receptance(l:l + 4)/m)**2), tiny(1.0_dp))
         end do
-        level = sqrt(median(q)/log(2.0_dp))
-    end function estimate_noise
+    end function relative_differences
 
     !> Noise of the 'floor' model, sigma_l^2 = (rho*|G_l|)^2 + s^2, from the smoothness of G: the
     !> 4th difference d_l (as estimate_noise) has E|d_l|^2 = rho^2*a_l + s^2, a_l = sum_j c_j^2*|G_{l+j}|^2.
@@ -125,6 +143,39 @@ contains
         floor_level = sqrt(s2)*scale
     end subroutine estimate_floor_noise
 
+    !> Noise of the 'band' model, sigma_l = rho_b*|G_l| with one level per band of neighbouring
+    !> lines (a measurement whose coherence changes along the band: the lines below 20 Hz of
+    !> pyuff's beam, whose phase wanders by up to 180 degrees between neighbours, are 10 times
+    !> noisier than those between its modes). The 4th differences q_l of estimate_noise's
+    !> relative model are cut into n_bands groups of equal count (at most max_bands, each at
+    !> least band_lines), rho_b^2 = median(q)/ln 2 in each (the median ignores the lines near
+    !> an under-resolved peak, as in estimate_noise); each line takes the level of the group of
+    !> the difference centred on it. Too few lines for two bands: one band ('relative').
+    pure subroutine estimate_band_noise(receptance, line_level, n_bands)
+        !> Receptance lines [m/N] on a uniform grid (at least 5).
+        complex(dp), intent(in) :: receptance(:)
+        !> rho_b of each line, relative to |G|.
+        real(dp), intent(out) :: line_level(size(receptance))
+        !> Number of bands (noise parameters).
+        integer, intent(out) :: n_bands
+
+        real(dp) :: q(size(receptance) - 4), level
+        integer :: b, n, first, last
+
+        n = size(q)
+        q = relative_differences(receptance)
+        n_bands = max(1, min(max_bands, n/band_lines))
+        do b = 1, n_bands
+            first = 1 + ((b - 1)*n)/n_bands
+            last = (b*n)/n_bands
+            level = sqrt(median(q(first:last))/log(2.0_dp))
+            ! Line l + 2 is the centre of difference l; the two lines at each end take the nearest band.
+            if (b == 1) first = -1
+            if (b == n_bands) last = n + 2
+            line_level(first + 2:last + 2) = level
+        end do
+    end subroutine estimate_band_noise
+
     !> sqrt of the mean of |G|^2 over each line and its two neighbours on each side: the scale
     !> of the relative noise model during the order search, with the noise of |G| in the
     !> weights reduced by sqrt(5) and no dependence on a model (a model-based weight would
@@ -170,18 +221,26 @@ contains
         !> The weighted data.
         type(data_type), intent(out) :: data
 
-        real(dp) :: sigma(frf%n_freq()), floor(frf%n_freq())
+        real(dp) :: sigma(frf%n_freq()), floor(frf%n_freq()), line_level(frf%n_freq())
         logical :: used(frf%n_freq())
         integer :: l
 
         floor(:) = max(options%noise_floor*abs(frf%receptance), tiny(1.0_dp)*1.0e10_dp)
         result%noise_level = 1.0_dp
         result%noise_estimated = .not. allocated(options%sigma)
+        result%noise_model = options%noise_model
+        result%noise_parameters = merge(2, 1, options%noise_model == 'floor')
         if (allocated(options%sigma)) then
             sigma(:) = options%sigma
+            result%noise_model = 'given'
+            result%noise_parameters = 0
         else
             if (options%noise_model == 'floor') then
                 call estimate_floor_noise(frf%receptance, result%noise_level, result%noise_floor_level)
+            else if (options%noise_model == 'band') then
+                call estimate_band_noise(frf%receptance, line_level, result%noise_parameters)
+                result%noise_level = sqrt(sum(line_level**2)/size(line_level))
+                result%band_level_range = [minval(line_level), maxval(line_level)]
             else
                 result%noise_level = estimate_noise(frf%receptance, options%noise_model)
             end if
@@ -189,6 +248,9 @@ contains
                 sigma(:) = result%noise_level
             else if (options%noise_model == 'floor') then
                 sigma(:) = hypot(result%noise_level*smoothed_magnitude(frf%receptance), result%noise_floor_level)
+                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
+            else if (options%noise_model == 'band') then
+                sigma(:) = line_level*smoothed_magnitude(frf%receptance)
                 sigma(:) = max(sigma, dynamic_range*maxval(sigma))
             else
                 sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
@@ -212,6 +274,7 @@ contains
         data%relative = result%noise_estimated .and. options%noise_model /= 'absolute'
         data%level = result%noise_level
         data%absolute_floor = result%noise_floor_level
+        if (data%relative .and. options%noise_model == 'band') data%line_level = line_level(data%line)
     end subroutine prepare_data
 
     !> Lines whose |G| exceeds the median |G| of the nonzero lines above 0 Hz by more than

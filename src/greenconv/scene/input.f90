@@ -346,8 +346,8 @@ contains
                      //"method = 'lsce')", order)
         this%order = order
         this%ident_method = trim(method)
-        call require(any(trim(noise_model) == ['relative', 'floor   ']), error, this, 'identification', &
-                     'noise_model', "'relative' or 'floor'", noise_model)
+        call require(any(trim(noise_model) == ['relative', 'floor   ', 'band    ', 'auto    ']), error, this, &
+                     'identification', 'noise_model', "'relative', 'floor', 'band' or 'auto'", noise_model)
         this%ident_noise = trim(noise_model)
     end subroutine read_identification_group
 

@@ -260,8 +260,9 @@ contains
             //"the shared poles: 'ml' (summed driving points), 'poly_reference' (every column) or 'auto' ('': " &
             //"both, the smaller worst E kept)", '')
         call add(rows, n, 'identification', 'noise_model', value_text, 'relative', '', &
-            "the noise of G for method 'ml': 'relative' (of |G|) or 'floor' (relative plus a floor)", '', &
-            choices=[character(len=16) :: 'relative', 'floor'])
+            "the noise of G for method 'ml': 'relative' (of |G|), 'floor' (relative plus a floor), 'band' (relative, " &
+            //"one level per band of lines) or 'auto' (the one of the highest likelihood)", '', &
+            choices=[character(len=16) :: 'relative', 'floor', 'band', 'auto'])
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
             "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
             choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])
