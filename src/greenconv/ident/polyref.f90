@@ -63,17 +63,50 @@ module greenconv_ident_polyref
     !> Step between the orders of the common denominator tried.
     integer, parameter :: common_step = 6
 
+    !> A least-squares problem in the poles for `levenberg_marquardt`: its data travel with it,
+    !> so no internal procedure is passed as an argument (that would need an executable stack).
+    type, abstract :: pole_problem
+    contains
+        !> The misfit of given poles and, when asked, its normal equations.
+        procedure(pole_system), deferred :: system
+    end type pole_problem
+
     abstract interface
         !> The misfit of the poles `trial` [rad/s] (huge and ok false when it cannot be computed)
         !> and, when asked, the Gauss-Newton normal matrix and gradient in (Re, Im) of each pole.
-        subroutine pole_system(trial, cost, ok, normal, gradient)
-            import :: dp
+        subroutine pole_system(self, trial, cost, ok, normal, gradient)
+            import :: dp, pole_problem
+            class(pole_problem), intent(in) :: self
             complex(dp), intent(in) :: trial(:)
             real(dp), intent(out) :: cost
             logical, intent(out) :: ok
             real(dp), allocatable, intent(out), optional :: normal(:, :), gradient(:)
         end subroutine pole_system
     end interface
+
+    !> The common-weight fit of `refine_shared`: every target weighted by one weight per line.
+    type, extends(pole_problem) :: shared_problem
+        !> Line frequencies [Hz].
+        real(dp), allocatable :: frequency(:)
+        !> The stacked real targets (Re, Im per line) of every receptance.
+        real(dp), allocatable :: targets(:, :)
+        !> The weight of each line [1/(m/N)].
+        real(dp), allocatable :: weight(:)
+    contains
+        procedure :: system => shared_system
+    end type shared_problem
+
+    !> The maximum-likelihood fit of `refine_weighted`: each receptance with its own weights.
+    type, extends(pole_problem) :: weighted_problem
+        !> Line frequencies [Hz].
+        real(dp), allocatable :: frequency(:)
+        !> The receptances (line, target) [m/N].
+        complex(dp), allocatable :: y(:, :)
+        !> Their weights (line, target) [1/(m/N)].
+        real(dp), allocatable :: w(:, :)
+    contains
+        procedure :: system => weighted_problem_system
+    end type weighted_problem
 
 contains
 
@@ -370,57 +403,61 @@ contains
         real(dp), intent(in) :: frequency(:), targets(:, :), weight(:)
         complex(dp), intent(inout) :: pole(:)
 
-        call levenberg_marquardt(shared_system, pole, 30, 1.0e-9_dp)
+        type(shared_problem) :: problem
 
-    contains
-
-        !> The misfit of the common-weight linear fit for these poles and its normal equations.
-        subroutine shared_system(trial, cost, ok, normal, gradient)
-            complex(dp), intent(in) :: trial(:)
-            real(dp), intent(out) :: cost
-            logical, intent(out) :: ok
-            real(dp), allocatable, intent(out), optional :: normal(:, :), gradient(:)
-
-            real(dp), allocatable :: x(:, :), rest(:, :), gu(:, :), ur(:, :), u(:, :), coefficient(:, :)
-            integer :: n_m, t, k
-
-            cost = huge(1.0_dp)
-            call linear_fit(frequency, trial, targets, weight, x, rest, ok)
-            if (.not. ok) return
-            cost = sum(rest**2)
-            if (.not. present(normal)) return
-            n_m = size(trial)
-            call projected_derivatives(frequency, trial, weight, u, ok)
-            if (.not. ok) return
-            gu = matmul(transpose(u), u)
-            ur = matmul(transpose(u), rest)
-            allocate (normal(2*n_m, 2*n_m), gradient(2*n_m), coefficient(4*n_m, 2*n_m))
-            normal(:, :) = 0.0_dp
-            gradient(:) = 0.0_dp
-            do t = 1, size(targets, 2)
-                coefficient(:, :) = 0.0_dp
-                do k = 1, n_m
-                    associate (a => x(2*k - 1, t), b => x(2*k, t))
-                        ! Re lambda: R d + conj(R) e; Im lambda: i R d - i conj(R) e (R = a + i b)
-                        coefficient(4*k - 3:4*k, 2*k - 1) = [a, b, a, -b]
-                        coefficient(4*k - 3:4*k, 2*k) = [-b, a, -b, -a]
-                    end associate
-                end do
-                normal = normal + matmul(transpose(coefficient), matmul(gu, coefficient))
-                gradient = gradient + matmul(transpose(coefficient), ur(:, t))
-            end do
-        end subroutine shared_system
+        problem%frequency = frequency
+        problem%targets = targets
+        problem%weight = weight
+        call levenberg_marquardt(problem, pole, 30, 1.0e-9_dp)
 
     end subroutine refine_shared
+
+    !> The misfit of the common-weight linear fit for these poles and its normal equations.
+    subroutine shared_system(self, trial, cost, ok, normal, gradient)
+        class(shared_problem), intent(in) :: self
+        complex(dp), intent(in) :: trial(:)
+        real(dp), intent(out) :: cost
+        logical, intent(out) :: ok
+        real(dp), allocatable, intent(out), optional :: normal(:, :), gradient(:)
+
+        real(dp), allocatable :: x(:, :), rest(:, :), gu(:, :), ur(:, :), u(:, :), coefficient(:, :)
+        integer :: n_m, t, k
+
+        cost = huge(1.0_dp)
+        call linear_fit(self%frequency, trial, self%targets, self%weight, x, rest, ok)
+        if (.not. ok) return
+        cost = sum(rest**2)
+        if (.not. present(normal)) return
+        n_m = size(trial)
+        call projected_derivatives(self%frequency, trial, self%weight, u, ok)
+        if (.not. ok) return
+        gu = matmul(transpose(u), u)
+        ur = matmul(transpose(u), rest)
+        allocate (normal(2*n_m, 2*n_m), gradient(2*n_m), coefficient(4*n_m, 2*n_m))
+        normal(:, :) = 0.0_dp
+        gradient(:) = 0.0_dp
+        do t = 1, size(self%targets, 2)
+            coefficient(:, :) = 0.0_dp
+            do k = 1, n_m
+                associate (a => x(2*k - 1, t), b => x(2*k, t))
+                    ! Re lambda: R d + conj(R) e; Im lambda: i R d - i conj(R) e (R = a + i b)
+                    coefficient(4*k - 3:4*k, 2*k - 1) = [a, b, a, -b]
+                    coefficient(4*k - 3:4*k, 2*k) = [-b, a, -b, -a]
+                end associate
+            end do
+            normal = normal + matmul(transpose(coefficient), matmul(gu, coefficient))
+            gradient = gradient + matmul(transpose(coefficient), ur(:, t))
+        end do
+    end subroutine shared_system
 
     !> Levenberg-Marquardt on the poles (Re lambda_k, Im lambda_k) with the Gauss-Newton normal
     !> equations of `system`: the damping mu starts at 1e-4, a trial is kept only when it lowers
     !> the misfit and keeps every pole stable (so the result is never worse than the start), mu
     !> rises tenfold per refused trial (at most 10) and falls tenfold per kept one; it stops when
     !> a step gains less than `tolerance` of the misfit.
-    subroutine levenberg_marquardt(system, pole, max_iterations, tolerance)
+    subroutine levenberg_marquardt(problem, pole, max_iterations, tolerance)
         !> The misfit of given poles and, when asked, its normal matrix and gradient.
-        procedure(pole_system) :: system
+        class(pole_problem), intent(in) :: problem
         !> In: the start; out: the refined poles [rad/s].
         complex(dp), intent(inout) :: pole(:)
         !> Largest number of iterations.
@@ -436,13 +473,13 @@ contains
 
         mu = 1.0e-4_dp
         do iteration = 1, max_iterations
-            call system(pole, cost, ok, normal, gradient)
+            call problem%system(pole, cost, ok, normal, gradient)
             if (.not. ok) return
             accepted = .false.
             do attempt = 1, 10
                 call damped_trial(normal, gradient, mu, pole, trial, ok)
                 if (ok) then
-                    call system(trial, cost_trial, ok)
+                    call problem%system(trial, cost_trial, ok)
                     if (ok .and. cost_trial < cost) then
                         accepted = .true.
                         exit
@@ -486,6 +523,7 @@ contains
         real(dp) :: cost, rho2
         integer :: n_c, i, j, q, pass, k
         logical :: ok
+        type(weighted_problem) :: problem
 
         n_c = size(g, 1)
         allocate (y(size(frequency), n_c*(n_c + 1)/2), factor(n_c*(n_c + 1)/2))
@@ -499,12 +537,15 @@ contains
         end do
         ! a magnitude far below the receptance's own rms counts as that floor (no line dominates)
         least = 1.0e-6_dp*sqrt(sum(abs(y)**2, dim=1)/size(frequency))
+        problem%frequency = frequency
+        problem%y = y
         do
             model = y
             do pass = 1, passes
                 if (size(pole) == 0) return
                 w = spread(factor, 1, size(frequency))/max(abs(model), spread(least, 1, size(frequency)))
-                call levenberg_marquardt(system, pole, 20, tolerance)
+                problem%w = w
+                call levenberg_marquardt(problem, pole, 20, tolerance)
                 call weighted_system(frequency, y, w, pole, cost, model, ok)
                 if (.not. ok) return
             end do
@@ -524,24 +565,24 @@ contains
             rho2 = cost/max(1.0_dp, size(y) - 0.5_dp*(2*size(pole) + size(y, 2)*(2*size(pole) + 2)))
             if (gain(k)/rho2 >= size(y, 2) + 1 + 5.0_dp*sqrt(size(y, 2) + 1.0_dp)) exit
             pole = [pole(:k - 1), pole(k + 1:)]
-            call levenberg_marquardt(system, pole, 20, tolerance)
+            problem%w = w
+            call levenberg_marquardt(problem, pole, 20, tolerance)
         end do
 
-    contains
-
-        !> The weighted misfit of given poles and, when asked, its normal equations.
-        subroutine system(trial, cost, ok, normal, gradient)
-            complex(dp), intent(in) :: trial(:)
-            real(dp), intent(out) :: cost
-            logical, intent(out) :: ok
-            real(dp), allocatable, intent(out), optional :: normal(:, :), gradient(:)
-
-            complex(dp), allocatable :: trial_model(:, :)
-
-            call weighted_system(frequency, y, w, trial, cost, trial_model, ok, normal, gradient)
-        end subroutine system
-
     end subroutine refine_weighted
+
+    !> The weighted misfit of given poles and, when asked, its normal equations.
+    subroutine weighted_problem_system(self, trial, cost, ok, normal, gradient)
+        class(weighted_problem), intent(in) :: self
+        complex(dp), intent(in) :: trial(:)
+        real(dp), intent(out) :: cost
+        logical, intent(out) :: ok
+        real(dp), allocatable, intent(out), optional :: normal(:, :), gradient(:)
+
+        complex(dp), allocatable :: trial_model(:, :)
+
+        call weighted_system(self%frequency, self%y, self%w, trial, cost, trial_model, ok, normal, gradient)
+    end subroutine weighted_problem_system
 
     !> One Levenberg-Marquardt trial: the poles moved by the solution of the normal equations
     !> with their diagonal raised by the factor 1 + mu; ok is false when that matrix is not
