@@ -281,13 +281,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path
         real(dp) :: seconds, estimate
         integer :: i, n
 
         if (scene%spectra) then
             call spectra_line(scene, text)
-            write (unit, '(a)') '# '//text//': '//spectra_path(scene, '<method>')
+            call spectra_path(scene, '<method>', path)
+            write (unit, '(a)') '# '//text//': '//path
         end if
         write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
         outside = ''

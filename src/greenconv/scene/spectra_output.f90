@@ -57,21 +57,23 @@ module greenconv_scene_spectra_output
 contains
 
     !> Path of a method's spectra file: `<output_dir>/<name>_<method>_spectra.dat`, or of its
-    !> contact area's, `<output_dir>/<name>_<method>_area_spectra.dat`.
-    function spectra_path(scene, method, area) result(path)
+    !> contact area's, `<output_dir>/<name>_<method>_area_spectra.dat` (a subroutine: a
+    !> deferred-length function result keeps its length in a static shared by threads).
+    subroutine spectra_path(scene, method, path, area)
         !> The scene.
         type(scene_type), intent(in) :: scene
         !> Method name.
         character(len=*), intent(in) :: method
+        !> The path.
+        character(len=:), allocatable, intent(out) :: path
         !> Whether the contact area's file is meant.
         logical, intent(in), optional :: area
-        character(len=:), allocatable :: path
 
         path = scene%output_dir//'/'//scene%name//'_'//method//'_spectra.dat'
         if (present(area)) then
             if (area) path = scene%output_dir//'/'//scene%name//'_'//method//'_area_spectra.dat'
         end if
-    end function spectra_path
+    end subroutine spectra_path
 
     !> What a run's spectra will be, for the scene's summary and `--check`: '' when off, else
     !> e.g. "force spectra 400 Hz to 4000 Hz (11 bands), 2 Hann segments of 1024 samples".
@@ -154,14 +156,15 @@ contains
         type(error_type), allocatable, intent(inout) :: error
 
         real(dp), allocatable :: psd(:, :), centre(:), lower(:), upper(:), table(:, :), power(:)
-        character(len=:), allocatable :: comments(:)
+        character(len=:), allocatable :: comments(:), path
         real(dp) :: df
         integer :: c, n_bands, n_channels, unit, stat
 
         if (.not. spectra%active) return
+        call spectra_path(scene, method, path, spectra%area)
         if (allocated(error) .or. .not. spectra%started) then
             call spectra%welch%plans%release()
-            open (newunit=unit, file=spectra_path(scene, method, spectra%area), status='old', iostat=stat)
+            open (newunit=unit, file=path, status='old', iostat=stat)
             if (stat == 0) close (unit, status='delete', iostat=stat)
             return
         end if
@@ -189,7 +192,7 @@ contains
         end do
         table(:, 7) = level_spread(lower, upper, df, spectra%welch%n_segments)
         call spectra_header(scene, method, spectra, df, n_channels - 1, table(:, 7), comments)
-        call write_columns(spectra_path(scene, method, spectra%area), comments, table, error)
+        call write_columns(path, comments, table, error)
     end subroutine finish_force_spectra
 
     !> The header lines of a spectra file.
