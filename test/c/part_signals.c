@@ -32,6 +32,9 @@ static void interrupted_child(int signal_number, const char *name)
     child = fork();
     if (child == 0) {
         int fd;
+        /* A shell starts background jobs with SIGINT ignored, and the handler (rightly) leaves an
+         * ignored signal alone: give the child the default disposition, as a terminal would. */
+        signal(signal_number, SIG_DFL);
         gc_part_remove_on_signals();
         fd = gc_part_create(path);
         gc_part_register(path);

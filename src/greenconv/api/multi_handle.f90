@@ -117,8 +117,9 @@ contains
         integer, intent(in) :: n_steps
         type(convolver_box), pointer, intent(out) :: box
         type(error_type), allocatable, intent(out) :: error
-        !> Static compliance [m/N] of modes left out of `description` (a modes file's above its band).
-        real(dp), intent(in), optional :: residual(:, :)
+        !> Static compliance [m/N] of modes left out of `description` (a modes file's above its
+        !> band; unallocated when none are).
+        real(dp), allocatable, intent(in), optional :: residual(:, :)
 
         box => null()
         if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(method), &

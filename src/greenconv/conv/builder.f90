@@ -491,9 +491,10 @@ contains
         !> Its own error estimate: 0, the modes being the structure's own and the truncation of
         !> `direct` and `fft` the one `truncation_tol` asks.
         real(dp), intent(out), optional :: estimate
-        !> Static compliance R_ij [m/N] (N_c x N_c) of the modes left out of `modes`; absent (or
-        !> an unallocated actual argument) when there are none.
-        real(dp), intent(in), optional :: residual(:, :)
+        !> Static compliance R_ij [m/N] (N_c x N_c) of the modes left out of `modes`; absent or
+        !> unallocated when there are none (allocatable, so that an unallocated one is passed with
+        !> a valid descriptor: as a plain optional array gfortran builds it from garbage bounds).
+        real(dp), allocatable, intent(in), optional :: residual(:, :)
 
         type(engine_constructors) :: engine
         real(dp), allocatable :: kernel(:, :, :)
@@ -516,6 +517,7 @@ contains
             if (engine%instant_part) accuracy = 'first-order hold, implicit step (Newton, all points)'
         end if
         if (.not. present(residual)) return
+        if (.not. allocated(residual)) return
         if (engine%samples_g() .or. engine%instant_part) then
             call conv%set_instant_matrix(conv%weight0 + residual)
             accuracy = accuracy//'; the static compliance of the modes above the band added to W0'

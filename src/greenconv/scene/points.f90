@@ -43,7 +43,7 @@ contains
             call green_file_convolver(points%green, method, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
                                       accuracy, error, own)
         else
-            ! `points%static`, the modes file's modes above the band, is absent when unallocated:
+            ! `points%static`, the modes file's modes above the band, is unallocated when none are:
             ! the builder adds it to W0 as it does for the C and F77 doors (one structure).
             call make_multipoint_convolver(method, points%modes, scene%dt, scene%truncation_tol, scene%n_steps, conv, &
                                            accuracy, error, own, residual=points%static)

@@ -198,7 +198,7 @@ contains
                 do k = 1, size(sinks%map_steps)
                     j = int(sinks%map_steps(k) - first)
                     if (j < 0 .or. j >= size(run%response%time)) cycle
-                    call append_rows(writers(3), point_rows(run%points, run%response, j, huge(j)), error)
+                    call append_rows(writers(3), point_rows(run%points, run%response, j, size(run%response%time)), error)
                     if (allocated(error)) exit
                 end do
             end if
