@@ -204,7 +204,10 @@ contains
         fit%poly_reference = .true.
         fit%symmetric = symmetric
         fit%pole_fit%has_upper = .true.
-        fit%pole_fit%has_lower = .true.
+        ! a file with a line at 0 Hz gives G(0) finite: no mode below its band, so no lower
+        ! residual -L/omega^2 (infinite at 0 Hz); MDL would otherwise choose it on round-off alone
+        ! for exact data, and a fit with L cannot extend the band above f_max
+        fit%pole_fit%has_lower = frequency(1) > 0.0_dp
         call fit_residues(frequency, g, fit, error)
         if (allocated(error)) return
         lines = pack([(l, l=1, size(frequency))], frequency > 0.0_dp)
@@ -214,9 +217,11 @@ contains
         ! -L/omega^2 fitted to noise
         trial = fit
         trial%pole_fit%has_lower = .false.
-        deallocate (trial%residue, trial%upper, trial%lower)
-        call fit_residues(frequency, g, trial, no_bound)
-        if (.not. allocated(no_bound)) then
+        if (allocated(trial%residue)) deallocate (trial%residue)
+        if (allocated(trial%upper)) deallocate (trial%upper)
+        if (allocated(trial%lower)) deallocate (trial%lower)
+        if (fit%pole_fit%has_lower) call fit_residues(frequency, g, trial, no_bound)
+        if (fit%pole_fit%has_lower .and. .not. allocated(no_bound)) then
             call shared_receptance(trial, frequency, trial_model)
             misfit = relative_misfit(target(:, :, lines), model(:, :, lines))
             energy = relative_misfit(target(:, :, lines), trial_model(:, :, lines))
