@@ -281,7 +281,6 @@ contains
         real(dp), intent(in) :: weight0(:, :), slopes(:)
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: scaled(:, :)
         real(dp) :: n_a, rank
         integer :: i, j
 
@@ -302,11 +301,7 @@ contains
                     newton%factors(j, j) = newton%factors(j, j) + 1.0_dp
                 end do
             else
-                scaled = compliance%right(newton%active, :)*spread(slopes(newton%active), 2, compliance%rank)
-                call transposed_product(scaled, compliance%left(newton%active, :), newton%factors)
-                do j = 1, compliance%rank
-                    newton%factors(j, j) = newton%factors(j, j) + 1.0_dp
-                end do
+                call woodbury_matrix(compliance%left, compliance%right, slopes, newton%active, newton%factors)
             end if
             if (allocated(newton%pivot)) deallocate (newton%pivot)
             allocate (newton%pivot(size(newton%factors, 1)))
@@ -320,21 +315,45 @@ contains
         end associate
     end subroutine form_newton_matrix
 
-    !> c = a^T*b (a: n x p, b: n x q), by columns of c shared among threads.
-    subroutine transposed_product(a, b, c)
-        real(dp), intent(in) :: a(:, :), b(:, :)
-        real(dp), allocatable, intent(out) :: c(:, :)
+    !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
+    !> points gathered from V (scaled by t) and U column by column, then column j of M as
+    !> MATMUL(U_A(:, j), t_A*V_A), the columns shared among threads: every entry is one
+    !> thread's ordered sum, so the factors do not depend on the number of threads.
+    subroutine woodbury_matrix(left, right, slopes, active, m)
+        !> U (N_c x r) [m/N].
+        real(dp), intent(in) :: left(:, :)
+        !> V (N_c x r).
+        real(dp), intent(in) :: right(:, :)
+        !> t [N/m] (N_c).
+        real(dp), intent(in) :: slopes(:)
+        !> The active points (N_a).
+        integer, intent(in) :: active(:)
+        !> M (r x r).
+        real(dp), allocatable, intent(out) :: m(:, :)
 
-        integer :: j
+        real(dp), allocatable :: scaled(:, :), gathered(:, :)
+        integer :: a, k, r
 
-        allocate (c(size(a, 2), size(b, 2)))
-        !$omp parallel do if (sharing(real(size(a, 1), dp)*size(a, 2)*size(b, 2))) default(none) shared(a, b, c) &
-        !$omp schedule(static)
-        do j = 1, size(b, 2)
-            c(:, j) = matmul(b(:, j), a)
+        r = size(left, 2)
+        allocate (m(r, r), scaled(size(active), r), gathered(size(active), r))
+        !$omp parallel if (sharing(real(size(active), dp)*r**2)) default(none) &
+        !$omp shared(left, right, slopes, active, m, scaled, gathered, r) private(a)
+        !$omp do schedule(static)
+        do k = 1, r
+            do a = 1, size(active)
+                scaled(a, k) = right(active(a), k)*slopes(active(a))
+                gathered(a, k) = left(active(a), k)
+            end do
         end do
-        !$omp end parallel do
-    end subroutine transposed_product
+        !$omp end do
+        !$omp do schedule(static)
+        do k = 1, r
+            m(:, k) = matmul(gathered(:, k), scaled)
+            m(k, k) = m(k, k) + 1.0_dp
+        end do
+        !$omp end do
+        !$omp end parallel
+    end subroutine woodbury_matrix
 
     !> s = b - u*y, by fixed blocks of rows shared among threads.
     subroutine subtract_product(u, y, b, s)
