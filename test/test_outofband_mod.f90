@@ -313,7 +313,8 @@ contains
             call note(trim(text)//': cpu [s]', finish - start)
             do k = 1, size(expected)
                 if (minval([abs(f - expected(k)), huge(1.0_dp)], 1) > 0.005_dp*expected(k)) &
-                    problem = problem//' '//trim(text)//': no determined mode within 0.5 % of '//real_text(expected(k))//' Hz'
+                    problem = problem//' '//trim(text)//': no determined mode within 0.5 % of ' &
+                    //real_text(expected(k))//' Hz'
             end do
         end do
         ! Every determined mode besides the six: a pole (determined or not) of another FRF.

@@ -591,8 +591,8 @@ contains
             evidence = huge(1.0_dp)
             if (det > 0.0_dp) evidence = (cov(c + 4, c + 4)*r(1)**2 - 2.0_dp*cov(c + 3, c + 4)*r(1)*r(2) &
                                           + cov(c + 3, c + 3)*r(2)**2)/det
-            result%determined(k) = evidence >= price &
-                                   .and. (narrow(k) .or. sigma_xi < undetermined_spread*damping_ratio(model%pole(index(k))))
+            result%determined(k) = evidence >= price .and. &
+                                   (narrow(k) .or. sigma_xi < undetermined_spread*damping_ratio(model%pole(index(k))))
         end do
         if (all(result%determined)) return
         call add_warning(result, int_text(count(.not. result%determined))//' pole(s) in the band the data do ' &
