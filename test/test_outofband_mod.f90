@@ -65,7 +65,8 @@ contains
                                   '0.1/1/3 %', test_beam_end), &
                      new_unittest('beam: free-free transfer 0.3 L to 0.85 L, another band (not tuned on); 0.1/1/3 %', &
                                   test_beam_transfer), &
-                     new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz on FRFs 1 and 2, no other on 1', &
+                     new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz determined on each FRF, '// &
+                                  'any other determined mode a pole of another FRF', &
                                   test_measured_beam), &
                      new_unittest('scene: &identification noise_model read, a value not offered refused', &
                                   test_scene_noise_model)]
@@ -198,7 +199,8 @@ contains
 
     !> The found modes against the true ones: each found mode the nearest of a distinct true mode
     !> (none invented), every true mode the data determine (sigma_xi/xi < 0.3 at the bound)
-    !> found, and each within crb_limit bound sigmas in f and xi; the worst is noted.
+    !> found and flagged determined (ml_result%determined), and each within crb_limit bound
+    !> sigmas in f and xi; the worst is noted.
     subroutine judge_fit(error, text, truth, sigma_f, sigma_xi, result)
         type(test_error), allocatable, intent(out) :: error
         character(len=*), intent(in) :: text
@@ -228,6 +230,12 @@ contains
                 if (allocated(error)) return
                 cycle
             end if
+            if (sigma_xi(k) < determined*damping_ratio(truth%pole(k))) then
+                call check(error, result%determined(findloc(match, k, 1)), text//': the mode at ' &
+                           //real_text(natural_frequency(truth%pole(k))/two_pi)//' Hz, which the data determine, ' &
+                           //'is flagged not determined')
+                if (allocated(error)) return
+            end if
             associate (found => result%modes%pole(findloc(match, k, 1)), pole => truth%pole(k))
                 worst_f = max(worst_f, abs(natural_frequency(found) - natural_frequency(pole))/two_pi/sigma_f(k))
                 worst_xi = max(worst_xi, abs(damping_ratio(found) - damping_ratio(pole))/sigma_xi(k))
@@ -252,13 +260,17 @@ contains
         end do
     end function listed
 
-    !> pyuff's measured beam accelerances (three FRFs, 1..1000 Hz by 1 Hz): the six modes sdypy
-    !> finds, 51.5 to 958.5 Hz (their values here as greenconv finds them on FRF 1, within 0.2 %
-    !> of a free-free beam's ratios), each within 0.5 % among the poles fitted in the band on
-    !> FRFs 1 and 2 (determined by the data or not), and on FRF 1 no further mode the data
-    !> determine. Noted, not checked (issue 26): FRF 3 (its fit changes with the build's
-    !> rounding), the poles the data determine on FRF 2 (chi2/nu 21: the relative model does not
-    !> hold there, its inflated sigma leaves 51.5 and 278.7 Hz undetermined), the time.
+    !> pyuff's measured beam accelerances (three FRFs, 1..1000 Hz by 1 Hz), the default noise
+    !> model: on each FRF the six modes sdypy finds, 51.5 to 958.5 Hz (their values here as
+    !> greenconv finds them on FRF 1, within 0.2 % of a free-free beam's ratios), each within
+    !> 0.5 % of a mode the data determine (ml_result%determined), and every other determined
+    !> mode a pole of the structure: within 0.2 % of a pole fitted on another FRF (a mode of the
+    !> beam is a pole of each of its FRFs; the 900.9 Hz of FRF 3, a jump of |A| by half and 20
+    !> degrees of phase on lines 900-902 Hz, is fitted on FRFs 1 and 2 at 901.9 and 900.9 Hz).
+    !> Before the determined rule judged the noise per band of lines (round 30): FRF 2 gave a
+    !> determined pole at 4.5 Hz (xi 0.63, on the lines below 8 Hz whose phase wanders) and left
+    !> 51.5 and 278.7 Hz undetermined (chi2/nu 21 inflated every sigma); FRF 3 gave 101.3, 160.1
+    !> and 958.6 Hz besides. Noted: the determined poles, the undetermined ones, chi2/nu, the time.
     subroutine test_measured_beam(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -267,11 +279,16 @@ contains
         type(ml_options) :: options
         type(ml_result) :: result
         type(error_type), allocatable :: failure
-        real(dp), allocatable :: f(:), fitted(:)
+        !> The frequencies [Hz] of one FRF's poles: all, and those the data determine.
+        type :: frequencies
+            real(dp), allocatable :: all(:), kept(:)
+        end type frequencies
+        type(frequencies) :: fitted(3)
+        real(dp), allocatable :: f(:), others(:)
         real(dp) :: start, finish
         character(len=40) :: text
         character(len=:), allocatable :: problem
-        integer :: j, k, extra
+        integer :: j, k, i, extra
 
         problem = ''
         do j = 1, 3
@@ -283,30 +300,40 @@ contains
             call cpu_time(finish)
             if (allocated(failure)) call check(error, .false., failure%message)
             if (allocated(error)) return
-            fitted = natural_frequency(result%modes%pole)/two_pi
-            f = pack(fitted, result%determined)
-            extra = size(f)
-            do k = 1, size(expected)
-                if (minval(abs(f - expected(k)), 1) <= 0.005_dp*expected(k)) extra = extra - 1
-            end do
+            fitted(j)%all = natural_frequency(result%modes%pole)/two_pi
+            fitted(j)%kept = pack(fitted(j)%all, result%determined)
+            f = fitted(j)%kept
             write (text, '(a,i0)') 'measured beam, FRF ', j
             call note(trim(text)//': modes determined', real(size(f), dp))
             do k = 1, size(f)
                 call note(trim(text)//': f [Hz]', f(k))
             end do
-            call note(trim(text)//': determined modes besides the six', real(extra, dp))
             call note(trim(text)//': poles not determined', real(count(.not. result%determined), dp))
             call note(trim(text)//': chi2/nu', result%chi_square/max(result%dof, 1))
-            call note(trim(text)//': noise', result%noise_level_fit)
             call note(trim(text)//': cpu [s]', finish - start)
-            if (j == 3) cycle
             do k = 1, size(expected)
-                if (minval(abs(fitted - expected(k)), 1) > 0.005_dp*expected(k)) problem = problem//' '//trim(text) &
-                                                                                   //': no pole within 0.5 % of ' &
-                                                                                   //real_text(expected(k))//' Hz'
+                if (minval([abs(f - expected(k)), huge(1.0_dp)], 1) > 0.005_dp*expected(k)) &
+                    problem = problem//' '//trim(text)//': no determined mode within 0.5 % of ' &
+                    //real_text(expected(k))//' Hz'
             end do
-            if (j == 1 .and. extra > 0) problem = problem//' '//trim(text)//': '//real_text(real(extra, dp)) &
-                                                  //' determined mode(s) besides the six'
+        end do
+        ! Every determined mode besides the six: a pole (determined or not) of another FRF.
+        do j = 1, 3
+            write (text, '(a,i0)') 'measured beam, FRF ', j
+            f = fitted(j)%kept
+            others = [real(dp) ::]
+            do i = 1, 3
+                if (i /= j) others = [others, fitted(i)%all]
+            end do
+            extra = 0
+            do k = 1, size(f)
+                if (minval(abs(expected - f(k)), 1) <= 0.005_dp*f(k)) cycle
+                extra = extra + 1
+                if (minval([abs(others - f(k)), huge(1.0_dp)], 1) > 0.002_dp*f(k)) &
+                    problem = problem//' '//trim(text)//': a determined mode at '//real_text(f(k)) &
+                    //' Hz that no other FRF has'
+            end do
+            call note(trim(text)//': determined modes besides the six', real(extra, dp))
         end do
         call check(error, len(problem) == 0, problem)
     end subroutine test_measured_beam

@@ -118,8 +118,9 @@ module greenconv_ident_ml_types
         !> parameter of the model and of the noise model and 2*ln(2L) per outlier line: it compares
         !> noise models, which chi2 alone does not.
         real(dp) :: likelihood_criterion = 0.0_dp
-        !> Whether the data determine each mode (false: sigma_xi/xi >= 0.3 or the residue within two
-        !> of its sigma of 0; such a pole is part of the fitted receptance, not a mode the data give).
+        !> Whether the data determine each mode (false: sigma_xi/xi >= 0.3 or the residue's Wald
+        !> statistic, noise scaled to the residual, below 4*ln(2L); such a pole is part of the fitted
+        !> receptance, not a mode the data give).
         logical, allocatable :: determined(:)
         !> chi2 of the final model with the weights used (before the chi2/nu rescaling).
         real(dp) :: chi_square = 0.0_dp

@@ -115,8 +115,10 @@
 !>    information of the final model is singular (two poles merged, a residue the data do not
 !>    see) the mode `merged` names is dropped and the model refitted, so every mode returned has
 !>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
-!>    An in-band pole whose sigma_xi/xi reaches 0.3 or whose residue is within 2 sigma of 0 is
-!>    not determined by the data: result%determined is false for it (it stays in the model).
+!>    Against the noise each band of 32 lines shows in the final residual, an in-band pole whose
+!>    residue's Wald statistic is below a mode's MDL price 4*ln(2L), or whose sigma_xi/xi
+!>    reaches 0.3 while its peak is resolved, is not determined by the data: result%determined
+!>    is false for it (it stays in the model; mark_undetermined says why).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 !> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
@@ -198,9 +200,13 @@ module greenconv_ident_mlfit
     integer, parameter :: max_outside = 3
     !> The noise models noise_model = 'auto' compares by the full likelihood.
     character(len=8), parameter :: auto_models(3) = [character(len=8) :: 'relative', 'floor', 'band']
-    !> An in-band pole whose sigma_xi/xi reaches this (or whose residue is within
-    !> residue_separation sigma of 0) is not determined by the data: not reported as a mode.
-    real(dp), parameter :: undetermined_spread = 0.3_dp, residue_separation = 2.0_dp
+    !> An in-band pole whose sigma_xi/xi reaches this (or whose residue's evidence does not pay
+    !> for the mode, see mark_undetermined) is not determined by the data: not reported as a mode.
+    real(dp), parameter :: undetermined_spread = 0.3_dp
+    !> MDL price of a mode in units of ln(2L): its four real parameters.
+    real(dp), parameter :: mode_price = 4.0_dp
+    !> Lines per band of the noise scale the determined rule uses (band_scale).
+    integer, parameter :: scale_lines = 32
 
 contains
 
@@ -428,7 +434,7 @@ contains
         integer :: k, c, n, j
         integer, allocatable :: index(:)
         logical :: ok
-        logical, allocatable :: inside(:)
+        logical, allocatable :: inside(:), narrow(:)
         type(modal_set) :: unsorted, outside
         character(len=:), allocatable :: excess
 
@@ -481,13 +487,13 @@ contains
         end if
         result%e = error_e(data%g, evaluate(model, data%omega))
         result%likelihood_criterion = full_criterion(data, model, result)
-        result%determined = spread(.true., 1, n)
-        if (ok) call mark_undetermined(result)
+        allocate (narrow(n))
         do k = 1, n
             band = 2.0_dp*damping_ratio(result%modes%pole(k))*natural_frequency(result%modes%pole(k))/two_pi
             spacing = frf%df()
             if (.not. frf%uniform_from_zero()) spacing = spacing_at(frf, natural_frequency(result%modes%pole(k))/two_pi)
-            if (band < options%min_band_lines*spacing) then
+            narrow(k) = band < options%min_band_lines*spacing
+            if (narrow(k)) then
                 call add_warning(result, 'under-resolved mode at '//real_text(natural_frequency( &
                                  result%modes%pole(k))/two_pi)//' Hz: its half-power band 2*xi*f = ' &
                                  //real_text(band)//' Hz holds fewer than '//real_text(options%min_band_lines) &
@@ -495,6 +501,8 @@ contains
                                  //'on the few lines near the peak: use a finer frequency step')
             end if
         end do
+        result%determined = spread(.true., 1, n)
+        if (ok) call mark_undetermined(data, model, index, narrow, result)
         call outlier_excess(frf, data, options, model, result)
         do k = 1, size(result%outlier_line)
             excess = real_text(result%outlier_excess(k))
@@ -527,23 +535,98 @@ contains
                 + (n_parameters(model) + result%noise_parameters + 2*size(result%outlier_line))*data%penalty
     end function full_criterion
 
-    !> Mark the modes the data do not determine (sigma_xi/xi >= undetermined_spread, or |r| within
-    !> residue_separation sigma_r of 0) in result%determined and say so in a warning: they stay
-    !> in result%modes (the fitted receptance, the engines' structure and the shared poles keep
-    !> them) but are not counted as modes the data give.
-    pure subroutine mark_undetermined(result)
+    !> Mark the modes the data do not determine in result%determined and say so in a warning.
+    !> The rule is judged against the noise the residual shows near each mode: every line's
+    !> sigma is scaled by its band's residual (band_scale, at least the noise estimated before the
+    !> fit), and with the Fisher information of those lines a pole is a mode when
+    !>  - its residue's Wald statistic for r = 0 (against its 2x2 covariance) is at least a
+    !>    mode's MDL price 4*ln(2L): the evidence pays for the mode's four parameters, and
+    !>  - its sigma_xi/xi is below undetermined_spread, or it is under-resolved (half-power band
+    !>    narrower than min_band_lines lines): a peak narrower than the lines gives its
+    !>    frequency and residue, not its damping (the warning says so), so its damping's spread
+    !>    does not unmake the mode (pyuff's beam at 51.5 Hz: 2*xi*f = 0.05 Hz on 1 Hz lines,
+    !>    sigma_xi/xi 0.34, the residue 190 sigma from 0).
+    !> The order search prices a mode against the noise estimated before any fit; where the
+    !> lines are noisier than that (pyuff's measured beam below 8 Hz, whose phase wanders by up
+    !> to 180 degrees between neighbours: 1e3 to 1e4 times the expected chi2 per line) it buys
+    !> poles that this noise does not pay for, while one scale for the whole band (chi2/nu 21
+    !> on its FRF 2) would blur the modes where the lines are quiet. Such poles stay in
+    !> result%modes (the fitted receptance, the engines' structure and the shared poles keep
+    !> them) but are not counted as modes the data give. With the noise given (sigma), the lines
+    !> keep it.
+    subroutine mark_undetermined(data, model, index, narrow, result)
+        !> The weighted data of the final fit.
+        type(data_type), intent(in) :: data
+        !> The final model.
+        type(model_type), intent(in) :: model
+        !> The model's pole of each of result%modes.
+        integer, intent(in) :: index(:)
+        !> Whether each of result%modes is under-resolved.
+        logical, intent(in) :: narrow(:)
+        !> The result: determined is set, a warning added.
         type(ml_result), intent(inout) :: result
 
-        associate (pole => result%modes%pole, residue => result%modes%residue)
-            result%determined = result%sigma_damping < undetermined_spread*damping_ratio(pole) &
-                                .and. abs(residue) > residue_separation*result%sigma_residue
-        end associate
+        type(data_type) :: local
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :)
+        real(dp) :: a, b, m, gx(2), r(2), det, evidence, price, sigma_xi
+        integer :: k, c
+        logical :: ok
+
+        local = data
+        if (result%noise_estimated) local%weight = data%weight/sqrt(band_scale(data, model, result%dof))
+        call information(local, model, fisher, gradient, jac)
+        call covariance(fisher, cov, ok)
+        if (.not. ok) return
+        price = mode_price*data%penalty
+        do k = 1, size(index)
+            c = 4*(index(k) - 1)
+            a = real(model%pole(index(k)), dp)
+            b = aimag(model%pole(index(k)))
+            m = abs(model%pole(index(k)))
+            gx = [-b**2, a*b]/m**3
+            sigma_xi = sqrt(dot_product(gx, matmul(cov(c + 1:c + 2, c + 1:c + 2), gx)))
+            ! Wald statistic of r_k = 0 against the residue's 2x2 covariance (Re, Im).
+            r = [real(model%residue(index(k)), dp), aimag(model%residue(index(k)))]
+            det = cov(c + 3, c + 3)*cov(c + 4, c + 4) - cov(c + 3, c + 4)**2
+            evidence = huge(1.0_dp)
+            if (det > 0.0_dp) evidence = (cov(c + 4, c + 4)*r(1)**2 - 2.0_dp*cov(c + 3, c + 4)*r(1)*r(2) &
+                                          + cov(c + 3, c + 3)*r(2)**2)/det
+            result%determined(k) = evidence >= price .and. &
+                                   (narrow(k) .or. sigma_xi < undetermined_spread*damping_ratio(model%pole(index(k))))
+        end do
         if (all(result%determined)) return
         call add_warning(result, int_text(count(.not. result%determined))//' pole(s) in the band the data do ' &
-                         //'not determine (sigma_xi/xi >= '//real_text(undetermined_spread)//' or the residue within ' &
-                         //real_text(residue_separation)//' sigma of 0): part of the fitted receptance, not modes ' &
-                         //'the data give')
+                         //'not determine against the noise their lines show (the Wald statistic of the residue ' &
+                         //'below the MDL price of a mode, '//real_text(price)//', or sigma_xi/xi >= ' &
+                         //real_text(undetermined_spread)//' for a resolved peak): part of the fitted receptance, ' &
+                         //'not modes the data give')
     end subroutine mark_undetermined
+
+    !> Each line's noise scale for the determined rule: the weighted residual's mean square over
+    !> its band of scale_lines neighbouring lines (the band's chi2 per line over its expectation,
+    !> the parameters' share 2L/nu given back), at least 1 (the noise estimated before the fit).
+    pure function band_scale(data, model, dof) result(scale)
+        !> The weighted data of the final fit.
+        type(data_type), intent(in) :: data
+        !> The final model.
+        type(model_type), intent(in) :: model
+        !> Degrees of freedom of the final fit, 2L - P.
+        integer, intent(in) :: dof
+        !> Variance factor of each line used.
+        real(dp) :: scale(size(data%g))
+
+        real(dp) :: e2(size(data%g))
+        integer :: b, n, n_bands, first, last
+
+        n = size(data%g)
+        e2 = abs(data%weight*(data%g - evaluate(model, data%omega)))**2
+        n_bands = max(1, n/scale_lines)
+        do b = 1, n_bands
+            first = 1 + ((b - 1)*n)/n_bands
+            last = (b*n)/n_bands
+            scale(first:last) = max(1.0_dp, sum(e2(first:last))/(last - first + 1)*(2.0_dp*n)/max(dof, 1))
+        end do
+    end function band_scale
 
     !> |G_l - G_model|/sigma_l of each outlier line against the final model (sigma_l as the
     !> fit's weights take it: given, absolute, or level*|G_model|), at most huge.
