@@ -62,9 +62,9 @@ module greenconv_ident_ml_types
         !> Global order search (issue 26): variable projection in the fits of the search, death
         !> moves after its greedy rounds and the final pruning under the final weights
         !> (greenconv_ident_order_search). Off: with it on, suite outofband's beams (a mode
-        !> 9.4 CRB sigma off; the measured beam's FRF 2 without a mode, chi2/nu 9e6) and suite
-        !> greenfiles' band-limited plate (direct 2.8e-2 off) fail, and the shipped patch file's
-        !> summed driving points end 408 above the greedy search's MDL (27 poles for 29).
+        !> 9.4 CRB sigma off; the measured beam's FRF 1 with a mode at 1.7 Hz besides the six)
+        !> and suite greenfiles' band-limited plate (direct 2.8e-2 off) fail, and the shipped
+        !> patch file's summed driving points end 408 above the greedy search's MDL (27 poles for 29).
         logical :: global_search = .false.
         !> A mode is reported as under-resolved when its half-power band 2*xi*f holds fewer lines.
         real(dp) :: min_band_lines = 2.0_dp
