@@ -13,8 +13,10 @@
 !> the best rejected removal is within `close_call` (10) of the chosen model's MDL, a warning
 !> says so: the data barely decide between the two orders. After the final refinement
 !> (new weights) `prune_final` removes, by the same price, the modes the likelihood no longer
-!> pays for (needles beside a mode under a rolled-off tail). Death moves, the pruning and the
-!> variable projection of the fits (data%projection) run only with ml_options%global_search.
+!> pays for (needles beside a mode under a rolled-off tail); a singular information in the
+!> search removes a mode only when MDL accepts it (`drop_degenerate`). Death moves, these two
+!> and the variable projection of the fits (data%projection) run only with
+!> ml_options%global_search.
 module greenconv_ident_order_search
     use greenconv_core_kinds, only: dp
     use greenconv_core_constants, only: two_pi, i_unit
