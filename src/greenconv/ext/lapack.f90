@@ -17,15 +17,27 @@
 !> called by DGELSD and DGEEV with the norm of the input) rejects a NaN or infinite norm
 !> through XERBLA. A result that overflowed is reported rather than returned. Every failure
 !> is an `error_type` with status `stat_numerical`.
+!>
+!> Threads: OpenBLAS's OpenMP build (the system's libblas/liblapack) threads a call made outside
+!> a parallel region over `omp_get_max_threads()` threads, and its threaded sums are taken in
+!> another order than its serial ones (last bits of an LU, a least-squares solution, the
+!> eigenvalues, a Cholesky factor; 20 x 20 and up); inside a parallel region it runs serially.
+!> `lapack_alone` says when a call is to be made from one thread of a region of ours; dgelsd,
+!> dgeev and dgesv are called so here, and the Cholesky factor and inverse through
+!> `cholesky_alone` and `cholesky_inverse_alone`, so that every result of these front ends is
+!> that of one thread whatever OMP_NUM_THREADS says. A build without OpenMP has no regions.
 module greenconv_ext_lapack
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
+    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_numerical
     use greenconv_core_text, only: int_text
     implicit none
     private
 
-    public :: least_squares, eigenvalues, solve_linear, lu_factor, lu_solve
+    public :: least_squares, eigenvalues, solve_linear, lu_factor, lu_solve, lapack_alone
+    public :: cholesky_alone, cholesky_inverse_alone
 
     interface
         !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
@@ -85,6 +97,26 @@ module greenconv_ext_lapack
             real(dp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+
+        !> Cholesky factor of a symmetric positive definite matrix, in place (LAPACK).
+        subroutine dpotrf(uplo, n, a, lda, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(dp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotrf
+
+        !> Inverse of A from dpotrf's factor, one triangle, in place (LAPACK).
+        subroutine dpotri(uplo, n, a, lda, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(dp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotri
     end interface
 
 contains
@@ -141,7 +173,12 @@ contains
         call check_arguments('dgelsd', [iquery(1) >= 1], error)
         if (allocated(error)) return
         allocate (work(lwork), iwork(iquery(1)))
+        !$omp parallel num_threads(2) if (lapack_alone()) default(none) &
+        !$omp shared(m, n, a_work, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
+        !$omp single
         call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
+        !$omp end single
+        !$omp end parallel
         if (info /= 0) then
             call lapack_error(error, 'dgelsd', info)
             return
@@ -190,7 +227,12 @@ contains
         call workspace_size('dgeev', query(1), 3*n, lwork, error)
         if (allocated(error)) return
         allocate (work(lwork))
+        !$omp parallel num_threads(2) if (lapack_alone()) default(none) &
+        !$omp shared(n, a_work, wr, wi, dummy, work, lwork, info)
+        !$omp single
         call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+        !$omp end single
+        !$omp end parallel
         if (info /= 0) then
             call lapack_error(error, 'dgeev', info)
             return
@@ -227,7 +269,11 @@ contains
         b_work(:, 1) = b
         call check_arguments('dgesv', [n >= 1, size(a_work, 1) >= max(1, n), size(b_work, 1) >= max(1, n)], error)
         if (allocated(error)) return
+        !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(n, a_work, pivot, b_work, info)
+        !$omp single
         call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
+        !$omp end single
+        !$omp end parallel
         if (info > 0) then
             call fatal_error(error, 'dgesv: singular matrix (zero pivot in column '//int_text(info)//')', &
                              stat_numerical)
@@ -296,6 +342,53 @@ contains
         if (allocated(error)) return
         x(:) = b_work(:, 1)
     end subroutine lu_solve
+
+    !> Whether a BLAS or LAPACK call is to be made from one thread of a parallel region of ours:
+    !> when OpenMP would give it more than one thread. OpenBLAS's OpenMP build threads a call
+    !> outside a region, with other round-off than on one thread (a 441 x 441 LU, a 16,386 x 202
+    !> Gram matrix differ in their last bits), and runs serially inside one; called so, the
+    !> results do not depend on the number of threads, and inside a host's region (serial
+    !> already) nothing changes. Always false in a build without OpenMP.
+    logical function lapack_alone()
+        lapack_alone = .false.
+        !$ if (omp_get_max_threads() > 1) lapack_alone = .not. omp_in_parallel()
+    end function lapack_alone
+
+    !> dpotrf ('U', in place) of an n x n matrix, called as `lapack_alone` says. Bound to C so
+    !> that the identification's pure Cholesky routines (ident/dense.f90) can reach it through
+    !> an interface that declares it pure, as they declare LAPACK's own routines: the region of
+    !> threads changes nothing but which thread makes the call.
+    subroutine cholesky_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_alone')
+        !> Order of the matrix (n >= 1).
+        integer(c_int), value :: n
+        !> In: the symmetric positive definite matrix (upper triangle read); out: its factor U.
+        real(c_double), intent(inout) :: a(n, n)
+        !> dpotrf's info: 0, or k > 0 when the leading minor of order k is not positive definite.
+        integer(c_int), intent(out) :: info
+
+        !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(n, a, info)
+        !$omp single
+        call dpotrf('U', n, a, n, info)
+        !$omp end single
+        !$omp end parallel
+    end subroutine cholesky_alone
+
+    !> dpotri ('U', in place): the inverse of A from its factor U by `cholesky_alone`, upper
+    !> triangle, called as `lapack_alone` says (bound to C as `cholesky_alone`).
+    subroutine cholesky_inverse_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_inverse_alone')
+        !> Order of the matrix (n >= 1).
+        integer(c_int), value :: n
+        !> In: the factor U (upper triangle); out: inv(A), upper triangle.
+        real(c_double), intent(inout) :: a(n, n)
+        !> dpotri's info: 0, or k > 0 when U(k, k) is zero.
+        integer(c_int), intent(out) :: info
+
+        !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(n, a, info)
+        !$omp single
+        call dpotri('U', n, a, n, info)
+        !$omp end single
+        !$omp end parallel
+    end subroutine cholesky_inverse_alone
 
     !> An error (status `stat_numerical`) unless every array checked is finite.
     pure subroutine require_finite(routine, what, finite, error)
