@@ -350,7 +350,7 @@ thread-readers: $(READER_TEST)
 # test/threads/ident_threads.f90: the maximum-likelihood identification (pyuff's measured beam
 # FRF 1, sdypy's accelerance H_51) on one thread, on two and in two host threads: the same poles,
 # residues and chi^2 bit for bit (the BLAS/LAPACK calls of ext/lapack.f90 and ident/dense.f90 are
-# made from one thread, `lapack_alone`; before, FRF 1 gave 13 poles on one thread, 11 on two).
+# made serially, `lapack_serial_begin`; before, FRF 1 gave 13 poles on one thread, 11 on two).
 IDENT_THREAD_TEST := $(BUILD)/threads/ident_threads
 
 $(IDENT_THREAD_TEST): test/threads/ident_threads.f90 $(LIB)

@@ -3,8 +3,9 @@
 !>
 !> OpenBLAS's OpenMP build threads a BLAS or LAPACK call as `omp_get_max_threads()` says when
 !> it is called outside a parallel region, and the threaded sums come out in another order:
-!> before the identification's calls were pinned to one thread (ext/lapack.f90's
-!> `lapack_alone`), pyuff's measured beam FRF 1 gave 13 poles on one thread and 11 on two.
+!> before the identification's calls were made serially (ext/lapack.f90's
+!> `lapack_serial_begin`), pyuff's measured beam FRF 1 gave 13 poles on one thread and 11 on
+!> two (main d8be39a: "FAIL: ... 2 threads give the 1-thread poles" on both cases).
 !> Each case (a universal file and its dataset) is identified with omp_set_num_threads(1), then
 !> with omp_set_num_threads(2), then by two host threads at once inside one parallel region;
 !> every result must equal the first bit for bit. Prints "ok: ..." or "FAIL: ..." per check

@@ -13,16 +13,17 @@
 !> pivot; the reference LAPACK's dpotrf reported it as not positive definite, OpenBLAS's does
 !> not (info = 0), so `spd_factor` also rejects a factor whose diagonal is not positive.
 !>
-!> Threads: every BLAS and LAPACK call here is made from one thread of a parallel region when
-!> OpenMP would give it more (greenconv_ext_lapack's `lapack_alone`): OpenBLAS's OpenMP build
-!> threads dsyrk, dgemv, dpotrf, dpotrs and dpotri outside a region and takes their sums in
-!> another order, which changed the fits (pyuff's measured beam FRF 1: 13 poles on one thread,
-!> 11 on two). `gram` and `spd_solve` open the region themselves; the pure `spd_factor` and
-!> `spd_inverse` call ext's `cholesky_alone` and `cholesky_inverse_alone`, which do.
+!> Threads: every BLAS and LAPACK call here is made serially when OpenMP would give it more
+!> threads (greenconv_ext_lapack's `lapack_serial_begin` and `lapack_serial_end`): OpenBLAS's
+!> OpenMP build threads dsyrk, dgemv, dpotrf, dpotrs and dpotri (20 x 20 and up) and takes
+!> their sums in another order, which changed the fits (pyuff's measured beam FRF 1: 13 poles
+!> on one thread, 11 on two). `gram` and `spd_solve` pin their calls themselves; the pure
+!> `spd_factor` and `spd_inverse` call ext's `cholesky_alone` and `cholesky_inverse_alone`,
+!> which do.
 module greenconv_ident_dense
     use, intrinsic :: iso_c_binding, only: c_int, c_double
     use greenconv_core_kinds, only: dp
-    use greenconv_ext_lapack, only: lapack_alone
+    use greenconv_ext_lapack, only: lapack_serial_begin, lapack_serial_end
     implicit none
     private
 
@@ -49,7 +50,7 @@ module greenconv_ident_dense
             real(dp), intent(inout) :: y(*)
         end subroutine dgemv
 
-        !> dpotrf ('U') of an n x n matrix from one thread (greenconv_ext_lapack's
+        !> dpotrf ('U') of an n x n matrix, serially (greenconv_ext_lapack's
         !> `cholesky_alone`, reached by its binding label: pure as LAPACK's own routines are).
         pure subroutine cholesky_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_alone')
             import :: c_int, c_double
@@ -58,7 +59,7 @@ module greenconv_ident_dense
             integer(c_int), intent(out) :: info
         end subroutine cholesky_alone
 
-        !> dpotri ('U') from cholesky_alone's factor, from one thread (greenconv_ext_lapack's
+        !> dpotri ('U') from cholesky_alone's factor, serially (greenconv_ext_lapack's
         !> `cholesky_inverse_alone`).
         pure subroutine cholesky_inverse_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_inverse_alone')
             import :: c_int, c_double
@@ -85,7 +86,7 @@ contains
     !> (one thread) dsyrk takes about half the time of the blocks of gfortran's matmul it
     !> replaced (16,386 x 202, the 50-mode bench fit: 41 against 74 ms per call); with the
     !> reference BLAS it took 2.6 times as long as those blocks.
-    !> Both products come from one thread (`lapack_alone`), so they do not depend on the threads.
+    !> Both products are computed serially (`lapack_serial_begin`), whatever the threads.
     subroutine gram(a, scale, product, b, projection)
         !> The matrix A (m x n).
         real(dp), intent(in) :: a(:, :)
@@ -98,7 +99,7 @@ contains
         !> scale*A^T b (n).
         real(dp), intent(out) :: projection(:)
 
-        integer :: m, n, j
+        integer :: m, n, j, threads
 
         m = size(a, 1)
         n = size(a, 2)
@@ -108,12 +109,10 @@ contains
             projection = 0.0_dp
             return
         end if
-        !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(m, n, scale, a, b, product, projection)
-        !$omp single
+        call lapack_serial_begin(threads)
         call dsyrk('U', 'T', n, m, scale, a, m, 0.0_dp, product, n)
         call dgemv('T', m, n, scale, a, m, b, 1, 0.0_dp, projection, 1)
-        !$omp end single
-        !$omp end parallel
+        call lapack_serial_end(threads)
         do j = 1, n - 1
             product(j + 1:n, j) = product(j, j + 1:n)
         end do
@@ -137,7 +136,7 @@ contains
     end subroutine spd_factor
 
     !> Solution x of A x = b for a symmetric positive definite A by Cholesky (factor and solve
-    !> from one thread, `lapack_alone`).
+    !> serially, `lapack_serial_begin`).
     subroutine spd_solve(a, b, x, ok)
         !> The matrix A (n x n).
         real(dp), intent(in) :: a(:, :)
@@ -149,20 +148,18 @@ contains
         logical, intent(out) :: ok
 
         real(dp) :: factor(size(a, 1), size(a, 1))
-        integer :: info, n
+        integer :: info, n, threads
 
         n = size(b)
         x = b
         factor = a
-        !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(n, factor, x, ok, info)
-        !$omp single
+        call lapack_serial_begin(threads)
         call spd_factor(factor, ok)
         if (ok .and. n > 0) then
             call dpotrs('U', n, 1, factor, n, x, n, info)
             ok = info == 0
         end if
-        !$omp end single
-        !$omp end parallel
+        call lapack_serial_end(threads)
     end subroutine spd_solve
 
     !> Inverse of a symmetric positive definite matrix by Cholesky.
