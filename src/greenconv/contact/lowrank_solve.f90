@@ -27,8 +27,8 @@
 module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
-    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads
+    use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve, lapack_alone
+    !$ use omp_lib, only: omp_in_parallel
     implicit none
     private
 
@@ -195,17 +195,6 @@ contains
         end do
         !$omp end parallel do
     end subroutine gathered_product
-
-    !> Whether an LU (dgesv, dgetrf) is to be called from one thread of a parallel region of
-    !> ours: when OpenMP would give it more than one thread. A threaded LAPACK (OpenBLAS's
-    !> OpenMP build) factors in parallel outside a region, with other round-off than on one
-    !> thread (a 441 x 441 LU differs in its last bits), and serially inside one; called so,
-    !> the factors and the run's results do not depend on the number of threads, and inside a
-    !> host's region (where it is serial already) nothing changes.
-    logical function lapack_alone()
-        lapack_alone = .false.
-        !$ lapack_alone = omp_get_max_threads() > 1 .and. .not. omp_in_parallel()
-    end function lapack_alone
 
     !> Whether a loop of `work` multiply-adds is shared among threads: large enough to pay for
     !> a parallel region, and not called from inside one (no nested threads in a host's region).

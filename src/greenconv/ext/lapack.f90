@@ -17,8 +17,22 @@
 !> called by DGELSD and DGEEV with the norm of the input) rejects a NaN or infinite norm
 !> through XERBLA. A result that overflowed is reported rather than returned. Every failure
 !> is an `error_type` with status `stat_numerical`.
+!>
+!> Threads: OpenBLAS's OpenMP build (the system's libblas/liblapack) threads a call made outside
+!> a parallel region over `omp_get_max_threads()` threads, and its threaded sums are taken in
+!> another order than its serial ones (last bits of an LU, a least-squares solution, the
+!> eigenvalues, a Cholesky factor; 20 x 20 and up); inside a parallel region it runs serially.
+!> `lapack_alone` says when a call is to be made serially (the contact layer calls its LU from
+!> one thread of a region); dgelsd, dgeev and dgesv are called here between
+!> `lapack_serial_begin` and `lapack_serial_end` (the calling thread's OpenMP thread count set
+!> to 1), and so are the Cholesky factor and inverse of `cholesky_alone` and
+!> `cholesky_inverse_alone`, so that every result of these front ends is that of one thread
+!> whatever OMP_NUM_THREADS says. A build without OpenMP cannot pin: there OpenBLAS threads as
+!> OMP_NUM_THREADS says.
 module greenconv_ext_lapack
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
+    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads, omp_set_num_threads
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_numerical
     use greenconv_core_text, only: int_text
@@ -26,6 +40,8 @@ module greenconv_ext_lapack
     private
 
     public :: least_squares, eigenvalues, solve_linear, lu_factor, lu_solve
+    public :: lapack_alone, lapack_serial_begin, lapack_serial_end
+    public :: cholesky_alone, cholesky_inverse_alone
 
     interface
         !> Minimum-norm solution of min ||b - A x||_2 by the SVD of A (LAPACK).
@@ -85,6 +101,26 @@ module greenconv_ext_lapack
             real(dp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+
+        !> Cholesky factor of a symmetric positive definite matrix, in place (LAPACK).
+        subroutine dpotrf(uplo, n, a, lda, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(dp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotrf
+
+        !> Inverse of A from dpotrf's factor, one triangle, in place (LAPACK).
+        subroutine dpotri(uplo, n, a, lda, info)
+            import :: dp
+            implicit none
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(dp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotri
     end interface
 
 contains
@@ -110,7 +146,7 @@ contains
         real(dp), allocatable :: a_work(:, :), b_work(:, :), s(:), work(:)
         integer, allocatable :: iwork(:)
         real(dp) :: threshold, query(1)
-        integer :: m, n, ldb, lwork, info, effective_rank, iquery(1)
+        integer :: m, n, ldb, lwork, info, effective_rank, iquery(1), threads
 
         m = size(a, 1)
         n = size(a, 2)
@@ -141,7 +177,9 @@ contains
         call check_arguments('dgelsd', [iquery(1) >= 1], error)
         if (allocated(error)) return
         allocate (work(lwork), iwork(iquery(1)))
+        call lapack_serial_begin(threads)
         call dgelsd(m, n, 1, a_work, m, b_work, ldb, s, threshold, effective_rank, work, lwork, iwork, info)
+        call lapack_serial_end(threads)
         if (info /= 0) then
             call lapack_error(error, 'dgelsd', info)
             return
@@ -167,7 +205,7 @@ contains
 
         real(dp), allocatable :: a_work(:, :), wr(:), wi(:), work(:)
         real(dp) :: query(1), dummy(1, 1)
-        integer :: n, lwork, info
+        integer :: n, lwork, info, threads
 
         n = size(a, 1)
         if (n < 1 .or. size(a, 2) /= n .or. size(w) /= n) then
@@ -190,7 +228,9 @@ contains
         call workspace_size('dgeev', query(1), 3*n, lwork, error)
         if (allocated(error)) return
         allocate (work(lwork))
+        call lapack_serial_begin(threads)
         call dgeev('N', 'N', n, a_work, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+        call lapack_serial_end(threads)
         if (info /= 0) then
             call lapack_error(error, 'dgeev', info)
             return
@@ -213,7 +253,7 @@ contains
 
         real(dp), allocatable :: a_work(:, :), b_work(:, :)
         integer, allocatable :: pivot(:)
-        integer :: n, info
+        integer :: n, info, threads
 
         n = size(a, 1)
         if (n < 1 .or. size(a, 2) /= n .or. size(b) /= n .or. size(x) /= n) then
@@ -227,7 +267,9 @@ contains
         b_work(:, 1) = b
         call check_arguments('dgesv', [n >= 1, size(a_work, 1) >= max(1, n), size(b_work, 1) >= max(1, n)], error)
         if (allocated(error)) return
+        call lapack_serial_begin(threads)
         call dgesv(n, 1, a_work, n, pivot, b_work, n, info)
+        call lapack_serial_end(threads)
         if (info > 0) then
             call fatal_error(error, 'dgesv: singular matrix (zero pivot in column '//int_text(info)//')', &
                              stat_numerical)
@@ -296,6 +338,82 @@ contains
         if (allocated(error)) return
         x(:) = b_work(:, 1)
     end subroutine lu_solve
+
+    !> Whether a BLAS or LAPACK call is to be made serially (from one thread of a parallel
+    !> region of ours, or between `lapack_serial_begin` and `lapack_serial_end`): when OpenMP
+    !> would give it more than one thread. OpenBLAS's OpenMP build threads a call outside a
+    !> region as `omp_get_max_threads()` says, with other round-off than on one thread (a
+    !> 441 x 441 LU, a 16,386 x 202 Gram matrix differ in their last bits), and runs serially
+    !> inside one; called so, the results do not depend on the number of threads, and inside a
+    !> host's region (serial already) nothing changes. Always false in a build without OpenMP.
+    logical function lapack_alone()
+        lapack_alone = .false.
+        !$ if (omp_get_max_threads() > 1) lapack_alone = .not. omp_in_parallel()
+    end function lapack_alone
+
+    !> Make the BLAS and LAPACK calls that follow serial when `lapack_alone` says so, without a
+    !> parallel region: OpenBLAS's OpenMP build threads a call as `omp_get_max_threads()` says,
+    !> so the calling thread's OpenMP thread count is set to 1 until `lapack_serial_end`. The
+    !> results are those of a region's single thread (and of one thread) bit for bit, and no
+    !> second thread is woken: a region of two threads around every call of an identification
+    !> (thousands) cost more than the fit itself on a loaded machine (see doc/identification.md,
+    !> "Threads"). Nothing happens inside a parallel region or on one thread.
+    subroutine lapack_serial_begin(threads)
+        !> The thread count to restore by `lapack_serial_end` (0: nothing was changed).
+        integer, intent(out) :: threads
+
+        threads = 0
+        !$ if (lapack_alone()) then
+        !$     threads = omp_get_max_threads()
+        !$     call omp_set_num_threads(1)
+        !$ end if
+    end subroutine lapack_serial_begin
+
+    !> Undo `lapack_serial_begin`: the calling thread's OpenMP thread count restored.
+    subroutine lapack_serial_end(threads)
+        !> What `lapack_serial_begin` returned.
+        integer, intent(in) :: threads
+
+        if (threads > 0) then
+            !$ call omp_set_num_threads(threads)
+        end if
+    end subroutine lapack_serial_end
+
+    !> dpotrf ('U', in place) of an n x n matrix, called as `lapack_alone` says. Bound to C so
+    !> that the identification's pure Cholesky routines (ident/dense.f90) can reach it through
+    !> an interface that declares it pure, as they declare LAPACK's own routines: the region of
+    !> threads changes nothing but which thread makes the call.
+    subroutine cholesky_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_alone')
+        !> Order of the matrix (n >= 1).
+        integer(c_int), value :: n
+        !> In: the symmetric positive definite matrix (upper triangle read); out: its factor U.
+        real(c_double), intent(inout) :: a(n, n)
+        !> dpotrf's info: 0, or k > 0 when the leading minor of order k is not positive definite.
+        integer(c_int), intent(out) :: info
+
+        integer :: threads
+
+        call lapack_serial_begin(threads)
+        call dpotrf('U', n, a, n, info)
+        call lapack_serial_end(threads)
+    end subroutine cholesky_alone
+
+    !> dpotri ('U', in place): the inverse of A from its factor U by `cholesky_alone`, upper
+    !> triangle, called as `lapack_alone` says (bound to C as `cholesky_alone`).
+    subroutine cholesky_inverse_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_inverse_alone')
+        !> Order of the matrix (n >= 1).
+        integer(c_int), value :: n
+        !> In: the factor U (upper triangle); out: inv(A), upper triangle.
+        real(c_double), intent(inout) :: a(n, n)
+        !> dpotri's info: 0, or k > 0 when U(k, k) is zero.
+        integer(c_int), intent(out) :: info
+
+        integer :: threads
+
+        call lapack_serial_begin(threads)
+        call dpotri('U', n, a, n, info)
+        call lapack_serial_end(threads)
+    end subroutine cholesky_inverse_alone
 
     !> An error (status `stat_numerical`) unless every array checked is finite.
     pure subroutine require_finite(routine, what, finite, error)

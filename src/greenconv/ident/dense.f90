@@ -12,8 +12,18 @@
 !> (dpotrf's info > 0) is reported by `ok`, never stopped on. A NaN in the input gives a NaN
 !> pivot; the reference LAPACK's dpotrf reported it as not positive definite, OpenBLAS's does
 !> not (info = 0), so `spd_factor` also rejects a factor whose diagonal is not positive.
+!>
+!> Threads: every BLAS and LAPACK call here is made serially when OpenMP would give it more
+!> threads (greenconv_ext_lapack's `lapack_serial_begin` and `lapack_serial_end`): OpenBLAS's
+!> OpenMP build threads dsyrk, dgemv, dpotrf, dpotrs and dpotri (20 x 20 and up) and takes
+!> their sums in another order, which changed the fits (pyuff's measured beam FRF 1: 13 poles
+!> on one thread, 11 on two). `gram` and `spd_solve` pin their calls themselves; the pure
+!> `spd_factor` and `spd_inverse` call ext's `cholesky_alone` and `cholesky_inverse_alone`,
+!> which do.
 module greenconv_ident_dense
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
     use greenconv_core_kinds, only: dp
+    use greenconv_ext_lapack, only: lapack_serial_begin, lapack_serial_end
     implicit none
     private
 
@@ -40,14 +50,23 @@ module greenconv_ident_dense
             real(dp), intent(inout) :: y(*)
         end subroutine dgemv
 
-        !> Cholesky factor of a symmetric positive definite matrix, in place (LAPACK).
-        pure subroutine dpotrf(uplo, n, a, lda, info)
-            import :: dp
-            character(len=1), intent(in) :: uplo
-            integer, intent(in) :: n, lda
-            real(dp), intent(inout) :: a(lda, *)
-            integer, intent(out) :: info
-        end subroutine dpotrf
+        !> dpotrf ('U') of an n x n matrix, serially (greenconv_ext_lapack's
+        !> `cholesky_alone`, reached by its binding label: pure as LAPACK's own routines are).
+        pure subroutine cholesky_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_alone')
+            import :: c_int, c_double
+            integer(c_int), value :: n
+            real(c_double), intent(inout) :: a(n, n)
+            integer(c_int), intent(out) :: info
+        end subroutine cholesky_alone
+
+        !> dpotri ('U') from cholesky_alone's factor, serially (greenconv_ext_lapack's
+        !> `cholesky_inverse_alone`).
+        pure subroutine cholesky_inverse_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_inverse_alone')
+            import :: c_int, c_double
+            integer(c_int), value :: n
+            real(c_double), intent(inout) :: a(n, n)
+            integer(c_int), intent(out) :: info
+        end subroutine cholesky_inverse_alone
 
         !> Solution of A X = B from dpotrf's factor (LAPACK).
         pure subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
@@ -58,15 +77,6 @@ module greenconv_ident_dense
             real(dp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dpotrs
-
-        !> Inverse of A from dpotrf's factor, one triangle, in place (LAPACK).
-        pure subroutine dpotri(uplo, n, a, lda, info)
-            import :: dp
-            character(len=1), intent(in) :: uplo
-            integer, intent(in) :: n, lda
-            real(dp), intent(inout) :: a(lda, *)
-            integer, intent(out) :: info
-        end subroutine dpotri
     end interface
 
 contains
@@ -76,7 +86,8 @@ contains
     !> (one thread) dsyrk takes about half the time of the blocks of gfortran's matmul it
     !> replaced (16,386 x 202, the 50-mode bench fit: 41 against 74 ms per call); with the
     !> reference BLAS it took 2.6 times as long as those blocks.
-    pure subroutine gram(a, scale, product, b, projection)
+    !> Both products are computed serially (`lapack_serial_begin`), whatever the threads.
+    subroutine gram(a, scale, product, b, projection)
         !> The matrix A (m x n).
         real(dp), intent(in) :: a(:, :)
         !> Factor of both results (units of 1 per unit of A squared).
@@ -88,7 +99,7 @@ contains
         !> scale*A^T b (n).
         real(dp), intent(out) :: projection(:)
 
-        integer :: m, n, j
+        integer :: m, n, j, threads
 
         m = size(a, 1)
         n = size(a, 2)
@@ -98,8 +109,10 @@ contains
             projection = 0.0_dp
             return
         end if
+        call lapack_serial_begin(threads)
         call dsyrk('U', 'T', n, m, scale, a, m, 0.0_dp, product, n)
         call dgemv('T', m, n, scale, a, m, b, 1, 0.0_dp, projection, 1)
+        call lapack_serial_end(threads)
         do j = 1, n - 1
             product(j + 1:n, j) = product(j, j + 1:n)
         end do
@@ -116,14 +129,15 @@ contains
 
         ok = .true.
         if (size(a, 1) == 0) return
-        call dpotrf('U', size(a, 1), a, size(a, 1), info)
+        call cholesky_alone(size(a, 1), a, info)
         ok = info == 0
         ! A NaN pivot fails the comparison (OpenBLAS's dpotrf returns info = 0 for it).
         if (ok) ok = all([(a(i, i) > 0.0_dp, i=1, size(a, 1))])
     end subroutine spd_factor
 
-    !> Solution x of A x = b for a symmetric positive definite A by Cholesky.
-    pure subroutine spd_solve(a, b, x, ok)
+    !> Solution x of A x = b for a symmetric positive definite A by Cholesky (factor and solve
+    !> serially, `lapack_serial_begin`).
+    subroutine spd_solve(a, b, x, ok)
         !> The matrix A (n x n).
         real(dp), intent(in) :: a(:, :)
         !> Right-hand side b (n).
@@ -134,15 +148,18 @@ contains
         logical, intent(out) :: ok
 
         real(dp) :: factor(size(a, 1), size(a, 1))
-        integer :: info, n
+        integer :: info, n, threads
 
         n = size(b)
         x = b
         factor = a
+        call lapack_serial_begin(threads)
         call spd_factor(factor, ok)
-        if (.not. ok .or. n == 0) return
-        call dpotrs('U', n, 1, factor, n, x, n, info)
-        ok = info == 0
+        if (ok .and. n > 0) then
+            call dpotrs('U', n, 1, factor, n, x, n, info)
+            ok = info == 0
+        end if
+        call lapack_serial_end(threads)
     end subroutine spd_solve
 
     !> Inverse of a symmetric positive definite matrix by Cholesky.
@@ -157,7 +174,7 @@ contains
         n = size(a, 1)
         call spd_factor(a, ok)
         if (.not. ok .or. n == 0) return
-        call dpotri('U', n, a, n, info)
+        call cholesky_inverse_alone(n, a, info)
         ok = info == 0
         do j = 1, n - 1
             a(j + 1:n, j) = a(j, j + 1:n)
