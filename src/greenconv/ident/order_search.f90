@@ -358,7 +358,11 @@ contains
                 trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
                 call fit(data, trial, result%iterations, error)
                 if (allocated(error)) return
-                if (likelihood(chi_square(data, trial)) - before <= 4.0_dp*data%penalty) then
+                if (likelihood(chi_square(data, trial)) - before > 4.0_dp*data%penalty) cycle
+                ! A removal must leave every uncertainty finite (the rest refitted can merge).
+                call information(data, trial, fisher, gradient, jac)
+                call covariance(fisher, cov, ok)
+                if (ok) then
                     call record_drop(result, [model%pole(worst)], dropped_by_criterion)
                     model = trial
                     removed = .true.
