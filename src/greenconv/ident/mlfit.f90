@@ -188,7 +188,7 @@ module greenconv_ident_mlfit
     use greenconv_ident_noise_model, only: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, &
                                            interpolated, spacing_at
     use greenconv_ident_diagram, only: build_diagram
-    use greenconv_ident_order_search, only: choose_order, drop_outside, drop_needles, drop_undetermined
+    use greenconv_ident_order_search, only: choose_order, drop_outside, drop_needles, drop_undetermined, prune_terms
     implicit none
     private
 
@@ -341,6 +341,10 @@ contains
         if (allocated(error)) return
         if (options%outside_modes == 'auto') then
             call try_outside(data, options, candidates, model, result, error)
+            if (allocated(error)) return
+        end if
+        if (data%projection .and. options%residual_terms == 'auto') then
+            call prune_terms(data, model, result, error)
             if (allocated(error)) return
         end if
         call finish(frf, data, options, model, result)
