@@ -396,16 +396,7 @@ contains
         logical :: ok
 
         do term = 1, 2
-            trial = model
-            if (term == 1) then
-                if (.not. model%upper) cycle
-                trial%upper = .false.
-                trial%r_u = 0.0_dp
-            else
-                if (.not. model%lower) cycle
-                trial%lower = .false.
-                trial%r_l = 0.0_dp
-            end if
+            if (.not. without_term(model, term == 1, trial)) cycle
             call fit(data, trial, result%iterations, error)
             if (allocated(error)) return
             if (likelihood(data, result, chi_square(data, trial)) &
@@ -935,16 +926,7 @@ contains
 
         type(model_type) :: trial
 
-        trial = model
-        if (upper) then
-            if (.not. model%upper) return
-            trial%upper = .false.
-            trial%r_u = 0.0_dp
-        else
-            if (.not. model%lower) return
-            trial%lower = .false.
-            trial%r_l = 0.0_dp
-        end if
+        if (.not. without_term(model, upper, trial)) return
         call fit(data, trial, result%iterations, error, 0)
         if (allocated(error)) return
         if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
@@ -952,5 +934,27 @@ contains
             call refine(data, model, result%iterations)
         end if
     end subroutine drop_term
+
+    !> The model without one residual term (its value zeroed, the rest as is); false when the
+    !> model has no such term.
+    logical function without_term(model, upper, trial)
+        !> The model.
+        type(model_type), intent(in) :: model
+        !> Which term: R_u (true) or R_l (false).
+        logical, intent(in) :: upper
+        !> The model without it.
+        type(model_type), intent(out) :: trial
+
+        trial = model
+        if (upper) then
+            without_term = model%upper
+            trial%upper = .false.
+            trial%r_u = 0.0_dp
+        else
+            without_term = model%lower
+            trial%lower = .false.
+            trial%r_l = 0.0_dp
+        end if
+    end function without_term
 
 end module greenconv_ident_order_search
