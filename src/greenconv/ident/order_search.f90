@@ -898,9 +898,9 @@ contains
         end do
     end function merged
 
-    !> x^T inv(C) x for a 2 x 2 covariance C (huge when C is singular).
+    !> x^T inv(C) x for a 2 x 2 covariance C (huge when C is singular); C and x as sections (no copy).
     pure real(dp) function quadratic(c, x)
-        real(dp), intent(in) :: c(2, 2), x(2)
+        real(dp), intent(in) :: c(:, :), x(:)
 
         real(dp) :: det
 
