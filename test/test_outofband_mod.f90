@@ -68,7 +68,7 @@ contains
                      new_unittest('measured beam (pyuff): the six modes 51.5-958.5 Hz determined on each FRF, '// &
                                   'any other determined mode a pole of another FRF', &
                                   test_measured_beam), &
-                     new_unittest('scene: &identification noise_model read, a value not offered refused', &
+                     new_unittest('scene: &identification noise_model and search read, a value not offered refused', &
                                   test_scene_noise_model)]
     end subroutine collect_outofband
 
@@ -338,8 +338,9 @@ contains
         call check(error, len(problem) == 0, problem)
     end subroutine test_measured_beam
 
-    !> `&identification noise_model` reaches the scene ('floor', 'auto'); another value is refused
-    !> with the group, the variable and the values offered.
+    !> `&identification noise_model` reaches the scene ('floor', 'auto'), and `search` ('greedy',
+    !> default 'global'); another value of either is refused with the group, the variable and the
+    !> values offered.
     subroutine test_scene_noise_model(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -352,6 +353,8 @@ contains
         if (allocated(error)) return
         call check(error, scene%ident_noise == 'floor', 'noise_model read: '//scene%ident_noise)
         if (allocated(error)) return
+        call check(error, scene%ident_search == 'global', 'search by default: '//scene%ident_search)
+        if (allocated(error)) return
         call read_scene_text(dir, 'noise_model.nml', scene_text('auto'), scene, failure)
         if (allocated(failure)) call check(error, .false., failure%message)
         if (allocated(error)) return
@@ -362,14 +365,28 @@ contains
         if (allocated(error)) return
         call check(error, index(failure%message, 'noise_model') > 0 .and. index(failure%message, 'floor') > 0, &
                    'the message names the variable and the values: '//failure%message)
+        if (allocated(error)) return
+        call read_scene_text(dir, 'noise_model.nml', scene_text('relative', 'greedy'), scene, failure)
+        if (allocated(failure)) call check(error, .false., failure%message)
+        if (allocated(error)) return
+        call check(error, scene%ident_search == 'greedy', 'search read: '//scene%ident_search)
+        if (allocated(error)) return
+        call read_scene_text(dir, 'noise_model.nml', scene_text('relative', 'anneal'), scene, failure)
+        call check(error, allocated(failure), 'search = ''anneal'' refused')
+        if (allocated(error)) return
+        call check(error, index(failure%message, 'search') > 0 .and. index(failure%message, 'greedy') > 0, &
+                   'the message names the variable and the values: '//failure%message)
     contains
-        function scene_text(model) result(text)
+        function scene_text(model, search) result(text)
             character(len=*), intent(in) :: model
+            character(len=*), intent(in), optional :: search
             character(len=:), allocatable :: text
 
             text = "&scene task = 'identify', name = 'noise_model', output_dir = '"//dir//"' /"//new_line('a') &
                    //"&structure model = 'frf_file', frf_file = '"//beam_file//"', frf_dataset = 1 /"//new_line('a') &
-                   //"&identification noise_model = '"//model//"' /"
+                   //"&identification noise_model = '"//model//"'"
+            if (present(search)) text = text//", search = '"//search//"'"
+            text = text//" /"
         end function scene_text
     end subroutine test_scene_noise_model
 

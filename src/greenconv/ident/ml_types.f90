@@ -61,11 +61,11 @@ module greenconv_ident_ml_types
         integer :: max_changes = 40
         !> Global order search (issue 26): variable projection in the fits of the search, death
         !> moves after its greedy rounds and the final pruning under the final weights
-        !> (greenconv_ident_order_search). Off: with it on, suite outofband's beams (a mode
-        !> 9.4 CRB sigma off; the measured beam's FRF 1 with a mode at 1.7 Hz besides the six)
-        !> and suite greenfiles' band-limited plate (direct 2.8e-2 off) fail, and the shipped
-        !> patch file's summed driving points end 408 above the greedy search's MDL (27 poles for 29).
-        logical :: global_search = .false.
+        !> (greenconv_ident_order_search), so that the model is the MDL minimum rather than a
+        !> neighbour. Its model is used when its residual is explained by the noise model; when
+        !> not, the greedy search runs as well and its model is returned, with a warning
+        !> (greenconv_ident_mlfit, step 5). Off: the greedy search alone.
+        logical :: global_search = .true.
         !> A mode is reported as under-resolved when its half-power band 2*xi*f holds fewer lines.
         real(dp) :: min_band_lines = 2.0_dp
         !> A line whose weighted residual |G_l - G_model|/sigma_l exceeds this, alone among its

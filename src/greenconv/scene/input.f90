@@ -312,9 +312,9 @@ contains
 
         real(dp) :: f_max, tol_e
         integer :: n_freq, max_order, order, stat
-        character(len=name_length) :: method, noise_model
+        character(len=name_length) :: method, noise_model, search
         character(len=512) :: message
-        namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model
+        namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model, search
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
         f_max = 0.5_dp/this%dt
@@ -349,6 +349,9 @@ contains
         call require(any(trim(noise_model) == ['relative', 'floor   ', 'band    ', 'auto    ']), error, this, &
                      'identification', 'noise_model', "'relative', 'floor', 'band' or 'auto'", noise_model)
         this%ident_noise = trim(noise_model)
+        call require(any(trim(search) == ['global', 'greedy']), error, this, 'identification', 'search', &
+                     "'global' (greedy rounds, death moves, projected fits) or 'greedy' (the rounds alone)", search)
+        this%ident_search = trim(search)
     end subroutine read_identification_group
 
     !> &road: profile and its parameters.

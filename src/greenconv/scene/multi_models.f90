@@ -144,6 +144,7 @@ contains
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
         options%fit%max_order = scene%max_order
+        if (allocated(scene%ident_search)) options%fit%global_search = scene%ident_search == 'global'
         if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
         if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
         call identify_green(options, points%green, error)

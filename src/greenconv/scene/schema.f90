@@ -263,6 +263,10 @@ contains
             "the noise of G for method 'ml': 'relative' (of |G|), 'floor' (relative plus a floor), 'band' (relative, " &
             //"one level per band of lines) or 'auto' (the one of the highest likelihood)", '', &
             choices=[character(len=16) :: 'relative', 'floor', 'band', 'auto'])
+        call add(rows, n, 'identification', 'search', value_text, 'global', '', &
+            "the order search of method 'ml': 'global' (the MDL minimum: greedy rounds, death moves, projected " &
+            //"fits; the greedy model when the residual is not explained by the noise) or 'greedy' (the rounds alone)", &
+            '', choices=[character(len=16) :: 'global', 'greedy'])
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
             "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
             choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])

@@ -134,6 +134,7 @@ contains
         if (ml) then
             options%max_order = scene%max_order
             if (allocated(scene%ident_noise)) options%noise_model = scene%ident_noise
+            if (allocated(scene%ident_search)) options%global_search = scene%ident_search == 'global'
             call structure_from_frf_ml(frf, options, dt, structure, error)
         else
             call structure_from_frf(frf, scene_options(scene), dt, structure, error)
