@@ -200,13 +200,15 @@ contains
     !> The found modes against the true ones: each found mode the nearest of a distinct true mode
     !> (none invented), every true mode the data determine (sigma_xi/xi < 0.3 at the bound)
     !> found and flagged determined (ml_result%determined), and each within crb_limit bound
-    !> sigmas in f and xi; the worst is noted.
-    subroutine judge_fit(error, text, truth, sigma_f, sigma_xi, result)
+    !> sigmas in f and xi; the worst is noted. With `determined_only`, the poles the result flags
+    !> not determined are left out first: none of the determined ones may be invented.
+    subroutine judge_fit(error, text, truth, sigma_f, sigma_xi, result, determined_only)
         type(test_error), allocatable, intent(out) :: error
         character(len=*), intent(in) :: text
         type(modal_set), intent(in) :: truth
         real(dp), intent(in) :: sigma_f(:), sigma_xi(:)
         type(ml_result), intent(in) :: result
+        logical, intent(in), optional :: determined_only
 
         integer, allocatable :: match(:)
         real(dp) :: worst_f, worst_xi
@@ -215,7 +217,14 @@ contains
         call note(text//': modes found', real(result%modes%n_modes(), dp))
         call note(text//': chi2/nu', result%chi_square/max(result%dof, 1))
         match = [(minloc(abs(truth%pole - result%modes%pole(k)), 1), k=1, result%modes%n_modes())]
+        if (present(determined_only)) then
+            if (determined_only) then
+                call note(text//': poles not determined', real(count(.not. result%determined), dp))
+                where (.not. result%determined) match = 0
+            end if
+        end if
         do k = 1, size(match)
+            if (match(k) == 0) cycle
             call check(error, count(match == match(k)) == 1, text//': a spurious mode near ' &
                        //real_text(natural_frequency(truth%pole(match(k)))/two_pi)//' Hz; found (f, xi): ' &
                        //listed(result))
