@@ -120,7 +120,7 @@ contains
     !> needles (xi 5e-6 to 1e-3, residues 1e-7 of the modes') that bend the tail rolled off to
     !> 1e-16 m/N, one 0.016 Hz beside the 235 Hz mode. The global search's final pruning merges
     !> them (5 poles), but its residual is not explained (chi2/nu 2.3), so the greedy search's
-    !> model is returned (7 poles): the five modes determined, each within 2 % of the truth's
+    !> model is returned (6 or 7 poles by build): the five modes determined, each within 2 % of the truth's
     !> |lambda|/(2*pi) and xi (sdypy's own tolerance), and no other pole claimed determined.
     subroutine test_needle(error)
         type(test_error), allocatable, intent(out) :: error
