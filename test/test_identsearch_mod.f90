@@ -47,7 +47,8 @@ contains
                      new_unittest('not tuned on (round 30): a quadruple at 2 %', test_quadruple), &
                      new_unittest('not tuned on (round 32): a close pair, a triple, two modes above the band', &
                                   test_edges), &
-                     new_unittest('sdypy-EMA H_51 receptance (roll-off): five modes, no needle determined', test_needle), &
+                     new_unittest('sdypy-EMA H_51 receptance (roll-off): five modes, no needle determined', &
+                                  test_needle), &
                      new_unittest('measured beam (pyuff), FRF 2: a singular information takes no real mode', &
                                   test_singular)]
     end subroutine collect_identsearch
