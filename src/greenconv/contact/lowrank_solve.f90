@@ -22,12 +22,13 @@
 !>
 !> Threads (a build with OpenMP): W0*x, the Woodbury products and the Newton matrix are shared
 !> out by fixed blocks of rows or columns, each sum done by one thread in the serial order, and
-!> the LU is called from one thread of a region (`lapack_alone`), so that any number of threads
-!> gives the one-thread results bit for bit; inside a host's parallel region all stays serial.
+!> the LU is made serially by greenconv_ext_lapack itself (`lapack_serial_begin`), so that any
+!> number of threads gives the one-thread results bit for bit; inside a host's parallel region
+!> all stays serial.
 module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve, lapack_alone
+    use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
     !$ use omp_lib, only: omp_in_parallel
     implicit none
     private
@@ -232,11 +233,7 @@ contains
                 jacobian(:, j) = weight0(:, j)*slopes(j)
                 jacobian(j, j) = jacobian(j, j) + 1.0_dp
             end do
-            !$omp parallel num_threads(2) if (lapack_alone()) default(none) shared(jacobian, b, s, error)
-            !$omp single
             call solve_linear(jacobian, b, s, error)
-            !$omp end single
-            !$omp end parallel
             return
         end if
         if (compliance%rank == 0 .or. all(slopes == 0.0_dp)) then
@@ -294,11 +291,7 @@ contains
             end if
             if (allocated(newton%pivot)) deallocate (newton%pivot)
             allocate (newton%pivot(size(newton%factors, 1)))
-            !$omp parallel num_threads(2) if (lapack_alone()) default(shared)
-            !$omp single
             call lu_factor(newton%factors, newton%pivot, error)
-            !$omp end single
-            !$omp end parallel
             if (allocated(error)) return
             newton%ready = .true.
         end associate

@@ -22,8 +22,8 @@
 !> a parallel region over `omp_get_max_threads()` threads, and its threaded sums are taken in
 !> another order than its serial ones (last bits of an LU, a least-squares solution, the
 !> eigenvalues, a Cholesky factor; 20 x 20 and up); inside a parallel region it runs serially.
-!> `lapack_alone` says when a call is to be made serially (the contact layer calls its LU from
-!> one thread of a region); dgelsd, dgeev and dgesv are called here between
+!> `lapack_alone` says when a call is to be made serially; dgelsd, dgeev, dgesv, dgetrf and dgetrs
+!> (the contact layer's LU) are called here between
 !> `lapack_serial_begin` and `lapack_serial_end` (the calling thread's OpenMP thread count set
 !> to 1), and so are the Cholesky factor and inverse of `cholesky_alone` and
 !> `cholesky_inverse_alone`, so that every result of these front ends is that of one thread
@@ -40,7 +40,7 @@ module greenconv_ext_lapack
     private
 
     public :: least_squares, eigenvalues, solve_linear, lu_factor, lu_solve
-    public :: lapack_alone, lapack_serial_begin, lapack_serial_end
+    public :: lapack_serial_begin, lapack_serial_end
     public :: cholesky_alone, cholesky_inverse_alone
 
     interface
@@ -292,14 +292,16 @@ contains
         !> Set on a size mismatch, a NaN or Inf in A, or when A is exactly singular.
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: n, info
+        integer :: n, info, threads
 
         n = size(a, 1)
         call check_arguments('dgetrf', [n >= 1, size(a, 2) == n, size(pivot) == n], error)
         if (allocated(error)) return
         call require_finite('dgetrf', 'input', [all(ieee_is_finite(a))], error)
         if (allocated(error)) return
+        call lapack_serial_begin(threads)
         call dgetrf(n, n, a, n, pivot, info)
+        call lapack_serial_end(threads)
         if (info > 0) then
             call fatal_error(error, 'dgetrf: singular matrix (zero pivot in column '//int_text(info)//')', &
                              stat_numerical)
@@ -322,14 +324,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: b_work(:, :)
-        integer :: n, info
+        integer :: n, info, threads
 
         n = size(factors, 1)
         call check_arguments('dgetrs', [n >= 1, size(factors, 2) == n, size(pivot) == n, size(b) == n, &
                                         size(x) == n], error)
         if (allocated(error)) return
         b_work = reshape(b, [n, 1])
+        call lapack_serial_begin(threads)
         call dgetrs('N', n, 1, factors, n, pivot, b_work, n, info)
+        call lapack_serial_end(threads)
         if (info < 0) then
             call lapack_error(error, 'dgetrs', info)
             return
@@ -339,9 +343,8 @@ contains
         x(:) = b_work(:, 1)
     end subroutine lu_solve
 
-    !> Whether a BLAS or LAPACK call is to be made serially (from one thread of a parallel
-    !> region of ours, or between `lapack_serial_begin` and `lapack_serial_end`): when OpenMP
-    !> would give it more than one thread. OpenBLAS's OpenMP build threads a call outside a
+    !> Whether a BLAS or LAPACK call is to be made serially (between `lapack_serial_begin` and
+    !> `lapack_serial_end`): when OpenMP would give it more than one thread. OpenBLAS's OpenMP build threads a call outside a
     !> region as `omp_get_max_threads()` says, with other round-off than on one thread (a
     !> 441 x 441 LU, a 16,386 x 202 Gram matrix differ in their last bits), and runs serially
     !> inside one; called so, the results do not depend on the number of threads, and inside a
