@@ -3,9 +3,15 @@
 !> limit, and bad track parameters refused.
 module test_wheelrail_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
-    use testsuite_mod, only: test_error, unittest_type, new_unittest, check
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
-    use greenconv_model_rail, only: rail_track, wheel_mass, hertz_constant, hertz_tangent
+    use greenconv_model_rail, only: rail_track, wheel_mass, hertz_constant, hertz_tangent, wheel_rail_frf
+    use greenconv_model_frf, only: frf_type
+    use greenconv_ident_lsce, only: impulse_from_frf
+    use greenconv_ident_structure, only: structure_model, structure_from_samples
+    use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_builder, only: make_convolver
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact
     implicit none
     private
 
@@ -28,7 +34,8 @@ contains
                      new_unittest('Timoshenko rail tends to Euler-Bernoulli', test_timoshenko_limit), &
                      new_unittest('free rail: -(1+i)/(4 EI k^3)', test_free_rail), &
                      new_unittest('Hertz constant and its tangent', test_hertz), &
-                     new_unittest('bad track and wheel values refused', test_bad_values)]
+                     new_unittest('bad track and wheel values refused', test_bad_values), &
+                     new_unittest('small sine roughness: time domain = linear model within 2 %', test_linear_limit)]
     end subroutine collect_wheelrail
 
     !> At omega = 0 the receptance is beta/(2s), beta = (s/(4 EI))^(1/4) (Hetenyi, art. 10).
@@ -184,6 +191,112 @@ contains
         if (allocated(error)) return
         call check(error, index(fault%message, 'wheel_mass') == 1, 'message names it: '//fault%message)
     end subroutine test_bad_values
+
+    !> A wheel on the rail over a sine roughness of 0.05 um, dt = 10 us, implicit step on the
+    !> FFT convolver of g (the inverse FFT of alpha_w + alpha_r on 1 Hz lines to 50 kHz): the
+    !> steady-state contact-force amplitude (least squares over whole periods after the start
+    !> has died out) against |r|/|alpha_w + alpha_r + 1/k_H|, alpha_r from the wavenumber
+    !> integral and k_H from the law, at 30 Hz to 2.5 kHz.
+    subroutine test_linear_limit(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: dt = 1.0e-5_dp, amplitude = 5.0e-8_dp, c_hertz = 9.4e10_dp, preload = 7.5e4_dp
+        real(dp), parameter :: f(4) = [30.0_dp, 250.0_dp, 1000.0_dp, 2500.0_dp]
+        type(rail_track) :: track
+        type(wheel_mass) :: wheel
+        type(frf_type) :: frf
+        type(structure_model) :: structure
+        class(convolver), allocatable :: conv
+        type(contact_law) :: law
+        type(contact_options) :: options
+        type(contact_response) :: response
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: accuracy
+        real(dp), allocatable :: g(:), road(:), basis(:, :)
+        real(dp) :: dt_g, omega, k_h, linear, measured, ramp, settle, window, t, worst
+        complex(dp) :: alpha
+        integer :: i, n, n_steps, first
+        character(len=80) :: label
+
+        track = rail_track(bending=ei, mass=m_rail, pad_stiffness=s_pad, pad_damping=2.0_dp*c_pad)
+        wheel = wheel_mass(mass=600.0_dp, stiffness=1.0e6_dp, damping=2.0e4_dp)
+        frf = wheel_rail_frf(track, wheel, 0.5_dp/dt, 50001)
+        call impulse_from_frf(frf, g, dt_g, fault)
+        call check(error, .not. allocated(fault) .and. abs(dt_g - dt) < 1.0e-12_dp*dt, 'g from G at dt')
+        if (allocated(error)) return
+        structure = structure_from_samples(g(1:size(g)/2))
+        law = contact_law(stiffness=c_hertz, exponent=1.5_dp)
+        options%scheme = 'implicit'
+        k_h = (c_hertz*(((preload/c_hertz)**(2.0_dp/3.0_dp))*(1.0_dp + 1.0e-6_dp))**1.5_dp &
+               - c_hertz*(((preload/c_hertz)**(2.0_dp/3.0_dp))*(1.0_dp - 1.0e-6_dp))**1.5_dp) &
+              /(2.0e-6_dp*(preload/c_hertz)**(2.0_dp/3.0_dp))
+        worst = 0.0_dp
+        do i = 1, size(f)
+            omega = 2.0_dp*pi*f(i)
+            ! a roughness faded in over 20 ms, left 120 ms to settle, then whole periods over >= 40 ms
+            ramp = 0.02_dp
+            settle = 0.12_dp
+            window = ceiling(0.04_dp*f(i))/f(i)
+            n_steps = nint((ramp + settle + window)/dt) + 1
+            allocate (road(0:n_steps - 1))
+            do n = 0, n_steps - 1
+                t = n*dt
+                road(n) = amplitude*sin(omega*t)*merge(0.5_dp - 0.5_dp*cos(pi*t/ramp), 1.0_dp, t < ramp)
+            end do
+            call make_convolver('fft', structure, dt, 0.0_dp, n_steps, conv, accuracy, fault)
+            call check(error, .not. allocated(fault), 'fft convolver')
+            if (allocated(error)) return
+            call run_contact(conv, law, road, preload, response, options, fault)
+            call conv%release()
+            call check(error, .not. allocated(fault), 'contact run')
+            if (allocated(error)) return
+            ! F - F0 = a*cos + b*sin + c over the window
+            first = n_steps - nint(window/dt)
+            allocate (basis(first:n_steps - 1, 3))
+            basis(:, 1) = [(cos(omega*n*dt), n=first, n_steps - 1)]
+            basis(:, 2) = [(sin(omega*n*dt), n=first, n_steps - 1)]
+            basis(:, 3) = 1.0_dp
+            measured = amplitude_fit(basis, response%force(first:n_steps - 1) - preload)
+            alpha = wheel%receptance(omega) + integral_complex(track, omega)
+            linear = amplitude/abs(alpha + 1.0_dp/k_h)
+            worst = max(worst, abs(measured/linear - 1.0_dp))
+            write (label, '(a,f7.1,a)') 'force amplitude / linear model at ', f(i), ' Hz'
+            call check(error, measured/linear, 1.0_dp, trim(label), thr=0.02_dp)
+            deallocate (road, basis)
+            if (allocated(error)) return
+        end do
+        call note('worst |F/F_linear - 1|', worst)
+    end subroutine test_linear_limit
+
+    !> Amplitude sqrt(a^2 + b^2) of the least-squares fit y = a*basis(:,1) + b*basis(:,2) +
+    !> c*basis(:,3), by the normal equations (3 x 3, Cramer's rule).
+    real(dp) function amplitude_fit(basis, y) result(amplitude)
+        real(dp), intent(in) :: basis(:, :), y(:)
+
+        real(dp) :: a(3, 3), r(3), x(3), m(3, 3), det
+        integer :: i, j
+
+        do i = 1, 3
+            r(i) = sum(basis(:, i)*y)
+            do j = 1, 3
+                a(i, j) = sum(basis(:, i)*basis(:, j))
+            end do
+        end do
+        det = determinant(a)
+        do i = 1, 3
+            m = a
+            m(:, i) = r
+            x(i) = determinant(m)/det
+        end do
+        amplitude = sqrt(x(1)**2 + x(2)**2)
+    end function amplitude_fit
+
+    pure real(dp) function determinant(a)
+        real(dp), intent(in) :: a(3, 3)
+
+        determinant = a(1, 1)*(a(2, 2)*a(3, 3) - a(2, 3)*a(3, 2)) - a(1, 2)*(a(2, 1)*a(3, 3) - a(2, 3)*a(3, 1)) &
+                      + a(1, 3)*(a(2, 1)*a(3, 2) - a(2, 2)*a(3, 1))
+    end function determinant
 
     !> The receptance (1/pi) * integral over k > 0 of dk/D(k), D the rail's dynamic stiffness
     !> per wavenumber written out here, by Simpson's rule after k = k0*tan(theta).

@@ -48,10 +48,11 @@ module greenconv_model_rail
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: sci_text
+    use greenconv_model_frf, only: frf_type
     implicit none
     private
 
-    public :: rail_track, wheel_mass, hertz_constant, hertz_tangent
+    public :: rail_track, wheel_mass, hertz_constant, hertz_tangent, wheel_rail_frf
 
     !> An infinite rail on a continuous one- or two-layer support.
     type :: rail_track
@@ -225,6 +226,28 @@ contains
         if (.not. allocated(error)) call not_negative(self%damping, 'suspension_damping', &
                                                       'a damping >= 0 N s/m', error)
     end subroutine wheel_check
+
+    !> The receptance the contact sees, alpha_w + alpha_r [m/N], on n_freq lines from 0 to
+    !> f_max [Hz] (the uniform grid from 0 Hz of greenconv_model_frf).
+    pure function wheel_rail_frf(track, wheel, f_max, n_freq) result(frf)
+        !> The track.
+        type(rail_track), intent(in) :: track
+        !> The wheel.
+        type(wheel_mass), intent(in) :: wheel
+        !> Highest frequency [Hz], > 0.
+        real(dp), intent(in) :: f_max
+        !> Number of lines, >= 2.
+        integer, intent(in) :: n_freq
+        type(frf_type) :: frf
+
+        integer :: j
+
+        allocate (frf%frequency(n_freq), frf%receptance(n_freq))
+        frf%frequency(:) = [(j*(f_max/(n_freq - 1)), j=0, n_freq - 1)]
+        frf%frequency(n_freq) = f_max
+        frf%receptance(:) = wheel%receptance(two_pi*frf%frequency) + track%receptance(two_pi*frf%frequency)
+        frf%source = 'wheel on rail, closed form'
+    end function wheel_rail_frf
 
     !> Hertz's constant C_H [N/m^1.5] of a wheel (rolling radius R_w) on a rail head
     !> (transverse radius R_r) of one material: (4/3)*E/(2*(1 - nu^2))*sqrt(sqrt(R_w*R_r))
