@@ -368,13 +368,18 @@ contains
     !> (a grid with no inverse FFT); else, g being the inverse FFT of the receptance, the
     !> larger of how much of it is left at the end of the samples it has (half the period
     !> 1/df: a cut there, or wrap-around; greenconv_conv_kernel's `period_end_level`) and what
-    !> the spectrum above the Nyquist frequency of its step leaves out (`beyond_nyquist`, from
-    !> the identified modes).
+    !> the spectrum above the Nyquist frequency of its step leaves out (`band_error` when the
+    !> structure knows G there, else `beyond_nyquist` from the identified modes).
     real(dp) function kernel_estimate(structure) result(estimate)
         type(structure_model), intent(in) :: structure
 
         estimate = 0.0_dp
         if (structure%has_exact .or. .not. allocated(structure%sampled_g)) return
+        if (structure%band_error >= 0.0_dp .and. structure%sampled_step > 0.0_dp) then
+            ! G known above f_max (a closed form): no model needed for what the band leaves out
+            estimate = max(period_end_level(structure%sampled_g), structure%band_error)
+            return
+        end if
         if (.not. structure%identified) return
         if (.not. structure%frf%uniform_from_zero()) then
             estimate = structure%fit_e()

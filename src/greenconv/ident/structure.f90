@@ -21,7 +21,7 @@ module greenconv_ident_structure
     private
 
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
-    public :: structure_from_frf_ml
+    public :: structure_from_frf_ml, structure_from_receptance
 
     !> g sampled from modes reaches until the modal envelope has fallen to this fraction of its
     !> value at t = 0 (far below any truncation a run asks, 1e-2 in the paper) ...
@@ -40,6 +40,10 @@ module greenconv_ident_structure
         !> Time step [s] at which `sampled_g` was sampled from a receptance (0 when the caller
         !> gave the samples: the step is then the one given to the convolvers).
         real(dp) :: sampled_step = 0.0_dp
+        !> Relative error of `sampled_g` from what the inverse FFT leaves out above f_max,
+        !> 2*int_{f_max}^inf |G| df / max|g|, when G is known there (a closed form); < 0 unknown
+        !> (then estimated from the identified modes).
+        real(dp) :: band_error = -1.0_dp
         !> The modes the modal methods use.
         type(modal_set) :: model
         !> Whether `model` comes from a fit of G (then `frf`, `method` and `fit` or `ml` are set).
@@ -158,6 +162,28 @@ contains
         end do
         call sample_from_frf(repaired, dt, structure, error)
     end subroutine structure_from_frf_ml
+
+    !> A structure known by its receptance G on the uniform grid from 0 Hz, with no modes: g
+    !> sampled at dt from the inverse FFT of G (dt a whole multiple of 1/(2*f_max)), for
+    !> `direct` and `fft` alone.
+    subroutine structure_from_receptance(frf, dt, structure, error)
+        !> The receptance G [m/N] on a uniform grid from 0 Hz.
+        type(frf_type), intent(in) :: frf
+        !> Time step [s] of the convolvers, > 0.
+        real(dp), intent(in) :: dt
+        !> The structure: g, no modes.
+        type(structure_model), intent(out) :: structure
+        !> Set when the grid is not the uniform grid from 0 Hz or dt does not fit it.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. frf%uniform_from_zero()) then
+            call fatal_error(error, frf%fft_grid_problem()//': g by inverse FFT needs the uniform grid from 0 Hz')
+            return
+        end if
+        structure%frf = frf
+        allocate (structure%model%pole(0), structure%model%residue(0))
+        call sample_from_frf(frf, dt, structure, error)
+    end subroutine structure_from_receptance
 
     !> The identification of G into a structure, by LSCE (`lsce` given) or by maximum likelihood
     !> (`ml` given), timed: sets frf, fit or ml, method, model (sorted by frequency), identified

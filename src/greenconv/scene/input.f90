@@ -11,11 +11,13 @@ module greenconv_scene_input
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: real_text, int_text, sci_text
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt, contact_positions
     use greenconv_model_plate, only: tyre_plate
+    use greenconv_model_rail, only: rail_track, wheel_mass_type => wheel_mass, hertz_constant
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
     use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
@@ -229,13 +231,18 @@ contains
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
         real(dp) :: belt_width, plate_mass, plate_bending_x, plate_bending_y, plate_bending_xy, plate_tension_x, &
                     plate_tension_y, plate_foundation, modes_patch_length, modes_patch_width
+        real(dp) :: rail_bending, rail_mass, rail_shear, rail_rotary, support_stiffness, support_damping, &
+                    sleeper_mass, ballast_stiffness, ballast_damping, wheel_mass, suspension_stiffness, &
+                    suspension_damping
         integer :: n_modes, seed, stat, frf_dataset
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
             belt_tension, belt_foundation, belt_width, plate_mass, plate_bending_x, plate_bending_y, &
             plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation, f_modes, green_file, modes_file, &
-            modes_direction, modes_patch_length, modes_patch_width
+            modes_direction, modes_patch_length, modes_patch_width, rail_bending, rail_mass, rail_shear, rail_rotary, &
+            support_stiffness, support_damping, sleeper_mass, ballast_stiffness, ballast_damping, wheel_mass, &
+            suspension_stiffness, suspension_damping
 
         read (defaults, nml=structure)
         if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
@@ -300,7 +307,48 @@ contains
                                 tension_x=plate_tension_x, tension_y=plate_tension_y, foundation=plate_foundation, &
                                 damping_ratio=damping_ratio)
         this%f_modes = f_modes
+        call check_values(this, 'structure', [character(len=20) :: 'rail_bending', 'rail_mass', 'rail_shear', &
+                          'rail_rotary', 'support_stiffness', 'support_damping', 'sleeper_mass', 'ballast_stiffness', &
+                          'ballast_damping', 'wheel_mass', 'suspension_stiffness', 'suspension_damping'], &
+                          [rail_bending, rail_mass, rail_shear, rail_rotary, support_stiffness, support_damping, &
+                          sleeper_mass, ballast_stiffness, ballast_damping, wheel_mass, suspension_stiffness, &
+                          suspension_damping], error)
+        this%track = rail_track(bending=rail_bending, mass=rail_mass, shear=rail_shear, rotary=rail_rotary, &
+                                pad_stiffness=support_stiffness, pad_damping=support_damping, &
+                                sleeper_mass=sleeper_mass, ballast_stiffness=ballast_stiffness, &
+                                ballast_damping=ballast_damping)
+        this%wheel = wheel_mass_type(mass=wheel_mass, stiffness=suspension_stiffness, damping=suspension_damping)
+        call check_track(this, error)
     end subroutine read_structure_group
+
+    !> The wheel_rail model's track and wheel: the model's own checks (a message naming the
+    !> variable) and, for a contact run, the highest resonance of the track's masses on their
+    !> springs below the Nyquist frequency 1/(2*dt), which g sampled at dt must resolve.
+    subroutine check_track(this, error)
+        type(scene_type), intent(in) :: this
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(error_type), allocatable :: fault
+        real(dp) :: top
+        character(len=:), allocatable :: name
+
+        if (allocated(error) .or. .not. model_requires(find_model(this%model), 'rail_bending')) return
+        call this%track%check(fault)
+        if (.not. allocated(fault)) call this%wheel%check(fault)
+        if (allocated(fault)) then
+            name = fault%message(:index(fault%message, ':') - 1)
+            call fatal_error(error, place(this, 'structure', name)//' '//fault%message)
+            return
+        end if
+        if (this%task /= 'contact') return
+        top = this%track%top_resonance()
+        name = 'support_stiffness'
+        if (top > sqrt(this%track%pad_stiffness/this%track%mass)/two_pi) name = 'sleeper_mass'
+        call require(top < 0.5_dp/this%dt, error, this, 'structure', name, 'a track whose resonance ' &
+                     //'(the rail on its pad, the sleepers between pad and ballast) lies below the Nyquist ' &
+                     //'frequency 1/(2*dt) = '//sci_text(0.5_dp/this%dt)//' Hz, found one at '//sci_text(top) &
+                     //' Hz: a smaller dt, or a softer support')
+    end subroutine check_track
 
     !> &identification: frequency grid of the sampled G and LSCE options.
     subroutine read_identification_group(source, defaults, this, error)
@@ -637,13 +685,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound, patch_width, &
-                    stiffness_per_area
+                    stiffness_per_area, wheel_radius, rail_head_radius, young_modulus, poisson_ratio
         character(len=name_length) :: scheme
         type(structure_kind) :: model
         integer :: stat, n_points, n_points_x, n_points_y
         character(len=512) :: message
         namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, n_points_x, n_points_y, &
-            patch_width, stiffness_per_area, scheme, divergence_bound
+            patch_width, stiffness_per_area, scheme, divergence_bound, wheel_radius, rail_head_radius, young_modulus, &
+            poisson_ratio
 
         ! The table's default `mass*gravity`, set below when the file is silent.
         preload = -1.0_dp
@@ -681,6 +730,17 @@ contains
                      //'stiffness is k_a times its share of the patch)')
         call check_value(this, 'contact', 'scheme', scheme, error)
         call check_value(this, 'contact', 'divergence_bound', divergence_bound, error)
+        call check_values(this, 'contact', [character(len=16) :: 'wheel_radius', 'rail_head_radius', &
+                          'young_modulus', 'poisson_ratio'], [wheel_radius, rail_head_radius, young_modulus, &
+                          poisson_ratio], error)
+        call require(wheel_radius == 0.0_dp .or. .not. this%input%has_value('contact', 'stiffness'), error, this, &
+                     'contact', 'stiffness', 'no value beside wheel_radius (Hertz''s constant then comes from the ' &
+                     //'radii and the material)')
+        call require(wheel_radius == 0.0_dp .or. exponent == 1.5_dp, error, this, 'contact', 'exponent', &
+                     '1.5 (Hertz) beside wheel_radius', exponent)
+        this%wheel_radius = wheel_radius
+        if (wheel_radius > 0.0_dp) stiffness = hertz_constant(wheel_radius, rail_head_radius, young_modulus, &
+                                                              poisson_ratio)
         this%patch_length = patch_length
         this%patch_width = patch_width
         this%stiffness_per_area = stiffness_per_area

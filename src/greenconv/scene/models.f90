@@ -18,7 +18,7 @@ module greenconv_scene_models
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
-                                             frf_file_structure, check_frf_file
+                                             frf_file_structure, check_frf_file, wheel_rail_structure
     use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
                                             green_file_points, check_green_file, modes_file_points, check_modes_file
     implicit none
@@ -80,7 +80,7 @@ module greenconv_scene_models
     !> Longest model name a scene may write.
     integer, parameter :: model_name_length = 16
     !> Number of models in the registry (`structure_models`).
-    integer, parameter :: model_count = 7
+    integer, parameter :: model_count = 8
 
     !> One structure model: what it requires and provides, and its procedures.
     type :: structure_kind
@@ -89,7 +89,7 @@ module greenconv_scene_models
         !> Name a scene writes, `&structure model = '<name>'`.
         character(len=model_name_length) :: name = ''
         !> The `&structure` variables the model requires, blank-separated.
-        character(len=48) :: requires = ''
+        character(len=64) :: requires = ''
         !> Whether the model has a mass M [kg], so that `&contact preload` may default to M*g.
         logical :: has_mass = .false.
         !> Whether the structure's own modes are known exactly.
@@ -141,6 +141,9 @@ contains
         ! bound before the run (its direct and fft kernels are sized when they are built)
         models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &
                                    check_file=check_modes_file)
+        ! the rail's receptance is no finite sum of modes: sampled and identified as a file's
+        models(8) = structure_kind(8, 'wheel_rail', 'rail_bending rail_mass support_stiffness wheel_mass', &
+                                   identified_modes=.true., sampled_g=.true., build=wheel_rail_structure)
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.

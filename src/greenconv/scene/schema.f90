@@ -98,7 +98,7 @@ contains
         !> The table.
         type(scene_variable), allocatable :: table(:)
 
-        type(scene_variable) :: rows(120)
+        type(scene_variable) :: rows(160)
         integer :: n
 
         n = 0
@@ -237,6 +237,42 @@ contains
         call add(rows, n, 'structure', 'modes_patch_width', value_real, '0.0', 'm', &
             "the width along y of the patch whose nodes touch the road, centred on the modes file's nodes " &
             //'(0: every node)', '', expect='a width >= 0 m (0: every node)', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'rail_bending', value_real, '6.4e6', 'N*m^2', &
+            'the bending stiffness EI of the rail (wheel_rail)', '', &
+            expect='a bending stiffness > 0 N*m^2', above=0.0_dp)
+        call add(rows, n, 'structure', 'rail_mass', value_real, '60.0', 'kg/m', &
+            'the mass per length of the rail (wheel_rail)', '', &
+            expect='a mass per length > 0 kg/m', above=0.0_dp)
+        call add(rows, n, 'structure', 'rail_shear', value_real, '0.0', 'N', &
+            'the shear stiffness kappa*G*A of a Timoshenko rail (0: Euler-Bernoulli) (wheel_rail)', '', &
+            expect='a shear stiffness >= 0 N (0: Euler-Bernoulli)', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'rail_rotary', value_real, '0.0', 'kg*m', &
+            'the rotary inertia rho*I per length of a Timoshenko rail (wheel_rail, with rail_shear)', '', &
+            expect='a rotary inertia >= 0 kg*m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'support_stiffness', value_real, '5.0e8', 'N/m^2', &
+            'the stiffness per length of the support (one layer) or of the pad (two layers) (wheel_rail)', '', &
+            expect='a stiffness per length > 0 N/m^2', above=0.0_dp)
+        call add(rows, n, 'structure', 'support_damping', value_real, '5.0e4', 'N*s/m^2', &
+            'the viscous damping per length of the support or of the pad (wheel_rail)', '', &
+            expect='a damping per length >= 0 N*s/m^2', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'sleeper_mass', value_real, '0.0', 'kg/m', &
+            'the sleeper mass per length between pad and ballast (0: a one-layer support) (wheel_rail)', '', &
+            expect='a mass per length >= 0 kg/m (0: one layer)', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'ballast_stiffness', value_real, '1.0e8', 'N/m^2', &
+            'the ballast stiffness per length under the sleepers (wheel_rail, sleeper_mass > 0)', '', &
+            expect='a stiffness per length > 0 N/m^2', above=0.0_dp)
+        call add(rows, n, 'structure', 'ballast_damping', value_real, '1.0e5', 'N*s/m^2', &
+            'the ballast viscous damping per length (wheel_rail, sleeper_mass > 0)', '', &
+            expect='a damping per length >= 0 N*s/m^2', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'wheel_mass', value_real, '600.0', 'kg', &
+            'the unsprung mass of the wheel (wheel_rail)', '', &
+            expect='a mass > 0 kg', above=0.0_dp)
+        call add(rows, n, 'structure', 'suspension_stiffness', value_real, '1.0e6', 'N/m', &
+            'the stiffness of the primary suspension between the wheel and a fixed bogie (wheel_rail)', '', &
+            expect='a stiffness > 0 N/m', above=0.0_dp)
+        call add(rows, n, 'structure', 'suspension_damping', value_real, '2.0e4', 'N*s/m', &
+            'the viscous damping of the primary suspension (wheel_rail)', '', &
+            expect='a damping >= 0 N*s/m', at_least=0.0_dp)
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '', &
             expect='a frequency > 0 Hz', above=0.0_dp)
@@ -300,7 +336,7 @@ contains
             expect='a finite position in m')
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'", &
-            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area')
+            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area wheel_radius')
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
             'the contact exponent p', "task 'contact'", &
             expect='an exponent p > 0', above=0.0_dp)
@@ -328,6 +364,18 @@ contains
             'the tread stiffness per area k_a (0: stiffness per point); each point gets k_a times its ' &
             //'share of the patch, patch_length*patch_width/N_c', '', &
             expect='a stiffness per area >= 0 N/m^(2+p) (0: stiffness per point)', at_least=0.0_dp)
+        call add(rows, n, 'contact', 'wheel_radius', value_real, '0.0', 'm', &
+            "the wheel's rolling radius R_w, for Hertz's constant from the radii (0: stiffness given)", '', &
+            expect='a radius >= 0 m (0: stiffness given)', at_least=0.0_dp)
+        call add(rows, n, 'contact', 'rail_head_radius', value_real, '0.3', 'm', &
+            "the rail head's transverse radius R_r (with wheel_radius)", '', &
+            expect='a radius > 0 m', above=0.0_dp)
+        call add(rows, n, 'contact', 'young_modulus', value_real, '2.1e11', 'Pa', &
+            "Young's modulus E of wheel and rail (with wheel_radius)", '', &
+            expect='a modulus > 0 Pa', above=0.0_dp)
+        call add(rows, n, 'contact', 'poisson_ratio', value_real, '0.3', '', &
+            "Poisson's ratio of wheel and rail (with wheel_radius)", '', &
+            expect='a ratio in [0, 0.5)', at_least=0.0_dp, below=0.5_dp)
         call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
             "the contact step, 'explicit' or 'implicit'", '', &
             choices=[character(len=16) :: 'explicit', 'implicit'])
@@ -559,12 +607,22 @@ contains
         character(len=*), intent(in) :: when
         type(error_type), allocatable, intent(inout) :: error
 
+        character(len=:), allocatable :: others, rest, word
+
         if (scan%has_value(variable%group, variable%name)) return
         if (len(variable%unless) > 0) then
-            if (scan%has_value(variable%group, variable%unless)) return
+            ! any one of the alternatives, blank-separated, will do
+            others = ''
+            rest = variable%unless
+            do while (len_trim(rest) > 0)
+                word = rest(:index(rest//' ', ' ') - 1)
+                rest = adjustl(rest(len(word) + 1:))
+                if (scan%has_value(variable%group, word)) return
+                others = others//' or '//word
+            end do
             call fatal_error(error, scan%file//':'//int_text(scan%line_of(variable%group, ''))//': &' &
                              //variable%group//' '//variable%name//': expected '//required_text(variable, when) &
-                             //' or '//variable%unless//', found neither')
+                             //others//', found neither')
             return
         end if
         call fatal_error(error, scan%file//':'//int_text(scan%line_of(variable%group, ''))//': &'//variable%group &

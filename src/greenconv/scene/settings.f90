@@ -10,6 +10,7 @@ module greenconv_scene_settings
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt
     use greenconv_model_plate, only: tyre_plate
+    use greenconv_model_rail, only: rail_track, wheel_mass
     use greenconv_model_road_file, only: road_file_type => road_file
     use greenconv_model_road_texture, only: road_texture
     use greenconv_scene_scan, only: namelist_scan
@@ -95,6 +96,11 @@ module greenconv_scene_settings
         !> The 2D tyre belt of the tyre_plate model (its damping ratio is `damping_ratio`, its
         !> circumference `belt_length`).
         type(tyre_plate) :: plate
+        !> The rail and its support of the wheel_rail model (SI: EI [N m^2], m [kg/m], per length
+        !> stiffnesses [N/m^2] and dampings [N s/m^2]).
+        type(rail_track) :: track
+        !> The wheel of the wheel_rail model: mass [kg] on its primary suspension [N/m, N s/m].
+        type(wheel_mass) :: wheel
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
         real(dp) :: f_modes
         !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).
@@ -142,6 +148,8 @@ module greenconv_scene_settings
         type(contact_options) :: contact
         !> Contact law.
         type(contact_law) :: law
+        !> Wheel radius R_w [m] Hertz's constant was computed from (0: `&contact stiffness` given).
+        real(dp) :: wheel_radius = 0.0_dp
         !> Static preload F0 [N].
         real(dp) :: preload
         !> Convolution methods to run, in order.

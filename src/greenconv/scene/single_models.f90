@@ -5,7 +5,10 @@
 !> - `sdof`: the oscillator (M, K, xi) of Tab. 1, its exact mode;
 !> - `random_modes`: the random modes of section 3.2, G sampled from them and identified;
 !> - `frf_file`: a receptance read from a file (columns or a universal file), identified by the
-!>   scene's method ('ml' or 'lsce'), g by inverse FFT at the scene's dt.
+!>   scene's method ('ml' or 'lsce'), g by inverse FFT at the scene's dt;
+!> - `wheel_rail`: a wheel on an infinite rail (greenconv_model_rail), its receptance
+!>   alpha_w + alpha_r sampled from 0 to f_max in closed form and then used as a file's:
+!>   identified by the scene's method, g by inverse FFT at the scene's dt.
 module greenconv_scene_single_models
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -13,17 +16,18 @@ module greenconv_scene_single_models
     use greenconv_model_modal_set, only: modal_set, random_modes
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
+    use greenconv_model_rail, only: wheel_rail_frf, band_tail
     use greenconv_ident_lsce, only: lsce_options
     use greenconv_ident_mlfit, only: ml_options
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
-                                         structure_from_frf_ml
-    use greenconv_conv_methods, only: method_scheme, scheme_auto
+                                         structure_from_frf_ml, structure_from_receptance
+    use greenconv_conv_methods, only: method_scheme, scheme_auto, method_needs, needs_modes
     use greenconv_scene_settings, only: scene_type, place_error
     implicit none
     private
 
     public :: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay
-    public :: frf_file_structure, check_frf_file
+    public :: frf_file_structure, check_frf_file, wheel_rail_structure
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -95,6 +99,46 @@ contains
         end if
         if (allocated(error)) call place_error(error, scene, 'structure', 'frf_file')
     end subroutine frf_file_structure
+
+    !> The `wheel_rail` structure: the receptance the contact sees, alpha_w + alpha_r, on the
+    !> scene's n_freq lines from 0 to f_max, g sampled at the scene's dt by inverse FFT; the
+    !> modes identified by the scene's method ('lsce' unless 'ml' is asked) only when a method
+    !> needs them (a modal method, or `auto`, which weighs a modal fit against the sampled g) or
+    !> the task is 'identify'. G being known above f_max, the own error estimate of `direct` and
+    !> `fft` counts what the band leaves out from G itself (`band_error`), not from a fit.
+    subroutine wheel_rail_structure(scene, structure, error)
+        !> The scene (track, wheel, f_max, n_freq, the identification's settings).
+        type(scene_type), intent(in) :: scene
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the grid.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        logical :: modal
+        integer :: i
+
+        frf = wheel_rail_frf(scene%track, scene%wheel, scene%f_max, scene%n_freq)
+        modal = scene%task /= 'contact'
+        if (allocated(scene%methods)) then
+            do i = 1, size(scene%methods)
+                modal = modal .or. method_needs(trim(scene%methods(i)), needs_modes) .or. &
+                        method_scheme(trim(scene%methods(i))) == scheme_auto
+            end do
+        end if
+        if (modal) then
+            call identify_scene(scene, frf, sampling_step(scene), structure, error)
+        else
+            call structure_from_receptance(frf, scene%dt, structure, error)
+        end if
+        if (allocated(error)) then
+            call place_error(error, scene, 'identification', 'f_max, n_freq')
+            return
+        end if
+        if (allocated(structure%sampled_g) .and. structure%sampled_step > 0.0_dp) &
+            structure%band_error = 2.0_dp*band_tail(scene%track, scene%wheel, 0.5_dp/structure%sampled_step) &
+                                   /maxval(abs(structure%sampled_g))
+    end subroutine wheel_rail_structure
 
     !> For `--check`: read the scene's receptance file and append its lines to `line`.
     subroutine check_frf_file(scene, line, n_points, error)
