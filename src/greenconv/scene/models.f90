@@ -18,7 +18,8 @@ module greenconv_scene_models
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
-                                             frf_file_structure, check_frf_file, wheel_rail_structure
+                                             frf_file_structure, check_frf_file, wheel_rail_structure, &
+                                             wheel_rail_receptance
     use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
                                             green_file_points, check_green_file, modes_file_points, check_modes_file
     implicit none
@@ -26,7 +27,7 @@ module greenconv_scene_models
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
     public :: multi_point_model, quoted_list
-    public :: structure_builder, points_finder, decay_bound, file_check
+    public :: structure_builder, points_finder, decay_bound, file_check, contact_receptance
 
     abstract interface
         !> Build a single-point model's structure from a scene.
@@ -61,6 +62,18 @@ module greenconv_scene_models
             !> The scene.
             type(scene_type), intent(in) :: scene
         end function decay_bound
+
+        !> The receptance [m/N] a single-point model's contact sees, from the scene's values in
+        !> closed form (for the linear frequency-domain reference beside its runs).
+        subroutine contact_receptance(scene, omega, alpha)
+            import :: dp, scene_type
+            !> The scene.
+            type(scene_type), intent(in) :: scene
+            !> Angular frequencies [rad/s], >= 0.
+            real(dp), intent(in) :: omega(:)
+            !> The receptance at each.
+            complex(dp), intent(out) :: alpha(:)
+        end subroutine contact_receptance
 
         !> For `--check`: read the file a model names without building the structure and
         !> append what was found to the check's line.
@@ -113,6 +126,9 @@ module greenconv_scene_models
         procedure(decay_bound), pointer, nopass :: slowest_decay => null()
         !> `--check` of the file the model names; unassociated when it names none.
         procedure(file_check), pointer, nopass :: check_file => null()
+        !> The receptance of a model known in closed form: its runs get the linear reference
+        !> (greenconv_scene_linear_reference) and report loss of contact; else unassociated.
+        procedure(contact_receptance), pointer, nopass :: receptance => null()
     contains
         !> Whether the contact has several points (the model finds its points).
         procedure :: multi_point => kind_multi_point
@@ -143,7 +159,8 @@ contains
                                    check_file=check_modes_file)
         ! the rail's receptance is no finite sum of modes: sampled and identified as a file's
         models(8) = structure_kind(8, 'wheel_rail', 'rail_bending rail_mass support_stiffness wheel_mass', &
-                                   identified_modes=.true., sampled_g=.true., build=wheel_rail_structure)
+                                   identified_modes=.true., sampled_g=.true., build=wheel_rail_structure, &
+                                   receptance=wheel_rail_receptance)
     end function structure_models
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.

@@ -33,6 +33,7 @@ module greenconv_scene_runner
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_limits, only: work_rate, projected_run
+    use greenconv_scene_linear_reference, only: write_linear_reference, contact_loss_text
     implicit none
     private
 
@@ -99,6 +100,7 @@ contains
         end if
         if (present(block)) block_size = max(block, 1)
         call run_methods(scene, structure, run, unit, block_size, error)
+        if (associated(model%receptance)) call write_linear_reference(scene, model%receptance, unit, error)
     end subroutine run_scene
 
     !> Check a scene without running it and print `check_scene_line`'s line on `unit`, then
@@ -284,7 +286,11 @@ contains
         character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path
         real(dp) :: seconds, estimate
         integer :: i, n
+        type(structure_kind) :: model
+        logical :: reports_loss
 
+        model = find_model(scene%model)
+        reports_loss = associated(model%receptance)
         if (scene%spectra) then
             call spectra_line(scene, text)
             call spectra_path(scene, '<method>', path)
@@ -314,7 +320,9 @@ contains
                 sinks = column_sinks(scene, method, response_header(scene, run%conv), 5)
                 prefix = scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): '
             end if
+            sinks%summarise = reports_loss
             if (.not. allocated(error)) call stream_run(run, scene, method, block, sinks, prefix, seconds, error)
+            if (sinks%summarise) accuracy = accuracy//contact_loss_text(sinks%summary, scene%dt)
             call run%conv%model_size(n, label)
             call run%conv%release()
             if (allocated(error)) return

@@ -27,7 +27,7 @@ module greenconv_scene_single_models
     private
 
     public :: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay
-    public :: frf_file_structure, check_frf_file, wheel_rail_structure
+    public :: frf_file_structure, check_frf_file, wheel_rail_structure, wheel_rail_receptance
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -139,6 +139,18 @@ contains
             structure%band_error = 2.0_dp*band_tail(scene%track, scene%wheel, 0.5_dp/structure%sampled_step) &
                                    /maxval(abs(structure%sampled_g))
     end subroutine wheel_rail_structure
+
+    !> alpha_w + alpha_r [m/N], the receptance the wheel_rail contact sees, at omega [rad/s].
+    subroutine wheel_rail_receptance(scene, omega, alpha)
+        !> The scene (track, wheel).
+        type(scene_type), intent(in) :: scene
+        !> Angular frequencies [rad/s], >= 0.
+        real(dp), intent(in) :: omega(:)
+        !> The receptance at each.
+        complex(dp), intent(out) :: alpha(:)
+
+        alpha = scene%wheel%receptance(omega) + scene%track%receptance(omega)
+    end subroutine wheel_rail_receptance
 
     !> For `--check`: read the scene's receptance file and append its lines to `line`.
     subroutine check_frf_file(scene, line, n_points, error)

@@ -1,0 +1,153 @@
+!> The linear frequency-domain reference of a single-point contact run whose structure has a
+!> known receptance (a model whose registry row names `receptance`, as `wheel_rail`): the
+!> contact linearised at the preload, the force spectrum
+!>
+!>     F(omega) = -r(omega)/(alpha(omega) + 1/k_H),   k_H = p*k_c*delta0^(p-1),
+!>
+!> r the roughness under the contact, alpha the receptance the contact sees (wheel and rail in
+!> series), k_H the law's tangent stiffness at the static compression delta0 (Hertz:
+!> (3/2)*C_H^(2/3)*F0^(1/3)). Its power spectral density is |H|^2 times the roughness's,
+!> H = 1/(alpha + 1/k_H), the roughness's PSD estimated as the time-domain runs' force spectra
+!> are (greenconv_io_spectra: Welch, the same segments, the same Hann window), so that the two
+!> band spectra compare band for band:
+!>
+!> - `<name>_linear_spectra.dat`: 1/3-octave band levels of the linear force, the columns of a
+!>   method's `<name>_<method>_spectra.dat` (f_nominal, f_centre, f_lower, f_upper, power,
+!>   level);
+!> - `<name>_linear_narrowband.dat`: f, the roughness PSD, |alpha|, |H| and the linear force PSD
+!>   on the Welch lines.
+!>
+!> Where the time-domain run departs from this, the contact is nonlinear (the Hertz law over a
+!> large roughness, or contact lost): each method's summary line says for how many steps and
+!> how long the contact was lost (`contact_loss_text`).
+module greenconv_scene_linear_reference
+    use, intrinsic :: iso_fortran_env, only: int64
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_constants, only: two_pi
+    use greenconv_core_error, only: error_type, stat_accuracy
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_io_files, only: write_columns, block_rows
+    use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, &
+                                    third_octave_bands, band_powers, nominal_frequency, segment_for_band, first_band, &
+                                    default_lines_per_band
+    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_models, only: contact_receptance
+    use greenconv_scene_stream, only: force_summary
+    implicit none
+    private
+
+    public :: write_linear_reference, contact_loss_text
+
+contains
+
+    !> Write the linear reference of a scene beside its runs (module description), when the
+    !> scene asks for force spectra; nothing after an error other than status 4 (every file
+    !> written, an estimate above the accuracy asked), which is kept.
+    subroutine write_linear_reference(scene, receptance, unit, error)
+        !> The scene (task 'contact', a single point).
+        type(scene_type), intent(in) :: scene
+        !> The receptance the contact sees, from the scene's values.
+        procedure(contact_receptance) :: receptance
+        !> Unit of the summary, where one line names the files.
+        integer, intent(in) :: unit
+        !> The run's error on entry; a failed write on return.
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(welch_accumulator) :: welch
+        type(error_type), allocatable :: fault
+        real(dp), allocatable :: psd(:, :), f(:), force(:), centre(:), lower(:), upper(:), table(:, :), power(:)
+        complex(dp), allocatable :: alpha(:), h(:)
+        character(len=:), allocatable :: base, comments(:)
+        real(dp) :: df, k_h
+        integer(int64) :: first
+        integer :: n, m, k, c
+
+        if (allocated(error)) then
+            if (error%stat /= stat_accuracy) return
+        end if
+        if (.not. scene%spectra .or. scene%task /= 'contact') return
+        n = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+        call start_welch(welch, n, 1)
+        first = 0
+        do while (first < scene%n_steps)
+            m = int(min(int(block_rows, int64), scene%n_steps - first))
+            call add_welch_samples(welch, reshape(scene%road%sample_steps(scene%dt, first, m), [m, 1]))
+            first = first + m
+        end do
+        call welch_average(welch, scene%dt, psd, df, fault)
+        call welch%plans%release()
+        if (.not. allocated(fault)) then
+            f = [(k*df, k=0, size(psd, 1) - 1)]
+            allocate (alpha(size(f)))
+            call receptance(scene, two_pi*f, alpha)
+            k_h = scene%law%tangent(scene%law%compression(scene%preload))
+            h = 1.0_dp/(alpha + 1.0_dp/k_h)
+            force = abs(h)**2*psd(:, 1)
+            base = scene%output_dir//'/'//scene%name//'_linear'
+            call reference_comments(scene, k_h, n, df, welch%n_segments, comments)
+            comments(size(comments) - 1) = 'units: Hz m^2/Hz m/N N/m N^2/Hz'
+            comments(size(comments)) = 'f psd_roughness alpha_abs h_abs psd_force'
+            call write_columns(base//'_narrowband.dat', comments, reshape([f, psd(:, 1), abs(alpha), abs(h), force], &
+                                                                          [size(f), 5]), fault)
+        end if
+        if (.not. allocated(fault)) then
+            call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
+            power = band_powers(force, df, lower, upper)
+            allocate (table(size(centre), 6))
+            table(:, 1) = [(nominal_frequency(centre(c)), c=1, size(centre))]
+            table(:, 2) = centre
+            table(:, 3) = lower
+            table(:, 4) = upper
+            table(:, 5) = power
+            table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+            comments(size(comments) - 1) = 'units: Hz Hz Hz Hz N^2 dB_re_1N'
+            comments(size(comments)) = 'f_nominal f_centre f_lower f_upper power level'
+            call write_columns(base//'_spectra.dat', comments, table, fault)
+        end if
+        if (allocated(fault)) then
+            fault%message = scene%file//': linear reference: '//fault%message
+            call move_alloc(fault, error)
+            return
+        end if
+        write (unit, '(a)') '# linear reference (k_H = '//sci_text(k_h)//' N/m at F0 = '//sci_text(scene%preload) &
+            //' N): '//base//'_spectra.dat, '//base//'_narrowband.dat'
+    end subroutine write_linear_reference
+
+    !> The header lines of the reference's files, the last two left for the units and names.
+    subroutine reference_comments(scene, k_h, n, df, n_segments, comments)
+        type(scene_type), intent(in) :: scene
+        real(dp), intent(in) :: k_h, df
+        integer, intent(in) :: n, n_segments
+        character(len=:), allocatable, intent(out) :: comments(:)
+
+        allocate (character(len=320) :: comments(5))
+        comments(1) = 'greenconv scene '//scene%name//': linear frequency-domain reference of the contact force, ' &
+                      //'F = -r/(alpha + 1/k_H), its PSD |H|^2 times the roughness PSD, H = 1/(alpha + 1/k_H)'
+        comments(2) = 'k_H = '//sci_text(k_h)//' N/m, the tangent of the contact law at the preload F0 = ' &
+                      //sci_text(scene%preload)//' N; alpha the receptance the contact sees (wheel and rail in series)'
+        comments(3) = 'roughness PSD: Welch as the force spectra of the runs, Hann window, segments of ' &
+                      //int_text(n)//' samples (df = '//sci_text(df)//' Hz), 50 % overlap, '//int_text(n_segments) &
+                      //' segments of the roughness under the contact over the run'
+    end subroutine reference_comments
+
+    !> "; contact lost in N of M steps (T s)" for a run's force summary, or "; contact never
+    !> lost".
+    function contact_loss_text(summary, dt) result(text)
+        !> The run's force summary (steps and steps in contact).
+        type(force_summary), intent(in) :: summary
+        !> Time step [s].
+        real(dp), intent(in) :: dt
+        character(len=:), allocatable :: text
+
+        integer(int64) :: lost
+
+        lost = summary%steps - summary%in_contact
+        if (lost == 0) then
+            text = '; contact never lost'
+        else
+            text = '; contact lost in '//int_text(int(lost))//' of '//int_text(int(summary%steps))//' steps (' &
+                   //sci_text(lost*dt)//' s)'
+        end if
+    end function contact_loss_text
+
+end module greenconv_scene_linear_reference
