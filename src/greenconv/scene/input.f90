@@ -17,6 +17,7 @@ module greenconv_scene_input
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_model_tyre, only: tyre_belt, contact_positions
     use greenconv_model_plate, only: tyre_plate
+    use greenconv_model_roughness, only: new_roughness_road, iso3095_wavelengths, iso3095_levels
     use greenconv_model_rail, only: rail_track, wheel_mass_type => wheel_mass, hertz_constant
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
@@ -25,7 +26,7 @@ module greenconv_scene_input
     use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
     use greenconv_scene_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
-                                      scene_row, admits, max_map_times
+                                      scene_row, admits, max_map_times, max_roughness_bands
     use greenconv_io_columns, only: read_lines
     use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                       multi_point_model
@@ -415,11 +416,17 @@ contains
         character(len=name_length) :: profile
         type(sine_road) :: sine
         character(len=path_length) :: road_file, texture_file
-        real(dp) :: amplitude, omega, wavelength, speed, x_start, y_start
-        integer :: n_terms, seed, stat
+        real(dp) :: amplitude, omega, wavelength, speed, x_start, y_start, roughness_offset, contact_length
+        real(dp) :: roughness_wavelengths(max_roughness_bands), roughness_levels(max_roughness_bands)
+        integer :: n_terms, seed, stat, terms_per_band
         character(len=512) :: message
         namelist /road/ profile, amplitude, omega, wavelength, speed, n_terms, seed, road_file, x_start, &
-            texture_file, y_start
+            texture_file, y_start, roughness_wavelengths, roughness_levels, roughness_offset, terms_per_band, &
+            contact_length
+
+        ! a value no file can give (the scan refuses NaN) marks the bands not given
+        roughness_wavelengths = ieee_value(1.0_dp, ieee_quiet_nan)
+        roughness_levels = ieee_value(1.0_dp, ieee_quiet_nan)
 
         read (defaults, nml=road)
         if (source%unit /= no_unit) write (source%unit, nml=road, delim='quote', iostat=stat, iomsg=message)
@@ -445,6 +452,9 @@ contains
             this%road = sine
         case ('random')
             this%road = new_random_road(seed, n_terms, amplitude, wavelength, speed)
+        case ('spectrum')
+            call spectrum_road(this, roughness_wavelengths, roughness_levels, roughness_offset, seed, contact_length, &
+                               terms_per_band, error)
         case ('texture')
             call read_texture_once(trim(texture_file), this%texture, error, files)
             if (allocated(error)) call place_error(error, this, 'road', 'texture_file')
@@ -452,6 +462,41 @@ contains
             call read_file_road(this, trim(road_file), error, files)
         end select
     end subroutine read_road_group
+
+    !> Profile 'spectrum': the roughness profile of a band spectrum (the ISO 3095 limit when the
+    !> file gives no bands), run over at `speed` from `x_start`.
+    subroutine spectrum_road(this, wavelengths, levels, offset, seed, contact_length, terms_per_band, error)
+        type(scene_type), intent(inout) :: this
+        real(dp), intent(in) :: wavelengths(:), levels(:), offset, contact_length
+        integer, intent(in) :: seed, terms_per_band
+        type(error_type), allocatable, intent(inout) :: error
+
+        real(dp), allocatable :: lambda(:), level(:)
+        integer :: n
+
+        call check_values(this, 'road', [character(len=16) :: 'roughness_offset', 'contact_length'], &
+                          [offset, contact_length], error)
+        call check_value(this, 'road', 'terms_per_band', terms_per_band, error)
+        n = count(.not. ieee_is_nan(wavelengths))
+        call require(n == count(.not. ieee_is_nan(levels)) .and. all(.not. ieee_is_nan(wavelengths(:n))) .and. &
+                     all(.not. ieee_is_nan(levels(:n))), error, this, 'road', 'roughness_wavelengths, ' &
+                     //'roughness_levels', 'as many levels as wavelengths, each list given from its first element ' &
+                     //'without gaps')
+        call require(all(wavelengths(:n) > 0.0_dp), error, this, 'road', 'roughness_wavelengths', &
+                     'wavelengths > 0 m', minval([wavelengths(:n), 1.0_dp]))
+        call require(this%speed > 0.0_dp, error, this, 'road', 'speed', "a speed > 0 m/s for profile 'spectrum'", &
+                     this%speed)
+        if (allocated(error)) return
+        if (n == 0) then
+            lambda = iso3095_wavelengths
+            level = iso3095_levels
+        else
+            lambda = wavelengths(:n)
+            level = levels(:n)
+        end if
+        this%road = new_roughness_road(lambda, level + offset, seed, this%speed, this%x_start, contact_length, &
+                                       terms_per_band)
+    end subroutine spectrum_road
 
     !> Profile 'texture': read the road texture (or take it from `files`).
     subroutine read_texture_once(path, texture, error, files)

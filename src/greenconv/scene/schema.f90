@@ -40,6 +40,8 @@ module greenconv_scene_schema
     integer, parameter :: max_methods = 8
     !> Largest number of force maps (`&scene map_times`) one scene may ask for.
     integer, parameter :: max_map_times = 16
+    !> Most bands of a roughness spectrum (`&road roughness_wavelengths`).
+    integer, parameter, public :: max_roughness_bands = 64
 
     !> One variable of a scene file.
     type :: scene_variable
@@ -304,8 +306,8 @@ contains
             //"fits; the greedy model when the residual is not explained by the noise) or 'greedy' (the rounds alone)", &
             '', choices=[character(len=16) :: 'global', 'greedy'])
         call add(rows, n, 'road', 'profile', value_text, 'sine', '', &
-            "the road profile, 'sine', 'random', 'file' or 'texture'", "task 'contact'", &
-            choices=[character(len=16) :: 'sine', 'random', 'file', 'texture'])
+            "the road profile, 'sine', 'random', 'file', 'texture' or 'spectrum' (a roughness band spectrum)", &
+            "task 'contact'", choices=[character(len=16) :: 'sine', 'random', 'file', 'texture', 'spectrum'])
         call add(rows, n, 'road', 'amplitude', value_real, '1.0e-3', 'm', &
             'the road amplitude', '', &
             expect='a finite height in m')
@@ -334,6 +336,22 @@ contains
         call add(rows, n, 'road', 'y_start', value_real, '0.0', 'm', &
             'the lateral position on the road texture of the patch centre', '', &
             expect='a finite position in m')
+        call add(rows, n, 'road', 'roughness_wavelengths', value_real, 'ISO 3095', 'm', &
+            "the band centre wavelengths of a roughness spectrum (profile 'spectrum'; default: the 22 bands " &
+            //'of the ISO 3095 limit, 0.4 m to 3.15 mm)', '', count=max_roughness_bands)
+        call add(rows, n, 'road', 'roughness_levels', value_real, 'ISO 3095', 'dB', &
+            "the 1/3-octave band levels of the roughness, dB re 1 um, one per wavelength (profile 'spectrum'; " &
+            //'default: the ISO 3095 limit)', '', count=max_roughness_bands)
+        call add(rows, n, 'road', 'roughness_offset', value_real, '0.0', 'dB', &
+            "a level added to every band of the roughness spectrum (profile 'spectrum')", '', &
+            expect='a finite level in dB')
+        call add(rows, n, 'road', 'terms_per_band', value_integer, '16', '', &
+            "the cosines of random phase per band of the roughness profile (profile 'spectrum')", '', &
+            expect='from 1 to 1000 terms', at_least=1.0_dp, at_most=1000.0_dp)
+        call add(rows, n, 'road', 'contact_length', value_real, '0.0', 'm', &
+            "the length 2a of the contact patch the roughness is averaged over, sin(ka)/(ka) (profile " &
+            //"'spectrum'; 0: no contact filter)", '', &
+            expect='a length >= 0 m (0: no filter)', at_least=0.0_dp)
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'", &
             expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area wheel_radius')
