@@ -12,6 +12,11 @@ module test_wheelrail_mod
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_builder, only: make_convolver
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact
+    use greenconv_core_error, only: stat_input
+    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_runner, only: run_scene
+    use greenconv_io_columns, only: read_columns
+    use scene_text_mod, only: read_scene_text
     implicit none
     private
 
@@ -35,7 +40,11 @@ contains
                      new_unittest('free rail: -(1+i)/(4 EI k^3)', test_free_rail), &
                      new_unittest('Hertz constant and its tangent', test_hertz), &
                      new_unittest('bad track and wheel values refused', test_bad_values), &
-                     new_unittest('small sine roughness: time domain = linear model within 2 %', test_linear_limit)]
+                     new_unittest('small sine roughness: time domain = linear model within 2 %', test_linear_limit), &
+                     new_unittest('scene: bad track, wheel and a resonance above Nyquist refused', test_scene_refusals), &
+                     new_unittest('scene: loss of contact reported at large roughness', test_scene_contact_loss), &
+                     new_unittest('scene: linear reference beside the run, band for band', test_scene_reference), &
+                     new_unittest('scene: auto states its choice on the rail', test_scene_auto)]
     end subroutine collect_wheelrail
 
     !> At omega = 0 the receptance is beta/(2s), beta = (s/(4 EI))^(1/4) (Hetenyi, art. 10).
@@ -267,6 +276,196 @@ contains
         end do
         call note('worst |F/F_linear - 1|', worst)
     end subroutine test_linear_limit
+
+    !> A wheel_rail scene: dt, n_steps, the &structure values after the model ('': a UIC60-like
+    !> rail on a pad, a 600 kg wheel), the &road text, the methods and more &identification text.
+    function rail_scene(dt, n_steps, structure, road, methods, identification) result(text)
+        character(len=*), intent(in) :: dt, n_steps, structure, road, methods
+        character(len=*), intent(in), optional :: identification
+        character(len=:), allocatable :: text
+
+        character(len=:), allocatable :: values
+
+        values = structure
+        if (len(values) == 0) values = 'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = 5.0e8, ' &
+                                       //'support_damping = 5.0e4, wheel_mass = 600.0, suspension_stiffness = 1.0e6, ' &
+                                       //'suspension_damping = 2.0e4'
+        text = "&scene name = 'wr', output_dir = 'out/test_wheelrail', dt = "//dt//', n_steps = '//n_steps &
+               //', spectra = .true., spectra_f_low = 200.0 /'//new_line('a') &
+               //"&structure model = 'wheel_rail', "//values//' /'//new_line('a') &
+               //'&identification n_freq = 10001'
+        if (present(identification)) text = text//', '//identification
+        text = text//' /'//new_line('a') &
+               //'&road '//road//' /'//new_line('a') &
+               //"&contact stiffness = 9.4e10, exponent = 1.5, preload = 7.5e4, scheme = 'implicit' /"//new_line('a') &
+               //'&convolution methods = '//methods//', truncation_tol = 1.0e-4, accuracy = 0.05 /'
+    end function rail_scene
+
+    subroutine test_scene_refusals(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: cases(3) = [character(len=100) :: &
+            'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = -1.0, wheel_mass = 600.0', &
+            'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = 5.0e8, wheel_mass = 0.0', &
+            'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = 4.0e9, wheel_mass = 600.0']
+        character(len=*), parameter :: names(3) = [character(len=24) :: '&structure support_stiff', &
+                                                   '&structure wheel_mass', 'Nyquist']
+        ! the third: the rail on a 4e9 N/m^2 pad resonates at 1.3 kHz, above 1/(2*dt) = 500 Hz
+        character(len=*), parameter :: steps(3) = [character(len=8) :: '1.0e-4', '1.0e-4', '1.0e-3']
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fault
+        integer :: i
+
+        do i = 1, size(cases)
+            call read_scene_text('out/test_wheelrail', 'bad.nml', rail_scene(trim(steps(i)), '100', trim(cases(i)), &
+                                 "profile = 'sine'", "'fft'"), scene, fault)
+            call check(error, allocated(fault), 'refused: '//trim(cases(i)))
+            if (allocated(error)) return
+            call check(error, fault%stat == stat_input .and. index(fault%message, 'bad.nml:2: &structure ') > 0 .and. &
+                       index(fault%message, trim(names(i))) > 0 .and. index(fault%message, new_line('a')) == 0, &
+                       'one line, status 2, naming file, line and variable: '//fault%message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_scene_refusals
+
+    !> Sine roughness at 2 kHz of 0.1 um and 0.1 mm (above the static compression 86 um): the summary
+    !> line says the contact was never lost, then for how long it was.
+    subroutine test_scene_contact_loss(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+        real(dp), allocatable :: rows(:, :)
+        integer :: lost
+
+        call summary_of(rail_scene('5.0e-5', '8192', '', "profile = 'sine', amplitude = 1.0e-7, omega = 12566.0", &
+                                   "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call check(error, index(line, 'contact never lost') > 0, 'small roughness: '//line)
+        if (allocated(error)) return
+        call summary_of(rail_scene('5.0e-5', '8192', '', "profile = 'sine', amplitude = 1.0e-4, omega = 12566.0", &
+                                   "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call check(error, index(line, 'contact lost in ') > 0, 'large roughness: '//line)
+        if (allocated(error)) return
+        ! the count is the run's own: the steps of zero force in its column file
+        call read_history('out/test_wheelrail/wr_fft.dat', rows, error)
+        if (allocated(error)) return
+        lost = count(rows(:, 4) <= 0.0_dp)
+        call check(error, index(line, 'contact lost in '//itoa(lost)//' of 8192 steps') > 0, &
+                   'lost steps '//itoa(lost)//' in: '//line)
+    end subroutine test_scene_contact_loss
+
+    !> At the ISO 3095 limit roughness at 100 km/h the linear reference's band levels and the
+    !> fft run's agree within 0.5 dB from 315 Hz to 5 kHz (the bands below hold the start from
+    !> rest).
+    subroutine test_scene_reference(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+        real(dp), allocatable :: run(:, :), linear(:, :)
+        real(dp) :: worst
+        integer :: b
+
+        call summary_of(rail_scene('5.0e-5', '16384', '', "profile = 'spectrum', speed = 27.78", "'fft'"), 'fft', &
+                        line, error)
+        if (allocated(error)) return
+        call read_bands('out/test_wheelrail/wr_fft_spectra.dat', 7, run, error)
+        if (allocated(error)) return
+        call read_bands('out/test_wheelrail/wr_linear_spectra.dat', 6, linear, error)
+        if (allocated(error)) return
+        call check(error, size(run, 1) == size(linear, 1) .and. all(run(:, 2) == linear(:, 2)), 'the same bands')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do b = 1, size(run, 1)
+            if (run(b, 1) < 315.0_dp .or. run(b, 1) > 5000.0_dp) cycle
+            worst = max(worst, abs(run(b, 6) - linear(b, 6)))
+        end do
+        call note('worst |L_run - L_linear| [dB]', worst)
+        call check(error, worst, 0.0_dp, 'band levels of the run against the linear reference [dB]', thr=0.5_dp)
+    end subroutine test_scene_reference
+
+    !> `auto` on the rail (G not a finite sum of modes): its summary line names what it chose
+    !> and why.
+    subroutine test_scene_auto(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: line
+
+        call summary_of(rail_scene('1.0e-4', '4096', '', "profile = 'sine', amplitude = 1.0e-7, omega = 3000.0", &
+                                   "'auto'", 'max_order = 8'), 'auto', line, error)
+        if (allocated(error)) return
+        call check(error, index(line, 'chose ') > 0, 'auto says what it chose: '//line)
+    end subroutine test_scene_auto
+
+    !> Run a scene and return the summary line of `method`.
+    subroutine summary_of(text, method, line, error)
+        character(len=*), intent(in) :: text, method
+        character(len=:), allocatable, intent(out) :: line
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fault
+        character(len=2000) :: buffer
+        integer :: unit, stat
+
+        call read_scene_text('out/test_wheelrail', 'wr.nml', text, scene, fault)
+        if (.not. allocated(fault)) then
+            open (newunit=unit, status='scratch', action='readwrite')
+            call run_scene(scene, unit, fault)
+        end if
+        call check(error, .not. allocated(fault), 'scene runs')
+        if (allocated(error)) then
+            error%message = error%message//': '//fault%message
+            return
+        end if
+        rewind (unit)
+        line = ''
+        do
+            read (unit, '(a)', iostat=stat) buffer
+            if (stat /= 0) exit
+            if (index(buffer, method//' ') == 1) line = trim(buffer)
+        end do
+        close (unit)
+        call check(error, len(line) > 0, 'a summary line for '//method)
+    end subroutine summary_of
+
+    subroutine read_history(path, rows, error)
+        character(len=*), intent(in) :: path
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: fault
+        integer, allocatable :: line_of(:)
+
+        call read_columns(path, [character(len=10) :: 't', 'u_road', 'u', 'f_contact', 'delta'], &
+                          [character(len=1) :: 's', 'm', 'm', 'N', 'm'], rows, line_of, fault)
+        call check(error, .not. allocated(fault), 'read '//path)
+    end subroutine read_history
+
+    subroutine read_bands(path, n, rows, error)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: n
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: fault
+        integer, allocatable :: line_of(:)
+        character(len=12) :: names(7)
+        integer :: i
+
+        names = [character(len=12) :: 'f_nominal', 'f_centre', 'f_lower', 'f_upper', 'power', 'level', 'spread_db']
+        call read_columns(path, names(:n), [(' ', i=1, n)], rows, line_of, fault)
+        call check(error, .not. allocated(fault), 'read '//path)
+    end subroutine read_bands
+
+    pure function itoa(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+
+        write (buffer, '(i0)') i
+        text = trim(buffer)
+    end function itoa
 
     !> Amplitude sqrt(a^2 + b^2) of the least-squares fit y = a*basis(:,1) + b*basis(:,2) +
     !> c*basis(:,3), by the normal equations (3 x 3, Cramer's rule).
