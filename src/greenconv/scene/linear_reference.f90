@@ -121,6 +121,7 @@ contains
         character(len=:), allocatable, intent(out) :: comments(:)
 
         allocate (character(len=320) :: comments(5))
+        comments(:) = ''
         comments(1) = 'greenconv scene '//scene%name//': linear frequency-domain reference of the contact force, ' &
                       //'F = -r/(alpha + 1/k_H), its PSD |H|^2 times the roughness PSD, H = 1/(alpha + 1/k_H)'
         comments(2) = 'k_H = '//sci_text(k_h)//' N/m, the tangent of the contact law at the preload F0 = ' &
