@@ -582,8 +582,8 @@ contains
     end function lower
 
     !> Every default of a real, integer or logical variable reads as that kind, but for the two
-    !> computed from other variables (f_max = 1/(2*dt), preload = mass*gravity) and the list
-    !> map_times, none by default.
+    !> computed from other variables (f_max = 1/(2*dt), preload = mass*gravity), the list
+    !> map_times, none by default, and the roughness band lists, the ISO 3095 limit by default.
     subroutine test_table_defaults(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -603,7 +603,8 @@ contains
             case (value_logical)
                 read (table(i)%default, *, iostat=stat) flag
             end select
-            if (table(i)%name == 'f_max' .or. table(i)%name == 'preload' .or. table(i)%name == 'map_times') stat = 0
+            if (any(table(i)%name == [character(len=21) :: 'f_max', 'preload', 'map_times', 'roughness_wavelengths', &
+                                      'roughness_levels'])) stat = 0
             call check(error, stat == 0, '&'//table(i)%group//' '//table(i)%name//': default "' &
                        //table(i)%default//'" does not read as its kind')
             if (allocated(error)) return
@@ -622,7 +623,7 @@ contains
         integer :: i, m, n
 
         call check(error, model_names() == "'sdof', 'random_modes', 'frf_file', 'tyre', 'tyre_plate', " &
-                   //"'green_file' or 'modes_file'", model_names())
+                   //"'green_file', 'modes_file' or 'wheel_rail'", model_names())
         if (allocated(error)) return
         models = structure_models()
         table = scene_table()

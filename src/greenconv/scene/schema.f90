@@ -382,6 +382,12 @@ contains
             'the tread stiffness per area k_a (0: stiffness per point); each point gets k_a times its ' &
             //'share of the patch, patch_length*patch_width/N_c', '', &
             expect='a stiffness per area >= 0 N/m^(2+p) (0: stiffness per point)', at_least=0.0_dp)
+        call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
+            "the contact step, 'explicit' or 'implicit'", '', &
+            choices=[character(len=16) :: 'explicit', 'implicit'])
+        call add(rows, n, 'contact', 'divergence_bound', value_real, '0.1', 'm', &
+            'the displacement beyond which a run diverged', '', &
+            expect='a displacement > 0 m', above=0.0_dp)
         call add(rows, n, 'contact', 'wheel_radius', value_real, '0.0', 'm', &
             "the wheel's rolling radius R_w, for Hertz's constant from the radii (0: stiffness given)", '', &
             expect='a radius >= 0 m (0: stiffness given)', at_least=0.0_dp)
@@ -394,12 +400,6 @@ contains
         call add(rows, n, 'contact', 'poisson_ratio', value_real, '0.3', '', &
             "Poisson's ratio of wheel and rail (with wheel_radius)", '', &
             expect='a ratio in [0, 0.5)', at_least=0.0_dp, below=0.5_dp)
-        call add(rows, n, 'contact', 'scheme', value_text, 'explicit', '', &
-            "the contact step, 'explicit' or 'implicit'", '', &
-            choices=[character(len=16) :: 'explicit', 'implicit'])
-        call add(rows, n, 'contact', 'divergence_bound', value_real, '0.1', 'm', &
-            'the displacement beyond which a run diverged', '', &
-            expect='a displacement > 0 m', above=0.0_dp)
         call add(rows, n, 'convolution', 'methods', value_text_list, '', '', &
             "the methods to run, e.g. 'direct', 'modal'", "task 'contact'")
         call add(rows, n, 'convolution', 'truncation_tol', value_real, exact_text(default_truncation_tol), '', &
