@@ -25,7 +25,8 @@ linear_of(scene) = sprintf('%s/%s_linear_spectra.dat', datadir, scene)
 
 do for [scene in scenes] {
     if (!readable(linear_of(scene)) || words(run_files(scene)) == 0) {
-        print sprintf('wheel_rail: no %s or run spectra of %s (run the scenes first: make run)', linear_of(scene), scene)
+        print sprintf('wheel_rail: no %s or run spectra of %s (run the scenes first: make run)', \
+                      linear_of(scene), scene)
         exit status 1
     }
 }

@@ -41,7 +41,8 @@ contains
                      new_unittest('Hertz constant and its tangent', test_hertz), &
                      new_unittest('bad track and wheel values refused', test_bad_values), &
                      new_unittest('small sine roughness: time domain = linear model within 2 %', test_linear_limit), &
-                     new_unittest('scene: bad track, wheel and a resonance above Nyquist refused', test_scene_refusals), &
+                     new_unittest('scene: bad track, wheel and a resonance above Nyquist refused', &
+                                  test_scene_refusals), &
                      new_unittest('scene: loss of contact reported at large roughness', test_scene_contact_loss), &
                      new_unittest('scene: linear reference beside the run, band for band', test_scene_reference), &
                      new_unittest('scene: auto states its choice on the rail', test_scene_auto)]
