@@ -46,7 +46,10 @@ for format in text binary; do
     scene data/sdof_sine.nml "$dir" "$format" -e "s|name = 'sdof_sine'|name = 'mdof_random'|" >"$dir/mdof_random.nml"
     scene data/tyre_road.nml "$dir" "$format" -e 's|n_steps = 6000|n_steps = 3000|' \
         -e "s|^([[:space:]]*methods = .*)$|\1\n    truncation_tol = 0.2|" >"$dir/tyre_road.nml"
-    for name in sdof_sine mdof_random tyre_road; do
+    scene data/wheel_rail.nml "$dir" "$format" -e 's|n_steps = 50000|n_steps = 32000|' \
+        -e "s|methods = 'fft', 'direct'|methods = 'fft'|" >"$dir/wheel_rail.nml"
+    scene data/wheel_rail_rough.nml "$dir" "$format" -e 's|n_steps = 50000|n_steps = 32000|' >"$dir/wheel_rail_rough.nml"
+    for name in sdof_sine mdof_random tyre_road wheel_rail wheel_rail_rough; do
         if "$driver" --quiet "$dir/$name.nml" >"$dir/$name.log" 2>&1; then
             ok "$format run of $name"
         else
