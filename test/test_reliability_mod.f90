@@ -19,7 +19,7 @@ module test_reliability_mod
     use greenconv_api_all, only: point_modes, multipoint_convolver, modes_from_paper, run_multi_contact, &
                                  multi_contact_response, contact_law
     use greenconv_conv_builder, only: make_multipoint_convolver
-    use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmhis, gcmpsh, gcmfre
+    use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmhis, gcmpsh, gcmfre, gcmplt
     implicit none
     private
 
@@ -65,7 +65,9 @@ contains
                      new_unittest('an input where an output goes: refused by run and --check, kept', &
                                   test_input_kept), &
                      new_unittest('several points past a cut kernel: refused (Fortran, F77), NaN history', &
-                                  test_cut_kernel_multi)]
+                                  test_cut_kernel_multi), &
+                     new_unittest('tyre_plate on a coarse road: the message names &structure f_modes', &
+                                  test_band_message)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -581,6 +583,54 @@ contains
             deallocate (conv)
         end do
     end subroutine test_cut_kernel_multi
+
+    !> A tyre_plate scene on a road sampled every 0.1 m at 1 m/s: the band rule gives
+    !> min(2*V/lambda_min, 1/(10*dt)) = 10 Hz, below the belt's first mode, and so does f_modes
+    !> = 5 Hz. Both are refused in one line at `&structure f_modes`, the variable that sets the
+    !> band (it said "raise f_max", a variable of &identification), the first saying where its
+    !> band came from; the C door says f_max (its argument), the F77 door FMAX.
+    subroutine test_band_message(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: road = scratch//'/road_coarse.dat'
+        character(len=*), parameter :: head = "&scene name = 'coarse', output_dir = '"//scratch//"', dt = 1.0e-4, " &
+            //"n_steps = 100 / &structure model = 'tyre_plate', damping_ratio = 0.05"
+        character(len=*), parameter :: tail = " / &road profile = 'file', road_file = '"//road//"', x_start = 2.0, " &
+            //"speed = 1.0 / &contact n_points_x = 4, n_points_y = 3, patch_length = 0.12, patch_width = 0.15, " &
+            //"stiffness = 1.0e7, exponent = 1.5, preload = 300.0 / &convolution methods = 'modal' /"
+        character(len=*), parameter :: settings(2) = [character(len=16) :: '', ', f_modes = 5.0']
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail
+        real(dp) :: pole_re(1), pole_im(1), res_re(1), res_im(1), shape(1), x(1), y(1)
+        character(len=300) :: message
+        integer :: unit, j, sink, k, n_modes, ierr
+
+        call make_directory(scratch, fail)
+        open (newunit=unit, file=road, status='replace', action='write')
+        do j = 0, 100
+            write (unit, '(2es16.8)') 0.1_dp*j, 1.0e-3_dp*sin(0.7_dp*j)
+        end do
+        close (unit)
+        open (newunit=sink, file='/dev/null', action='write')
+        do k = 1, size(settings)
+            call read_scene_text(scratch, 'coarse.nml', head//trim(settings(k))//tail, scene, fail)
+            if (.not. allocated(fail)) call check_scene(scene, sink, fail)
+            call check(error, allocated(fail), 'a band below the first mode accepted')
+            if (allocated(error)) exit
+            call check(error, fail%stat == 2 .and. index(fail%message, 'coarse.nml:1: &structure f_modes: plate ' &
+                       //'model: no mode below f_modes = ') > 0 .and. index(fail%message, 'raise f_modes') > 0 .and. &
+                       index(fail%message, 'f_max') == 0 .and. index(fail%message, new_line('a')) == 0 .and. &
+                       ((index(fail%message, 'f_modes = 0 takes the band min(2*V/lambda_min') > 0) .eqv. k == 1), &
+                       'one line naming &structure f_modes: '//fail%message)
+            if (allocated(error)) exit
+        end do
+        close (sink)
+        if (allocated(error)) return
+        call gcmplt(1, 1, 0.1_dp, 0.1_dp, 5.0_dp, 1, n_modes, pole_re, pole_im, res_re, res_im, shape, x, y, ierr, &
+                    message)
+        call check(error, ierr == 2 .and. index(message, 'gcmplt: plate model: no mode below FMAX = 5') == 1 .and. &
+                   index(message, 'raise FMAX') > 0, 'GCMPLT names FMAX: '//trim(message))
+    end subroutine test_band_message
 
     !> The whole text of a file, its lines joined by new lines.
     function file_text(path) result(text)

@@ -196,7 +196,7 @@ contains
         call need_pointers(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, shape], &
                            'n_modes, pole_re, pole_im, residue_re, residue_im and shape', '', error)
         if (.not. allocated(error)) then
-            call patch_modes(caller, int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
+            call patch_modes(caller, 'f_max', int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
                              x_points, y_points, error)
         end if
         if (.not. allocated(error)) then

@@ -359,7 +359,7 @@ contains
         integer :: n_c
 
         nmode = 0
-        call patch_modes('gcmplt', nx, ny, [xlen, ylen], fmax, modes, x_points, y_points, error)
+        call patch_modes('gcmplt', 'FMAX', nx, ny, [xlen, ylen], fmax, modes, x_points, y_points, error)
         if (.not. allocated(error)) then
             nmode = modes%modes%n_modes()
             n_c = modes%n_points()
