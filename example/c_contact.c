@@ -117,7 +117,7 @@ static int identify(const char *frf)
     }
     gc_convolver_describe(conv, text, sizeof text);
     printf("c_contact: %s\n", text);
-    gc_convolver_free(conv);
+    gc_convolver_delete(&conv);
     return failures;
 }
 
@@ -150,7 +150,7 @@ int main(int argc, char **argv)
             return 1;
         }
         failures += compare(argv[1], methods[i], "gc_run_contact", u, f, delta);
-        gc_convolver_free(conv);
+        gc_convolver_delete(&conv);
     }
 
     /* 2. An fft convolver stepped by the caller, one contact step at a time. */
@@ -164,7 +164,7 @@ int main(int argc, char **argv)
             return 1;
         }
     }
-    gc_convolver_free(conv);
+    gc_convolver_delete(&conv);
     failures += compare(argv[1], "direct", "fft, gc_contact_step", u, f, delta);
 
     /* 3. Failures come back as status codes and messages. */

@@ -21,7 +21,7 @@ int main()
         gc_convolver_push(conv, 1.0);
     }
     const double u = u_h + w0 * 1.0;
-    gc_convolver_free(conv);
+    gc_convolver_delete(&conv);
     const bool ok = std::fabs(u - 1.0e-6) < 1.0e-8;
     std::printf("cxx_header: C++ build of greenconv.h ok; step response after 0.5 s: %.6e m (F/K = 1e-6 m): %s\n", u,
                 ok ? "ok" : "MISMATCH");

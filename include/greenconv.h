@@ -23,9 +23,12 @@
  *   GC_ERROR_INPUT, never a crash.
  * - Strings passed in are NUL-terminated. Arrays are plain C arrays of the stated length.
  * - A gc_convolver is an opaque object made by a gc_convolver_new_* function and released by
- *   gc_convolver_free (or gc_convolver_delete, which also sets your pointer to NULL so that
- *   a second call does nothing). Objects are independent: two simulations in one program do
- *   not interfere.
+ *   gc_convolver_delete(&conv), which frees it and sets your pointer to NULL, so that a second
+ *   delete does nothing and any other call with conv is refused (GC_ERROR_INPUT, a NULL
+ *   handle). gc_convolver_free(conv) frees it without touching your pointer: every call with
+ *   that pointer afterwards, a second free included, is undefined. Multi-point handles alike:
+ *   gc_multi_delete(&conv), gc_multi_free(conv). Objects are independent: two simulations in
+ *   one program do not interfere.
  *
  * Threads. Different convolvers may be used from different threads at the same time; one
  * convolver must not be used by two threads at once. The library built by the Makefile is
@@ -157,14 +160,23 @@ int gc_convolver_new_frf_file(const char *path, double dt, const char *method, i
                               double tol_e, int max_modes, gc_convolver **conv,
                               char *errmsg, size_t errmsg_len);
 
-/** Free a convolver and everything it holds (FFTW plans included). NULL is allowed. */
-void gc_convolver_free(gc_convolver *conv);
-
 /**
- * Free *conv (as gc_convolver_free) and set *conv to NULL, so that calling it twice on the
- * same variable is harmless. conv == NULL or *conv == NULL: nothing.
+ * Free *conv and everything it holds (FFTW plans included) and set *conv to NULL: the safe way
+ * to free. Calling it again on the same variable does nothing, and every other call with the
+ * NULL handle is refused (GC_ERROR_INPUT). conv == NULL or *conv == NULL: nothing.
  */
 void gc_convolver_delete(gc_convolver **conv);
+
+/**
+ * Free a convolver and everything it holds (FFTW plans included); NULL: nothing. conv itself
+ * (and every copy of it) then points at freed memory: every call with it afterwards is
+ * undefined, a second gc_convolver_free included, and so are gc_convolver_history, _push,
+ * _reset, _describe, gc_contact_step, gc_run_contact and every other function taking conv.
+ * The library marks the object before freeing it, so such a call soon after the free is
+ * usually refused as a NULL handle (GC_ERROR_INPUT), but once the memory is given out again
+ * nothing can tell: prefer gc_convolver_delete(&conv).
+ */
+void gc_convolver_free(gc_convolver *conv);
 
 /** Fill *options with the library's defaults (truncation_tol 0.01, accuracy 1e-3). */
 int gc_build_options_init(gc_build_options *options);
@@ -437,10 +449,17 @@ int gc_multi_plate_patch(int n_x, int n_y, double length, double width, double f
                          double *residue_im, double *shape, double *x, double *y, char *errmsg,
                          size_t errmsg_len);
 
-/** Free a multi-point convolver (NULL: nothing). */
-void gc_multi_free(gc_multi_convolver *conv);
-/** Free *conv and set it to NULL (conv or *conv NULL: nothing), so a second call is harmless. */
+/**
+ * Free *conv and set it to NULL (conv or *conv NULL: nothing): the safe way to free, as
+ * gc_convolver_delete. A second call does nothing; other calls with the NULL handle are refused.
+ */
 void gc_multi_delete(gc_multi_convolver **conv);
+/**
+ * Free a multi-point convolver (NULL: nothing), leaving conv pointing at freed memory: every
+ * call with it afterwards (gc_multi_free again, gc_multi_history, _push, _contact_step,
+ * _run_contact, ...) is undefined, as after gc_convolver_free. Prefer gc_multi_delete(&conv).
+ */
+void gc_multi_free(gc_multi_convolver *conv);
 
 /** The number of points N_c. */
 int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len);

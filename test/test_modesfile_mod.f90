@@ -15,7 +15,9 @@
 module test_modesfile_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use scene_text_mod, only: run_scene_text, read_table, message_of, write_text
+    use scene_text_mod, only: run_scene_text, read_table, message_of, write_text, read_scene_text
+    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_runner, only: check_scene
     use greenconv_core_error, only: error_type, stat_input
     use greenconv_io_files, only: make_directory
     use greenconv_io_uff_types, only: uff_node
@@ -28,7 +30,7 @@ module test_modesfile_mod
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_verify_contact, only: multi_contact_reference
-    use greenconv_legacy_multi, only: gcmmfl, gcmrun, gcmfre
+    use greenconv_legacy_multi, only: gcmmfl, gcmrun, gcmfre, gcmnpt
     implicit none
     private
 
@@ -38,6 +40,10 @@ module test_modesfile_mod
     character(len=*), parameter :: plate_file = 'test/data/uff/modes_plate.uff'
     character(len=*), parameter :: expected_file = 'test/data/uff/modes_plate.expected'
     character(len=*), parameter :: plate_2414 = 'test/data/uff/modes_plate_2414.uff'
+    !> The plate in mm and newtons (dataset 164), with modal masses and mass-normalised
+    !> (tools/make_modes_units.py).
+    character(len=*), parameter :: plate_mm = 'test/data/uff/modes_plate_mm.uff'
+    character(len=*), parameter :: plate_mm_unit = 'test/data/uff/modes_plate_mm_unit.uff'
     real(dp), parameter :: pi = acos(-1.0_dp)
 
 contains
@@ -56,7 +62,11 @@ contains
                      new_unittest('modes above 1 kHz as a static compliance in W0: error of exact drops, order', &
                                   test_static_residual), &
                      new_unittest('a patch of the nodes: the nodes inside it are the contact points', test_patch), &
-                     new_unittest('nodes off a grid run at their own x, y; a law per area refused', test_off_grid)]
+                     new_unittest('nodes off a grid run at their own x, y; a law per area refused', test_off_grid), &
+                     new_unittest('a node given twice in a mode refused, naming both lines', test_node_twice), &
+                     new_unittest('dataset 164 in mm: pyuff''s file read in SI, the same modes and run', test_units), &
+                     new_unittest('10^5 nodes: a patch past 5000 points refused in one line, a small one runs', &
+                                  test_many_nodes)]
     end subroutine collect_modesfile
 
     !> The expected table: node labels and coordinates, the modes' frequency, modal mass and
@@ -622,5 +632,183 @@ contains
         end do
         close (unit)
     end subroutine write_wave_road
+
+    !> Node 101 given again in the first mode, in place of node 102: with node 102's values it
+    !> is refused naming both lines and the first value that differs; with its own values it is
+    !> refused too (two contact points on one node), naming both lines.
+    subroutine test_node_twice(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(uff_node), allocatable :: nodes(:)
+        type(uff_mode_shape), allocatable :: modes(:)
+        type(error_type), allocatable :: fail
+        character(len=*), parameter :: values_101 = '  0.00000e+00  0.00000e+00  7.80795e-01  3.12459e+00 ' &
+                                                    //'-2.69703e+00  0.00000e+00'
+
+        call check_refusals(plate_file, 'modes_plate_', ['twice_other.uff'], [25], ['       101'], &
+                            [character(len=100) :: ':25: universal file dataset 55 record 9: node 101 is given again ' &
+                            //'with other values (value 3 = '], error)
+        if (allocated(error)) return
+        call write_variant('twice_step.uff', 25, '       101', plate_file)
+        call write_variant('twice_same.uff', 26, values_101, scratch//'/twice_step.uff')
+        call read_modes_file(scratch//'/twice_same.uff', 3, nodes, modes, fail)
+        call check(error, allocated(fail), 'node 101 given twice with the same values accepted')
+        if (allocated(error)) return
+        call check(error, fail%stat == stat_input .and. index(fail%message, 'twice_same.uff:25: universal file ' &
+                   //'dataset 55 record 9: node 101 is given again, as at line 23') > 0 .and. &
+                   index(fail%message, new_line('a')) == 0, 'one line naming both: '//fail%message)
+    end subroutine test_node_twice
+
+    !> pyuff's plate in mm and newtons (dataset 164: length factor 1000, force 1; a mass in
+    !> N*s^2/mm): the reader gives what it gives for the plate in SI, coordinates to 1e-15 m,
+    !> modal masses to 1e-12, shapes equal; the mass-normalised file gives phi_i^2/m_k to 2e-5
+    !> (its shapes carry E13.5's 6 digits); and the same scene on either file writes the same
+    !> forces and contact areas (the nodes read as metres gave 1e6 times the area per point).
+    subroutine test_units(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: head = "&scene name = 'NAME', output_dir = '"//scratch//"', dt = 8.0e-5, " &
+            //"n_steps = 60 / &structure model = 'modes_file', modes_file = '"
+        character(len=*), parameter :: tail = "', damping_ratio = 0.03 / &road profile = 'file', road_file = '" &
+            //scratch//"/wave.dat', x_start = 0.3, speed = 5.0 / &contact stiffness = 1.0e7, exponent = 1.5, " &
+            //"preload = 300.0 / &convolution methods = 'exact' /"
+        type(file_modes) :: si, mm, unit
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: rows_si(:, :), rows_mm(:, :), totals_si(:, :), totals_mm(:, :)
+        real(dp) :: worst
+        integer :: k
+
+        call read_file_modes(plate_file, 3, 0.03_dp, si, fail)
+        if (.not. allocated(fail)) call read_file_modes(plate_mm, 3, 0.03_dp, mm, fail)
+        if (.not. allocated(fail)) call read_file_modes(plate_mm_unit, 3, 0.03_dp, unit, fail)
+        call check(error, .not. allocated(fail), 'the files read: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, maxval(abs(mm%x - si%x)) <= 1.0e-15_dp .and. maxval(abs(mm%y - si%y)) <= 1.0e-15_dp .and. &
+                   all(mm%label == si%label), 'the nodes in m: x = '//trim(real_list(mm%x(1:3))))
+        if (allocated(error)) return
+        call check(error, all(mm%frequency == si%frequency) .and. &
+                   maxval(abs(mm%modal_mass/si%modal_mass - 1.0_dp)) <= 1.0e-12_dp .and. all(mm%shape == si%shape), &
+                   'modal masses in kg: '//trim(real_list(mm%modal_mass(1:2))))
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do k = 1, size(si%frequency)
+            worst = max(worst, maxval(abs(unit%shape(:, k)**2/unit%modal_mass(k) - si%shape(:, k)**2 &
+                                          /si%modal_mass(k)))/maxval(si%shape(:, k)**2/si%modal_mass(k)))
+        end do
+        call check(error, worst <= 2.0e-5_dp, 'mass-normalised in mm: phi^2/m off by '//trim(real_list([worst])))
+        if (allocated(error)) return
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        call run_scene_text(scratch, 'units_si.nml', named(head, 'units_si')//plate_file//tail, fail)
+        if (.not. allocated(fail)) call run_scene_text(scratch, 'units_mm.nml', named(head, 'units_mm')//plate_mm &
+                                                       //tail, fail)
+        call check(error, .not. allocated(fail), 'the scenes run: '//message_of(fail))
+        if (allocated(error)) return
+        call read_table(scratch//'/units_si_exact.dat', 8, rows_si, fail)
+        if (.not. allocated(fail)) call read_table(scratch//'/units_mm_exact.dat', 8, rows_mm, fail)
+        if (.not. allocated(fail)) call read_table(scratch//'/units_si_exact_totals.dat', 4, totals_si, fail)
+        if (.not. allocated(fail)) call read_table(scratch//'/units_mm_exact_totals.dat', 4, totals_mm, fail)
+        call check(error, .not. allocated(fail), 'the outputs read: '//message_of(fail))
+        if (allocated(error)) return
+        worst = maxval(abs(rows_mm - rows_si))/maxval(abs(rows_si))
+        call check(error, size(rows_mm, 1) == size(rows_si, 1) .and. worst <= 1.0e-9_dp, &
+                   'the points'' histories in mm and in m differ by '//trim(real_list([worst])))
+        if (allocated(error)) return
+        call check(error, maxval(abs(totals_mm(:, 3) - totals_si(:, 3))) <= 1.0e-9_dp*maxval(totals_si(:, 3)) .and. &
+                   maxval(totals_si(:, 3)) < 1.0e-2_dp, 'the contact area [m^2], largest '// &
+                   trim(real_list([maxval(totals_mm(:, 3))])))
+    end subroutine test_units
+
+    !> A scene text with NAME replaced.
+    function named(text, name) result(whole)
+        character(len=*), intent(in) :: text, name
+        character(len=:), allocatable :: whole
+
+        integer :: at
+
+        at = index(text, 'NAME')
+        whole = text(:at - 1)//name//text(at + 4:)
+    end function named
+
+    !> Numbers as text, for messages.
+    function real_list(values) result(text)
+        real(dp), intent(in) :: values(:)
+        character(len=200) :: text
+
+        write (text, '(*(es12.4))') values
+    end function real_list
+
+    !> A modes file of 317 x 317 = 100,489 nodes 3 mm apart and two modes: a patch holding
+    !> 97,969 of them is refused by `--check` in one line naming the limit of 5000 points and
+    !> the size (77 GB for the N_c x N_c static compliance; it was an allocation failure and a
+    !> backtrace), and so is the file at the F77 door, which makes every node a point; a 6 cm
+    !> square patch, 441 nodes, passes the check.
+    subroutine test_many_nodes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n = 317
+        character(len=*), parameter :: big = scratch//'/many_nodes.uff'
+        character(len=*), parameter :: head = "&scene name = 'many', output_dir = '"//scratch//"', dt = 1.0e-4, " &
+            //"n_steps = 100 / &structure model = 'modes_file', modes_file = '"//big//"', damping_ratio = 0.03, "
+        character(len=*), parameter :: tail = " / &road profile = 'file', road_file = '"//scratch//"/wave.dat', " &
+            //"x_start = 0.5, speed = 5.0 / &contact stiffness = 1.0e7, exponent = 1.5, preload = 300.0 / " &
+            //"&convolution methods = 'modal' /"
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail
+        character(len=300) :: message
+        integer(int64) :: handle
+        integer :: unit, i, j, m, sink, ierr, n_c
+
+        call make_directory(scratch, fail)
+        call write_wave_road(scratch//'/wave.dat')
+        open (newunit=unit, file=big, status='replace', action='write')
+        write (unit, '(a)') '    -1', '    15'
+        do j = 0, n - 1
+            do i = 0, n - 1
+                write (unit, '(4i10,3es13.5)') j*n + i + 1, 0, 0, 1, 0.003_dp*i, 0.003_dp*j, 0.0_dp
+            end do
+        end do
+        write (unit, '(a)') '    -1'
+        do m = 1, 2
+            write (unit, '(a)') '    -1', '    55', 'mode', 'NONE', 'NONE', 'NONE', 'NONE'
+            write (unit, '(6i10)') 1, 2, 2, 8, 2, 3
+            write (unit, '(4i10)') 2, 4, 1, m
+            write (unit, '(4es13.5)') 100.0_dp*m, 1.0_dp, 0.02_dp, 0.0_dp
+            do j = 1, n
+                do i = 1, n
+                    write (unit, '(i10)') (j - 1)*n + i
+                    write (unit, '(3es13.5)') 0.0_dp, 0.0_dp, sin(pi*i*m/(n + 1))*sin(pi*j/(n + 1))
+                end do
+            end do
+            write (unit, '(a)') '    -1'
+        end do
+        close (unit)
+        open (newunit=sink, file='/dev/null', action='write')
+        call read_scene_text(scratch, 'many.nml', head//'modes_patch_length = 0.94, modes_patch_width = 0.94'//tail, &
+                             scene, fail)
+        if (.not. allocated(fail)) call check_scene(scene, sink, fail)
+        call check(error, allocated(fail), 'a patch of 97,969 nodes passed --check')
+        if (allocated(error)) return
+        call check(error, fail%stat == stat_input .and. index(fail%message, 'many.nml:1: &structure') > 0 .and. &
+                   index(fail%message, 'expected at most 5000 contact points') > 0 .and. &
+                   index(fail%message, 'found 97969 of the file''s 100489 nodes') > 0 .and. &
+                   index(fail%message, ' GB') > 0 .and. index(fail%message, new_line('a')) == 0, &
+                   'one line, the limit and the size: '//fail%message)
+        if (allocated(error)) return
+        call read_scene_text(scratch, 'many.nml', head//'modes_patch_length = 0.06, modes_patch_width = 0.06'//tail, &
+                             scene, fail)
+        if (.not. allocated(fail)) call check_scene(scene, sink, fail)
+        close (sink)
+        call check(error, .not. allocated(fail), 'a 6 cm patch, 441 nodes: '//message_of(fail))
+        if (allocated(error)) return
+        call gcmmfl(big, 3, 0.03_dp, 0.0_dp, 'modal', 1.0e-4_dp, 100, 0.01_dp, handle, ierr, message)
+        call check(error, ierr == 2 .and. handle == 0 .and. index(message, 'expected at most 5000 nodes') > 0 .and. &
+                   index(message, 'found 100489') > 0, 'GCMMFL on 100,489 nodes: '//trim(message))
+        if (handle /= 0) call gcmfre(handle)
+        n_c = 0
+        if (allocated(error)) return
+        call gcmnpt(handle, n_c, ierr, message)
+        call check(error, ierr == 2 .and. n_c == 0, 'no handle')
+    end subroutine test_many_nodes
 
 end module test_modesfile_mod

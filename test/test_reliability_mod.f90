@@ -8,7 +8,7 @@ module test_reliability_mod
     use scene_text_mod, only: tab1_scene, read_scene_text, write_text
     use greenconv_io_files, only: make_directory, column_writer, open_columns, append_rows, close_columns, &
                                   write_columns
-    use greenconv_core_text, only: sci_text, real_text, exact_text
+    use greenconv_core_text, only: sci_text, real_text, exact_text, int_text
     use greenconv_core_number_text, only: compact_real
     use greenconv_api_all, only: scene_type, error_type, run_scene, check_scene, read_scene
     use greenconv_io_columns, only: read_columns
@@ -16,6 +16,10 @@ module test_reliability_mod
     use greenconv_api_all, only: convolver, new_convolver, structure_from_modes, sdof_modes, structure_model, &
                                  structure_from_frf, frf_from_modes, lsce_options, free_convolver
     use greenconv_legacy, only: gcsdof, gchist, gcpush, gcfree
+    use greenconv_api_all, only: point_modes, multipoint_convolver, modes_from_paper, run_multi_contact, &
+                                 multi_contact_response, contact_law
+    use greenconv_conv_builder, only: make_multipoint_convolver
+    use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmhis, gcmpsh, gcmfre, gcmplt
     implicit none
     private
 
@@ -59,7 +63,11 @@ contains
                                   test_cut_kernel), &
                      new_unittest('wrap-around: direct/fft refused, auto picks the modes', test_wrapped_g), &
                      new_unittest('an input where an output goes: refused by run and --check, kept', &
-                                  test_input_kept)]
+                                  test_input_kept), &
+                     new_unittest('several points past a cut kernel: refused (Fortran, F77), NaN history', &
+                                  test_cut_kernel_multi), &
+                     new_unittest('tyre_plate on a coarse road: the message names &structure f_modes', &
+                                  test_band_message)]
     end subroutine collect_reliability
 
     !> Number of names in a directory matching a shell pattern (0 when none).
@@ -485,6 +493,144 @@ contains
             call check(error, .false., 'another name in the output directory: '//run_error%message)
         end if
     end subroutine test_input_kept
+
+    !> A several-point `direct` or `fft` convolver made for 10 steps, its kernel cut there (modes
+    !> at 100 and 250 Hz, 5 % damping, dt = 0.1 ms: g has not decayed in 1 ms): the Fortran
+    !> library's run of 400 steps is refused before its first step (status 2, naming step 10),
+    !> its own history is NaN from step 10 on; the F77 doors refuse step 10 of a stepped run
+    !> (GCMSTP), a whole run (GCMRUN) and history and push (GCMHIS, GCMPSH) alike, after
+    !> serving steps 0-9. A modal convolver made for 10 steps runs 400.
+    subroutine test_cut_kernel_multi(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_c = 3, n_short = 10, n_long = 400
+        real(dp), parameter :: dt = 1.0e-4_dp, pi = acos(-1.0_dp)
+        character(len=*), parameter :: methods(3) = ['direct', 'fft   ', 'modal ']
+        type(point_modes) :: modes
+        class(multipoint_convolver), allocatable :: conv
+        type(multi_contact_response) :: response
+        type(error_type), allocatable :: run_error
+        character(len=:), allocatable :: accuracy
+        character(len=300) :: message
+        real(dp) :: road(n_long, n_c), u(n_long, n_c), f(n_long, n_c), delta(n_long, n_c), u_h(n_c)
+        real(dp) :: k_c(n_c), p(n_c), preload(n_c), r_n(n_c), u_n(n_c), f_n(n_c), d_n(n_c)
+        integer(int64) :: handle
+        integer :: i, n, m, ierr
+        logical :: cut
+
+        modes%modes = modes_from_paper([1.0_dp, 1.0_dp], 2.0_dp*pi*[100.0_dp, 250.0_dp], [0.05_dp, 0.05_dp])
+        modes%shape = reshape([0.9_dp, 1.0_dp, 0.8_dp, 0.7_dp, -0.1_dp, -0.6_dp], [n_c, 2])
+        k_c = 2.0e6_dp
+        p = 1.5_dp
+        preload = 60.0_dp
+        road = reshape([((1.2e-3_dp*sin(2.0_dp*pi*180.0_dp*n*dt - 0.8_dp*i), n=0, n_long - 1), i=0, n_c - 1)], &
+                       [n_long, n_c])
+        do m = 1, size(methods)
+            cut = m <= 2
+            call make_multipoint_convolver(trim(methods(m)), modes, dt, 0.01_dp, n_short, conv, accuracy, run_error)
+            call check(error, .not. allocated(run_error), trim(methods(m))//': not made')
+            if (allocated(error)) return
+            call run_multi_contact(conv, [(contact_law(k_c(i), p(i)), i=1, n_c)], road, preload, response, run_error)
+            if (cut) then
+                call check(error, allocated(run_error), trim(methods(m))//': a run of 400 steps accepted')
+                if (allocated(error)) return
+                call check(error, run_error%stat == 2 .and. index(run_error%message, 'step 10 is past') > 0 .and. &
+                           size(response%force, 1) == 0, trim(methods(m))//': '//run_error%message)
+            else
+                call check(error, .not. allocated(run_error), trim(methods(m))//': a run of 400 steps refused')
+            end if
+            if (allocated(error)) return
+            call conv%reset()
+            do n = 0, n_long - 1
+                call conv%history(u_h)
+                if (any(ieee_is_nan(u_h))) exit
+                call conv%push([1.0_dp, 0.0_dp, 0.0_dp])
+            end do
+            call check(error, n == merge(n_short, n_long, cut), trim(methods(m))//': history finite up to step ' &
+                       //int_text(n - 1))
+            if (allocated(error)) return
+            call gcmmod(n_c, 2, real(modes%modes%pole), aimag(modes%modes%pole), real(modes%modes%residue), &
+                        aimag(modes%modes%residue), modes%shape, dt, n_short, 0.01_dp, trim(methods(m)), handle, ierr, &
+                        message)
+            call check(error, ierr == 0, trim(methods(m))//': GCMMOD: '//trim(message))
+            if (allocated(error)) return
+            call gcmbeg(handle, n_c, k_c, p, preload, ierr, message)
+            do n = 1, n_long
+                r_n = road(n, :)
+                if (ierr == 0) call gcmstp(handle, n_c, r_n, u_n, f_n, d_n, ierr, message)
+                if (ierr /= 0) exit
+            end do
+            call check(error, n - 1 == merge(n_short, n_long, cut) .and. (ierr == 2 .eqv. cut), trim(methods(m)) &
+                       //': GCMSTP served '//int_text(n - 1)//' steps: '//trim(message))
+            if (allocated(error)) return
+            if (cut) call check(error, index(message, 'gcmstp: step 10 is past') == 1, 'GCMSTP: '//trim(message))
+            if (allocated(error)) return
+            call gcmrun(handle, n_c, n_long, k_c, p, preload, road, u, f, delta, ierr, message)
+            call check(error, (ierr == 2 .and. index(message, 'gcmrun: step 10 is past') == 1 .and. all(f == 0.0_dp)) &
+                       .eqv. cut, trim(methods(m))//': GCMRUN of 400 steps: '//trim(message))
+            if (allocated(error)) return
+            do n = 0, n_long - 1
+                call gcmhis(handle, n_c, u_h, ierr, message)
+                if (ierr == 0) call gcmpsh(handle, n_c, [1.0_dp, 0.0_dp, 0.0_dp], ierr, message)
+                if (ierr /= 0) exit
+            end do
+            call check(error, n == merge(n_short, n_long, cut) .and. &
+                       (index(message, 'gcmhis: step 10') == 1 .eqv. cut), &
+                       trim(methods(m))//': GCMHIS/GCMPSH served '//int_text(n)//' steps: '//trim(message))
+            call gcmfre(handle)
+            if (allocated(error)) return
+            call conv%release()
+            deallocate (conv)
+        end do
+    end subroutine test_cut_kernel_multi
+
+    !> A tyre_plate scene on a road sampled every 0.1 m at 1 m/s: the band rule gives
+    !> min(2*V/lambda_min, 1/(10*dt)) = 10 Hz, below the belt's first mode, and so does f_modes
+    !> = 5 Hz. Both are refused in one line at `&structure f_modes`, the variable that sets the
+    !> band (it said "raise f_max", a variable of &identification), the first saying where its
+    !> band came from; the C door says f_max (its argument), the F77 door FMAX.
+    subroutine test_band_message(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: road = scratch//'/road_coarse.dat'
+        character(len=*), parameter :: head = "&scene name = 'coarse', output_dir = '"//scratch//"', dt = 1.0e-4, " &
+            //"n_steps = 100 / &structure model = 'tyre_plate', damping_ratio = 0.05"
+        character(len=*), parameter :: tail = " / &road profile = 'file', road_file = '"//road//"', x_start = 2.0, " &
+            //"speed = 1.0 / &contact n_points_x = 4, n_points_y = 3, patch_length = 0.12, patch_width = 0.15, " &
+            //"stiffness = 1.0e7, exponent = 1.5, preload = 300.0 / &convolution methods = 'modal' /"
+        character(len=*), parameter :: settings(2) = [character(len=16) :: '', ', f_modes = 5.0']
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail
+        real(dp) :: pole_re(1), pole_im(1), res_re(1), res_im(1), shape(1), x(1), y(1)
+        character(len=300) :: message
+        integer :: unit, j, sink, k, n_modes, ierr
+
+        call make_directory(scratch, fail)
+        open (newunit=unit, file=road, status='replace', action='write')
+        do j = 0, 100
+            write (unit, '(2es16.8)') 0.1_dp*j, 1.0e-3_dp*sin(0.7_dp*j)
+        end do
+        close (unit)
+        open (newunit=sink, file='/dev/null', action='write')
+        do k = 1, size(settings)
+            call read_scene_text(scratch, 'coarse.nml', head//trim(settings(k))//tail, scene, fail)
+            if (.not. allocated(fail)) call check_scene(scene, sink, fail)
+            call check(error, allocated(fail), 'a band below the first mode accepted')
+            if (allocated(error)) exit
+            call check(error, fail%stat == 2 .and. index(fail%message, 'coarse.nml:1: &structure f_modes: plate ' &
+                       //'model: no mode below f_modes = ') > 0 .and. index(fail%message, 'raise f_modes') > 0 .and. &
+                       index(fail%message, 'f_max') == 0 .and. index(fail%message, new_line('a')) == 0 .and. &
+                       ((index(fail%message, 'f_modes = 0 takes the band min(2*V/lambda_min') > 0) .eqv. k == 1), &
+                       'one line naming &structure f_modes: '//fail%message)
+            if (allocated(error)) exit
+        end do
+        close (sink)
+        if (allocated(error)) return
+        call gcmplt(1, 1, 0.1_dp, 0.1_dp, 5.0_dp, 1, n_modes, pole_re, pole_im, res_re, res_im, shape, x, y, ierr, &
+                    message)
+        call check(error, ierr == 2 .and. index(message, 'gcmplt: plate model: no mode below FMAX = 5') == 1 .and. &
+                   index(message, 'raise FMAX') > 0, 'GCMPLT names FMAX: '//trim(message))
+    end subroutine test_band_message
 
     !> The whole text of a file, its lines joined by new lines.
     function file_text(path) result(text)

@@ -16,6 +16,7 @@ module test_uffchecks_mod
     use greenconv_model_green_matrix_file, only: green_matrix, read_green_matrix
     use greenconv_model_frf, only: frf_type, read_frf
     use test_patch_mod, only: two_point_file, message_of
+    use scene_text_mod, only: write_text
     implicit none
     private
 
@@ -38,7 +39,9 @@ contains
                      new_unittest('a real-valued receptance is refused', test_real_receptance), &
                      new_unittest('a G left out for its function type is named', test_left_out), &
                      new_unittest('a value of 1e308 is refused at its line', test_huge_value), &
-                     new_unittest('a receptance file value of 1e308 is refused at its line', test_huge_frf)]
+                     new_unittest('a receptance file value of 1e308 is refused at its line', test_huge_frf), &
+                     new_unittest('dataset 164: SI read, other units and bad factors refused at record 2', &
+                                  test_units_record)]
     end subroutine collect_uffchecks
 
     !> A file with one receptance whose record 7 claims 1e9 or 3e8 points: refused at once,
@@ -383,5 +386,83 @@ contains
         end do
         close (unit)
     end subroutine replace_columns
+
+    !> pyuff's fixture with two receptances and a dataset 164 stating SI (line 12) reads; the
+    !> same with the factors of millimetres and newtons (1000, 1), whose receptances would be
+    !> read 1000 times too large as SI, is refused at record 2 naming the factors (dataset 58 is
+    !> read in SI only); a factor of 0, a word for a factor, and two datasets 164 that disagree
+    !> are refused with their line and record.
+    subroutine test_units_record(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: source = 'test/data/uff/skipped_datasets.uff'
+        character(len=*), parameter :: one = '   1.0000000000000000D+00'
+        character(len=*), parameter :: mm = '   1.0000000000000000D+03'//one//one
+        character(len=*), parameter :: zero = '   0.0000000000000000D+00'//one//one
+        character(len=*), parameter :: word = one//'   newton                '//one
+        character(len=80) :: variants(3)
+        character(len=100) :: expect(3)
+        type(uff_file) :: file
+        type(error_type), allocatable :: fail
+        character(len=:), allocatable :: text
+        integer :: k
+
+        call make_directory(scratch, fail)
+        call read_uff(source, file, fail)
+        call check(error, .not. allocated(fail), 'the fixture with a dataset 164 in SI: '//message_of(fail))
+        if (allocated(error)) return
+        variants = [character(len=80) :: mm, zero, word]
+        expect(1) = 'units.uff:14: universal file dataset 164 record 2: expected SI units'
+        expect(2) = 'units.uff:14: universal file dataset 164 record 2: expected the length factor to SI > 0'
+        expect(3) = 'units.uff:14: universal file dataset 164 record 2: expected the force factor'
+        do k = 1, size(variants)
+            text = file_with(source, 14, trim(variants(k)))
+            call write_text(scratch//'/units.uff', text)
+            call read_uff(scratch//'/units.uff', file, fail)
+            call check(error, allocated(fail), 'dataset 164 variant '//int_text(k)//' accepted')
+            if (allocated(error)) return
+            call check(error, fail%stat == 2 .and. index(fail%message, trim(expect(k))) > 0 .and. &
+                       index(fail%message, new_line('a')) == 0, 'expected "'//trim(expect(k))//'", found "' &
+                       //fail%message//'"')
+            if (allocated(error)) return
+        end do
+        call check(error, index(fail%message, 'found "newton"') > 0, 'the word found: '//fail%message)
+        if (allocated(error)) return
+        ! a dataset 164 in mm before the one in SI: the file has two unit systems
+        text = file_with(source, 10, '    -1'//new_line('a')//'    -1'//new_line('a')//'   164'//new_line('a') &
+                         //'        10mm (newton)                2'//new_line('a')//mm//new_line('a') &
+                         //'   2.7314999999999998D+02'//new_line('a')//'    -1')
+        call write_text(scratch//'/units.uff', text)
+        call read_uff(scratch//'/units.uff', file, fail)
+        call check(error, allocated(fail), 'two datasets 164 that disagree accepted')
+        if (allocated(error)) return
+        call check(error, index(fail%message, 'units.uff:20: universal file dataset 164 record 2: expected the units ' &
+                               //'of the dataset 164 at line 11') > 0, 'two unit systems: '//fail%message)
+    end subroutine test_units_record
+
+    !> The lines of a file, line `at` replaced by `text` (which may hold several lines).
+    function file_with(path, at, text) result(whole)
+        character(len=*), intent(in) :: path, text
+        integer, intent(in) :: at
+        character(len=:), allocatable :: whole
+
+        character(len=200) :: line
+        integer :: unit, stat, n
+
+        whole = ''
+        n = 0
+        open (newunit=unit, file=path, status='old', action='read')
+        do
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            n = n + 1
+            if (n == at) then
+                whole = whole//text//new_line('a')
+            else
+                whole = whole//trim(line)//new_line('a')
+            end if
+        end do
+        close (unit)
+    end function file_with
 
 end module test_uffchecks_mod

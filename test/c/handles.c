@@ -1,7 +1,8 @@
 /*
  * Handles: NULL everywhere is refused with GC_ERROR_INPUT, never a crash; gc_convolver_free
- * of NULL does nothing; gc_convolver_delete frees once and then finds NULL, however often it
- * is called; two convolvers are independent.
+ * of NULL does nothing; gc_convolver_delete (and gc_multi_delete) frees once and then finds
+ * NULL, however often it is called, and every call on the deleted handle is refused; two
+ * convolvers are independent.
  */
 #include "greenconv.h"
 #include "check.h"
@@ -49,6 +50,28 @@ int main(void)
     gc_convolver_delete(&conv);
     check(1, "delete twice: no crash", NULL);
     check(gc_convolver_push(conv, 1.0) == GC_ERROR_INPUT, "push on the deleted handle: status 2", NULL);
-    gc_convolver_free(other);
+    check(gc_convolver_history(conv, &value) == GC_ERROR_INPUT, "history on the deleted handle: status 2", NULL);
+    check(gc_contact_step(conv, 1e6, 1.5, 10.0, 0.0, &value, &value, NULL) == GC_ERROR_INPUT,
+          "contact_step on the deleted handle: status 2", NULL);
+    gc_convolver_delete(&other);
+    check(other == NULL, "delete the second: its handle is NULL", NULL);
+
+    /* The multi-point pair: gc_multi_delete frees once, then finds NULL. */
+    {
+        double pole_re = -30.0, pole_im = 600.0, res_re = 0.0, res_im = -1.0 / 1200.0, shape = 1.0, u = 1.0;
+        gc_multi_convolver *multi = NULL;
+        status = gc_multi_new_modes(1, 1, &pole_re, &pole_im, &res_re, &res_im, &shape, 1e-4, "direct", 100, NULL,
+                                    &multi, msg, sizeof msg);
+        check(status == GC_OK && multi != NULL, "a new multi-point convolver", msg);
+        gc_multi_delete(&multi);
+        check(multi == NULL, "multi delete: the handle is NULL", NULL);
+        gc_multi_delete(&multi);
+        gc_multi_delete(NULL);
+        check(1, "multi delete twice, and of NULL: no crash", NULL);
+        status = gc_multi_history(multi, 1, &u, msg, sizeof msg);
+        check_status(status, GC_ERROR_INPUT, msg, "conv", "multi history on the deleted handle: status 2");
+        status = gc_multi_push(multi, 1, &u, msg, sizeof msg);
+        check_status(status, GC_ERROR_INPUT, msg, "conv", "multi push on the deleted handle: status 2");
+    }
     return check_exit();
 }

@@ -11,6 +11,7 @@
 module greenconv_capi_multi
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_associated, &
                                            c_f_pointer, c_loc
+    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
@@ -22,7 +23,7 @@ module greenconv_capi_multi
                                           file_e_modes, box_points, file_summary
     use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
     use greenconv_api_doors, only: finish, from_c, to_c, start_door, need_pointer, need_pointers, need_count
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
     implicit none
     private
 
@@ -195,7 +196,7 @@ contains
         call need_pointers(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, shape], &
                            'n_modes, pole_re, pole_im, residue_re, residue_im and shape', '', error)
         if (.not. allocated(error)) then
-            call patch_modes(caller, int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
+            call patch_modes(caller, 'f_max', int(n_x), int(n_y), [real(length, dp), real(width, dp)], f_max, modes, &
                              x_points, y_points, error)
         end if
         if (.not. allocated(error)) then
@@ -474,6 +475,7 @@ contains
         real(c_double), pointer :: u(:)
 
         box => checked('gc_multi_history', conv, n_points, [displacement], 'displacement', error)
+        if (.not. allocated(error)) call check_steps(box, 'gc_multi_history', 1_int64, error)
         if (.not. allocated(error)) then
             call c_f_pointer(displacement, u, [n_points])
             call box%conv%history(u)
@@ -501,6 +503,7 @@ contains
         real(c_double), pointer :: q(:)
 
         box => checked('gc_multi_push', conv, n_points, [force], 'force', error)
+        if (.not. allocated(error)) call check_steps(box, 'gc_multi_push', 1_int64, error)
         if (.not. allocated(error)) then
             call c_f_pointer(force, q, [n_points])
             call box%conv%push(q)

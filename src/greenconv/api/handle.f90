@@ -25,8 +25,6 @@ module greenconv_api_handle
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
-    use greenconv_conv_direct, only: direct_convolver
-    use greenconv_conv_fft, only: fft_convolver
     use greenconv_conv_methods, only: method_needs, needs_sampled_g
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
@@ -42,8 +40,16 @@ module greenconv_api_handle
     public :: run_box, identify_file, check_steps, step_box, start_point_box, advance_point_box
     public :: point_history, point_push, reset_box, describe_box
 
+    !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
+    !> goes back to the allocator.
+    integer(int64), parameter :: live_mark = int(z'6763636F6E763031', int64)
+
     !> What a foreign handle points to.
     type :: convolver_box
+        !> `live_mark` while the box is in use: `box_at` refuses an address without it, which
+        !> catches a handle freed a moment ago as long as its memory has not been given out
+        !> again (a cheap check, not a guarantee).
+        integer(int64) :: mark = live_mark
         !> The convolver: a Green's matrix of N_c points, or the 1 x 1 `point_matrix` of a
         !> single-point structure.
         class(multipoint_convolver), allocatable :: conv
@@ -122,6 +128,7 @@ contains
         type(convolver_box), pointer, intent(inout) :: box
 
         if (.not. associated(box)) return
+        box%mark = 0_int64
         if (allocated(box%conv)) then
             call box%conv%release()
             deallocate (box%conv)
@@ -131,14 +138,19 @@ contains
     end subroutine free_box
 
     !> The box at a C address: a C handle, or the address a Fortran 77 handle stands for
-    !> (greenconv_api_doors's `handle_address`); null for C NULL.
+    !> (greenconv_api_doors's `handle_address`); null for C NULL, and for a box without the
+    !> live mark (one freed, whose memory the allocator has not yet given out again: the doors
+    !> then refuse it as a null handle rather than read a freed object; a handle whose memory
+    !> was reused cannot be told apart, so a call after a free stays undefined).
     function box_at(address) result(box)
         !> The address of a box made by `new_box` or greenconv_api_multi_handle, or C NULL.
         type(c_ptr), intent(in) :: address
         type(convolver_box), pointer :: box
 
         box => null()
-        if (c_associated(address)) call c_f_pointer(address, box)
+        if (.not. c_associated(address)) return
+        call c_f_pointer(address, box)
+        if (box%mark /= live_mark) box => null()
     end function box_at
 
     !> Back to step 0 with no force history, ending a contact run stepped one call at a time.
@@ -168,9 +180,10 @@ contains
         text = text//', '//label//' = '//int_text(n)
     end subroutine describe_box
 
-    !> Refuse steps a box's kernel does not cover: a `direct` or `fft` convolver whose kernel
-    !> was cut at the n_steps it was made for (g not decayed by then) would give a short,
-    !> wrong sum from there on. `steps` more steps from the current one must stay below it.
+    !> Refuse steps a box's kernel does not cover, single- or multi-point: a `direct` or `fft`
+    !> convolver whose kernel was cut at the n_steps it was made for (g not decayed by then)
+    !> would give a short, wrong sum from there on (greenconv_conv_convolver's `check_validity`).
+    !> `steps` more steps from the current one must stay below it.
     subroutine check_steps(box, caller, steps, error)
         !> The box.
         type(convolver_box), intent(in) :: box
@@ -181,24 +194,8 @@ contains
         !> Set (`stat_input`) when a step lies past the kernel's validity.
         type(error_type), allocatable, intent(out) :: error
 
-        integer(int64) :: valid, step
-
-        valid = huge(valid)
-        step = box%conv%step
-        select type (matrix => box%conv)
-        type is (point_matrix)
-            step = matrix%point%step
-            select type (conv => matrix%point)
-            type is (direct_convolver)
-                valid = conv%valid_steps
-            type is (fft_convolver)
-                valid = conv%valid_steps
-            end select
-        end select
-        if (step + steps <= valid) return
-        call fatal_error(error, caller//': step '//int_text(max(step, valid))//' is past the '//box%conv%name &
-                         //' kernel, cut at the '//int_text(valid)//' steps the convolver was made for (g has not ' &
-                         //'decayed by then): make it with n_steps >= the steps you run, or use a modal method')
+        call box%conv%check_validity(steps, error)
+        if (allocated(error)) error%message = caller//': '//error%message
     end subroutine check_steps
 
     !> The structure of a damped mass-spring system, its arguments checked by name.

@@ -25,7 +25,7 @@ module greenconv_legacy_multi
                                           file_e_modes, modes_file_box, box_points, set_box_accuracy, &
                                           file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle, need_count
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box
+    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
     use greenconv_legacy, only: gcfree
     implicit none
     private
@@ -359,7 +359,7 @@ contains
         integer :: n_c
 
         nmode = 0
-        call patch_modes('gcmplt', nx, ny, [xlen, ylen], fmax, modes, x_points, y_points, error)
+        call patch_modes('gcmplt', 'FMAX', nx, ny, [xlen, ylen], fmax, modes, x_points, y_points, error)
         if (.not. allocated(error)) then
             nmode = modes%modes%n_modes()
             n_c = modes%n_points()
@@ -425,6 +425,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => checked('gcmhis', handle, nc, error)
+        if (.not. allocated(error)) call check_steps(box, 'gcmhis', 1_int64, error)
         if (.not. allocated(error)) call box%conv%history(uh(1:nc))
         call report(error, ierr, errmsg)
     end subroutine gcmhis
@@ -446,6 +447,7 @@ contains
         type(convolver_box), pointer :: box
 
         box => checked('gcmpsh', handle, nc, error)
+        if (.not. allocated(error)) call check_steps(box, 'gcmpsh', 1_int64, error)
         if (.not. allocated(error)) call box%conv%push(q(1:nc))
         call report(error, ierr, errmsg)
     end subroutine gcmpsh

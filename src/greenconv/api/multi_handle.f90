@@ -32,7 +32,7 @@ module greenconv_api_multi_handle
     use greenconv_core_text, only: lower_text, sci_text, int_text
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
-    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band, band_bytes
     use greenconv_api_doors, only: need_method, need_count
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
@@ -41,7 +41,7 @@ module greenconv_api_multi_handle
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
-    use greenconv_scene_limits, only: max_lsce_modes
+    use greenconv_scene_limits, only: max_lsce_modes, max_contact_points
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
     implicit none
@@ -189,6 +189,12 @@ contains
         band = f_band
         if (band <= 0.0_dp) band = 0.5_dp/dt
         call read_file_modes(path, direction, damping_ratio, modes, error)
+        ! every node is a point: sized before the N_c x N_c matrices are made
+        if (.not. allocated(error) .and. size(modes%x) > max_contact_points) call fatal_error(error, path &
+            //': expected at most '//int_text(max_contact_points)//' nodes (each node is a contact point), found ' &
+            //int_text(size(modes%x))//', whose N_c x N_c static compliance alone would take ' &
+            //sci_text(band_bytes(size(modes%x), size(modes%frequency))/1.0e9_dp)//' GB: give a file of ' &
+            //'the patch''s nodes')
         if (.not. allocated(error)) call split_band(modes, band, [(i, i=1, size(modes%x))], damping_ratio, description, &
                                                     residual, summary, error)
         if (allocated(error)) then
@@ -410,9 +416,11 @@ contains
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
     !> to f_max at an n_x by n_y patch centred on the belt (`patch_points`, x fastest), in the
     !> order of `plate_modes`.
-    subroutine patch_modes(caller, n_x, n_y, extent, f_max, modes, x, y, error)
+    subroutine patch_modes(caller, band_name, n_x, n_y, extent, f_max, modes, x, y, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
+        !> The door's name for f_max (`f_max`, `FMAX`), for the messages.
+        character(len=*), intent(in) :: band_name
         !> Points along x (the direction of travel), >= 1.
         integer, intent(in) :: n_x
         !> Points across, >= 1.
@@ -441,12 +449,13 @@ contains
                              //') m: give a patch within the belt, '//sci_text(plate%length)//' m by ' &
                              //sci_text(plate%width)//' m')
         else if (.not. (f_max > 0.0_dp .and. ieee_is_finite(f_max))) then
-            call fatal_error(error, caller//': f_max = '//sci_text(f_max)//' Hz: give a finite f_max > 0 Hz')
+            call fatal_error(error, caller//': '//band_name//' = '//sci_text(f_max)//' Hz: give a finite ' &
+                             //band_name//' > 0 Hz')
         end if
         if (allocated(error)) return
         allocate (x(n_x*n_y), y(n_x*n_y))
         call patch_points([plate%length/2, plate%width/2], extent, n_x, n_y, x, y)
-        call plate_modes(plate, x, y, f_max, modes, error)
+        call plate_modes(plate, x, y, f_max, modes, error, band_name)
         if (allocated(error)) error%message = caller//': '//error%message
     end subroutine patch_modes
 

@@ -166,7 +166,8 @@ contains
         real(dp), intent(in) :: road(0:, :)
         !> Histories of this block's steps.
         type(multi_contact_response), intent(out) :: response
-        !> Set on a road of the wrong width, a step whose forces do not converge, or divergence.
+        !> Set on a road of the wrong width or a block reaching past the steps a cut kernel covers
+        !> (`stat_input`, nothing done), a step whose forces do not converge, or divergence.
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: u_h(size(state%laws))
@@ -176,6 +177,11 @@ contains
         if (size(road, 2) /= size(state%laws)) then
             call fatal_error(error, 'multi-point contact: the road has '//int_text(size(road, 2)) &
                              //' columns for '//int_text(size(state%laws))//' points', stat_input)
+            call allocate_response(response, 0, size(state%laws))
+            return
+        end if
+        call conv%check_validity(int(n_t, int64), error)
+        if (allocated(error)) then
             call allocate_response(response, 0, size(state%laws))
             return
         end if

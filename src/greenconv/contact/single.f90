@@ -60,6 +60,7 @@
 !> step hands the next (the step index and the implicit step's first guess), so the blocks of
 !> a run put together equal `run_contact` on the whole road bit for bit.
 module greenconv_contact_single
+    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
@@ -198,7 +199,8 @@ contains
         real(dp), intent(in) :: road(0:)
         !> Histories of this block's steps.
         type(contact_response), intent(out) :: response
-        !> Set on a numerical fault (divergence, an implicit step that did not converge).
+        !> Set on a numerical fault (divergence, an implicit step that did not converge), or
+        !> (`stat_input`, nothing done) for a block reaching past the steps a cut kernel covers.
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: w0(1, 1), u_h(1), force(1), u(1), load(1)
@@ -207,6 +209,11 @@ contains
         n_t = size(road)
         allocate (response%time(0:n_t - 1), response%road(0:n_t - 1), response%displacement(0:n_t - 1), &
                   response%force(0:n_t - 1), response%compression(0:n_t - 1))
+        call conv%check_validity(int(n_t, int64), error)
+        if (allocated(error)) then
+            call keep_rows(response, 0)
+            return
+        end if
         w0(1, 1) = conv%instant_weight()
         do j = 0, n_t - 1
             u_h(1) = conv%history()

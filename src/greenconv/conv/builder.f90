@@ -333,9 +333,7 @@ contains
         engine = engine_of(method)
         if (engine%samples_g()) then
             call direct_kernel(structure, dt, truncation_tol, n_steps, kernel, tail)
-            ! A kernel that reaches the run's end was cut there: it is valid for n_steps steps.
-            valid = huge(valid)
-            if (size(kernel) >= n_steps) valid = n_steps
+            valid = kernel_validity(size(kernel) - 1, n_steps)
             call engine%on_kernel(kernel, dt, valid, conv)
             accuracy = 'exact: the kernel covers the whole run'
             if (tail > 0.0_dp) accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g|'
@@ -514,6 +512,7 @@ contains
             call sample_green_matrix(modes, dt, truncation_tol, n_steps, kernel, tail)
             call engine%on_table(kernel, dt, conv, error)
             if (allocated(error)) return
+            conv%valid_steps = kernel_validity(ubound(kernel, 1), n_steps)
             accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         else
             call engine%on_point_modes(modes, dt, conv, error)
@@ -571,11 +570,25 @@ contains
         engine = engine_of(method)
         call engine%on_table(kernel(0:n_g, :, :), dt, conv, error)
         if (allocated(error)) return
+        conv%valid_steps = kernel_validity(n_g, n_steps)
         accuracy = 'neglected tail <= '//sci_text(tail)//' of max|g_ij|'
         if (.not. present(fitted)) return
         misfit = maxval(abs(kernel(0:n_g, :, :) - fitted(0:n_g, :, :)))/maxval(row_max)
         accuracy = accuracy//'; the identified model''s g_ij by the same FFT differs by '//sci_text(misfit) &
                    //' of max|g_ij|'
     end subroutine table_convolver
+
+    !> The steps a kernel of lags 0..N_g covers in a run of n_steps: n_steps when it reaches
+    !> the run's end (it was cut there, g not decayed by then), any number (huge) when it ends
+    !> before (g decayed, or the samples given end there).
+    pure integer(int64) function kernel_validity(n_g, n_steps) result(valid)
+        !> Last lag N_g of the kernel.
+        integer, intent(in) :: n_g
+        !> Number of steps of the run it was made for.
+        integer, intent(in) :: n_steps
+
+        valid = huge(valid)
+        if (n_g + 1 >= n_steps) valid = n_steps
+    end function kernel_validity
 
 end module greenconv_conv_builder

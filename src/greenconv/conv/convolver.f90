@@ -14,9 +14,17 @@
 !> in `convolver_core`: an engine implements `history`, `push` (which advances `step`) and
 !> `clear` (its memory of the forces; `reset` clears and returns the step to 0), and its
 !> constructor names it, with its time step and model size, by `set_model`.
+!>
+!> A sampled kernel cut at the length of the run it was made for (g not yet below the
+!> truncation level there) is wrong for any later step: such a convolver, one point or N_c,
+!> knows its `valid_steps`; its history past them is NaN, never a silently short sum, and
+!> every door (the contact loops, the C and F77 handles) refuses those steps first with
+!> `check_validity`'s message.
 module greenconv_conv_convolver
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error, stat_input
+    use greenconv_core_text, only: int_text
     implicit none
     private
 
@@ -37,6 +45,9 @@ module greenconv_conv_convolver
         integer :: model_count = 0
         !> What `model_count` counts: `N_g` or `N_m`.
         character(len=:), allocatable :: model_label
+        !> Steps n whose history the model covers, n < valid_steps: the n_steps a sampled
+        !> kernel was cut at (g not decayed by then); huge (any run length) otherwise.
+        integer(int64) :: valid_steps = huge(0_int64)
     contains
         !> Forget all forces pushed and return to step 0: `clear`, then the step counter.
         procedure, non_overridable :: reset
@@ -46,6 +57,8 @@ module greenconv_conv_convolver
         procedure :: model_size
         !> Set the name, time step and model size (by the constructors).
         procedure :: set_model
+        !> Refuse steps past `valid_steps` (status 2), before they are taken.
+        procedure :: check_validity
         !> Give back what the convolver holds outside Fortran's memory (FFTW plans); it makes
         !> them again if stepped further. Nothing to give back by default.
         procedure :: release => release_nothing
@@ -158,6 +171,24 @@ contains
         self%model_count = n
         self%model_label = label
     end subroutine set_model
+
+    !> Refuse (`stat_input`) `steps` more steps from the current one when one of them lies
+    !> at or past `valid_steps`: "step 10 is past the direct kernel, cut at the 10 steps the
+    !> convolver was made for (...)".
+    subroutine check_validity(self, steps, error)
+        !> The convolver.
+        class(convolver_core), intent(in) :: self
+        !> Steps about to be taken from the current one (a history or push of this step: 1).
+        integer(int64), intent(in) :: steps
+        !> Set when a step lies past the kernel's validity.
+        type(error_type), allocatable, intent(out) :: error
+
+        if (self%step + steps <= self%valid_steps) return
+        call fatal_error(error, 'step '//int_text(max(self%step, self%valid_steps))//' is past the '//self%name &
+                         //' kernel, cut at the '//int_text(self%valid_steps)//' steps the convolver was made for ' &
+                         //'(g has not decayed by then): make it with n_steps >= the steps you run, or use a ' &
+                         //'modal method', stat_input)
+    end subroutine check_validity
 
     !> Default `release`: a convolver made of Fortran arrays only holds nothing else.
     subroutine release_nothing(self)

@@ -6,9 +6,8 @@
 !> `lane_dot` (greenconv_conv_kernel) in eight interleaved partial sums.
 !>
 !> A kernel cut at the length of the run it was made for (g not yet below the truncation
-!> level there) is wrong for any later step: such a convolver knows its `valid_steps`, and
-!> its history past them is NaN, never a silently short sum (the C and F77 doors refuse
-!> those steps with a message before they are taken).
+!> level there) is wrong for any later step: such a convolver knows its `valid_steps`
+!> (greenconv_conv_convolver), and its history past them is NaN, never a silently short sum.
 module greenconv_conv_direct
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -28,8 +27,6 @@ module greenconv_conv_direct
         real(dp), allocatable :: past(:)
         !> Position of the newest force in `past`.
         integer :: head = 1
-        !> Steps n whose history the kernel covers, n < valid_steps (huge: any run length).
-        integer(int64) :: valid_steps = huge(0_int64)
     contains
         procedure :: history => direct_history
         procedure :: push => direct_push

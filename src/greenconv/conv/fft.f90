@@ -141,9 +141,6 @@ module greenconv_conv_fft
         type(fft_level), allocatable :: levels(:)
         !> Force rings, pending outputs, scratch and FFTW plans (one column: one point).
         type(partition_rings) :: rings
-        !> Steps n whose history the kernel covers, n < valid_steps (huge: any run length); the
-        !> history is NaN from then on (see greenconv_conv_direct).
-        integer(int64) :: valid_steps = huge(0_int64)
     contains
         procedure :: history => fft_history
         procedure :: push => fft_push

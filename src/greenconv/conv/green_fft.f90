@@ -27,6 +27,7 @@
 !> to the bit. Round-off: about 1e-16*log2(N_g) of sum_j sum_m |W_ij(m)*q_j|.
 module greenconv_conv_green_fft
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ext_fftw, only: fft_plan_set
@@ -187,13 +188,18 @@ contains
         end do
     end subroutine build_level
 
-    !> u_h,i(n) [m]: the head's direct sums plus the levels' pending output of the step.
+    !> u_h,i(n) [m]: the head's direct sums plus the levels' pending output of the step; NaN
+    !> from step `valid_steps` on.
     subroutine green_fft_history(self, u)
         class(fft_green_matrix), intent(in) :: self
         real(dp), intent(out) :: u(:)
 
         integer :: h, m, j, first
 
+        if (self%step >= self%valid_steps) then
+            u(:) = ieee_value(1.0_dp, ieee_quiet_nan)
+            return
+        end if
         h = size(self%head_weight, 2)
         associate (r => self%rings)
             first = r%head_position - 1

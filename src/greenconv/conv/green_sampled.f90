@@ -9,6 +9,7 @@
 !> greenconv_conv_direct, past forces sit in a doubled ring buffer, newest first, one column per
 !> point, so that every dot product is contiguous.
 module greenconv_conv_green_sampled
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_multipoint, only: multipoint_convolver, check_green_table
@@ -61,13 +62,18 @@ contains
         call conv%reset()
     end subroutine new_sampled_green_matrix
 
-    !> u_h,i = sum_j sum_{m=1..min(n,N_g)} W_ij(m)*q_j(t_{n-m}) [m].
+    !> u_h,i = sum_j sum_{m=1..min(n,N_g)} W_ij(m)*q_j(t_{n-m}) [m]; NaN from step
+    !> `valid_steps` on.
     subroutine sampled_history(self, u)
         class(sampled_green_matrix), intent(in) :: self
         real(dp), intent(out) :: u(:)
 
         integer :: i, j, m, first, last
 
+        if (self%step >= self%valid_steps) then
+            u(:) = ieee_value(1.0_dp, ieee_quiet_nan)
+            return
+        end if
         m = capped_step(self%step, size(self%weight, 1))
         first = self%head
         last = self%head + m - 1

@@ -29,7 +29,7 @@ module greenconv_conv_point_matrix
 contains
 
     !> Wrap a single-point convolver (moved in, unallocated on return) as a 1 x 1 matrix
-    !> with its name, step, dt and W0 = [w0].
+    !> with its name, step, dt, valid steps and W0 = [w0].
     subroutine wrap_point(point, matrix)
         !> The single-point convolver; moved into `matrix`.
         class(convolver), allocatable, intent(inout) :: point
@@ -42,6 +42,7 @@ contains
         call point%model_size(n, label)
         call matrix%set_model(point%name, point%dt, n, label)
         matrix%step = point%step
+        matrix%valid_steps = point%valid_steps
         call matrix%set_instant_matrix(reshape([point%instant_weight()], [1, 1]))
         call move_alloc(point, matrix%point)
     end subroutine wrap_point

@@ -343,8 +343,8 @@ contains
         else if (mod(n, 2) /= 0) then
             source = 'dt = '//sci_text(dt)//' s divides 1/df into an odd number of samples ('//int_text(n)//')'
         else if (n < n_fft .and. mod(n_fft, n) /= 0) then
-            source = 'dt = '//sci_text(dt)//' s is not a whole multiple of the FFT step 1/(2*f_max) = ' &
-                     //sci_text(1.0_dp/(2.0_dp*frequency(n_f)))//' s'
+            source = 'dt = '//sci_text(dt)//' s is not a whole multiple of the FFT step ' &
+                     //sci_text(1.0_dp/(2.0_dp*frequency(n_f)))//' s (1/(2*f) at G''s last line f)'
         end if
         if (len(source) > 0) return
         n_lines = max(n_f, n/2 + 1)

@@ -328,8 +328,8 @@ contains
         stride = nint(dt/dt_frf)
         if (stride < 1 .or. abs(stride*dt_frf - dt) > 1.0e-9_dp*dt) then
             write (text, '(es12.5)') dt_frf
-            call fatal_error(error, 'time step dt: expected a whole multiple of 1/(2*f_max) = ' &
-                             //trim(adjustl(text))//' s, the step of g from the FRF')
+            call fatal_error(error, 'time step dt: expected a whole multiple of '//trim(adjustl(text)) &
+                             //' s, the step of g from the FRF (1/(2*f) at its last line f)')
             return
         end if
         ! Only the first half of the period 1/df: the second half holds the wrapped end of g.

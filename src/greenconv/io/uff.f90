@@ -49,6 +49,10 @@
 !> definition coordinate system. A label given again with other coordinates is refused,
 !> naming both lines.
 !>
+!> Dataset 164 (units, greenconv_io_uff_units): the functions and coordinates are taken as
+!> SI, so a file whose dataset 164 states other factors than 1 for lengths and forces is
+!> refused, naming the record and the factors (the dataset stays listed as skipped).
+!>
 !> Sizes: the point count of record 7 takes no memory before record 12 has held that many
 !> points (the values are stored as they are read, at most what the lines hold), so a
 !> damaged count is refused at once, not after gigabytes.
@@ -62,7 +66,7 @@
 !> re-exported here), greenconv_io_uff_records (lines, datasets and fixed-width fields),
 !> greenconv_io_uff_dataset58 and greenconv_io_uff_nodes (the datasets it reads).
 module greenconv_io_uff
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_io_uff_types, only: uff_axis, uff_function, uff_node, uff_skipped, uff_file, uff_kind_name, &
                                       uff_data_type_name, uff_function_type_name, uff_other, uff_receptance, &
@@ -70,6 +74,7 @@ module greenconv_io_uff
     use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets
     use greenconv_io_uff_dataset58, only: read_function
     use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
+    use greenconv_io_uff_units, only: uff_units, file_units
     implicit none
     private
 
@@ -121,7 +126,27 @@ contains
         end do
         file%nodes = file%nodes(1:n_nodes)
         call check_node_labels(path, file%nodes, error)
+        if (.not. allocated(error)) call check_si(path, lines, sets, error)
     end subroutine read_uff
+
+    !> Refuse a file whose dataset 164 states other units than SI for lengths and forces: its
+    !> functions and coordinates are taken as SI, never converted here.
+    subroutine check_si(path, lines, sets, error)
+        character(len=*), intent(in) :: path
+        type(text_line), intent(in) :: lines(:)
+        type(dataset_extent), intent(in) :: sets(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        type(uff_units) :: units
+        character(len=:), allocatable :: stated
+
+        call file_units(path, lines, sets, units, error)
+        if (allocated(error) .or. units%is_si()) return
+        call units%describe(stated)
+        call fatal_error(error, path//':'//int_text(units%line + 3)//': universal file dataset 164 record 2: ' &
+                         //'expected SI units (length and force factors 1: metres and newtons) for the functions ' &
+                         //'of datasets 58 and their nodes, found '//stated//': export the file in SI units')
+    end subroutine check_si
 
     !> One line saying what a file held: functions, nodes and the datasets skipped, e.g.
     !> `frf.uff: 4 functions (dataset 58), 6 nodes (datasets 15, 2411), skipped: 151 (line 1)`.

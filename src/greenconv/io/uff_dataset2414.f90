@@ -31,8 +31,9 @@
 module greenconv_io_uff_dataset2414
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text
-    use greenconv_io_uff_records, only: text_line, dataset_extent, record_prefix, integer_field, real_field, columns
+    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_io_uff_records, only: text_line, dataset_extent, record_prefix, integer_field, real_field, columns, &
+                                        repeated_labels, locate_label, quick_integer, quick_real
     implicit none
     private
 
@@ -252,10 +253,13 @@ contains
         integer, intent(in) :: direction
         !> The mode whose nodes and values are read.
         type(uff_mode_shape), intent(inout) :: mode
-        !> Set (status 2) for a malformed record or a dataset that ends inside a node.
+        !> Set (status 2) for a malformed record, a dataset that ends inside a node, or a node
+        !> given twice (naming both lines, and the first value that differs).
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: component(6)
+        real(dp) :: component(6), earlier(6)
+        real(dp), allocatable :: repeated(:)
+        integer, allocatable :: first(:)
         integer :: lines_per_node, n_nodes, k, i, line, n_lines, at
 
         lines_per_node = 1 + (values + per_line - 1)/per_line
@@ -270,19 +274,73 @@ contains
         end if
         allocate (mode%node(n_nodes), mode%value(n_nodes))
         do k = 1, n_nodes
-            line = start + (k - 1)*lines_per_node
-            call integer_field(record_prefix(path, line, set%number, label_record), lines(line)%text, 1, 10, &
-                               'the node label', .true., mode%node(k), error)
+            call read_node(k, component, error)
             if (allocated(error)) return
-            do i = 1, values
-                at = line + 1 + (i - 1)/per_line
-                call real_field(record_prefix(path, at, set%number, label_record + 1), lines(at)%text, &
-                                width*mod(i - 1, per_line) + 1, width*(mod(i - 1, per_line) + 1), 'value ' &
-                                //int_text(i)//' of node '//int_text(mode%node(k)), layout, .true., component(i), error)
-                if (allocated(error)) return
-            end do
             mode%value(k) = sign(1.0_dp, real(direction, dp))*component(abs(direction))
         end do
+        ! a node given twice would be two contact points on one spot: refused, naming both
+        repeated = repeated_labels(mode%node)
+        if (size(repeated) == 0) return
+        allocate (first(size(repeated)))
+        first(:) = 0
+        do k = 1, n_nodes
+            at = locate_label(repeated, mode%node(k))
+            if (at == 0) cycle
+            if (first(at) == 0) then
+                first(at) = k
+                cycle
+            end if
+            call read_node(first(at), earlier, error)
+            if (.not. allocated(error)) call read_node(k, component, error)
+            if (allocated(error)) return
+            line = start + (k - 1)*lines_per_node
+            i = findloc(component(:values) /= earlier(:values), .true., 1)
+            if (i > 0) then
+                call fatal_error(error, record_prefix(path, line, set%number, label_record)//'node ' &
+                                 //int_text(mode%node(k))//' is given again with other values (value '//int_text(i) &
+                                 //' = '//sci_text(component(i))//') than at line ' &
+                                 //int_text(start + (first(at) - 1)*lines_per_node)//' (value '//int_text(i)//' = ' &
+                                 //sci_text(earlier(i))//'); give each node once')
+            else
+                call fatal_error(error, record_prefix(path, line, set%number, label_record)//'node ' &
+                                 //int_text(mode%node(k))//' is given again, as at line ' &
+                                 //int_text(start + (first(at) - 1)*lines_per_node)//': give each node once ' &
+                                 //'(each node of a mode is one contact point)')
+            end if
+            return
+        end do
+
+    contains
+
+        !> The label and the values of node k (records label_record and label_record + 1).
+        subroutine read_node(k, found, fail)
+            !> Index of the node in the dataset.
+            integer, intent(in) :: k
+            !> Its values, found(1:values).
+            real(dp), intent(out) :: found(:)
+            !> Set (status 2) for a malformed record.
+            type(error_type), allocatable, intent(out) :: fail
+
+            integer :: i, line, at, first
+            logical :: ok
+
+            found(:) = 0.0_dp
+            line = start + (k - 1)*lines_per_node
+            call quick_integer(lines(line)%text, 1, 10, mode%node(k), ok)
+            if (.not. ok) call integer_field(record_prefix(path, line, set%number, label_record), lines(line)%text, &
+                                             1, 10, 'the node label', .true., mode%node(k), fail)
+            if (allocated(fail)) return
+            do i = 1, values
+                at = line + 1 + (i - 1)/per_line
+                first = width*mod(i - 1, per_line) + 1
+                call quick_real(lines(at)%text, first, first + width - 1, found(i), ok)
+                if (ok) cycle
+                call real_field(record_prefix(path, at, set%number, label_record + 1), lines(at)%text, first, &
+                                first + width - 1, 'value '//int_text(i)//' of node '//int_text(mode%node(k)), &
+                                layout, .true., found(i), fail)
+                return
+            end do
+        end subroutine read_node
     end subroutine read_node_records
 
 end module greenconv_io_uff_dataset2414

@@ -27,7 +27,10 @@ module greenconv_io_uff_dataset55
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_io_uff_types, only: uff_node
-    use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, real_field
+    use greenconv_core_sorting, only: sort_order
+    use greenconv_io_uff_records, only: text_line, dataset_extent, load_lines, find_datasets, record_prefix, &
+                                        real_field, locate_label
+    use greenconv_io_uff_units, only: uff_units, file_units
     use greenconv_io_uff_nodes, only: read_nodes, check_node_labels
     use greenconv_io_uff_dataset2414, only: uff_mode_shape, read_analysis_mode, check_mode_values, read_node_records, &
                                             integer_fields, check_mode_codes
@@ -123,23 +126,30 @@ contains
     end subroutine read_mode_shape
 
     !> Read a file of normal modes: its nodes (datasets 15, 2411) and every dataset 55 or 2414,
-    !> each mode at the same nodes, every node defined; other datasets are ignored.
+    !> each mode at the same nodes, every node defined and given once; other datasets are
+    !> ignored. Returned in SI whatever units its dataset 164 states (greenconv_io_uff_units):
+    !> coordinates divided by the length factor, and phi_i*phi_j/m_k [1/kg] by the mass factor
+    !> (the modal mass multiplied by it, or, where the file gives none for mass-normalised
+    !> shapes, the shapes divided by its square root).
     subroutine read_modes_file(path, direction, nodes, modes, error)
         !> File to read.
         character(len=*), intent(in) :: path
         !> Direction of the shapes kept: +-1, +-2, +-3 for +-X, +-Y, +-Z.
         integer, intent(in) :: direction
-        !> The nodes of the modes, in the order of the first dataset 55's records 9.
+        !> The nodes of the modes, in the order of the first dataset 55's records 9; x, y, z [m].
         type(uff_node), allocatable, intent(out) :: nodes(:)
-        !> The modes, in file order.
+        !> The modes, in file order (modal masses [kg] and shapes in SI).
         type(uff_mode_shape), allocatable, intent(out) :: modes(:)
         !> Set (status 2) for an unreadable or malformed file, no mode, a mode at other nodes
-        !> than the first or a node without coordinates.
+        !> than the first, a node without coordinates or given twice, a malformed dataset 164.
         type(error_type), allocatable, intent(out) :: error
 
         type(text_line), allocatable :: lines(:)
         type(dataset_extent), allocatable :: sets(:)
         type(uff_node), allocatable :: defined(:)
+        type(uff_units) :: units
+        real(dp), allocatable :: sorted(:)
+        integer, allocatable :: order(:)
         character(len=40) :: where
         integer :: i, k, j, n_defined, n_modes
 
@@ -166,6 +176,9 @@ contains
         defined = defined(1:n_defined)
         call check_node_labels(path, defined, error)
         if (allocated(error)) return
+        call file_units(path, lines, sets, units, error)
+        if (allocated(error)) return
+        deallocate (lines)
         if (n_modes == 0) then
             call fatal_error(error, path//':1: universal file: expected normal modes (datasets 55 or 2414 of analysis ' &
                              //'type 2), found none')
@@ -185,9 +198,13 @@ contains
                              //int_text(size(modes(k)%node))//' nodes'//trim(where))
             return
         end do
+        ! each node's coordinates by bisection in the defined labels, sorted: O(n log n)
+        order = defined%label
+        order = sort_order(order)
+        sorted = real(defined(order)%label, dp)
         allocate (nodes(size(modes(1)%node)))
         do k = 1, size(nodes)
-            j = findloc(defined%label, modes(1)%node(k), 1)
+            j = locate_label(sorted, modes(1)%node(k))
             if (j == 0) then
                 call fatal_error(error, path//':'//int_text(modes(1)%line)//': universal file dataset ' &
                                  //int_text(modes(1)%dataset)//': expected ' &
@@ -195,7 +212,19 @@ contains
                                  //'coordinates for it')
                 return
             end if
-            nodes(k) = defined(j)
+            nodes(k) = defined(order(j))
+        end do
+        if (units%is_si()) return
+        ! to SI: lengths / length factor; phi_i*phi_j/m_k [1/mass] * force factor / length factor
+        do k = 1, size(nodes)
+            nodes(k)%position = nodes(k)%position/units%length_factor
+        end do
+        do k = 1, n_modes
+            if (modes(k)%modal_mass > 0.0_dp) then
+                modes(k)%modal_mass = modes(k)%modal_mass*units%mass_factor()
+            else
+                modes(k)%value = modes(k)%value/sqrt(units%mass_factor())
+            end if
         end do
     end subroutine read_modes_file
 

@@ -6,6 +6,7 @@ module greenconv_io_uff_records
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
+    use greenconv_core_sorting, only: heap_sort
     use greenconv_core_number_text, only: is_number, is_nan_or_inf, is_integer, read_real, read_integer
     use greenconv_io_columns, only: read_line, byte_order_mark
     implicit none
@@ -13,6 +14,7 @@ module greenconv_io_uff_records
 
     public :: text_line, dataset_extent, load_lines, find_datasets, record_prefix
     public :: columns, span, quoted, number_words, integer_field, real_field, parse_real
+    public :: repeated_labels, locate_label, quick_integer, quick_real
 
     !> One line of the file, without its line end.
     type :: text_line
@@ -323,5 +325,100 @@ contains
         call read_real(trim(token), value, ok)
         status = merge(0, 2, ok)
     end subroutine parse_real
+
+    !> The integer in columns first..last (required), with no message: the fast path of a
+    !> reader's loop over many records, which calls `integer_field` for the message only when
+    !> `ok` is false (building every record's message prefix beforehand cost a minute on a
+    !> file of 10^5 nodes).
+    subroutine quick_integer(line, first, last, value, ok)
+        !> The line.
+        character(len=*), intent(in) :: line
+        !> First and last column of the field.
+        integer, intent(in) :: first, last
+        !> The integer read (0 when not ok).
+        integer, intent(out) :: value
+        !> Whether the field holds an integer.
+        logical, intent(out) :: ok
+
+        character(len=last - first + 1) :: field
+        integer :: n
+
+        value = 0
+        field = adjustl(columns(line, first, last))
+        n = len_trim(field)
+        ok = n > 0
+        if (ok) ok = is_integer(field(:n))
+        if (ok) call read_integer(field(:n), value, ok)
+    end subroutine quick_integer
+
+    !> The real in columns first..last (required), with no message: `quick_integer`'s
+    !> counterpart for `real_field`.
+    subroutine quick_real(line, first, last, value, ok)
+        !> The line.
+        character(len=*), intent(in) :: line
+        !> First and last column of the field.
+        integer, intent(in) :: first, last
+        !> The number read (0 when not ok), in the file's unit.
+        real(dp), intent(out) :: value
+        !> Whether the field holds a finite number.
+        logical, intent(out) :: ok
+
+        character(len=last - first + 1) :: field
+        integer :: status
+
+        field = adjustl(columns(line, first, last))
+        call parse_real(field(:len_trim(field)), value, status)
+        ok = status == 0
+    end subroutine quick_real
+
+    !> The labels that occur more than once in `labels`, each once, ascending (as reals: node
+    !> labels are integers, exact as reals); empty when every label is unique. O(n log n).
+    pure function repeated_labels(labels) result(repeated)
+        !> The labels, in any order.
+        integer, intent(in) :: labels(:)
+        real(dp), allocatable :: repeated(:)
+
+        real(dp), allocatable :: sorted(:)
+        integer :: k, n
+
+        allocate (repeated(0))
+        if (size(labels) < 2) return
+        sorted = real(labels, dp)
+        call heap_sort(sorted)
+        repeated = pack(sorted(2:), sorted(2:) == sorted(:size(sorted) - 1))
+        n = min(1, size(repeated))
+        do k = 2, size(repeated)
+            if (repeated(k) /= repeated(n)) then
+                n = n + 1
+                repeated(n) = repeated(k)
+            end if
+        end do
+        repeated = repeated(:n)
+    end function repeated_labels
+
+    !> Index of `label` in the ascending list `repeated_labels` gives, 0 when absent (bisection).
+    pure integer function locate_label(list, label) result(at)
+        !> Labels as reals, ascending.
+        real(dp), intent(in) :: list(:)
+        !> The label sought.
+        integer, intent(in) :: label
+
+        integer :: low, high, middle
+
+        at = 0
+        low = 1
+        high = size(list)
+        do while (low <= high)
+            middle = (low + high)/2
+            if (list(middle) == real(label, dp)) then
+                at = middle
+                return
+            else if (list(middle) < real(label, dp)) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function locate_label
 
 end module greenconv_io_uff_records

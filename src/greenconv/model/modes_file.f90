@@ -27,7 +27,7 @@ module greenconv_model_modes_file
     implicit none
     private
 
-    public :: file_modes, read_file_modes, band_modes, split_band
+    public :: file_modes, read_file_modes, band_modes, split_band, band_bytes
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -107,8 +107,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         logical :: kept(size(modes%frequency))
-        real(dp) :: stiffness(size(modes%frequency)), total
-        integer :: k
+        real(dp) :: stiffness(size(modes%frequency)), total, column(size(selected))
+        integer :: k, j
 
         kept = modes%frequency <= f_band
         if (.not. any(kept)) then
@@ -123,9 +123,13 @@ contains
         residual = 0.0_dp
         total = 0.0_dp
         do k = 1, size(kept)
-            total = total + sum(modes%shape(selected, k)**2)/stiffness(k)
-            if (.not. kept(k)) residual = residual + spread(modes%shape(selected, k), 2, size(selected)) &
-                                          *spread(modes%shape(selected, k)/stiffness(k), 1, size(selected))
+            column = modes%shape(selected, k)
+            total = total + sum(column**2)/stiffness(k)
+            if (kept(k)) cycle
+            ! R += phi_k*phi_k^T/K_k, a column at a time (no N_c x N_c temporary)
+            do j = 1, size(selected)
+                residual(:, j) = residual(:, j) + column*(column(j)/stiffness(k))
+            end do
         end do
         description%shape = modes%shape(selected, pack([(k, k=1, size(kept))], kept))
         static_share = 0.0_dp
@@ -134,7 +138,7 @@ contains
 
     !> The modes up to f_band [Hz] at the nodes `selected`, R of those above it (unallocated
     !> when none is above) and the line that reports them, e.g. `9 contact points, 9 modes from
-    !> 125.4 Hz to f_max = 1000.0 Hz (23 above it as a static compliance, 3.22 % of the static
+    !> 125.4 Hz up to the band, 1000.0 Hz (23 above it as a static compliance, 3.22 % of the static
     !> flexibility at the points, largest R_ii 1.23E-09 m/N; damping ratio from the file for
     !> 16, 0.030 for 16 modes)`.
     subroutine split_band(modes, f_band, selected, damping_ratio, description, residual, summary, error)
@@ -170,12 +174,25 @@ contains
         write (percent, '(f6.2)') 100.0_dp*share
         write (numbers, '(i0,a,i0,a,f0.1,a,f0.1,a,i0,a,a,a,es8.2,a,i0,a,f5.3,a,i0,a)') size(selected), &
             ' contact points, ', description%modes%n_modes(), ' modes from ', minval(modes%frequency), &
-            ' Hz to f_max = ', f_band, ' Hz (', n_above, ' above it as a static compliance, ', trim(adjustl(percent)), &
+            ' Hz up to the band, ', f_band, ' Hz (', n_above, ' above it as a static compliance, ', &
+            trim(adjustl(percent)), &
             ' % of the static flexibility at the points, largest R_ii ', largest, ' m/N; ' &
             //'damping ratio from the file for ', modes%n_damped_by_file, ', ', damping_ratio, ' for ', &
             size(modes%frequency) - modes%n_damped_by_file, ' modes)'
         summary = trim(numbers)
     end subroutine split_band
+
+    !> Memory [bytes] `split_band` takes for N_c points and N_m modes: the static compliance R
+    !> (N_c x N_c) and the shapes at the points (N_c x N_m), before any convolver is made on
+    !> them (which holds at least another N_c x N_c matrix: W0). For a check before the call.
+    pure real(dp) function band_bytes(n_points, n_modes)
+        !> Number of points N_c.
+        integer, intent(in) :: n_points
+        !> Number of modes N_m.
+        integer, intent(in) :: n_modes
+
+        band_bytes = 8.0_dp*real(n_points, dp)*(real(n_points, dp) + real(n_modes, dp))
+    end function band_bytes
 
     !> A frequency as `1234.5 Hz` in a fixed buffer.
     pure function hz(f) result(text)

@@ -163,7 +163,7 @@ contains
     !> Every mode whose natural frequency is at most f_max [Hz], by increasing frequency (a
     !> cosine before its sine; equal frequencies by m, then n). omega_mn grows with m and with
     !> n, so the search stops at the first order past f_max.
-    subroutine plate_mode_list(plate, f_max, modes, error)
+    subroutine plate_mode_list(plate, f_max, modes, error, band_name)
         !> The plate.
         type(tyre_plate), intent(in) :: plate
         !> Highest natural frequency kept [Hz].
@@ -172,6 +172,8 @@ contains
         type(plate_mode), allocatable, intent(out) :: modes(:)
         !> Set for a non-physical plate, no mode below f_max or more than `max_modes`.
         type(error_type), allocatable, intent(out) :: error
+        !> The name the caller gives f_max, for the messages (`band_text`); `f_max` when absent.
+        character(len=*), intent(in), optional :: band_name
 
         type(plate_mode), allocatable :: found(:)
         real(dp), allocatable :: omega(:)
@@ -188,8 +190,9 @@ contains
             m = 0
             do while (plate_frequency(plate, m, n) <= omega_max)
                 if (count + 2 > max_modes) then
-                    call fatal_error(error, 'plate model: more than '//int_text(max_modes)//' modes below f_max = ' &
-                                     //real_text(f_max)//' Hz; lower f_max')
+                    call fatal_error(error, 'plate model: more than '//int_text(max_modes)//' modes below ' &
+                                     //trim(band_text(band_name))//' = '//real_text(f_max)//' Hz: lower ' &
+                                     //trim(band_text(band_name)))
                     return
                 end if
                 if (count + 2 > size(found)) found = [found, found]
@@ -204,8 +207,9 @@ contains
             n = n + 1
         end do
         if (count == 0) then
-            call fatal_error(error, 'plate model: no mode below f_max = '//real_text(f_max)//' Hz (the first is at ' &
-                             //real_text(plate_frequency(plate, 0, 1)/(2.0_dp*pi))//' Hz); raise f_max')
+            call fatal_error(error, 'plate model: no mode below '//trim(band_text(band_name))//' = '//real_text(f_max) &
+                             //' Hz (the first is at '//real_text(plate_frequency(plate, 0, 1)/(2.0_dp*pi)) &
+                             //' Hz): raise '//trim(band_text(band_name)))
             return
         end if
         ! insertion sort by frequency, stable: the enumeration order breaks ties
@@ -224,7 +228,7 @@ contains
 
     !> The modes of the plate up to f_max [Hz] seen at the points (x_i, y_i): unit modal
     !> responses (A_k = 1, omega_k, xi in the paper's form) and shapes phi_k(x_i, y_i).
-    subroutine plate_modes(plate, x, y, f_max, description, error)
+    subroutine plate_modes(plate, x, y, f_max, description, error, band_name)
         !> The plate.
         type(tyre_plate), intent(in) :: plate
         !> Contact point positions x_i [m] along the circumference, within [0, L].
@@ -237,13 +241,16 @@ contains
         type(point_modes), intent(out) :: description
         !> Set for a non-physical plate, points off the plate or no mode below f_max.
         type(error_type), allocatable, intent(out) :: error
+        !> The name the caller's user gives f_max (`&structure f_modes`, `FMAX`), for the
+        !> messages; `f_max` when absent.
+        character(len=*), intent(in), optional :: band_name
 
         type(plate_mode), allocatable :: modes(:)
         integer :: k, n_m
 
         call check_points(plate, x, y, error)
         if (allocated(error)) return
-        call plate_mode_list(plate, f_max, modes, error)
+        call plate_mode_list(plate, f_max, modes, error, band_name)
         if (allocated(error)) return
         n_m = size(modes)
         description%modes = modes_from_paper([(1.0_dp, k=1, n_m)], plate_frequency(plate, modes%m, modes%n), &
@@ -338,5 +345,15 @@ contains
         call check_on_belt('plate', 'x', 'L', x, plate%length, error)
         if (.not. allocated(error)) call check_on_belt('plate', 'y', 'b', y, plate%width, error)
     end subroutine check_points
+
+    !> The name of the band's top in a message, blank-padded: `band_name`, or `f_max` when absent.
+    pure function band_text(band_name) result(text)
+        !> The caller's name for it.
+        character(len=*), intent(in), optional :: band_name
+        character(len=64) :: text
+
+        text = 'f_max'
+        if (present(band_name)) text = band_name
+    end function band_text
 
 end module greenconv_model_plate

@@ -143,7 +143,7 @@ contains
 
     !> The modes of the tyre up to f_max [Hz] seen at the points x_i: unit modal responses
     !> (A_k = 1, omega_k, xi in the paper's form) and shapes phi_k(x_i).
-    subroutine tyre_modes(tyre, positions, f_max, description, error)
+    subroutine tyre_modes(tyre, positions, f_max, description, error, band_name)
         !> The tyre.
         type(tyre_belt), intent(in) :: tyre
         !> Contact point positions x_i [m], within [0, L].
@@ -154,6 +154,9 @@ contains
         type(point_modes), intent(out) :: description
         !> Set for non-physical parameters, points off the belt or no mode below f_max.
         type(error_type), allocatable, intent(out) :: error
+        !> The name the caller's user gives f_max (`&structure f_modes`), for the message;
+        !> `f_max` when absent.
+        character(len=*), intent(in), optional :: band_name
 
         integer :: k, n_m
 
@@ -161,8 +164,14 @@ contains
         if (allocated(error)) return
         n_m = tyre_mode_count(tyre, f_max)
         if (n_m < 1) then
-            call fatal_error(error, 'tyre model: no mode below f_max = '//real_text(f_max)//' Hz (the first is at ' &
-                             //real_text(tyre_frequency(tyre, 1)/(2.0_dp*pi))//' Hz)')
+            if (present(band_name)) then
+                call fatal_error(error, 'tyre model: no mode below '//band_name//' = '//real_text(f_max) &
+                                 //' Hz (the first is at '//real_text(tyre_frequency(tyre, 1)/(2.0_dp*pi)) &
+                                 //' Hz): raise '//band_name)
+            else
+                call fatal_error(error, 'tyre model: no mode below f_max = '//real_text(f_max)//' Hz (the first is ' &
+                                 //'at '//real_text(tyre_frequency(tyre, 1)/(2.0_dp*pi))//' Hz): raise f_max')
+            end if
             return
         end if
         description%modes = modes_from_paper([(1.0_dp, k=1, n_m)], tyre_frequency(tyre, [(k, k=1, n_m)]), &

@@ -25,7 +25,7 @@
 module greenconv_scene_multi_models
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text
+    use greenconv_core_text, only: int_text, sci_text
     use greenconv_model_tyre, only: tyre_frequency, tyre_band
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
@@ -34,8 +34,9 @@ module greenconv_scene_multi_models
     use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text, road_step
-    use greenconv_scene_tyre, only: tyre_points
-    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band
+    use greenconv_scene_tyre, only: tyre_points, place_band_error
+    use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band, band_bytes
+    use greenconv_scene_limits, only: max_contact_points
     implicit none
     private
 
@@ -94,8 +95,12 @@ contains
                           points%x, points%y)
         f_max = scene%f_modes
         if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
-        call plate_modes(scene%plate, points%x, points%y, f_max, points%modes, error)
-        if (.not. allocated(error)) call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
+        call plate_modes(scene%plate, points%x, points%y, f_max, points%modes, error, band_name='f_modes')
+        if (allocated(error)) then
+            call place_band_error(error, scene)
+            return
+        end if
+        call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) then
             call place_error(error, scene, 'structure', 'model')
             return
@@ -103,7 +108,7 @@ contains
         write (numbers, '(i0,a,i0,a,f0.3,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') scene%n_points_x, ' x ', scene%n_points_y, &
             ' contact points over ', scene%patch_length, ' m x ', scene%patch_width, ' m, ', &
             points%modes%modes%n_modes(), ' modes from ', plate_frequency(scene%plate, 0, 1)/(2.0_dp*pi), &
-            ' Hz to f_max = ', f_max, ' Hz, '
+            ' Hz up to the band, ', f_max, ' Hz, '
         summary = '# scene '//scene%name//': tyre belt as a plate, '//trim(numbers)//' '//run_text(scene)
     end subroutine plate_scene_points
 
@@ -295,6 +300,12 @@ contains
         if (size(selected) == 0) call fatal_error(error, 'expected nodes inside the patch of modes_patch_length x ' &
                                                   //'modes_patch_width around the nodes'' centre, found none of ' &
                                                   //int_text(size(inside)))
+        ! each node in the patch is a contact point: sized before its N_c x N_c matrices are made
+        if (size(selected) > max_contact_points) call fatal_error(error, 'expected at most ' &
+            //int_text(max_contact_points)//' contact points (nodes inside modes_patch_length x modes_patch_width), ' &
+            //'found '//int_text(size(selected))//' of the file''s '//int_text(size(inside))//' nodes, whose ' &
+            //'N_c x N_c static compliance alone would take '//sci_text(band_bytes(size(selected), &
+            size(modes%frequency))/1.0e9_dp)//' GB: give a smaller modes_patch_length x modes_patch_width')
     end subroutine patch_nodes
 
 end module greenconv_scene_multi_models

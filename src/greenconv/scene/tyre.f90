@@ -12,14 +12,14 @@
 module greenconv_scene_tyre
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_model_tyre, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
     use greenconv_model_point_modes, only: point_modes
     use greenconv_scene_patch, only: place_patch, run_text, road_step
     implicit none
     private
 
-    public :: tyre_points
+    public :: tyre_points, place_band_error
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -65,8 +65,11 @@ contains
         positions = contact_positions(0.5_dp*scene%tyre%length, scene%patch_length, scene%n_points)
         f_max = scene%f_modes
         if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
-        call tyre_modes(scene%tyre, positions, f_max, modes, error)
-        if (allocated(error)) return
+        call tyre_modes(scene%tyre, positions, f_max, modes, error, band_name='f_modes')
+        if (allocated(error)) then
+            call place_band_error(error, scene)
+            return
+        end if
         call place_patch(scene, positions, [(0.0_dp, i=1, size(positions))], road_positions, road_y, error)
         if (allocated(error)) return
         if (present(across)) call move_alloc(road_y, across)
@@ -74,9 +77,23 @@ contains
         write (line, '(a,i0,a,f0.3,a,i0,a,f0.1,a,f0.0,a)') &
             '# scene '//scene%name//': tyre belt, ', scene%n_points, ' contact points over ', scene%patch_length, &
             ' m, ', modes%modes%n_modes(), &
-            ' modes from ', tyre_frequency(scene%tyre, 1)/(2.0_dp*pi), ' Hz to f_max = ', f_max, ' Hz, ' &
+            ' modes from ', tyre_frequency(scene%tyre, 1)/(2.0_dp*pi), ' Hz up to the band, ', f_max, ' Hz, ' &
             //run_text(scene)
         summary = trim(line)
     end subroutine tyre_points
+
+    !> Place an error of the tyre or plate model's modes up to the band at `&structure
+    !> f_modes`, the variable that sets the band, saying where the band came from when the
+    !> scene leaves f_modes at 0 (the band rule of `tyre_band`).
+    subroutine place_band_error(error, scene)
+        !> The model's error ("... no mode below f_modes = 12.5 Hz ...: raise f_modes").
+        type(error_type), intent(inout) :: error
+        !> The scene (model 'tyre' or 'tyre_plate').
+        type(scene_type), intent(in) :: scene
+
+        if (scene%f_modes <= 0.0_dp) error%message = error%message//' (f_modes = 0 takes the band ' &
+            //'min(2*V/lambda_min, 1/(10*dt)) from &road speed, the road''s step and &scene dt)'
+        call place_error(error, scene, 'structure', 'f_modes')
+    end subroutine place_band_error
 
 end module greenconv_scene_tyre

@@ -193,14 +193,14 @@ contains
         if (plan%band_upper(size(plan%band_upper)) > 0.5_dp/scene%dt) then
             call fatal_error(error, where//'expected every band up to f_high = '//real_text(plan%f_high) &
                              //' Hz below the Nyquist frequency 1/(2 dt) = '//real_text(0.5_dp/scene%dt) &
-                             //' Hz; lower f_high or dt')
+                             //' Hz; lower f_high, or &scene dt')
             return
         end if
         ! the segment band_levels takes for the lowest band
         n = segment_for_band(first_band(plan%band_centre(1)), scene%dt, lines_per_band)
         if (n > scene%n_steps) call fatal_error(error, where//'expected a record of at least '//int_text(n) &
             //' steps for the band at '//real_text(plan%band_centre(1))//' Hz, found n_steps = ' &
-            //int_text(scene%n_steps)//'; raise f_low or n_steps')
+            //int_text(scene%n_steps)//'; raise f_low, or &scene n_steps')
     end subroutine check_spectra
 
     !> Every line of a text file, as it is (trailing blanks kept).
