@@ -12,9 +12,13 @@ module greenconv_ident_ml_types
     private
 
     public :: ml_options, ml_result, record_drop, add_warning
-    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
+    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
 
 
+    !> Most lines identify_ml takes, 2^20 + 1 (a uniform grid from 0 Hz on an FFT of 2^21 points):
+    !> its memory and time grow with the lines (the Jacobian holds 2*lines*parameters numbers;
+    !> 1,000,001 lines, 3 modes at 1 % noise: 1.3 GB and 57 s CPU, release build).
+    integer, parameter :: max_lines = 2**20 + 1
     !> Reason code of a dropped mode: its removal lowered the MDL criterion.
     integer, parameter :: dropped_by_criterion = 1
     !> Reason code of a dropped mode: the fit moved it outside (0, f_max].

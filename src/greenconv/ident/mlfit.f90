@@ -182,18 +182,18 @@ module greenconv_ident_mlfit
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: error_e, natural_frequency, damping_ratio, receptance_problem
     use greenconv_ident_ml_types, only: ml_options, ml_result, add_warning, dropped_by_criterion, &
-                                        dropped_left_band, dropped_degenerate, dropped_boundary
+                                        dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
     use greenconv_ident_lm_fit, only: model_type, data_type, final_tolerance, evaluate, chi_square, &
                                       n_parameters, fit, reweight, information, covariance, widened, criterion
     use greenconv_ident_noise_model, only: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, &
-                                           interpolated, spacing_at
+                                           interpolated, spacing_at, band_bounds
     use greenconv_ident_diagram, only: build_diagram
     use greenconv_ident_order_search, only: choose_order, drop_outside, drop_needles, drop_undetermined, prune_terms
     implicit none
     private
 
     public :: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
-    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
+    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
 
     real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
 
@@ -439,6 +439,10 @@ contains
         problem = receptance_problem(frf)
         if (len(problem) > 0) then
             call fatal_error(error, 'identify_ml: '//problem)
+        else if (frf%n_freq() > max_lines) then
+            call fatal_error(error, 'identify_ml: the FRF has '//int_text(frf%n_freq())//' lines, more than the ' &
+                             //int_text(max_lines)//' it takes (memory and time grow with the lines); use a ' &
+                             //'coarser step or a narrower band')
         else if (.not. any(abs(frf%receptance(2:)) > 0.0_dp)) then
             call fatal_error(error, 'identify_ml: the receptance is zero on every line above 0 Hz: nothing to fit')
         else if (options%max_order < 1 .or. options%stable_orders < 1) then
@@ -666,8 +670,7 @@ contains
         e2 = abs(data%weight*(data%g - evaluate(model, data%omega)))**2
         n_bands = max(1, n/scale_lines)
         do b = 1, n_bands
-            first = 1 + ((b - 1)*n)/n_bands
-            last = (b*n)/n_bands
+            call band_bounds(b, n, n_bands, first, last)
             scale(first:last) = max(1.0_dp, sum(e2(first:last))/(last - first + 1)*(2.0_dp*n)/max(dof, 1))
         end do
     end function band_scale
