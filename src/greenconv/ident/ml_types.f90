@@ -41,8 +41,9 @@ module greenconv_ident_ml_types
         !> 'floor' (sigma_l^2 = (rho*|G_l|)^2 + s^2: a measurement's coherence-limited floor s [m/N]
         !> under its relative noise, both estimated from the data), 'band' (sigma_l = rho_b*|G_l|, one
         !> level rho_b per band of lines: a measurement whose noise changes along the band) or 'auto'
-        !> (each of 'relative', 'floor' and 'band' fitted, the one of the smallest full likelihood
-        !> criterion kept: result%noise_model says which).
+        !> (each of 'relative', 'absolute', 'floor' and 'band' fitted, the one of the smallest full
+        !> likelihood criterion kept: result%noise_model says which, result%noise_choice why; the
+        !> scenes' default, four identifications' time).
         character(len=16) :: noise_model = 'relative'
         !> Smallest noise level, relative to |G_l| (clean data are fitted to round-off above it).
         real(dp) :: noise_floor = 1.0e-13_dp
@@ -115,6 +116,9 @@ module greenconv_ident_ml_types
         real(dp) :: noise_floor_level = 0.0_dp
         !> Noise model used: 'relative', 'absolute', 'floor', 'band' (the one 'auto' chose) or 'given'.
         character(len=16) :: noise_model = ''
+        !> Why the noise model was taken, in a phrase: for noise_model = 'auto', the full likelihood
+        !> criterion of each model compared against the one chosen ('' when the model was given).
+        character(len=:), allocatable :: noise_choice
         !> Parameters of the noise model estimated from the data (rho; rho and s; one rho_b per band).
         integer :: noise_parameters = 0
         !> Noise levels estimated per band of lines (the 'band' model; empty otherwise): the
@@ -238,9 +242,10 @@ contains
         worst = maxval(sigma/value)
     end function worst_ratio
 
-    !> The identification in one phrase, e.g. "12 modes (order by MDL), noise 1.01E-02 of |G|
-    !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
-    !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
+    !> The identification in one phrase, e.g. "12 determined of 12 modes (order by MDL), noise
+    !> 1.01E-02 of |G| (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the
+    !> modes the data determine first, then the chosen order, the noise level refitted from the
+    !> residual, the worst uncertainty (or why there is none), the noise model chosen and why,
     !> and the outlier lines left out.
     pure subroutine ml_brief(self, text)
         !> The result.
@@ -248,8 +253,15 @@ contains
         !> The phrase (an intent(out) text: no static length between threads).
         character(len=:), allocatable, intent(out) :: text
 
-        text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
-        if (self%noise_floor_level > 0.0_dp) then
+        integer :: n_determined
+
+        n_determined = self%modes%n_modes()
+        if (allocated(self%determined)) n_determined = count(self%determined)
+        text = int_text(n_determined)//' determined of '//int_text(self%modes%n_modes()) &
+               //' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
+        if (self%noise_model == 'absolute' .and. self%noise_estimated) then
+            text = text//' m/N on every line (estimated from the data)'
+        else if (self%noise_floor_level > 0.0_dp) then
             text = text//' of |G| and a floor of '//sci_text(self%noise_floor_level)//' m/N (estimated from the data)'
         else if (self%noise_model == 'band') then
             text = text//' of |G| (rms; estimated per band of lines, from '//sci_text(self%band_level_range(1)) &
@@ -267,9 +279,9 @@ contains
         end if
         if (self%outside%n_modes() > 0) text = text//', '//int_text(self%outside%n_modes()) &
                                                //' pseudo-mode(s) above the band'
-        if (allocated(self%determined)) then
-            if (.not. all(self%determined)) text = text//', '//int_text(count(.not. self%determined)) &
-                                                   //' of them not determined by the data'
+        if (allocated(self%noise_choice)) then
+            if (len(self%noise_choice) > 0) text = text//', noise model '''//trim(self%noise_model)//''' ' &
+                                                   //self%noise_choice
         end if
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &
