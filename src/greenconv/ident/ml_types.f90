@@ -183,6 +183,8 @@ module greenconv_ident_ml_types
         procedure :: worst_damping_spread => ml_worst_damping_spread
         !> One phrase for a summary line: order, noise, worst uncertainty, outliers.
         procedure :: brief => ml_brief
+        !> Whether the data determine each of the modes (all, when `determined` is not set).
+        procedure :: determined_modes => ml_determined_modes
     end type ml_result
 
 contains
@@ -199,6 +201,18 @@ contains
         if (self%has_lower) ml_receptance = ml_receptance - self%lower_residual/omega**2
         if (self%outside%n_modes() > 0) ml_receptance = ml_receptance + self%outside%receptance(omega)
     end function ml_receptance
+
+    !> Whether the data determine each of the modes: `determined`, or all when it was not set.
+    pure function ml_determined_modes(self) result(flags)
+        !> The result.
+        class(ml_result), intent(in) :: self
+        !> One flag per mode of self%modes.
+        logical :: flags(self%modes%n_modes())
+
+        flags = .true.
+        if (.not. allocated(self%determined)) return
+        if (size(self%determined) == size(flags)) flags = self%determined
+    end function ml_determined_modes
 
     !> Largest relative standard deviation of a natural frequency, sigma_f/f.
     pure real(dp) function ml_worst_frequency_spread(self) result(worst)
@@ -255,8 +269,7 @@ contains
 
         integer :: n_determined
 
-        n_determined = self%modes%n_modes()
-        if (allocated(self%determined)) n_determined = count(self%determined)
+        n_determined = count(self%determined_modes())
         text = int_text(n_determined)//' determined of '//int_text(self%modes%n_modes()) &
                //' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
         if (self%noise_model == 'absolute' .and. self%noise_estimated) then

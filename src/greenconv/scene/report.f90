@@ -207,7 +207,7 @@ contains
 
         associate (ml => structure%ml, modes => structure%ml%modes)
             call paper_form(modes, amplitude, omega, damping, lost)
-            determined = merge(1.0_dp, 0.0_dp, determined_flags(structure))
+            determined = merge(1.0_dp, 0.0_dp, structure%ml%determined_modes())
             write (buffer, '(a,es10.3,a,es10.3,a)') 'noise level ', ml%noise_level_fit, ', upper residual ', &
                 ml%upper_residual, ' m/N'
             noise = noise_line(ml)
@@ -234,19 +234,6 @@ contains
                                                        [modes%n_modes(), 11]), error)
         end associate
     end subroutine write_ml_modes
-
-    !> Whether the data determine each of the identified modes (ml_result%determined; all, when
-    !> it was not set).
-    pure function determined_flags(structure) result(flags)
-        type(structure_model), intent(in) :: structure
-        logical, allocatable :: flags(:)
-
-        integer :: k
-
-        flags = [(.true., k=1, structure%ml%modes%n_modes())]
-        if (.not. allocated(structure%ml%determined)) return
-        if (size(structure%ml%determined) == size(flags)) flags = structure%ml%determined
-    end function determined_flags
 
     !> The noise model of the fit and why it was taken, for the modes file's header.
     pure function noise_line(ml) result(line)
@@ -276,7 +263,7 @@ contains
             comments(1) = 'greenconv: stabilisation diagram of the linear LSCE step, N = 1..max_order modes'
             comments(2) = 'flag 2: f and xi stable against order N - 1, 1: f only, 0: neither; order 0: the ' &
                           //'fit''s poles, flag 3 determined, 4 not'
-            comments(3) = 'chosen modes (order by MDL): '//int_text(count(determined_flags(structure))) &
+            comments(3) = 'chosen modes (order by MDL): '//int_text(count(structure%ml%determined_modes())) &
                           //' determined of '//int_text(m)
             comments(4) = 'units: 1 Hz 1 1'
             comments(5) = 'order f xi flag'
@@ -288,7 +275,7 @@ contains
             table(n + 1:, 1) = 0.0_dp
             table(n + 1:, 2) = abs(ml%modes%pole)/two_pi
             table(n + 1:, 3) = -real(ml%modes%pole, dp)/abs(ml%modes%pole)
-            table(n + 1:, 4) = merge(3.0_dp, 4.0_dp, determined_flags(structure))
+            table(n + 1:, 4) = merge(3.0_dp, 4.0_dp, structure%ml%determined_modes())
             call write_columns(path, comments, table, error)
         end associate
     end subroutine write_diagram
