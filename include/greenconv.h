@@ -315,6 +315,22 @@ int gc_identify_frf_file(const char *path, double tol_e, int max_modes, int capa
                          double *residue_im, double *error_e, char *errmsg, size_t errmsg_len);
 
 /**
+ * Identify modes from a receptance file (columns as gc_convolver_new_frf_file, or a universal
+ * file's dataset 58) by maximum likelihood, as a scene's method 'ml': the order by MDL, the
+ * noise model noise_model ("auto": the one of the highest likelihood with its MDL price among
+ * "relative", "absolute", "floor" and "band"; NULL means "auto"), the stabilisation diagram up
+ * to max_order modes (1..200). At most `capacity` modes, lowest natural frequency first: poles
+ * [rad/s], residues [m/(N*s)], the standard deviations sigma_f [Hz] and sigma_xi, and
+ * determined[k] = 1 when the data determine mode k, 0 for a pole of the fitted receptance they
+ * do not (the column `determined` of a scene's modes file). *n_modes is set even when it
+ * exceeds capacity (then GC_ERROR_INPUT); *n_determined counts the ones.
+ */
+int gc_identify_ml_file(const char *path, const char *noise_model, int max_order, int capacity,
+                        int *n_modes, int *n_determined, double *pole_re, double *pole_im,
+                        double *residue_re, double *residue_im, double *sigma_f, double *sigma_xi,
+                        int *determined, char *errmsg, size_t errmsg_len);
+
+/**
  * Run a scene namelist file as the greenconv driver does: one column file per method in the
  * scene's output_dir, a summary line per method on standard output (Fortran's unit, flushed
  * on return: call fflush(stdout) before, to keep the order of lines).

@@ -1,12 +1,14 @@
 # Stabilisation diagram of the maximum-likelihood identification (issue 13): the poles of the
 # linear LSCE step at every order N (frequency against order), marked by their stability
-# against order N - 1 (f and xi, f only, neither), the modes chosen (by MDL, after the
-# maximum-likelihood fit) as vertical lines, and |G| on a second axis.
+# against order N - 1 (f and xi, f only, neither), the poles of the maximum-likelihood fit
+# (order by MDL) as vertical lines: solid for the modes the data determine, dotted grey for the
+# poles they do not (part of the fitted receptance, not modes), and |G| on a second axis.
 #
 #   gnuplot plot/ident_diagram.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'; scene='identify_clean'" plot/ident_diagram.gp
 #
-# Reads DATADIR/SCENE_diagram.dat (order f xi flag; flag 3 at order 0: a chosen mode) and
+# Reads DATADIR/SCENE_diagram.dat (order f xi flag; at order 0 the fit's poles, flag 3 a
+# determined mode, 4 a pole the data do not determine) and
 # DATADIR/SCENE_frf.dat (f ... abs_g ...), writes FIGDIR/SCENE_diagram.png.
 
 if (!exists("datadir")) datadir = 'out'
@@ -52,7 +54,9 @@ set key outside right top box opaque
 plot diagram using ($4 == 0 ? $2 : 1/0):1 with points pt 1 ps 0.6 lc rgb '#aaaaaa' title 'not stable', \
      diagram using ($4 == 1 ? $2 : 1/0):1 with points pt 6 ps 0.7 lc rgb '#ff7f0e' title 'stable in f', \
      diagram using ($4 == 2 ? $2 : 1/0):1 with points pt 7 ps 0.6 lc rgb '#2ca02c' title 'stable in f and {/Symbol x}', \
-     diagram using ($4 == 3 ? $2 : 1/0):(0):(0):(top) with vectors nohead dt 2 lc rgb '#d62728' title 'chosen mode', \
+     diagram using ($4 == 3 ? $2 : 1/0):(0):(0):(top) with vectors nohead dt 2 lc rgb '#d62728' title 'mode (determined)', \
+     diagram using ($4 == 4 ? $2 : 1/0):(0):(0):(top) with vectors nohead dt 3 lw 2 lc rgb '#7f7f7f' \
+         title 'pole not determined by the data', \
      frf using f:ag axes x1y2 with lines lw 1 lc rgb '#1f77b4' title '|G|'
 
 set output

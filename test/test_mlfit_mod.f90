@@ -971,7 +971,8 @@ contains
         inquire (file=dir//'/ml_scene_diagram.dat', exist=exists)
         call check(error, exists, 'the stabilisation diagram file is written')
         if (allocated(error)) return
-        call check(error, column_count(dir//'/ml_scene_modes.dat') == 10, 'modes file: 10 columns with sigma')
+        call check(error, column_count(dir//'/ml_scene_modes.dat') == 11, &
+                   'modes file: 11 columns with sigma and determined')
     end subroutine test_scene_noisy
 
     !> Number of columns of the first data line of a column file (0 when none).

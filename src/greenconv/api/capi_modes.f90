@@ -6,21 +6,27 @@
 !>   host's loop with the other `gc_multi_*` functions;
 !> - `gc_multi_estimate`: the method's own estimate of its relative error;
 !> - `gc_multi_set_accuracy`: the accuracy the host asks; beyond it, the calls that run contact
-!>   return GC_ACCURACY (4, "ran, but outside the accuracy asked", issue 23).
+!>   return GC_ACCURACY (4, "ran, but outside the accuracy asked");
+!> - `gc_identify_ml_file`: the modes of a receptance file by maximum likelihood, with their
+!>   standard deviations and whether the data determine each.
 !>
 !> Conventions are those of greenconv_capi_multi (status 0, 2, 3 or 4, a message in `errmsg`,
 !> NULL checked); the handle is the one `convolver_box` behind every handle.
 module greenconv_capi_modes
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_f_pointer
-    use greenconv_core_error, only: error_type
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_f_pointer, c_associated
+    use greenconv_core_kinds, only: dp
+    use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: int_text
+    use greenconv_ident_mlfit, only: ml_result
+    use greenconv_api_handle, only: identify_file_ml
     use greenconv_api_multi_handle, only: modes_file_box, check_box, set_box_accuracy
-    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer
+    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer, need_pointers
     use greenconv_api_handle, only: convolver_box, box_at
     use greenconv_capi_multi, only: made, tolerance_of, null_handle
     implicit none
     private
 
-    public :: gc_multi_new_modes_file, gc_multi_estimate, gc_multi_set_accuracy
+    public :: gc_multi_new_modes_file, gc_multi_estimate, gc_multi_set_accuracy, gc_identify_ml_file
 
 contains
 
@@ -120,5 +126,100 @@ contains
         if (.not. allocated(error)) call set_box_accuracy('gc_multi_set_accuracy', box, accuracy, error)
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_set_accuracy
+
+    !> int gc_identify_ml_file(const char *path, const char *noise_model, int max_order, int capacity,
+    !> int *n_modes, int *n_determined, double *pole_re, double *pole_im, double *residue_re,
+    !> double *residue_im, double *sigma_f, double *sigma_xi, int *determined, char *errmsg,
+    !> size_t errmsg_len): the modes of a receptance file by maximum likelihood (order by MDL,
+    !> noise model "auto" from the data), lowest natural frequency first, each with its standard
+    !> deviations and determined[k] = 1 when the data determine it, 0 for a pole of the fitted
+    !> receptance they do not (as the column `determined` of a scene's modes file).
+    function gc_identify_ml_file(path, noise_model, max_order, capacity, n_modes, n_determined, pole_re, pole_im, &
+                                 residue_re, residue_im, sigma_f, sigma_xi, determined, errmsg, errmsg_len) &
+        bind(c, name='gc_identify_ml_file') result(status)
+        !> Path of the receptance file (columns or a universal file), NUL-terminated.
+        type(c_ptr), value, intent(in) :: path
+        !> "auto", "relative", "absolute", "floor" or "band", NUL-terminated; NULL for "auto".
+        type(c_ptr), value, intent(in) :: noise_model
+        !> Highest order of the stabilisation diagram (modes), 1 to 200 (30 is usual).
+        integer(c_int), value, intent(in) :: max_order
+        !> Capacity of the seven output arrays, >= 0.
+        integer(c_int), value, intent(in) :: capacity
+        !> Where the number of modes found goes (an int; set also when it exceeds capacity).
+        type(c_ptr), value, intent(in) :: n_modes
+        !> Where the number of modes the data determine goes (an int).
+        type(c_ptr), value, intent(in) :: n_determined
+        !> Where the real parts of the poles [rad/s] go (capacity values).
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Where the imaginary parts of the poles [rad/s] go.
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Where the real parts of the residues [m/(N*s)] go.
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Where the imaginary parts of the residues [m/(N*s)] go.
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Where the standard deviations of the natural frequencies [Hz] go.
+        type(c_ptr), value, intent(in) :: sigma_f
+        !> Where the standard deviations of the damping ratios go.
+        type(c_ptr), value, intent(in) :: sigma_xi
+        !> Where the flags go (ints): 1 determined by the data, 0 not.
+        type(c_ptr), value, intent(in) :: determined
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_identify_ml_file'
+        type(error_type), allocatable :: error
+        type(ml_result) :: result
+        integer(c_int), pointer :: found, flags(:)
+        real(c_double), pointer :: out(:)
+        character(len=:), allocatable :: model
+        integer :: n
+
+        call need_pointer(caller, path, 'path', 'pass the name of a receptance file', error)
+        call need_pointers(caller, [n_modes, n_determined, pole_re, pole_im, residue_re, residue_im, sigma_f, &
+                                    sigma_xi, determined], 'n_modes, n_determined, pole_re, pole_im, residue_re, ' &
+                           //'residue_im, sigma_f, sigma_xi and determined', 'pass where they should go', error)
+        if (.not. allocated(error) .and. capacity < 0) then
+            call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': expected >= 0')
+        end if
+        if (allocated(error)) then
+            status = finish(error, errmsg, errmsg_len)
+            return
+        end if
+        call c_f_pointer(n_modes, found)
+        found = 0
+        call c_f_pointer(n_determined, flags, [1])
+        flags(1) = 0
+        model = 'auto'
+        if (c_associated(noise_model)) model = from_c(noise_model)
+        call identify_file_ml(from_c(path), model, int(max_order), result, error)
+        if (.not. allocated(error)) then
+            n = result%modes%n_modes()
+            found = int(n, c_int)
+            flags(1) = int(count(result%determined_modes()), c_int)
+            if (n > capacity) then
+                call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
+                                 //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
+            else
+                call c_f_pointer(pole_re, out, [n])
+                out = real(result%modes%pole, dp)
+                call c_f_pointer(pole_im, out, [n])
+                out = aimag(result%modes%pole)
+                call c_f_pointer(residue_re, out, [n])
+                out = real(result%modes%residue, dp)
+                call c_f_pointer(residue_im, out, [n])
+                out = aimag(result%modes%residue)
+                call c_f_pointer(sigma_f, out, [n])
+                out = result%sigma_frequency
+                call c_f_pointer(sigma_xi, out, [n])
+                out = result%sigma_damping
+                call c_f_pointer(determined, flags, [n])
+                flags = int(merge(1, 0, result%determined_modes()), c_int)
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_identify_ml_file
 
 end module greenconv_capi_modes

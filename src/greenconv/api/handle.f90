@@ -19,6 +19,7 @@ module greenconv_api_handle
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_model_frf, only: frf_type, read_frf
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
+    use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
                                          structure_from_frf
     use greenconv_ident_green_structure, only: green_structure
@@ -37,7 +38,7 @@ module greenconv_api_handle
 
     public :: convolver_box, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: run_box, identify_file, check_steps, step_box, start_point_box, advance_point_box
+    public :: run_box, identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
     public :: point_history, point_push, reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
@@ -498,6 +499,37 @@ contains
         modes = sorted_by_frequency(fit%modes)
         e = fit%e
     end subroutine identify_file
+
+    !> Identify the modes of a receptance file by maximum likelihood (greenconv_ident_mlfit),
+    !> the order by MDL and the noise model as asked ('auto': from the data), as a scene's
+    !> `method = 'ml'` does: the modes lowest frequency first, their standard deviations and
+    !> whether the data determine each (ml_result%determined).
+    subroutine identify_file_ml(path, noise_model, max_order, result, error)
+        !> Path of the receptance file (columns f [Hz], Re G, Im G [m/N], or a universal file).
+        character(len=*), intent(in) :: path
+        !> 'auto', 'relative', 'absolute', 'floor' or 'band' (ml_options%noise_model).
+        character(len=*), intent(in) :: noise_model
+        !> Highest order of the stabilisation diagram (modes), 1 to max_lsce_modes.
+        integer, intent(in) :: max_order
+        !> The identification (modes, sigma_frequency [Hz], sigma_damping, determined, ...).
+        type(ml_result), intent(out) :: result
+        !> Set for a file that cannot be read or bad settings (`stat_input`), a failed fit (`stat_numerical`).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(frf_type) :: frf
+        type(ml_options) :: options
+
+        if (max_order < 1 .or. max_order > max_lsce_modes) then
+            call fatal_error(error, 'max_order = '//int_text(max_order)//': expected a number of modes from 1 to ' &
+                             //int_text(max_lsce_modes))
+            return
+        end if
+        call read_frf(path, frf, error)
+        if (allocated(error)) return
+        options%noise_model = lower_text(noise_model)
+        options%max_order = max_order
+        call identify_ml(frf, options, result, error)
+    end subroutine identify_file_ml
 
     !> A receptance file read, and the LSCE settings its identification runs with.
     subroutine read_receptance(path, tol_e, max_modes, frf, options, error)

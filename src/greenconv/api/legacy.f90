@@ -25,11 +25,13 @@ module greenconv_legacy
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
     use greenconv_model_modal_set, only: modal_set
+    use greenconv_ident_mlfit, only: ml_result
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_api_library, only: check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    identify_file_ml, &
                                     point_history, point_push, step_box, reset_box, describe_box
     use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
@@ -38,7 +40,7 @@ module greenconv_legacy
 
     public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
     public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
-    public :: gcstep, gccont, gcid, gcscen
+    public :: gcstep, gccont, gcid, gcidml, gcscen
     public :: gcvers
 
     !> Status of a call that succeeded.
@@ -450,6 +452,66 @@ contains
         resre(1:nmode) = real(modes%residue, dp)
         resim(1:nmode) = aimag(modes%residue)
     end subroutine gcid
+
+    !> Identify modes from a receptance file by maximum likelihood (order by MDL, noise model
+    !> NOISE, 'auto' for the one of the highest likelihood), lowest frequency first, with their
+    !> standard deviations and IDET(k) = 1 when the data determine mode k, 0 for a pole of the
+    !> fitted receptance they do not (the column `determined` of a scene's modes file).
+    subroutine gcidml(path, noise, maxord, ncap, nmode, ndet, polre, polim, resre, resim, sigf, sigxi, idet, ierr, &
+                      errmsg)
+        !> Path of the receptance file (columns f [Hz], Re G, Im G [m/N], or a universal file).
+        character(len=*), intent(in) :: path
+        !> Noise model: 'auto', 'relative', 'absolute', 'floor' or 'band'.
+        character(len=*), intent(in) :: noise
+        !> Highest order of the stabilisation diagram (modes), 1 to 200.
+        integer, intent(in) :: maxord
+        !> Capacity of the output arrays.
+        integer, intent(in) :: ncap
+        !> Number of modes found (also when it exceeds ncap, then with status 2).
+        integer, intent(out) :: nmode
+        !> Number of modes the data determine.
+        integer, intent(out) :: ndet
+        !> Real parts of the poles [rad/s].
+        real(dp), intent(out) :: polre(ncap)
+        !> Imaginary parts of the poles [rad/s].
+        real(dp), intent(out) :: polim(ncap)
+        !> Real parts of the residues [m/(N*s)].
+        real(dp), intent(out) :: resre(ncap)
+        !> Imaginary parts of the residues [m/(N*s)].
+        real(dp), intent(out) :: resim(ncap)
+        !> Standard deviations of the natural frequencies [Hz].
+        real(dp), intent(out) :: sigf(ncap)
+        !> Standard deviations of the damping ratios.
+        real(dp), intent(out) :: sigxi(ncap)
+        !> 1 when the data determine the mode, 0 when not.
+        integer, intent(out) :: idet(ncap)
+        !> Status: 0 success, 2 bad input or too small ncap, 3 failed identification.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(ml_result) :: result
+
+        nmode = 0
+        ndet = 0
+        call identify_file_ml(trim(path), trim(noise), maxord, result, error)
+        if (.not. allocated(error)) then
+            nmode = result%modes%n_modes()
+            ndet = count(result%determined_modes())
+            if (nmode > ncap) call fatal_error(error, 'gcidml: more modes found than the arrays hold (ncap): ' &
+                                                  //'pass arrays of at least NMODE elements')
+        end if
+        call report(error, ierr, errmsg)
+        if (allocated(error)) return
+        polre(1:nmode) = real(result%modes%pole, dp)
+        polim(1:nmode) = aimag(result%modes%pole)
+        resre(1:nmode) = real(result%modes%residue, dp)
+        resim(1:nmode) = aimag(result%modes%residue)
+        sigf(1:nmode) = result%sigma_frequency
+        sigxi(1:nmode) = result%sigma_damping
+        idet(1:nmode) = merge(1, 0, result%determined_modes())
+    end subroutine gcidml
 
     !> Run a scene file as the driver does: column files in its output_dir, a summary line
     !> per method on standard output.

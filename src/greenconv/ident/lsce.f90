@@ -109,7 +109,7 @@ module greenconv_ident_lsce
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
-    use greenconv_core_text, only: int_text
+    use greenconv_core_text, only: int_text, sci_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_frf, only: frf_type, min_frf_lines
     use greenconv_ext_fftw, only: inverse_real_fft
@@ -135,6 +135,9 @@ module greenconv_ident_lsce
     real(dp), parameter :: refinement_tolerance = 1.0e-12_dp
     !> When no order meets the target, the first candidate with E <= near_best*(smallest E).
     real(dp), parameter :: near_best = 1.1_dp
+    !> A receptance whose lines above 0 Hz differ from the first of them by at most this
+    !> fraction of it is constant (receptance_problem): it holds no resonance.
+    real(dp), parameter :: constant_tolerance = 1.0e-12_dp
 
     !> Settings of an identification (every field has a default).
     type :: lsce_options
@@ -450,7 +453,7 @@ contains
         !> The sampled receptance.
         type(frf_type), intent(in) :: frf
         !> The problem in a phrase ('' when none).
-        character(len=96) :: problem
+        character(len=192) :: problem
 
         problem = ''
         if (frf%n_freq() < min_frf_lines) then
@@ -462,12 +465,18 @@ contains
             problem = 'the FRF has not one receptance per frequency'
         else if (.not. all(ieee_is_finite(real(frf%receptance, dp)) .and. ieee_is_finite(aimag(frf%receptance)))) then
             problem = 'the FRF holds a NaN or infinite receptance; remove or repair those lines'
+        else if (abs(frf%receptance(2)) > 0.0_dp .and. all(abs(frf%receptance(2:) - frf%receptance(2)) &
+                                                          <= constant_tolerance*abs(frf%receptance(2)))) then
+            problem = 'the FRF is the same on every line above 0 Hz, G = '//sci_text(real(frf%receptance(2), dp)) &
+                      //' + i*'//sci_text(aimag(frf%receptance(2)))//' m/N: no resonance to identify (a ' &
+                      //'constant G is a static compliance, a residual alone)'
         end if
     end function receptance_problem_buffer
 
     !> What makes a sampled receptance unusable by any identification, '' when nothing: fewer
     !> than min_frf_lines lines, frequencies not finite, negative or not increasing, not one
-    !> receptance per frequency, a NaN or infinite receptance (the first found, in this order).
+    !> receptance per frequency, a NaN or infinite receptance, the same nonzero G on every line
+    !> above 0 Hz (the first found, in this order).
     pure function receptance_problem(frf) result(problem)
         !> The sampled receptance.
         type(frf_type), intent(in) :: frf

@@ -12,9 +12,13 @@ module greenconv_ident_ml_types
     private
 
     public :: ml_options, ml_result, record_drop, add_warning
-    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
+    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
 
 
+    !> Most lines identify_ml takes, 2^20 + 1 (a uniform grid from 0 Hz on an FFT of 2^21 points):
+    !> its memory and time grow with the lines (the Jacobian holds 2*lines*parameters numbers;
+    !> 1,000,001 lines, 3 modes at 1 % noise: 1.3 GB and 57 s CPU, release build).
+    integer, parameter :: max_lines = 2**20 + 1
     !> Reason code of a dropped mode: its removal lowered the MDL criterion.
     integer, parameter :: dropped_by_criterion = 1
     !> Reason code of a dropped mode: the fit moved it outside (0, f_max].
@@ -37,8 +41,9 @@ module greenconv_ident_ml_types
         !> 'floor' (sigma_l^2 = (rho*|G_l|)^2 + s^2: a measurement's coherence-limited floor s [m/N]
         !> under its relative noise, both estimated from the data), 'band' (sigma_l = rho_b*|G_l|, one
         !> level rho_b per band of lines: a measurement whose noise changes along the band) or 'auto'
-        !> (each of 'relative', 'floor' and 'band' fitted, the one of the smallest full likelihood
-        !> criterion kept: result%noise_model says which).
+        !> (each of 'relative', 'absolute', 'floor' and 'band' fitted, the one of the smallest full
+        !> likelihood criterion kept: result%noise_model says which, result%noise_choice why; the
+        !> scenes' default, four identifications' time).
         character(len=16) :: noise_model = 'relative'
         !> Smallest noise level, relative to |G_l| (clean data are fitted to round-off above it).
         real(dp) :: noise_floor = 1.0e-13_dp
@@ -111,6 +116,9 @@ module greenconv_ident_ml_types
         real(dp) :: noise_floor_level = 0.0_dp
         !> Noise model used: 'relative', 'absolute', 'floor', 'band' (the one 'auto' chose) or 'given'.
         character(len=16) :: noise_model = ''
+        !> Why the noise model was taken, in a phrase: for noise_model = 'auto', the full likelihood
+        !> criterion of each model compared against the one chosen ('' when the model was given).
+        character(len=:), allocatable :: noise_choice
         !> Parameters of the noise model estimated from the data (rho; rho and s; one rho_b per band).
         integer :: noise_parameters = 0
         !> Noise levels estimated per band of lines (the 'band' model; empty otherwise): the
@@ -175,6 +183,8 @@ module greenconv_ident_ml_types
         procedure :: worst_damping_spread => ml_worst_damping_spread
         !> One phrase for a summary line: order, noise, worst uncertainty, outliers.
         procedure :: brief => ml_brief
+        !> Whether the data determine each of the modes (all, when `determined` is not set).
+        procedure :: determined_modes => ml_determined_modes
     end type ml_result
 
 contains
@@ -191,6 +201,18 @@ contains
         if (self%has_lower) ml_receptance = ml_receptance - self%lower_residual/omega**2
         if (self%outside%n_modes() > 0) ml_receptance = ml_receptance + self%outside%receptance(omega)
     end function ml_receptance
+
+    !> Whether the data determine each of the modes: `determined`, or all when it was not set.
+    pure function ml_determined_modes(self) result(flags)
+        !> The result.
+        class(ml_result), intent(in) :: self
+        !> One flag per mode of self%modes.
+        logical :: flags(self%modes%n_modes())
+
+        flags = .true.
+        if (.not. allocated(self%determined)) return
+        if (size(self%determined) == size(flags)) flags = self%determined
+    end function ml_determined_modes
 
     !> Largest relative standard deviation of a natural frequency, sigma_f/f.
     pure real(dp) function ml_worst_frequency_spread(self) result(worst)
@@ -234,9 +256,10 @@ contains
         worst = maxval(sigma/value)
     end function worst_ratio
 
-    !> The identification in one phrase, e.g. "12 modes (order by MDL), noise 1.01E-02 of |G|
-    !> (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the chosen order,
-    !> the noise level refitted from the residual, the worst uncertainty (or why there is none)
+    !> The identification in one phrase, e.g. "12 determined of 12 modes (order by MDL), noise
+    !> 1.01E-02 of |G| (estimated), worst sigma_f/f = 1.26E-04, worst sigma_xi/xi = 1.75E-02": the
+    !> modes the data determine first, then the chosen order, the noise level refitted from the
+    !> residual, the worst uncertainty (or why there is none), the noise model chosen and why,
     !> and the outlier lines left out.
     pure subroutine ml_brief(self, text)
         !> The result.
@@ -244,8 +267,14 @@ contains
         !> The phrase (an intent(out) text: no static length between threads).
         character(len=:), allocatable, intent(out) :: text
 
-        text = int_text(self%modes%n_modes())//' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
-        if (self%noise_floor_level > 0.0_dp) then
+        integer :: n_determined
+
+        n_determined = count(self%determined_modes())
+        text = int_text(n_determined)//' determined of '//int_text(self%modes%n_modes()) &
+               //' modes (order by MDL), noise '//sci_text(self%noise_level_fit)
+        if (self%noise_model == 'absolute' .and. self%noise_estimated) then
+            text = text//' m/N on every line (estimated from the data)'
+        else if (self%noise_floor_level > 0.0_dp) then
             text = text//' of |G| and a floor of '//sci_text(self%noise_floor_level)//' m/N (estimated from the data)'
         else if (self%noise_model == 'band') then
             text = text//' of |G| (rms; estimated per band of lines, from '//sci_text(self%band_level_range(1)) &
@@ -263,9 +292,9 @@ contains
         end if
         if (self%outside%n_modes() > 0) text = text//', '//int_text(self%outside%n_modes()) &
                                                //' pseudo-mode(s) above the band'
-        if (allocated(self%determined)) then
-            if (.not. all(self%determined)) text = text//', '//int_text(count(.not. self%determined)) &
-                                                   //' of them not determined by the data'
+        if (allocated(self%noise_choice)) then
+            if (len(self%noise_choice) > 0) text = text//', noise model '''//trim(self%noise_model)//''' ' &
+                                                   //self%noise_choice
         end if
         if (.not. allocated(self%outlier_line)) return
         if (size(self%outlier_line) > 0) text = text//', '//int_text(size(self%outlier_line)) &

@@ -177,23 +177,23 @@
 module greenconv_ident_mlfit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text, real_text
+    use greenconv_core_text, only: int_text, real_text, trimmed_real_text
     use greenconv_model_modal_set, only: modal_set, sorted_by_frequency
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: error_e, natural_frequency, damping_ratio, receptance_problem
     use greenconv_ident_ml_types, only: ml_options, ml_result, add_warning, dropped_by_criterion, &
-                                        dropped_left_band, dropped_degenerate, dropped_boundary
+                                        dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
     use greenconv_ident_lm_fit, only: model_type, data_type, final_tolerance, evaluate, chi_square, &
                                       n_parameters, fit, reweight, information, covariance, widened, criterion
     use greenconv_ident_noise_model, only: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, &
-                                           interpolated, spacing_at
+                                           interpolated, spacing_at, band_bounds
     use greenconv_ident_diagram, only: build_diagram
     use greenconv_ident_order_search, only: choose_order, drop_outside, drop_needles, drop_undetermined, prune_terms
     implicit none
     private
 
     public :: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
-    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
+    public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
 
     real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
 
@@ -211,8 +211,11 @@ module greenconv_ident_mlfit
     real(dp), parameter :: outside_ceiling = 10.0_dp
     !> Most pseudo-modes tried above the band, one at a time.
     integer, parameter :: max_outside = 3
-    !> The noise models noise_model = 'auto' compares by the full likelihood.
-    character(len=8), parameter :: auto_models(3) = [character(len=8) :: 'relative', 'floor', 'band']
+    !> The noise models noise_model = 'auto' compares by the full likelihood, simplest first.
+    character(len=8), parameter :: auto_models(4) = [character(len=8) :: 'relative', 'absolute', 'floor', 'band']
+    !> Smallest fall of the full likelihood criterion for which 'auto' takes a later noise model of
+    !> auto_models over an earlier one (a tenth of the MDL price of a parameter for 8193 lines).
+    real(dp), parameter :: choice_margin = 1.0_dp
     !> An in-band pole whose sigma_xi/xi reaches this (or whose residue's evidence does not pay
     !> for the mode, see mark_undetermined) is not determined by the data: not reported as a mode.
     real(dp), parameter :: undetermined_spread = 0.3_dp
@@ -237,7 +240,8 @@ contains
 
         type(ml_options) :: trial_options
         type(ml_result) :: trial
-        integer :: i
+        real(dp) :: criteria(size(auto_models))
+        integer :: i, best
 
         call check_input(frf, options, error)
         if (allocated(error)) return
@@ -247,17 +251,30 @@ contains
         end if
         ! 'auto': the whole identification under each noise model; the full likelihood (with the
         ! noise scale refitted and every parameter priced, noise model included) decides.
+        ! A model wins only by more than choice_margin: within it the first of auto_models (the
+        ! simpler) is kept, so that a last-bit difference of two criteria decides nothing.
         trial_options = options
+        best = 1
         do i = 1, size(auto_models)
             trial_options%noise_model = auto_models(i)
             call identify_searched(frf, trial_options, trial, error)
             if (allocated(error)) return
+            criteria(i) = trial%likelihood_criterion
             if (i == 1) then
                 result = trial
-            else if (trial%likelihood_criterion < result%likelihood_criterion) then
+            else if (criteria(i) < result%likelihood_criterion - choice_margin) then
                 result = trial
+                best = i
             end if
         end do
+        result%noise_choice = 'chosen from the data by the full likelihood with its MDL price (criterion of'
+        do i = 1, size(auto_models)
+            if (i == best) cycle
+            result%noise_choice = result%noise_choice//' '//trim(auto_models(i))//' ' &
+                                  //trim(merge('+', ' ', criteria(i) >= criteria(best))) &
+                                  //trimmed_real_text(criteria(i) - criteria(best), 0.1_dp, 1.0e7_dp, 1, 2)
+        end do
+        result%noise_choice = result%noise_choice//' against it)'
     end subroutine identify_ml
 
     !> identify_ml under one noise model (not 'auto'), the input checked: with the global
@@ -439,6 +456,10 @@ contains
         problem = receptance_problem(frf)
         if (len(problem) > 0) then
             call fatal_error(error, 'identify_ml: '//problem)
+        else if (frf%n_freq() > max_lines) then
+            call fatal_error(error, 'identify_ml: the FRF has '//int_text(frf%n_freq())//' lines, more than the ' &
+                             //int_text(max_lines)//' it takes (memory and time grow with the lines); use a ' &
+                             //'coarser step or a narrower band')
         else if (.not. any(abs(frf%receptance(2:)) > 0.0_dp)) then
             call fatal_error(error, 'identify_ml: the receptance is zero on every line above 0 Hz: nothing to fit')
         else if (options%max_order < 1 .or. options%stable_orders < 1) then
@@ -666,8 +687,7 @@ contains
         e2 = abs(data%weight*(data%g - evaluate(model, data%omega)))**2
         n_bands = max(1, n/scale_lines)
         do b = 1, n_bands
-            first = 1 + ((b - 1)*n)/n_bands
-            last = (b*n)/n_bands
+            call band_bounds(b, n, n_bands, first, last)
             scale(first:last) = max(1.0_dp, sum(e2(first:last))/(last - first + 1)*(2.0_dp*n)/max(dof, 1))
         end do
     end function band_scale

@@ -4,6 +4,7 @@
 !> outliers) and their weights 1/sigma_l; also the lines that are gross outliers before any fit
 !> (repaired by their neighbours' cubic) and the line spacing of a grid.
 module greenconv_ident_noise_model
+    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_constants, only: pi, two_pi
     use greenconv_core_sorting, only: median, heap_sort
@@ -14,7 +15,7 @@ module greenconv_ident_noise_model
     private
 
     public :: estimate_noise, smoothed_magnitude, prepare_data, gross_outliers, interpolated
-    public :: line_spacing, spacing_at
+    public :: line_spacing, spacing_at, band_bounds
 
 
     !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
@@ -95,7 +96,7 @@ contains
         real(dp), parameter :: c(5) = [1.0_dp, -4.0_dp, 6.0_dp, -4.0_dp, 1.0_dp]/sqrt(70.0_dp)
         real(dp) :: q(size(receptance) - 4), a(size(receptance) - 4), sorted(size(receptance) - 4)
         real(dp) :: x(bins), y(bins), w(bins), scale, low, high, s_xx, s_x, s_1, s_xy, s_y, det, r, s2
-        integer :: l, b, n
+        integer :: l, b, n, first, last
         logical :: inside(size(receptance) - 4)
 
         n = size(q)
@@ -112,8 +113,9 @@ contains
         sorted = a
         call heap_sort(sorted)
         do b = 1, bins
-            low = sorted(1 + ((b - 1)*n)/bins)
-            high = sorted((b*n)/bins)
+            call band_bounds(b, n, bins, first, last)
+            low = sorted(first)
+            high = sorted(last)
             inside = a >= low .and. a <= high
             x(b) = median(pack(a, inside))
             y(b) = max(median(pack(q, inside))/log(2.0_dp), tiny(1.0_dp))
@@ -166,8 +168,7 @@ contains
         q = relative_differences(receptance)
         n_bands = max(1, min(max_bands, n/band_lines))
         do b = 1, n_bands
-            first = 1 + ((b - 1)*n)/n_bands
-            last = (b*n)/n_bands
+            call band_bounds(b, n, n_bands, first, last)
             level = sqrt(median(q(first:last))/log(2.0_dp))
             ! Line l + 2 is the centre of difference l; the two lines at each end take the nearest band.
             if (b == 1) first = -1
@@ -337,6 +338,25 @@ contains
         end do
         if (n_good > 0) value = value/n_good
     end function interpolated
+
+    !> First and last of the n items in band b of n_bands bands of equal count (the counts differ
+    !> by at most one): items 1 + (b - 1)*n/n_bands to b*n/n_bands, the products in 64-bit
+    !> integers (b*n passes 2^31 for a few hundred thousand lines cut into bands of 32).
+    pure subroutine band_bounds(b, n, n_bands, first, last)
+        !> The band, 1 to n_bands.
+        integer, intent(in) :: b
+        !> Number of items.
+        integer, intent(in) :: n
+        !> Number of bands.
+        integer, intent(in) :: n_bands
+        !> First item of the band.
+        integer, intent(out) :: first
+        !> Last item of the band.
+        integer, intent(out) :: last
+
+        first = int(1_int64 + (int(b - 1, int64)*n)/n_bands)
+        last = int((int(b, int64)*n)/n_bands)
+    end subroutine band_bounds
 
     !> Line spacing of the data [Hz]: df on the uniform grid from 0 Hz, else the smallest
     !> spacing between two lines (the narrowest pole a line can still see is set by it).

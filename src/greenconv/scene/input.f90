@@ -395,8 +395,9 @@ contains
                      //"method = 'lsce')", order)
         this%order = order
         this%ident_method = trim(method)
-        call require(any(trim(noise_model) == ['relative', 'floor   ', 'band    ', 'auto    ']), error, this, &
-                     'identification', 'noise_model', "'relative', 'floor', 'band' or 'auto'", noise_model)
+        call require(any(trim(noise_model) == ['auto    ', 'relative', 'absolute', 'floor   ', 'band    ']), error, &
+                     this, 'identification', 'noise_model', "'auto', 'relative', 'absolute', 'floor' or 'band'", &
+                     noise_model)
         this%ident_noise = trim(noise_model)
         call require(any(trim(search) == ['global', 'greedy']), error, this, 'identification', 'search', &
                      "'global' (greedy rounds, death moves, projected fits) or 'greedy' (the rounds alone)", search)

@@ -8,7 +8,8 @@ module greenconv_scene_report
     use greenconv_model_modal_set, only: modal_set
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_ident_lsce, only: paper_form
-    use greenconv_ident_mlfit, only: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary
+    use greenconv_ident_mlfit, only: ml_result, dropped_by_criterion, dropped_left_band, dropped_degenerate, &
+                                     dropped_boundary
     use greenconv_io_files, only: write_columns
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
@@ -199,11 +200,19 @@ contains
         type(structure_model), intent(in) :: structure
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: amplitude(:), omega(:), damping(:), lost(:)
-        character(len=110) :: comments(7)
+        real(dp), allocatable :: amplitude(:), omega(:), damping(:), lost(:), determined(:)
+        character(len=:), allocatable :: comments(:), noise
+        character(len=110) :: buffer
+        integer :: width
 
         associate (ml => structure%ml, modes => structure%ml%modes)
             call paper_form(modes, amplitude, omega, damping, lost)
+            determined = merge(1.0_dp, 0.0_dp, structure%ml%determined_modes())
+            write (buffer, '(a,es10.3,a,es10.3,a)') 'noise level ', ml%noise_level_fit, ', upper residual ', &
+                ml%upper_residual, ' m/N'
+            noise = noise_line(ml)
+            width = max(110, len(noise))
+            allocate (character(len=width) :: comments(10))
             comments(1) = 'greenconv: modes identified by maximum likelihood (order by MDL), with their standard ' &
                           //'deviations'
             comments(2) = 'G(w) = sum_k r_k/(iw - l_k) + conj(r_k)/(iw - conj(l_k)), l_k = -xi_k w_k + i w_k ' &
@@ -211,16 +220,31 @@ contains
             comments(3) = 'paper form, eq. (6): A_k/(w_k^2 - w^2 + 2i xi_k w w_k), A_k = -2 Im(l_k) Im(r_k); ' &
                           //'lost = |Re r_k|/|r_k|'
             comments(4) = 'sigma_f, sigma_xi, sigma_r = sqrt(var Re r + var Im r): Fisher information at the optimum'
-            write (comments(5), '(a,es10.3,a,es10.3,a)') 'noise level ', ml%noise_level_fit, ', upper residual ', &
-                ml%upper_residual, ' m/N'
-            comments(6) = 'units: Hz rad/s 1 m/(N*s) m/(N*s) 1/kg 1 Hz 1 m/(N*s)'
-            comments(7) = 'f omega xi re_r im_r a_paper lost sigma_f sigma_xi sigma_r'
+            comments(5) = 'determined: 1 when the data determine the mode, 0 for a pole of the fitted receptance ' &
+                          //'they do not'
+            comments(6) = int_text(count(determined > 0.0_dp))//' of '//int_text(modes%n_modes()) &
+                          //' poles determined by the data'
+            comments(7) = noise
+            comments(8) = buffer
+            comments(9) = 'units: Hz rad/s 1 m/(N*s) m/(N*s) 1/kg 1 Hz 1 m/(N*s) 1'
+            comments(10) = 'f omega xi re_r im_r a_paper lost sigma_f sigma_xi sigma_r determined'
             call write_columns(path, comments, reshape([omega/two_pi, omega, damping, real(modes%residue, dp), &
                                                         aimag(modes%residue), amplitude, lost, ml%sigma_frequency, &
-                                                        ml%sigma_damping, ml%sigma_residue], &
-                                                       [modes%n_modes(), 10]), error)
+                                                        ml%sigma_damping, ml%sigma_residue, determined], &
+                                                       [modes%n_modes(), 11]), error)
         end associate
     end subroutine write_ml_modes
+
+    !> The noise model of the fit and why it was taken, for the modes file's header.
+    pure function noise_line(ml) result(line)
+        type(ml_result), intent(in) :: ml
+        character(len=:), allocatable :: line
+
+        line = 'noise model '//trim(ml%noise_model)//' (as set, not chosen from the data)'
+        if (allocated(ml%noise_choice)) then
+            if (len(ml%noise_choice) > 0) line = 'noise model '//trim(ml%noise_model)//': '//ml%noise_choice
+        end if
+    end function noise_line
 
     !> The stabilisation diagram: one row per pole of every order N, and the chosen modes as
     !> rows of order 0 with flag 3 (so one file draws both).
@@ -237,9 +261,10 @@ contains
             n = size(ml%diagram_order)
             m = ml%modes%n_modes()
             comments(1) = 'greenconv: stabilisation diagram of the linear LSCE step, N = 1..max_order modes'
-            comments(2) = 'flag 2: f and xi stable against order N - 1, 1: f only, 0: neither; ' &
-                          //'flag 3 (order 0): a chosen mode'
-            comments(3) = 'chosen modes (order by MDL): '//int_text(m)
+            comments(2) = 'flag 2: f and xi stable against order N - 1, 1: f only, 0: neither; order 0: the ' &
+                          //'fit''s poles, flag 3 determined, 4 not'
+            comments(3) = 'chosen modes (order by MDL): '//int_text(count(structure%ml%determined_modes())) &
+                          //' determined of '//int_text(m)
             comments(4) = 'units: 1 Hz 1 1'
             comments(5) = 'order f xi flag'
             allocate (table(n + m, 4))
@@ -250,7 +275,7 @@ contains
             table(n + 1:, 1) = 0.0_dp
             table(n + 1:, 2) = abs(ml%modes%pole)/two_pi
             table(n + 1:, 3) = -real(ml%modes%pole, dp)/abs(ml%modes%pole)
-            table(n + 1:, 4) = 3.0_dp
+            table(n + 1:, 4) = merge(3.0_dp, 4.0_dp, structure%ml%determined_modes())
             call write_columns(path, comments, table, error)
         end associate
     end subroutine write_diagram

@@ -297,10 +297,11 @@ contains
             "the identification, 'ml' or 'lsce' ('': 'ml' for frf_file, 'lsce' for random_modes); for green_file " &
             //"the shared poles: 'ml' (summed driving points), 'poly_reference' (every column) or 'auto' ('': " &
             //"both, the smaller worst E kept)", '')
-        call add(rows, n, 'identification', 'noise_model', value_text, 'relative', '', &
-            "the noise of G for method 'ml': 'relative' (of |G|), 'floor' (relative plus a floor), 'band' (relative, " &
-            //"one level per band of lines) or 'auto' (the one of the highest likelihood)", '', &
-            choices=[character(len=16) :: 'relative', 'floor', 'band', 'auto'])
+        call add(rows, n, 'identification', 'noise_model', value_text, 'auto', '', &
+            "the noise of G for method 'ml': 'auto' (of 'relative', 'absolute', 'floor' and 'band', the one of the " &
+            //"highest likelihood with its MDL price), 'relative' (of |G|), 'absolute' (the same on every line), " &
+            //"'floor' (relative plus a floor) or 'band' (relative, one level per band of lines)", '', &
+            choices=[character(len=16) :: 'auto', 'relative', 'absolute', 'floor', 'band'])
         call add(rows, n, 'identification', 'search', value_text, 'global', '', &
             "the order search of method 'ml': 'global' (the MDL minimum: greedy rounds, death moves, projected " &
             //"fits; the greedy model when the residual is not explained by the noise) or 'greedy' (the rounds alone)", &

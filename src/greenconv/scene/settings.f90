@@ -115,8 +115,8 @@ module greenconv_scene_settings
         integer :: order
         !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
         character(len=:), allocatable :: ident_method
-        !> Noise model of the 'ml' identification: 'relative', 'floor', 'band' or 'auto'
-        !> (ml_options%noise_model).
+        !> Noise model of the 'ml' identification: 'auto' (the default), 'relative', 'absolute',
+        !> 'floor' or 'band' (ml_options%noise_model).
         character(len=:), allocatable :: ident_noise
         !> Order search of the 'ml' identification: 'global' or 'greedy' (ml_options%global_search).
         character(len=:), allocatable :: ident_search
