@@ -133,12 +133,14 @@ contains
 
     !> "; contact lost in N of M steps (T s)" for a run's force summary, or "; contact never
     !> lost".
-    function contact_loss_text(summary, dt) result(text)
+    subroutine contact_loss_text(summary, dt, text)
         !> The run's force summary (steps and steps in contact).
         type(force_summary), intent(in) :: summary
         !> Time step [s].
         real(dp), intent(in) :: dt
-        character(len=:), allocatable :: text
+        !> '; contact never lost' or '; contact lost in N of M steps (T s)'. A subroutine, not a
+        !> deferred-length function: gfortran keeps such a result's length static (threads).
+        character(len=:), allocatable, intent(out) :: text
 
         integer(int64) :: lost
 
@@ -149,6 +151,6 @@ contains
             text = '; contact lost in '//int_text(int(lost))//' of '//int_text(int(summary%steps))//' steps (' &
                    //sci_text(lost*dt)//' s)'
         end if
-    end function contact_loss_text
+    end subroutine contact_loss_text
 
 end module greenconv_scene_linear_reference

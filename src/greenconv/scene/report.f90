@@ -210,7 +210,7 @@ contains
             determined = merge(1.0_dp, 0.0_dp, structure%ml%determined_modes())
             write (buffer, '(a,es10.3,a,es10.3,a)') 'noise level ', ml%noise_level_fit, ', upper residual ', &
                 ml%upper_residual, ' m/N'
-            noise = noise_line(ml)
+            call noise_line(ml, noise)
             width = max(110, len(noise))
             allocate (character(len=width) :: comments(10))
             comments(1) = 'greenconv: modes identified by maximum likelihood (order by MDL), with their standard ' &
@@ -236,15 +236,15 @@ contains
     end subroutine write_ml_modes
 
     !> The noise model of the fit and why it was taken, for the modes file's header.
-    pure function noise_line(ml) result(line)
+    pure subroutine noise_line(ml, line)
         type(ml_result), intent(in) :: ml
-        character(len=:), allocatable :: line
+        character(len=:), allocatable, intent(out) :: line
 
         line = 'noise model '//trim(ml%noise_model)//' (as set, not chosen from the data)'
         if (allocated(ml%noise_choice)) then
             if (len(ml%noise_choice) > 0) line = 'noise model '//trim(ml%noise_model)//': '//ml%noise_choice
         end if
-    end function noise_line
+    end subroutine noise_line
 
     !> The stabilisation diagram: one row per pole of every order N, and the chosen modes as
     !> rows of order 0 with flag 3 (so one file draws both).

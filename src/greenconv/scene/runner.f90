@@ -283,7 +283,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text
         real(dp) :: seconds, estimate
         integer :: i, n
         type(structure_kind) :: model
@@ -322,7 +322,10 @@ contains
             end if
             sinks%summarise = reports_loss
             if (.not. allocated(error)) call stream_run(run, scene, method, block, sinks, prefix, seconds, error)
-            if (sinks%summarise) accuracy = accuracy//contact_loss_text(sinks%summary, scene%dt)
+            if (sinks%summarise) then
+                call contact_loss_text(sinks%summary, scene%dt, loss_text)
+                accuracy = accuracy//loss_text
+            end if
             call run%conv%model_size(n, label)
             call run%conv%release()
             if (allocated(error)) return
