@@ -189,12 +189,15 @@ contains
         band = f_band
         if (band <= 0.0_dp) band = 0.5_dp/dt
         call read_file_modes(path, direction, damping_ratio, modes, error)
-        ! every node is a point: sized before the N_c x N_c matrices are made
-        if (.not. allocated(error) .and. size(modes%x) > max_contact_points) call fatal_error(error, path &
-            //': expected at most '//int_text(max_contact_points)//' nodes (each node is a contact point), found ' &
-            //int_text(size(modes%x))//', whose N_c x N_c static compliance alone would take ' &
-            //sci_text(band_bytes(size(modes%x), size(modes%frequency))/1.0e9_dp)//' GB: give a file of ' &
-            //'the patch''s nodes')
+        ! every node is a point: sized before the N_c x N_c matrices are made (nested: Fortran's
+        ! .and. may look at both sides, and modes is unset after a failed read)
+        if (.not. allocated(error)) then
+            if (size(modes%x) > max_contact_points) call fatal_error(error, path &
+                //': expected at most '//int_text(max_contact_points)//' nodes (each node is a contact point), found ' &
+                //int_text(size(modes%x))//', whose N_c x N_c static compliance alone would take ' &
+                //sci_text(band_bytes(size(modes%x), size(modes%frequency))/1.0e9_dp)//' GB: give a file of ' &
+                //'the patch''s nodes')
+        end if
         if (.not. allocated(error)) call split_band(modes, band, [(i, i=1, size(modes%x))], damping_ratio, description, &
                                                     residual, summary, error)
         if (allocated(error)) then
