@@ -130,8 +130,9 @@
 !>    a finite uncertainty; a singularity left by a residual term is a warning (sigma huge).
 !>    Against the noise each band of 32 lines shows in the final residual, an in-band pole whose
 !>    residue's Wald statistic is below a mode's MDL price 4*ln(2L), or whose sigma_xi/xi
-!>    reaches 0.3 while its peak is resolved, is not determined by the data: result%determined
-!>    is false for it (it stays in the model; mark_undetermined says why).
+!>    reaches 0.3 while its peak is resolved, whose frequency the lines do not fix, or that
+!>    the stabilisation diagram does not confirm, is not determined by the data:
+!>    result%determined is false for it (it stays in the model; mark_undetermined says why).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
 !> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
@@ -221,6 +222,15 @@ module greenconv_ident_mlfit
     real(dp), parameter :: undetermined_spread = 0.3_dp
     !> MDL price of a mode in units of ln(2L): its four real parameters.
     real(dp), parameter :: mode_price = 4.0_dp
+    !> Largest damping ratio of a mode with a resonance peak, 1/sqrt(2): a pole more damped is
+    !> never reported as determined (mark_undetermined).
+    real(dp), parameter :: peak_damping = 0.7071067811865476_dp
+    !> Wald statistic of a residue, in mode prices, that needs no confirmation by the
+    !> stabilisation diagram (mark_undetermined).
+    real(dp), parameter :: strong_evidence = 1000.0_dp
+    !> Widest relative distance of a close pair whose partner's diagram poles confirm a pole
+    !> (confirmations_of).
+    real(dp), parameter :: pair_span = 0.05_dp
     !> Lines per band of the noise scale the determined rule uses (band_scale).
     integer, parameter :: scale_lines = 32
 
@@ -567,7 +577,7 @@ contains
         end do
         ! A singular information leaves the uncertainties unknown: no mode is then claimed determined.
         result%determined = spread(ok, 1, n)
-        if (ok) call mark_undetermined(data, model, index, narrow, result)
+        if (ok) call mark_undetermined(data, options, model, index, narrow, result)
         call outlier_excess(frf, data, options, model, result)
         do k = 1, size(result%outlier_line)
             excess = real_text(result%outlier_excess(k))
@@ -603,14 +613,34 @@ contains
     !> Mark the modes the data do not determine in result%determined and say so in a warning.
     !> The rule is judged against the noise the residual shows near each mode: every line's
     !> sigma is scaled by its band's residual (band_scale, at least the noise estimated before the
-    !> fit), and with the Fisher information of those lines a pole is a mode when
+    !> fit), and with the Fisher information of those lines a pole is a mode when all hold:
     !>  - its residue's Wald statistic for r = 0 (against its 2x2 covariance) is at least a
-    !>    mode's MDL price 4*ln(2L): the evidence pays for the mode's four parameters, and
+    !>    mode's MDL price 4*ln(2L): the evidence pays for the mode's four parameters;
     !>  - its sigma_xi/xi is below undetermined_spread, or it is under-resolved (half-power band
     !>    narrower than min_band_lines lines): a peak narrower than the lines gives its
     !>    frequency and residue, not its damping (the warning says so), so its damping's spread
     !>    does not unmake the mode (pyuff's beam at 51.5 Hz: 2*xi*f = 0.05 Hz on 1 Hz lines,
-    !>    sigma_xi/xi 0.34, the residue 190 sigma from 0).
+    !>    sigma_xi/xi 0.34, the residue 190 sigma from 0);
+    !>  - its sigma_f is below undetermined_spread of its half-power half-width xi*f, or of the
+    !>    line spacing when that is wider: a pole whose frequency the lines do not fix to a
+    !>    fraction of its own peak is no mode (pyuff's beam, FRF 1: 1.6 Hz at xi 0.88,
+    !>    sigma_f 5.4 Hz);
+    !>  - its frequency lies between the first and the last line fitted (pyuff's beam, FRF 3:
+    !>    0.74 Hz at xi 0.91 on lines from 1 Hz, under OpenBLAS's Sandybridge kernels);
+    !>  - it has a resonance peak: xi < 1/sqrt(2) (peak_damping; above it |G| of the mode falls
+    !>    from 0 Hz on, a real pole in all but name);
+    !>  - the stabilisation diagram confirms it: at least stable_orders of its poles stable in
+    !>    frequency (flag 1 or 2) lie within stable_frequency of its frequency (or within xi*f,
+    !>    when wider; for one of a close pair, which the linear step merges into one stable pole,
+    !>    within the distance to its partner: confirmations_of), unless its residue's Wald
+    !>    statistic reaches strong_evidence times the price (a residue some 200 sigma from zero).
+    !>    The diagram is the test of physical poles in
+    !>    experimental modal analysis: a pole of the structure comes back at every order of the
+    !>    linear fit, a pole that takes up noise or a wandering phase does not (pyuff's beam:
+    !>    each of its six modes 14 to 41 times under five BLAS set-ups, the poles below 20 Hz on
+    !>    the lines whose phase wanders never, their Wald statistics at most 170 prices). It keeps
+    !>    the flag off the path the order search took, which follows the last bits of the
+    !>    arithmetic: the diagram's poles move by round-off only.
     !> The order search prices a mode against the noise estimated before any fit; where the
     !> lines are noisier than that (pyuff's measured beam below 8 Hz, whose phase wanders by up
     !> to 180 degrees between neighbours: 1e3 to 1e4 times the expected chi2 per line) it buys
@@ -619,9 +649,11 @@ contains
     !> result%modes (the fitted receptance, the engines' structure and the shared poles keep
     !> them) but are not counted as modes the data give. With the noise given (sigma), the lines
     !> keep it.
-    subroutine mark_undetermined(data, model, index, narrow, result)
+    subroutine mark_undetermined(data, options, model, index, narrow, result)
         !> The weighted data of the final fit.
         type(data_type), intent(in) :: data
+        !> Settings (stable_orders, stable_frequency: the diagram's confirmation).
+        type(ml_options), intent(in) :: options
         !> The final model.
         type(model_type), intent(in) :: model
         !> The model's pole of each of result%modes.
@@ -633,15 +665,20 @@ contains
 
         type(data_type) :: local
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :)
-        real(dp) :: a, b, m, gx(2), r(2), det, evidence, price, sigma_xi
-        integer :: k, c
+        real(dp) :: a, b, m, gx(2), gf(2), r(2), det, evidence, price, sigma_xi, sigma_f, f, xi, spacing
+        integer :: k, c, confirmations
         logical :: ok
 
         local = data
         if (result%noise_estimated) local%weight = data%weight/sqrt(band_scale(data, model, result%dof))
         call information(local, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
-        if (.not. ok) return
+        if (.not. ok) then
+            ! The rescaled lines leave the information singular: judge against the fit's own noise.
+            call information(data, model, fisher, gradient, jac)
+            call covariance(fisher, cov, ok)
+            if (.not. ok) return
+        end if
         price = mode_price*data%penalty
         do k = 1, size(index)
             c = 4*(index(k) - 1)
@@ -649,23 +686,103 @@ contains
             b = aimag(model%pole(index(k)))
             m = abs(model%pole(index(k)))
             gx = [-b**2, a*b]/m**3
+            gf = [a, b]/m/two_pi
             sigma_xi = sqrt(dot_product(gx, matmul(cov(c + 1:c + 2, c + 1:c + 2), gx)))
+            sigma_f = sqrt(dot_product(gf, matmul(cov(c + 1:c + 2, c + 1:c + 2), gf)))
+            f = m/two_pi
+            xi = damping_ratio(model%pole(index(k)))
+            spacing = line_spacing(data%omega, m)/two_pi
             ! Wald statistic of r_k = 0 against the residue's 2x2 covariance (Re, Im).
             r = [real(model%residue(index(k)), dp), aimag(model%residue(index(k)))]
             det = cov(c + 3, c + 3)*cov(c + 4, c + 4) - cov(c + 3, c + 4)**2
             evidence = huge(1.0_dp)
             if (det > 0.0_dp) evidence = (cov(c + 4, c + 4)*r(1)**2 - 2.0_dp*cov(c + 3, c + 4)*r(1)*r(2) &
                                           + cov(c + 3, c + 3)*r(2)**2)/det
-            result%determined(k) = evidence >= price .and. &
-                                   (narrow(k) .or. sigma_xi < undetermined_spread*damping_ratio(model%pole(index(k))))
+            confirmations = confirmations_of(result, options, model%pole, index(k))
+            result%determined(k) = evidence >= price &
+                                   .and. (narrow(k) .or. sigma_xi < undetermined_spread*xi) &
+                                   .and. sigma_f < undetermined_spread*max(xi*f, spacing) &
+                                   .and. xi < peak_damping &
+                                   .and. m >= data%omega(1) .and. m <= data%omega(size(data%omega)) &
+                                   .and. (confirmations >= options%stable_orders .or. evidence >= strong_evidence*price)
         end do
         if (all(result%determined)) return
         call add_warning(result, int_text(count(.not. result%determined))//' pole(s) in the band the data do ' &
                          //'not determine against the noise their lines show (the Wald statistic of the residue ' &
-                         //'below the MDL price of a mode, '//real_text(price)//', or sigma_xi/xi >= ' &
-                         //real_text(undetermined_spread)//' for a resolved peak): part of the fitted receptance, ' &
-                         //'not modes the data give')
+                         //'below the MDL price of a mode, '//real_text(price)//', sigma_xi/xi >= ' &
+                         //real_text(undetermined_spread)//' for a resolved peak, sigma_f >= ' &
+                         //real_text(undetermined_spread)//' of its half-power half-width, xi >= 1/sqrt(2), outside the ' &
+                         //'lines, or fewer than '//int_text(options%stable_orders)//' stable poles of the diagram ' &
+                         //'near it without overwhelming evidence): part ' &
+                         //'of the fitted receptance, not modes the data give')
     end subroutine mark_undetermined
+
+    !> The number of the diagram's poles stable in frequency (flag 1 or 2) within window [Hz]
+    !> of f [Hz].
+    pure integer function diagram_support(result, f, window)
+        !> The result holding the diagram.
+        type(ml_result), intent(in) :: result
+        !> Frequency [Hz].
+        real(dp), intent(in) :: f
+        !> Half-width [Hz].
+        real(dp), intent(in) :: window
+
+        diagram_support = 0
+        if (allocated(result%diagram_flag)) diagram_support = count(result%diagram_flag >= 1 .and. &
+                                                                    abs(result%diagram_frequency - f) <= window)
+    end function diagram_support
+
+    !> The diagram's confirmations of pole k (mark_undetermined): its stable poles within
+    !> max(stable_frequency, xi)*f of the pole; when they are fewer than stable_orders, within
+    !> the distance to the nearest other pole of the model closer than pair_span*f that has
+    !> stable_orders of its own (one of a close pair, which the linear step merges into one
+    !> stable pole between the two).
+    pure integer function confirmations_of(result, options, poles, k)
+        !> The result holding the diagram.
+        type(ml_result), intent(in) :: result
+        !> Settings (stable_frequency, stable_orders).
+        type(ml_options), intent(in) :: options
+        !> The model's poles [rad/s].
+        complex(dp), intent(in) :: poles(:)
+        !> Which pole.
+        integer, intent(in) :: k
+
+        real(dp) :: f, f_other, gap, nearest
+        integer :: j
+
+        f = natural_frequency(poles(k))/two_pi
+        confirmations_of = diagram_support(result, f, max(options%stable_frequency, damping_ratio(poles(k)))*f)
+        if (confirmations_of >= options%stable_orders) return
+        nearest = -1.0_dp
+        do j = 1, size(poles)
+            if (j == k) cycle
+            f_other = natural_frequency(poles(j))/two_pi
+            gap = abs(f_other - f)
+            if (gap > pair_span*f .or. (nearest >= 0.0_dp .and. gap >= nearest)) cycle
+            if (diagram_support(result, f_other, max(options%stable_frequency, damping_ratio(poles(j)))*f_other) &
+                < options%stable_orders) cycle
+            nearest = gap
+        end do
+        if (nearest >= 0.0_dp) confirmations_of = diagram_support(result, f, &
+                                                                  max(options%stable_frequency*f, nearest))
+    end function confirmations_of
+
+    !> The spacing [rad/s] of the lines at omega: the wider of the two gaps beside the line
+    !> nearest to it (0 with a single line).
+    pure real(dp) function line_spacing(omega, at)
+        !> The lines [rad/s], increasing.
+        real(dp), intent(in) :: omega(:)
+        !> Where [rad/s].
+        real(dp), intent(in) :: at
+
+        integer :: j, n
+
+        n = size(omega)
+        line_spacing = 0.0_dp
+        if (n < 2) return
+        j = minloc(abs(omega - at), 1)
+        line_spacing = max(omega(min(j + 1, n)) - omega(j), omega(j) - omega(max(j - 1, 1)))
+    end function line_spacing
 
     !> Each line's noise scale for the determined rule: the weighted residual's mean square over
     !> its band of scale_lines neighbouring lines (the band's chi2 per line over its expectation,
