@@ -8,7 +8,9 @@ module test_identdense_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use greenconv_ident_dense, only: gram, spd_solve, spd_inverse, identity
+    use greenconv_ident_dense, only: gram, spd_solve, spd_inverse, identity, svd_solve, product_of, quadratic_form
+    use greenconv_ext_lapack, only: least_squares
+    use greenconv_core_error, only: error_type
     use greenconv_ident_lm_fit, only: model_type, data_type, information, evaluate, chi_square
     implicit none
     private
@@ -25,8 +27,87 @@ contains
         testsuite = [new_unittest('gram: scale*A^T A and scale*A^T b against the sums, 1 to 48 columns', test_gram), &
                      new_unittest('spd: solve and inverse against A, to round-off', test_spd), &
                      new_unittest('spd: indefinite and NaN matrices reported, not solved', test_not_spd), &
-                     new_unittest('information: carried residual, same bits; gradient by differences', test_carried)]
+                     new_unittest('information: carried residual, same bits; gradient by differences', test_carried), &
+                     new_unittest('svd_solve: against LAPACK dgelsd, full rank and rank-deficient, tall and square', &
+                                  test_svd), &
+                     new_unittest('product_of, quadratic_form: against the sums written out', test_products)]
     end subroutine collect_identdense
+
+    !> svd_solve (Householder reduction, then one-sided Jacobi) against LAPACK's dgelsd through
+    !> greenconv_ext_lapack's least_squares, an independent SVD: tall (301 x n) and square
+    !> matrices of full rank, and with two columns repeated (rank n - 2), where both must give
+    !> the minimum-norm solution. Tolerance 1e-10 relative to |x| (conditions below 1e4).
+    subroutine test_svd(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: sizes(4) = [1, 6, 17, 40]
+        real(dp), allocatable :: a(:, :), b(:), x(:), y(:)
+        type(error_type), allocatable :: failure
+        real(dp) :: worst
+        integer :: s, n, m, l, shape_kind
+
+        worst = 0.0_dp
+        do shape_kind = 1, 3
+            do s = 1, size(sizes)
+                n = sizes(s)
+                m = merge(n, 301, shape_kind == 2)
+                a = sample_matrix(m, n)
+                if (shape_kind == 3 .and. n >= 3) then
+                    a(:, n) = a(:, 1)
+                    a(:, n - 1) = 2.0_dp*a(:, 2)
+                end if
+                b = [(cos(0.3_dp*l) + 0.2_dp*sin(1.1_dp*l*l), l=1, m)]
+                if (allocated(x)) deallocate (x, y)
+                allocate (x(n), y(n))
+                call svd_solve(a, b, x, 1.0e-13_dp)
+                call least_squares(a, b, y, failure, rcond=1.0e-13_dp)
+                call check(error, .not. allocated(failure), 'dgelsd failed')
+                if (allocated(error)) return
+                worst = max(worst, maxval(abs(x - y))/max(maxval(abs(y)), tiny(1.0_dp)))
+            end do
+        end do
+        call note('svd_solve: worst |x - x_dgelsd|/|x_dgelsd|', worst)
+        call check(error, worst < 1.0e-10_dp, 'svd_solve differs from dgelsd by more than 1e-10')
+    end subroutine test_svd
+
+    !> product_of and quadratic_form against the sums written out in the same order as a
+    !> reference loop, to 1e-14 of the sums' magnitude.
+    subroutine test_products(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: a(:, :), b(:, :), c(:, :), x(:)
+        real(dp) :: worst, reference, magnitude
+        integer :: i, j, k
+
+        a = sample_matrix(7, 13)
+        b = transpose(sample_matrix(9, 13))
+        c = product_of(a, b)
+        worst = 0.0_dp
+        do j = 1, size(b, 2)
+            do i = 1, size(a, 1)
+                reference = 0.0_dp
+                magnitude = 0.0_dp
+                do k = 1, size(a, 2)
+                    reference = reference + a(i, k)*b(k, j)
+                    magnitude = magnitude + abs(a(i, k)*b(k, j))
+                end do
+                worst = max(worst, abs(c(i, j) - reference)/magnitude)
+            end do
+        end do
+        x = [(0.1_dp*k - 0.5_dp, k=1, 13)]
+        a = sample_matrix(13, 13)
+        reference = 0.0_dp
+        magnitude = 0.0_dp
+        do j = 1, 13
+            do i = 1, 13
+                reference = reference + x(i)*a(i, j)*x(j)
+                magnitude = magnitude + abs(x(i)*a(i, j)*x(j))
+            end do
+        end do
+        worst = max(worst, abs(quadratic_form(a, x) - reference)/magnitude)
+        call note('product_of, quadratic_form: worst relative error', worst)
+        call check(error, worst < 1.0e-14_dp, 'product_of or quadratic_form differs from the written-out sums')
+    end subroutine test_products
 
     !> A deterministic m x n matrix with entries in (-1, 1) of no pattern the blocks could share.
     pure function sample_matrix(m, n) result(a)

@@ -6,8 +6,7 @@
 module greenconv_ident_lm_fit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_ext_lapack, only: least_squares
-    use greenconv_ident_dense, only: gram, spd_factor, spd_solve, spd_inverse, identity
+    use greenconv_ident_dense, only: gram, spd_factor, spd_solve, spd_inverse, svd_solve, identity, product_of
     use greenconv_ident_lsce, only: stack, add_parameter_step
     implicit none
     private
@@ -207,8 +206,7 @@ contains
         if (.not. ok) then
             if (allocated(x)) deallocate (x)
             allocate (x(size(a, 2)))
-            call least_squares(a, b, x, error, rcond=1.0e-13_dp)
-            if (allocated(error)) return
+            call svd_solve(a, b, x, 1.0e-13_dp)
         end if
         x = x/norms
         model%residue = [(cmplx(x(2*k - 1), x(2*k), dp), k=1, n)]
@@ -510,9 +508,9 @@ contains
         if (size(other) == 0) return
         call covariance(fisher(other, other), inverse, ok)
         if (.not. ok) return
-        coupling = matmul(fisher(nonlinear, other), inverse)
-        reduced = reduced - matmul(coupling, fisher(other, nonlinear))
-        pull = pull - matmul(coupling, gradient(other))
+        coupling = product_of(fisher(nonlinear, other), inverse)
+        reduced = reduced - product_of(coupling, fisher(other, nonlinear))
+        pull = pull - reshape(product_of(coupling, reshape(gradient(other), [size(other), 1])), [size(nonlinear)])
     end subroutine projected
 
     !> Every pole with Re <= -min_decay < 0 < Im.

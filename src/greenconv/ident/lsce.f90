@@ -122,6 +122,11 @@ module greenconv_ident_lsce
     public :: natural_frequency, damping_ratio
     public :: lsce_poles, receptance_problem, stack, add_parameter_step
 
+    !> Relative grid of the diagram's poles' real and imaginary parts (2^-20, 1e-6): twenty times
+    !> below the sigma_f/f of the sharpest measured mode identified here (2e-5), far above the
+    !> differences of LAPACK's results between BLAS kernels for a settled pole (1e-13).
+    real(dp), parameter :: reproducible_grid = 2.0_dp**(-20)
+
     real(dp), parameter :: pi = 3.141592653589793238462643383279_dp
     real(dp), parameter :: two_pi = 2.0_dp*pi
 
@@ -847,7 +852,10 @@ contains
     !> max_samples)), solved by SVD least squares, roots of the prediction polynomial as the
     !> eigenvalues of its companion matrix, physical poles lambda = ln(z)/dt kept.
     !> Public as the cheap linear step of a stabilisation diagram (one call per order, no
-    !> out-of-band correction, no residues).
+    !> out-of-band correction, no residues). The poles are rounded to reproducible_grid of
+    !> their magnitude (`reproducible`): the SVD and the eigenvalues are LAPACK's, whose last
+    !> bits follow the BLAS kernels and threads, and the diagram's decisions and the start of
+    !> the fits must not.
     subroutine lsce_poles(g, dt, p, max_samples, poles, n_unstable, n_real, error)
         !> Impulse samples g(n*dt), n = 0..N_t-1 [m/(N*s)] (e.g. from impulse_from_frf).
         real(dp), intent(in) :: g(:)
@@ -893,7 +901,32 @@ contains
         call eigenvalues(companion, roots, error)
         if (allocated(error)) return
         call physical_poles(roots, dt, poles, n_unstable, n_real)
+        poles = reproducible(poles)
     end subroutine lsce_poles
+
+    !> A pole with its real part and its imaginary part each rounded to a multiple of
+    !> reproducible_grid times the power of two at or above its own magnitude (so that the
+    !> damping keeps its relative precision): the same bits from any BLAS whose result differs
+    !> from another's by less than the grid, except within that difference of a rounding
+    !> boundary.
+    elemental complex(dp) function reproducible(pole)
+        !> Pole [rad/s].
+        complex(dp), intent(in) :: pole
+
+        reproducible = cmplx(rounded(real(pole, dp)), rounded(aimag(pole)), dp)
+    contains
+        !> x rounded to reproducible_grid of the power of two at or above |x|.
+        elemental real(dp) function rounded(x)
+            real(dp), intent(in) :: x
+
+            real(dp) :: unit
+
+            rounded = x
+            if (.not. (abs(x) > 0.0_dp) .or. abs(x) > huge(1.0_dp)) return
+            unit = reproducible_grid*set_exponent(1.0_dp, exponent(x))
+            rounded = unit*anint(x/unit)
+        end function rounded
+    end function reproducible
 
     !> Keep the roots z with Im z > 0 and |z| < 1 as poles ln(z)/dt (Re < 0, 0 < Im < pi/dt);
     !> count the dropped ones. Roots with Im z < 0 are the conjugates of kept or counted ones.

@@ -56,6 +56,12 @@ module greenconv_ident_order_search
     real(dp), parameter :: death_wald = 25.0_dp
     !> A rejected model within this of the chosen model's MDL criterion is reported.
     real(dp), parameter :: close_call = 10.0_dp
+    !> Relative tolerance of every comparison of criteria (`simpler_wins`, `richer_wins`): two
+    !> values within tie_tolerance*max(1, |value|) are a tie, and a tie goes to the model with
+    !> fewer parameters (a mode or a term fewer, a line not left out). 1e-9 of a criterion of
+    !> 1e4 to 1e6 is 1e-5 to 1e-3, far above the last bits of its sums (1e-12) and far below
+    !> any statistical difference (a mode's price is 4*ln(2L), 30 or more).
+    real(dp), parameter :: tie_tolerance = 1.0e-9_dp
 
 contains
 
@@ -185,7 +191,7 @@ contains
             if (allocated(error)) return
             after = criterion(data, trial, chi_square(data, trial))
             wald(worst) = huge(1.0_dp)
-            if (after < before) then
+            if (simpler_wins(after, before)) then
                 call record_drop(result, [model%pole(worst)], dropped_by_criterion)
                 model = trial
                 call refine(data, model, result%iterations)
@@ -347,7 +353,8 @@ contains
             allocate (wald(size(model%pole)))
             do k = 1, size(model%pole)
                 c = 4*(k - 1)
-                wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), [real(model%residue(k), dp), aimag(model%residue(k))])
+                wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), &
+                                    [real(model%residue(k), dp), aimag(model%residue(k))])
             end do
             before = likelihood(data, result, chi_square(data, model))
             do
@@ -358,7 +365,8 @@ contains
                 trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
                 call fit(data, trial, result%iterations, error)
                 if (allocated(error)) return
-                if (likelihood(data, result, chi_square(data, trial)) - before > 4.0_dp*data%penalty) cycle
+                if (.not. simpler_wins(likelihood(data, result, chi_square(data, trial)), &
+                                       before + 4.0_dp*data%penalty)) cycle
                 ! A removal must leave every uncertainty finite (the rest refitted can merge).
                 call information(data, trial, fisher, gradient, jac)
                 call covariance(fisher, cov, ok)
@@ -399,8 +407,8 @@ contains
             if (.not. without_term(model, term == 1, trial)) cycle
             call fit(data, trial, result%iterations, error)
             if (allocated(error)) return
-            if (likelihood(data, result, chi_square(data, trial)) &
-                - likelihood(data, result, chi_square(data, model)) > data%penalty) cycle
+            if (.not. simpler_wins(likelihood(data, result, chi_square(data, trial)), &
+                                   likelihood(data, result, chi_square(data, model)) + data%penalty)) cycle
             call information(data, trial, fisher, gradient, jac)
             call covariance(fisher, cov, ok)
             if (ok) model = trial
@@ -487,7 +495,7 @@ contains
             end if
         end if
         if (size(model%pole) >= data%max_modes) then
-            added = target < before
+            added = richer_wins(target, before)
             if (.not. added) outlier = 0
             return
         end if
@@ -541,7 +549,7 @@ contains
             call fit(data, trial, result%iterations, error, trial_iterations)
             if (allocated(error)) return
             added = all(natural_frequency(trial%pole) <= two_pi*data%f_max) .and. &
-                    criterion(data, trial, chi_square(data, trial)) < target
+                    richer_wins(criterion(data, trial, chi_square(data, trial)), target)
         end if
         do try = 1, min(tries_per_add, size(pool))
             if (added) exit
@@ -552,8 +560,8 @@ contains
             call fit(data, trial, result%iterations, error, trial_iterations)
             if (allocated(error)) return
             if (.not. all(natural_frequency(trial%pole) <= two_pi*data%f_max)) cycle
-            added = criterion(data, trial, chi_square(data, trial)) < merge(before, target, &
-                                                                            resolves_line(data, trial, outlier))
+            added = richer_wins(criterion(data, trial, chi_square(data, trial)), &
+                                merge(before, target, resolves_line(data, trial, outlier)))
         end do
         ! The trial kept (the batch or one candidate) is refined fully.
         if (added) then
@@ -562,7 +570,7 @@ contains
             outlier = 0
             return
         end if
-        added = target < before
+        added = richer_wins(target, before)
         if (.not. added) outlier = 0
     end subroutine add_mode
 
@@ -772,7 +780,7 @@ contains
             call fit(data, trial, result%iterations, error)
             if (allocated(error)) return
             before = criterion(data, model, chi_square(data, model))
-            if (criterion(data, trial, chi_square(data, trial)) < before) then
+            if (simpler_wins(criterion(data, trial, chi_square(data, trial)), before)) then
                 call record_drop(result, [model%pole(worst)], &
                                  merge(dropped_boundary, dropped_by_criterion, narrowest(model%pole(worst), &
                                                                                          data%min_decay)))
@@ -818,7 +826,7 @@ contains
             trial%pole = [model%pole(:k - 1), model%pole(k + 1:)]
             call fit(data, trial, result%iterations, error)
             if (allocated(error)) return
-            if (criterion(data, trial, chi_square(data, trial)) < before) then
+            if (simpler_wins(criterion(data, trial, chi_square(data, trial)), before)) then
                 call record_drop(result, [model%pole(k)], dropped_degenerate)
                 model = trial
                 removed = .true.
@@ -868,7 +876,7 @@ contains
             call without_line(data, near, data%max_iterations, trial, result, without, alone, error)
             if (allocated(error)) return
             if (.not. alone) cycle
-            if (criterion(without, trial, chi_square(without, trial)) + 2.0_dp*data%penalty < before) then
+            if (simpler_wins(criterion(without, trial, chi_square(without, trial)) + 2.0_dp*data%penalty, before)) then
                 call record_drop(result, [model%pole(k)], dropped_boundary)
                 model = trial
                 line = near
@@ -929,7 +937,8 @@ contains
         if (.not. without_term(model, upper, trial)) return
         call fit(data, trial, result%iterations, error, 0)
         if (allocated(error)) return
-        if (criterion(data, trial, chi_square(data, trial)) < criterion(data, model, chi_square(data, model))) then
+        if (simpler_wins(criterion(data, trial, chi_square(data, trial)), &
+                         criterion(data, model, chi_square(data, model)))) then
             model = trial
             call refine(data, model, result%iterations)
         end if
@@ -956,5 +965,27 @@ contains
             trial%r_l = 0.0_dp
         end if
     end function without_term
+
+    !> Whether a simpler model (criterion `simpler`) is preferred to a richer one (`richer`):
+    !> lower, or within the tie tolerance.
+    pure logical function simpler_wins(simpler, richer)
+        !> Criterion of the simpler model (dimensionless).
+        real(dp), intent(in) :: simpler
+        !> Criterion of the richer model (dimensionless).
+        real(dp), intent(in) :: richer
+
+        simpler_wins = simpler <= richer + tie_tolerance*max(1.0_dp, abs(richer))
+    end function simpler_wins
+
+    !> Whether a richer model (criterion `richer`) is preferred to a simpler one (`simpler`):
+    !> lower by more than the tie tolerance.
+    pure logical function richer_wins(richer, simpler)
+        !> Criterion of the richer model (dimensionless).
+        real(dp), intent(in) :: richer
+        !> Criterion of the simpler model (dimensionless).
+        real(dp), intent(in) :: simpler
+
+        richer_wins = .not. simpler_wins(simpler, richer)
+    end function richer_wins
 
 end module greenconv_ident_order_search
