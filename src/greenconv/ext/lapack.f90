@@ -22,17 +22,14 @@
 !> a parallel region over `omp_get_max_threads()` threads, and its threaded sums are taken in
 !> another order than its serial ones (last bits of an LU, a least-squares solution, the
 !> eigenvalues, a Cholesky factor; 20 x 20 and up); inside a parallel region it runs serially.
-!> `lapack_alone` says when a call is to be made serially; dgelsd, dgeev, dgesv, dgetrf and dgetrs
-!> (the contact layer's LU) are called here between
+!> dgelsd, dgeev, dgesv, dgetrf and dgetrs (the contact layer's LU) are called here between
 !> `lapack_serial_begin` and `lapack_serial_end` (the calling thread's OpenMP thread count set
 !> to 1), and so are the Cholesky factor and inverse of `cholesky_alone` and
 !> `cholesky_inverse_alone`, so that every result of these front ends is that of one thread
-!> whatever OMP_NUM_THREADS says. A build without OpenMP cannot pin: there OpenBLAS threads as
-!> OMP_NUM_THREADS says.
+!> whatever OMP_NUM_THREADS says, in builds with and without OpenMP (ext/thread_pin.c).
 module greenconv_ext_lapack
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use, intrinsic :: iso_c_binding, only: c_int, c_double
-    !$ use omp_lib, only: omp_in_parallel, omp_get_max_threads, omp_set_num_threads
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_numerical
     use greenconv_core_text, only: int_text
@@ -343,46 +340,45 @@ contains
         x(:) = b_work(:, 1)
     end subroutine lu_solve
 
-    !> Whether a BLAS or LAPACK call is to be made serially (between `lapack_serial_begin` and
-    !> `lapack_serial_end`): when OpenMP would give it more than one thread. OpenBLAS's OpenMP build threads a call outside a
-    !> region as `omp_get_max_threads()` says, with other round-off than on one thread (a
-    !> 441 x 441 LU, a 16,386 x 202 Gram matrix differ in their last bits), and runs serially
-    !> inside one; called so, the results do not depend on the number of threads, and inside a
-    !> host's region (serial already) nothing changes. Always false in a build without OpenMP.
-    logical function lapack_alone()
-        lapack_alone = .false.
-        !$ if (omp_get_max_threads() > 1) lapack_alone = .not. omp_in_parallel()
-    end function lapack_alone
-
-    !> Make the BLAS and LAPACK calls that follow serial when `lapack_alone` says so, without a
-    !> parallel region: OpenBLAS's OpenMP build threads a call as `omp_get_max_threads()` says,
-    !> so the calling thread's OpenMP thread count is set to 1 until `lapack_serial_end`. The
-    !> results are those of a region's single thread (and of one thread) bit for bit, and no
-    !> second thread is woken: a region of two threads around every call of an identification
-    !> (thousands) cost more than the fit itself on a loaded machine (see doc/identification.md,
-    !> "Threads"). Nothing happens inside a parallel region or on one thread.
+    !> Make the BLAS and LAPACK calls that follow serial, without a parallel region, until
+    !> `lapack_serial_end`. A threaded BLAS adds the parts of a sum in another order than one
+    !> thread (a 441 x 441 LU, a 16,386 x 202 Gram matrix differ in their last bits), so the
+    !> results would follow the thread count. ext/thread_pin.c finds the BLAS's thread setting
+    !> at run time, in builds with and without OpenMP: OpenBLAS on OpenMP (or any OpenMP BLAS)
+    !> gets the calling thread's OpenMP count set to 1, OpenBLAS on POSIX threads its global
+    !> count; inside a host's parallel region (where OpenBLAS is serial already), with a serial
+    !> BLAS or on one thread nothing changes. No second thread is woken: a region of two
+    !> threads around every call of an identification (thousands) cost more than the fit itself
+    !> on a loaded machine (see doc/identification.md, "Threads").
     subroutine lapack_serial_begin(threads)
-        !> The thread count to restore by `lapack_serial_end` (0: nothing was changed).
+        !> What `lapack_serial_end` restores (0: nothing was changed).
         integer, intent(out) :: threads
 
-        threads = 0
-        !$ if (lapack_alone()) then
-        !$     threads = omp_get_max_threads()
-        !$     call omp_set_num_threads(1)
-        !$ end if
+        interface
+            integer(c_int) function serial_begin() bind(c, name='greenconv_ext_serial_begin')
+                import :: c_int
+            end function serial_begin
+        end interface
+
+        threads = int(serial_begin())
     end subroutine lapack_serial_begin
 
-    !> Undo `lapack_serial_begin`: the calling thread's OpenMP thread count restored.
+    !> Undo `lapack_serial_begin`: the thread count it changed restored.
     subroutine lapack_serial_end(threads)
         !> What `lapack_serial_begin` returned.
         integer, intent(in) :: threads
 
-        if (threads > 0) then
-            !$ call omp_set_num_threads(threads)
-        end if
+        interface
+            subroutine serial_end(restore) bind(c, name='greenconv_ext_serial_end')
+                import :: c_int
+                integer(c_int), value :: restore
+            end subroutine serial_end
+        end interface
+
+        if (threads /= 0) call serial_end(int(threads, c_int))
     end subroutine lapack_serial_end
 
-    !> dpotrf ('U', in place) of an n x n matrix, called as `lapack_alone` says. Bound to C so
+    !> dpotrf ('U', in place) of an n x n matrix, called serially (`lapack_serial_begin`). Bound to C so
     !> that the identification's pure Cholesky routines (ident/dense.f90) can reach it through
     !> an interface that declares it pure, as they declare LAPACK's own routines: the region of
     !> threads changes nothing but which thread makes the call.
@@ -402,7 +398,7 @@ contains
     end subroutine cholesky_alone
 
     !> dpotri ('U', in place): the inverse of A from its factor U by `cholesky_alone`, upper
-    !> triangle, called as `lapack_alone` says (bound to C as `cholesky_alone`).
+    !> triangle, called serially (`lapack_serial_begin`) (bound to C as `cholesky_alone`).
     subroutine cholesky_inverse_alone(n, a, info) bind(c, name='greenconv_ext_cholesky_inverse_alone')
         !> Order of the matrix (n >= 1).
         integer(c_int), value :: n
