@@ -23,65 +23,59 @@
 typedef int (*gc_int_query)(void);
 typedef void (*gc_int_setter)(int);
 
-/* The entry points, looked up once.  Every thread that looks them up finds the same values, so
- * the stores may race harmlessly; they are atomic all the same. */
-static gc_int_query gc_in_parallel, gc_max_threads, gc_parallel_kind, gc_blas_threads;
-static gc_int_setter gc_set_threads, gc_set_blas_threads;
-static int gc_resolved;
-
-static void *gc_symbol(const char *name)
-{
-    return dlsym(RTLD_DEFAULT, name);
-}
+/* The entry points, looked up at each call (no static storage: two host threads may call at
+ * once; a lookup costs a microsecond or so, next to a LAPACK call of tens). */
+struct gc_thread_calls {
+    gc_int_query in_parallel, max_threads, parallel_kind, blas_threads;
+    gc_int_setter set_threads, set_blas_threads;
+};
 
 /* ISO C has no conversion from an object pointer to a function pointer: the bits are copied. */
 #define GC_LOOK_UP(target, name)                                                                  \
     do {                                                                                           \
-        void *found = gc_symbol(name);                                                             \
-        __typeof__(target) entry;                                                                  \
-        memcpy(&entry, &found, sizeof entry);                                                      \
-        __atomic_store_n(&(target), entry, __ATOMIC_RELAXED);                                      \
+        void *found = dlsym(RTLD_DEFAULT, name);                                                   \
+        memcpy(&(target), &found, sizeof(target));                                                 \
     } while (0)
 
-static void gc_resolve(void)
+static struct gc_thread_calls gc_resolve(void)
 {
-    if (__atomic_load_n(&gc_resolved, __ATOMIC_ACQUIRE)) return;
-    GC_LOOK_UP(gc_in_parallel, "omp_in_parallel");
-    GC_LOOK_UP(gc_max_threads, "omp_get_max_threads");
-    GC_LOOK_UP(gc_set_threads, "omp_set_num_threads");
-    GC_LOOK_UP(gc_parallel_kind, "openblas_get_parallel");
-    GC_LOOK_UP(gc_blas_threads, "openblas_get_num_threads");
-    GC_LOOK_UP(gc_set_blas_threads, "openblas_set_num_threads");
-    __atomic_store_n(&gc_resolved, 1, __ATOMIC_RELEASE);
+    struct gc_thread_calls calls;
+    GC_LOOK_UP(calls.in_parallel, "omp_in_parallel");
+    GC_LOOK_UP(calls.max_threads, "omp_get_max_threads");
+    GC_LOOK_UP(calls.set_threads, "omp_set_num_threads");
+    GC_LOOK_UP(calls.parallel_kind, "openblas_get_parallel");
+    GC_LOOK_UP(calls.blas_threads, "openblas_get_num_threads");
+    GC_LOOK_UP(calls.set_blas_threads, "openblas_set_num_threads");
+    return calls;
 }
 
 /* What must be restored: > 0 an OpenMP thread count, < 0 minus an OpenBLAS thread count, 0
  * nothing.  Returned by greenconv_ext_serial_begin, handed back to greenconv_ext_serial_end. */
 int greenconv_ext_serial_begin(void)
 {
-    gc_resolve();
-    if (gc_in_parallel != NULL && gc_in_parallel()) return 0;
+    struct gc_thread_calls calls = gc_resolve();
+    if (calls.in_parallel != NULL && calls.in_parallel()) return 0;
 
-    int kind = gc_parallel_kind != NULL ? gc_parallel_kind() : -1;
+    int kind = calls.parallel_kind != NULL ? calls.parallel_kind() : -1;
     if (kind == 1) {
-        if (gc_blas_threads == NULL || gc_set_blas_threads == NULL) return 0;
-        int threads = gc_blas_threads();
+        if (calls.blas_threads == NULL || calls.set_blas_threads == NULL) return 0;
+        int threads = calls.blas_threads();
         if (threads <= 1) return 0;
-        gc_set_blas_threads(1);
+        calls.set_blas_threads(1);
         return -threads;
     }
     if (kind == 0) return 0;
 
-    if (gc_max_threads == NULL || gc_set_threads == NULL) return 0;
-    int threads = gc_max_threads();
+    if (calls.max_threads == NULL || calls.set_threads == NULL) return 0;
+    int threads = calls.max_threads();
     if (threads <= 1) return 0;
-    gc_set_threads(1);
+    calls.set_threads(1);
     return threads;
 }
 
 void greenconv_ext_serial_end(int restore)
 {
-    gc_resolve();
-    if (restore > 0 && gc_set_threads != NULL) gc_set_threads(restore);
-    if (restore < 0 && gc_set_blas_threads != NULL) gc_set_blas_threads(-restore);
+    struct gc_thread_calls calls = gc_resolve();
+    if (restore > 0 && calls.set_threads != NULL) calls.set_threads(restore);
+    if (restore < 0 && calls.set_blas_threads != NULL) calls.set_blas_threads(-restore);
 }
