@@ -334,11 +334,23 @@ contains
 
     !> Refine the poles over all receptances together (variable projection): the residues are
     !> eliminated by least squares for given poles, and Levenberg-Marquardt moves the poles to
-    !> minimise sum_ij ||G_ij - G_ij,model||^2/||G_ij||_1^2 (each receptance weighted by its own
-    !> size, as E of eq. (7) is relative per receptance). The poles of the summed driving points
-    !> are biased where modes overlap; every receptance weighs the modes by its own shapes, which
-    !> separates them. Finite-difference Jacobian; a step is kept only when it lowers the cost
-    !> and leaves every pole stable, so the result is never worse than the start.
+    !> minimise sum_t ||P y_t||^2, y_t = G_ij/||G_ij||_1 (each receptance weighted by its own
+    !> size, as E of eq. (7) is relative per receptance) and P the projection off the design
+    !> matrix B of the poles' columns. The poles of the summed driving points are biased where
+    !> modes overlap; every receptance weighs the modes by its own shapes, which separates them.
+    !> A step is kept only when it lowers the cost and leaves every pole stable, so the result
+    !> is never worse than the start.
+    !>
+    !> The Gauss-Newton system is Kaufman's (Kaufman 1975; Golub & Pereyra 2003), from the
+    !> columns' analytic derivatives: for target t with coefficients c_t = B^+ y_t, the Jacobian
+    !> is J_t = -P E_t, column q of E_t the derivative of B in parameter q applied to c_t. Pole k
+    !> moves only its own two columns, so E_t(:, q) = d_q1*c_k1,t + d_q2*c_k2,t with the four
+    !> derivative columns d of each pole (D, 2*N_l x 4*N_m). The normal matrix
+    !> sum_t E_t^T E_t - (Q^T E_t)^T (Q^T E_t) (Q an orthonormal basis of B's columns) and the
+    !> gradient -sum_t E_t^T r_t then come from D^T D, Q^T D and D^T R, computed once per
+    !> iteration whatever the number of targets: the cost of an iteration is that of about two
+    !> projections (N_l lines, N_t targets, N_m poles: 2*N_l*(16*N_m^2 + 4*N_m*N_t) products and
+    !> N_t*(2*N_m)^2*(N_b + 4) more), where finite differences took 2*N_m + 1 projections.
     subroutine refine_poles(frequency, g, fit)
         !> Frequency lines [Hz].
         real(dp), intent(in) :: frequency(:)
@@ -348,13 +360,14 @@ contains
         type(shared_fit), intent(inout) :: fit
 
         integer, parameter :: max_iterations = 40, max_attempts = 8
-        real(dp), parameter :: h = 1.0e-7_dp
-        real(dp), allocatable :: targets(:, :), scale(:), p(:), trial(:), r(:), r_trial(:), jacobian(:, :)
-        real(dp), allocatable :: normal(:, :), gradient(:), step(:), lhs(:, :)
+        real(dp), allocatable :: targets(:, :), scale(:), p(:), trial(:), r(:, :), r_trial(:, :)
+        real(dp), allocatable :: normal(:, :), gradient(:), step(:), lhs(:, :), q_basis(:, :), coefficients(:, :)
+        real(dp), allocatable :: derivative(:, :), d_gram(:, :), q_d(:, :), d_r(:, :), e_q(:, :)
+        real(dp), allocatable :: basis_trial(:, :), coefficients_trial(:, :)
         integer, allocatable :: lines(:)
         type(error_type), allocatable :: failed
-        real(dp) :: cost, cost_trial, mu
-        integer :: n_c, n_m, n_t, n_l, i, j, q, l, iteration, attempt
+        real(dp) :: cost, cost_trial, mu, c1, c2, c1b, c2b
+        integer :: n_c, n_m, n_t, n_l, i, j, q, qq, k, kk, l, t, iteration, attempt
         logical :: accepted
 
         n_c = size(g, 1)
@@ -372,8 +385,8 @@ contains
             do i = 1, n_c
                 if (fit%symmetric .and. i < j) cycle
                 q = q + 1
-                associate (t => merge(0.5_dp*(g(i, j, lines) + g(j, i, lines)), g(i, j, lines), fit%symmetric))
-                    targets(:, q) = [real(t, kind=dp), aimag(t)]/max(sum(abs(t)), tiny(1.0_dp))
+                associate (y => merge(0.5_dp*(g(i, j, lines) + g(j, i, lines)), g(i, j, lines), fit%symmetric))
+                    targets(:, q) = [real(y, kind=dp), aimag(y)]/max(sum(abs(y)), tiny(1.0_dp))
                 end associate
             end do
         end do
@@ -381,20 +394,39 @@ contains
         allocate (p(2*n_m))
         p(1:2*n_m:2) = aimag(fit%pole)/scale
         p(2:2*n_m:2) = real(fit%pole, kind=dp)/scale
-        r = projected(p)
+        call project(p, r, q_basis, coefficients)
         cost = sum(r**2)
         cost_trial = cost
         mu = 1.0e-3_dp
-        allocate (jacobian(size(r), 2*n_m), r_trial(size(r)))
-        r_trial(:) = r
+        allocate (normal(2*n_m, 2*n_m), gradient(2*n_m), e_q(size(q_basis, 2), 2*n_m))
         do iteration = 1, max_iterations
-            do q = 1, 2*n_m
-                trial = p
-                trial(q) = trial(q) + h
-                jacobian(:, q) = (projected(trial) - r)/h
+            derivative = pole_derivatives(p)
+            d_gram = matmul(transpose(derivative), derivative)
+            q_d = matmul(transpose(q_basis), derivative)
+            d_r = matmul(transpose(derivative), r)
+            normal(:, :) = 0.0_dp
+            gradient(:) = 0.0_dp
+            do t = 1, n_t
+                ! E_t(:, q) = d(:, 2q-1)*c_k1 + d(:, 2q)*c_k2, k the pole of parameter q
+                do q = 1, 2*n_m
+                    k = (q + 1)/2
+                    c1 = coefficients(2*k - 1, t)
+                    c2 = coefficients(2*k, t)
+                    e_q(:, q) = q_d(:, 2*q - 1)*c1 + q_d(:, 2*q)*c2
+                    gradient(q) = gradient(q) - (d_r(2*q - 1, t)*c1 + d_r(2*q, t)*c2)
+                    do qq = 1, q
+                        kk = (qq + 1)/2
+                        c1b = coefficients(2*kk - 1, t)
+                        c2b = coefficients(2*kk, t)
+                        normal(qq, q) = normal(qq, q) + c1*(d_gram(2*qq - 1, 2*q - 1)*c1b + d_gram(2*qq, 2*q - 1)*c2b) &
+                                        + c2*(d_gram(2*qq - 1, 2*q)*c1b + d_gram(2*qq, 2*q)*c2b)
+                    end do
+                end do
+                normal = normal - upper_gram(e_q)
             end do
-            normal = matmul(transpose(jacobian), jacobian)
-            gradient = matmul(transpose(jacobian), r)
+            do q = 1, 2*n_m
+                normal(q + 1:, q) = normal(q, q + 1:)
+            end do
             accepted = .false.
             do attempt = 1, max_attempts
                 lhs = normal
@@ -407,18 +439,21 @@ contains
                 deallocate (step)
                 if (.not. allocated(failed) .and. all(trial(2:2*n_m:2) < 0.0_dp) &
                     .and. all(trial(1:2*n_m:2) > 0.0_dp)) then
-                    r_trial = projected(trial)
+                    call project(trial, r_trial, basis_trial, coefficients_trial)
                     cost_trial = sum(r_trial**2)
                     if (cost_trial < cost) then
                         accepted = .true.
                         exit
                     end if
                 end if
+                if (allocated(failed)) deallocate (failed)
                 mu = 10.0_dp*mu
             end do
             if (.not. accepted) exit
             p = trial
-            r = r_trial
+            call move_alloc(r_trial, r)
+            call move_alloc(basis_trial, q_basis)
+            call move_alloc(coefficients_trial, coefficients)
             mu = max(mu/3.0_dp, 1.0e-9_dp)
             if (cost - cost_trial < 1.0e-8_dp*cost) then
                 cost = cost_trial
@@ -430,30 +465,95 @@ contains
 
     contains
 
-        !> The part of every target that the model of these (scaled) poles cannot fit, stacked.
-        function projected(parameters) result(residual)
+        !> The poles of (scaled) parameters.
+        pure function poles_of(parameters) result(pole)
             real(dp), intent(in) :: parameters(:)
-            real(dp), allocatable :: residual(:)
+            complex(dp) :: pole(n_m)
 
-            real(dp), allocatable :: basis(:, :), rest(:, :)
-            integer :: k, pass
+            pole = cmplx(parameters(2:2*n_m:2)*scale, parameters(1:2*n_m:2)*scale, kind=dp)
+        end function poles_of
 
-            allocate (basis(2*n_l, 2*n_m + merge(1, 0, fit%pole_fit%has_upper) &
-                                    + merge(1, 0, fit%pole_fit%has_lower)))
-            basis(:, :) = pole_design(frequency(lines), cmplx(parameters(2:2*n_m:2)*scale, &
-                                      parameters(1:2*n_m:2)*scale, kind=dp), fit%pole_fit%has_upper, &
-                                      fit%pole_fit%has_lower)
-            ! orthonormal basis of the columns: Gram-Schmidt, twice for round-off
-            do k = 1, size(basis, 2)
+        !> The part of every target that the model of these (scaled) poles cannot fit, R = P Y
+        !> (2*N_l x N_t); with `basis` and `coefficients` also Q, an orthonormal basis of B's
+        !> columns (Gram-Schmidt, twice for round-off), and C = B^+ Y.
+        subroutine project(parameters, residual, basis, coefficients)
+            real(dp), intent(in) :: parameters(:)
+            real(dp), allocatable, intent(out) :: residual(:, :)
+            real(dp), allocatable, intent(out), optional :: basis(:, :), coefficients(:, :)
+
+            real(dp), allocatable :: design(:, :), ortho(:, :), triangle(:, :), solution(:, :)
+            integer :: col, pass, row
+
+            allocate (design(2*n_l, 2*n_m + merge(1, 0, fit%pole_fit%has_upper) &
+                             + merge(1, 0, fit%pole_fit%has_lower)))
+            design(:, :) = pole_design(frequency(lines), poles_of(parameters), fit%pole_fit%has_upper, &
+                                       fit%pole_fit%has_lower)
+            ortho = design
+            do col = 1, size(ortho, 2)
                 do pass = 1, 2
-                    if (k > 1) basis(:, k) = basis(:, k) - matmul(basis(:, :k - 1), &
-                                                                  matmul(basis(:, k), basis(:, :k - 1)))
-                    if (norm2(basis(:, k)) > 0.0_dp) basis(:, k) = basis(:, k)/norm2(basis(:, k))
+                    if (col > 1) ortho(:, col) = ortho(:, col) - matmul(ortho(:, :col - 1), &
+                                                                        matmul(ortho(:, col), ortho(:, :col - 1)))
+                    if (norm2(ortho(:, col)) > 0.0_dp) ortho(:, col) = ortho(:, col)/norm2(ortho(:, col))
                 end do
             end do
-            rest = targets - matmul(basis, matmul(transpose(basis), targets))
-            residual = reshape(rest, [size(rest)])
-        end function projected
+            solution = matmul(transpose(ortho), targets)
+            residual = targets - matmul(ortho, solution)
+            if (.not. present(basis)) return
+            ! B = Q T with T = Q^T B upper triangular: C = T^-1 Q^T Y by back substitution (a
+            ! column of B that Gram-Schmidt found dependent has a zero pivot and no coefficient)
+            triangle = matmul(transpose(ortho), design)
+            do row = size(triangle, 1), 1, -1
+                if (row < size(triangle, 1)) solution(row, :) = solution(row, :) &
+                    - matmul(triangle(row, row + 1:), solution(row + 1:, :))
+                if (abs(triangle(row, row)) > 0.0_dp) then
+                    solution(row, :) = solution(row, :)/triangle(row, row)
+                else
+                    solution(row, :) = 0.0_dp
+                end if
+            end do
+            call move_alloc(ortho, basis)
+            call move_alloc(solution, coefficients)
+        end subroutine project
+
+        !> The derivatives of each pole's two columns of B in its two parameters, stacked
+        !> [Re; Im] (2*N_l x 4*N_m): for parameter q (Im lambda_k/|lambda_k| when odd, Re when
+        !> even) the columns 2q-1 and 2q are d b_k1/dp_q and d b_k2/dp_q, with
+        !> b_k1 = 1/(s - lambda) + 1/(s - conj(lambda)), b_k2 = i*(1/(s - lambda) - 1/(s - conj(lambda))).
+        function pole_derivatives(parameters) result(d)
+            real(dp), intent(in) :: parameters(:)
+            real(dp), allocatable :: d(:, :)
+
+            complex(dp) :: pole(n_m), direct(n_l), mirror(n_l), column(n_l, 4)
+            integer :: m
+
+            pole = poles_of(parameters)
+            allocate (d(2*n_l, 4*n_m))
+            do m = 1, n_m
+                direct = scale(m)/(i_unit*two_pi*frequency(lines) - pole(m))**2
+                mirror = scale(m)/(i_unit*two_pi*frequency(lines) - conjg(pole(m)))**2
+                ! parameter Im: d lambda = i*scale, d conj(lambda) = -i*scale
+                column(:, 1) = i_unit*(direct - mirror)
+                column(:, 2) = -(direct + mirror)
+                ! parameter Re: d lambda = d conj(lambda) = scale
+                column(:, 3) = direct + mirror
+                column(:, 4) = i_unit*(direct - mirror)
+                d(1:n_l, 4*m - 3:4*m) = real(column, kind=dp)
+                d(n_l + 1:, 4*m - 3:4*m) = aimag(column)
+            end do
+        end function pole_derivatives
+
+        !> The upper triangle of A^T A (the strict lower triangle zero).
+        pure function upper_gram(a) result(product)
+            real(dp), intent(in) :: a(:, :)
+            real(dp) :: product(size(a, 2), size(a, 2))
+
+            integer :: col
+
+            product = 0.0_dp
+            do col = 1, size(a, 2)
+                product(1:col, col) = matmul(a(:, col), a(:, 1:col))
+            end do
+        end function upper_gram
 
     end subroutine refine_poles
 
