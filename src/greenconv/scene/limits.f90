@@ -14,7 +14,7 @@ module greenconv_scene_limits
     !> The cap on a sampled kernel and its estimate live with the builder, which applies them
     !> at every door (C, Fortran, F77); scenes check them when read.
     public :: max_kernel_values
-    public :: work_rate, projected_run
+    public :: work_rate, projected_run, smaller_step
 
     !> Largest number of random modes (&structure n_modes).
     integer, parameter :: max_random_modes = 1000
@@ -108,5 +108,20 @@ contains
             end if
         end select
     end subroutine projected_run
+
+    !> The time step [s] at which a method of order p in dt brings a time-step error
+    !> `step_part` measured at `dt` to half the accuracy asked: dt*(accuracy/(2*step_part))^(1/p).
+    pure real(dp) function smaller_step(dt, step_part, accuracy, order)
+        !> The time step of the run [s].
+        real(dp), intent(in) :: dt
+        !> Its time-step error [-], > 0.
+        real(dp), intent(in) :: step_part
+        !> The accuracy asked [-], > 0.
+        real(dp), intent(in) :: accuracy
+        !> Order of the method in dt (1 or 2).
+        integer, intent(in) :: order
+
+        smaller_step = dt*min(1.0_dp, 0.5_dp*accuracy/max(step_part, tiny(1.0_dp)))**(1.0_dp/order)
+    end function smaller_step
 
 end module greenconv_scene_limits

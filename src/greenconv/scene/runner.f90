@@ -30,9 +30,10 @@ module greenconv_scene_runner
     use greenconv_scene_report, only: write_identification, identification_summary
     use greenconv_scene_output, only: multi_contact_header, check_inputs_kept, totals_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
-    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
+    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
+                                      step_doubling, start_step_doubling, time_step_estimate
     use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_limits, only: work_rate, projected_run
+    use greenconv_scene_limits, only: work_rate, projected_run, smaller_step
     use greenconv_scene_linear_reference, only: write_linear_reference, contact_loss_text
     implicit none
     private
@@ -41,9 +42,9 @@ module greenconv_scene_runner
     public :: auto_history_points, writes_point_histories
 
     !> Layout of the summary line of a method.
-    character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,a)'
+    character(len=*), parameter :: summary_format = '(a,t12,a,t24,i10,t36,f10.4,t48,es10.3,t60,a)'
     !> Column titles of the summary lines.
-    character(len=*), parameter :: summary_titles = '(a,t12,a,t24,a,t36,a,t48,a)'
+    character(len=*), parameter :: summary_titles = '(a,t12,a,t24,a,t36,a,t48,a,t60,a)'
     !> Longest line of `check_cost_lines`.
     integer, parameter :: cost_line_length = 240
     !> Bytes of one value of a text column file (a field of 25 characters).
@@ -283,8 +284,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(stream_sinks) :: sinks
+        type(step_doubling) :: doubling
         character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text
-        real(dp) :: seconds, estimate
+        real(dp) :: seconds, estimate, step_part
         integer :: i, n
         type(structure_kind) :: model
         logical :: reports_loss
@@ -296,7 +298,7 @@ contains
             call spectra_path(scene, '<method>', path)
             write (unit, '(a)') '# '//text//': '//path
         end if
-        write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'accuracy'
+        write (unit, summary_titles) '# method', 'size', 'steps', 'cpu_s', 'estimate', 'accuracy'
         outside = ''
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
@@ -321,7 +323,9 @@ contains
                 prefix = scene%file//': '//method//' ('//trim(scene%contact%scheme)//' step): '
             end if
             sinks%summarise = reports_loss
-            if (.not. allocated(error)) call stream_run(run, scene, method, block, sinks, prefix, seconds, error)
+            if (.not. allocated(error)) call start_step_doubling(doubling, run, scene, structure, method)
+            if (.not. allocated(error)) call stream_run(run, scene, method, block, sinks, prefix, seconds, error, &
+                                                        doubling)
             if (sinks%summarise) then
                 call contact_loss_text(sinks%summary, scene%dt, loss_text)
                 accuracy = accuracy//loss_text
@@ -329,13 +333,16 @@ contains
             call run%conv%model_size(n, label)
             call run%conv%release()
             if (allocated(error)) return
+            call time_step_estimate(doubling, step_part, text)
+            accuracy = budget_text(estimate, step_part, doubling%seconds, accuracy//'; '//text)
+            estimate = estimate + step_part
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (estimate > scene%accuracy) then
-                call outside_line(method, estimate, scene%accuracy, text)
+                call outside_line(method, estimate, scene%accuracy, text, step_part, scene%dt)
                 accuracy = text//'; '//accuracy
                 outside = outside//' '//method
             end if
-            write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, accuracy
+            write (unit, summary_format) method, label//'='//int_text(n), scene%n_steps, seconds, estimate, accuracy
         end do
         if (len(outside) > 0) call fatal_error(error, scene%file//': method(s)'//outside//' ran outside the ' &
                                                //'accuracy asked ('//sci_text(scene%accuracy)//', &convolution ' &
@@ -343,16 +350,37 @@ contains
                                                //'by how much and what to do', stat_accuracy)
     end subroutine run_methods
 
+    !> The budget in words: "budget: model M + time step T (CPU s of the runs at 2*dt and 4*dt);
+    !> <what the model neglects>; <how the time step was estimated>".
+    pure function budget_text(model_part, step_part, seconds, detail) result(text)
+        !> The model's own terms (E, kernel, band) and the time step's [-].
+        real(dp), intent(in) :: model_part, step_part
+        !> CPU seconds of the companions.
+        real(dp), intent(in) :: seconds
+        !> What the model neglects and how the time step was estimated.
+        character(len=*), intent(in) :: detail
+        character(len=:), allocatable :: text
+
+        text = 'budget: model '//sci_text(model_part)//' + time step '//sci_text(step_part)//' (estimated in ' &
+               //sci_text(seconds)//' s); '//detail
+    end function budget_text
+
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
-    subroutine outside_line(method, estimate, accuracy, line)
+    subroutine outside_line(method, estimate, accuracy, line, step_part, dt)
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: estimate, accuracy
         character(len=:), allocatable, intent(out) :: line
+        !> The time-step term of `estimate` [-] and the run's time step [s].
+        real(dp), intent(in) :: step_part, dt
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
-        if (method_needs(method, needs_sampled_g) .and. method_needs(method, needs_modes)) then
+        if (step_part >= 0.5_dp*estimate) then
+            line = line//'the time step dominates: dt = '//sci_text(smaller_step(dt, step_part, accuracy, &
+                                                                                     merge(1, 2, method == 'backward'))) &
+                   //' s or less, or ask a larger accuracy'
+        else if (method_needs(method, needs_sampled_g) .and. method_needs(method, needs_modes)) then
             line = line//'no method auto may choose meets it: a higher max_order, G on a finer grid, or ask a larger ' &
                    //'accuracy'
         else if (method_needs(method, needs_sampled_g)) then

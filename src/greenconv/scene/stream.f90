@@ -24,6 +24,7 @@ module greenconv_scene_stream
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: sci_text, trimmed_real_text
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
@@ -44,6 +45,7 @@ module greenconv_scene_stream
     private
 
     public :: contact_run, stream_sinks, force_summary, stream_run, make_run_convolver, start_run
+    public :: step_doubling, start_step_doubling, time_step_estimate
 
     !> One method's contact run of a scene, single- or multi-point.
     type :: contact_run
@@ -121,13 +123,158 @@ module greenconv_scene_stream
         real(dp), allocatable :: history(:)
     end type stream_sinks
 
+    !> The time-step term of a run's error budget, estimated from the run itself by step
+    !> doubling: the same method on the same scene at 2*dt and 4*dt, stepped alongside the run
+    !> (no file, no spectra), and the displacements compared where the grids meet. With the
+    !> differences d_1 = ||u(dt) - u(2 dt)|| on the 2*dt grid and the ratio
+    !> r = ||u(2 dt) - u(4 dt)||/||u(dt) - u(2 dt)|| on the 4*dt grid, the run's own error is
+    !> about d_1/(r - 1) relative to ||u(dt)|| (Richardson), r held within [1.5, 2^p] for a
+    !> method of order p (1 for `backward`, else 2). It costs 1/2 + 1/4 of the run for a
+    !> modal method, 1/4 + 1/16 for `direct` (half and a quarter of the kernel).
+    type :: step_doubling
+        !> Whether the companions were asked for (a run of at least 8 steps).
+        logical :: active = .false.
+        !> Order of the method in dt.
+        integer :: order = 2
+        !> The scene at 2*dt and 4*dt (their n_steps cover the same time).
+        type(scene_type) :: scenes(2)
+        !> The companion runs.
+        type(contact_run) :: coarse(2)
+        !> Whether each companion is running (false once it failed or could not be built).
+        logical :: running(2) = .false.
+        !> Sums over the 2*dt grid of |u(dt)|^2 and |u(dt) - u(2 dt)|^2 [m^2], and over the
+        !> 4*dt grid of |u(dt) - u(2 dt)|^2 and |u(2 dt) - u(4 dt)|^2 [m^2].
+        real(dp) :: fine = 0.0_dp, fine_2 = 0.0_dp, grid_12 = 0.0_dp, grid_24 = 0.0_dp
+        !> CPU seconds of the companions.
+        real(dp) :: seconds = 0.0_dp
+    end type step_doubling
+
 contains
+
+    !> Build and start the companions of a run (`run` made by `make_run_convolver`, its points
+    !> found) at 2*dt and 4*dt. A companion that cannot be built or started is left out; the
+    !> estimate says so (`time_step_estimate`).
+    subroutine start_step_doubling(doubling, run, scene, structure, method)
+        !> The companions, started.
+        type(step_doubling), intent(out) :: doubling
+        !> The run they accompany.
+        type(contact_run), intent(in) :: run
+        !> The run's scene.
+        type(scene_type), intent(in) :: scene
+        !> The structure of a single-point scene (not used for a multi-point one).
+        type(structure_model), intent(in) :: structure
+        !> The method's name.
+        character(len=*), intent(in) :: method
+
+        type(error_type), allocatable :: error
+        character(len=:), allocatable :: text
+        integer :: f
+
+        doubling%active = scene%n_steps >= 8
+        if (.not. doubling%active) return
+        doubling%order = merge(1, 2, method == 'backward')
+        do f = 1, 2
+            doubling%scenes(f) = scene
+            doubling%scenes(f)%dt = scene%dt*2**f
+            doubling%scenes(f)%n_steps = (scene%n_steps + 2**f - 1)/2**f
+            doubling%scenes(f)%progress = .false.
+            doubling%coarse(f)%points = run%points
+            call make_run_convolver(doubling%coarse(f), doubling%scenes(f), structure, method, text, error)
+            if (.not. allocated(error)) call start_run(doubling%coarse(f), doubling%scenes(f), error)
+            doubling%running(f) = .not. allocated(error)
+            if (allocated(error)) deallocate (error)
+        end do
+    end subroutine start_step_doubling
+
+    !> Step the companions over the time of the run's last block (steps first..first + m - 1)
+    !> and add the block's differences.
+    subroutine advance_step_doubling(doubling, run, first, m)
+        type(step_doubling), intent(inout) :: doubling
+        type(contact_run), intent(in) :: run
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+
+        type(error_type), allocatable :: fault
+        integer(int64) :: start(2), target, j
+        real(dp) :: begin, finish
+        integer :: f
+
+        call cpu_time(begin)
+        do f = 1, 2
+            start(f) = doubling%coarse(f)%step()
+            if (.not. doubling%running(f)) cycle
+            target = min((first + m + 2**f - 1)/2**f, int(doubling%scenes(f)%n_steps, int64))
+            if (target <= start(f)) cycle
+            call doubling%coarse(f)%sample(doubling%scenes(f), start(f), int(target - start(f)))
+            call doubling%coarse(f)%advance(fault)
+            if (allocated(fault)) then
+                doubling%running(f) = .false.
+                call doubling%coarse(f)%conv%release()
+                deallocate (fault)
+            end if
+        end do
+        if (doubling%running(1)) then
+            associate (u => run%response%displacement, u2 => doubling%coarse(1)%response%displacement)
+                do j = start(1), doubling%coarse(1)%step() - 1
+                    doubling%fine = doubling%fine + sum(u(2*j - first, :)**2)
+                    doubling%fine_2 = doubling%fine_2 + sum((u(2*j - first, :) - u2(j - start(1), :))**2)
+                end do
+                if (doubling%running(2)) then
+                    associate (u4 => doubling%coarse(2)%response%displacement)
+                        do j = start(2), doubling%coarse(2)%step() - 1
+                            doubling%grid_12 = doubling%grid_12 + sum((u(4*j - first, :) - u2(2*j - start(1), :))**2)
+                            doubling%grid_24 = doubling%grid_24 + sum((u2(2*j - start(1), :) - u4(j - start(2), :))**2)
+                        end do
+                    end associate
+                end if
+            end associate
+        end if
+        call cpu_time(finish)
+        doubling%seconds = doubling%seconds + (finish - begin)
+    end subroutine advance_step_doubling
+
+    !> The time-step term of the run's relative error (module `step_doubling`), and in words how
+    !> it was found. 0 without companions (a run of fewer than 8 steps); 1 when the run at 2*dt
+    !> could not be made or failed (the time step is then near the method's limit).
+    subroutine time_step_estimate(doubling, estimate, text)
+        !> The companions, the run done.
+        type(step_doubling), intent(inout) :: doubling
+        !> Relative error [-] of u due to the time step.
+        real(dp), intent(out) :: estimate
+        !> How it was found.
+        character(len=:), allocatable, intent(out) :: text
+
+        real(dp) :: ratio
+        integer :: f
+
+        estimate = 0.0_dp
+        text = 'time step not estimated (fewer than 8 steps)'
+        if (.not. doubling%active) return
+        do f = 1, 2
+            if (allocated(doubling%coarse(f)%conv)) call doubling%coarse(f)%conv%release()
+        end do
+        if (.not. doubling%running(1)) then
+            estimate = 1.0_dp
+            text = 'the same run at 2*dt failed: dt is near the limit of the method'
+            return
+        end if
+        if (doubling%fine <= 0.0_dp) then
+            text = 'time step: u = 0 throughout'
+            return
+        end if
+        ratio = 2.0_dp**doubling%order
+        if (doubling%running(2) .and. doubling%grid_12 > 0.0_dp) ratio = sqrt(doubling%grid_24/doubling%grid_12)
+        ratio = min(max(ratio, 1.5_dp), 2.0_dp**doubling%order)
+        estimate = sqrt(doubling%fine_2/doubling%fine)/(ratio - 1.0_dp)
+        text = 'dt from the runs at 2*dt and 4*dt, ratio ' &
+               //trimmed_real_text(ratio, 0.01_dp, 100.0_dp, 2, 2)
+    end subroutine time_step_estimate
 
     !> One method's contact run (`run`, started at step 0), streamed in blocks of `block` steps
     !> into the sinks. `seconds` is the CPU time of the contact loop alone. On return `error`
     !> is a failed write (the column file then gone) or the numerical fault that stopped the
     !> run, its message after `prefix` and naming the column file that keeps the rows before it.
-    subroutine stream_run(run, scene, method, block, sinks, prefix, seconds, error)
+    subroutine stream_run(run, scene, method, block, sinks, prefix, seconds, error, doubling)
         !> The run.
         type(contact_run), intent(inout) :: run
         !> The scene (dt, n_steps, output_every, progress, spectra).
@@ -144,6 +291,8 @@ contains
         real(dp), intent(out) :: seconds
         !> Set for a failed write or a numerical fault.
         type(error_type), allocatable, intent(out) :: error
+        !> Companions at 2*dt and 4*dt (`start_step_doubling`), stepped alongside, when present.
+        type(step_doubling), intent(inout), optional :: doubling
 
         type(column_writer) :: writers(3)
         type(progress_meter) :: meter
@@ -179,6 +328,9 @@ contains
             call run%advance(fault)
             call cpu_time(finish)
             seconds = seconds + (finish - start)
+            if (present(doubling) .and. .not. allocated(fault)) then
+                if (doubling%active) call advance_step_doubling(doubling, run, first, m)
+            end if
             if (((spectra%active .or. area_spectra%active) .and. .not. allocated(fault)) .or. sinks%summarise .or. &
                 allocated(sinks%history)) call run%forces(total, points)
             if (spectra%active .and. .not. allocated(fault)) call add_contact_forces(spectra, total, points)

@@ -19,10 +19,12 @@ module greenconv_scene_sweep_report
     private
 
     public :: summary_row, write_sweep_table, report_check, finish_report, add_method, &
-              failed_outcome, band_text, worse_status
+              failed_outcome, band_text, worse_status, estimate_width
 
     !> Width of a band level's column.
     integer, parameter :: level_width = 11
+    !> Width of an error estimate's column (es10.3e3).
+    integer, parameter :: estimate_width = 10
 
 contains
 
@@ -77,6 +79,9 @@ contains
                 names = names//' '//padded('L'//nominal//'_'//plan%methods(j)%text, level_width)
             end do
         end do
+        do j = 1, size(plan%methods)
+            names = names//' '//padded('estimate_'//plan%methods(j)%text, estimate_width)
+        end do
         table = '# greenconv sweep '//plan%name//' of '//plan%file//': '//int_text(size(outcomes)) &
                 //' variants, rows in variant order'//new_line('a') &
                 //'# per method: max, mean, rms of the total contact force [N], fraction of steps in ' &
@@ -85,6 +90,8 @@ contains
         if (plan%spectra) table = table//new_line('a')//'# then per method and 1/3-octave band L<f_c>_<method>: ' &
             //'level of the total contact force [dB re 1 N] (IEC 61260-1 bands '//real_text(plan%f_low)//' to ' &
             //real_text(plan%f_high)//' Hz; Welch PSD, Hann window, 50 % overlap; nan: the method failed)'
+        table = table//new_line('a')//'# last, per method estimate_<method>: its own estimate of the relative ' &
+                //'error of u (the model''s terms and the time step''s, doc/methods.md; nan: the method failed)'
         table = table//new_line('a')//names
         cpu = '# greenconv sweep '//plan%name//': CPU seconds of the contact loop of each method'//new_line('a') &
               //cpu_names
@@ -253,6 +260,9 @@ contains
         end do
         do j = 1, size(plan%methods)*size(plan%band_centre)
             outcome%result = outcome%result//' '//padded('nan', level_width)
+        end do
+        do j = 1, size(plan%methods)
+            outcome%result = outcome%result//' '//padded('nan', estimate_width)
         end do
     end function failed_outcome
 

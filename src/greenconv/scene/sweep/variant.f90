@@ -18,10 +18,11 @@ module greenconv_scene_sweep_variant
     use greenconv_scene_models, only: structure_kind, find_model
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_output, only: multi_contact_header
-    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run
+    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
+                                      step_doubling, start_step_doubling, time_step_estimate
     use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
     use greenconv_scene_sweep_record, only: variant_outcome, content_key, load_record, record_path
-    use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text
+    use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text, estimate_width
     implicit none
     private
 
@@ -97,8 +98,9 @@ contains
         type(contact_run) :: run
         type(stream_sinks) :: sinks
         type(error_type), allocatable :: failure, error
-        character(len=:), allocatable :: accuracy, levels, method, summary, bands
-        real(dp) :: seconds, estimate
+        character(len=:), allocatable :: accuracy, levels, method, summary, bands, estimates, text
+        type(step_doubling) :: doubling
+        real(dp) :: seconds, estimate, step_part
         integer(int64) :: step
         integer :: i, n_c, block
         logical :: several, whole
@@ -119,6 +121,7 @@ contains
             block = block_rows
         end if
         levels = ''
+        estimates = ''
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
             sinks = variant_sinks(plan, scene, k, method, several, run%points%across)
@@ -131,8 +134,11 @@ contains
                 call make_run_convolver(run, scene, structure, method, accuracy, error, estimate)
                 if (.not. allocated(error)) call start_run(run, scene, error)
                 if (.not. allocated(error)) then
-                    call stream_run(run, scene, method, block, sinks, '', seconds, error)
+                    call start_step_doubling(doubling, run, scene, structure, method)
+                    call stream_run(run, scene, method, block, sinks, '', seconds, error, doubling)
                     step = run%step()
+                    call time_step_estimate(doubling, step_part, text)
+                    estimate = estimate + step_part
                 end if
                 if (allocated(run%conv)) then
                     call run%conv%release()
@@ -140,6 +146,7 @@ contains
                 end if
             end if
             whole = .not. allocated(error)
+            estimates = estimates//' '//estimate_column(estimate, whole)
             if (whole .and. estimate > scene%accuracy) call fatal_error(error, 'ran outside the accuracy asked: its ' &
                 //'own error estimate '//sci_text(estimate)//' > accuracy '//sci_text(scene%accuracy) &
                 //' (&convolution accuracy); its row is whole', stat_accuracy)
@@ -148,8 +155,19 @@ contains
             levels = levels//bands
             if (allocated(error)) deallocate (error)
         end do
-        outcome%result = outcome%result//levels
+        outcome%result = outcome%result//levels//estimates
     end subroutine run_variant
+
+    !> A method's error estimate as a sweep table column (greenconv_scene_sweep_report's
+    !> `estimate_width` characters): 'nan' when it did not run whole.
+    function estimate_column(estimate, whole) result(text)
+        real(dp), intent(in) :: estimate
+        logical, intent(in) :: whole
+        character(len=estimate_width) :: text
+
+        text = 'nan'
+        if (whole) write (text, '(es10.3e3)') estimate
+    end function estimate_column
 
     !> The sinks of a variant's method: its force summary, its total-force history with
     !> `spectra`, its column file with `histories` (the header of a contact scene's file, the

@@ -1,0 +1,200 @@
+!> The error budget of every method (doc/methods.md, "The error budget") against its true error:
+!> each case is a shipped scene changed as a user would change it, run by the driver's runner;
+!> each method's estimate (the summary line's `estimate` column: the model's terms plus the
+!> time step's, from the runs at 2*dt and 4*dt) is compared with the relative L2 error of its u
+!> against the independent modal ODE (greenconv_verify_contact, Dormand-Prince at rtol 1e-11,
+!> the structure's own modes). The factor estimate/true is printed for each case.
+!>
+!> Tolerances: the estimate within a factor 3 of the true error, both ways; a run ends with
+!> status 4 exactly when an estimate exceeds `accuracy`.
+module test_errorbudget_mod
+    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
+    use greenconv_core_error, only: error_type, stat_accuracy
+    use greenconv_io_files, only: make_directory
+    use greenconv_model_modal_set, only: modal_set
+    use greenconv_ident_structure, only: structure_model
+    use greenconv_scene_input, only: scene_type, read_scene
+    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_runner, only: run_scene
+    use greenconv_verify_contact, only: contact_reference
+    use scene_text_mod, only: message_of
+    implicit none
+    private
+
+    public :: collect_errorbudget
+
+    !> Scratch directory for the files the tests write.
+    character(len=*), parameter :: scratch = 'build/test_scratch/errorbudget'
+    !> Largest ratio of estimate to true error, either way.
+    real(dp), parameter :: factor = 3.0_dp
+
+contains
+
+    !> Tests of the error budget against the ODE.
+    subroutine collect_errorbudget(testsuite)
+        type(unittest_type), allocatable, intent(out) :: testsuite(:)
+
+        testsuite = [new_unittest('sdof_sine at dt = 1 ms (contact loss): every method within 3x, status 4', &
+                                  test_sdof_coarse), &
+                     new_unittest('sdof_sine at dt = 0.1 ms: every method within 3x', test_sdof_fine), &
+                     new_unittest('mdof_random, 10 modes, 0.2 and 0.05 ms: within 3x, status 4 iff above', &
+                                  test_mdof)]
+    end subroutine collect_errorbudget
+
+    subroutine test_sdof_coarse(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call budget_case('data/sdof_sine.nml', 'sdof_1ms', 1.0e-3_dp, 2000, &
+                         ['direct  ', 'modal   ', 'exact   ', 'backward', 'fft     '], 1.0e-3_dp, error)
+    end subroutine test_sdof_coarse
+
+    subroutine test_sdof_fine(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call budget_case('data/sdof_sine.nml', 'sdof_01ms', 1.0e-4_dp, 2000, &
+                         ['direct  ', 'modal   ', 'exact   ', 'backward', 'paper   '], 1.0e-3_dp, error)
+    end subroutine test_sdof_fine
+
+    subroutine test_mdof(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        call budget_case('data/mdof_random.nml', 'mdof_02ms', 2.0e-4_dp, 2500, &
+                         ['direct  ', 'modal   ', 'exact   ', 'backward'], 1.0e-3_dp, error)
+        if (allocated(error)) return
+        call budget_case('data/mdof_random.nml', 'mdof_005ms', 5.0e-5_dp, 6000, &
+                         ['modal   ', 'exact   '], 1.0e-3_dp, error)
+    end subroutine test_mdof
+
+    !> Run `file` at dt for n_steps with `methods` and `accuracy`; each method's estimate within
+    !> `factor` of its true error, and status 4 exactly when one exceeds the accuracy.
+    subroutine budget_case(file, label, dt, n_steps, methods, accuracy, error)
+        character(len=*), intent(in) :: file, label
+        real(dp), intent(in) :: dt
+        integer, intent(in) :: n_steps
+        character(len=*), intent(in) :: methods(:)
+        real(dp), intent(in) :: accuracy
+        type(test_error), allocatable, intent(out) :: error
+
+        type(scene_type) :: scene
+        type(structure_model) :: structure
+        type(modal_set) :: modes
+        type(error_type), allocatable :: fail
+        character(len=:), allocatable :: lines(:)
+        real(dp), allocatable :: u_ref(:), f_ref(:), u(:)
+        real(dp) :: estimate(size(methods)), truth(size(methods))
+        integer :: m
+
+        call read_scene(file, scene, fail)
+        if (.not. allocated(fail)) then
+            scene%output_dir = scratch//'/'//label
+            scene%name = label
+            scene%dt = dt
+            scene%n_steps = n_steps
+            scene%output_every = 1
+            scene%spectra = .false.
+            scene%progress = .false.
+            scene%accuracy = accuracy
+            scene%methods = [character(len=len(scene%methods)) :: methods]
+            call make_directory(scene%output_dir, fail)
+        end if
+        if (.not. allocated(fail)) call build_structure(scene, structure, fail)
+        call check(error, .not. allocated(fail), label//': '//message_of(fail))
+        if (allocated(error)) return
+        modes = structure%model
+        if (structure%has_exact) modes = structure%exact
+        call contact_reference(modes, scene%law, scene%road, scene%preload, dt, n_steps, u_ref, f_ref, rtol=1.0e-11_dp)
+        call run_to_lines(scene, lines, fail)
+        do m = 1, size(methods)
+            call estimate_of(lines, trim(methods(m)), estimate(m))
+            call read_u(scene%output_dir//'/'//label//'_'//trim(methods(m))//'.dat', n_steps, u)
+            truth(m) = norm2(u - u_ref)/norm2(u_ref)
+            print '(4x,a12,1x,a9,a,es10.3,a,es10.3,a,f6.2)', label, trim(methods(m)), ' estimate ', estimate(m), &
+                ' true ', truth(m), ' factor ', estimate(m)/truth(m)
+            call note(label//' '//trim(methods(m))//' factor', estimate(m)/truth(m))
+        end do
+        if (any(estimate > accuracy)) then
+            call check(error, allocated(fail), label//': an estimate exceeds the accuracy, and the run ended with 0')
+            if (allocated(error)) return
+            call check(error, fail%stat == stat_accuracy, label//': expected status 4, found '//message_of(fail))
+        else
+            call check(error, .not. allocated(fail), label//': every estimate within the accuracy, yet '//message_of(fail))
+        end if
+        if (allocated(error)) return
+        do m = 1, size(methods)
+            call check(error, estimate(m) <= factor*truth(m) .and. truth(m) <= factor*estimate(m), &
+                       label//' '//trim(methods(m))//': the estimate is more than 3x off the true error')
+            if (allocated(error)) return
+        end do
+    end subroutine budget_case
+
+    !> The `estimate` column of the summary line of `method`.
+    subroutine estimate_of(lines, method, estimate)
+        character(len=*), intent(in) :: lines(:), method
+        real(dp), intent(out) :: estimate
+
+        integer :: i, stat
+
+        estimate = -1.0_dp
+        do i = 1, size(lines)
+            if (index(lines(i), method//' ') /= 1) cycle
+            read (lines(i)(48:57), *, iostat=stat) estimate
+            if (stat /= 0) estimate = -1.0_dp
+            return
+        end do
+    end subroutine estimate_of
+
+    !> Column 3 (u) of a single-point run's column file, n rows.
+    subroutine read_u(path, n, u)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: n
+        real(dp), allocatable, intent(out) :: u(:)
+
+        character(len=400) :: line
+        real(dp) :: row(5)
+        integer :: unit, stat, k
+
+        allocate (u(n))
+        u(:) = huge(1.0_dp)
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        k = 0
+        do while (k < n)
+            read (unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (line(1:1) == '#') cycle
+            read (line, *, iostat=stat) row
+            if (stat /= 0) exit
+            k = k + 1
+            u(k) = row(3)
+        end do
+        close (unit)
+    end subroutine read_u
+
+    !> Run a scene with its summary on a scratch unit; the summary's lines and the run's status.
+    subroutine run_to_lines(scene, lines, fail)
+        type(scene_type), intent(in) :: scene
+        character(len=:), allocatable, intent(out) :: lines(:)
+        type(error_type), allocatable, intent(out) :: fail
+
+        character(len=2000) :: line
+        integer :: unit, status, n
+
+        open (newunit=unit, status='scratch', action='readwrite')
+        call run_scene(scene, unit, fail)
+        rewind (unit)
+        n = 0
+        do
+            read (unit, '(a)', iostat=status) line
+            if (status /= 0) exit
+            n = n + 1
+        end do
+        allocate (character(len=2000) :: lines(n))
+        rewind (unit)
+        do n = 1, size(lines)
+            read (unit, '(a)') lines(n)
+        end do
+        close (unit)
+    end subroutine run_to_lines
+
+end module test_errorbudget_mod
