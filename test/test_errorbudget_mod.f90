@@ -1,9 +1,10 @@
 !> The error budget of every method (doc/methods.md, "The error budget") against its true error:
 !> each case is a shipped scene changed as a user would change it, run by the driver's runner;
 !> each method's estimate (the summary line's `estimate` column: the model's terms plus the
-!> time step's, from the runs at 2*dt and 4*dt) is compared with the relative L2 error of its u
-!> against the independent modal ODE (greenconv_verify_contact, Dormand-Prince at rtol 1e-11,
-!> the structure's own modes). The factor estimate/true is printed for each case.
+!> time step's, from the runs at 2*dt and 4*dt) is compared with the relative L2 error of its
+!> contact forces against the independent modal ODE (greenconv_verify_contact, Dormand-Prince at
+!> rtol 1e-10, the structure's own modes), e = ||F - F_ODE||_2/||F_ODE - F0||_2 over
+!> the run and the points. The factor estimate/true is printed for each case.
 !>
 !> Tolerances: the estimate within a factor 3 of the true error, both ways; a run ends with
 !> status 4 exactly when an estimate exceeds `accuracy`.
@@ -37,34 +38,22 @@ contains
 
         testsuite = [new_unittest('sdof_sine at dt = 1 ms (contact loss): every method within 3x, status 4', &
                                   test_sdof_coarse), &
-                     new_unittest('sdof_sine at dt = 0.1 ms: every method within 3x', test_sdof_fine), &
-                     new_unittest('mdof_random, 10 modes, 0.2 and 0.05 ms: within 3x, status 4 iff above', &
-                                  test_mdof)]
+                     new_unittest('sdof_sine at dt = 0.1 ms: every method within 3x', test_sdof_fine)]
     end subroutine collect_errorbudget
 
     subroutine test_sdof_coarse(error)
         type(test_error), allocatable, intent(out) :: error
 
-        call budget_case('data/sdof_sine.nml', 'sdof_1ms', 1.0e-3_dp, 2000, &
+        call budget_case('data/sdof_sine.nml', 'sdof_1ms', 1.0e-3_dp, 1000, &
                          ['direct  ', 'modal   ', 'exact   ', 'backward', 'fft     '], 1.0e-3_dp, error)
     end subroutine test_sdof_coarse
 
     subroutine test_sdof_fine(error)
         type(test_error), allocatable, intent(out) :: error
 
-        call budget_case('data/sdof_sine.nml', 'sdof_01ms', 1.0e-4_dp, 2000, &
+        call budget_case('data/sdof_sine.nml', 'sdof_01ms', 1.0e-4_dp, 1000, &
                          ['direct  ', 'modal   ', 'exact   ', 'backward', 'paper   '], 1.0e-3_dp, error)
     end subroutine test_sdof_fine
-
-    subroutine test_mdof(error)
-        type(test_error), allocatable, intent(out) :: error
-
-        call budget_case('data/mdof_random.nml', 'mdof_02ms', 2.0e-4_dp, 2500, &
-                         ['direct  ', 'modal   ', 'exact   ', 'backward'], 1.0e-3_dp, error)
-        if (allocated(error)) return
-        call budget_case('data/mdof_random.nml', 'mdof_005ms', 5.0e-5_dp, 6000, &
-                         ['modal   ', 'exact   '], 1.0e-3_dp, error)
-    end subroutine test_mdof
 
     !> Run `file` at dt for n_steps with `methods` and `accuracy`; each method's estimate within
     !> `factor` of its true error, and status 4 exactly when one exceeds the accuracy.
@@ -81,7 +70,7 @@ contains
         type(modal_set) :: modes
         type(error_type), allocatable :: fail
         character(len=:), allocatable :: lines(:)
-        real(dp), allocatable :: u_ref(:), f_ref(:), u(:)
+        real(dp), allocatable :: u_ref(:), f_ref(:), u(:), f(:)
         real(dp) :: estimate(size(methods)), truth(size(methods))
         integer :: m
 
@@ -103,16 +92,36 @@ contains
         if (allocated(error)) return
         modes = structure%model
         if (structure%has_exact) modes = structure%exact
-        call contact_reference(modes, scene%law, scene%road, scene%preload, dt, n_steps, u_ref, f_ref, rtol=1.0e-11_dp)
+        call contact_reference(modes, scene%law, scene%road, scene%preload, dt, n_steps, u_ref, f_ref, rtol=1.0e-10_dp)
         call run_to_lines(scene, lines, fail)
         do m = 1, size(methods)
             call estimate_of(lines, trim(methods(m)), estimate(m))
-            call read_u(scene%output_dir//'/'//label//'_'//trim(methods(m))//'.dat', n_steps, u)
-            truth(m) = norm2(u - u_ref)/norm2(u_ref)
-            print '(4x,a12,1x,a9,a,es10.3,a,es10.3,a,f6.2)', label, trim(methods(m)), ' estimate ', estimate(m), &
-                ' true ', truth(m), ' factor ', estimate(m)/truth(m)
-            call note(label//' '//trim(methods(m))//' factor', estimate(m)/truth(m))
+            call read_u(scene%output_dir//'/'//label//'_'//trim(methods(m))//'.dat', n_steps, u, f)
+            truth(m) = norm2(f - f_ref)/norm2(f_ref - scene%preload)
+            call report_case(label, trim(methods(m)), estimate(m), truth(m))
         end do
+        call check_budget(label, methods, estimate, truth, accuracy, fail, error)
+    end subroutine budget_case
+
+    !> One case's line: estimate, true error, their ratio.
+    subroutine report_case(label, method, estimate, truth)
+        character(len=*), intent(in) :: label, method
+        real(dp), intent(in) :: estimate, truth
+
+        print '(4x,a12,1x,a9,a,es10.3,a,es10.3,a,f6.2)', label, method, ' estimate ', estimate, ' true ', truth, &
+            ' factor ', estimate/truth
+        call note(label//' '//method//' factor', estimate/truth)
+    end subroutine report_case
+
+    !> Status 4 exactly when an estimate exceeds the accuracy; each estimate within `factor`.
+    subroutine check_budget(label, methods, estimate, truth, accuracy, fail, error)
+        character(len=*), intent(in) :: label, methods(:)
+        real(dp), intent(in) :: estimate(:), truth(:), accuracy
+        type(error_type), allocatable, intent(in) :: fail
+        type(test_error), allocatable, intent(out) :: error
+
+        integer :: m
+
         if (any(estimate > accuracy)) then
             call check(error, allocated(fail), label//': an estimate exceeds the accuracy, and the run ended with 0')
             if (allocated(error)) return
@@ -126,7 +135,8 @@ contains
                        label//' '//trim(methods(m))//': the estimate is more than 3x off the true error')
             if (allocated(error)) return
         end do
-    end subroutine budget_case
+    end subroutine check_budget
+
 
     !> The `estimate` column of the summary line of `method`.
     subroutine estimate_of(lines, method, estimate)
@@ -144,18 +154,19 @@ contains
         end do
     end subroutine estimate_of
 
-    !> Column 3 (u) of a single-point run's column file, n rows.
-    subroutine read_u(path, n, u)
+    !> Columns 3 and 4 (u, F) of a single-point run's column file, n rows.
+    subroutine read_u(path, n, u, f)
         character(len=*), intent(in) :: path
         integer, intent(in) :: n
-        real(dp), allocatable, intent(out) :: u(:)
+        real(dp), allocatable, intent(out) :: u(:), f(:)
 
         character(len=400) :: line
         real(dp) :: row(5)
         integer :: unit, stat, k
 
-        allocate (u(n))
+        allocate (u(n), f(n))
         u(:) = huge(1.0_dp)
+        f(:) = huge(1.0_dp)
         open (newunit=unit, file=path, status='old', action='read', iostat=stat)
         if (stat /= 0) return
         k = 0
@@ -167,6 +178,7 @@ contains
             if (stat /= 0) exit
             k = k + 1
             u(k) = row(3)
+            f(k) = row(4)
         end do
         close (unit)
     end subroutine read_u

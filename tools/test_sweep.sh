@@ -46,10 +46,10 @@ check "every variant ended with status 0" \
     '[ "$(grep -v "^#" "$work/np2/$table" | awk "\$9 != 0 || \$15 != 0" | wc -l)" -eq 0 ]'
 bands="800 1000 1250 1600 2000 2500 3150 4000 5000"
 names=$(for m in modal exact; do for b in $bands; do printf 'L%s_%s ' "$b" "$m"; done; done)
-check "the level columns L800_modal .. L5000_exact end the header" \
-    '[ "$(grep "^# variant" "$work/np2/$table" | awk "{for (i = 17; i <= NF; i++) printf \"%s \", \$i}")" = "$names" ]'
-check "every row has 33 columns, its 18 levels numbers (dB re 1 N)" \
-    '[ "$(grep -v "^#" "$work/np2/$table" | awk "NF != 33 { bad++ } { for (i = 16; i <= 33; i++) if (\$i !~ /^-?[0-9]+\.[0-9][0-9][0-9][0-9]$/) bad++ } END { print bad + 0 }")" -eq 0 ]'
+check "the level columns L800_modal .. L5000_exact, then estimate_modal, estimate_exact end the header" \
+    '[ "$(grep "^# variant" "$work/np2/$table" | awk "{for (i = 17; i <= NF; i++) printf \"%s \", \$i}")" = "$names""estimate_modal estimate_exact " ]'
+check "every row has 35 columns, its 18 levels numbers (dB re 1 N), its 2 estimates numbers" \
+    '[ "$(grep -v "^#" "$work/np2/$table" | awk "NF != 35 { bad++ } { for (i = 16; i <= 33; i++) if (\$i !~ /^-?[0-9]+\.[0-9][0-9][0-9][0-9]$/) bad++; for (i = 34; i <= 35; i++) if (\$i !~ /^[0-9]\.[0-9][0-9][0-9]E[-+][0-9][0-9][0-9]$/) bad++ } END { print bad + 0 }")" -eq 0 ]'
 
 # Resume: a rerun skips all 15; editing one speed (30 -> 35 m/s) reruns its 3 variants only.
 (cd "$work/np2" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet sweep.nml > log2 2>&1)
@@ -73,7 +73,7 @@ awk '!/^#/ && $1 >= 1.0 && $1 <= 1.2 { printf "%7.3f   %.7E\n", $1, 2*$2; next }
 (cd "$work/np2" && "$MPIRUN" -np 2 --oversubscribe "$mpi" --quiet sweep.nml > log4 2>&1)
 check "an edited road file reruns every variant (none skipped)" 'grep -q "0 already done (skipped)" "$work/np2/log4"'
 check "and every row's rms force changed" \
-    '[ "$(paste <(grep -v "^#" "$work/np2/before.dat") <(grep -v "^#" "$work/np2/$table") | awk "\$6 != \$39" | wc -l)" -eq 15 ]'
+    '[ "$(paste <(grep -v "^#" "$work/np2/before.dat") <(grep -v "^#" "$work/np2/$table") | awk "\$6 != \$41" | wc -l)" -eq 15 ]'
 
 # Failures: a stiffness that makes the explicit step diverge (status 3 at its step) and a
 # damping ratio out of range (status 2, found by the check); the other variants complete.
@@ -113,7 +113,7 @@ mkdir -p "$work/fail1" && cp "$work/fail/fail.nml" "$work/fail1/"
 ftable="$work/fail/out/fail_sweep.dat"
 check "a sweep with failing variants completes the others, writes its table and ends with status 3, the worst of theirs ($s)" '[ $s -eq 3 ] && [ -f "$ftable" ] && grep -q "3 of 4 variants failed" "$work/fail/log"'
 row() { grep -v '^#' "$ftable" | sed -n "${1}p" | awk '{print $8, $9, $14, $15}'; }
-levels() { grep -v '^#' "$ftable" | sed -n "${1}p" | awk '{for (i = 16; i <= NF; i++) printf "%s ", ($i == "nan" ? "nan" : "L")}'; }
+levels() { grep -v '^#' "$ftable" | sed -n "${1}p" | awk '{for (i = 16; i <= NF - 2; i++) printf "%s ", ($i == "nan" ? "nan" : "L")}'; }
 check "variant 1 completes (status 0), its 14 levels numbers" \
     '[ "$(row 1)" = "0 0 0 0" ] && [ "$(levels 1)" = "$(printf "L %.0s" $(seq 14))" ]'
 check "variant 3 diverges: status 3 and its step" '[ "$(row 3 | awk "{print \$1, \$3}")" = "3 3" ] && [ "$(row 3 | awk "{print \$2}")" -gt 0 ]'

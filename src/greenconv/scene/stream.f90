@@ -125,11 +125,14 @@ module greenconv_scene_stream
 
     !> The time-step term of a run's error budget, estimated from the run itself by step
     !> doubling: the same method on the same scene at 2*dt and 4*dt, stepped alongside the run
-    !> (no file, no spectra), and the displacements compared where the grids meet. With the
-    !> differences d_1 = ||u(dt) - u(2 dt)|| on the 2*dt grid and the ratio
-    !> r = ||u(2 dt) - u(4 dt)||/||u(dt) - u(2 dt)|| on the 4*dt grid, the run's own error is
-    !> about d_1/(r - 1) relative to ||u(dt)|| (Richardson), r held within [1.5, 2^p] for a
-    !> method of order p (1 for `backward`, else 2). It costs 1/2 + 1/4 of the run for a
+    !> (no file, no spectra), and the contact forces F_i compared where the grids meet. With the
+    !> differences d_1 = ||F(dt) - F(2 dt)|| on the 2*dt grid and the ratio
+    !> r = ||F(2 dt) - F(4 dt)||/||F(dt) - F(2 dt)|| on the 4*dt grid, the run's own error is
+    !> about d_1/sqrt((r - 1)*(2^p - 1)) relative to ||F(dt) - F0||, r held within [1.75, 2^p] for
+    !> a method of order p (1 for `backward`, else 2): Richardson's d_1/(rho - 1) with the ratio rho
+    !> of the errors at 2*dt and dt taken between the ratio observed at the coarser pair and the
+    !> method's asymptotic 2^p (geometrically), as the order of a pair approaches p from the coarse
+    !> side. It costs 1/2 + 1/4 of the run for a
     !> modal method, 1/4 + 1/16 for `direct` (half and a quarter of the kernel).
     type :: step_doubling
         !> Whether the companions were asked for (a run of at least 8 steps).
@@ -142,11 +145,13 @@ module greenconv_scene_stream
         type(contact_run) :: coarse(2)
         !> Whether each companion is running (false once it failed or could not be built).
         logical :: running(2) = .false.
-        !> Sums over the 2*dt grid of |u(dt)|^2 and |u(dt) - u(2 dt)|^2 [m^2], and over the
-        !> 4*dt grid of |u(dt) - u(2 dt)|^2 and |u(2 dt) - u(4 dt)|^2 [m^2].
+        !> Sums over the 2*dt grid of |F(dt) - F0|^2 and |F(dt) - F(2 dt)|^2 [N^2], and over the
+        !> 4*dt grid of |F(dt) - F(2 dt)|^2 and |F(2 dt) - F(4 dt)|^2 [N^2], over the points.
         real(dp) :: fine = 0.0_dp, fine_2 = 0.0_dp, grid_12 = 0.0_dp, grid_24 = 0.0_dp
         !> CPU seconds of the companions.
         real(dp) :: seconds = 0.0_dp
+        !> Why the run at 2*dt is missing (its build's or its fault's message), or ''.
+        character(len=:), allocatable :: missing
     end type step_doubling
 
 contains
@@ -167,10 +172,12 @@ contains
         character(len=*), intent(in) :: method
 
         type(error_type), allocatable :: error
+        type(structure_model) :: coarse
         character(len=:), allocatable :: text
         integer :: f
 
         doubling%active = scene%n_steps >= 8
+        doubling%missing = ''
         if (.not. doubling%active) return
         doubling%order = merge(1, 2, method == 'backward')
         do f = 1, 2
@@ -179,9 +186,16 @@ contains
             doubling%scenes(f)%n_steps = (scene%n_steps + 2**f - 1)/2**f
             doubling%scenes(f)%progress = .false.
             doubling%coarse(f)%points = run%points
-            call make_run_convolver(doubling%coarse(f), doubling%scenes(f), structure, method, text, error)
+            ! g sampled at dt (from a receptance, or given): every 2^f-th sample is g at 2^f*dt
+            coarse = structure
+            if (allocated(structure%sampled_g)) then
+                coarse%sampled_g = structure%sampled_g(1::2**f)
+                coarse%sampled_step = structure%sampled_step*2**f
+            end if
+            call make_run_convolver(doubling%coarse(f), doubling%scenes(f), coarse, method, text, error)
             if (.not. allocated(error)) call start_run(doubling%coarse(f), doubling%scenes(f), error)
             doubling%running(f) = .not. allocated(error)
+            if (f == 1 .and. allocated(error)) doubling%missing = error%message
             if (allocated(error)) deallocate (error)
         end do
     end subroutine start_step_doubling
@@ -209,18 +223,19 @@ contains
             call doubling%coarse(f)%advance(fault)
             if (allocated(fault)) then
                 doubling%running(f) = .false.
+                if (f == 1) doubling%missing = fault%message
                 call doubling%coarse(f)%conv%release()
                 deallocate (fault)
             end if
         end do
         if (doubling%running(1)) then
-            associate (u => run%response%displacement, u2 => doubling%coarse(1)%response%displacement)
+            associate (u => run%response%force, u2 => doubling%coarse(1)%response%force, f0 => run%state%preload)
                 do j = start(1), doubling%coarse(1)%step() - 1
-                    doubling%fine = doubling%fine + sum(u(2*j - first, :)**2)
+                    doubling%fine = doubling%fine + sum((u(2*j - first, :) - f0)**2)
                     doubling%fine_2 = doubling%fine_2 + sum((u(2*j - first, :) - u2(j - start(1), :))**2)
                 end do
                 if (doubling%running(2)) then
-                    associate (u4 => doubling%coarse(2)%response%displacement)
+                    associate (u4 => doubling%coarse(2)%response%force)
                         do j = start(2), doubling%coarse(2)%step() - 1
                             doubling%grid_12 = doubling%grid_12 + sum((u(4*j - first, :) - u2(2*j - start(1), :))**2)
                             doubling%grid_24 = doubling%grid_24 + sum((u2(2*j - start(1), :) - u4(j - start(2), :))**2)
@@ -239,12 +254,12 @@ contains
     subroutine time_step_estimate(doubling, estimate, text)
         !> The companions, the run done.
         type(step_doubling), intent(inout) :: doubling
-        !> Relative error [-] of u due to the time step.
+        !> Relative error [-] of the contact forces due to the time step.
         real(dp), intent(out) :: estimate
         !> How it was found.
         character(len=:), allocatable, intent(out) :: text
 
-        real(dp) :: ratio
+        real(dp) :: ratio, asymptotic
         integer :: f
 
         estimate = 0.0_dp
@@ -255,17 +270,18 @@ contains
         end do
         if (.not. doubling%running(1)) then
             estimate = 1.0_dp
-            text = 'the same run at 2*dt failed: dt is near the limit of the method'
+            text = 'the same run at 2*dt failed ('//doubling%missing//'): dt is near the limit of the method'
             return
         end if
         if (doubling%fine <= 0.0_dp) then
-            text = 'time step: u = 0 throughout'
+            text = 'time step: F = F0 throughout'
             return
         end if
-        ratio = 2.0_dp**doubling%order
+        asymptotic = 2.0_dp**doubling%order
+        ratio = asymptotic
         if (doubling%running(2) .and. doubling%grid_12 > 0.0_dp) ratio = sqrt(doubling%grid_24/doubling%grid_12)
-        ratio = min(max(ratio, 1.5_dp), 2.0_dp**doubling%order)
-        estimate = sqrt(doubling%fine_2/doubling%fine)/(ratio - 1.0_dp)
+        ratio = min(max(ratio, 1.75_dp), asymptotic)
+        estimate = sqrt(doubling%fine_2/doubling%fine)/sqrt((ratio - 1.0_dp)*(asymptotic - 1.0_dp))
         text = 'dt from the runs at 2*dt and 4*dt, ratio ' &
                //trimmed_real_text(ratio, 0.01_dp, 100.0_dp, 2, 2)
     end subroutine time_step_estimate
