@@ -334,7 +334,7 @@ contains
             call run%conv%release()
             if (allocated(error)) return
             call time_step_estimate(doubling, step_part, text)
-            accuracy = budget_text(estimate, step_part, doubling%seconds, accuracy//'; '//text)
+            call budget_text(estimate, step_part, doubling%seconds, accuracy//'; '//text, accuracy)
             estimate = estimate + step_part
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (estimate > scene%accuracy) then
@@ -352,18 +352,19 @@ contains
 
     !> The budget in words: "budget: model M + time step T (CPU s of the runs at 2*dt and 4*dt);
     !> <what the model neglects>; <how the time step was estimated>".
-    pure function budget_text(model_part, step_part, seconds, detail) result(text)
+    pure subroutine budget_text(model_part, step_part, seconds, detail, text)
         !> The model's own terms (E, kernel, band) and the time step's [-].
         real(dp), intent(in) :: model_part, step_part
         !> CPU seconds of the companions.
         real(dp), intent(in) :: seconds
         !> What the model neglects and how the time step was estimated.
         character(len=*), intent(in) :: detail
-        character(len=:), allocatable :: text
+        !> The budget in words (a subroutine: a deferred-length function result is static storage).
+        character(len=:), allocatable, intent(out) :: text
 
         text = 'budget: model '//sci_text(model_part)//' + time step '//sci_text(step_part)//' (estimated in ' &
                //sci_text(seconds)//' s); '//detail
-    end function budget_text
+    end subroutine budget_text
 
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
