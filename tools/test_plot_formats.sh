@@ -44,8 +44,11 @@ for format in text binary; do
     mkdir -p "$dir"
     scene data/sdof_sine.nml "$dir" "$format" >"$dir/sdof_sine.nml"
     scene data/sdof_sine.nml "$dir" "$format" -e "s|name = 'sdof_sine'|name = 'mdof_random'|" >"$dir/mdof_random.nml"
+    # direct's kernel cut at 0.2 of max|g| for speed: the accuracy asked follows (the files, not
+    # the accuracy, are under test here)
     scene data/tyre_road.nml "$dir" "$format" -e 's|n_steps = 6000|n_steps = 3000|' \
-        -e "s|^([[:space:]]*methods = .*)$|\1\n    truncation_tol = 0.2|" >"$dir/tyre_road.nml"
+        -e "s|^([[:space:]]*methods = .*)$|\1\n    truncation_tol = 0.2|" \
+        -e 's|accuracy = 1.0e-2 .*$|accuracy = 0.5|' >"$dir/tyre_road.nml"
     scene data/wheel_rail.nml "$dir" "$format" -e 's|n_steps = 50000|n_steps = 32000|' \
         -e "s|methods = 'fft', 'direct'|methods = 'fft'|" >"$dir/wheel_rail.nml"
     scene data/wheel_rail_rough.nml "$dir" "$format" -e 's|n_steps = 50000|n_steps = 32000|' >"$dir/wheel_rail_rough.nml"
