@@ -136,6 +136,8 @@ static void compare_with_scene(const char *name, const char *method, double f_ba
  * `scene`, run by gc_run_scene), then the door against it for "exact" and "modal". */
 static void run_scene_and_door(const char *scene, const char *name, double f_band)
 {
+    /* The scene asks 1e-2: the door against the scene is under test here, and at 80 us the modal
+     * step's own estimate of its time-step error is 1.4e-3 with every mode, above the default. */
     char msg[1024], what[256];
     FILE *file = fopen(scene, "w");
     if (file == NULL) {
@@ -146,7 +148,7 @@ static void run_scene_and_door(const char *scene, const char *name, double f_ban
                   "&structure model = 'modes_file', modes_file = '%s', damping_ratio = %g, f_modes = %g /\n"
                   "&road profile = 'file', road_file = 'build/ctest_modes_file/wave.dat', x_start = 0.3, speed = 5.0 /\n"
                   "&contact stiffness = %g, exponent = %g, preload = %g /\n"
-                  "&convolution methods = 'exact', 'modal' /\n",
+                  "&convolution methods = 'exact', 'modal', accuracy = 1.0e-2 /\n",
             name, NT, modes_path, xi, f_band, k_contact, exponent, total_preload);
     fclose(file);
     fflush(stdout);
