@@ -279,10 +279,12 @@ contains
     end subroutine test_linear_limit
 
     !> A wheel_rail scene: dt, n_steps, the &structure values after the model ('': a UIC60-like
-    !> rail on a pad, a 600 kg wheel), the &road text, the methods and more &identification text.
-    function rail_scene(dt, n_steps, structure, road, methods, identification) result(text)
+    !> rail on a pad, a 600 kg wheel), the &road text, the methods, more &identification text and
+    !> the accuracy asked (default 0.05).
+    function rail_scene(dt, n_steps, structure, road, methods, identification, accuracy) result(text)
         character(len=*), intent(in) :: dt, n_steps, structure, road, methods
         character(len=*), intent(in), optional :: identification
+        character(len=*), intent(in), optional :: accuracy
         character(len=:), allocatable :: text
 
         character(len=:), allocatable :: values
@@ -299,7 +301,12 @@ contains
         text = text//' /'//new_line('a') &
                //'&road '//road//' /'//new_line('a') &
                //"&contact stiffness = 9.4e10, exponent = 1.5, preload = 7.5e4, scheme = 'implicit' /"//new_line('a') &
-               //'&convolution methods = '//methods//', truncation_tol = 1.0e-4, accuracy = 0.05 /'
+               //'&convolution methods = '//methods//', truncation_tol = 1.0e-4, accuracy = '
+        if (present(accuracy)) then
+            text = text//accuracy//' /'
+        else
+            text = text//'0.05 /'
+        end if
     end function rail_scene
 
     subroutine test_scene_refusals(error)
@@ -367,8 +374,10 @@ contains
         real(dp) :: worst
         integer :: b
 
-        call summary_of(rail_scene('5.0e-5', '16384', '', "profile = 'spectrum', speed = 27.78", "'fft'"), 'fft', &
-                        line, error)
+        ! accuracy = 0.2 (methods text): the bands against the linear model are under test; fft's
+        ! budget at this dt is about 8e-2 (model 3.4e-2, time step 4.4e-2)
+        call summary_of(rail_scene('5.0e-5', '16384', '', "profile = 'spectrum', speed = 27.78", &
+                                   "'fft'", accuracy='0.2'), 'fft', line, error)
         if (allocated(error)) return
         call read_bands('out/test_wheelrail/wr_fft_spectra.dat', 7, run, error)
         if (allocated(error)) return
