@@ -34,9 +34,10 @@ module test_modesfile_mod
     implicit none
     private
 
-    public :: collect_modesfile
+    public :: collect_modesfile, write_wave_road, wave_roads, plate_file
 
     character(len=*), parameter :: scratch = 'build/test_scratch/modesfile'
+    !> The plate's modes (32 modes, a 3 x 3 grid of nodes), written by pyuff.
     character(len=*), parameter :: plate_file = 'test/data/uff/modes_plate.uff'
     character(len=*), parameter :: expected_file = 'test/data/uff/modes_plate.expected'
     character(len=*), parameter :: plate_2414 = 'test/data/uff/modes_plate_2414.uff'

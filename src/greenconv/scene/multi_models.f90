@@ -26,15 +26,15 @@ module greenconv_scene_multi_models
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, sci_text
-    use greenconv_model_tyre, only: tyre_frequency, tyre_band
+    use greenconv_model_tyre, only: tyre_frequency
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
                                                sampled_kernel, summary_text
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_patch, only: place_patch, run_text, road_step
-    use greenconv_scene_tyre, only: tyre_points, place_band_error
+    use greenconv_scene_patch, only: place_patch, run_text
+    use greenconv_scene_tyre, only: tyre_points, place_band_error, tyre_band_top
     use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band, band_bytes
     use greenconv_scene_limits, only: max_contact_points
     implicit none
@@ -60,6 +60,7 @@ contains
 
         call tyre_points(scene, points%modes, points%x, points%road_x, summary, error, points%road_y)
         if (.not. allocated(error)) points%y = 0.0_dp*points%x
+        points%band = tyre_band_top(scene)
     end subroutine tyre_scene_points
 
     !> Decay rate [1/s] of the tyre's slowest mode, xi*omega_1, which bounds a sampled kernel's
@@ -93,8 +94,8 @@ contains
         call patch_points([0.5_dp*scene%plate%length, 0.5_dp*scene%plate%width], &
                           [scene%patch_length, scene%patch_width], scene%n_points_x, scene%n_points_y, &
                           points%x, points%y)
-        f_max = scene%f_modes
-        if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
+        f_max = tyre_band_top(scene)
+        points%band = f_max
         call plate_modes(scene%plate, points%x, points%y, f_max, points%modes, error, band_name='f_modes')
         if (allocated(error)) then
             call place_band_error(error, scene)
@@ -236,6 +237,8 @@ contains
         if (f_band <= 0.0_dp) f_band = 0.5_dp/scene%dt
         if (.not. allocated(error)) call split_band(modes, f_band, selected, scene%damping_ratio, points%modes, &
                                                     points%static, band, error)
+        points%band = f_band
+        points%complete = .not. allocated(points%static)
         if (allocated(error)) then
             call place_error(error, scene, 'structure', 'modes_file')
             return

@@ -27,6 +27,12 @@ module greenconv_scene_point_set
         !> Static compliance [m/N] (N_c x N_c) of the structure's modes above the band, added
         !> to W0 of the methods with an instant part (unallocated: none).
         real(dp), allocatable :: static(:, :)
+        !> Top of the band of the modes stepped [Hz]; 0 when the model has no band (a Green's
+        !> matrix file: its band is the file's).
+        real(dp) :: band = 0.0_dp
+        !> Whether every mode of the structure lies in the band (a modes file's modes all below
+        !> it); an analytic model's modes never end.
+        logical :: complete = .false.
         !> The Green's matrix read from the file, identified.
         type(green_structure) :: green
     contains

@@ -16,7 +16,7 @@
 module greenconv_scene_runner
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_text, only: int_text, sci_text
+    use greenconv_core_text, only: int_text, sci_text, trimmed_real_text
     use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
     use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes
     use greenconv_conv_multipoint, only: multipoint_convolver
@@ -31,7 +31,7 @@ module greenconv_scene_runner
     use greenconv_scene_output, only: multi_contact_header, check_inputs_kept, totals_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
-                                      step_doubling, start_step_doubling, time_step_estimate
+                                      step_doubling, start_step_doubling, time_step_estimate, band_estimate
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_limits, only: work_rate, projected_run, smaller_step
     use greenconv_scene_linear_reference, only: write_linear_reference, contact_loss_text
@@ -285,8 +285,8 @@ contains
 
         type(stream_sinks) :: sinks
         type(step_doubling) :: doubling
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text
-        real(dp) :: seconds, estimate, step_part
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text, band
+        real(dp) :: seconds, estimate, step_part, band_part
         integer :: i, n
         type(structure_kind) :: model
         logical :: reports_loss
@@ -334,11 +334,13 @@ contains
             call run%conv%release()
             if (allocated(error)) return
             call time_step_estimate(doubling, step_part, text)
-            call budget_text(estimate, step_part, doubling%seconds, accuracy//'; '//text, accuracy)
-            estimate = estimate + step_part
+            call band_estimate(doubling, band_part, band)
+            if (len(band) > 0) text = text//'; '//band
+            call budget_text(estimate, step_part, band_part, doubling%seconds, accuracy//'; '//text, accuracy)
+            estimate = estimate + step_part + band_part
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (estimate > scene%accuracy) then
-                call outside_line(method, estimate, scene%accuracy, text, step_part, scene%dt)
+                call outside_line(method, estimate, scene%accuracy, text, step_part, scene%dt, band_part, run%points%band)
                 accuracy = text//'; '//accuracy
                 outside = outside//' '//method
             end if
@@ -350,11 +352,12 @@ contains
                                                //'by how much and what to do', stat_accuracy)
     end subroutine run_methods
 
-    !> The budget in words: "budget: model M + time step T (CPU s of the runs at 2*dt and 4*dt);
-    !> <what the model neglects>; <how the time step was estimated>".
-    pure subroutine budget_text(model_part, step_part, seconds, detail, text)
-        !> The model's own terms (E, kernel, band) and the time step's [-].
-        real(dp), intent(in) :: model_part, step_part
+    !> The budget in words: "budget: model M + time step T [+ band B] (CPU s of the companion
+    !> runs); <what the model neglects>; <how the time step and the band were estimated>".
+    pure subroutine budget_text(model_part, step_part, band_part, seconds, detail, text)
+        !> The model's own terms (E, kernel, sampled band), the time step's and the modes above
+        !> the band's [-].
+        real(dp), intent(in) :: model_part, step_part, band_part
         !> CPU seconds of the companions.
         real(dp), intent(in) :: seconds
         !> What the model neglects and how the time step was estimated.
@@ -362,18 +365,21 @@ contains
         !> The budget in words (a subroutine: a deferred-length function result is static storage).
         character(len=:), allocatable, intent(out) :: text
 
-        text = 'budget: model '//sci_text(model_part)//' + time step '//sci_text(step_part)//' (estimated in ' &
-               //sci_text(seconds)//' s); '//detail
+        text = 'budget: model '//sci_text(model_part)//' + time step '//sci_text(step_part)
+        if (band_part > 0.0_dp) text = text//' + modes above the band '//sci_text(band_part)
+        text = text//' (estimated in '//sci_text(seconds)//' s); '//detail
     end subroutine budget_text
 
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
-    subroutine outside_line(method, estimate, accuracy, line, step_part, dt)
+    subroutine outside_line(method, estimate, accuracy, line, step_part, dt, band_part, band)
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: estimate, accuracy
         character(len=:), allocatable, intent(out) :: line
         !> The time-step term of `estimate` [-] and the run's time step [s].
         real(dp), intent(in) :: step_part, dt
+        !> The term of the modes above the band [-] and the band's top [Hz] (0: no band).
+        real(dp), intent(in) :: band_part, band
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
@@ -381,6 +387,10 @@ contains
             line = line//'the time step dominates: dt = '//sci_text(smaller_step(dt, step_part, accuracy, &
                                                                                      merge(1, 2, method == 'backward'))) &
                    //' s or less, or ask a larger accuracy'
+        else if (band_part >= 0.5_dp*estimate) then
+            line = line//'the modes above the band dominate: raise &structure f_modes above ' &
+                   //trimmed_real_text(band, 0.1_dp, 1.0e7_dp, 1, 1)//' Hz (on a modes file, exact and direct ' &
+                   //'also hold the static compliance of the modes above it), or ask a larger accuracy'
         else if (method_needs(method, needs_sampled_g) .and. method_needs(method, needs_modes)) then
             line = line//'no method auto may choose meets it: a higher max_order, G on a finer grid, or ask a larger ' &
                    //'accuracy'

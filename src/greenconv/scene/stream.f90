@@ -24,7 +24,7 @@ module greenconv_scene_stream
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_core_text, only: sci_text, trimmed_real_text
+    use greenconv_core_text, only: sci_text, trimmed_real_text, int_text
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
@@ -35,7 +35,7 @@ module greenconv_scene_stream
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
-    use greenconv_scene_models, only: multi_point_model
+    use greenconv_scene_models, only: multi_point_model, structure_kind, find_model
     use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
                                               finish_force_spectra
     use greenconv_scene_points, only: scene_points, point_rows, points_convolver
@@ -45,7 +45,7 @@ module greenconv_scene_stream
     private
 
     public :: contact_run, stream_sinks, force_summary, stream_run, make_run_convolver, start_run
-    public :: step_doubling, start_step_doubling, time_step_estimate
+    public :: step_doubling, start_step_doubling, time_step_estimate, band_estimate
 
     !> One method's contact run of a scene, single- or multi-point.
     type :: contact_run
@@ -152,6 +152,18 @@ module greenconv_scene_stream
         real(dp) :: seconds = 0.0_dp
         !> Why the run at 2*dt is missing (its build's or its fault's message), or ''.
         character(len=:), allocatable :: missing
+        !> The band's companion: the same run at dt with the modes up to a wider band
+        !> (`band_scene`'s f_modes), for a model whose band leaves modes out.
+        type(scene_type) :: band_scene
+        type(contact_run) :: band_run
+        !> Whether the band's companion is running; whether it holds every mode of the structure.
+        logical :: band_running = .false., band_complete = .false.
+        !> Modes of the run and of the band's companion.
+        integer :: band_modes(2) = 0
+        !> Sums over the steps of |F - F_band|^2 and |F_band - F0|^2 [N^2], over the points.
+        real(dp) :: band_difference = 0.0_dp, band_reference = 0.0_dp
+        !> Why the band is not estimated, or ''.
+        character(len=:), allocatable :: band_missing
     end type step_doubling
 
 contains
@@ -178,7 +190,9 @@ contains
 
         doubling%active = scene%n_steps >= 8
         doubling%missing = ''
+        doubling%band_missing = ''
         if (.not. doubling%active) return
+        call start_band_companion(doubling, run, scene, structure, method)
         doubling%order = merge(1, 2, method == 'backward')
         do f = 1, 2
             doubling%scenes(f) = scene
@@ -200,6 +214,49 @@ contains
         end do
     end subroutine start_step_doubling
 
+    !> Start the band's companion of a multi-point run whose model steps the modes up to a band
+    !> (`run%points%band` > 0) and leaves some out: the same method at the same dt with the modes
+    !> up to twice the band (four or eight times when no mode lies between), so that the
+    !> difference of the two runs is the share of the modes between, dynamic and static alike.
+    subroutine start_band_companion(doubling, run, scene, structure, method)
+        type(step_doubling), intent(inout) :: doubling
+        type(contact_run), intent(in) :: run
+        type(scene_type), intent(in) :: scene
+        type(structure_model), intent(in) :: structure
+        character(len=*), intent(in) :: method
+
+        type(structure_kind) :: model
+        type(error_type), allocatable :: error
+        character(len=:), allocatable :: text
+        integer :: widening
+
+        if (.not. run%several .or. run%points%band <= 0.0_dp .or. run%points%complete) return
+        model = find_model(scene%model)
+        if (.not. associated(model%find_points)) return
+        doubling%band_modes(1) = run%points%modes%modes%n_modes()
+        doubling%band_scene = scene
+        doubling%band_scene%progress = .false.
+        do widening = 1, 3
+            doubling%band_scene%f_modes = run%points%band*2**widening
+            call model%find_points(doubling%band_scene, doubling%band_run%points, text, error)
+            if (allocated(error)) exit
+            doubling%band_modes(2) = doubling%band_run%points%modes%modes%n_modes()
+            if (doubling%band_modes(2) > doubling%band_modes(1)) exit
+        end do
+        if (.not. allocated(error) .and. doubling%band_modes(2) <= doubling%band_modes(1)) then
+            doubling%band_missing = 'modes above the band not estimated: none up to '// &
+                                    sci_text(doubling%band_scene%f_modes)//' Hz'
+            return
+        end if
+        if (.not. allocated(error)) call make_run_convolver(doubling%band_run, doubling%band_scene, structure, method, &
+                                                            text, error)
+        if (.not. allocated(error)) call start_run(doubling%band_run, doubling%band_scene, error)
+        doubling%band_running = .not. allocated(error)
+        doubling%band_complete = doubling%band_run%points%complete
+        if (allocated(error)) doubling%band_missing = 'modes above the band not estimated: the run with the modes ' &
+            //'up to '//sci_text(doubling%band_scene%f_modes)//' Hz could not start ('//error%message//')'
+    end subroutine start_band_companion
+
     !> Step the companions over the time of the run's last block (steps first..first + m - 1)
     !> and add the block's differences.
     subroutine advance_step_doubling(doubling, run, first, m)
@@ -208,25 +265,21 @@ contains
         integer(int64), intent(in) :: first
         integer, intent(in) :: m
 
-        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: why
         integer(int64) :: start(2), target, j
         real(dp) :: begin, finish
         integer :: f
 
         call cpu_time(begin)
+        if (doubling%band_running) call advance_band_companion(doubling, run, first, m)
         do f = 1, 2
             start(f) = doubling%coarse(f)%step()
             if (.not. doubling%running(f)) cycle
             target = min((first + m + 2**f - 1)/2**f, int(doubling%scenes(f)%n_steps, int64))
             if (target <= start(f)) cycle
-            call doubling%coarse(f)%sample(doubling%scenes(f), start(f), int(target - start(f)))
-            call doubling%coarse(f)%advance(fault)
-            if (allocated(fault)) then
-                doubling%running(f) = .false.
-                if (f == 1) doubling%missing = fault%message
-                call doubling%coarse(f)%conv%release()
-                deallocate (fault)
-            end if
+            call step_companion(doubling%coarse(f), doubling%scenes(f), start(f), int(target - start(f)), &
+                                doubling%running(f), why)
+            if (f == 1 .and. .not. doubling%running(f)) doubling%missing = why
         end do
         if (doubling%running(1)) then
             associate (u => run%response%force, u2 => doubling%coarse(1)%response%force, f0 => run%state%preload)
@@ -247,6 +300,81 @@ contains
         call cpu_time(finish)
         doubling%seconds = doubling%seconds + (finish - begin)
     end subroutine advance_step_doubling
+
+    !> Step a companion run over `count` steps from `first`; a fault stops it (`running` false,
+    !> its convolver released) with its message in `why`.
+    subroutine step_companion(companion, scene, first, count, running, why)
+        type(contact_run), intent(inout) :: companion
+        type(scene_type), intent(in) :: scene
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: count
+        logical, intent(inout) :: running
+        character(len=:), allocatable, intent(out) :: why
+
+        type(error_type), allocatable :: fault
+
+        why = ''
+        call companion%sample(scene, first, count)
+        call companion%advance(fault)
+        if (.not. allocated(fault)) return
+        running = .false.
+        why = fault%message
+        call companion%conv%release()
+    end subroutine step_companion
+
+    !> Step the band's companion over the run's last block (steps first..first + m - 1) and add
+    !> the block's differences.
+    subroutine advance_band_companion(doubling, run, first, m)
+        type(step_doubling), intent(inout) :: doubling
+        type(contact_run), intent(in) :: run
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+
+        character(len=:), allocatable :: why
+        integer :: j
+
+        call step_companion(doubling%band_run, doubling%band_scene, first, m, doubling%band_running, why)
+        if (.not. doubling%band_running) then
+            doubling%band_missing = 'modes above the band not estimated: the run with the modes up to ' &
+                                    //sci_text(doubling%band_scene%f_modes)//' Hz failed ('//why//')'
+            return
+        end if
+        associate (u => run%response%force, wide => doubling%band_run%response%force, f0 => run%state%preload)
+            do j = 0, m - 1
+                doubling%band_difference = doubling%band_difference + sum((u(j, :) - wide(j, :))**2)
+                doubling%band_reference = doubling%band_reference + sum((wide(j, :) - f0)**2)
+            end do
+        end associate
+    end subroutine advance_band_companion
+
+    !> The band's term of the run's relative error: ||F - F_wide||/||F_wide - F0|| from the band's
+    !> companion (`start_band_companion`), times 1 when it holds every mode of the structure,
+    !> else times 2 (the modes above the wider band taken to leave out at most as much again:
+    !> a plate's static flexibility above f falls as 1/f, and faster with the static compliance
+    !> of those modes in W0), and in words how it was found; 0 and '' for a model without a band.
+    subroutine band_estimate(doubling, estimate, text)
+        !> The companions, the run done.
+        type(step_doubling), intent(inout) :: doubling
+        !> Relative error [-] of the contact forces due to the modes above the band.
+        real(dp), intent(out) :: estimate
+        !> How it was found.
+        character(len=:), allocatable, intent(out) :: text
+
+        estimate = 0.0_dp
+        text = ''
+        if (allocated(doubling%band_missing)) text = doubling%band_missing
+        if (allocated(doubling%band_run%conv)) call doubling%band_run%conv%release()
+        if (.not. doubling%band_running .or. doubling%band_reference <= 0.0_dp) return
+        estimate = sqrt(doubling%band_difference/doubling%band_reference)
+        if (.not. doubling%band_complete) estimate = 2.0_dp*estimate
+        text = 'modes above the band from the run with the '//int_text(doubling%band_modes(2))//' modes up to ' &
+               //trimmed_real_text(doubling%band_scene%f_modes, 0.1_dp, 1.0e7_dp, 1, 1)//' Hz'
+        if (doubling%band_complete) then
+            text = text//' (every mode)'
+        else
+            text = text//' (twice the difference)'
+        end if
+    end subroutine band_estimate
 
     !> The time-step term of the run's relative error (module `step_doubling`), and in words how
     !> it was found. 0 without companions (a run of fewer than 8 steps); 1 when the run at 2*dt

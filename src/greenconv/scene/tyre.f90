@@ -19,7 +19,7 @@ module greenconv_scene_tyre
     implicit none
     private
 
-    public :: tyre_points, place_band_error
+    public :: tyre_points, place_band_error, tyre_band_top
 
     real(dp), parameter :: pi = acos(-1.0_dp)
 
@@ -63,8 +63,7 @@ contains
             return
         end if
         positions = contact_positions(0.5_dp*scene%tyre%length, scene%patch_length, scene%n_points)
-        f_max = scene%f_modes
-        if (f_max <= 0.0_dp) f_max = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
+        f_max = tyre_band_top(scene)
         call tyre_modes(scene%tyre, positions, f_max, modes, error, band_name='f_modes')
         if (allocated(error)) then
             call place_band_error(error, scene)
@@ -81,6 +80,16 @@ contains
             //run_text(scene)
         summary = trim(line)
     end subroutine tyre_points
+
+    !> Top of the band of a tyre or plate scene's modes [Hz]: `f_modes`, or when it is 0 the band
+    !> rule of `tyre_band` (from &road speed, the road's step and &scene dt).
+    real(dp) function tyre_band_top(scene)
+        !> The scene (model 'tyre' or 'tyre_plate').
+        type(scene_type), intent(in) :: scene
+
+        tyre_band_top = scene%f_modes
+        if (tyre_band_top <= 0.0_dp) tyre_band_top = tyre_band(abs(scene%speed), 2.0_dp*road_step(scene), scene%dt)
+    end function tyre_band_top
 
     !> Place an error of the tyre or plate model's modes up to the band at `&structure
     !> f_modes`, the variable that sets the band, saying where the band came from when the

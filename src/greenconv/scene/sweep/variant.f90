@@ -19,7 +19,7 @@ module greenconv_scene_sweep_variant
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_output, only: multi_contact_header
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
-                                      step_doubling, start_step_doubling, time_step_estimate
+                                      step_doubling, start_step_doubling, time_step_estimate, band_estimate
     use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
     use greenconv_scene_sweep_record, only: variant_outcome, content_key, load_record, record_path
     use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text, estimate_width
@@ -100,7 +100,7 @@ contains
         type(error_type), allocatable :: failure, error
         character(len=:), allocatable :: accuracy, levels, method, summary, bands, estimates, text
         type(step_doubling) :: doubling
-        real(dp) :: seconds, estimate, step_part
+        real(dp) :: seconds, estimate, step_part, band_part
         integer(int64) :: step
         integer :: i, n_c, block
         logical :: several, whole
@@ -138,7 +138,8 @@ contains
                     call stream_run(run, scene, method, block, sinks, '', seconds, error, doubling)
                     step = run%step()
                     call time_step_estimate(doubling, step_part, text)
-                    estimate = estimate + step_part
+                    call band_estimate(doubling, band_part, text)
+                    estimate = estimate + step_part + band_part
                 end if
                 if (allocated(run%conv)) then
                     call run%conv%release()
