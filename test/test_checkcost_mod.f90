@@ -42,7 +42,9 @@ contains
 
         call checked_lines(tab1_scene(convolution="methods = 'direct', 'modal', 'exact', 'auto'"), lines, error)
         if (allocated(error)) return
-        call check(error, size(lines) == 5, 'the ok line and four cost lines')
+        call check(error, size(lines) == 9, 'the ok line, four cost lines and four error budgets')
+        if (allocated(error)) return
+        call check(error, index(lines(6), "greenconv: check: method 'direct': error about ") == 1, lines(6))
         if (allocated(error)) return
         call check(error, index(lines(2), "greenconv: check: method 'direct': about ") == 1 .and. &
                    index(lines(2), '(N_c 1, N_m 1, N_g 2000, 2000 steps)') > 0, lines(2))

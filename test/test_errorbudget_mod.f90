@@ -18,7 +18,7 @@ module test_errorbudget_mod
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_runner, only: run_scene, check_scene
     use greenconv_verify_contact, only: contact_reference
     use scene_text_mod, only: message_of, read_table, read_scene_text
     use test_modesfile_mod, only: write_wave_road, wave_roads, plate_file
@@ -46,6 +46,8 @@ contains
         testsuite = [new_unittest('sdof_sine at dt = 1 ms (contact loss): every method within 3x, status 4', &
                                   test_sdof_coarse), &
                      new_unittest('sdof_sine at dt = 0.1 ms: every method within 3x', test_sdof_fine), &
+                     new_unittest('--check projects each budget within 3x of the run''s, and the dt that meets it', &
+                                  test_check_projection), &
                      new_unittest('plate modes file, 9 of 32 modes at 20 us: the band within 3x, modal status 4', &
                                   test_band_fine), &
                      new_unittest('plate modes file, 9 of 32 modes at 80 us: band and time step within 3x', &
@@ -65,6 +67,61 @@ contains
         call budget_case('data/sdof_sine.nml', 'sdof_01ms', 1.0e-4_dp, 1000, &
                          ['direct  ', 'modal   ', 'exact   ', 'backward', 'paper   '], 1.0e-3_dp, error)
     end subroutine test_sdof_fine
+
+    !> `--check` on sdof_sine at dt = 1 ms (1000 steps, contact lost each road period): each
+    !> method's projected error (from the first 200 steps, with the run's companions) within a
+    !> factor 3 of the estimate the whole run prints, and, the accuracy 1e-3 being exceeded,
+    !> the line says which dt meets it.
+    subroutine test_check_projection(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: methods(3) = ['direct', 'modal ', 'exact ']
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fail
+        character(len=:), allocatable :: lines(:)
+        character(len=2000) :: line
+        real(dp) :: projected, estimate
+        integer :: unit, stat, m, at
+
+        call read_scene('data/sdof_sine.nml', scene, fail)
+        call check(error, .not. allocated(fail), 'sdof_sine: '//message_of(fail))
+        if (allocated(error)) return
+        scene%output_dir = scratch//'/check'
+        scene%name = 'check'
+        scene%dt = 1.0e-3_dp
+        scene%n_steps = 1000
+        scene%spectra = .false.
+        scene%progress = .false.
+        scene%accuracy = 1.0e-3_dp
+        scene%methods = [character(len=len(scene%methods)) :: methods]
+        call make_directory(scene%output_dir, fail)
+        call run_to_lines(scene, lines, fail)
+        do m = 1, size(methods)
+            call estimate_of(lines, trim(methods(m)), estimate)
+            projected = -1.0_dp
+            open (newunit=unit, status='scratch', action='readwrite')
+            call check_scene(scene, unit, fail)
+            rewind (unit)
+            do
+                read (unit, '(a)', iostat=stat) line
+                if (stat /= 0) exit
+                at = index(line, "method '"//trim(methods(m))//"': error about ")
+                if (at == 0) cycle
+                read (line(at + len_trim(methods(m)) + 23:), *, iostat=stat) projected
+                exit
+            end do
+            close (unit)
+            print '(4x,a9,a,es10.3,a,es10.3,a,f6.2)', methods(m), ' projected ', projected, ' run ', estimate, &
+                ' factor ', projected/estimate
+            call note(trim(methods(m))//' projected/run', projected/estimate)
+            call check(error, projected > 0.0_dp .and. projected <= factor*estimate .and. estimate <= factor*projected, &
+                       trim(methods(m))//': the projection is more than 3x off the run''s estimate: '//trim(line))
+            if (allocated(error)) return
+            call check(error, index(line, 'the time step dominates: dt = ') > 0, trim(methods(m)) &
+                       //': the projection does not say which dt meets the accuracy: '//trim(line))
+            if (allocated(error)) return
+        end do
+    end subroutine test_check_projection
 
     !> The plate's modes file (test/data/uff/modes_plate.uff: 9 nodes, 32 modes from 125 Hz) with
     !> f_modes = 1 kHz (9 modes stepped, 23 above), 0.04 s at 5 m/s over a two-sine road, Hertz

@@ -21,6 +21,7 @@ module greenconv_scene_runner
     use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
+    use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_input, only: scene_type, output_path, place_error
     use greenconv_scene_models, only: structure_kind, find_model, multi_point_model
@@ -51,6 +52,8 @@ module greenconv_scene_runner
     real(dp), parameter :: text_value_bytes = 25.0_dp
     !> Most points whose histories `point_histories = 'auto'` writes.
     integer, parameter :: auto_history_points = 100
+    !> Fewest steps of `--check`'s projection of the error budget (`check_budget_lines`).
+    integer, parameter :: pilot_steps = 200
 
 contains
 
@@ -129,6 +132,7 @@ contains
         do i = 1, size(costs)
             write (unit, '(a)') trim(costs(i))
         end do
+        call check_budget_lines(scene, unit, error)
     end subroutine check_scene
 
     !> What a contact scene's methods are projected to cost, one line each (none for another
@@ -285,8 +289,8 @@ contains
 
         type(stream_sinks) :: sinks
         type(step_doubling) :: doubling
-        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text, band
-        real(dp) :: seconds, estimate, step_part, band_part
+        character(len=:), allocatable :: method, accuracy, label, prefix, outside, text, path, loss_text
+        real(dp) :: seconds, estimate
         integer :: i, n
         type(structure_kind) :: model
         logical :: reports_loss
@@ -333,14 +337,9 @@ contains
             call run%conv%model_size(n, label)
             call run%conv%release()
             if (allocated(error)) return
-            call time_step_estimate(doubling, step_part, text)
-            call band_estimate(doubling, band_part, band)
-            if (len(band) > 0) text = text//'; '//band
-            call budget_text(estimate, step_part, band_part, doubling%seconds, accuracy//'; '//text, accuracy)
-            estimate = estimate + step_part + band_part
+            call close_budget(doubling, scene, method, run%points, estimate, accuracy, text)
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
-            if (estimate > scene%accuracy) then
-                call outside_line(method, estimate, scene%accuracy, text, step_part, scene%dt, band_part, run%points%band)
+            if (len(text) > 0) then
                 accuracy = text//'; '//accuracy
                 outside = outside//' '//method
             end if
@@ -351,6 +350,120 @@ contains
                                                //'accuracy): their files are written, their summary lines say ' &
                                                //'by how much and what to do', stat_accuracy)
     end subroutine run_methods
+
+    !> Close a run's error budget: its companions' terms (time step, modes above the band) added
+    !> to the model's, the budget in words after what the model neglects, and, when the sum
+    !> exceeds the scene's accuracy, the line that says so and what to do ('' within it).
+    subroutine close_budget(doubling, scene, method, points, estimate, accuracy, outside)
+        !> The companions, the run done.
+        type(step_doubling), intent(inout) :: doubling
+        !> The run's scene.
+        type(scene_type), intent(in) :: scene
+        !> The method's name.
+        character(len=*), intent(in) :: method
+        !> The run's points (their band, and the static compliance above it), or none.
+        type(scene_points), intent(in) :: points
+        !> In: the model's terms [-]; out: the whole estimate [-].
+        real(dp), intent(inout) :: estimate
+        !> In: what the model neglects; out: the budget in words, then that.
+        character(len=:), allocatable, intent(inout) :: accuracy
+        !> `outside_line`'s line when the estimate exceeds the accuracy, else ''.
+        character(len=:), allocatable, intent(out) :: outside
+
+        character(len=:), allocatable :: text, band_text
+        real(dp) :: step_part, band_part
+        type(engine_constructors) :: engine
+        logical :: static_left_out
+
+        call time_step_estimate(doubling, step_part, text)
+        call band_estimate(doubling, band_part, band_text)
+        if (len(band_text) > 0) text = text//'; '//band_text
+        call budget_text(estimate, step_part, band_part, doubling%seconds, accuracy//'; '//text, accuracy)
+        estimate = estimate + step_part + band_part
+        outside = ''
+        if (estimate <= scene%accuracy) return
+        static_left_out = .false.
+        if (allocated(points%static)) then
+            engine = engine_of(method)
+            static_left_out = .not. (engine%samples_g() .or. engine%instant_part)
+        end if
+        call outside_line(method, estimate, scene%accuracy, outside, step_part, scene%dt, band_part, points%band, &
+                          static_left_out)
+    end subroutine close_budget
+
+    !> `--check`'s projection of each method's error budget, one line a method on `unit`: the
+    !> method run over the scene's first steps (an eighth of the run, at least `pilot_steps`
+    !> and at most the whole run) with its companions, no file written, e.g.
+    !>
+    !>     greenconv: check: method 'modal': error about 5.7E-02 from its first 250 of 2000 steps
+    !>     (0.01 s of CPU): outside the accuracy asked: estimate 5.7E-02 > accuracy 1.0E-02, ...
+    !>
+    !> A model identified at the run (a receptance or Green's file, the rail) is not run here:
+    !> its E is known once identified, and the run prints the whole budget.
+    subroutine check_budget_lines(scene, unit, error)
+        !> The scene, as `read_scene` returned it.
+        type(scene_type), intent(in) :: scene
+        !> Unit the lines are printed on.
+        integer, intent(in) :: unit
+        !> Set when the pilot's structure or points cannot be made (the run would refuse them too).
+        type(error_type), allocatable, intent(out) :: error
+
+        type(scene_type) :: pilot
+        type(structure_kind) :: model
+        type(structure_model) :: structure
+        type(contact_run) :: run
+        type(stream_sinks) :: sinks
+        type(step_doubling) :: doubling
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: method, accuracy, outside, head, summary
+        real(dp) :: estimate, seconds, begin, finish
+        integer :: i
+
+        if (scene%task /= 'contact') return
+        model = find_model(scene%model)
+        if (model%identified_modes) then
+            write (unit, '(a)') 'greenconv: check: error budget not projected: the model is identified at the run, ' &
+                //'which prints each method''s budget with its E (eq. 7)'
+            return
+        end if
+        pilot = scene
+        pilot%n_steps = min(scene%n_steps, max(pilot_steps, scene%n_steps/8))
+        pilot%progress = .false.
+        pilot%spectra = .false.
+        if (model%multi_point()) then
+            call model%find_points(pilot, run%points, summary, error)
+        else
+            call build_structure(pilot, structure, error)
+        end if
+        if (allocated(error)) return
+        do i = 1, size(scene%methods)
+            method = trim(scene%methods(i))
+            head = "greenconv: check: method '"//method//"': "
+            call cpu_time(begin)
+            call make_run_convolver(run, pilot, structure, method, accuracy, fault, estimate)
+            if (.not. allocated(fault)) call start_run(run, pilot, fault)
+            if (.not. allocated(fault)) then
+                call start_step_doubling(doubling, run, pilot, structure, method)
+                call stream_run(run, pilot, method, block_rows, sinks, '', seconds, fault, doubling)
+            end if
+            if (allocated(run%conv)) call run%conv%release()
+            call cpu_time(finish)
+            if (allocated(fault)) then
+                write (unit, '(a)') head//'error budget not projected: the run over its first ' &
+                    //int_text(pilot%n_steps)//' steps failed: '//fault%message
+                deallocate (fault)
+                cycle
+            end if
+            call close_budget(doubling, scene, method, run%points, estimate, accuracy, outside)
+            head = head//'error about '//sci_text(estimate)//' from its first '//int_text(pilot%n_steps)//' of ' &
+                   //int_text(scene%n_steps)//' steps ('//sci_text(finish - begin)//' s of CPU): '
+            if (len(outside) > 0) then
+                write (unit, '(a)') head//outside
+            else
+                write (unit, '(a)') head//'within the accuracy asked, '//sci_text(scene%accuracy)
+            end if
+        end do
+    end subroutine check_budget_lines
 
     !> The budget in words: "budget: model M + time step T [+ band B] (CPU s of the companion
     !> runs); <what the model neglects>; <how the time step and the band were estimated>".
@@ -372,7 +485,7 @@ contains
 
     !> "outside the accuracy asked: estimate X > accuracy Y, <what to do>" for a method whose
     !> own error estimate exceeds the accuracy asked.
-    subroutine outside_line(method, estimate, accuracy, line, step_part, dt, band_part, band)
+    subroutine outside_line(method, estimate, accuracy, line, step_part, dt, band_part, band, static_left_out)
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: estimate, accuracy
         character(len=:), allocatable, intent(out) :: line
@@ -380,6 +493,9 @@ contains
         real(dp), intent(in) :: step_part, dt
         !> The term of the modes above the band [-] and the band's top [Hz] (0: no band).
         real(dp), intent(in) :: band_part, band
+        !> Whether the method leaves out a static compliance of the modes above the band that
+        !> another method would hold.
+        logical, intent(in) :: static_left_out
 
         line = 'outside the accuracy asked: estimate '//sci_text(estimate)//' > accuracy '//sci_text(accuracy) &
                //', '
@@ -388,9 +504,13 @@ contains
                                                                                      merge(1, 2, method == 'backward'))) &
                    //' s or less, or ask a larger accuracy'
         else if (band_part >= 0.5_dp*estimate) then
-            line = line//'the modes above the band dominate: raise &structure f_modes above ' &
-                   //trimmed_real_text(band, 0.1_dp, 1.0e7_dp, 1, 1)//' Hz (on a modes file, exact and direct ' &
-                   //'also hold the static compliance of the modes above it), or ask a larger accuracy'
+            line = line//'the modes above the band dominate: &structure f_modes = ' &
+                   //trimmed_real_text(band*band_part/(0.5_dp*accuracy), 0.1_dp, 1.0e7_dp, 1, 1)//' Hz meets it ' &
+                   //'(the term taken to fall as 1/f_modes from '//trimmed_real_text(band, 0.1_dp, 1.0e7_dp, 1, 1) &
+                   //' Hz)'
+            if (static_left_out) line = line//', or exact or direct, which hold the static compliance of the modes ' &
+                                            //'above the band'
+            line = line//', or ask a larger accuracy'
         else if (method_needs(method, needs_sampled_g) .and. method_needs(method, needs_modes)) then
             line = line//'no method auto may choose meets it: a higher max_order, G on a finer grid, or ask a larger ' &
                    //'accuracy'

@@ -152,9 +152,10 @@ module greenconv_scene_stream
         real(dp) :: seconds = 0.0_dp
         !> Why the run at 2*dt is missing (its build's or its fault's message), or ''.
         character(len=:), allocatable :: missing
-        !> The band's companion: the same run at dt with the modes up to a wider band
-        !> (`band_scene`'s f_modes), for a model whose band leaves modes out.
+        !> The band companion's scene: the run's with f_modes the wider band.
         type(scene_type) :: band_scene
+        !> The band's companion: the same run at dt with the modes up to the wider band, for a
+        !> model whose band leaves modes out.
         type(contact_run) :: band_run
         !> Whether the band's companion is running; whether it holds every mode of the structure.
         logical :: band_running = .false., band_complete = .false.
