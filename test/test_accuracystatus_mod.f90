@@ -39,7 +39,7 @@ module test_accuracystatus_mod
     implicit none
     private
 
-    public :: collect_accuracystatus
+    public :: collect_accuracystatus, twelve_point_plate
 
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> Scratch directory for the files the tests write.
@@ -178,14 +178,8 @@ contains
         real(dp) :: x(12), y(12), errors(3), orders(2), estimate
         integer :: m
 
-        call patch_points([0.6_dp, 0.08_dp], [0.09_dp, 0.1_dp], 4, 3, x, y)
         call make_directory(scratch, fail)
-        if (.not. allocated(fail)) &
-            call plate_modes(tyre_plate(length=1.2_dp, width=0.16_dp, mass_per_area=9.0_dp, bending_x=18.0_dp, &
-                                        bending_y=7.0_dp, bending_xy=sqrt(18.0_dp*7.0_dp), tension_x=5.0e4_dp, &
-                                        tension_y=8.0e3_dp, foundation=2.0e6_dp, damping_ratio=0.04_dp), &
-                             x, y, 700.0_dp, description, fail)
-        if (.not. allocated(fail)) call write_receptance_file(path, description, x, y, 2.0_dp, 701, fail)
+        if (.not. allocated(fail)) call twelve_point_plate(path, x, y, description, fail)
         if (.not. allocated(fail)) call read_green_structure(path, green_options(), green, fail)
         call check(error, .not. allocated(fail), 'the plate''s file: '//message_of(fail))
         if (allocated(error)) return
@@ -207,6 +201,22 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_plate_file
+
+    !> The plate of `test_plate_file` (1.2 m x 0.16 m, xi = 0.04, modes to 700 Hz) at the 12
+    !> points x, y [m] of a 4 x 3 patch, and its G_ij written to `path` from 0 to 1.4 kHz by 2 Hz.
+    subroutine twelve_point_plate(path, x, y, description, fail)
+        character(len=*), intent(in) :: path
+        real(dp), intent(out) :: x(12), y(12)
+        type(point_modes), intent(out) :: description
+        type(error_type), allocatable, intent(out) :: fail
+
+        call patch_points([0.6_dp, 0.08_dp], [0.09_dp, 0.1_dp], 4, 3, x, y)
+        call plate_modes(tyre_plate(length=1.2_dp, width=0.16_dp, mass_per_area=9.0_dp, bending_x=18.0_dp, &
+                                    bending_y=7.0_dp, bending_xy=sqrt(18.0_dp*7.0_dp), tension_x=5.0e4_dp, &
+                                    tension_y=8.0e3_dp, foundation=2.0e6_dp, damping_ratio=0.04_dp), &
+                         x, y, 700.0_dp, description, fail)
+        if (.not. allocated(fail)) call write_receptance_file(path, description, x, y, 2.0_dp, 701, fail)
+    end subroutine twelve_point_plate
 
     !> Run a scene with its summary on a scratch unit; the summary's lines.
     subroutine run_to_lines(scene, lines, fail)
