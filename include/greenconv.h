@@ -540,10 +540,15 @@ int gc_multi_new_modes_file(const char *path, int direction, double damping_rati
                             gc_multi_convolver **conv, char *errmsg, size_t errmsg_len);
 
 /**
- * The method's own estimate of its relative error, relative to the largest |g_ij|, into
- * *estimate: 0 for modes given exactly (gc_multi_new_modes, gc_multi_new_modes_file), E of
- * eq. (7) of the identified modes (gc_multi_new_file with "modal"), what a sampled kernel
- * leaves out ("direct"/"fft" on a band-limited file). GC_ERROR_INPUT for a NULL pointer.
+ * The method's own estimate of the relative error of its contact forces,
+ * ||F - F_true||/||F_true - F0|| over a run and the points, into *estimate: the model's terms
+ * (0 for modes given exactly, E of eq. (7) of the identified modes of gc_multi_new_file, what a
+ * sampled kernel leaves out for "direct"/"fft" on a band-limited file) plus, after a whole run
+ * (gc_multi_run_contact, 8 steps or more), that run's time-step term (the same run at 2*dt and
+ * 4*dt on every second and fourth road height, by Richardson) and, for
+ * gc_multi_new_modes_file with modes above its band, the band's term (the same run with the
+ * modes up to twice the band). A run stepped one call at a time adds no term. GC_ERROR_INPUT
+ * for a NULL pointer.
  */
 int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg, size_t errmsg_len);
 
@@ -551,7 +556,8 @@ int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *er
  * The relative accuracy the host asks of the convolver's runs (> 0; 0: none, the default).
  * Returns GC_ACCURACY at once (the accuracy kept) when gc_multi_estimate exceeds it; from then
  * on gc_multi_contact_start and gc_multi_run_contact return GC_ACCURACY (their results whole,
- * the run started) with a message naming the estimate, the accuracy and what to do;
+ * the run started) with a message naming the estimate, the accuracy and what to do (a whole
+ * run checks the estimate with its own time-step and band terms);
  * gc_multi_contact_step returns GC_OK for the steps. GC_ERROR_INPUT for a negative or
  * non-finite accuracy.
  */

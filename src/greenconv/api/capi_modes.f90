@@ -75,12 +75,12 @@ contains
     end function gc_multi_new_modes_file
 
     !> int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg,
-    !> size_t errmsg_len): the method's own estimate of its relative error (0 for modes given
-    !> exactly; E of eq. (7) of an identified model; what a sampled kernel leaves out).
+    !> size_t errmsg_len): the method's own estimate of the relative error of its contact forces
+    !> (the model's terms, plus the last whole run's time-step and band terms).
     function gc_multi_estimate(conv, estimate, errmsg, errmsg_len) bind(c, name='gc_multi_estimate') result(status)
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
-        !> Where the estimate goes (dimensionless, relative to the largest |g_ij|).
+        !> Where the estimate goes [-].
         type(c_ptr), value, intent(in) :: estimate
         !> Message buffer, or NULL.
         type(c_ptr), value, intent(in) :: errmsg
@@ -97,7 +97,7 @@ contains
         call need_pointer('gc_multi_estimate', estimate, 'estimate', 'pass the address of a double', error)
         if (.not. allocated(error)) then
             call c_f_pointer(estimate, value_out)
-            value_out = box%estimate
+            value_out = box%estimate + box%run_terms
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_estimate

@@ -23,6 +23,8 @@ module greenconv_api_handle
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
                                          structure_from_frf
     use greenconv_ident_green_structure, only: green_structure
+    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_modes_file, only: file_modes
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
@@ -75,6 +77,26 @@ module greenconv_api_handle
         real(dp) :: estimate = 0.0_dp
         !> Relative accuracy the host asked (gc_multi_set_accuracy, GCMACC); 0: none asked.
         real(dp) :: accuracy = 0.0_dp
+        !> The convolver's method, for the error budget's companion runs of a whole multi-point
+        !> contact run (greenconv_api_multi_handle's `run_multi_box`).
+        character(len=:), allocatable :: method
+        !> The convolver's time step [s] and truncation fraction of max |g_ij|, for the companions.
+        real(dp) :: dt = 0.0_dp, truncation_tol = 0.0_dp
+        !> The modes at the points the convolver was built on; unallocated when built otherwise.
+        type(point_modes), allocatable :: source_modes
+        !> The static compliance [m/N] added to its W0 (a modes file's modes above its band).
+        real(dp), allocatable :: source_residual(:, :)
+        !> The samples g(m, i, j) [m/(N*s)] at dt the convolver was built on; unallocated when
+        !> built otherwise.
+        real(dp), allocatable :: source_g(:, :, :)
+        !> The modes of the modes file the convolver was built on (every node a point), for the
+        !> band's companion; unallocated when built otherwise.
+        type(file_modes), allocatable :: source_file
+        !> Top of the band of a modes file's modes stepped [Hz] (0: no band).
+        real(dp) :: band = 0.0_dp
+        !> The time-step and band terms [-] of the last whole contact run's error budget (0
+        !> before one), added to `estimate` by gc_multi_estimate, GCMEST and the accuracy check.
+        real(dp) :: run_terms = 0.0_dp
         !> Node labels of the points of a convolver made from a modes file (gc_multi_new_modes_file,
         !> GCMMFL); unallocated otherwise.
         integer, allocatable :: node(:)

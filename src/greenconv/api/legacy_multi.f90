@@ -182,12 +182,14 @@ contains
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmmfl
 
-    !> The method's own estimate of its relative error (0 for modes given exactly, E of eq. (7)
-    !> of an identified model, what a sampled kernel leaves out).
+    !> The method's own estimate of the relative error of its contact forces: the model's terms
+    !> (0 for modes given exactly, E of eq. (7) of an identified model, what a sampled kernel
+    !> leaves out), plus, after a whole run (GCMRUN), that run's time-step and band terms (its
+    !> companions at 2*dt and 4*dt, and with a modes file's modes up to twice the band).
     subroutine gcmest(handle, est, ierr, errmsg)
         !> The handle.
         integer(int64), intent(in) :: handle
-        !> The estimate, relative to the largest |g_ij| (0 on failure).
+        !> The estimate [-] (0 on failure).
         real(dp), intent(out) :: est
         !> Status: 0, or 2 for a 0 handle.
         integer, intent(out) :: ierr
@@ -199,7 +201,7 @@ contains
 
         est = 0.0_dp
         box => checked('gcmest', handle, error=error)
-        if (.not. allocated(error)) est = box%estimate
+        if (.not. allocated(error)) est = box%estimate + box%run_terms
         call report(error, ierr, errmsg)
     end subroutine gcmest
 

@@ -41,6 +41,7 @@ module greenconv_api_multi_handle
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
+    use greenconv_contact_budget, only: doubling_sums, add_doubling_sums, step_doubling_error
     use greenconv_scene_limits, only: max_lsce_modes, max_contact_points
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
@@ -132,7 +133,24 @@ contains
         call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
                                        box%description, error, box%estimate, residual)
         call keep_or_drop(caller, box, error)
+        if (.not. associated(box)) return
+        call keep_recipe(box, method, dt, truncation_tol)
+        box%source_modes = description
+        if (present(residual)) then
+            if (allocated(residual)) box%source_residual = residual
+        end if
     end subroutine modes_box
+
+    !> Keep what the error budget's companions of a box's whole runs are built with.
+    subroutine keep_recipe(box, method, dt, truncation_tol)
+        type(convolver_box), intent(inout) :: box
+        character(len=*), intent(in) :: method
+        real(dp), intent(in) :: dt, truncation_tol
+
+        box%method = lower_text(method)
+        box%dt = dt
+        box%truncation_tol = truncation_tol
+    end subroutine keep_recipe
 
     !> A new box on a universal file of normal modes (greenconv_model_modes_file): every node of
     !> the file a point (in the file's order), the modes up to `f_band` stepped by `method`,
@@ -209,6 +227,10 @@ contains
         box%node = modes%label
         box%node_x = modes%x
         box%node_y = modes%y
+        if (allocated(residual)) then
+            box%source_file = modes
+            box%band = band
+        end if
         box%description = box%description//'; modes of '//path//', '//summary
     end subroutine modes_file_box
 
@@ -248,6 +270,9 @@ contains
         allocate (box)
         call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
+        if (.not. associated(box)) return
+        call keep_recipe(box, method, dt, truncation_tol)
+        box%source_g = g
     end subroutine samples_multi_box
 
     !> A new box on a universal file of a Green's matrix (greenconv_conv_green_file): the file
@@ -414,6 +439,7 @@ contains
 
         call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error, &
                                   box%estimate)
+        call keep_recipe(box, method, dt, truncation_tol)
     end subroutine build_on_file
 
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
@@ -544,9 +570,11 @@ contains
         !> Set (`stat_accuracy`) when outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
-        if (.not. (box%accuracy > 0.0_dp .and. box%estimate > box%accuracy)) return
+        if (.not. (box%accuracy > 0.0_dp .and. box%estimate + box%run_terms > box%accuracy)) return
         call fatal_error(error, caller//': outside the accuracy asked: the method''s own error estimate ' &
-                         //sci_text(box%estimate)//' > accuracy '//sci_text(box%accuracy)//' (the results are ' &
+                         //sci_text(box%estimate + box%run_terms)//' > accuracy '//sci_text(box%accuracy) &
+                         //' (model '//sci_text(box%estimate)//', time step and band of the last whole run ' &
+                         //sci_text(box%run_terms)//'; the results are ' &
                          //'whole); use exact on identified modes, a model with a smaller E, or ask a larger ' &
                          //'accuracy', stat_accuracy)
     end subroutine outside_accuracy
@@ -660,8 +688,99 @@ contains
         displacement(0:n_done - 1, :) = response%displacement
         force(0:n_done - 1, :) = response%force
         compression(0:n_done - 1, :) = response%compression
-        if (.not. allocated(error)) call outside_accuracy(caller, box, error)
+        if (allocated(error)) return
+        call run_budget(box, laws_of(stiffness, exponent), preload, road, response%force)
+        call outside_accuracy(caller, box, error)
     end subroutine run_multi_box
+
+    !> The time-step and band terms of a whole run's error budget (`box%run_terms`), as a
+    !> scene's runner finds them (doc/methods.md, "The error budget"): the same run at 2*dt and
+    !> 4*dt on every second and fourth road height (greenconv_contact_budget), and, for a modes
+    !> file's box with modes above its band, the same run at dt with the modes up to twice the
+    !> band (the difference, doubled unless that holds every mode). A run of fewer than 8 steps
+    !> has no time-step term; a run at 2*dt that cannot be made or fails sets it to 1.
+    subroutine run_budget(box, laws, preload, road, force)
+        !> The box, its convolver run.
+        type(convolver_box), intent(inout) :: box
+        !> The contact laws and static preloads F0_i [N] of the run.
+        type(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: preload(:)
+        !> Road heights road(n, i) [m] and the run's forces force(n, i) [N].
+        real(dp), intent(in) :: road(0:, :), force(0:, :)
+
+        type(multi_contact_response) :: coarse(2), wide
+        class(multipoint_convolver), allocatable :: conv
+        type(error_type), allocatable :: fault
+        type(doubling_sums) :: sums
+        type(point_modes) :: description
+        real(dp), allocatable :: residual(:, :)
+        character(len=:), allocatable :: text
+        real(dp) :: step_part, band_part, ratio
+        integer :: f, n_t, i
+
+        box%run_terms = 0.0_dp
+        n_t = size(force, 1)
+        if (.not. allocated(box%method) .or. n_t < 8) return
+        step_part = 0.0_dp
+        do f = 1, 2
+            call companion_convolver(box, 2**f, (n_t + 2**f - 1)/2**f, conv, fault)
+            if (.not. allocated(fault)) call run_multi_contact(conv, laws, road(0::2**f, :), preload, coarse(f), &
+                                                               fault, box%settings)
+            if (allocated(conv)) call conv%release()
+            if (allocated(fault)) then
+                if (f == 1) step_part = 1.0_dp
+                if (allocated(coarse(f)%force)) deallocate (coarse(f)%force)
+                allocate (coarse(f)%force(0:-1, size(force, 2)))
+                deallocate (fault)
+            end if
+        end do
+        if (step_part == 0.0_dp) then
+            call add_doubling_sums(sums, force, coarse(1)%force, coarse(2)%force, preload)
+            call step_doubling_error(sums, 2, step_part, ratio)
+        end if
+        band_part = 0.0_dp
+        if (allocated(box%source_file)) then
+            call split_band(box%source_file, 2.0_dp*box%band, [(i, i=1, size(box%source_file%x))], 0.0_dp, &
+                            description, residual, text, fault)
+            if (.not. allocated(fault)) call make_multipoint_convolver(box%method, description, box%dt, &
+                box%truncation_tol, n_t, conv, text, fault, residual=residual)
+            if (.not. allocated(fault)) call run_multi_contact(conv, laws, road, preload, wide, fault, box%settings)
+            if (allocated(conv)) call conv%release()
+            if (.not. allocated(fault)) then
+                band_part = norm2(force - wide%force)/max(norm2(wide%force - spread(preload, 1, n_t)), tiny(1.0_dp))
+                if (allocated(residual)) band_part = 2.0_dp*band_part
+            end if
+        end if
+        box%run_terms = step_part + band_part
+    end subroutine run_budget
+
+    !> The box's method on its source at dt*factor for n_steps (the error budget's companions):
+    !> its modes, its samples every factor-th, or its file.
+    subroutine companion_convolver(box, factor, n_steps, conv, error)
+        type(convolver_box), intent(in) :: box
+        integer, intent(in) :: factor, n_steps
+        class(multipoint_convolver), allocatable, intent(out) :: conv
+        type(error_type), allocatable, intent(out) :: error
+
+        character(len=:), allocatable :: text
+
+        if (allocated(box%source_modes)) then
+            call make_multipoint_convolver(box%method, box%source_modes, box%dt*factor, box%truncation_tol, n_steps, &
+                                           conv, text, error, residual=box%source_residual)
+        else if (allocated(box%source_g)) then
+            if (size(box%source_g, 1) < 2*factor) then
+                call fatal_error(error, 'the samples are too few for a run at '//int_text(factor)//'*dt')
+                return
+            end if
+            call table_convolver(box%method, box%source_g(0::factor, :, :), box%dt*factor, box%truncation_tol, &
+                                 n_steps, conv, text, error)
+        else if (allocated(box%green)) then
+            call green_file_convolver(box%green, box%method, box%dt*factor, box%truncation_tol, n_steps, conv, text, &
+                                      error)
+        else
+            call fatal_error(error, 'no source kept for a run at another time step')
+        end if
+    end subroutine companion_convolver
 
     !> The contact laws of the points.
     pure function laws_of(stiffness, exponent) result(laws)

@@ -32,6 +32,7 @@ module greenconv_scene_stream
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
                                        start_multi_contact, newton_options
+    use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
@@ -145,9 +146,8 @@ module greenconv_scene_stream
         type(contact_run) :: coarse(2)
         !> Whether each companion is running (false once it failed or could not be built).
         logical :: running(2) = .false.
-        !> Sums over the 2*dt grid of |F(dt) - F0|^2 and |F(dt) - F(2 dt)|^2 [N^2], and over the
-        !> 4*dt grid of |F(dt) - F(2 dt)|^2 and |F(2 dt) - F(4 dt)|^2 [N^2], over the points.
-        real(dp) :: fine = 0.0_dp, fine_2 = 0.0_dp, grid_12 = 0.0_dp, grid_24 = 0.0_dp
+        !> The sums of step doubling (greenconv_contact_budget), over the run and the points.
+        type(doubling_sums) :: sums
         !> CPU seconds of the companions.
         real(dp) :: seconds = 0.0_dp
         !> Why the run at 2*dt is missing (its build's or its fault's message), or ''.
@@ -283,16 +283,17 @@ contains
             if (f == 1 .and. .not. doubling%running(f)) doubling%missing = why
         end do
         if (doubling%running(1)) then
-            associate (u => run%response%force, u2 => doubling%coarse(1)%response%force, f0 => run%state%preload)
+            associate (u => run%response%force, u2 => doubling%coarse(1)%response%force, f0 => run%state%preload, &
+                       sums => doubling%sums)
                 do j = start(1), doubling%coarse(1)%step() - 1
-                    doubling%fine = doubling%fine + sum((u(2*j - first, :) - f0)**2)
-                    doubling%fine_2 = doubling%fine_2 + sum((u(2*j - first, :) - u2(j - start(1), :))**2)
+                    sums%fine = sums%fine + sum((u(2*j - first, :) - f0)**2)
+                    sums%fine_2 = sums%fine_2 + sum((u(2*j - first, :) - u2(j - start(1), :))**2)
                 end do
                 if (doubling%running(2)) then
                     associate (u4 => doubling%coarse(2)%response%force)
                         do j = start(2), doubling%coarse(2)%step() - 1
-                            doubling%grid_12 = doubling%grid_12 + sum((u(4*j - first, :) - u2(2*j - start(1), :))**2)
-                            doubling%grid_24 = doubling%grid_24 + sum((u2(2*j - start(1), :) - u4(j - start(2), :))**2)
+                            sums%grid_12 = sums%grid_12 + sum((u(4*j - first, :) - u2(2*j - start(1), :))**2)
+                            sums%grid_24 = sums%grid_24 + sum((u2(2*j - start(1), :) - u4(j - start(2), :))**2)
                         end do
                     end associate
                 end if
@@ -388,7 +389,7 @@ contains
         !> How it was found.
         character(len=:), allocatable, intent(out) :: text
 
-        real(dp) :: ratio, asymptotic
+        real(dp) :: ratio
         integer :: f
 
         estimate = 0.0_dp
@@ -402,15 +403,12 @@ contains
             text = 'the same run at 2*dt failed ('//doubling%missing//'): dt is near the limit of the method'
             return
         end if
-        if (doubling%fine <= 0.0_dp) then
+        if (doubling%sums%fine <= 0.0_dp) then
             text = 'time step: F = F0 throughout'
             return
         end if
-        asymptotic = 2.0_dp**doubling%order
-        ratio = asymptotic
-        if (doubling%running(2) .and. doubling%grid_12 > 0.0_dp) ratio = sqrt(doubling%grid_24/doubling%grid_12)
-        ratio = min(max(ratio, 1.75_dp), asymptotic)
-        estimate = sqrt(doubling%fine_2/doubling%fine)/sqrt((ratio - 1.0_dp)*(asymptotic - 1.0_dp))
+        if (.not. doubling%running(2)) doubling%sums%grid_12 = 0.0_dp
+        call step_doubling_error(doubling%sums, doubling%order, estimate, ratio)
         text = 'dt from the runs at 2*dt and 4*dt, ratio ' &
                //trimmed_real_text(ratio, 0.01_dp, 100.0_dp, 2, 2)
     end subroutine time_step_estimate
