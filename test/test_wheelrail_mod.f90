@@ -1,11 +1,13 @@
 !> A wheel on a rail: the rail's closed-form receptance against a numerical wavenumber
 !> integral and Hetenyi's static stiffness, the Timoshenko rail against its Euler-Bernoulli
-!> limit, and bad track parameters refused.
+!> limit, and bad track parameters refused; the wheel from a pyuff-written universal file of
+!> modes (tools/make_wheel_modes.py) against the mass on its suspension in closed form.
 module test_wheelrail_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
-    use greenconv_model_rail, only: rail_track, wheel_mass, hertz_constant, hertz_tangent, wheel_rail_frf
+    use greenconv_model_rail, only: rail_track, wheel_mass, wheel_from_modes, hertz_constant, hertz_tangent, &
+                                   wheel_rail_frf
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: impulse_from_frf
     use greenconv_ident_structure, only: structure_model, structure_from_samples
@@ -25,6 +27,8 @@ module test_wheelrail_mod
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> A UIC60-like rail in round numbers on a pad of 300 MN/m per 0.6 m sleeper spacing.
     real(dp), parameter :: ei = 6.4e6_dp, m_rail = 60.0_dp, s_pad = 5.0e8_dp, c_pad = 5.0e4_dp
+    !> A wheel's modes written by pyuff (tools/make_wheel_modes.py).
+    character(len=*), parameter :: wheel_file = 'test/data/uff/wheel_modes.uff'
 
 contains
 
@@ -45,7 +49,9 @@ contains
                                   test_scene_refusals), &
                      new_unittest('scene: loss of contact reported at large roughness', test_scene_contact_loss), &
                      new_unittest('scene: linear reference beside the run, band for band', test_scene_reference), &
-                     new_unittest('scene: auto states its choice on the rail', test_scene_auto)]
+                     new_unittest('scene: auto states its choice on the rail', test_scene_auto), &
+                     new_unittest('wheel of a modes file against its closed form', test_wheel_modes), &
+                     new_unittest('scene: wheel of a modes file = mass on its suspension', test_scene_wheel_modes)]
     end subroutine collect_wheelrail
 
     !> At omega = 0 the receptance is beta/(2s), beta = (s/(4 EI))^(1/4) (Hetenyi, art. 10).
@@ -384,6 +390,100 @@ contains
         call note('worst |L_run - L_linear| [dB]', worst)
         call check(error, worst, 0.0_dp, 'band levels of the run against the linear reference [dB]', thr=0.5_dp)
     end subroutine test_scene_reference
+
+    !> The wheel of test/data/uff/wheel_modes.uff (pyuff: a 600 kg mass on a suspension at
+    !> 6.5 Hz, damping ratio 0.4, and a 2.5 kHz mode of 150 kg, shape 0.8 at node 7 and 0 at
+    !> node 9, its damping ratio 0 in the file) against the closed forms computed here: node 7
+    !> 1/(k - M w^2 + i w c) + 0.8^2/(150 (w2^2 - w^2 + 2 i xi w2 w)) with the default ratio
+    !> xi = 0.01, node 9 the mass on its suspension, from 0 to 5 kHz, to 1e-12; a node the file
+    !> does not have and a missing file refused, naming the variable.
+    subroutine test_wheel_modes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: f(7) = [0.0_dp, 1.0_dp, 6.5_dp, 100.0_dp, 1000.0_dp, 2500.0_dp, 5000.0_dp]
+        type(wheel_mass) :: wheel, suspension
+        type(error_type), allocatable :: fault
+        real(dp) :: w1, w2, w, worst
+        complex(dp) :: closed
+        integer :: i
+
+        w1 = 2.0_dp*pi*6.5_dp
+        w2 = 2.0_dp*pi*2500.0_dp
+        suspension = wheel_mass(mass=600.0_dp, stiffness=600.0_dp*w1**2, damping=2.0_dp*0.4_dp*600.0_dp*w1)
+        call wheel_from_modes(wheel_file, 3, 7, 0.01_dp, wheel, fault)
+        call check(error, .not. allocated(fault), 'read node 7 of '//wheel_file)
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do i = 1, size(f)
+            w = 2.0_dp*pi*f(i)
+            closed = 1.0_dp/cmplx(suspension%stiffness - 600.0_dp*w**2, w*suspension%damping, kind=dp) &
+                     + 0.64_dp/(150.0_dp*cmplx(w2**2 - w**2, 2.0_dp*0.01_dp*w2*w, kind=dp))
+            worst = max(worst, abs(wheel%receptance(w)/closed - 1.0_dp))
+        end do
+        call note('node 7: worst |alpha_file/alpha_closed - 1|', worst)
+        call check(error, worst, 0.0_dp, 'node 7 against the closed form', thr=1.0e-12_dp)
+        if (allocated(error)) return
+        call wheel_from_modes(wheel_file, 3, 9, 0.01_dp, wheel, fault)
+        call check(error, .not. allocated(fault), 'read node 9')
+        if (allocated(error)) return
+        worst = maxval(abs(wheel%receptance(2.0_dp*pi*f)/suspension%receptance(2.0_dp*pi*f) - 1.0_dp))
+        call note('node 9: worst |alpha_file/alpha_suspension - 1|', worst)
+        call check(error, worst, 0.0_dp, 'node 9 against the mass on its suspension', thr=1.0e-12_dp)
+        if (allocated(error)) return
+        call wheel_from_modes(wheel_file, 3, 5, 0.01_dp, wheel, fault)
+        call check(error, allocated(fault), 'node 5 refused')
+        if (allocated(error)) return
+        call check(error, index(fault%message, 'wheel_node: ') == 1, 'message names wheel_node: '//fault%message)
+        if (allocated(error)) return
+        call wheel_from_modes('test/data/uff/no_such_wheel.uff', 3, 0, 0.01_dp, wheel, fault)
+        call check(error, allocated(fault), 'a missing file refused')
+        if (allocated(error)) return
+        call check(error, index(fault%message, 'wheel_modes_file: ') == 1, 'message names wheel_modes_file: ' &
+                   //fault%message)
+    end subroutine test_wheel_modes
+
+    !> The same scene (sine roughness at 500 Hz, `fft`) with the wheel as a mass on its
+    !> suspension and as node 9 of the modes file: the same contact force to 1e-9 of the
+    !> preload; a node the file does not have is one line naming `&structure wheel_node`.
+    subroutine test_scene_wheel_modes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: rail = 'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = 5.0e8, ' &
+                                              //'support_damping = 5.0e4, '
+        character(len=*), parameter :: road = "profile = 'sine', amplitude = 1.0e-6, omega = 3141.6"
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: line
+        character(len=120) :: values
+        real(dp), allocatable :: suspension(:, :), modes(:, :)
+        real(dp) :: w1, difference
+
+        w1 = 2.0_dp*pi*6.5_dp
+        write (values, '(a,es24.16,a,es24.16)') 'suspension_stiffness = ', 600.0_dp*w1**2, ', suspension_damping = ', &
+            2.0_dp*0.4_dp*600.0_dp*w1
+        call summary_of(rail_scene('5.0e-5', '4096', rail//'wheel_mass = 600.0, '//trim(values), road, "'fft'"), &
+                        'fft', line, error)
+        if (allocated(error)) return
+        call read_history('out/test_wheelrail/wr_fft.dat', suspension, error)
+        if (allocated(error)) return
+        call summary_of(rail_scene('5.0e-5', '4096', rail//"wheel_mass = 600.0, wheel_modes_file = '"//wheel_file &
+                                   //"', wheel_node = 9", road, "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_history('out/test_wheelrail/wr_fft.dat', modes, error)
+        if (allocated(error)) return
+        difference = maxval(abs(modes(:, 4) - suspension(:, 4)))/7.5e4_dp
+        call note('max |F_modes - F_suspension|/F0', difference)
+        call check(error, size(modes, 1) == size(suspension, 1) .and. difference <= 1.0e-9_dp, &
+                   'the same force history')
+        if (allocated(error)) return
+        call read_scene_text('out/test_wheelrail', 'bad.nml', rail_scene('5.0e-5', '100', rail &
+                             //"wheel_mass = 600.0, wheel_modes_file = '"//wheel_file//"', wheel_node = 5", road, &
+                             "'fft'"), scene, fault)
+        call check(error, allocated(fault), 'node 5 refused')
+        if (allocated(error)) return
+        call check(error, fault%stat == stat_input .and. index(fault%message, 'bad.nml:2: &structure wheel_node') > 0 &
+                   .and. index(fault%message, new_line('a')) == 0, 'one line, status 2: '//fault%message)
+    end subroutine test_scene_wheel_modes
 
     !> `auto` on the rail (G not a finite sum of modes): its summary line names what it chose
     !> and why.
