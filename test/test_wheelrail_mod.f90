@@ -18,7 +18,8 @@ module test_wheelrail_mod
     use greenconv_scene_input, only: scene_type
     use greenconv_scene_runner, only: run_scene
     use greenconv_io_columns, only: read_columns
-    use scene_text_mod, only: read_scene_text
+    use scene_text_mod, only: read_scene_text, write_text
+    use greenconv_scene_sweep, only: run_sweep
     implicit none
     private
 
@@ -51,7 +52,9 @@ contains
                      new_unittest('scene: linear reference beside the run, band for band', test_scene_reference), &
                      new_unittest('scene: auto states its choice on the rail', test_scene_auto), &
                      new_unittest('wheel of a modes file against its closed form', test_wheel_modes), &
-                     new_unittest('scene: wheel of a modes file = mass on its suspension', test_scene_wheel_modes)]
+                     new_unittest('scene: wheel of a modes file = mass on its suspension', test_scene_wheel_modes), &
+                     new_unittest('sweep over the roughness: the linear model scales, the table meets it', &
+                                  test_roughness_sweep)]
     end subroutine collect_wheelrail
 
     !> At omega = 0 the receptance is beta/(2s), beta = (s/(4 EI))^(1/4) (Hetenyi, art. 10).
@@ -525,6 +528,148 @@ contains
         call check(error, fault%stat == stat_input .and. index(fault%message, 'bad.nml:2: &structure wheel_node') > 0 &
                    .and. index(fault%message, new_line('a')) == 0, 'one line, status 2: '//fault%message)
     end subroutine test_scene_wheel_modes
+
+    !> What the chart of data/wheel_rail_sweep.nml (plot/wheel_rail_sweep.gp) rests on, at the
+    !> ISO 3095 limit roughness shifted by roughness_offset: the linear reference scales with
+    !> the roughness (its band levels at -20 dB are those at 0 dB less 20 dB, to 1e-9 dB); a
+    !> sweep's band levels are those of the contact scene of the same values (to the table's
+    !> 1e-4 dB); at -20 dB they meet the linear model within 0.5 dB from 315 Hz to 5 kHz with
+    !> the contact never lost, at +12 dB the contact is lost for some steps (fraction < 1).
+    subroutine test_roughness_sweep(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: road = "profile = 'spectrum', speed = 27.78, roughness_offset = "
+        character(len=*), parameter :: directory = 'out/test_wheelrail'
+        character(len=:), allocatable :: line, text, names(:)
+        real(dp), allocatable :: linear_low(:, :), linear(:, :), run_low(:, :), table(:, :)
+        type(error_type), allocatable :: fault
+        real(dp) :: worst, departure
+        integer :: b, c, report
+
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_linear_spectra.dat', 6, linear, error)
+        if (allocated(error)) return
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'-20.0', "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_linear_spectra.dat', 6, linear_low, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_fft_spectra.dat', 7, run_low, error)
+        if (allocated(error)) return
+        worst = maxval(abs(linear_low(:, 6) + 20.0_dp - linear(:, 6)))
+        call note('|L_linear(-20 dB) + 20 - L_linear(0 dB)| [dB]', worst)
+        call check(error, worst <= 1.0e-9_dp, 'the linear reference scales with the roughness')
+        if (allocated(error)) return
+        ! the sweep of the same scene over the offset
+        text = rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'")
+        text = "&scene task = 'sweep', name = 'wrs', output_dir = '"//directory//"', dt = 5.0e-5, n_steps = 16384 /" &
+               //text(index(text, new_line('a')):)//new_line('a') &
+               //'&sweep road.roughness_offset = -20.0, 12.0, spectra = .true., f_low = 200.0, f_high = 5000.0 /' &
+               //new_line('a')
+        call execute_command_line('rm -rf '//directory//'/wrs_sweep.d')
+        call write_text(directory//'/wrs.nml', text)
+        open (newunit=report, status='scratch', action='readwrite')
+        call run_sweep(directory//'/wrs.nml', report, .false., fault)
+        close (report)
+        call check(error, .not. allocated(fault), 'the sweep runs')
+        if (allocated(error)) then
+            error%message = error%message//': '//fault%message
+            return
+        end if
+        call read_sweep_table(directory//'/wrs_sweep.dat', names, table, error)
+        if (allocated(error)) return
+        call check(error, size(table, 1) == 2, 'two variants')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        departure = 0.0_dp
+        do b = 1, size(run_low, 1)
+            c = column_named(names, 'L'//nominal_text(run_low(b, 1))//'_fft')
+            if (c == 0) cycle
+            worst = max(worst, abs(table(1, c) - run_low(b, 6)))
+            if (run_low(b, 1) >= 315.0_dp .and. run_low(b, 1) <= 5000.0_dp) &
+                departure = max(departure, abs(table(1, c) - (linear(b, 6) - 20.0_dp)))
+        end do
+        call note('|L_sweep - L_scene| at -20 dB [dB]', worst)
+        call note('|L_sweep - L_linear| at -20 dB, 315 Hz - 5 kHz [dB]', departure)
+        call check(error, count(index(names, '_fft') > 0 .and. names(:)(1:1) == 'L') >= 10 .and. &
+                   worst <= 1.0e-4_dp, 'the sweep''s band levels are the scene''s')
+        if (allocated(error)) return
+        call check(error, departure <= 0.5_dp, 'at -20 dB the sweep meets the linear model within 0.5 dB')
+        if (allocated(error)) return
+        c = column_named(names, 'contact_fft')
+        call check(error, c > 0, 'a column contact_fft')
+        if (allocated(error)) return
+        call note('contact fraction at -20 dB', table(1, c))
+        call note('contact fraction at +12 dB', table(2, c))
+        call check(error, table(1, c) == 1.0_dp .and. table(2, c) < 1.0_dp, &
+                   'contact never lost at -20 dB, lost for some steps at +12 dB')
+    end subroutine test_roughness_sweep
+
+    !> The column of `name` in `names`, 0 when absent.
+    pure integer function column_named(names, name) result(c)
+        character(len=*), intent(in) :: names(:), name
+
+        do c = 1, size(names)
+            if (names(c) == name) return
+        end do
+        c = 0
+    end function column_named
+
+    !> A band's nominal frequency as a sweep table names its column ('315', '1000').
+    function nominal_text(f) result(text)
+        real(dp), intent(in) :: f
+        character(len=:), allocatable :: text
+
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') nint(f)
+        text = trim(buffer)
+    end function nominal_text
+
+    !> A sweep table: the names of its '# variant' header line and its rows of numbers.
+    subroutine read_sweep_table(path, names, rows, error)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: names(:)
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=8000) :: buffer
+        character(len=40) :: words(400)
+        real(dp) :: values(400)
+        integer :: unit, stat, n, k, i
+
+        n = 0
+        k = 0
+        allocate (rows(0, 0))
+        allocate (character(len=40) :: names(0))
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        call check(error, stat == 0, 'open '//path)
+        if (allocated(error)) return
+        do
+            read (unit, '(a)', iostat=stat) buffer
+            if (stat /= 0) exit
+            if (index(buffer, '# variant') == 1) then
+                n = 0
+                do i = 1, size(words)
+                    words = ''
+                    read (buffer(2:), *, iostat=stat) words(:i)
+                    if (stat /= 0) exit
+                    n = i
+                end do
+                read (buffer(2:), *) words(:n)
+                names = words(:n)
+                deallocate (rows)
+                allocate (rows(0, n))
+            else if (buffer(1:1) /= '#' .and. n > 0 .and. len_trim(buffer) > 0) then
+                read (buffer, *) values(:n)
+                rows = reshape([transpose(rows), values(:n)], [n, size(rows, 1) + 1])
+                rows = transpose(rows)
+                k = k + 1
+            end if
+        end do
+        close (unit)
+        call check(error, n > 0 .and. k > 0, 'a header and rows in '//path)
+    end subroutine read_sweep_table
 
     !> `auto` on the rail (G not a finite sum of modes): its summary line names what it chose
     !> and why.
