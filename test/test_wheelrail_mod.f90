@@ -23,7 +23,7 @@ module test_wheelrail_mod
     implicit none
     private
 
-    public :: collect_wheelrail
+    public :: collect_wheelrail, read_bands
 
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> A UIC60-like rail in round numbers on a pad of 300 MN/m per 0.6 m sleeper spacing.
@@ -729,6 +729,8 @@ contains
         call check(error, .not. allocated(fault), 'read '//path)
     end subroutine read_history
 
+    !> The first n columns of a 1/3-octave band file (7 for a run's, with spread_db; 6 for a
+    !> linear reference's).
     subroutine read_bands(path, n, rows, error)
         character(len=*), intent(in) :: path
         integer, intent(in) :: n

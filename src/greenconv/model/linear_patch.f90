@@ -73,8 +73,8 @@ contains
 
         n = size(k)
         if (size(a, 1) /= n .or. size(a, 2) /= n .or. size(road) /= n .or. size(force) /= n .or. n < 1) then
-            call fatal_error(error, 'linear_patch_force: expected an N_c x N_c receptance matrix and N_c stiffnesses, ' &
-                             //'road heights and forces', stat_numerical)
+            call fatal_error(error, 'linear_patch_force: expected an N_c x N_c receptance matrix and N_c ' &
+                             //'stiffnesses, road heights and forces', stat_numerical)
             return
         end if
         if (any(.not. (k > 0.0_dp))) then

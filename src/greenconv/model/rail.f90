@@ -238,9 +238,8 @@ contains
         alpha = (0.0_dp, 0.0_dp)
         do k = 1, size(self%modal_frequency)
             omega_k = two_pi*self%modal_frequency(k)
-            alpha = alpha + self%modal_shape(k)**2/(self%modal_mass(k) &
-                                                  *cmplx(omega_k**2 - omega**2, 2.0_dp*self%modal_damping(k)*omega_k*omega, &
-                                                         kind=dp))
+            alpha = alpha + self%modal_shape(k)**2 &
+                    /(self%modal_mass(k)*cmplx(omega_k**2 - omega**2, 2.0_dp*self%modal_damping(k)*omega_k*omega, kind=dp))
         end do
     end function wheel_receptance
 
@@ -284,8 +283,8 @@ contains
         wheel%modal_shape = modes%shape(i, :)
         if (any(wheel%modal_frequency <= 0.0_dp)) then
             call fatal_error(error, 'wheel_modes_file: expected modes of a wheel held by its suspension (every ' &
-                             //'frequency > 0 Hz) in '//path//', found one at '//sci_text(minval(wheel%modal_frequency)) &
-                             //' Hz')
+                             //'frequency > 0 Hz) in '//path//', found one at ' &
+                             //sci_text(minval(wheel%modal_frequency))//' Hz')
         else if (all(wheel%modal_shape == 0.0_dp)) then
             call fatal_error(error, 'wheel_modes_file: expected a mode that moves the contact node in '//path &
                              //', found every shape 0 there')
