@@ -1,13 +1,16 @@
 # A wheel on a rail (data/wheel_rail.nml, data/wheel_rail_rough.nml): the 1/3-octave band
 # levels of the contact force of the time-domain runs against the linear frequency-domain
 # reference F = -r/(alpha_w + alpha_r + 1/k_H) (doc/rail.md), at the ISO 3095 limit roughness
-# and 12 dB above it, and a stretch of the rough run's contact force, where the contact opens.
+# and 12 dB above it, the narrowband force PSD of the fft run at the limit against the linear
+# model's, and a stretch of the rough run's contact force, where the contact opens.
 #
 #   gnuplot plot/wheel_rail.gp
 #   gnuplot -e "datadir='out'; figdir='out/figures'" plot/wheel_rail.gp
 #
 # Reads DATADIR/<scene>_<method>_spectra.dat and DATADIR/<scene>_linear_spectra.dat (columns
-# f_nominal f_centre f_lower f_upper power level ..., Hz Hz Hz Hz N^2 dB re 1 N) and the rough
+# f_nominal f_centre f_lower f_upper power level ..., Hz Hz Hz Hz N^2 dB re 1 N), the narrowband
+# files DATADIR/wheel_rail_fft_narrowband.dat (f psd_force) and wheel_rail_linear_narrowband.dat
+# (f psd_roughness alpha_abs h_abs psd_force), and the rough
 # run's column file (text or binary, plot/lib/column_file.gp); writes FIGDIR/wheel_rail.png.
 
 if (!exists("datadir")) datadir = 'out'
@@ -30,6 +33,12 @@ do for [scene in scenes] {
         exit status 1
     }
 }
+narrow_run = sprintf('%s/wheel_rail_fft_narrowband.dat', datadir)
+narrow_linear = sprintf('%s/wheel_rail_linear_narrowband.dat', datadir)
+if (!readable(narrow_run) || !readable(narrow_linear)) {
+    print sprintf('wheel_rail: no %s or %s (run the scenes first: make run)', narrow_run, narrow_linear)
+    exit status 1
+}
 rough = column_file(sprintf('%s/wheel_rail_rough_fft', datadir))
 if (rough eq '') {
     print missing_file(sprintf('%s/wheel_rail_rough_fft', datadir))
@@ -40,9 +49,9 @@ column_t = column_of(rough, 't')
 column_f = column_of(rough, 'f_contact')
 
 system(sprintf("mkdir -p '%s'", figdir))
-set terminal pngcairo size 1000, 1000 enhanced font 'sans,11'
+set terminal pngcairo size 1000, 1300 enhanced font 'sans,11'
 set output output
-set multiplot layout 3, 1 title "Wheel on rail: contact force, time domain against the linear model" font ',13'
+set multiplot layout 4, 1 title "Wheel on rail: contact force, time domain against the linear model" font ',13'
 set grid xtics ytics mxtics
 set key outside right top box opaque noenhanced
 set lmargin 10
@@ -62,6 +71,15 @@ do for [k = 1:2] {
     plot linear_of(scene) using 3:6 with steps ls 3 title 'linear reference', \
          for [i = 1:words(files)] word(files, i) using 3:6 with steps ls i title method_of(word(files, i), scene)
 }
+set title 'ISO 3095 limit roughness: narrowband PSD on the Welch lines' noenhanced
+set logscale y
+set format y '10^{%L}'
+set yrange [*:*]
+set ylabel 'S_F [N^2/Hz]'
+plot narrow_run using 1:2 with lines ls 1 title 'fft', \
+     narrow_linear using 1:5 with lines ls 3 title 'linear reference'
+unset logscale y
+set format y '%g'
 unset logscale x
 set autoscale y
 set xrange [0.5:0.6]

@@ -1,11 +1,13 @@
 !> A wheel on a rail: the rail's closed-form receptance against a numerical wavenumber
 !> integral and Hetenyi's static stiffness, the Timoshenko rail against its Euler-Bernoulli
-!> limit, and bad track parameters refused.
+!> limit, and bad track parameters refused; the wheel from a pyuff-written universal file of
+!> modes (tools/make_wheel_modes.py) against the mass on its suspension in closed form.
 module test_wheelrail_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
-    use greenconv_model_rail, only: rail_track, wheel_mass, hertz_constant, hertz_tangent, wheel_rail_frf
+    use greenconv_model_rail, only: rail_track, wheel_mass, wheel_from_modes, hertz_constant, hertz_tangent, &
+                                   wheel_rail_frf
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: impulse_from_frf
     use greenconv_ident_structure, only: structure_model, structure_from_samples
@@ -16,15 +18,18 @@ module test_wheelrail_mod
     use greenconv_scene_input, only: scene_type
     use greenconv_scene_runner, only: run_scene
     use greenconv_io_columns, only: read_columns
-    use scene_text_mod, only: read_scene_text
+    use scene_text_mod, only: read_scene_text, write_text
+    use greenconv_scene_sweep, only: run_sweep
     implicit none
     private
 
-    public :: collect_wheelrail
+    public :: collect_wheelrail, read_bands
 
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> A UIC60-like rail in round numbers on a pad of 300 MN/m per 0.6 m sleeper spacing.
     real(dp), parameter :: ei = 6.4e6_dp, m_rail = 60.0_dp, s_pad = 5.0e8_dp, c_pad = 5.0e4_dp
+    !> A wheel's modes written by pyuff (tools/make_wheel_modes.py).
+    character(len=*), parameter :: wheel_file = 'test/data/uff/wheel_modes.uff'
 
 contains
 
@@ -45,7 +50,11 @@ contains
                                   test_scene_refusals), &
                      new_unittest('scene: loss of contact reported at large roughness', test_scene_contact_loss), &
                      new_unittest('scene: linear reference beside the run, band for band', test_scene_reference), &
-                     new_unittest('scene: auto states its choice on the rail', test_scene_auto)]
+                     new_unittest('scene: auto states its choice on the rail', test_scene_auto), &
+                     new_unittest('wheel of a modes file against its closed form', test_wheel_modes), &
+                     new_unittest('scene: wheel of a modes file = mass on its suspension', test_scene_wheel_modes), &
+                     new_unittest('sweep over the roughness: the linear model scales, the table meets it', &
+                                  test_roughness_sweep)]
     end subroutine collect_wheelrail
 
     !> At omega = 0 the receptance is beta/(2s), beta = (s/(4 EI))^(1/4) (Hetenyi, art. 10).
@@ -365,14 +374,14 @@ contains
 
     !> At the ISO 3095 limit roughness at 100 km/h the linear reference's band levels and the
     !> fft run's agree within 0.5 dB from 315 Hz to 5 kHz (the bands below hold the start from
-    !> rest).
+    !> rest), and so do their narrowband PSDs on the Welch lines that carry the roughness.
     subroutine test_scene_reference(error)
         type(test_error), allocatable, intent(out) :: error
 
         character(len=:), allocatable :: line
         real(dp), allocatable :: run(:, :), linear(:, :)
         real(dp) :: worst
-        integer :: b
+        integer :: b, n_lines
 
         ! accuracy = 0.2 (methods text): the bands against the linear model are under test; fft's
         ! budget at this dt is about 8e-2 (model 3.4e-2, time step 4.4e-2)
@@ -392,7 +401,284 @@ contains
         end do
         call note('worst |L_run - L_linear| [dB]', worst)
         call check(error, worst, 0.0_dp, 'band levels of the run against the linear reference [dB]', thr=0.5_dp)
+        if (allocated(error)) return
+        ! the narrowband PSDs, line for line on the same Welch lines
+        call read_named('out/test_wheelrail/wr_fft_narrowband.dat', [character(len=16) :: 'f', 'psd_force'], run, &
+                        error)
+        if (allocated(error)) return
+        call read_named('out/test_wheelrail/wr_linear_narrowband.dat', [character(len=16) :: 'f', 'psd_roughness', &
+                        'alpha_abs', 'h_abs', 'psd_force'], linear, error)
+        if (allocated(error)) return
+        call check(error, size(run, 1) == size(linear, 1) .and. all(run(:, 1) == linear(:, 1)), 'the same lines')
+        if (allocated(error)) return
+        ! the roughness is a sum of cosines: between them the PSD is the window's leakage, whose
+        ! shape differs; compared are the lines within 10 dB of the largest in the third octave
+        ! around them
+        worst = 0.0_dp
+        n_lines = 0
+        do b = 1, size(run, 1)
+            if (run(b, 1) < 315.0_dp .or. run(b, 1) > 5000.0_dp) cycle
+            if (linear(b, 5) < 0.1_dp*maxval(linear(:, 5), run(:, 1) > run(b, 1)/1.26_dp .and. &
+                                              run(:, 1) < run(b, 1)*1.26_dp)) cycle
+            worst = max(worst, abs(10.0_dp*log10(run(b, 2)/linear(b, 5))))
+            n_lines = n_lines + 1
+        end do
+        call note('lines 315 Hz - 5 kHz compared', real(n_lines, dp))
+        call note('worst |10 lg(S_run/S_linear)| [dB]', worst)
+        call check(error, n_lines > 200 .and. worst <= 0.5_dp, &
+                   'narrowband PSD of the run against the linear reference within 0.5 dB')
     end subroutine test_scene_reference
+
+    !> Read a column file of the named columns (no units asked).
+    subroutine read_named(path, names, rows, error)
+        character(len=*), intent(in) :: path
+        character(len=*), intent(in) :: names(:)
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: fault
+        integer, allocatable :: line_of(:)
+        integer :: i
+
+        call read_columns(path, names, [(' ', i=1, size(names))], rows, line_of, fault)
+        call check(error, .not. allocated(fault), 'read '//path)
+    end subroutine read_named
+
+    !> The wheel of test/data/uff/wheel_modes.uff (pyuff: a 600 kg mass on a suspension at
+    !> 6.5 Hz, damping ratio 0.4, and a 2.5 kHz mode of 150 kg, shape 0.8 at node 7 and 0 at
+    !> node 9, its damping ratio 0 in the file) against the closed forms computed here: node 7
+    !> 1/(k - M w^2 + i w c) + 0.8^2/(150 (w2^2 - w^2 + 2 i xi w2 w)) with the default ratio
+    !> xi = 0.01, node 9 the mass on its suspension, from 0 to 5 kHz, to 1e-12; a node the file
+    !> does not have and a missing file refused, naming the variable.
+    subroutine test_wheel_modes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: f(7) = [0.0_dp, 1.0_dp, 6.5_dp, 100.0_dp, 1000.0_dp, 2500.0_dp, 5000.0_dp]
+        type(wheel_mass) :: wheel, suspension
+        type(error_type), allocatable :: fault
+        real(dp) :: w1, w2, w, worst
+        complex(dp) :: closed
+        integer :: i
+
+        w1 = 2.0_dp*pi*6.5_dp
+        w2 = 2.0_dp*pi*2500.0_dp
+        suspension = wheel_mass(mass=600.0_dp, stiffness=600.0_dp*w1**2, damping=2.0_dp*0.4_dp*600.0_dp*w1)
+        call wheel_from_modes(wheel_file, 3, 7, 0.01_dp, wheel, fault)
+        call check(error, .not. allocated(fault), 'read node 7 of '//wheel_file)
+        if (allocated(error)) return
+        worst = 0.0_dp
+        do i = 1, size(f)
+            w = 2.0_dp*pi*f(i)
+            closed = 1.0_dp/cmplx(suspension%stiffness - 600.0_dp*w**2, w*suspension%damping, kind=dp) &
+                     + 0.64_dp/(150.0_dp*cmplx(w2**2 - w**2, 2.0_dp*0.01_dp*w2*w, kind=dp))
+            worst = max(worst, abs(wheel%receptance(w)/closed - 1.0_dp))
+        end do
+        call note('node 7: worst |alpha_file/alpha_closed - 1|', worst)
+        call check(error, worst, 0.0_dp, 'node 7 against the closed form', thr=1.0e-12_dp)
+        if (allocated(error)) return
+        call wheel_from_modes(wheel_file, 3, 9, 0.01_dp, wheel, fault)
+        call check(error, .not. allocated(fault), 'read node 9')
+        if (allocated(error)) return
+        worst = maxval(abs(wheel%receptance(2.0_dp*pi*f)/suspension%receptance(2.0_dp*pi*f) - 1.0_dp))
+        call note('node 9: worst |alpha_file/alpha_suspension - 1|', worst)
+        call check(error, worst, 0.0_dp, 'node 9 against the mass on its suspension', thr=1.0e-12_dp)
+        if (allocated(error)) return
+        call wheel_from_modes(wheel_file, 3, 5, 0.01_dp, wheel, fault)
+        call check(error, allocated(fault), 'node 5 refused')
+        if (allocated(error)) return
+        call check(error, index(fault%message, 'wheel_node: ') == 1, 'message names wheel_node: '//fault%message)
+        if (allocated(error)) return
+        call wheel_from_modes('test/data/uff/no_such_wheel.uff', 3, 0, 0.01_dp, wheel, fault)
+        call check(error, allocated(fault), 'a missing file refused')
+        if (allocated(error)) return
+        call check(error, index(fault%message, 'wheel_modes_file: ') == 1, 'message names wheel_modes_file: ' &
+                   //fault%message)
+    end subroutine test_wheel_modes
+
+    !> The same scene (sine roughness at 500 Hz, `fft`) with the wheel as a mass on its
+    !> suspension and as node 9 of the modes file: the same contact force to 1e-9 of the
+    !> preload; a node the file does not have is one line naming `&structure wheel_node`.
+    subroutine test_scene_wheel_modes(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: rail = 'rail_bending = 6.4e6, rail_mass = 60.0, support_stiffness = 5.0e8, ' &
+                                              //'support_damping = 5.0e4, '
+        character(len=*), parameter :: road = "profile = 'sine', amplitude = 1.0e-6, omega = 3141.6"
+        type(scene_type) :: scene
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: line
+        character(len=120) :: values
+        real(dp), allocatable :: suspension(:, :), modes(:, :)
+        real(dp) :: w1, difference
+
+        w1 = 2.0_dp*pi*6.5_dp
+        write (values, '(a,es24.16,a,es24.16)') 'suspension_stiffness = ', 600.0_dp*w1**2, ', suspension_damping = ', &
+            2.0_dp*0.4_dp*600.0_dp*w1
+        call summary_of(rail_scene('5.0e-5', '4096', rail//'wheel_mass = 600.0, '//trim(values), road, "'fft'"), &
+                        'fft', line, error)
+        if (allocated(error)) return
+        call read_history('out/test_wheelrail/wr_fft.dat', suspension, error)
+        if (allocated(error)) return
+        call summary_of(rail_scene('5.0e-5', '4096', rail//"wheel_mass = 600.0, wheel_modes_file = '"//wheel_file &
+                                   //"', wheel_node = 9", road, "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_history('out/test_wheelrail/wr_fft.dat', modes, error)
+        if (allocated(error)) return
+        difference = maxval(abs(modes(:, 4) - suspension(:, 4)))/7.5e4_dp
+        call note('max |F_modes - F_suspension|/F0', difference)
+        call check(error, size(modes, 1) == size(suspension, 1) .and. difference <= 1.0e-9_dp, &
+                   'the same force history')
+        if (allocated(error)) return
+        call read_scene_text('out/test_wheelrail', 'bad.nml', rail_scene('5.0e-5', '100', rail &
+                             //"wheel_mass = 600.0, wheel_modes_file = '"//wheel_file//"', wheel_node = 5", road, &
+                             "'fft'"), scene, fault)
+        call check(error, allocated(fault), 'node 5 refused')
+        if (allocated(error)) return
+        call check(error, fault%stat == stat_input .and. index(fault%message, 'bad.nml:2: &structure wheel_node') > 0 &
+                   .and. index(fault%message, new_line('a')) == 0, 'one line, status 2: '//fault%message)
+    end subroutine test_scene_wheel_modes
+
+    !> What the chart of data/wheel_rail_sweep.nml (plot/wheel_rail_sweep.gp) rests on, at the
+    !> ISO 3095 limit roughness shifted by roughness_offset: the linear reference scales with
+    !> the roughness (its band levels at -20 dB are those at 0 dB less 20 dB, to 1e-9 dB); a
+    !> sweep's band levels are those of the contact scene of the same values (to the table's
+    !> 1e-4 dB); at -20 dB they meet the linear model within 0.5 dB from 315 Hz to 5 kHz with
+    !> the contact never lost, at +12 dB the contact is lost for some steps (fraction < 1).
+    subroutine test_roughness_sweep(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: road = "profile = 'spectrum', speed = 27.78, roughness_offset = "
+        character(len=*), parameter :: directory = 'out/test_wheelrail'
+        character(len=:), allocatable :: line, text, names(:)
+        real(dp), allocatable :: linear_low(:, :), linear(:, :), run_low(:, :), table(:, :)
+        type(error_type), allocatable :: fault
+        real(dp) :: worst, departure
+        integer :: b, c, report
+
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_linear_spectra.dat', 6, linear, error)
+        if (allocated(error)) return
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'-20.0', "'fft'"), 'fft', line, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_linear_spectra.dat', 6, linear_low, error)
+        if (allocated(error)) return
+        call read_bands(directory//'/wr_fft_spectra.dat', 7, run_low, error)
+        if (allocated(error)) return
+        worst = maxval(abs(linear_low(:, 6) + 20.0_dp - linear(:, 6)))
+        call note('|L_linear(-20 dB) + 20 - L_linear(0 dB)| [dB]', worst)
+        call check(error, worst <= 1.0e-9_dp, 'the linear reference scales with the roughness')
+        if (allocated(error)) return
+        ! the sweep of the same scene over the offset
+        text = rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'")
+        text = "&scene task = 'sweep', name = 'wrs', output_dir = '"//directory//"', dt = 5.0e-5, n_steps = 16384 /" &
+               //text(index(text, new_line('a')):)//new_line('a') &
+               //'&sweep road.roughness_offset = -20.0, 12.0, spectra = .true., f_low = 200.0, f_high = 5000.0 /' &
+               //new_line('a')
+        call execute_command_line('rm -rf '//directory//'/wrs_sweep.d')
+        call write_text(directory//'/wrs.nml', text)
+        open (newunit=report, status='scratch', action='readwrite')
+        call run_sweep(directory//'/wrs.nml', report, .false., fault)
+        close (report)
+        call check(error, .not. allocated(fault), 'the sweep runs')
+        if (allocated(error)) then
+            error%message = error%message//': '//fault%message
+            return
+        end if
+        call read_sweep_table(directory//'/wrs_sweep.dat', names, table, error)
+        if (allocated(error)) return
+        call check(error, size(table, 1) == 2, 'two variants')
+        if (allocated(error)) return
+        worst = 0.0_dp
+        departure = 0.0_dp
+        do b = 1, size(run_low, 1)
+            c = column_named(names, 'L'//nominal_text(run_low(b, 1))//'_fft')
+            if (c == 0) cycle
+            worst = max(worst, abs(table(1, c) - run_low(b, 6)))
+            if (run_low(b, 1) >= 315.0_dp .and. run_low(b, 1) <= 5000.0_dp) &
+                departure = max(departure, abs(table(1, c) - (linear(b, 6) - 20.0_dp)))
+        end do
+        call note('|L_sweep - L_scene| at -20 dB [dB]', worst)
+        call note('|L_sweep - L_linear| at -20 dB, 315 Hz - 5 kHz [dB]', departure)
+        call check(error, count(index(names, '_fft') > 0 .and. names(:)(1:1) == 'L') >= 10 .and. &
+                   worst <= 1.0e-4_dp, 'the sweep''s band levels are the scene''s')
+        if (allocated(error)) return
+        call check(error, departure <= 0.5_dp, 'at -20 dB the sweep meets the linear model within 0.5 dB')
+        if (allocated(error)) return
+        c = column_named(names, 'contact_fft')
+        call check(error, c > 0, 'a column contact_fft')
+        if (allocated(error)) return
+        call note('contact fraction at -20 dB', table(1, c))
+        call note('contact fraction at +12 dB', table(2, c))
+        call check(error, table(1, c) == 1.0_dp .and. table(2, c) < 1.0_dp, &
+                   'contact never lost at -20 dB, lost for some steps at +12 dB')
+    end subroutine test_roughness_sweep
+
+    !> The column of `name` in `names`, 0 when absent.
+    pure integer function column_named(names, name) result(c)
+        character(len=*), intent(in) :: names(:), name
+
+        do c = 1, size(names)
+            if (names(c) == name) return
+        end do
+        c = 0
+    end function column_named
+
+    !> A band's nominal frequency as a sweep table names its column ('315', '1000').
+    function nominal_text(f) result(text)
+        real(dp), intent(in) :: f
+        character(len=:), allocatable :: text
+
+        character(len=24) :: buffer
+
+        write (buffer, '(i0)') nint(f)
+        text = trim(buffer)
+    end function nominal_text
+
+    !> A sweep table: the names of its '# variant' header line and its rows of numbers.
+    subroutine read_sweep_table(path, names, rows, error)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: names(:)
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=8000) :: buffer
+        character(len=40) :: words(400)
+        real(dp) :: values(400)
+        integer :: unit, stat, n, k, i
+
+        n = 0
+        k = 0
+        allocate (rows(0, 0))
+        allocate (character(len=40) :: names(0))
+        open (newunit=unit, file=path, status='old', action='read', iostat=stat)
+        call check(error, stat == 0, 'open '//path)
+        if (allocated(error)) return
+        do
+            read (unit, '(a)', iostat=stat) buffer
+            if (stat /= 0) exit
+            if (index(buffer, '# variant') == 1) then
+                n = 0
+                do i = 1, size(words)
+                    words = ''
+                    read (buffer(2:), *, iostat=stat) words(:i)
+                    if (stat /= 0) exit
+                    n = i
+                end do
+                read (buffer(2:), *) words(:n)
+                names = words(:n)
+                deallocate (rows)
+                allocate (rows(0, n))
+            else if (buffer(1:1) /= '#' .and. n > 0 .and. len_trim(buffer) > 0) then
+                read (buffer, *) values(:n)
+                rows = reshape([transpose(rows), values(:n)], [n, size(rows, 1) + 1])
+                rows = transpose(rows)
+                k = k + 1
+            end if
+        end do
+        close (unit)
+        call check(error, n > 0 .and. k > 0, 'a header and rows in '//path)
+    end subroutine read_sweep_table
 
     !> `auto` on the rail (G not a finite sum of modes): its summary line names what it chose
     !> and why.
@@ -452,6 +738,8 @@ contains
         call check(error, .not. allocated(fault), 'read '//path)
     end subroutine read_history
 
+    !> The first n columns of a 1/3-octave band file (7 for a run's, with spread_db; 6 for a
+    !> linear reference's).
     subroutine read_bands(path, n, rows, error)
         character(len=*), intent(in) :: path
         integer, intent(in) :: n

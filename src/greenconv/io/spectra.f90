@@ -51,7 +51,7 @@ module greenconv_io_spectra
     private
 
     public :: band_spectrum, third_octave_bands, welch_psd, band_levels, write_band_levels
-    public :: welch_accumulator, start_welch, add_welch_samples, welch_average
+    public :: welch_accumulator, start_welch, add_welch_samples, welch_average, set_welch_gains
     public :: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, lowest_resolved_band
     public :: highest_band_below, band_powers, level_spread, default_lines_per_band
 
@@ -111,6 +111,12 @@ module greenconv_io_spectra
         real(dp), allocatable :: segment(:)
         !> Room for its lines X_k, k = 0..N/2, also from a 64-byte boundary.
         complex(dp), allocatable :: lines(:)
+        !> Complex gains G_k,c of a filtered sum of the channels, gains(k, channel), k = 0..N/2
+        !> (`set_welch_gains`; not allocated: none): its |sum_c G_k,c*X_k,c|^2 are summed in the
+        !> last column of `sums`, the PSD of the channels each filtered and then added.
+        complex(dp), allocatable :: gains(:, :)
+        !> The filtered sum's lines of the current segment.
+        complex(dp), allocatable :: mixed(:)
         !> The forward transform's plan.
         type(fft_plan_set) :: plans
     end type welch_accumulator
@@ -262,10 +268,27 @@ contains
         welch%filled = 0
         welch%window = [(sin(pi*j/n)**2, j=0, n - 1)]
         if (allocated(welch%buffer)) deallocate (welch%buffer, welch%sums, welch%segment, welch%lines)
+        if (allocated(welch%gains)) deallocate (welch%gains, welch%mixed)
         allocate (welch%buffer(n, n_channels), welch%sums(0:n/2, n_channels), welch%segment(n + 7), &
                   welch%lines(n/2 + 4))
         welch%sums = 0.0_dp
     end subroutine start_welch
+
+    !> Also average the PSD of a filtered sum of the channels, sum_c G_c(f)*X_c(f): the last
+    !> column of `welch_average`'s psd (after the channels'). Call after `start_welch`, before
+    !> any sample.
+    subroutine set_welch_gains(welch, gains)
+        !> The accumulator, started.
+        type(welch_accumulator), intent(inout) :: welch
+        !> Gains G_k,c at the lines f_k = k/(N*dt), gains(k, channel), k = 0..N/2.
+        complex(dp), intent(in) :: gains(0:, :)
+
+        welch%gains = gains
+        allocate (welch%mixed(0:welch%segment_length/2))
+        deallocate (welch%sums)
+        allocate (welch%sums(0:welch%segment_length/2, welch%n_channels + 1))
+        welch%sums = 0.0_dp
+    end subroutine set_welch_gains
 
     !> Add the next samples of every channel, samples(step, channel); each segment completed
     !> is windowed, transformed and added, and the next starts half a segment later.
@@ -288,11 +311,15 @@ contains
             welch%filled = welch%filled + count
             first = first + count
             if (welch%filled < n) exit
+            if (allocated(welch%gains)) welch%mixed(:) = (0.0_dp, 0.0_dp)
             do c = 1, welch%n_channels
                 welch%segment(r:r + n - 1) = welch%window*(welch%buffer(:, c) - sum(welch%buffer(:, c))/n)
                 call welch%plans%forward(welch%segment(r:r + n - 1), welch%lines(k:k + n/2))
                 welch%sums(:, c) = welch%sums(:, c) + abs(welch%lines(k:k + n/2))**2
+                if (allocated(welch%gains)) welch%mixed(:) = welch%mixed + welch%gains(:, c)*welch%lines(k:k + n/2)
             end do
+            if (allocated(welch%gains)) welch%sums(:, size(welch%sums, 2)) = welch%sums(:, size(welch%sums, 2)) &
+                                                                          + abs(welch%mixed)**2
             welch%n_segments = welch%n_segments + 1
             welch%buffer(1:n - hop, :) = welch%buffer(hop + 1:n, :)
             welch%filled = n - hop
@@ -321,7 +348,7 @@ contains
         type(welch_accumulator), intent(inout) :: welch
         !> Time step [s], > 0.
         real(dp), intent(in) :: dt
-        !> PSD psd(k, channel) [N^2/Hz] at f_k = k*df, k = 0..N/2.
+        !> PSD psd(k, channel) [N^2/Hz] at f_k = k*df, k = 0..N/2 (and of the filtered sum last).
         real(dp), allocatable, intent(out) :: psd(:, :)
         !> Line spacing df = 1/(N*dt) [Hz].
         real(dp), intent(out) :: df
@@ -338,7 +365,7 @@ contains
                              //' samples')
             return
         end if
-        allocate (psd(0:n/2, welch%n_channels))
+        allocate (psd(0:n/2, size(welch%sums, 2)))
         psd(:, :) = 2.0_dp*welch%sums*dt/(sum(welch%window**2)*welch%n_segments)
         psd(0, :) = psd(0, :)/2.0_dp
         if (mod(n, 2) == 0) psd(n/2, :) = psd(n/2, :)/2.0_dp

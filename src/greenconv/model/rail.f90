@@ -33,7 +33,12 @@
 !>     s*(omega) = s_p* * (s_b* - m_s*omega^2) / (s_p* + s_b* - m_s*omega^2).
 !>
 !> **The wheel** is a mass M_w on a primary suspension (k_s, c_s) to a bogie that does not
-!> move: alpha_w = 1/(k_s - M_w*omega^2 + i*omega*c_s). The wheel and the rail are in series
+!> move: alpha_w = 1/(k_s - M_w*omega^2 + i*omega*c_s), or its normal modes at the contact
+!> node from a universal file (dataset 55, greenconv_model_modes_file), frequencies f_k > 0
+!> (the wheel held by its suspension), modal masses m_k, viscous damping ratios xi_k and shapes
+!> phi_k at the node: alpha_w = sum_k phi_k^2/(m_k*(omega_k^2 - omega^2 + 2*i*xi_k*omega_k*omega)),
+!> omega_k = 2*pi*f_k; one mode of f = sqrt(k_s/M_w)/(2*pi), m = M_w, xi = c_s/(2*sqrt(k_s*M_w))
+!> and phi = 1 is the mass on its suspension. The wheel and the rail are in series
 !> at the contact: the contact's compression falls by (alpha_w + alpha_r)*F under a force F
 !> pressing them apart.
 !>
@@ -47,12 +52,13 @@ module greenconv_model_rail
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_constants, only: two_pi
-    use greenconv_core_text, only: sci_text
+    use greenconv_core_text, only: sci_text, int_text
     use greenconv_model_frf, only: frf_type
+    use greenconv_model_modes_file, only: file_modes, read_file_modes
     implicit none
     private
 
-    public :: rail_track, wheel_mass, hertz_constant, hertz_tangent, wheel_rail_frf, band_tail
+    public :: rail_track, wheel_mass, wheel_from_modes, hertz_constant, hertz_tangent, wheel_rail_frf, band_tail
 
     !> An infinite rail on a continuous one- or two-layer support.
     type :: rail_track
@@ -87,7 +93,8 @@ module greenconv_model_rail
         procedure :: check => track_check
     end type rail_track
 
-    !> A wheel: a mass on a primary suspension to a fixed bogie.
+    !> A wheel: a mass on a primary suspension to a fixed bogie, or its normal modes at the
+    !> contact (`modal_frequency` allocated: the mass and suspension are then not used).
     type :: wheel_mass
         !> Unsprung mass M_w [kg], > 0.
         real(dp) :: mass = 600.0_dp
@@ -95,6 +102,16 @@ module greenconv_model_rail
         real(dp) :: stiffness = 1.0e6_dp
         !> Suspension viscous damping c_s [N s/m], >= 0.
         real(dp) :: damping = 1.0e4_dp
+        !> Natural frequencies f_k [Hz] of the wheel's modes (not allocated: the mass on its
+        !> suspension).
+        real(dp), allocatable :: modal_frequency(:)
+        !> Modal masses m_k [kg] of the modes.
+        real(dp), allocatable :: modal_mass(:)
+        !> Viscous damping ratios xi_k of the modes.
+        real(dp), allocatable :: modal_damping(:)
+        !> Shapes phi_k at the contact node, in the direction normal to the rail (dimensionless
+        !> with m_k in kg).
+        real(dp), allocatable :: modal_shape(:)
     contains
         !> Receptance alpha_w(omega) [m/N] at the contact.
         procedure :: receptance => wheel_receptance
@@ -203,23 +220,86 @@ contains
                                                       'a damping per length >= 0 N s/m^2', error)
     end subroutine track_check
 
-    !> alpha_w(omega) = 1/(k_s - M_w*omega^2 + i*omega*c_s) [m/N].
+    !> alpha_w(omega) [m/N]: 1/(k_s - M_w*omega^2 + i*omega*c_s), or the sum over the wheel's
+    !> modes (module description).
     elemental complex(dp) function wheel_receptance(self, omega) result(alpha)
         !> The wheel.
         class(wheel_mass), intent(in) :: self
         !> Angular frequency [rad/s].
         real(dp), intent(in) :: omega
 
-        alpha = 1.0_dp/cmplx(self%stiffness - self%mass*omega**2, omega*self%damping, kind=dp)
+        real(dp) :: omega_k
+        integer :: k
+
+        if (.not. allocated(self%modal_frequency)) then
+            alpha = 1.0_dp/cmplx(self%stiffness - self%mass*omega**2, omega*self%damping, kind=dp)
+            return
+        end if
+        alpha = (0.0_dp, 0.0_dp)
+        do k = 1, size(self%modal_frequency)
+            omega_k = two_pi*self%modal_frequency(k)
+            alpha = alpha + self%modal_shape(k)**2 &
+                    /(self%modal_mass(k)*cmplx(omega_k**2 - omega**2, 2.0_dp*self%modal_damping(k)*omega_k*omega, kind=dp))
+        end do
     end function wheel_receptance
 
-    !> Refuse a wheel that is not one: M_w > 0, k_s > 0, c_s >= 0, all finite.
+    !> The wheel of a universal file's normal modes (greenconv_model_modes_file's reader): its
+    !> modes at the contact node `node` (0: the file's first node), the shapes in `direction`.
+    !> Refused (status 2, the message starting with the variable at fault): an unreadable or
+    !> malformed file (`wheel_modes_file`), a node the file does not have (`wheel_node`), a
+    !> mode at 0 Hz (a wheel free of its suspension would sink under the preload), no mode
+    !> that moves the node.
+    subroutine wheel_from_modes(path, direction, node, damping_ratio, wheel, error)
+        !> The universal file (datasets 15/2411 and 55).
+        character(len=*), intent(in) :: path
+        !> Direction of the shapes normal to the rail: +-1, +-2, +-3 for +-X, +-Y, +-Z.
+        integer, intent(in) :: direction
+        !> Label of the contact node; 0: the file's first node.
+        integer, intent(in) :: node
+        !> Viscous damping ratio where the file gives 0, in [0, 1).
+        real(dp), intent(in) :: damping_ratio
+        !> The wheel.
+        type(wheel_mass), intent(out) :: wheel
+        !> Set (status 2) as above.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(file_modes) :: modes
+        integer :: i
+
+        call read_file_modes(path, direction, damping_ratio, modes, error)
+        if (allocated(error)) then
+            error%message = 'wheel_modes_file: '//error%message
+            return
+        end if
+        i = 1
+        if (node /= 0) i = findloc(modes%label, node, 1)
+        if (i == 0) then
+            call fatal_error(error, 'wheel_node: expected the label of a node of '//path//', found '//int_text(node))
+            return
+        end if
+        wheel%modal_frequency = modes%frequency
+        wheel%modal_mass = modes%modal_mass
+        wheel%modal_damping = modes%damping_ratio
+        wheel%modal_shape = modes%shape(i, :)
+        if (any(wheel%modal_frequency <= 0.0_dp)) then
+            call fatal_error(error, 'wheel_modes_file: expected modes of a wheel held by its suspension (every ' &
+                             //'frequency > 0 Hz) in '//path//', found one at ' &
+                             //sci_text(minval(wheel%modal_frequency))//' Hz')
+        else if (all(wheel%modal_shape == 0.0_dp)) then
+            call fatal_error(error, 'wheel_modes_file: expected a mode that moves the contact node in '//path &
+                             //', found every shape 0 there')
+        end if
+    end subroutine wheel_from_modes
+
+    !> Refuse a wheel that is not one: M_w > 0, k_s > 0, c_s >= 0, all finite (a wheel of
+    !> modes was checked when it was read).
     pure subroutine wheel_check(self, error)
         !> The wheel.
         class(wheel_mass), intent(in) :: self
         !> Set for the first value at fault (status 2).
         type(error_type), allocatable, intent(out) :: error
 
+        if (allocated(self%modal_frequency)) return
         call positive(self%mass, 'wheel_mass', 'a mass > 0 kg', error)
         if (.not. allocated(error)) call positive(self%stiffness, 'suspension_stiffness', &
                                                   'a stiffness > 0 N/m', error)

@@ -18,7 +18,7 @@ module greenconv_scene_input
     use greenconv_model_tyre, only: tyre_belt, contact_positions
     use greenconv_model_plate, only: tyre_plate
     use greenconv_model_roughness, only: new_roughness_road, iso3095_wavelengths, iso3095_levels
-    use greenconv_model_rail, only: rail_track, wheel_mass_type => wheel_mass, hertz_constant
+    use greenconv_model_rail, only: rail_track, wheel_mass_type => wheel_mass, wheel_from_modes, hertz_constant
     ! The type renamed: the &road namelist has a variable `road_file`, which gfortran 12 would
     ! otherwise confuse with the type.
     use greenconv_model_road_file, only: road_file_type => road_file, read_road_file, file_road, &
@@ -226,7 +226,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         character(len=name_length) :: model
-        character(len=path_length) :: frf_file, green_file, modes_file
+        character(len=path_length) :: frf_file, green_file, modes_file, wheel_modes_file
         character(len=name_length) :: modes_direction
         real(dp) :: mass, stiffness, damping_ratio, f_low, f_high, xi_low, xi_high, a_low, a_high
         real(dp) :: belt_length, belt_mass, belt_bending, belt_tension, belt_foundation, f_modes
@@ -235,7 +235,7 @@ contains
         real(dp) :: rail_bending, rail_mass, rail_shear, rail_rotary, support_stiffness, support_damping, &
                     sleeper_mass, ballast_stiffness, ballast_damping, wheel_mass, suspension_stiffness, &
                     suspension_damping
-        integer :: n_modes, seed, stat, frf_dataset
+        integer :: n_modes, seed, stat, frf_dataset, wheel_node
         character(len=512) :: message
         namelist /structure/ model, mass, stiffness, damping_ratio, n_modes, seed, f_low, f_high, &
             xi_low, xi_high, a_low, a_high, frf_file, frf_dataset, belt_length, belt_mass, belt_bending, &
@@ -243,7 +243,7 @@ contains
             plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation, f_modes, green_file, modes_file, &
             modes_direction, modes_patch_length, modes_patch_width, rail_bending, rail_mass, rail_shear, rail_rotary, &
             support_stiffness, support_damping, sleeper_mass, ballast_stiffness, ballast_damping, wheel_mass, &
-            suspension_stiffness, suspension_damping
+            suspension_stiffness, suspension_damping, wheel_modes_file, wheel_node
 
         read (defaults, nml=structure)
         if (source%unit /= no_unit) write (source%unit, nml=structure, delim='quote', iostat=stat, iomsg=message)
@@ -293,6 +293,7 @@ contains
                           plate_bending_xy, plate_tension_x, plate_tension_y, plate_foundation], error)
         call check_value(this, 'structure', 'f_modes', f_modes, error)
         call check_value(this, 'structure', 'frf_dataset', frf_dataset, error)
+        call check_value(this, 'structure', 'wheel_node', wheel_node, error)
         this%frf_file = trim(frf_file)
         this%frf_dataset = frf_dataset
         this%green_file = trim(green_file)
@@ -319,8 +320,30 @@ contains
                                 sleeper_mass=sleeper_mass, ballast_stiffness=ballast_stiffness, &
                                 ballast_damping=ballast_damping)
         this%wheel = wheel_mass_type(mass=wheel_mass, stiffness=suspension_stiffness, damping=suspension_damping)
+        this%wheel_modes_file = trim(wheel_modes_file)
+        call read_wheel_modes(this, wheel_node, error)
         call check_track(this, error)
     end subroutine read_structure_group
+
+    !> The wheel_rail model's wheel from the modes of `wheel_modes_file` at `wheel_node`, when a
+    !> file is named: one line naming the variable at fault.
+    subroutine read_wheel_modes(this, wheel_node, error)
+        type(scene_type), intent(inout) :: this
+        integer, intent(in) :: wheel_node
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: name
+
+        if (allocated(error) .or. len(this%wheel_modes_file) == 0) return
+        if (.not. model_requires(find_model(this%model), 'rail_bending')) return
+        call wheel_from_modes(this%wheel_modes_file, this%modes_direction, wheel_node, this%damping_ratio, &
+                              this%wheel, fault)
+        if (allocated(fault)) then
+            name = fault%message(:index(fault%message, ':') - 1)
+            call fatal_error(error, place(this, 'structure', name)//' '//fault%message)
+        end if
+    end subroutine read_wheel_modes
 
     !> The wheel_rail model's track and wheel: the model's own checks (a message naming the
     !> variable) and, for a contact run, the highest resonance of the track's masses on their

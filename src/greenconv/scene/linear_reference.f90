@@ -17,6 +17,16 @@
 !> - `<name>_linear_narrowband.dat`: f, the roughness PSD, |alpha|, |H| and the linear force PSD
 !>   on the Welch lines.
 !>
+!> A multi-point scene of a modal structure (its points' `modes`: models 'tyre', 'tyre_plate',
+!> 'modes_file') gets the matrix form (greenconv_model_linear_patch): each point's law
+!> linearised at its share F0/N_c of the preload (greenconv_scene_patch), the force's change
+!> dF = (A + K^-1)^-1 u_r under the road heights u_r,i at the points, and the total force's
+!> PSD that of sum_j c_j(f)*u_r,j(f), c = (A + K^-1)^-1 1 (A and K symmetric), averaged by
+!> Welch as the runs' spectra are, each segment's lines of the points' heights filtered and
+!> added (greenconv_io_spectra's `set_welch_gains`): `<name>_linear_spectra.dat` (the same
+!> bands) and `<name>_linear_narrowband.dat` (f and the total force's PSD), for up to
+!> `patch_reference_points` points (one complex solve of N_c unknowns per Welch line).
+!>
 !> Where the time-domain run departs from this, the contact is nonlinear (the Hertz law over a
 !> large roughness, or contact lost): each method's summary line says for how many steps and
 !> how long the contact was lost (`contact_loss_text`).
@@ -29,14 +39,20 @@ module greenconv_scene_linear_reference
     use greenconv_io_files, only: write_columns, block_rows
     use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, &
                                     third_octave_bands, band_powers, nominal_frequency, segment_for_band, first_band, &
-                                    default_lines_per_band
+                                    default_lines_per_band, set_welch_gains
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_models, only: contact_receptance
     use greenconv_scene_stream, only: force_summary
+    use greenconv_scene_point_set, only: scene_points
+    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_model_linear_patch, only: modal_receptance_matrix, linear_patch_force
     implicit none
     private
 
-    public :: write_linear_reference, contact_loss_text
+    public :: write_linear_reference, write_patch_reference, contact_loss_text, patch_reference_points
+
+    !> Most points of a patch whose linear reference is written.
+    integer, parameter :: patch_reference_points = 64
 
 contains
 
@@ -55,12 +71,12 @@ contains
 
         type(welch_accumulator) :: welch
         type(error_type), allocatable :: fault
-        real(dp), allocatable :: psd(:, :), f(:), force(:), centre(:), lower(:), upper(:), table(:, :), power(:)
+        real(dp), allocatable :: psd(:, :), f(:), force(:)
         complex(dp), allocatable :: alpha(:), h(:)
         character(len=:), allocatable :: base, comments(:)
         real(dp) :: df, k_h
         integer(int64) :: first
-        integer :: n, m, k, c
+        integer :: n, m, k
 
         if (allocated(error)) then
             if (error%stat /= stat_accuracy) return
@@ -90,20 +106,7 @@ contains
             call write_columns(base//'_narrowband.dat', comments, reshape([f, psd(:, 1), abs(alpha), abs(h), force], &
                                                                           [size(f), 5]), fault)
         end if
-        if (.not. allocated(fault)) then
-            call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
-            power = band_powers(force, df, lower, upper)
-            allocate (table(size(centre), 6))
-            table(:, 1) = [(nominal_frequency(centre(c)), c=1, size(centre))]
-            table(:, 2) = centre
-            table(:, 3) = lower
-            table(:, 4) = upper
-            table(:, 5) = power
-            table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
-            comments(size(comments) - 1) = 'units: Hz Hz Hz Hz N^2 dB_re_1N'
-            comments(size(comments)) = 'f_nominal f_centre f_lower f_upper power level'
-            call write_columns(base//'_spectra.dat', comments, table, fault)
-        end if
+        if (.not. allocated(fault)) call write_band_file(scene, base, force, df, comments, fault)
         if (allocated(fault)) then
             fault%message = scene%file//': linear reference: '//fault%message
             call move_alloc(fault, error)
@@ -112,6 +115,120 @@ contains
         write (unit, '(a)') '# linear reference (k_H = '//sci_text(k_h)//' N/m at F0 = '//sci_text(scene%preload) &
             //' N): '//base//'_spectra.dat, '//base//'_narrowband.dat'
     end subroutine write_linear_reference
+
+    !> `<base>_spectra.dat`: the 1/3-octave band levels of the force PSD `force` [N^2/Hz] on
+    !> lines df apart, in the scene's bands, the columns of a run's spectra file.
+    subroutine write_band_file(scene, base, force, df, comments, error)
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: base
+        real(dp), intent(in) :: force(:), df
+        character(len=*), intent(inout) :: comments(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: centre(:), lower(:), upper(:), table(:, :), power(:)
+        integer :: c
+
+        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
+        power = band_powers(force, df, lower, upper)
+        allocate (table(size(centre), 6))
+        table(:, 1) = [(nominal_frequency(centre(c)), c=1, size(centre))]
+        table(:, 2) = centre
+        table(:, 3) = lower
+        table(:, 4) = upper
+        table(:, 5) = power
+        table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+        comments(size(comments) - 1) = 'units: Hz Hz Hz Hz N^2 dB_re_1N'
+        comments(size(comments)) = 'f_nominal f_centre f_lower f_upper power level'
+        call write_columns(base//'_spectra.dat', comments, table, error)
+    end subroutine write_band_file
+
+    !> Write the matrix form of the linear reference of a multi-point scene of a modal
+    !> structure beside its runs (module description), when the scene asks for force spectra;
+    !> a line says why not for more than `patch_reference_points` points; nothing for a
+    !> structure without modes at its points (a Green's matrix file) or after an error other
+    !> than status 4.
+    subroutine write_patch_reference(scene, points, unit, error)
+        !> The scene (task 'contact', several points).
+        type(scene_type), intent(in) :: scene
+        !> Its points: their modes, static compliance and places on the road.
+        type(scene_points), intent(in) :: points
+        !> Unit of the summary.
+        integer, intent(in) :: unit
+        !> The run's error on entry; a failed write or solve on return.
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(welch_accumulator) :: welch
+        type(error_type), allocatable :: fault
+        real(dp), allocatable :: psd(:, :), f(:), heights(:, :), k_h(:)
+        complex(dp), allocatable :: gains(:, :), a(:, :), ones(:)
+        character(len=:), allocatable :: base, comments(:)
+        real(dp) :: df
+        integer(int64) :: first
+        integer :: n, m, k, n_c
+
+        if (allocated(error)) then
+            if (error%stat /= stat_accuracy) return
+        end if
+        n_c = points%n_points()
+        if (.not. scene%spectra .or. scene%task /= 'contact' .or. n_c < 1) return
+        if (.not. allocated(points%modes%shape) .or. points%modes%modes%n_modes() == 0) return
+        if (n_c > patch_reference_points) then
+            write (unit, '(a)') '# linear reference: not written for '//int_text(n_c)//' points (at most ' &
+                //int_text(patch_reference_points)//')'
+            return
+        end if
+        k_h = [(scene%law%tangent(scene%law%compression(scene%preload/n_c)), k=1, n_c)]
+        n = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+        df = 1.0_dp/(n*scene%dt)
+        allocate (gains(0:n/2, n_c), ones(n_c))
+        ones(:) = (1.0_dp, 0.0_dp)
+        do k = 0, n/2
+            if (allocated(points%static)) then
+                a = modal_receptance_matrix(points%modes, two_pi*k*df, points%static)
+            else
+                a = modal_receptance_matrix(points%modes, two_pi*k*df)
+            end if
+            call linear_patch_force(a, k_h, ones, gains(k, :), fault)
+            if (allocated(fault)) exit
+        end do
+        if (.not. allocated(fault)) then
+            call start_welch(welch, n, n_c)
+            call set_welch_gains(welch, gains)
+            first = 0
+            do while (first < scene%n_steps)
+                m = int(min(int(max(block_rows/n_c, 1), int64), scene%n_steps - first))
+                call sample_patch_road(scene, points%road_x, points%road_y, first, m, heights)
+                call add_welch_samples(welch, heights)
+                first = first + m
+            end do
+            call welch_average(welch, scene%dt, psd, df, fault)
+            call welch%plans%release()
+        end if
+        if (.not. allocated(fault)) then
+            f = [(k*df, k=0, size(psd, 1) - 1)]
+            base = scene%output_dir//'/'//scene%name//'_linear'
+            call reference_comments(scene, k_h(1), n, df, welch%n_segments, comments)
+            comments(1) = 'greenconv scene '//scene%name//': linear frequency-domain reference of the total contact ' &
+                          //'force of '//int_text(n_c)//' points, dF = (A + K^-1)^-1 u_r, its PSD that of ' &
+                          //'sum_j c_j*u_r,j, c = (A + K^-1)^-1 1'
+            comments(2) = 'K = k_H*I, k_H = '//sci_text(k_h(1))//' N/m, the tangent of the contact law at each ' &
+                          //'point''s share F0/N_c = '//sci_text(scene%preload/n_c)//' N; A the modal point ' &
+                          //'receptance matrix'
+            comments(3) = comments(3)(:index(comments(3), 'segments of the') - 1)//'segments of the road ' &
+                          //'heights under the points over the run, filtered and added line by line'
+            comments(size(comments) - 1) = 'units: Hz N^2/Hz'
+            comments(size(comments)) = 'f psd_force'
+            call write_columns(base//'_narrowband.dat', comments, reshape([f, psd(:, n_c + 1)], [size(f), 2]), fault)
+        end if
+        if (.not. allocated(fault)) call write_band_file(scene, base, psd(:, n_c + 1), df, comments, fault)
+        if (allocated(fault)) then
+            fault%message = scene%file//': linear reference: '//fault%message
+            call move_alloc(fault, error)
+            return
+        end if
+        write (unit, '(a)') '# linear reference (k_H = '//sci_text(k_h(1))//' N/m per point at F0/N_c = ' &
+            //sci_text(scene%preload/n_c)//' N): '//base//'_spectra.dat, '//base//'_narrowband.dat'
+    end subroutine write_patch_reference
 
     !> The header lines of the reference's files, the last two left for the units and names.
     subroutine reference_comments(scene, k_h, n, df, n_segments, comments)

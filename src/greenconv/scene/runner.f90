@@ -35,7 +35,7 @@ module greenconv_scene_runner
                                       step_doubling, start_step_doubling, time_step_estimate, band_estimate
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_limits, only: work_rate, projected_run, smaller_step
-    use greenconv_scene_linear_reference, only: write_linear_reference, contact_loss_text
+    use greenconv_scene_linear_reference, only: write_linear_reference, write_patch_reference, contact_loss_text
     implicit none
     private
 
@@ -105,6 +105,7 @@ contains
         if (present(block)) block_size = max(block, 1)
         call run_methods(scene, structure, run, unit, block_size, error)
         if (associated(model%receptance)) call write_linear_reference(scene, model%receptance, unit, error)
+        if (model%multi_point()) call write_patch_reference(scene, run%points, unit, error)
     end subroutine run_scene
 
     !> Check a scene without running it and print `check_scene_line`'s line on `unit`, then

@@ -231,7 +231,7 @@ contains
             //'real shapes of 3 or 6 DOF per node); its nodes are the contact points', '')
         call add(rows, n, 'structure', 'modes_direction', value_text, '+z', '', &
             "the direction of the modes file's shapes normal to the road, '+z', '-z', '+x', '-x', '+y' " &
-            //"or '-y' (modes_file)", '', &
+            //"or '-y' (modes_file, wheel_modes_file)", '', &
             choices=[character(len=16) :: '+z', '-z', '+x', '-x', '+y', '-y'])
         call add(rows, n, 'structure', 'modes_patch_length', value_real, '0.0', 'm', &
             "the length along x of the patch whose nodes touch the road, centred on the modes file's nodes " &
@@ -275,6 +275,13 @@ contains
         call add(rows, n, 'structure', 'suspension_damping', value_real, '2.0e4', 'N*s/m', &
             'the viscous damping of the primary suspension (wheel_rail)', '', &
             expect='a damping >= 0 N*s/m', at_least=0.0_dp)
+        call add(rows, n, 'structure', 'wheel_modes_file', value_text, '', '', &
+            "a universal file of the wheel's normal modes instead of the mass on its suspension: nodes " &
+            //'(dataset 15 or 2411) and one dataset 55 per mode (frequency > 0 Hz, modal mass, viscous ' &
+            //"damping ratio, the scene's damping_ratio where 0), shapes in modes_direction (wheel_rail)", '')
+        call add(rows, n, 'structure', 'wheel_node', value_integer, '0', '', &
+            "the label of wheel_modes_file's node at the contact (0: its first node) (wheel_rail)", '', &
+            expect='a node label >= 0 (0: the first node)', at_least=0.0_dp)
         call add(rows, n, 'identification', 'f_max', value_real, '1/(2*dt)', 'Hz', &
             'the highest frequency of the sampled G', '', &
             expect='a frequency > 0 Hz', above=0.0_dp)

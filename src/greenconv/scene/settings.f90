@@ -101,6 +101,8 @@ module greenconv_scene_settings
         type(rail_track) :: track
         !> The wheel of the wheel_rail model: mass [kg] on its primary suspension [N/m, N s/m].
         type(wheel_mass) :: wheel
+        !> Universal file of the wheel's normal modes (dataset 55); '': the mass on its suspension.
+        character(len=:), allocatable :: wheel_modes_file
         !> Highest natural frequency [Hz] of the tyre modes kept (0: the band rule of tyre_band).
         real(dp) :: f_modes
         !> Highest frequency [Hz] of the sampled G identified (random_modes); default 1/(2*dt).

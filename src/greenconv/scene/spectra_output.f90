@@ -12,7 +12,13 @@
 !> whatever the block size. The band range was resolved and checked when the scene was read
 !> (greenconv_scene_input's `check_spectra`). The file is always text, written atomically
 !> when the run ends; a run stopped by a numerical fault writes none (and removes one left
-!> by an earlier run, which would no longer match the column file).
+!> by an earlier run, which would no longer match the column file, as its narrowband file).
+!>
+!> A single-point run of a structure whose receptance is known (a model whose registry row
+!> names `receptance`, as `wheel_rail`, which writes a linear reference beside the runs,
+!> greenconv_scene_linear_reference) also writes `<output_dir>/<name>_<method>_narrowband.dat`:
+!> f [Hz] and the force PSD [N^2/Hz] on the Welch lines, the lines of the reference's
+!> `<name>_linear_narrowband.dat`.
 !>
 !> Columns: f_nominal, f_centre, f_lower, f_upper [Hz], power [N^2], level [dB re 1 N],
 !> spread_db [dB] (the statistical standard deviation of the level for a random force), then
@@ -29,6 +35,7 @@ module greenconv_scene_spectra_output
                                     third_octave_bands, first_band, segment_for_band, nominal_frequency, band_powers, &
                                     level_spread, default_lines_per_band
     use greenconv_scene_input, only: scene_type
+    use greenconv_scene_models, only: structure_kind, find_model
     implicit none
     private
 
@@ -166,6 +173,9 @@ contains
             call spectra%welch%plans%release()
             open (newunit=unit, file=path, status='old', iostat=stat)
             if (stat == 0) close (unit, status='delete', iostat=stat)
+            path = scene%output_dir//'/'//scene%name//'_'//method//'_narrowband.dat'
+            if (.not. spectra%area) open (newunit=unit, file=path, status='old', iostat=stat)
+            if (.not. spectra%area .and. stat == 0) close (unit, status='delete', iostat=stat)
             return
         end if
         call welch_average(spectra%welch, scene%dt, psd, df, error)
@@ -193,7 +203,34 @@ contains
         table(:, 7) = level_spread(lower, upper, df, spectra%welch%n_segments)
         call spectra_header(scene, method, spectra, df, n_channels - 1, table(:, 7), comments)
         call write_columns(path, comments, table, error)
+        if (.not. allocated(error)) call write_narrowband(spectra, scene, method, psd, df, comments, error)
     end subroutine finish_force_spectra
+
+    !> `<name>_<method>_narrowband.dat` (module description) for a single-point force run of a
+    !> model with a known receptance; nothing otherwise.
+    subroutine write_narrowband(spectra, scene, method, psd, df, comments, error)
+        type(force_spectra), intent(in) :: spectra
+        type(scene_type), intent(in) :: scene
+        character(len=*), intent(in) :: method
+        real(dp), intent(in) :: psd(:, :), df
+        character(len=*), intent(in) :: comments(:)
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(structure_kind) :: model
+        character(len=len(comments)), allocatable :: lines(:)
+        integer :: k
+
+        if (spectra%area .or. size(psd, 2) /= 1) return
+        model = find_model(scene%model)
+        if (.not. associated(model%receptance)) return
+        lines = [comments(1), comments(3), comments(7:8)]
+        lines(1) = lines(1)(:index(lines(1), ': 1/3-octave') - 1)//': power spectral density of the total contact ' &
+                   //'force on the Welch lines, '//lines(1)(index(lines(1), 'every step'):)
+        lines(3) = 'units: Hz N^2/Hz'
+        lines(4) = 'f psd_force'
+        call write_columns(scene%output_dir//'/'//scene%name//'_'//method//'_narrowband.dat', lines, &
+                           reshape([[(k*df, k=0, size(psd, 1) - 1)], psd(:, 1)], [size(psd, 1), 2]), error)
+    end subroutine write_narrowband
 
     !> The header lines of a spectra file.
     subroutine spectra_header(scene, method, spectra, df, n_points, spread, comments)
