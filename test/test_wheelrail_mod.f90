@@ -555,11 +555,14 @@ contains
         real(dp) :: worst, departure
         integer :: b, c, report
 
-        call summary_of(rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'"), 'fft', line, error)
+        ! accuracy 0.2: fft's budget at this dt is about 8e-2 (model 3.4e-2, time step 4.4e-2); the
+        ! bands against the linear model are under test
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'", accuracy='0.2'), 'fft', line, error)
         if (allocated(error)) return
         call read_bands(directory//'/wr_linear_spectra.dat', 6, linear, error)
         if (allocated(error)) return
-        call summary_of(rail_scene('5.0e-5', '16384', '', road//'-20.0', "'fft'"), 'fft', line, error)
+        call summary_of(rail_scene('5.0e-5', '16384', '', road//'-20.0', "'fft'", accuracy='0.2'), 'fft', line, &
+                        error)
         if (allocated(error)) return
         call read_bands(directory//'/wr_linear_spectra.dat', 6, linear_low, error)
         if (allocated(error)) return
@@ -570,7 +573,7 @@ contains
         call check(error, worst <= 1.0e-9_dp, 'the linear reference scales with the roughness')
         if (allocated(error)) return
         ! the sweep of the same scene over the offset
-        text = rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'")
+        text = rail_scene('5.0e-5', '16384', '', road//'0.0', "'fft'", accuracy='0.2')
         text = "&scene task = 'sweep', name = 'wrs', output_dir = '"//directory//"', dt = 5.0e-5, n_steps = 16384 /" &
                //text(index(text, new_line('a')):)//new_line('a') &
                //'&sweep road.roughness_offset = -20.0, 12.0, spectra = .true., f_low = 200.0, f_high = 5000.0 /' &
