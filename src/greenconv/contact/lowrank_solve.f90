@@ -16,6 +16,17 @@
 !> in O(N_c*r^2 + r^3) per iteration; the products W0*x of the residual cost O(N_c*r). J is
 !> singular exactly when M is (det J = det M), so a failure is reported as for the dense solve.
 !>
+!> M is kept as its inverse and follows the active set: when a few slopes change from one
+!> Newton matrix to the next (points entering or leaving the contact, as from one time step to
+!> the next), each change t_i -> t_i' is the rank-one term (t_i' - t_i)*v_i*u_i^T of M
+!> (u_i, v_i the rows i of U and V), and M^-1 is updated by the Sherman-Morrison formula in
+!> 3*r^2 operations instead of being formed and factored again in N_a*r^2 + r^3. M is formed
+!> anew when more than N_a/3 slopes change at once, after N_c updates (round-off of the
+!> updates does not accumulate further) and when an update's pivot 1 + (t_i' - t_i)*u_i^T*M^-1*v_i
+!> is below `update_pivot` (a nearly singular intermediate). The Newton iteration stops on its
+!> residual, not on this matrix, so the inverse's round-off changes the number of iterations
+!> at most, never the tolerance the compressions meet.
+!>
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
@@ -45,10 +56,15 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: slopes(:)
         !> The active set A: indices of the points with t_i /= 0.
         integer, allocatable :: active(:)
-        !> LU factors (N_a x N_a or r x r) from dgetrf.
+        !> LU factors from dgetrf: of the matrix on the active set (N_a x N_a), or of M (r x r)
+        !> when `inverse` was last formed.
         real(dp), allocatable :: factors(:, :)
-        !> dgetrf's row interchanges.
+        !> dgetrf's row interchanges, on the active set.
         integer, allocatable :: pivot(:)
+        !> M^-1 (r x r) [dimensionless], for Woodbury.
+        real(dp), allocatable :: inverse(:, :)
+        !> Rank-one updates of `inverse` since M was last formed.
+        integer :: updates = 0
     end type newton_matrix
 
     !> W0 [m/N] of a run as the step uses it: dense, or U*V^T.
@@ -76,6 +92,9 @@ module greenconv_contact_lowrank_solve
     integer, parameter :: row_block = 256
     !> Columns of V per block of the products V^T*x.
     integer, parameter :: column_block = 16
+    !> Smallest |1 + (t_i' - t_i)*u_i^T*M^-1*v_i| a rank-one update of M^-1 accepts; M is formed
+    !> anew below it.
+    real(dp), parameter :: update_pivot = 1.0e-6_dp
 
 contains
 
@@ -243,8 +262,8 @@ contains
         call form_newton_matrix(compliance, weight0, slopes, error)
         if (allocated(error)) return
         associate (newton => compliance%newton, r => compliance%rank)
-            allocate (y(size(newton%factors, 1)))
             if (newton%on_active_set) then
+                allocate (y(size(newton%factors, 1)))
                 call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
                 if (allocated(error)) return
                 y(:) = slopes(newton%active)*y
@@ -253,33 +272,38 @@ contains
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
                 call gathered_product(scaled_b, compliance%right, newton%active, z)
-                call lu_solve(newton%factors, newton%pivot, z, y, error)
-                if (allocated(error)) return
+                y = matmul(newton%inverse, z)
                 call subtract_product(compliance%left, y, b, s)
             end if
         end associate
     end subroutine newton_solve
 
     !> Factor the Newton matrix of `slopes` unless it is the one kept: on the active set
-    !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper.
+    !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper;
+    !> M^-1 is updated instead when few slopes changed (`update_inverse`).
     subroutine form_newton_matrix(compliance, weight0, slopes, error)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: weight0(:, :), slopes(:)
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: n_a, rank
+        real(dp) :: rank
         integer :: i, j
+        logical :: on_active_set, updated
 
         associate (newton => compliance%newton)
+            rank = real(compliance%rank, dp)
+            on_active_set = active_set_cheaper(real(count(slopes /= 0.0_dp), dp), rank)
             if (newton%ready) then
                 if (all(newton%slopes == slopes)) return
+                if (.not. (on_active_set .or. newton%on_active_set)) then
+                    call update_inverse(compliance, slopes, updated)
+                    if (updated) return
+                end if
             end if
             newton%ready = .false.
             newton%slopes = slopes
             newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
-            n_a = real(size(newton%active), dp)
-            rank = real(compliance%rank, dp)
-            newton%on_active_set = n_a**3/3 < n_a*rank**2 + rank**3/3
+            newton%on_active_set = on_active_set
             if (newton%on_active_set) then
                 newton%factors = weight0(newton%active, newton%active)
                 do j = 1, size(newton%active)
@@ -293,9 +317,80 @@ contains
             allocate (newton%pivot(size(newton%factors, 1)))
             call lu_factor(newton%factors, newton%pivot, error)
             if (allocated(error)) return
+            if (.not. newton%on_active_set) then
+                call inverse_of_factors(newton%factors, newton%pivot, newton%inverse, error)
+                if (allocated(error)) return
+                newton%updates = 0
+            end if
             newton%ready = .true.
         end associate
     end subroutine form_newton_matrix
+
+    !> Whether the LU on an active set of n_a points (n_a^3/3 operations) is cheaper than
+    !> forming and factoring M of rank r (n_a*r^2 + r^3/3).
+    pure logical function active_set_cheaper(n_a, rank)
+        real(dp), intent(in) :: n_a, rank
+
+        active_set_cheaper = n_a**3/3 < n_a*rank**2 + rank**3/3
+    end function active_set_cheaper
+
+    !> M^-1 (r x r) from the LU factors of M, column by column.
+    subroutine inverse_of_factors(factors, pivot, inverse, error)
+        real(dp), intent(in) :: factors(:, :)
+        integer, intent(in) :: pivot(:)
+        real(dp), allocatable, intent(out) :: inverse(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: unit(size(factors, 1))
+        integer :: k
+
+        allocate (inverse(size(factors, 1), size(factors, 1)))
+        do k = 1, size(factors, 1)
+            unit(:) = 0.0_dp
+            unit(k) = 1.0_dp
+            call lu_solve(factors, pivot, unit, inverse(:, k), error)
+            if (allocated(error)) return
+        end do
+    end subroutine inverse_of_factors
+
+    !> M^-1 brought to the slopes `slopes` by one Sherman-Morrison update per changed slope:
+    !> M' = M + (t_i' - t_i)*v_i*u_i^T, M'^-1 = M^-1 - c*x*y^T with x = M^-1*v_i,
+    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x). Not done (`updated`
+    !> false, the kept matrix marked stale) when too many slopes changed, after N_c updates
+    !> since M was formed, or at a pivot below `update_pivot`.
+    subroutine update_inverse(compliance, slopes, updated)
+        type(lowrank_compliance), intent(inout) :: compliance
+        real(dp), intent(in) :: slopes(:)
+        logical, intent(out) :: updated
+
+        integer, allocatable :: changed(:)
+        real(dp) :: x(compliance%rank), y(compliance%rank), change, pivot
+        integer :: i, j, k
+
+        updated = .false.
+        associate (newton => compliance%newton, u => compliance%left, v => compliance%right)
+            changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
+            if (3*size(changed) > count(slopes /= 0.0_dp) .or. newton%updates + size(changed) > size(slopes)) return
+            newton%ready = .false.
+            do j = 1, size(changed)
+                i = changed(j)
+                change = slopes(i) - newton%slopes(i)
+                x(:) = matmul(newton%inverse, v(i, :))
+                y(:) = matmul(u(i, :), newton%inverse)
+                pivot = 1.0_dp + change*dot_product(u(i, :), x)
+                if (.not. (abs(pivot) >= update_pivot)) return
+                x(:) = (change/pivot)*x
+                do k = 1, size(y)
+                    newton%inverse(:, k) = newton%inverse(:, k) - x*y(k)
+                end do
+            end do
+            newton%slopes = slopes
+            newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
+            newton%updates = newton%updates + size(changed)
+            newton%ready = .true.
+            updated = .true.
+        end associate
+    end subroutine update_inverse
 
     !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
     !> points gathered from V (scaled by t) and U column by column, then column j of M as

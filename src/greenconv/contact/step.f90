@@ -91,6 +91,10 @@ module greenconv_contact_step
         !> Compressions of the last step done [m] (delta0 before step 0): the first guess of
         !> the next implicit step.
         real(dp), allocatable :: delta(:)
+        !> W0*(F(delta) - F0) [m] of the compressions in `delta` when the last step solved them
+        !> by the implicit multi-point iteration (unallocated otherwise): the next step's first
+        !> guess without a product by W0.
+        real(dp), allocatable :: coupling(:)
         !> Scheme, divergence bound and Newton settings.
         type(contact_options) :: settings
         !> Whether W0 /= 0 (some step's own force reaches the body within the step).
@@ -305,7 +309,8 @@ contains
     end subroutine implicit_compression
 
     !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2, from
-    !> the free compression corrected by the previous step's forces (`load` is work space).
+    !> the free compression corrected by the previous step's forces (`load` is work space;
+    !> the correction is state%coupling when the previous step left it).
     !> `coupling` is W0*(F(delta) - F0) [m] of the compressions left in state%delta, the
     !> residual's own product (the step's displacements less the history: no product more).
     !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
@@ -328,12 +333,20 @@ contains
         if (.not. state%compliance%checked) call factor_compliance(weight0, state%compliance)
         associate (delta => state%delta, laws => state%laws, options => state%settings, &
                    compliance => state%compliance)
-            load(:) = laws%force(delta) - state%preload
-            delta(:) = free - apply_compliance(compliance, weight0, load)
+            if (allocated(state%coupling)) then
+                delta(:) = free - state%coupling
+                deallocate (state%coupling)
+            else
+                load(:) = laws%force(delta) - state%preload
+                delta(:) = free - apply_compliance(compliance, weight0, load)
+            end if
             call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
-                if (maxval(abs(r)) <= options%tolerance*scale) return
+                if (maxval(abs(r)) <= options%tolerance*scale) then
+                    state%coupling = coupling
+                    return
+                end if
                 if (iterations == options%max_iterations) exit
                 call newton_solve(compliance, weight0, slope(laws, delta), -r, step, error)
                 if (allocated(error)) return
