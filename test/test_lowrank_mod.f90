@@ -120,6 +120,7 @@ contains
             if (mod(i, 3) == 0) slopes(i) = 0.0_dp
             b(i) = 1.0e-4_dp*(stream%uniform() - 0.5_dp)
         end do
+        factors%right_t = transpose(factors%right)
         factors%checked = .true.
         factors%low_rank = .true.
         factors%rank = r

@@ -79,6 +79,8 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: left(:, :)
         !> V (N_c x r) [dimensionless]: W0 = U*V^T.
         real(dp), allocatable :: right(:, :)
+        !> V^T (r x N_c) [dimensionless], for the products V^T*x (contiguous in k).
+        real(dp), allocatable :: right_t(:, :)
         !> The last Newton matrix factored (low-rank case only).
         type(newton_matrix) :: newton
     end type lowrank_compliance
@@ -90,8 +92,8 @@ module greenconv_contact_lowrank_solve
     real(dp), parameter :: thread_work = 2.0e4_dp
     !> Rows per block of the products by rows (one thread's share at a time).
     integer, parameter :: row_block = 256
-    !> Columns of V per block of the products V^T*x.
-    integer, parameter :: column_block = 16
+    !> Rows of V^T per block of the products V^T*x (one thread's share at a time).
+    integer, parameter :: column_block = 64
     !> Smallest |1 + (t_i' - t_i)*u_i^T*M^-1*v_i| a rank-one update of M^-1 accepts; M is formed
     !> anew below it.
     real(dp), parameter :: update_pivot = 1.0e-6_dp
@@ -126,6 +128,7 @@ contains
                 compliance%rank = k - 1
                 compliance%left = left(:, 1:k - 1)
                 compliance%right = right(:, 1:k - 1)
+                compliance%right_t = transpose(compliance%right)
                 return
             end if
             if (k > max_rank) return
@@ -149,9 +152,10 @@ contains
 
     !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors, else the dense product.
     !>
-    !> Threads: V^T*x by fixed blocks of `column_block` columns, then U*z (or W0*x) by fixed
+    !> V^T*x is summed as sum_j x_j*V^T(:, j), each z_k in the order of j, vectorised over k.
+    !> Threads: V^T*x by fixed blocks of `column_block` rows of V^T, then U*z (or W0*x) by fixed
     !> blocks of `row_block` rows, in one parallel region. Every y_i and z_k is the same
-    !> ordered sum (MATMUL on a block of rows or columns) whoever does its block, so any number
+    !> ordered sum (over j, or MATMUL on a block of rows) whoever does its block, so any number
     !> of threads gives the one-thread result bit for bit; small products and calls from inside
     !> a parallel region (a host's, or ours) stay on the calling thread.
     function apply_compliance(compliance, weight0, x) result(y)
@@ -164,7 +168,7 @@ contains
         real(dp) :: y(size(x))
 
         real(dp) :: z(compliance%rank)
-        integer :: first, last
+        integer :: first, last, j
 
         if (.not. compliance%low_rank) then
             !$omp parallel do if (sharing(real(size(weight0), dp))) default(none) shared(weight0, x, y) &
@@ -177,11 +181,14 @@ contains
             return
         end if
         !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) shared(compliance, x, y, z) &
-        !$omp private(last)
+        !$omp private(last, j)
         !$omp do schedule(static)
         do first = 1, compliance%rank, column_block
             last = min(first + column_block - 1, compliance%rank)
-            z(first:last) = matmul(x, compliance%right(:, first:last))
+            z(first:last) = 0.0_dp
+            do j = 1, size(x)
+                z(first:last) = z(first:last) + compliance%right_t(first:last, j)*x(j)
+            end do
         end do
         !$omp end do
         !$omp do schedule(static)
@@ -193,25 +200,29 @@ contains
         !$omp end parallel
     end function apply_compliance
 
-    !> z = V_A^T*x, V_A the rows `active` of V (N_c x r), by fixed blocks of columns shared
-    !> among threads: each z_k is MATMUL's ordered sum whoever computes it.
-    subroutine gathered_product(x, right, active, z)
+    !> z = V_A^T*x = sum_a x_a*V^T(:, active(a)), V_A the rows `active` of V, by fixed blocks
+    !> of rows of V^T shared among threads: each z_k is the ordered sum over the active points
+    !> whoever computes it, vectorised over k.
+    subroutine gathered_product(x, right_t, active, z)
         !> Values at the active points (N_a).
         real(dp), intent(in) :: x(:)
-        !> V (N_c x r).
-        real(dp), intent(in) :: right(:, :)
+        !> V^T (r x N_c).
+        real(dp), intent(in) :: right_t(:, :)
         !> The active points (N_a).
         integer, intent(in) :: active(:)
         !> V_A^T*x (r).
         real(dp), intent(out) :: z(:)
 
-        integer :: first, last
+        integer :: first, last, a
 
-        !$omp parallel do if (sharing(real(size(active), dp)*size(right, 2))) default(none) &
-        !$omp shared(x, right, active, z) private(last) schedule(static)
-        do first = 1, size(right, 2), column_block
-            last = min(first + column_block - 1, size(right, 2))
-            z(first:last) = matmul(x, right(active, first:last))
+        !$omp parallel do if (sharing(real(size(active), dp)*size(right_t, 1))) default(none) &
+        !$omp shared(x, right_t, active, z) private(last, a) schedule(static)
+        do first = 1, size(right_t, 1), column_block
+            last = min(first + column_block - 1, size(right_t, 1))
+            z(first:last) = 0.0_dp
+            do a = 1, size(active)
+                z(first:last) = z(first:last) + right_t(first:last, active(a))*x(a)
+            end do
         end do
         !$omp end parallel do
     end subroutine gathered_product
@@ -267,11 +278,11 @@ contains
                 call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
                 if (allocated(error)) return
                 y(:) = slopes(newton%active)*y
-                call gathered_product(y, compliance%right, newton%active, z)
+                call gathered_product(y, compliance%right_t, newton%active, z)
                 call subtract_product(compliance%left, z, b, s)
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
-                call gathered_product(scaled_b, compliance%right, newton%active, z)
+                call gathered_product(scaled_b, compliance%right_t, newton%active, z)
                 y = matmul(newton%inverse, z)
                 call subtract_product(compliance%left, y, b, s)
             end if
@@ -368,14 +379,14 @@ contains
         integer :: i, j, k
 
         updated = .false.
-        associate (newton => compliance%newton, u => compliance%left, v => compliance%right)
+        associate (newton => compliance%newton, u => compliance%left, v_t => compliance%right_t)
             changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
             if (3*size(changed) > count(slopes /= 0.0_dp) .or. newton%updates + size(changed) > size(slopes)) return
             newton%ready = .false.
             do j = 1, size(changed)
                 i = changed(j)
                 change = slopes(i) - newton%slopes(i)
-                x(:) = matmul(newton%inverse, v(i, :))
+                x(:) = matmul(newton%inverse, v_t(:, i))
                 y(:) = matmul(u(i, :), newton%inverse)
                 pivot = 1.0_dp + change*dot_product(u(i, :), x)
                 if (.not. (abs(pivot) >= update_pivot)) return
