@@ -121,7 +121,7 @@ contains
         allocate (remainder(n_c, n_c), left(n_c, max_rank), right(n_c, max_rank))
         remainder(:, :) = weight0
         do k = 1, max_rank + 1
-            at = maxloc(abs(remainder))
+            at = largest_entry(remainder)
             pivot = remainder(at(1), at(2))
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%low_rank = .true.
@@ -138,6 +138,27 @@ contains
         end do
     end subroutine factor_compliance
 
+    !> The indices of the first largest |a_ij| in array element order, as maxloc(abs(a)) without
+    !> its N_c x N_c temporary.
+    pure function largest_entry(a) result(at)
+        real(dp), intent(in) :: a(:, :)
+        integer :: at(2)
+
+        real(dp) :: largest
+        integer :: i, j
+
+        at = [1, 1]
+        largest = abs(a(1, 1))
+        do j = 1, size(a, 2)
+            do i = 1, size(a, 1)
+                if (abs(a(i, j)) > largest) then
+                    largest = abs(a(i, j))
+                    at = [i, j]
+                end if
+            end do
+        end do
+    end function largest_entry
+
     !> A = A - x*y^T.
     pure subroutine subtract_outer(a, x, y)
         real(dp), intent(inout) :: a(:, :)
@@ -152,10 +173,10 @@ contains
 
     !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors, else the dense product.
     !>
-    !> V^T*x is summed as sum_j x_j*V^T(:, j), each z_k in the order of j, vectorised over k.
+    !> V^T*x is MATMUL on blocks of rows of the stored V^T (contiguous in k).
     !> Threads: V^T*x by fixed blocks of `column_block` rows of V^T, then U*z (or W0*x) by fixed
     !> blocks of `row_block` rows, in one parallel region. Every y_i and z_k is the same
-    !> ordered sum (over j, or MATMUL on a block of rows) whoever does its block, so any number
+    !> ordered sum (MATMUL on a block of rows) whoever does its block, so any number
     !> of threads gives the one-thread result bit for bit; small products and calls from inside
     !> a parallel region (a host's, or ours) stay on the calling thread.
     function apply_compliance(compliance, weight0, x) result(y)
@@ -168,7 +189,7 @@ contains
         real(dp) :: y(size(x))
 
         real(dp) :: z(compliance%rank)
-        integer :: first, last, j
+        integer :: first, last
 
         if (.not. compliance%low_rank) then
             !$omp parallel do if (sharing(real(size(weight0), dp))) default(none) shared(weight0, x, y) &
@@ -181,14 +202,11 @@ contains
             return
         end if
         !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) shared(compliance, x, y, z) &
-        !$omp private(last, j)
+        !$omp private(last)
         !$omp do schedule(static)
         do first = 1, compliance%rank, column_block
             last = min(first + column_block - 1, compliance%rank)
-            z(first:last) = 0.0_dp
-            do j = 1, size(x)
-                z(first:last) = z(first:last) + compliance%right_t(first:last, j)*x(j)
-            end do
+            z(first:last) = matmul(compliance%right_t(first:last, :), x)
         end do
         !$omp end do
         !$omp do schedule(static)
@@ -200,9 +218,9 @@ contains
         !$omp end parallel
     end function apply_compliance
 
-    !> z = V_A^T*x = sum_a x_a*V^T(:, active(a)), V_A the rows `active` of V, by fixed blocks
-    !> of rows of V^T shared among threads: each z_k is the ordered sum over the active points
-    !> whoever computes it, vectorised over k.
+    !> z = V_A^T*x = V^T*x_s, V_A the rows `active` of V and x_s the values x at the active
+    !> points and zero elsewhere (no gathered copy of V), by fixed blocks of rows of V^T shared
+    !> among threads: each z_k is one MATMUL sum whoever computes it.
     subroutine gathered_product(x, right_t, active, z)
         !> Values at the active points (N_a).
         real(dp), intent(in) :: x(:)
@@ -213,16 +231,16 @@ contains
         !> V_A^T*x (r).
         real(dp), intent(out) :: z(:)
 
-        integer :: first, last, a
+        real(dp) :: scattered(size(right_t, 2))
+        integer :: first, last
 
-        !$omp parallel do if (sharing(real(size(active), dp)*size(right_t, 1))) default(none) &
-        !$omp shared(x, right_t, active, z) private(last, a) schedule(static)
+        scattered(:) = 0.0_dp
+        scattered(active) = x
+        !$omp parallel do if (sharing(real(size(right_t), dp))) default(none) &
+        !$omp shared(scattered, right_t, z) private(last) schedule(static)
         do first = 1, size(right_t, 1), column_block
             last = min(first + column_block - 1, size(right_t, 1))
-            z(first:last) = 0.0_dp
-            do a = 1, size(active)
-                z(first:last) = z(first:last) + right_t(first:last, active(a))*x(a)
-            end do
+            z(first:last) = matmul(right_t(first:last, :), scattered)
         end do
         !$omp end parallel do
     end subroutine gathered_product
