@@ -44,7 +44,7 @@ module greenconv_contact_lowrank_solve
     implicit none
     private
 
-    public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve
+    public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve, woodbury_step
 
     !> The factored Newton matrix of the low-rank solve, kept for the slopes it was formed for.
     type :: newton_matrix
@@ -232,18 +232,72 @@ contains
         real(dp), intent(out) :: z(:)
 
         real(dp) :: scattered(size(right_t, 2))
-        integer :: first, last
 
         scattered(:) = 0.0_dp
         scattered(active) = x
+        call transposed_product(right_t, scattered, z)
+    end subroutine gathered_product
+
+    !> z = V^T*x (r) for x at every point (N_c), by fixed blocks of `column_block` rows of V^T
+    !> shared among threads: each z_k is one MATMUL sum whoever computes it.
+    subroutine transposed_product(right_t, x, z)
+        !> V^T (r x N_c).
+        real(dp), intent(in) :: right_t(:, :)
+        !> Values at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> V^T*x (r).
+        real(dp), intent(out) :: z(:)
+
+        integer :: first, last
+
         !$omp parallel do if (sharing(real(size(right_t), dp))) default(none) &
-        !$omp shared(scattered, right_t, z) private(last) schedule(static)
+        !$omp shared(x, right_t, z) private(last) schedule(static)
         do first = 1, size(right_t, 1), column_block
             last = min(first + column_block - 1, size(right_t, 1))
-            z(first:last) = matmul(right_t(first:last, :), scattered)
+            z(first:last) = matmul(right_t(first:last, :), x)
         end do
         !$omp end parallel do
-    end subroutine gathered_product
+    end subroutine transposed_product
+
+    !> The full Newton step of R(delta) = delta - a + W0*(F(delta) - F0) from a compression
+    !> `delta` without R(delta) itself, when W0 = U*V^T and Woodbury's M^-1 serves the slopes t
+    !> of `delta`: with q = F(delta) - F0 - diag(t)*(delta - a),
+    !>
+    !>     delta + s = a - U*M^-1*(V^T*q),
+    !>
+    !> the same point as `newton_solve` with b = -R(delta) (R's own U*V^T*(F - F0) cancels
+    !> against Woodbury's), for two products by N_c x r factors instead of four. `taken` is
+    !> false (nothing done) when W0 is dense, no slope is positive, or the system on the
+    !> active set is the cheaper: the caller then takes `newton_solve`.
+    subroutine woodbury_step(compliance, weight0, slopes, q, free, next, taken, error)
+        !> W0 as the run uses it; keeps the last Newton matrix.
+        type(lowrank_compliance), intent(inout) :: compliance
+        !> The dense W0 [m/N] (N_c x N_c).
+        real(dp), intent(in) :: weight0(:, :)
+        !> t_i = dF_i/ddelta_i [N/m] at `delta` (N_c), zero off the active set.
+        real(dp), intent(in) :: slopes(:)
+        !> q = F(delta) - F0 - diag(t)*(delta - a) [N] (N_c).
+        real(dp), intent(in) :: q(:)
+        !> The free compressions a [m] (N_c).
+        real(dp), intent(in) :: free(:)
+        !> delta + s [m] (N_c), when `taken`.
+        real(dp), intent(out) :: next(:)
+        !> Whether the step was made here.
+        logical, intent(out) :: taken
+        !> Set when the Newton matrix is singular.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: z(compliance%rank)
+
+        taken = .false.
+        if (.not. compliance%low_rank .or. compliance%rank == 0 .or. all(slopes == 0.0_dp)) return
+        if (active_set_cheaper(real(count(slopes /= 0.0_dp), dp), real(compliance%rank, dp))) return
+        call form_newton_matrix(compliance, weight0, slopes, error)
+        if (allocated(error)) return
+        call transposed_product(compliance%right_t, q, z)
+        call subtract_product(compliance%left, matmul(compliance%newton%inverse, z), free, next)
+        taken = .true.
+    end subroutine woodbury_step
 
     !> Whether a loop of `work` multiply-adds is shared among threads: large enough to pay for
     !> a parallel region, and not called from inside one (no nested threads in a host's region).
