@@ -60,9 +60,12 @@ per_step() {
 }
 
 declare -a e1000
-echo "# implicit (exact) against explicit (modal) on data/tyre_patch.nml: per-step cost = (run of $n2 steps - run of $n1)/$((n2 - n1)),"
-echo "# $rounds interleaved rounds, median; 1 thread: CPU seconds, 2 threads: wall seconds; load average $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# n_c  threads  exact_s_per_step  modal_s_per_step  exact/modal  (min..max of the rounds' ratios)  exact_s_per_1e5_steps"
+echo "# implicit (exact) against explicit (modal) on data/tyre_patch.nml:" \
+     "per-step cost = (run of $n2 steps - run of $n1)/$((n2 - n1)),"
+echo "# $rounds interleaved rounds, median; 1 thread: CPU seconds, 2 threads: wall seconds;" \
+     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# n_c  threads  exact_s_per_step  modal_s_per_step  exact/modal" \
+     " (min..max of the rounds' ratios)  exact_s_per_1e5_steps"
 for threads in 1 2; do
     rows=$(per_step "$threads" 50 20 "$n1" "$n2" "$rounds")
     e=$(cut -d' ' -f1 <<< "$rows" | median)
@@ -73,8 +76,10 @@ for threads in 1 2; do
         "$(awk -v e="$e" -v m="$m" 'BEGIN{print e/m}')" "$lo" "$hi" "$(awk -v e="$e" 'BEGIN{print e*1e5}')"
     e1000[$threads]=$e
 done
-echo "# 5,000 points (100 x 50 on the same patch), 100 and 700 steps, one round; target: exact <= 300 s per 1e5 steps on 2 threads, <= 4 GB"
-echo "# n_c  threads  exact_s_per_step  modal_s_per_step  exact/modal  exact_s_per_1e5_steps  projected_from_1000_s_per_1e5  peak_GB"
+echo "# 5,000 points (100 x 50 on the same patch), 100 and 700 steps, one round;" \
+     "target: exact <= 300 s per 1e5 steps on 2 threads, <= 4 GB"
+echo "# n_c  threads  exact_s_per_step  modal_s_per_step  exact/modal  exact_s_per_1e5_steps" \
+     " projected_from_1000_s_per_1e5  peak_GB"
 for threads in 1 2; do
     row=$(per_step "$threads" 100 50 100 700 1)
     read -r e m ratio peak <<< "$row"
