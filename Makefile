@@ -25,7 +25,12 @@
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
 #                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
 #                   time on Tab. 2's largest case (text, binary) against the C printf anchor
-#                   (bench/driver_output.sh, out/bench/driver_output.txt), then the figures
+#                   (bench/driver_output.sh, out/bench/driver_output.txt), the implicit patch
+#                   against the explicit one on 1 and 2 threads and at 5,000 points (`make
+#                   bench-patch`, out/bench/patch_cost.txt), then the figures
+#   make bench-patch  per-step costs of exact and modal on data/tyre_patch.nml and their ratio,
+#                   rounds interleaved, 1 and 2 OpenMP threads, the 5,000-point grid measured
+#                   and projected (bench/patch_cost.sh on the plain build's driver)
 #   make figures    only draw plot/*.gp from the existing out/*.dat (text or binary runs:
 #                   plot/lib/column_file.gp picks <name>_<method>.dat or .bin)
 #   make plot-test  the plot scripts that read contact runs draw the same figure from a text
@@ -478,6 +483,7 @@ run: build
 
 bench: build
 	@$(MAKE) bench-data
+	@$(MAKE) bench-patch
 	@$(MAKE) bench-ident
 	@$(MAKE) sweep-bench
 	@$(MAKE) figures
@@ -495,6 +501,15 @@ bench-data:
 	    build/printf_rows | tee out/bench/driver_output.txt.part
 	@mv out/bench/driver_output.txt.part out/bench/driver_output.txt
 	@echo "greenconv: tables saved in out/bench/tables.txt and out/bench/driver_output.txt"
+
+# The implicit patch against the explicit one: the plain build's driver (OpenMP), whole
+# processes, so the two methods are timed alike and the 5,000-point run's memory is measured.
+.PHONY: bench-patch
+bench-patch: lib
+	@mkdir -p out/bench
+	@echo "greenconv: the implicit patch against the explicit one (a few minutes)"
+	@bash bench/patch_cost.sh $(BIN) | tee out/bench/patch_cost.txt.part
+	@mv out/bench/patch_cost.txt.part out/bench/patch_cost.txt
 
 # Identification against a peer (issue 13): greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
 # noisy receptances at 0.1, 1 and 3 %, errors in Cramer-Rao standard deviations. The script

@@ -14,6 +14,13 @@
 !> - a whole run (tyre, 120 points, exact engine, Hertz points losing and regaining contact)
 !>   with the factors against the same run kept dense: 1e-10 of the peak force on every force,
 !>   the Newton tolerance being 1e-12 of the compression scale;
+!> - M^-1 updated by Sherman-Morrison when two slopes change (a point leaving the contact,
+!>   another entering) against dgesv on the new system: 1e-12 of max|s|, the update path checked;
+!> - a run of linear springs (p = 1: the slopes stay those of the active set, which changes
+!>   from step to step, so M^-1 is updated rather than formed again) with the factors against the
+!>   same run kept dense (dgesv on I + W0*diag(t) at every iteration, every product by the dense
+!>   W0): 1e-10 of the peak force on every force and displacement, the Newton tolerance being
+!>   1e-12 of the compression scale;
 !> - W0 of rank >= N_c/2 (fewer points than modes) is left dense, so results stay bit for bit;
 !> - threads (a build with -fopenmp): the modal step of 1,000 points on 1 thread, on 2 and from
 !>   inside a host's parallel region against the modal forces and history displacements summed
@@ -60,6 +67,8 @@ contains
         testsuite = [new_unittest('Woodbury and active-set solves equal dgesv on I + U V^T diag(t)', test_woodbury), &
                      new_unittest('modal W0 factored: rank at most N_m, U V^T equals W0', test_factors), &
                      new_unittest('tyre run, 120 points: low-rank forces equal the dense run', test_run), &
+                     new_unittest('linear springs, 200 points: updated M^-1 forces equal the dense run', &
+                                  test_run_updated), &
                      new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback), &
                      new_unittest('modal step on 1, 2 threads and in a host region: bit for bit', test_threads), &
                      new_unittest('implicit plate patch on 1, 2 and two host threads: bit for bit', &
@@ -111,6 +120,7 @@ contains
             if (mod(i, 3) == 0) slopes(i) = 0.0_dp
             b(i) = 1.0e-4_dp*(stream%uniform() - 0.5_dp)
         end do
+        factors%right_t = transpose(factors%right)
         factors%checked = .true.
         factors%low_rank = .true.
         factors%rank = r
@@ -120,6 +130,13 @@ contains
         if (allocated(error)) return
         ! Solved again with the same slopes: the factors kept serve.
         call compare_with_dense('40 active, factors kept', factors, weight0, slopes, 2*b, .false., error)
+        if (allocated(error)) return
+        ! Point 1 leaves the contact, point 3 enters: M^-1 updated twice, not formed again.
+        slopes(1) = 0.0_dp
+        slopes(3) = 2.0e4_dp
+        call compare_with_dense('40 active, two slopes changed', factors, weight0, slopes, b, .false., error)
+        if (allocated(error)) return
+        call check(error, factors%newton%updates == 2, 'two slopes changed: two rank-one updates of M^-1')
         if (allocated(error)) return
         ! 5 active points: the system on the active set (125/3 against 5*49 + 343/3).
         where (slopes(6:) /= 0.0_dp) slopes(6:) = 0.0_dp
@@ -182,15 +199,17 @@ contains
 
     !> The exact engine, Hertz laws (2 mm static compression) and a rough road under the points
     !> of `description` for n_t steps: points lose and regain contact.
-    subroutine set_up_run(description, n_t, conv, laws, preloads, road)
+    !> `exponent`: p of the laws (1.5 when absent), the static compression kept.
+    subroutine set_up_run(description, n_t, conv, laws, preloads, road, exponent)
         type(point_modes), intent(in) :: description
         integer, intent(in) :: n_t
         type(modal_green_matrix), intent(out) :: conv
         type(contact_law), allocatable, intent(out) :: laws(:)
         real(dp), allocatable, intent(out) :: preloads(:), road(:, :)
+        real(dp), intent(in), optional :: exponent
 
         type(random_road) :: profile
-        real(dp) :: positions(description%n_points())
+        real(dp) :: positions(description%n_points()), p
         integer :: n_c, i, m
 
         n_c = description%n_points()
@@ -201,7 +220,9 @@ contains
             road(:, i) = profile%height([(m*dt + positions(i)/20.0_dp, m=0, n_t - 1)])
         end do
         preloads(:) = 3000.0_dp/n_c
-        laws(:) = contact_law(preloads(1)/(2.0e-3_dp)**1.5_dp, 1.5_dp)
+        p = 1.5_dp
+        if (present(exponent)) p = exponent
+        laws(:) = contact_law(preloads(1)/(2.0e-3_dp)**p, p)
         conv = exact_matrix(description)
     end subroutine set_up_run
 
@@ -220,12 +241,13 @@ contains
 
     !> One implicit run of `description` over n_t steps (`set_up_run`), with the factors it
     !> used; `forced_dense`: W0 kept dense whatever its rank.
-    subroutine implicit_run(description, n_t, response, used, forced_dense)
+    subroutine implicit_run(description, n_t, response, used, forced_dense, exponent)
         type(point_modes), intent(in) :: description
         integer, intent(in) :: n_t
         type(multi_contact_response), intent(out) :: response
         type(lowrank_compliance), intent(out) :: used
         logical, intent(in), optional :: forced_dense
+        real(dp), intent(in), optional :: exponent
 
         type(modal_green_matrix) :: conv
         type(multi_contact_state) :: state
@@ -233,7 +255,7 @@ contains
         type(contact_law), allocatable :: laws(:)
         real(dp), allocatable :: road(:, :), preloads(:)
 
-        call set_up_run(description, n_t, conv, laws, preloads, road)
+        call set_up_run(description, n_t, conv, laws, preloads, road, exponent)
         call start_multi_contact(conv, laws, preloads, state, failure)
         if (present(forced_dense)) state%compliance%checked = forced_dense
         if (.not. allocated(failure)) call multi_contact_block(conv, state, road, response, failure)
@@ -247,7 +269,6 @@ contains
         type(multi_contact_response) :: low_rank, dense
         type(lowrank_compliance) :: used
         type(point_modes) :: description
-        real(dp) :: peak
 
         description = tyre_points(120, 2000.0_dp)
         call run_twice(description, 400, low_rank, dense, used)
@@ -259,14 +280,51 @@ contains
         call check(error, any(dense%force <= 0.0_dp) .and. any(dense%force > 0.0_dp), &
                    'some points lose contact, others keep it')
         if (allocated(error)) return
+        call check_against_dense('low rank', low_rank, dense, error)
+    end subroutine test_run
+
+    !> Forces and displacements of a run against the same run kept dense, within 1e-10 of
+    !> their peaks (the Newton tolerance being 1e-12 of the compression scale).
+    subroutine check_against_dense(case, run, dense, error)
+        character(len=*), intent(in) :: case
+        type(multi_contact_response), intent(in) :: run, dense
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp) :: peak
+
         peak = maxval(abs(dense%force))
-        call note('max|F_lowrank - F_dense|/max F', maxval(abs(low_rank%force - dense%force))/peak)
-        call check(error, maxval(abs(low_rank%force - dense%force)), 0.0_dp, 'forces: low rank against dense', &
+        call note('max|F_'//case//' - F_dense|/max F', maxval(abs(run%force - dense%force))/peak)
+        call check(error, maxval(abs(run%force - dense%force)), 0.0_dp, 'forces: '//case//' against dense', &
                    thr=1.0e-10_dp*peak)
         if (allocated(error)) return
-        call check(error, maxval(abs(low_rank%displacement - dense%displacement)), 0.0_dp, &
-                   'displacements: low rank against dense', thr=1.0e-10_dp*maxval(abs(dense%displacement)))
-    end subroutine test_run
+        call check(error, maxval(abs(run%displacement - dense%displacement)), 0.0_dp, &
+                   'displacements: '//case//' against dense', thr=1.0e-10_dp*maxval(abs(dense%displacement)))
+    end subroutine check_against_dense
+
+    !> Linear springs: the active set changes from step to step while the slopes on it stay,
+    !> so the run goes through the updates of M^-1; against the same run kept dense.
+    subroutine test_run_updated(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(multi_contact_response) :: low_rank, dense
+        type(lowrank_compliance) :: used, unused
+        type(point_modes) :: description
+        integer :: changes, n
+
+        description = tyre_points(200, 2000.0_dp)
+        call implicit_run(description, 400, low_rank, used, exponent=1.0_dp)
+        call implicit_run(description, 400, dense, unused, forced_dense=.true., exponent=1.0_dp)
+        changes = 0
+        do n = 1, ubound(dense%force, 1)
+            if (any((dense%force(n, :) > 0.0_dp) .neqv. (dense%force(n - 1, :) > 0.0_dp))) changes = changes + 1
+        end do
+        call note('rank used', real(used%rank, dp))
+        call note('steps whose active set changed', real(changes, dp))
+        call check(error, used%low_rank .and. .not. used%newton%on_active_set .and. changes >= 10, &
+                   'the run used Woodbury''s M over active sets that change')
+        if (allocated(error)) return
+        call check_against_dense('updated M^-1', low_rank, dense, error)
+    end subroutine test_run_updated
 
     subroutine test_dense_fallback(error)
         type(test_error), allocatable, intent(out) :: error

@@ -16,6 +16,17 @@
 !> in O(N_c*r^2 + r^3) per iteration; the products W0*x of the residual cost O(N_c*r). J is
 !> singular exactly when M is (det J = det M), so a failure is reported as for the dense solve.
 !>
+!> M is kept as its inverse and follows the active set: when a few slopes change from one
+!> Newton matrix to the next (points entering or leaving the contact, as from one time step to
+!> the next), each change t_i -> t_i' is the rank-one term (t_i' - t_i)*v_i*u_i^T of M
+!> (u_i, v_i the rows i of U and V), and M^-1 is updated by the Sherman-Morrison formula in
+!> 3*r^2 operations instead of being formed and factored again in N_a*r^2 + r^3. M is formed
+!> anew when more than N_a/3 slopes change at once, after N_c updates (round-off of the
+!> updates does not accumulate further) and when an update's pivot 1 + (t_i' - t_i)*u_i^T*M^-1*v_i
+!> is below `update_pivot` (a nearly singular intermediate). The Newton iteration stops on its
+!> residual, not on this matrix, so the inverse's round-off changes the number of iterations
+!> at most, never the tolerance the compressions meet.
+!>
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
@@ -33,7 +44,7 @@ module greenconv_contact_lowrank_solve
     implicit none
     private
 
-    public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve
+    public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve, woodbury_step
 
     !> The factored Newton matrix of the low-rank solve, kept for the slopes it was formed for.
     type :: newton_matrix
@@ -45,10 +56,15 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: slopes(:)
         !> The active set A: indices of the points with t_i /= 0.
         integer, allocatable :: active(:)
-        !> LU factors (N_a x N_a or r x r) from dgetrf.
+        !> LU factors from dgetrf: of the matrix on the active set (N_a x N_a), or of M (r x r)
+        !> when `inverse` was last formed.
         real(dp), allocatable :: factors(:, :)
-        !> dgetrf's row interchanges.
+        !> dgetrf's row interchanges, on the active set.
         integer, allocatable :: pivot(:)
+        !> M^-1 (r x r) [dimensionless], for Woodbury.
+        real(dp), allocatable :: inverse(:, :)
+        !> Rank-one updates of `inverse` since M was last formed.
+        integer :: updates = 0
     end type newton_matrix
 
     !> W0 [m/N] of a run as the step uses it: dense, or U*V^T.
@@ -63,6 +79,8 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: left(:, :)
         !> V (N_c x r) [dimensionless]: W0 = U*V^T.
         real(dp), allocatable :: right(:, :)
+        !> V^T (r x N_c) [dimensionless], for the products V^T*x (contiguous in k).
+        real(dp), allocatable :: right_t(:, :)
         !> The last Newton matrix factored (low-rank case only).
         type(newton_matrix) :: newton
     end type lowrank_compliance
@@ -74,8 +92,11 @@ module greenconv_contact_lowrank_solve
     real(dp), parameter :: thread_work = 2.0e4_dp
     !> Rows per block of the products by rows (one thread's share at a time).
     integer, parameter :: row_block = 256
-    !> Columns of V per block of the products V^T*x.
-    integer, parameter :: column_block = 16
+    !> Rows of V^T per block of the products V^T*x (one thread's share at a time).
+    integer, parameter :: column_block = 64
+    !> Smallest |1 + (t_i' - t_i)*u_i^T*M^-1*v_i| a rank-one update of M^-1 accepts; M is formed
+    !> anew below it.
+    real(dp), parameter :: update_pivot = 1.0e-6_dp
 
 contains
 
@@ -100,13 +121,14 @@ contains
         allocate (remainder(n_c, n_c), left(n_c, max_rank), right(n_c, max_rank))
         remainder(:, :) = weight0
         do k = 1, max_rank + 1
-            at = maxloc(abs(remainder))
+            at = largest_entry(remainder)
             pivot = remainder(at(1), at(2))
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%low_rank = .true.
                 compliance%rank = k - 1
                 compliance%left = left(:, 1:k - 1)
                 compliance%right = right(:, 1:k - 1)
+                compliance%right_t = transpose(compliance%right)
                 return
             end if
             if (k > max_rank) return
@@ -115,6 +137,27 @@ contains
             call subtract_outer(remainder, left(:, k), right(:, k))
         end do
     end subroutine factor_compliance
+
+    !> The indices of the first largest |a_ij| in array element order, as maxloc(abs(a)) without
+    !> its N_c x N_c temporary.
+    pure function largest_entry(a) result(at)
+        real(dp), intent(in) :: a(:, :)
+        integer :: at(2)
+
+        real(dp) :: largest
+        integer :: i, j
+
+        at = [1, 1]
+        largest = abs(a(1, 1))
+        do j = 1, size(a, 2)
+            do i = 1, size(a, 1)
+                if (abs(a(i, j)) > largest) then
+                    largest = abs(a(i, j))
+                    at = [i, j]
+                end if
+            end do
+        end do
+    end function largest_entry
 
     !> A = A - x*y^T.
     pure subroutine subtract_outer(a, x, y)
@@ -130,9 +173,10 @@ contains
 
     !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors, else the dense product.
     !>
-    !> Threads: V^T*x by fixed blocks of `column_block` columns, then U*z (or W0*x) by fixed
+    !> V^T*x is MATMUL on blocks of rows of the stored V^T (contiguous in k).
+    !> Threads: V^T*x by fixed blocks of `column_block` rows of V^T, then U*z (or W0*x) by fixed
     !> blocks of `row_block` rows, in one parallel region. Every y_i and z_k is the same
-    !> ordered sum (MATMUL on a block of rows or columns) whoever does its block, so any number
+    !> ordered sum (MATMUL on a block of rows) whoever does its block, so any number
     !> of threads gives the one-thread result bit for bit; small products and calls from inside
     !> a parallel region (a host's, or ours) stay on the calling thread.
     function apply_compliance(compliance, weight0, x) result(y)
@@ -162,7 +206,7 @@ contains
         !$omp do schedule(static)
         do first = 1, compliance%rank, column_block
             last = min(first + column_block - 1, compliance%rank)
-            z(first:last) = matmul(x, compliance%right(:, first:last))
+            z(first:last) = matmul(compliance%right_t(first:last, :), x)
         end do
         !$omp end do
         !$omp do schedule(static)
@@ -174,28 +218,86 @@ contains
         !$omp end parallel
     end function apply_compliance
 
-    !> z = V_A^T*x, V_A the rows `active` of V (N_c x r), by fixed blocks of columns shared
-    !> among threads: each z_k is MATMUL's ordered sum whoever computes it.
-    subroutine gathered_product(x, right, active, z)
+    !> z = V_A^T*x = V^T*x_s, V_A the rows `active` of V and x_s the values x at the active
+    !> points and zero elsewhere (no gathered copy of V), by fixed blocks of rows of V^T shared
+    !> among threads: each z_k is one MATMUL sum whoever computes it.
+    subroutine gathered_product(x, right_t, active, z)
         !> Values at the active points (N_a).
         real(dp), intent(in) :: x(:)
-        !> V (N_c x r).
-        real(dp), intent(in) :: right(:, :)
+        !> V^T (r x N_c).
+        real(dp), intent(in) :: right_t(:, :)
         !> The active points (N_a).
         integer, intent(in) :: active(:)
         !> V_A^T*x (r).
         real(dp), intent(out) :: z(:)
 
+        real(dp) :: scattered(size(right_t, 2))
+
+        scattered(:) = 0.0_dp
+        scattered(active) = x
+        call transposed_product(right_t, scattered, z)
+    end subroutine gathered_product
+
+    !> z = V^T*x (r) for x at every point (N_c), by fixed blocks of `column_block` rows of V^T
+    !> shared among threads: each z_k is one MATMUL sum whoever computes it.
+    subroutine transposed_product(right_t, x, z)
+        !> V^T (r x N_c).
+        real(dp), intent(in) :: right_t(:, :)
+        !> Values at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> V^T*x (r).
+        real(dp), intent(out) :: z(:)
+
         integer :: first, last
 
-        !$omp parallel do if (sharing(real(size(active), dp)*size(right, 2))) default(none) &
-        !$omp shared(x, right, active, z) private(last) schedule(static)
-        do first = 1, size(right, 2), column_block
-            last = min(first + column_block - 1, size(right, 2))
-            z(first:last) = matmul(x, right(active, first:last))
+        !$omp parallel do if (sharing(real(size(right_t), dp))) default(none) &
+        !$omp shared(x, right_t, z) private(last) schedule(static)
+        do first = 1, size(right_t, 1), column_block
+            last = min(first + column_block - 1, size(right_t, 1))
+            z(first:last) = matmul(right_t(first:last, :), x)
         end do
         !$omp end parallel do
-    end subroutine gathered_product
+    end subroutine transposed_product
+
+    !> The full Newton step of R(delta) = delta - a + W0*(F(delta) - F0) from a compression
+    !> `delta` without R(delta) itself, when W0 = U*V^T and Woodbury's M^-1 serves the slopes t
+    !> of `delta`: with q = F(delta) - F0 - diag(t)*(delta - a),
+    !>
+    !>     delta + s = a - U*M^-1*(V^T*q),
+    !>
+    !> the same point as `newton_solve` with b = -R(delta) (R's own U*V^T*(F - F0) cancels
+    !> against Woodbury's), for two products by N_c x r factors instead of four. `taken` is
+    !> false (nothing done) when W0 is dense, no slope is positive, or the system on the
+    !> active set is the cheaper: the caller then takes `newton_solve`.
+    subroutine woodbury_step(compliance, weight0, slopes, q, free, next, taken, error)
+        !> W0 as the run uses it; keeps the last Newton matrix.
+        type(lowrank_compliance), intent(inout) :: compliance
+        !> The dense W0 [m/N] (N_c x N_c).
+        real(dp), intent(in) :: weight0(:, :)
+        !> t_i = dF_i/ddelta_i [N/m] at `delta` (N_c), zero off the active set.
+        real(dp), intent(in) :: slopes(:)
+        !> q = F(delta) - F0 - diag(t)*(delta - a) [N] (N_c).
+        real(dp), intent(in) :: q(:)
+        !> The free compressions a [m] (N_c).
+        real(dp), intent(in) :: free(:)
+        !> delta + s [m] (N_c), when `taken`.
+        real(dp), intent(out) :: next(:)
+        !> Whether the step was made here.
+        logical, intent(out) :: taken
+        !> Set when the Newton matrix is singular.
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: z(compliance%rank)
+
+        taken = .false.
+        if (.not. compliance%low_rank .or. compliance%rank == 0 .or. all(slopes == 0.0_dp)) return
+        if (active_set_cheaper(real(count(slopes /= 0.0_dp), dp), real(compliance%rank, dp))) return
+        call form_newton_matrix(compliance, weight0, slopes, error)
+        if (allocated(error)) return
+        call transposed_product(compliance%right_t, q, z)
+        call subtract_product(compliance%left, matmul(compliance%newton%inverse, z), free, next)
+        taken = .true.
+    end subroutine woodbury_step
 
     !> Whether a loop of `work` multiply-adds is shared among threads: large enough to pay for
     !> a parallel region, and not called from inside one (no nested threads in a host's region).
@@ -243,43 +345,48 @@ contains
         call form_newton_matrix(compliance, weight0, slopes, error)
         if (allocated(error)) return
         associate (newton => compliance%newton, r => compliance%rank)
-            allocate (y(size(newton%factors, 1)))
             if (newton%on_active_set) then
+                allocate (y(size(newton%factors, 1)))
                 call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
                 if (allocated(error)) return
                 y(:) = slopes(newton%active)*y
-                call gathered_product(y, compliance%right, newton%active, z)
+                call gathered_product(y, compliance%right_t, newton%active, z)
                 call subtract_product(compliance%left, z, b, s)
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
-                call gathered_product(scaled_b, compliance%right, newton%active, z)
-                call lu_solve(newton%factors, newton%pivot, z, y, error)
-                if (allocated(error)) return
+                call gathered_product(scaled_b, compliance%right_t, newton%active, z)
+                y = matmul(newton%inverse, z)
                 call subtract_product(compliance%left, y, b, s)
             end if
         end associate
     end subroutine newton_solve
 
     !> Factor the Newton matrix of `slopes` unless it is the one kept: on the active set
-    !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper.
+    !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper;
+    !> M^-1 is updated instead when few slopes changed (`update_inverse`).
     subroutine form_newton_matrix(compliance, weight0, slopes, error)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: weight0(:, :), slopes(:)
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: n_a, rank
+        real(dp) :: rank
         integer :: i, j
+        logical :: on_active_set, updated
 
         associate (newton => compliance%newton)
+            rank = real(compliance%rank, dp)
+            on_active_set = active_set_cheaper(real(count(slopes /= 0.0_dp), dp), rank)
             if (newton%ready) then
                 if (all(newton%slopes == slopes)) return
+                if (.not. (on_active_set .or. newton%on_active_set)) then
+                    call update_inverse(compliance, slopes, updated)
+                    if (updated) return
+                end if
             end if
             newton%ready = .false.
             newton%slopes = slopes
             newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
-            n_a = real(size(newton%active), dp)
-            rank = real(compliance%rank, dp)
-            newton%on_active_set = n_a**3/3 < n_a*rank**2 + rank**3/3
+            newton%on_active_set = on_active_set
             if (newton%on_active_set) then
                 newton%factors = weight0(newton%active, newton%active)
                 do j = 1, size(newton%active)
@@ -293,9 +400,80 @@ contains
             allocate (newton%pivot(size(newton%factors, 1)))
             call lu_factor(newton%factors, newton%pivot, error)
             if (allocated(error)) return
+            if (.not. newton%on_active_set) then
+                call inverse_of_factors(newton%factors, newton%pivot, newton%inverse, error)
+                if (allocated(error)) return
+                newton%updates = 0
+            end if
             newton%ready = .true.
         end associate
     end subroutine form_newton_matrix
+
+    !> Whether the LU on an active set of n_a points (n_a^3/3 operations) is cheaper than
+    !> forming and factoring M of rank r (n_a*r^2 + r^3/3).
+    pure logical function active_set_cheaper(n_a, rank)
+        real(dp), intent(in) :: n_a, rank
+
+        active_set_cheaper = n_a**3/3 < n_a*rank**2 + rank**3/3
+    end function active_set_cheaper
+
+    !> M^-1 (r x r) from the LU factors of M, column by column.
+    subroutine inverse_of_factors(factors, pivot, inverse, error)
+        real(dp), intent(in) :: factors(:, :)
+        integer, intent(in) :: pivot(:)
+        real(dp), allocatable, intent(out) :: inverse(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(dp) :: unit(size(factors, 1))
+        integer :: k
+
+        allocate (inverse(size(factors, 1), size(factors, 1)))
+        do k = 1, size(factors, 1)
+            unit(:) = 0.0_dp
+            unit(k) = 1.0_dp
+            call lu_solve(factors, pivot, unit, inverse(:, k), error)
+            if (allocated(error)) return
+        end do
+    end subroutine inverse_of_factors
+
+    !> M^-1 brought to the slopes `slopes` by one Sherman-Morrison update per changed slope:
+    !> M' = M + (t_i' - t_i)*v_i*u_i^T, M'^-1 = M^-1 - c*x*y^T with x = M^-1*v_i,
+    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x). Not done (`updated`
+    !> false, the kept matrix marked stale) when too many slopes changed, after N_c updates
+    !> since M was formed, or at a pivot below `update_pivot`.
+    subroutine update_inverse(compliance, slopes, updated)
+        type(lowrank_compliance), intent(inout) :: compliance
+        real(dp), intent(in) :: slopes(:)
+        logical, intent(out) :: updated
+
+        integer, allocatable :: changed(:)
+        real(dp) :: x(compliance%rank), y(compliance%rank), change, pivot
+        integer :: i, j, k
+
+        updated = .false.
+        associate (newton => compliance%newton, u => compliance%left, v_t => compliance%right_t)
+            changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
+            if (3*size(changed) > count(slopes /= 0.0_dp) .or. newton%updates + size(changed) > size(slopes)) return
+            newton%ready = .false.
+            do j = 1, size(changed)
+                i = changed(j)
+                change = slopes(i) - newton%slopes(i)
+                x(:) = matmul(newton%inverse, v_t(:, i))
+                y(:) = matmul(u(i, :), newton%inverse)
+                pivot = 1.0_dp + change*dot_product(u(i, :), x)
+                if (.not. (abs(pivot) >= update_pivot)) return
+                x(:) = (change/pivot)*x
+                do k = 1, size(y)
+                    newton%inverse(:, k) = newton%inverse(:, k) - x*y(k)
+                end do
+            end do
+            newton%slopes = slopes
+            newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
+            newton%updates = newton%updates + size(changed)
+            newton%ready = .true.
+            updated = .true.
+        end associate
+    end subroutine update_inverse
 
     !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
     !> points gathered from V (scaled by t) and U column by column, then column j of M as

@@ -49,7 +49,7 @@ module greenconv_contact_step
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
-                                               newton_solve
+                                               newton_solve, woodbury_step
     implicit none
     private
 
@@ -91,6 +91,10 @@ module greenconv_contact_step
         !> Compressions of the last step done [m] (delta0 before step 0): the first guess of
         !> the next implicit step.
         real(dp), allocatable :: delta(:)
+        !> W0*(F(delta) - F0) [m] of the compressions in `delta` when the last step solved them
+        !> by the implicit multi-point iteration (unallocated otherwise): the next step's first
+        !> guess without a product by W0.
+        real(dp), allocatable :: coupling(:)
         !> Scheme, divergence bound and Newton settings.
         type(contact_options) :: settings
         !> Whether W0 /= 0 (some step's own force reaches the body within the step).
@@ -305,7 +309,11 @@ contains
     end subroutine implicit_compression
 
     !> Semismooth Newton on R(delta) = delta - a + W0*(F(delta) - F0), damped on |R|_2, from
-    !> the free compression corrected by the previous step's forces (`load` is work space).
+    !> the free compression corrected by the previous step's forces (`load` is work space;
+    !> the correction is state%coupling when the previous step left it). With Woodbury's M^-1
+    !> the first, full step is made without R at the guess (greenconv_contact_lowrank_solve's
+    !> `woodbury_step`) and kept when it meets the tolerance; otherwise the damped iteration
+    !> runs from the guess as if that step had not been tried.
     !> `coupling` is W0*(F(delta) - F0) [m] of the compressions left in state%delta, the
     !> residual's own product (the step's displacements less the history: no product more).
     !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
@@ -322,18 +330,40 @@ contains
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
         real(dp) :: coupling_trial(size(free)), alpha, scale
         integer :: halvings
+        logical :: taken
 
         largest = 0.0_dp
         point = 1
         if (.not. state%compliance%checked) call factor_compliance(weight0, state%compliance)
         associate (delta => state%delta, laws => state%laws, options => state%settings, &
                    compliance => state%compliance)
-            load(:) = laws%force(delta) - state%preload
-            delta(:) = free - apply_compliance(compliance, weight0, load)
+            if (allocated(state%coupling)) then
+                delta(:) = free - state%coupling
+                deallocate (state%coupling)
+            else
+                load(:) = laws%force(delta) - state%preload
+                delta(:) = free - apply_compliance(compliance, weight0, load)
+            end if
+            step(:) = slope(laws, delta)
+            load(:) = laws%force(delta) - state%preload - step*(delta - free)
+            call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
+            if (allocated(error)) return
+            if (taken) then
+                call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, scale)
+                if (maxval(abs(r_trial)) <= options%tolerance*max(scale, maxval(state%delta0))) then
+                    delta(:) = trial
+                    state%coupling = coupling
+                    iterations = 1
+                    return
+                end if
+            end if
             call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
-                if (maxval(abs(r)) <= options%tolerance*scale) return
+                if (maxval(abs(r)) <= options%tolerance*scale) then
+                    state%coupling = coupling
+                    return
+                end if
                 if (iterations == options%max_iterations) exit
                 call newton_solve(compliance, weight0, slope(laws, delta), -r, step, error)
                 if (allocated(error)) return
