@@ -1,4 +1,4 @@
-!> Order in dt of multi-point contact (issue 23): every multi-point method against the
+!> Order in dt of multi-point contact: every multi-point method against the
 !> independent reference of greenconv_verify_contact (the modal ODE of the true structure with
 !> the contact law at every point, adaptive Dormand-Prince at rtol 1e-10), on structures the
 !> project does not ship:

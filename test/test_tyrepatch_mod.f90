@@ -1,4 +1,4 @@
-!> The built-in 2D tyre (`&structure model = 'tyre_plate'`, issue 25): a scene on the plate's
+!> The built-in 2D tyre (`&structure model = 'tyre_plate'`): a scene on the plate's
 !> patch grid against run_multi_contact on the plate's own modes (the scene's conventions
 !> written out here), the contact law per area (each point's share of the patch; the total force
 !> converging as the grid is refined, a law per point stiffening instead), and the refusals of
