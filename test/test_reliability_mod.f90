@@ -1,6 +1,6 @@
 !> Reliability: a failed run is never reported as a success. Output files are
 !> complete or absent (a full disk, a planted symlink, two writers of one file), `--check`
-!> refuses an output directory a run cannot write, and the other cases of the issue.
+!> refuses an output directory a run cannot write, and the other cases below.
 module test_reliability_mod
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
