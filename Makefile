@@ -310,7 +310,7 @@ $(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Iinclude -o $@ $< $(LIB) $(LDLIBS) $(FORTRAN_RUNTIME)
 
-# ---- two threads (issue 24) ----------------------------------------------------------------
+# ---- two threads ---------------------------------------------------------------------------
 # test/threads/two_threads.c: two POSIX threads, each with its own convolvers, build, step,
 # are refused (an unknown method 'direc' / 'fftx') and free, THREAD_CALLS API calls in all;
 # every status, message and value must be what one thread alone gets. `make thread-test` runs
@@ -321,8 +321,8 @@ $(CTEST_DIR)/%: test/c/%.c test/c/check.h include/greenconv.h $(LIB)
 # in static storage at each call site, which threads share; the texts on the C doors' paths
 # (core/text.f90's numbers, conv/methods.f90's names and lists, api/doors.f90's C strings)
 # have specification-length results instead, so `make test` runs the stress and helgrind
-# checks. Since round 29 no such call site is left anywhere in the library (231 in round 28),
-# and `make test` runs the static check too.
+# checks. No such call site is left anywhere in the library (`make statics-check`), and `make
+# test` runs the static check too.
 
 THREAD_TEST := $(BUILD)/threads/two_threads
 TEST_THREAD_CALLS ?= 20000
@@ -337,9 +337,9 @@ $(THREAD_TEST): test/threads/two_threads.c test/c/check.h include/greenconv.h $(
 
 # test/threads/two_readers.c: two threads read universal files at once through the C doors
 # (a modes file, an FRF identified, a missing file refused), every value and message as with one
-# thread. Before round 29 the second thread to open the same file was refused ("File already
-# opened in another unit": a file may be connected to one Fortran unit at a time); the readers
-# now hold the critical section greenconv_input_files while a file is open. Not run under
+# thread. A file may be connected to one Fortran unit at a time ("File already opened in another
+# unit" would refuse the second thread to open the same file), so the readers hold the
+# critical section greenconv_input_files while a file is open. Not run under
 # helgrind: libgomp's critical sections are futex locks helgrind does not see, so it reports
 # the accesses they order (and libgfortran's own unit table) as races.
 READER_TEST := $(BUILD)/threads/two_readers
@@ -383,7 +383,7 @@ thread-check: $(SHLIB)
 
 # No writable static local in the library's objects (tools/check_statics.sh: each `slen.*`
 # and any other static that is not a module variable or an OpenMP critical lock, by file).
-# In `make test` since round 29 (0 left; 185 at its start, 231 in round 28).
+# Part of `make test`: 0 are left.
 statics-check: $(LIB)
 	bash tools/check_statics.sh $(BUILD)/src
 
@@ -404,7 +404,7 @@ $(FUZZ): fuzz/mutation_mod.f90 fuzz/fuzz_main.f90 $(LIB)
 fuzz: $(BIN) $(FUZZ)
 	@$(HELPER) fuzz $(BIN) $(FUZZ) $(FUZZ_CASES) $(FUZZ_SEED)
 
-# ---- MPI driver for sweep scenes (issue 17) ----------------------------------------------
+# ---- MPI driver for sweep scenes ---------------------------------------------------------
 # build/make/greenconv-mpi: mpi/greenconv_mpi.f90 compiled with Debian's OpenMPI (mpif90)
 # against the plain build's library, which itself needs no MPI. `make sweep-test` runs the
 # sweep checks (tools/test_sweep.sh: 1 and 2 ranks and the serial driver give the same table,
@@ -511,7 +511,7 @@ bench-patch: lib
 	@bash bench/patch_cost.sh $(BIN) | tee out/bench/patch_cost.txt.part
 	@mv out/bench/patch_cost.txt.part out/bench/patch_cost.txt
 
-# Identification against a peer (issue 13): greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
+# Identification against a peer: greenconv's ML fit and sdypy-EMA's LSCE and LSCF on
 # noisy receptances at 0.1, 1 and 3 %, errors in Cramer-Rao standard deviations. The script
 # pip-installs sdypy-EMA into build/ident_peer/venv on its first run (needs python3 -m venv and
 # PyPI); the Markdown table goes to out/bench/ident_peer.md.

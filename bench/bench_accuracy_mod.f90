@@ -1,4 +1,4 @@
-!> Speed against accuracy (issue 4): the error of every convolution method against the
+!> Speed against accuracy: the error of every convolution method against the
 !> independent reference (`contact_reference`: the modal state-space ODE, adaptive
 !> Dormand-Prince at rtol 1e-10) next to the CPU time of its contact run, while the time
 !> step, the N_g truncation tolerance and (for the identified structure) the number of

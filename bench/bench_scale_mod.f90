@@ -1,4 +1,4 @@
-!> The cost of multi-point contact at a real patch's scale (issue 25): CPU seconds per step of
+!> The cost of multi-point contact at a real patch's scale: CPU seconds per step of
 !> the implicit `exact` loop (Newton on all points, its systems solved with the low-rank W0 of
 !> greenconv_contact_lowrank_solve) and of the explicit `modal` loop against N_c, 20 to 4,000
 !> points, at the fixed 52 modes of the tyre line, with the fitted growth exponents.

@@ -1,6 +1,6 @@
 !> The paper's timing tables, reproduced in one run: Tab. 2 (the SDOF scene of section 3.1
 !> at two time steps and four run lengths) and Tab. 3 (the multi-mode scene of section 3.2),
-!> then the issue's targets as ratios measured in this same run.
+!> then the speed targets as ratios measured in this same run.
 !>
 !> Every time is the CPU time of a whole contact run (`run_contact`: history, contact law,
 !> push, stored histories), as in the paper, averaged over repeats of at least 0.25 s.
@@ -151,7 +151,7 @@ contains
         end do
     end subroutine time_methods
 
-    !> The issue's targets, each a ratio measured here, with the paper's N_g = 19000 at
+    !> The speed targets, each a ratio measured here, with the paper's N_g = 19000 at
     !> dt = 0.01 ms, N_t = 200000 on the SDOF scene.
     subroutine print_targets(unit, scene, structure)
         integer, intent(in) :: unit

@@ -1,5 +1,5 @@
 !> Writes data/noisy_receptance.uff, the receptance the shipped identification scene
-!> (data/identify_sample.nml) fits: the 12-mode structure of issue 13, as a measurement would
+!> (data/identify_sample.nml) fits: the 12-mode structure, as a measurement would
 !> give it.
 !>
 !> - Modes (paper form, eq. 6, A_k = c_k*xi_k*omega_k^2 so that each peak |G| is about c_k/2):

@@ -1,4 +1,4 @@
-!> Writes data/patch_green.uff, the shipped Green's matrix of a 2D contact patch (issue 14):
+!> Writes data/patch_green.uff, the shipped Green's matrix of a 2D contact patch:
 !> the receptances G_ij(f) [m/N] between the 12 points of a 4 x 3 patch under a tyre belt
 !> modelled as a pre-tensioned orthotropic plate on an elastic foundation
 !> (greenconv_model_plate, its default passenger-car values), with measurement-like noise.

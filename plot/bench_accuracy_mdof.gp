@@ -1,4 +1,4 @@
-# Speed against accuracy on the multi-mode scene of section 3.2 (issue 4): the same chart
+# Speed against accuracy on the multi-mode scene of section 3.2: the same chart
 # as bench_accuracy_sdof.gp, whose script draws it, with the sweep of the number of modes
 # identified by LSCE added.
 #

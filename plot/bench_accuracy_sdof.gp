@@ -1,4 +1,4 @@
-# Speed against accuracy on the SDOF scene of section 3.1 (issue 4): the relative L2 error
+# Speed against accuracy on the SDOF scene of section 3.1: the relative L2 error
 # of the displacement u against the ODE reference, plotted against the CPU time of the
 # contact run, for every method while the time step, the N_g truncation tolerance and (on
 # the multi-mode scene) the number of LSCE modes are swept.

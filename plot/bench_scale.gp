@@ -1,4 +1,4 @@
-# Multi-point contact at a patch's scale (issue 25): CPU seconds per step of the implicit
+# Multi-point contact at a patch's scale: CPU seconds per step of the implicit
 # `exact` loop (Newton on all points, low-rank W0) and the explicit `modal` loop against the
 # number of contact points N_c, at the fixed modes of the tyre line, on log-log axes.
 #

@@ -1,4 +1,4 @@
-# Truncating a lightly damped g (issue 4): the relative L2 error that cutting the kernel of
+# Truncating a lightly damped g: the relative L2 error that cutting the kernel of
 # `direct` at a fraction tol of max|g| costs, against the untruncated direct sum (the
 # discrete convolution the truncation approximates) and against the ODE reference, on the
 # SDOF scene of section 3.1 made lightly damped (xi = 0.002) and run for 6 s.

@@ -1,4 +1,4 @@
-# Stabilisation diagram of the maximum-likelihood identification (issue 13): the poles of the
+# Stabilisation diagram of the maximum-likelihood identification: the poles of the
 # linear LSCE step at every order N (frequency against order), marked by their stability
 # against order N - 1 (f and xi, f only, neither), the poles of the maximum-likelihood fit
 # (order by MDL) as vertical lines: solid for the modes the data determine, dotted grey for the

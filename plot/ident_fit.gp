@@ -1,4 +1,4 @@
-# The maximum-likelihood fit of a noisy receptance (issue 13): |G|, the model, and the
+# The maximum-likelihood fit of a noisy receptance: |G|, the model, and the
 # residual |G - model| against the noise standard deviation of each line, and the poles of the
 # fit at their natural frequencies: red triangles for the modes the data determine, grey crosses
 # for the poles they do not (part of the fitted receptance, not modes).

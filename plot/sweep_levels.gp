@@ -1,4 +1,4 @@
-# The sweep of data/tyre_sweep.nml (issue 17), its spectra columns: the 1/3-octave band
+# The sweep of data/tyre_sweep.nml, its spectra columns: the 1/3-octave band
 # levels of the total contact force (modal method) against the band centre, one curve per
 # speed, for the tread stiffness k_c = 2.0e5 N/m. The level columns L<f_c>_modal of
 # out/tyre_sweep_sweep.dat are found by name in its header; awk turns them into one line

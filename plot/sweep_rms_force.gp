@@ -1,4 +1,4 @@
-# The sweep of data/tyre_sweep.nml (issue 17): rms of the total contact force (modal method)
+# The sweep of data/tyre_sweep.nml: rms of the total contact force (modal method)
 # against the speed, one curve per tread stiffness. Columns of out/tyre_sweep_sweep.dat:
 # 1 variant, 2 road.speed, 3 contact.stiffness, then per method max, mean, rms, contact
 # fraction, status, fault step (modal: 4-9, exact: 10-15). Rows of a failed variant are skipped.

@@ -1,4 +1,4 @@
-!> No silent wrong answer (issue 23): every method has its own estimate of its relative error,
+!> No silent wrong answer: every method has its own estimate of its relative error,
 !> a run whose method exceeds the scene's `accuracy` writes all its files, says so on the
 !> method's summary line and ends with status 4 (`stat_accuracy`), and `auto` picks a method
 !> inside the accuracy.

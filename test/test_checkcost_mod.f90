@@ -1,4 +1,4 @@
-!> `--check`'s projected cost of a scene (issues 24, 25): a line per method with the time and
+!> `--check`'s projected cost of a scene: a line per method with the time and
 !> memory its sizes imply, checked against the closed forms of greenconv_scene_limits'
 !> `projected_run` and against the kernel cap, which `--check` refuses as the run does.
 module test_checkcost_mod

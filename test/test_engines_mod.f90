@@ -1,4 +1,4 @@
-!> The convolution engines of issue 4 against each other and against closed forms:
+!> The convolution engines against each other and against closed forms:
 !> `paper` (greenconv_conv_paper, eqs. 15-17), `recursive`, `exact` and `backward` (greenconv_conv_recursive).
 !>
 !> Tolerances:

@@ -1,4 +1,4 @@
-!> Green's-matrix files in any unit and on any grid (issue 23): a file of mobilities or
+!> Green's-matrix files in any unit and on any grid: a file of mobilities or
 !> accelerances reads as the receptances it stands for, a pressure or a velocity time history
 !> is refused naming the dataset and record, and `direct`/`fft` on a file whose lines start
 !> above 0 Hz or are uneven follow the structure (the plate's own modes run by `exact`)

@@ -1,4 +1,4 @@
-!> Bad input (issue 7): every bad scene, receptance or road file gets one line with status 2
+!> Bad input: every bad scene, receptance or road file gets one line with status 2
 !> naming the file, the line where known, the group and variable, what was expected and
 !> what was found. Each case writes its file to a scratch directory, reads it as the driver
 !> does (read_scene, then build_structure for a receptance file) and checks the pieces of

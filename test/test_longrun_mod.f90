@@ -1,4 +1,4 @@
-!> Long runs (issue 7): a run streamed in blocks equals the whole run bit for bit (single
+!> Long runs: a run streamed in blocks equals the whole run bit for bit (single
 !> point, explicit and implicit; the tyre scene); `output_every` decimation; a divergent run
 !> keeps its rows in the final file; convolvers stepped past 2^31 pushes; the progress line;
 !> and 1e8 steps of the modal solver through the driver's blocked path in bounded memory.

@@ -1,4 +1,4 @@
-!> The implicit multi-point step with a low-rank instant compliance (issue 25): W0 of a modal
+!> The implicit multi-point step with a low-rank instant compliance: W0 of a modal
 !> structure factored as U*V^T and Newton's systems solved by Woodbury
 !> (greenconv_contact_lowrank_solve), against the dense LU they replace.
 !>

@@ -1,4 +1,4 @@
-!> The modes_file model (issue 25): normal modes of a user's FE model in a universal file
+!> The modes_file model: normal modes of a user's FE model in a universal file
 !> (datasets 15 and 55), on a plate the project does not ship (aluminium 0.5 x 0.4 m x 5 mm,
 !> simply supported on four edges, 32 modes to 3 kHz, written by pyuff: tools/make_modes_plate.py).
 !>

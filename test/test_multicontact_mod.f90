@@ -1,4 +1,4 @@
-!> Many contact points (issue 5): the Green's matrix in modal and sampled form, the
+!> Many contact points: the Green's matrix in modal and sampled form, the
 !> multi-point contact loop, the tyre model and road files (the cost table is a smoke check of
 !> the benchmark: `greenconv-bench --smoke`).
 !>

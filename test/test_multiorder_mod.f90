@@ -1,4 +1,4 @@
-!> Order in dt of multi-point contact (issue 23): every multi-point method against the
+!> Order in dt of multi-point contact: every multi-point method against the
 !> independent reference of greenconv_verify_contact (the modal ODE of the true structure with
 !> the contact law at every point, adaptive Dormand-Prince at rtol 1e-10), on structures the
 !> project does not ship:
@@ -14,7 +14,7 @@
 !>   file) at 50, 25 and 12.5 us.
 !>
 !> Error measure: e = ||F - F_ref||_2/||F_ref - F0||_2 over all steps and points (the dynamic
-!> part of the forces). Observed order: log2(e(2 dt)/e(dt)). Bounds (the issue's): e <= 5e-3 at
+!> part of the forces). Observed order: log2(e(2 dt)/e(dt)). Bounds: e <= 5e-3 at
 !> dt = 20 us and order >= 1.8 for the modal-based methods on the exact modes (exact, modal;
 !> multi-point `auto` does not exist yet), and for direct/fft on the Green's matrix sampled from
 !> the same modes over the whole run (the whole band). The reference's own error (rtol 1e-10

@@ -1,4 +1,4 @@
-!> The multi-point patch from a user's Green's matrix (issue 14): the universal-file reader of
+!> The multi-point patch from a user's Green's matrix: the universal-file reader of
 !> a Green's matrix (greenconv_model_green_matrix_file) on the shipped file and on each
 !> malformed case, and the shared-pole identification (greenconv_ident_shared_poles) on clean
 !> plate data (round-off, the true number of poles) and with 1 % noise (against the noise-free

@@ -1,4 +1,4 @@
-!> The multi-point scene on a user's Green's matrix (issue 14): `&structure model = 'green_file'`
+!> The multi-point scene on a user's Green's matrix: `&structure model = 'green_file'`
 !> against the same structure given as modes, the methods against each other on the shipped
 !> patch, the library entry on a file of impulse responses, the road texture reader on each
 !> malformed case and its bilinear interpolation against closed forms, a sweep of such a scene.

@@ -1,6 +1,6 @@
-!> Reliability (issue 15): a failed run is never reported as a success. Output files are
+!> Reliability: a failed run is never reported as a success. Output files are
 !> complete or absent (a full disk, a planted symlink, two writers of one file), `--check`
-!> refuses an output directory a run cannot write, and the other cases of the issue.
+!> refuses an output directory a run cannot write, and the other cases below.
 module test_reliability_mod
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
@@ -47,7 +47,7 @@ module test_reliability_mod
 
 contains
 
-    !> Tests of issue 15.
+    !> Tests of the reliability suite.
     subroutine collect_reliability(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
@@ -438,7 +438,7 @@ contains
         if (allocated(conv)) call free_convolver(conv)
     end subroutine test_wrapped_g
 
-    !> Issue 24: a receptance file named like an output of its own scene (`<output_dir>/<name>_frf.dat`,
+    !> A receptance file named like an output of its own scene (`<output_dir>/<name>_frf.dat`,
     !> the fit the identification writes) is refused by the run and by `--check`, status 2, both
     !> names in the message, and the measurement is left as it was; so is the same file reached
     !> by another spelling (a symbolic link from elsewhere). Another name in that directory runs.

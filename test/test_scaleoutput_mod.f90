@@ -1,4 +1,4 @@
-!> Output at a real tyre's scale (issue 25): a multi-point run's totals file (t, total force,
+!> Output at a real tyre's scale: a multi-point run's totals file (t, total force,
 !> contact area, points in contact), its force maps at `map_times`, its per-point histories
 !> (`point_histories`, `point_every`, text or binary) and the spectra of its contact area, each
 !> checked against the per-point rows of the same run; and the refusals of bad map times.

@@ -1,4 +1,4 @@
-!> The built-in 2D tyre (`&structure model = 'tyre_plate'`, issue 25): a scene on the plate's
+!> The built-in 2D tyre (`&structure model = 'tyre_plate'`): a scene on the plate's
 !> patch grid against run_multi_contact on the plate's own modes (the scene's conventions
 !> written out here), the contact law per area (each point's share of the patch; the total force
 !> converging as the grid is refined, a law per point stiffening instead), and the refusals of
@@ -112,7 +112,7 @@ contains
     !> The law per area on one patch (0.12 m x 0.12 m, linear tread k_a = 3e8 N/m^3, 2,000 N)
     !> over the bumps at 15 m/s, `modal`, grids 8 x 8, 16 x 16 and 32 x 32: the scene's k_c is
     !> k_a*area/N_c to round-off, and the rms fluctuation of the total force changes by at most
-    !> 5 % from 16 x 16 to 32 x 32 (the issue's criterion for halving both counts); the same
+    !> 5 % from 16 x 16 to 32 x 32 (the criterion for halving both counts); the same
     !> patch with k_c per point fixed at the 8 x 8 value (6.75e4 N/m) stiffens with the grid instead (its peak
     !> total force grows by more than 5 %), which is why the law per area exists.
     subroutine test_law_per_area(error)

@@ -1,4 +1,4 @@
-!> Universal files that were read wrong or at a great cost (issue 24): a point count of record
+!> Universal files that were read wrong or at a great cost: a point count of record
 !> 7 held against the lines before anything is allocated, a UTF-8 byte-order mark, a node
 !> given twice with other coordinates, a Green's matrix that would not be square, directions
 !> other than +Z, real-valued receptances, datasets left out for their function type, and a
@@ -27,7 +27,7 @@ module test_uffchecks_mod
 
 contains
 
-    !> Tests of the universal-file checks of issue 24.
+    !> Tests of the universal-file checks.
     subroutine collect_uffchecks(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

@@ -1,6 +1,6 @@
 #!/bin/bash
 # tools/bench_sweep.sh MPI_DRIVER [SCENE [N_STEPS [N_POINTS]]] -- sweep throughput on 1 and 2 ranks
-# and the cost of rerunning a complete sweep (issue 17).
+# and the cost of rerunning a complete sweep.
 # Runs the sweep (default data/tyre_sweep.nml with N_STEPS = 6000 steps and N_POINTS = 50
 # contact points, so that each of its 15 variants takes about half a second and the variants,
 # not MPI's start-up, dominate) from scratch (no records) on 1 rank, then on 2 ranks, then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# No static local in greenconv's library (issue 24): two host threads may call it at once, so
+# No static local in greenconv's library: two host threads may call it at once, so
 # every local must live on the stack. Lists, per object file of the library, each writable
 # static symbol (nm types b, d: .bss and .data) that is not one of
 #   - a module variable (__greenconv_<module>_MOD_<name>; each documents how threads share it),

@@ -8,7 +8,7 @@
 #   tools/check_symbols.sh LIBRARY...      exits 1 and lists the symbols when any is foreign
 #
 #   tools/check_symbols.sh --static-locals LIBRARY...
-#       exits 1 when a library holds static string lengths `slen.*` (issue 24): gfortran
+#       exits 1 when a library holds static string lengths `slen.*`: gfortran
 #       (12 and later, whatever -frecursive or -fopenmp say) keeps the length of every
 #       deferred-length character function result in static storage at each call site, so
 #       two threads running the same code share it and cut or splice each other's messages.

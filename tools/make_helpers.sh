@@ -141,7 +141,7 @@ cmd_deps() {
         as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${packages[@]}" >/dev/null
     fi
 
-    # An optimised BLAS/LAPACK (issue 26: the field's default; the identification's Gram matrices
+    # An optimised BLAS/LAPACK (the field's default; the identification's Gram matrices
     # and the LU of the implicit step run through it). Debian's OpenMP build of OpenBLAS becomes
     # the system's libblas.so.3/liblapack.so.3 by update-alternatives, so the link line stays
     # -llapack -lblas, and it runs serially inside greenconv's (or a host's) parallel regions.

@@ -1,5 +1,5 @@
 #!/bin/bash
-# tools/test_sweep.sh SERIAL_DRIVER MPI_DRIVER -- the sweep checks of `make test` (issue 17).
+# tools/test_sweep.sh SERIAL_DRIVER MPI_DRIVER -- the sweep checks of `make test`.
 # Runs data/tyre_sweep.nml (15 variants, with the 1/3-octave level columns) in scratch
 # folders and checks that:
 #   the table, level columns included, is the same byte for byte on 1 rank, on 2 ranks and
@@ -135,7 +135,7 @@ sed -i 's/model = .sdof./model = '"'"'sdoff'"'"'/' "$work/fail/fail.nml"
 check "bad input in the base scene: status 2 before anything runs ($s)" \
     '[ $s -eq 2 ] && grep -q "base scene" "$work/fail/blog"'
 
-# Status 4 over ranks (issue 23): one mode measured to 500 Hz run at dt = 1 ms, where direct's own
+# Status 4 over ranks: one mode measured to 500 Hz run at dt = 1 ms, where direct's own
 # estimate (7e-2 of the kernel) is above an accuracy of 1e-3: variant 2 ends 4, the sweep ends 4
 # on 2 ranks as serially; with a bad variant besides, 2 (a failure ranks before 4).
 mkdir -p "$work/acc"

@@ -1,5 +1,5 @@
 /*
- * Issue 15 at the C door: xi = 0 (undamped) accepted by every method as the driver accepts
+ * Reliability at the C door: xi = 0 (undamped) accepted by every method as the driver accepts
  * it; a "direct" or "fft" convolver whose kernel was cut at its n_steps refuses the steps
  * past them (never a short, wrong sum); identification warnings reach the caller
  * (gc_convolver_warnings); a NaN road height stops a run with GC_ERROR_NUMERICAL and zero

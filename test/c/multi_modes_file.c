@@ -1,6 +1,6 @@
 /*
- * multi_modes_file.c - gc_multi_new_modes_file (issue 25) and the accuracy doors
- * gc_multi_estimate / gc_multi_set_accuracy (issue 23).
+ * multi_modes_file.c - gc_multi_new_modes_file and the accuracy doors
+ * gc_multi_estimate / gc_multi_set_accuracy.
  *
  * The modes file test/data/uff/modes_plate.uff (9 nodes of a plate, 32 modes in datasets 55):
  * a scene with `&structure model = 'modes_file'` on it is run by gc_run_scene ("exact" and
@@ -16,7 +16,7 @@
  * estimate gives GC_ACCURACY from gc_multi_set_accuracy and gc_multi_run_contact (whose
  * results stay whole), an accuracy above it GC_OK.
  *
- * The band (issue 25): the plate's 23 modes above f_band = 1000 Hz are kept as their static
+ * The band: the plate's 23 modes above f_band = 1000 Hz are kept as their static
  * compliance R in W0 by the one builder a scene and the door both call. A scene with
  * f_modes = 1000 and the door with f_band = 1000 give the same forces bit for bit ("exact",
  * R in W0; "modal", R left out: explicit). Against the run on all 32 modes (the door's

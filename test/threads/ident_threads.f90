@@ -1,5 +1,5 @@
 !> The maximum-likelihood identification on one thread, on two, and inside a host's parallel
-!> region: the same poles, residues and chi^2 bit for bit (issue 26).
+!> region: the same poles, residues and chi^2 bit for bit.
 !>
 !> OpenBLAS's OpenMP build threads a BLAS or LAPACK call as `omp_get_max_threads()` says when
 !> it is called outside a parallel region, and the threaded sums come out in another order:

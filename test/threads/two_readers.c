@@ -1,5 +1,5 @@
 /*
- * two_readers.c - two POSIX threads read universal files through the C API at once (issue 24):
+ * two_readers.c - two POSIX threads read universal files through the C API at once:
  * each round, a thread builds a multi-point convolver from the modes file
  * test/data/uff/modes_plate.uff (dataset 15 + 55: reader, mode table, summary texts), reads its
  * points, frees it, identifies the modes of test/data/uff/frf_complex_double_even.uff

@@ -1,6 +1,6 @@
 /*
  * two_threads.c - two POSIX threads use the C API at once, each with its own convolvers, as
- * include/greenconv.h promises they may (issue 24). Each thread, CALLS/2 times in all:
+ * include/greenconv.h promises they may. Each thread, CALLS/2 times in all:
  * builds a convolver, pushes forces and reads the history, builds a second one with a
  * misspelled method (thread 1 "direc", thread 2 "fftx": refused with different messages),
  * and frees the first. Every status must be the expected one and every message exactly the

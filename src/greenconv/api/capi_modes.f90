@@ -2,7 +2,7 @@
 !> accuracy a host asks of a multi-point convolver (include/greenconv.h, multi-point section):
 !>
 !> - `gc_multi_new_modes_file`: the file's nodes the contact points, its modes up to a band
-!>   stepped, as a scene's `&structure model = 'modes_file'` (issue 25), then stepped from the
+!>   stepped, as a scene's `&structure model = 'modes_file'`, then stepped from the
 !>   host's loop with the other `gc_multi_*` functions;
 !> - `gc_multi_estimate`: the method's own estimate of its relative error;
 !> - `gc_multi_set_accuracy`: the accuracy the host asks; beyond it, the calls that run contact

@@ -1,4 +1,4 @@
-!> Multi-point convolvers from a universal file of a Green's matrix (issue 14): the library
+!> Multi-point convolvers from a universal file of a Green's matrix: the library
 !> entry the scene (`&structure model = 'green_file'`) and the front doors build on.
 !>
 !> - `new_green_file_convolver`: one call, file in, convolver and report out: read the file,

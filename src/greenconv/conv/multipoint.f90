@@ -19,7 +19,7 @@
 !> weights W(m) ~ dt*g(t_m) are the trapezoidal rule of the convolution integral, whose end
 !> sample at tau = 0 carries half a weight. A contact run starts at rest with loads switched
 !> on at t = 0+ (a road not at its static height at t = 0), and with the whole q(t_0) it would
-!> carry an impulse q(t_0)*dt/2 too much: an error of first order in dt (issue 23). With the
+!> carry an impulse q(t_0)*dt/2 too much: an error of first order in dt. With the
 !> half weight every method is second order (the rectangle rule becomes the trapezoidal rule;
 !> for the first-order hold of `exact` the weight of q(t_0) in u(t_n) is dt*g(t_n)/2 + O(dt^3)
 !> against the exact dt*g(t_n)/2 + O(dt^2)). A load that starts from zero is not changed. The

@@ -3,7 +3,7 @@
 !> Every function here returns a result whose length is a specification expression (the text
 !> formatted into a fixed buffer first, its length the buffer's trimmed length), never a
 !> deferred length: gfortran keeps the length of a deferred-length function result in a static
-!> variable at each call site, which two threads running the same code would share (issue 24).
+!> variable at each call site, which two threads running the same code would share.
 !> Each text is formatted twice, once for its length; these texts are messages and summaries.
 module greenconv_core_text
     use, intrinsic :: iso_fortran_env, only: int64

@@ -1,4 +1,4 @@
-!> Parameter sweeps (issue 17): a contact scene with `task = 'sweep'` and a `&sweep` group
+!> Parameter sweeps: a contact scene with `task = 'sweep'` and a `&sweep` group
 !> that varies any of its variables, named `group.variable`:
 !>
 !>     &sweep

@@ -1,4 +1,4 @@
-!> A parameter sweep's plan (issue 17): the `&sweep` group of a scene with `task = 'sweep'`,
+!> A parameter sweep's plan: the `&sweep` group of a scene with `task = 'sweep'`,
 !> the base scene and the values of every variant (see greenconv_scene_sweep for the
 !> format). A variant is the base scene's text with each varied value written in (replacing
 !> the assignment, or added to its group); the `&sweep` group is blanked and the task set to

@@ -1,4 +1,4 @@
-!> The records of a sweep's finished variants (issue 17): each finished variant is recorded
+!> The records of a sweep's finished variants: each finished variant is recorded
 !> at once (atomically, greenconv_io_files's `write_text`) in
 !> `<output_dir>/<name>_sweep.d/<key>.rec`, keyed by a hash of the variant's text, of the
 !> contents of the files it names (road file or texture, receptance or Green's matrix file)

@@ -1,4 +1,4 @@
-!> The reports of a sweep (issue 17): its table `<output_dir>/<name>_sweep.dat`, one row per
+!> The reports of a sweep: its table `<output_dir>/<name>_sweep.dat`, one row per
 !> variant in variant order (the variant, its values, per method max, mean, rms of the total
 !> contact force, the fraction of steps in contact, status and fault step, then the band
 !> levels), the same byte for byte whatever runs the variants; the CPU times, which vary from

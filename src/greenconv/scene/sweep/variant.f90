@@ -1,4 +1,4 @@
-!> One variant of a sweep (issue 17), taken as a whole by whichever process runs it: its scene
+!> One variant of a sweep, taken as a whole by whichever process runs it: its scene
 !> read from memory and checked, its content key, its record when a previous run finished it
 !> (then nothing runs), else each method of its scene run through the one streaming loop
 !> (greenconv_scene_stream's `stream_run`) into the sinks a sweep asks for: the force summary
