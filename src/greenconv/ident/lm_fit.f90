@@ -15,8 +15,6 @@ module greenconv_ident_lm_fit
     public :: evaluate, chi_square, n_parameters, criterion, fit, refine, reweight, information, covariance
     public :: widened, narrowest, leave_out
 
-    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
-
     !> Narrowest half-power band 2*xi*f of a pole, as a fraction of the line spacing df: a
     !> narrower pole acts on a single line only (its peak), which is what a spike of noise or
     !> an outlier line does; no sampled FRF can show such a mode. The fit keeps every pole at
@@ -175,23 +173,27 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: a(:, :), b(:), x(:), norms(:), normal(:, :), low(:, :), projection(:)
-        complex(dp), allocatable :: column(:, :)
-        integer :: k, n, col
+        real(dp) :: total
+        integer :: k, n, col, r
         logical :: ok
 
         n = size(model%pole)
-        allocate (column(size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
-        call linear_columns(data, model, column)
-        if (size(column, 2) == 0) then
+        allocate (a(2*size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
+        if (size(a, 2) == 0) then
             if (allocated(model%residue)) deallocate (model%residue)
             allocate (model%residue(0))
             return
         end if
-        a = stacked(column)
+        call linear_matrix(data, model, a)
+        ! Each column to unit norm (its squares summed in row order).
         allocate (norms(size(a, 2)))
-        norms(:) = sqrt(sum(a**2, dim=1))
-        where (.not. (norms > 0.0_dp)) norms = 1.0_dp
         do col = 1, size(a, 2)
+            total = 0.0_dp
+            do r = 1, size(a, 1)
+                total = total + a(r, col)**2
+            end do
+            norms(col) = sqrt(total)
+            if (.not. (norms(col) > 0.0_dp)) norms(col) = 1.0_dp
             a(:, col) = a(:, col)/norms(col)
         end do
         b = stack(data%weight*data%g)
@@ -218,29 +220,43 @@ contains
         if (model%lower) model%r_l = x(col + 1)
     end subroutine fit_linear
 
-    !> Weighted columns of the linear part: per pole the responses to r = 1 and r = i, then
-    !> R_u and R_l.
-    pure subroutine linear_columns(data, model, column)
+    !> Weighted columns of the linear part, real parts in rows 1..L and imaginary parts below
+    !> (as `jacobian`): per pole the responses to r = 1 and r = i, then R_u and R_l. Written
+    !> in place, one pass per pole (the complex columns and their stacked copy it replaced took
+    !> a third of the least squares' time).
+    pure subroutine linear_matrix(data, model, a)
         type(data_type), intent(in) :: data
         type(model_type), intent(in) :: model
-        complex(dp), intent(out) :: column(:, :)
+        real(dp), intent(out) :: a(:, :)
 
-        complex(dp) :: direct(size(data%omega)), mirror(size(data%omega))
-        integer :: k, col
+        complex(dp) :: direct, mirror
+        real(dp) :: w
+        integer :: k, col, l, n
 
+        n = size(data%omega)
         do k = 1, size(model%pole)
-            direct = reciprocal(data%omega, model%pole(k))
-            mirror = reciprocal(data%omega, conjg(model%pole(k)))
-            column(:, 2*k - 1) = data%weight*(direct + mirror)
-            column(:, 2*k) = data%weight*i_unit*(direct - mirror)
+            do l = 1, n
+                direct = reciprocal(data%omega(l), model%pole(k))
+                mirror = reciprocal(data%omega(l), conjg(model%pole(k)))
+                w = data%weight(l)
+                ! w*(direct + mirror), then w*i*(direct - mirror) = w*(-Im(.), Re(.))
+                a(l, 2*k - 1) = w*real(direct + mirror, dp)
+                a(n + l, 2*k - 1) = w*aimag(direct + mirror)
+                a(l, 2*k) = w*(-aimag(direct - mirror))
+                a(n + l, 2*k) = w*real(direct - mirror, dp)
+            end do
         end do
         col = 2*size(model%pole)
         if (model%upper) then
             col = col + 1
-            column(:, col) = data%weight
+            a(1:n, col) = data%weight
+            a(n + 1:, col) = 0.0_dp
         end if
-        if (model%lower) column(:, col + 1) = -data%weight/data%omega**2
-    end subroutine linear_columns
+        if (model%lower) then
+            a(1:n, col + 1) = -data%weight/data%omega**2
+            a(n + 1:, col + 1) = 0.0_dp
+        end if
+    end subroutine linear_matrix
 
     !> Weighted Jacobian of G_model, columns per mode (Re lambda, Im lambda, Re r, Im r), then
     !> R_u, R_l; real parts in rows 1..L, imaginary parts below.
@@ -585,14 +601,5 @@ contains
         if (allocated(data%line_level)) data%line_level = pack(data%line_level, keep)
         data%penalty = log(2.0_dp*size(data%g))
     end subroutine leave_out
-
-    !> Real and imaginary parts of each column stacked: [Re; Im].
-    pure function stacked(z) result(a)
-        complex(dp), intent(in) :: z(:, :)
-        real(dp) :: a(2*size(z, 1), size(z, 2))
-
-        a(1:size(z, 1), :) = real(z, dp)
-        a(size(z, 1) + 1:, :) = aimag(z)
-    end function stacked
 
 end module greenconv_ident_lm_fit
