@@ -8,7 +8,7 @@ module test_identdense_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use greenconv_ident_dense, only: gram, spd_solve, spd_inverse, identity, svd_solve, product_of, quadratic_form
+    use greenconv_ident_dense, only: gram, dot, spd_solve, spd_inverse, identity, svd_solve, product_of, quadratic_form
     use greenconv_ext_lapack, only: least_squares
     use greenconv_core_error, only: error_type
     use greenconv_ident_lm_fit, only: model_type, data_type, information, evaluate, chi_square
@@ -25,6 +25,8 @@ contains
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
         testsuite = [new_unittest('gram: scale*A^T A and scale*A^T b against the sums, 1 to 48 columns', test_gram), &
+                     new_unittest('gram: the bits of the sums in row order and of dot, 4,099 rows, 1 to 37 columns', &
+                                  test_gram_order), &
                      new_unittest('spd: solve and inverse against A, to round-off', test_spd), &
                      new_unittest('spd: indefinite and NaN matrices reported, not solved', test_not_spd), &
                      new_unittest('information: carried residual, same bits; gradient by differences', test_carried), &
@@ -153,6 +155,45 @@ contains
         call note('gram: worst |error|/(2 m)', worst)
         call check(error, worst < 1.0e-14_dp, 'A^T A and A^T b to round-off on every size')
     end subroutine test_gram
+
+    !> The kernel takes the rows in chunks and the columns in blocks of 4, 8 or 16 (by the CPU):
+    !> each element must still be the sum over the rows in order from 0, bit for bit, and A^T b
+    !> the bits of `dot`. 4,099 rows: three chunks, the last partial, and a tail after the
+    !> last multiple of four; widths across every block edge.
+    subroutine test_gram_order(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: sizes(7) = [1, 3, 8, 9, 16, 17, 37]
+        real(dp), allocatable :: a(:, :), b(:), product(:, :), projection(:)
+        real(dp) :: sum_ij
+        integer :: s, n, i, j, l, differ
+
+        differ = 0
+        do s = 1, size(sizes)
+            n = sizes(s)
+            a = sample_matrix(4099, n)
+            ! Magnitudes over 24 decades: a sum in another order would round otherwise.
+            do j = 1, n
+                a(:, j) = a(:, j)*[(10.0_dp**(mod(7*l + j, 25) - 12), l=1, 4099)]
+            end do
+            b = [(cos(0.3_dp*l)*10.0_dp**mod(l, 9), l=1, 4099)]
+            if (allocated(product)) deallocate (product, projection)
+            allocate (product(n, n), projection(n))
+            call gram(a, 2.0_dp, product, b, projection)
+            do j = 1, n
+                do i = 1, j
+                    sum_ij = 0.0_dp
+                    do l = 1, size(a, 1)
+                        sum_ij = sum_ij + a(l, i)*a(l, j)
+                    end do
+                    if (product(i, j) /= 2.0_dp*sum_ij .or. product(j, i) /= product(i, j)) differ = differ + 1
+                end do
+                if (projection(j) /= 2.0_dp*dot(a(:, j), b)) differ = differ + 1
+            end do
+        end do
+        call note('gram: elements not bit for bit the in-order sums', real(differ, dp))
+        call check(error, differ == 0, 'every element of A^T A the sum in row order, A^T b the bits of dot')
+    end subroutine test_gram_order
 
     subroutine test_spd(error)
         type(test_error), allocatable, intent(out) :: error

@@ -44,6 +44,21 @@ module greenconv_ident_dense
             !> A^T A's upper triangle (n x n).
             real(c_double), intent(inout) :: product(n, n)
         end subroutine gram_upper
+
+        !> A^T b, each column's dot product in the order of `dot` (gram_kernel.c).
+        pure subroutine gram_projection(m, n, a, b, projection) bind(c, name='greenconv_ident_gram_projection')
+            import :: c_int, c_double
+            !> Rows of A.
+            integer(c_int), value :: m
+            !> Columns of A.
+            integer(c_int), value :: n
+            !> A (m x n, contiguous).
+            real(c_double), intent(in) :: a(m, n)
+            !> b (m).
+            real(c_double), intent(in) :: b(m)
+            !> A^T b (n).
+            real(c_double), intent(out) :: projection(n)
+        end subroutine gram_projection
     end interface
 
     public :: gram, spd_factor, spd_solve, spd_inverse, svd_solve, identity, dot, product_of, quadratic_form
@@ -85,7 +100,8 @@ contains
 
     !> scale*A^T A and scale*A^T b for a real m x n matrix A. A^T A is gram_kernel.c's
     !> `greenconv_ident_gram_upper`: each element's sum over the rows in order, one
-    !> accumulator, in one fixed order whatever the build (it runs at -O2 in the debug build too).
+    !> accumulator, in one fixed order whatever the build (it runs at -O2 in the debug build too);
+    !> A^T b is its `greenconv_ident_gram_projection`, each column's sum in the order of `dot`.
     pure subroutine gram(a, scale, product, b, projection)
         !> The matrix A (m x n).
         real(dp), intent(in) :: a(:, :)
@@ -98,19 +114,20 @@ contains
         !> scale*A^T b (n).
         real(dp), intent(out) :: projection(:)
 
-        real(dp) :: upper(size(a, 2), size(a, 2))
+        real(dp) :: upper(size(a, 2), size(a, 2)), along(size(a, 2))
         integer :: i, j, n
 
         n = size(a, 2)
         if (n == 0) return
         upper = 0.0_dp
         call gram_upper(int(size(a, 1), c_int), int(n, c_int), a, upper)
+        call gram_projection(int(size(a, 1), c_int), int(n, c_int), a, b, along)
         do j = 1, n
             do i = 1, j
                 product(i, j) = scale*upper(i, j)
                 product(j, i) = product(i, j)
             end do
-            projection(j) = scale*dot(a(:, j), b)
+            projection(j) = scale*along(j)
         end do
     end subroutine gram
 

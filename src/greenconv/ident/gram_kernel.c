@@ -16,8 +16,15 @@
  * the speed and not the order: a lane adds x*y (rounded) to its accumulator exactly as a
  * scalar loop does.  The vector kernel is compiled for AVX2 (four doubles per instruction; no
  * FMA: fp-contract is off) and taken when the CPU has it; otherwise, or without the memory for
- * the packed columns (8*m doubles), the scalar kernel takes the same sums, columns four by
- * four, sixteen sums over the rows together.
+ * the packed columns, the scalar kernel takes the same sums, columns four by
+ * four, sixteen sums over the rows together.  On a CPU with AVX-512 a third kernel packs
+ * sixteen columns j and takes eight doubles per instruction, again one lane per element and
+ * the rows in order: the same bits at up to twice the speed.
+ *
+ * A^T b (greenconv_ident_gram_projection) takes each column's dot product in the order of
+ * dense.f90's `dot`: four partial sums over the rows r = 0, 4, 8, ... (and 1, 2, 3 on), added
+ * as (s0 + s1) + (s2 + s3), then the remaining rows one by one; the four partial sums are the
+ * four lanes of one vector.
  */
 #include <stddef.h>
 #include <stdlib.h>
@@ -31,9 +38,11 @@
 #if defined(__GNUC__) && defined(__x86_64__)
 #define GC_GRAM_HAS_VECTOR 1
 #define GC_GRAM_AVX2 __attribute__((target("avx2")))
+#define GC_GRAM_AVX512 __attribute__((target("avx512f")))
 #else
 #define GC_GRAM_HAS_VECTOR 0
 #define GC_GRAM_AVX2
+#define GC_GRAM_AVX512
 #endif
 
 /* The scalar kernel: columns four by four, sixteen sums over the rows together. */
@@ -67,50 +76,72 @@ static void gc_gram_scalar(int m, int n, const double *a, double *product)
 }
 
 #if GC_GRAM_HAS_VECTOR
-/* Four doubles. */
-typedef double gc_v4 __attribute__((vector_size(32)));
-
-/* The vector kernel (AVX2), with the same sums as gc_gram_scalar; 0 without the memory for
- * the packed columns. */
-GC_GRAM_OPTIMIZE GC_GRAM_AVX2
-static int gc_gram_vector(int m, int n, const double *a, double *product)
-{
-    double *packed = malloc(sizeof(double) * 8 * (size_t)m);
-    if (packed == NULL) return 0;
-    for (int jb = 0; jb < n; jb += 8) {
-        int width_j = n - jb < 8 ? n - jb : 8;
-        for (int r = 0; r < m; r++)
-            for (int q = 0; q < 8; q++)
-                packed[(size_t)r * 8 + (size_t)q] = q < width_j ? a[(size_t)r + (size_t)(jb + q) * (size_t)m] : 0.0;
-        for (int ib = 0; ib < jb + width_j; ib += 4) {
-            int width_i = n - ib < 4 ? n - ib : 4;
-            const double *ci[4];
-            for (int p = 0; p < 4; p++) ci[p] = a + (size_t)(ib + (p < width_i ? p : width_i - 1)) * (size_t)m;
-            gc_v4 s00 = {0.0, 0.0, 0.0, 0.0}, s01 = s00, s10 = s00, s11 = s00;
-            gc_v4 s20 = s00, s21 = s00, s30 = s00, s31 = s00;
-            for (int r = 0; r < m; r++) {
-                gc_v4 y0, y1;
-                memcpy(&y0, packed + (size_t)r * 8, sizeof y0);
-                memcpy(&y1, packed + (size_t)r * 8 + 4, sizeof y1);
-                double x0 = ci[0][r], x1 = ci[1][r], x2 = ci[2][r], x3 = ci[3][r];
-                s00 += x0 * y0; s01 += x0 * y1;
-                s10 += x1 * y0; s11 += x1 * y1;
-                s20 += x2 * y0; s21 += x2 * y1;
-                s30 += x3 * y0; s31 += x3 * y1;
-            }
-            double s[4][8];
-            memcpy(&s[0][0], &s00, sizeof s00); memcpy(&s[0][4], &s01, sizeof s01);
-            memcpy(&s[1][0], &s10, sizeof s10); memcpy(&s[1][4], &s11, sizeof s11);
-            memcpy(&s[2][0], &s20, sizeof s20); memcpy(&s[2][4], &s21, sizeof s21);
-            memcpy(&s[3][0], &s30, sizeof s30); memcpy(&s[3][4], &s31, sizeof s31);
-            for (int q = 0; q < width_j; q++)
-                for (int p = 0; p < width_i; p++)
-                    if (ib + p <= jb + q) product[(size_t)(ib + p) + (size_t)(jb + q) * (size_t)n] = s[p][q];
-        }
+/* A vector kernel, with the same sums as gc_gram_scalar: 2*LANES columns j packed row by row,
+ * four columns i against them, eight LANES-wide sums.  The rows are taken in chunks whose
+ * packed columns stay in the core's cache (the 16,386 rows of a 50-mode fit packed sixteen
+ * wide are 2 MB); each element's sum is kept in `product` from one chunk to the next, so it
+ * still adds the rows in order into one accumulator.  0 without the memory for the chunk. */
+#define GC_GRAM_VECTOR_KERNEL(NAME, VECTOR, LANES, TARGET)                                              \
+    GC_GRAM_OPTIMIZE TARGET static int NAME(int m, int n, const double *a, double *product)            \
+    {                                                                                                   \
+        enum { chunk = 2048, width = 2 * (LANES) };                                                     \
+        double *packed = malloc(sizeof(double) * width * chunk);                                       \
+        if (packed == NULL) return 0;                                                                   \
+        for (int j = 0; j < n; j++)                                                                     \
+            for (int i = 0; i <= j; i++) product[(size_t)i + (size_t)j * (size_t)n] = 0.0;             \
+        for (int jb = 0; jb < n; jb += width) {                                                         \
+            int width_j = n - jb < width ? n - jb : width;                                              \
+            for (int rb = 0; rb < m; rb += chunk) {                                                     \
+                int rows = m - rb < chunk ? m - rb : chunk;                                             \
+                for (int r = 0; r < rows; r++)                                                          \
+                    for (int q = 0; q < width; q++)                                                     \
+                        packed[(size_t)r * width + (size_t)q] =                                         \
+                            q < width_j ? a[(size_t)(rb + r) + (size_t)(jb + q) * (size_t)m] : 0.0;     \
+                for (int ib = 0; ib < jb + width_j; ib += 4) {                                          \
+                    int width_i = n - ib < 4 ? n - ib : 4;                                              \
+                    const double *ci[4];                                                                \
+                    for (int p = 0; p < 4; p++)                                                         \
+                        ci[p] = a + (size_t)rb + (size_t)(ib + (p < width_i ? p : width_i - 1)) * (size_t)m; \
+                    double s[4][width];                                                                 \
+                    for (int p = 0; p < 4; p++)                                                         \
+                        for (int q = 0; q < width; q++)                                                 \
+                            s[p][q] = (p < width_i && q < width_j && ib + p <= jb + q)                  \
+                                          ? product[(size_t)(ib + p) + (size_t)(jb + q) * (size_t)n]    \
+                                          : 0.0;                                                        \
+                    VECTOR s0[2], s1[2], s2[2], s3[2];                                                  \
+                    memcpy(s0, s[0], sizeof s0); memcpy(s1, s[1], sizeof s1);                           \
+                    memcpy(s2, s[2], sizeof s2); memcpy(s3, s[3], sizeof s3);                           \
+                    for (int r = 0; r < rows; r++) {                                                    \
+                        VECTOR y0, y1;                                                                  \
+                        memcpy(&y0, packed + (size_t)r * width, sizeof y0);                             \
+                        memcpy(&y1, packed + (size_t)r * width + (LANES), sizeof y1);                   \
+                        double x0 = ci[0][r], x1 = ci[1][r], x2 = ci[2][r], x3 = ci[3][r];              \
+                        s0[0] += x0 * y0; s0[1] += x0 * y1;                                             \
+                        s1[0] += x1 * y0; s1[1] += x1 * y1;                                             \
+                        s2[0] += x2 * y0; s2[1] += x2 * y1;                                             \
+                        s3[0] += x3 * y0; s3[1] += x3 * y1;                                             \
+                    }                                                                                   \
+                    memcpy(s[0], s0, sizeof s0); memcpy(s[1], s1, sizeof s1);                           \
+                    memcpy(s[2], s2, sizeof s2); memcpy(s[3], s3, sizeof s3);                           \
+                    for (int q = 0; q < width_j; q++)                                                   \
+                        for (int p = 0; p < width_i; p++)                                               \
+                            if (ib + p <= jb + q)                                                       \
+                                product[(size_t)(ib + p) + (size_t)(jb + q) * (size_t)n] = s[p][q];     \
+                }                                                                                       \
+            }                                                                                           \
+        }                                                                                               \
+        free(packed);                                                                                   \
+        return 1;                                                                                       \
     }
-    free(packed);
-    return 1;
-}
+
+/* Four and eight doubles. */
+typedef double gc_v4 __attribute__((vector_size(32)));
+typedef double gc_v8 __attribute__((vector_size(64)));
+
+/* AVX2: eight columns j against four, 4-wide sums. */
+GC_GRAM_VECTOR_KERNEL(gc_gram_vector, gc_v4, 4, GC_GRAM_AVX2)
+/* AVX-512: sixteen columns j against four, 8-wide sums. */
+GC_GRAM_VECTOR_KERNEL(gc_gram_vector512, gc_v8, 8, GC_GRAM_AVX512)
 #endif
 
 /* The upper triangle (i <= j) of A^T A for a column-major m x n matrix a, written into the
@@ -119,7 +150,35 @@ void greenconv_ident_gram_upper(int m, int n, const double *a, double *product)
 {
     if (n <= 0) return;
 #if GC_GRAM_HAS_VECTOR
+    if (__builtin_cpu_supports("avx512f") && gc_gram_vector512(m, n, a, product)) return;
     if (__builtin_cpu_supports("avx2") && gc_gram_vector(m, n, a, product)) return;
 #endif
     gc_gram_scalar(m, n, a, product);
+}
+
+/* A^T b for a column-major m x n matrix a: projection[j] is column j's dot product with b, its
+ * four partial sums (rows 0, 4, 8, ...; 1, 5, 9, ...; ...) the four lanes of one vector
+ * (SSE2, in every x86-64 build; the same sums in any build), added as (s0 + s1) + (s2 + s3),
+ * then the rows after the last multiple of four one by one: dense.f90's `dot`. */
+GC_GRAM_OPTIMIZE
+void greenconv_ident_gram_projection(int m, int n, const double *a, const double *b, double *projection)
+{
+    typedef double gc_v2 __attribute__((vector_size(16)));
+    int body = m - m % 4;
+    for (int j = 0; j < n; j++) {
+        const double *x = a + (size_t)j * (size_t)m;
+        gc_v2 low = {0.0, 0.0}, high = {0.0, 0.0};
+        for (int r = 0; r < body; r += 4) {
+            gc_v2 x0, x1, y0, y1;
+            memcpy(&x0, x + r, sizeof x0);
+            memcpy(&x1, x + r + 2, sizeof x1);
+            memcpy(&y0, b + r, sizeof y0);
+            memcpy(&y1, b + r + 2, sizeof y1);
+            low += x0 * y0;
+            high += x1 * y1;
+        }
+        double sum = (low[0] + low[1]) + (high[0] + high[1]);
+        for (int r = body; r < m; r++) sum += x[r] * b[r];
+        projection[j] = sum;
+    }
 }

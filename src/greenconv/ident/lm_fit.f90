@@ -4,6 +4,7 @@
 !> analytic Jacobian, the Fisher information and the covariance, and the damped Gauss-Newton
 !> iteration that keeps every pole physical (Re < 0 < Im, no narrower than narrow_band of a line).
 module greenconv_ident_lm_fit
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_double_complex
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ident_dense, only: gram, spd_factor, spd_solve, spd_inverse, svd_solve, identity, product_of
@@ -15,7 +16,64 @@ module greenconv_ident_lm_fit
     public :: evaluate, chi_square, n_parameters, criterion, fit, refine, reweight, information, covariance
     public :: widened, narrowest, leave_out
 
-    complex(dp), parameter :: i_unit = (0.0_dp, 1.0_dp)
+    interface
+        !> g_l += sum_k r_k/(i*omega_l - lambda_k) + conj(r_k)/(i*omega_l - conj(lambda_k)), the
+        !> poles in order, with the bits of `evaluate`'s loop written in Fortran (modal_sum.c).
+        pure subroutine modal_terms(n_lines, n_poles, omega, pole, residue, g) &
+            bind(c, name='greenconv_ident_modal_terms')
+            import :: c_int, c_double, c_double_complex
+            !> Number of lines.
+            integer(c_int), value :: n_lines
+            !> Number of poles.
+            integer(c_int), value :: n_poles
+            !> Angular frequencies [rad/s].
+            real(c_double), intent(in) :: omega(n_lines)
+            !> Poles [rad/s].
+            complex(c_double_complex), intent(in) :: pole(n_poles)
+            !> Residues [m/(N*s)].
+            complex(c_double_complex), intent(in) :: residue(n_poles)
+            !> Receptance [m/N], the terms added.
+            complex(c_double_complex), intent(inout) :: g(n_lines)
+        end subroutine modal_terms
+
+        !> The first 2*n_poles columns of `linear_matrix`, with the bits of its Fortran loop (modal_sum.c).
+        pure subroutine modal_linear(n_lines, n_poles, omega, weight, pole, a) &
+            bind(c, name='greenconv_ident_modal_linear')
+            import :: c_int, c_double, c_double_complex
+            !> Number of lines.
+            integer(c_int), value :: n_lines
+            !> Number of poles.
+            integer(c_int), value :: n_poles
+            !> Angular frequencies [rad/s].
+            real(c_double), intent(in) :: omega(n_lines)
+            !> Weights 1/sigma [N/m].
+            real(c_double), intent(in) :: weight(n_lines)
+            !> Poles [rad/s].
+            complex(c_double_complex), intent(in) :: pole(n_poles)
+            !> The columns, [Re; Im] stacked (units of the weight times s).
+            real(c_double), intent(inout) :: a(2*n_lines, 2*n_poles)
+        end subroutine modal_linear
+
+        !> The first 4*n_poles columns of `jacobian`, with the bits of its Fortran loop (modal_sum.c).
+        pure subroutine modal_jacobian(n_lines, n_poles, omega, weight, pole, residue, jac) &
+            bind(c, name='greenconv_ident_modal_jacobian')
+            import :: c_int, c_double, c_double_complex
+            !> Number of lines.
+            integer(c_int), value :: n_lines
+            !> Number of poles.
+            integer(c_int), value :: n_poles
+            !> Angular frequencies [rad/s].
+            real(c_double), intent(in) :: omega(n_lines)
+            !> Weights 1/sigma [N/m].
+            real(c_double), intent(in) :: weight(n_lines)
+            !> Poles [rad/s].
+            complex(c_double_complex), intent(in) :: pole(n_poles)
+            !> Residues [m/(N*s)].
+            complex(c_double_complex), intent(in) :: residue(n_poles)
+            !> The columns, [Re; Im] stacked (units of the weight times the model per parameter).
+            real(c_double), intent(inout) :: jac(2*n_lines, 4*n_poles)
+        end subroutine modal_jacobian
+    end interface
 
     !> Narrowest half-power band 2*xi*f of a pole, as a fraction of the line spacing df: a
     !> narrower pole acts on a single line only (its peak), which is what a spike of noise or
@@ -95,36 +153,15 @@ contains
         !> Receptance [m/N] at each.
         complex(dp) :: g(size(omega))
 
-        complex(dp) :: r
-        integer :: k, l
-
         g = model%r_u
-        do k = 1, size(model%pole)
-            r = model%residue(k)
-            do l = 1, size(omega)
-                g(l) = g(l) + r*reciprocal(omega(l), model%pole(k)) &
-                       + conjg(r)*reciprocal(omega(l), conjg(model%pole(k)))
-            end do
-        end do
+        ! For each pole in turn, every line: g(l) = g(l) + r/(i*omega(l) - pole) +
+        ! conjg(r)/(i*omega(l) - conjg(pole)), each reciprocal by one real division, in C over the
+        ! lines side by side (modal_sum.c; one line at a time took a tenth of a fit's time).
+        if (size(model%pole) > 0 .and. size(omega) > 0) &
+            call modal_terms(int(size(omega), c_int), int(size(model%pole), c_int), omega, model%pole, &
+                             model%residue, g)
         if (model%lower) g = g - model%r_l/omega**2
     end function evaluate
-
-    !> 1/(i*omega - lambda) [s] by one real division, |i*omega - lambda|^2 having no
-    !> cancellation: a fit evaluates it for every line, pole and iteration (a third of the
-    !> time of a 50-mode fit went to the complex divisions).
-    elemental complex(dp) function reciprocal(omega, pole)
-        !> Angular frequency [rad/s].
-        real(dp), intent(in) :: omega
-        !> Pole lambda [rad/s].
-        complex(dp), intent(in) :: pole
-
-        real(dp) :: a, d, q
-
-        a = -real(pole, dp)
-        d = omega - aimag(pole)
-        q = 1.0_dp/(a*a + d*d)
-        reciprocal = cmplx(a*q, -d*q, dp)
-    end function reciprocal
 
     !> chi2 = sum 2*|w*(G - G_model)|^2.
     pure real(dp) function chi_square(data, model)
@@ -175,23 +212,27 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: a(:, :), b(:), x(:), norms(:), normal(:, :), low(:, :), projection(:)
-        complex(dp), allocatable :: column(:, :)
-        integer :: k, n, col
+        real(dp) :: total
+        integer :: k, n, col, r
         logical :: ok
 
         n = size(model%pole)
-        allocate (column(size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
-        call linear_columns(data, model, column)
-        if (size(column, 2) == 0) then
+        allocate (a(2*size(data%g), 2*n + merge(1, 0, model%upper) + merge(1, 0, model%lower)))
+        if (size(a, 2) == 0) then
             if (allocated(model%residue)) deallocate (model%residue)
             allocate (model%residue(0))
             return
         end if
-        a = stacked(column)
+        call linear_matrix(data, model, a)
+        ! Each column to unit norm (its squares summed in row order).
         allocate (norms(size(a, 2)))
-        norms(:) = sqrt(sum(a**2, dim=1))
-        where (.not. (norms > 0.0_dp)) norms = 1.0_dp
         do col = 1, size(a, 2)
+            total = 0.0_dp
+            do r = 1, size(a, 1)
+                total = total + a(r, col)**2
+            end do
+            norms(col) = sqrt(total)
+            if (.not. (norms(col) > 0.0_dp)) norms(col) = 1.0_dp
             a(:, col) = a(:, col)/norms(col)
         end do
         b = stack(data%weight*data%g)
@@ -218,29 +259,35 @@ contains
         if (model%lower) model%r_l = x(col + 1)
     end subroutine fit_linear
 
-    !> Weighted columns of the linear part: per pole the responses to r = 1 and r = i, then
-    !> R_u and R_l.
-    pure subroutine linear_columns(data, model, column)
+    !> Weighted columns of the linear part, real parts in rows 1..L and imaginary parts below
+    !> (as `jacobian`): per pole the responses to r = 1 and r = i, then R_u and R_l. Written
+    !> in place, one pass per pole (the complex columns and their stacked copy it replaced took
+    !> a third of the least squares' time).
+    pure subroutine linear_matrix(data, model, a)
         type(data_type), intent(in) :: data
         type(model_type), intent(in) :: model
-        complex(dp), intent(out) :: column(:, :)
+        real(dp), intent(out) :: a(:, :)
 
-        complex(dp) :: direct(size(data%omega)), mirror(size(data%omega))
-        integer :: k, col
+        integer :: col, n
 
-        do k = 1, size(model%pole)
-            direct = reciprocal(data%omega, model%pole(k))
-            mirror = reciprocal(data%omega, conjg(model%pole(k)))
-            column(:, 2*k - 1) = data%weight*(direct + mirror)
-            column(:, 2*k) = data%weight*i_unit*(direct - mirror)
-        end do
+        n = size(data%omega)
+        ! Per pole and line, with direct = 1/(i*omega - pole), mirror = 1/(i*omega - conjg(pole))
+        ! and w the weight: w*(direct + mirror), then w*i*(direct - mirror) =
+        ! w*(-Im(.), Re(.)); in C over the lines side by side, the same bits.
+        if (size(model%pole) > 0 .and. n > 0) &
+            call modal_linear(int(n, c_int), int(size(model%pole), c_int), data%omega, data%weight, model%pole, &
+                              a(:, 1:2*size(model%pole)))
         col = 2*size(model%pole)
         if (model%upper) then
             col = col + 1
-            column(:, col) = data%weight
+            a(1:n, col) = data%weight
+            a(n + 1:, col) = 0.0_dp
         end if
-        if (model%lower) column(:, col + 1) = -data%weight/data%omega**2
-    end subroutine linear_columns
+        if (model%lower) then
+            a(1:n, col + 1) = -data%weight/data%omega**2
+            a(n + 1:, col + 1) = 0.0_dp
+        end if
+    end subroutine linear_matrix
 
     !> Weighted Jacobian of G_model, columns per mode (Re lambda, Im lambda, Re r, Im r), then
     !> R_u, R_l; real parts in rows 1..L, imaginary parts below.
@@ -249,31 +296,16 @@ contains
         type(model_type), intent(in) :: model
         real(dp), intent(inout) :: jac(:, :)
 
-        complex(dp) :: direct, mirror, r, slope, image
-        integer :: k, col, l, n
+        integer :: col, n
 
         n = size(data%omega)
-        do k = 1, size(model%pole)
-            r = model%residue(k)
-            col = 4*(k - 1)
-            do l = 1, n
-                direct = reciprocal(data%omega(l), model%pole(k))
-                mirror = reciprocal(data%omega(l), conjg(model%pole(k)))
-                slope = data%weight(l)*r*direct**2
-                image = data%weight(l)*conjg(r)*mirror**2
-                jac(l, col + 1) = real(slope + image, dp)
-                jac(n + l, col + 1) = aimag(slope + image)
-                ! i*(slope - image): real part -Im(.), imaginary part Re(.)
-                jac(l, col + 2) = -aimag(slope - image)
-                jac(n + l, col + 2) = real(slope - image, dp)
-                direct = data%weight(l)*direct
-                mirror = data%weight(l)*mirror
-                jac(l, col + 3) = real(direct + mirror, dp)
-                jac(n + l, col + 3) = aimag(direct + mirror)
-                jac(l, col + 4) = -aimag(direct - mirror)
-                jac(n + l, col + 4) = real(direct - mirror, dp)
-            end do
-        end do
+        ! Per pole and line, with direct and mirror the reciprocals at the pole and its
+        ! conjugate, w the weight, slope = w*r*direct**2 and image = w*conjg(r)*mirror**2:
+        ! columns slope + image, i*(slope - image), w*direct + w*mirror, i*(w*direct - w*mirror);
+        ! in C over the lines side by side (modal_sum.c), the same bits.
+        if (size(model%pole) > 0 .and. n > 0) &
+            call modal_jacobian(int(n, c_int), int(size(model%pole), c_int), data%omega, data%weight, model%pole, &
+                                model%residue, jac(:, 1:4*size(model%pole)))
         col = 4*size(model%pole)
         if (model%upper) then
             col = col + 1
@@ -585,14 +617,5 @@ contains
         if (allocated(data%line_level)) data%line_level = pack(data%line_level, keep)
         data%penalty = log(2.0_dp*size(data%g))
     end subroutine leave_out
-
-    !> Real and imaginary parts of each column stacked: [Re; Im].
-    pure function stacked(z) result(a)
-        complex(dp), intent(in) :: z(:, :)
-        real(dp) :: a(2*size(z, 1), size(z, 2))
-
-        a(1:size(z, 1), :) = real(z, dp)
-        a(size(z, 1) + 1:, :) = aimag(z)
-    end function stacked
 
 end module greenconv_ident_lm_fit
