@@ -57,7 +57,8 @@ contains
                //"speed = 10.0 /"//new_line('a') &
                //" &contact n_points_x = "//trim(count)//", n_points_y = 3, patch_length = 0.06, " &
                //"patch_width = 0.08, stiffness_per_area = 2.0e8, exponent = 1.0, preload = 200.0 /" &
-               //new_line('a')//" &convolution methods = 'modal' /"
+               //new_line('a')//" &convolution methods = 'modal', accuracy = 0.5 /"
+        ! accuracy 0.5: the files' layout is under test, not the 800 Hz band's error
     end function patch_scene
 
     !> Run a scene text; a failure fails the test.
