@@ -52,8 +52,13 @@ module greenconv_scene_runner
     real(dp), parameter :: text_value_bytes = 25.0_dp
     !> Most points whose histories `point_histories = 'auto'` writes.
     integer, parameter :: auto_history_points = 100
-    !> Fewest steps of `--check`'s projection of the error budget (`check_budget_lines`).
+    !> Fewest steps of `--check`'s projection of the error budget (`check_budget_lines`), when
+    !> they fit in `pilot_seconds`.
     integer, parameter :: pilot_steps = 200
+    !> Most projected CPU seconds [s] of a method's projection, its companions included.
+    real(dp), parameter :: pilot_seconds = 0.5_dp
+    !> CPU seconds [s] of projections after which `--check` projects no further method.
+    real(dp), parameter :: pilot_total = 5.0_dp
 
 contains
 
@@ -123,17 +128,18 @@ contains
 
         character(len=:), allocatable :: line
         character(len=cost_line_length), allocatable :: costs(:)
+        real(dp), allocatable :: projected(:)
         integer :: i, n_c
 
         call check_scene_line(scene, line, error, n_c)
         if (allocated(error)) return
-        call check_cost_lines(scene, n_c, costs, error)
+        call check_cost_lines(scene, n_c, costs, error, projected)
         if (allocated(error)) return
         write (unit, '(a)') line
         do i = 1, size(costs)
             write (unit, '(a)') trim(costs(i))
         end do
-        call check_budget_lines(scene, unit, error)
+        call check_budget_lines(scene, projected, unit, error)
     end subroutine check_scene
 
     !> What a contact scene's methods are projected to cost, one line each (none for another
@@ -146,7 +152,7 @@ contains
     !>
     !> N_m of a model identified at the run is its bound, `max_order` ("N_m <= 60"); its N_g,
     !> N_t. The modes of a tyre, plate or modes file are found here (closed form, or the file).
-    subroutine check_cost_lines(scene, n_c, lines, error)
+    subroutine check_cost_lines(scene, n_c, lines, error, seconds)
         !> The scene, as `read_scene` returned it.
         type(scene_type), intent(in) :: scene
         !> Number of contact points N_c (`check_scene_line`'s).
@@ -155,6 +161,8 @@ contains
         character(len=cost_line_length), allocatable, intent(out) :: lines(:)
         !> Set when the model's points or modes cannot be found.
         type(error_type), allocatable, intent(out) :: error
+        !> The projected CPU seconds of each method's run (none for another task).
+        real(dp), allocatable, intent(out), optional :: seconds(:)
 
         type(structure_kind) :: model
         type(scene_points) :: points
@@ -162,6 +170,7 @@ contains
         real(dp) :: n_g, work, bytes, file_bytes
         integer :: i, n_m, n_terms
 
+        if (present(seconds)) allocate (seconds(0))
         if (scene%task /= 'contact') then
             allocate (lines(0))
             return
@@ -194,8 +203,10 @@ contains
         if (scene%model == 'green_file') n_terms = n_m*n_c
         file_bytes = output_bytes(scene, n_c)
         allocate (lines(size(scene%methods)))
+        if (present(seconds)) seconds = [(0.0_dp, i=1, size(scene%methods))]
         do i = 1, size(scene%methods)
             call projected_run(trim(scene%methods(i)), n_c, n_m, n_terms, n_g, scene%n_steps, work, bytes)
+            if (present(seconds)) seconds(i) = work/work_rate
             lines(i) = "greenconv: check: method '"//trim(scene%methods(i))//"': about "//sci_text(work/work_rate) &
                        //' s, '//sci_text(bytes/1.0e6_dp)//' MB in memory, '//sci_text(file_bytes/1.0e6_dp) &
                        //' MB of files (N_c '//int_text(n_c)//', N_m '//bound//int_text(n_m)//', N_g ' &
@@ -394,16 +405,19 @@ contains
 
     !> `--check`'s projection of each method's error budget, one line a method on `unit`: the
     !> method run over the scene's first steps (an eighth of the run, at least `pilot_steps`
-    !> and at most the whole run) with its companions, no file written, e.g.
+    !> and at most the whole run, as many as fit in `pilot_seconds` of projected CPU) with its
+    !> companions, no file written, e.g.
     !>
     !>     greenconv: check: method 'modal': error about 5.7E-02 from its first 250 of 2000 steps
     !>     (0.01 s of CPU): outside the accuracy asked: estimate 5.7E-02 > accuracy 1.0E-02, ...
     !>
     !> A model identified at the run (a receptance or Green's file, the rail) is not run here:
     !> its E is known once identified, and the run prints the whole budget.
-    subroutine check_budget_lines(scene, unit, error)
+    subroutine check_budget_lines(scene, projected, unit, error)
         !> The scene, as `read_scene` returned it.
         type(scene_type), intent(in) :: scene
+        !> The projected CPU seconds of each method's whole run (`check_cost_lines`).
+        real(dp), intent(in) :: projected(:)
         !> Unit the lines are printed on.
         integer, intent(in) :: unit
         !> Set when the pilot's structure or points cannot be made (the run would refuse them too).
@@ -417,8 +431,9 @@ contains
         type(step_doubling) :: doubling
         type(error_type), allocatable :: fault
         character(len=:), allocatable :: method, accuracy, outside, head, summary
-        real(dp) :: estimate, seconds, begin, finish
-        integer :: i
+        real(dp) :: estimate, seconds, begin, finish, per_step, spent
+        integer :: i, n_pilot
+        type(engine_constructors) :: engine
 
         if (scene%task /= 'contact') return
         model = find_model(scene%model)
@@ -427,8 +442,8 @@ contains
                 //'which prints each method''s budget with its E (eq. 7)'
             return
         end if
+        spent = 0.0_dp
         pilot = scene
-        pilot%n_steps = min(scene%n_steps, max(pilot_steps, scene%n_steps/8))
         pilot%progress = .false.
         pilot%spectra = .false.
         if (model%multi_point()) then
@@ -440,6 +455,26 @@ contains
         do i = 1, size(scene%methods)
             method = trim(scene%methods(i))
             head = "greenconv: check: method '"//method//"': "
+            ! the pilot's steps: an eighth of the run, at least pilot_steps, within pilot_seconds of
+            ! projected CPU with its companions (0.75 of the run at 2*dt and 4*dt, up to 2 for the band)
+            per_step = merge(3.75_dp, 1.75_dp, run%points%band > 0.0_dp)*projected(i)/scene%n_steps
+            ! a kernel sampled from modes costs N_m*N_c^2 a sample to build, for the run and its companions
+            engine = engine_of(method)
+            if (engine%samples_g() .and. model%multi_point()) per_step = per_step + 2.75_dp &
+                *real(run%points%modes%modes%n_modes(), dp)*real(run%points%n_points(), dp)**2/work_rate
+            n_pilot = min(scene%n_steps, max(pilot_steps, scene%n_steps/8))
+            if (per_step*n_pilot > pilot_seconds) n_pilot = int(pilot_seconds/per_step)
+            if (n_pilot < min(16, scene%n_steps)) then
+                write (unit, '(a)') head//'error budget not projected: a run of its first 16 steps with its ' &
+                    //'companions would take about '//sci_text(16*per_step)//' s; the run prints its budget'
+                cycle
+            end if
+            if (spent > pilot_total) then
+                write (unit, '(a)') head//'error budget not projected: the projections took '//sci_text(spent) &
+                    //' s of CPU already; the run prints its budget'
+                cycle
+            end if
+            pilot%n_steps = n_pilot
             call cpu_time(begin)
             call make_run_convolver(run, pilot, structure, method, accuracy, fault, estimate)
             if (.not. allocated(fault)) call start_run(run, pilot, fault)
@@ -455,6 +490,7 @@ contains
                 deallocate (fault)
                 cycle
             end if
+            spent = spent + (finish - begin)
             call close_budget(doubling, scene, method, run%points, estimate, accuracy, outside)
             head = head//'error about '//sci_text(estimate)//' from its first '//int_text(pilot%n_steps)//' of ' &
                    //int_text(scene%n_steps)//' steps ('//sci_text(finish - begin)//' s of CPU): '
