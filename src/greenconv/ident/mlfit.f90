@@ -218,6 +218,9 @@ module greenconv_ident_mlfit
     integer, parameter :: max_outside = 3
     !> The noise models noise_model = 'auto' compares by the full likelihood, simplest first.
     character(len=8), parameter :: auto_models(4) = [character(len=8) :: 'relative', 'absolute', 'floor', 'band']
+    !> chi2/nu above which 'auto''s first search is taken as lost (far from any model the noise
+    !> explains) and its poles screen no other noise model: each is searched.
+    real(dp), parameter :: lost_search = 1.0e3_dp
     !> Smallest fall of the full likelihood criterion for which 'auto' takes a later noise model of
     !> auto_models over an earlier one (a tenth of the MDL price of a parameter for 8193 lines).
     real(dp), parameter :: choice_margin = 1.0_dp
@@ -255,7 +258,7 @@ contains
         type(ml_options) :: trial_options
         type(ml_result) :: trial
         real(dp) :: criteria(size(auto_models))
-        logical :: searched(size(auto_models))
+        logical :: searched(size(auto_models)), screen
         integer :: i, best
 
         call check_input(frf, options, error)
@@ -269,7 +272,9 @@ contains
         ! model that wins there by more than choice_margin has the whole identification run under
         ! it. The full likelihood (the noise scale refitted, every parameter priced, noise model
         ! included) decides; within choice_margin the earlier of auto_models (the simpler) is
-        ! kept, so that a last-bit difference of two criteria decides nothing.
+        ! kept, so that a last-bit difference of two criteria decides nothing. A first search that
+        ! ends far from its noise model (chi2/nu above lost_search) screens nothing: its poles are
+        ! no place to refit the others at, and every other model is searched.
         trial_options = options
         trial_options%noise_model = auto_models(1)
         call identify_searched(frf, trial_options, result, error)
@@ -278,11 +283,14 @@ contains
         searched(:) = .false.
         searched(1) = .true.
         best = 1
+        screen = reduced_chi_square(result) <= lost_search
         do i = 2, size(auto_models)
             trial_options%noise_model = auto_models(i)
-            call screened_criterion(frf, trial_options, result, criteria(i), error)
-            if (allocated(error)) return
-            if (criteria(i) >= criteria(best) - choice_margin) cycle
+            if (screen) then
+                call screened_criterion(frf, trial_options, result, criteria(i), error)
+                if (allocated(error)) return
+                if (criteria(i) >= criteria(best) - choice_margin) cycle
+            end if
             call identify_searched(frf, trial_options, trial, error)
             if (allocated(error)) return
             searched(i) = .true.
