@@ -88,7 +88,8 @@ enum gc_status {
                                  what to do; 2 and 3 take priority); gc_multi_set_accuracy,
                                  gc_multi_contact_start and gc_multi_run_contact when the host asked an accuracy
                                  that the multi-point convolver's own estimate (gc_multi_estimate) exceeds, their
-                                 results whole */
+                                 results whole; gc_convolver_set_accuracy, gc_run_contact, gc_run_contact_opts
+                                 and gc_contact_start alike for a single-point convolver (gc_convolver_estimate) */
 };
 
 /** Opaque convolver: one structure's Green's function and one force history. */
@@ -300,6 +301,27 @@ int gc_contact_start(gc_convolver *conv, double k_c, double p, double preload,
  */
 int gc_contact_advance(gc_convolver *conv, double road, double *displacement, double *force,
                        double *compression, char *errmsg, size_t errmsg_len);
+
+/**
+ * The method's own estimate of the relative error of the contact forces of the convolver's
+ * run, ||F - F_true||/||F_true - F0||, into *estimate: the model's terms (0 for modes given
+ * exactly, E of eq. (7) of the modes identified from a receptance file, the truncation and
+ * wrap-around of a sampled g) plus the time-step term of the run going on (gc_contact_start,
+ * gc_contact_advance) or last run (gc_run_contact, gc_run_contact_opts): the same run at 2*dt
+ * and 4*dt on every second and fourth road height, with the same scheme, by Richardson
+ * (8 steps or more; about 3/4 of the run's cost). gc_contact_step adds no term.
+ * GC_ERROR_INPUT for a NULL pointer.
+ */
+int gc_convolver_estimate(const gc_convolver *conv, double *estimate, char *errmsg, size_t errmsg_len);
+
+/**
+ * The relative accuracy the host asks of the convolver's runs (> 0; 0: none, the default).
+ * Returns GC_ACCURACY at once (the accuracy kept) when gc_convolver_estimate exceeds it; from
+ * then on gc_run_contact, gc_run_contact_opts (with the run's own time-step term) and
+ * gc_contact_start return GC_ACCURACY, their results whole, with a message naming the
+ * estimate, the accuracy and what to do. GC_ERROR_INPUT for a negative or non-finite accuracy.
+ */
+int gc_convolver_set_accuracy(gc_convolver *conv, double accuracy, char *errmsg, size_t errmsg_len);
 
 /* ---- identification and scenes -------------------------------------------------------- */
 
@@ -547,7 +569,9 @@ int gc_multi_new_modes_file(const char *path, int direction, double damping_rati
  * (gc_multi_run_contact, 8 steps or more), that run's time-step term (the same run at 2*dt and
  * 4*dt on every second and fourth road height, by Richardson) and, for
  * gc_multi_new_modes_file with modes above its band, the band's term (the same run with the
- * modes up to twice the band). A run stepped one call at a time adds no term. GC_ERROR_INPUT
+ * modes up to twice the band). A run stepped one call at a time (gc_multi_contact_start,
+ * gc_multi_contact_step) steps the same companions alongside, so that the estimate holds the
+ * steps so far at every step (from the 8th on; they cost about 3/4 of the run). GC_ERROR_INPUT
  * for a NULL pointer.
  */
 int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg, size_t errmsg_len);

@@ -10,7 +10,7 @@
 !> Tolerances: the estimate within a factor 3 of the true error, both ways; a run ends with
 !> status 4 exactly when an estimate exceeds `accuracy`.
 module test_errorbudget_mod
-    use, intrinsic :: iso_fortran_env, only: dp => real64
+    use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type, stat_accuracy
     use greenconv_io_files, only: make_directory
@@ -28,6 +28,9 @@ module test_errorbudget_mod
     use greenconv_contact_single, only: contact_law
     use greenconv_verify_contact, only: multi_contact_reference
     use test_accuracystatus_mod, only: twelve_point_plate
+    use greenconv_model_sdof, only: sdof_modes
+    use greenconv_legacy, only: gcsdof, gccont, gcfree
+    use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmest, gcmacc, gcest, gcacc, gcmfre
     implicit none
     private
 
@@ -53,7 +56,11 @@ contains
                                   test_band_fine), &
                      new_unittest('plate modes file, 9 of 32 modes at 80 us: band and time step within 3x', &
                                   test_band_coarse), &
-                     new_unittest('12-point Green''s matrix file at 20 us: every method within 3x', test_green_file)]
+                     new_unittest('12-point Green''s matrix file at 20 us: every method within 3x', test_green_file), &
+                     new_unittest('the doors on sdof_sine at 1 ms: GCCONT and GCMRUN within 3x, IERR 4; a run ' &
+                                  //'stepped by GCMSTP has the whole run''s estimate', test_doors), &
+                     new_unittest('mdof_random (10 modes, random road) at 0.1 and 0.4 ms: every method within 3x', &
+                                  test_mdof)]
     end subroutine collect_errorbudget
 
     subroutine test_sdof_coarse(error)
@@ -314,6 +321,120 @@ contains
         end do
         call check_budget(label, methods, estimate, truth, accuracy, fail, error)
     end subroutine budget_case
+
+    !> sdof_sine's mass on its spring at dt = 1 ms, 1000 steps (contact lost each road period),
+    !> through the Fortran 77 doors: the single-point GCSDOF + GCCONT (the explicit scheme) and
+    !> the multi-point GCMMOD on its one mode + GCMRUN (the implicit step, not `backward`), each method's GCEST /
+    !> GCMEST after the run within `factor` of ||F - F_ODE||/||F_ODE - F0|| (Dormand-Prince,
+    !> rtol 1e-10); with GCACC / GCMACC at 1e-3 the same runs return IERR 4 exactly when the
+    !> estimate exceeds it, their forces unchanged (bit for bit); GCMBEG + GCMSTP step by step
+    !> end with the estimate of the whole run to 1e-12 (the same companions, fed a step at a time).
+    subroutine test_doors(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: methods(4) = ['exact   ', 'modal   ', 'direct  ', 'backward']
+        integer, parameter :: n_steps = 1000
+        real(dp), parameter :: dt = 1.0e-3_dp, accuracy = 1.0e-3_dp
+        type(scene_type) :: scene
+        type(modal_set) :: modes
+        type(error_type), allocatable :: fail
+        real(dp), allocatable :: u_ref(:), f_ref(:), road(:)
+        real(dp) :: f(n_steps), f_asked(n_steps), estimate, truth, stepped, one(1)
+        integer(int64) :: handle
+        character(len=300) :: message
+        character(len=:), allocatable :: label
+        integer :: m, door, ierr, n
+
+        call read_scene('data/sdof_sine.nml', scene, fail)
+        call check(error, .not. allocated(fail), 'sdof_sine: '//message_of(fail))
+        if (allocated(error)) return
+        modes = sdof_modes(1.0_dp, 1.0e6_dp, 0.02_dp)
+        call contact_reference(modes, scene%law, scene%road, scene%preload, dt, n_steps, u_ref, f_ref, &
+                               rtol=1.0e-10_dp)
+        road = scene%road%height([(n*dt, n=0, n_steps - 1)])
+        do door = 1, 2
+            ! `backward` serves single-point contact only
+            do m = 1, size(methods) - merge(0, 1, door == 1)
+                label = trim(merge('GCCONT', 'GCMRUN', door == 1))//' '//trim(methods(m))
+                if (door == 1) then
+                    call gcsdof(1.0_dp, 1.0e6_dp, 0.02_dp, dt, n_steps, trim(methods(m)), handle, ierr, message)
+                else
+                    call gcmmod(1, 1, [modes%pole(1)%re], [modes%pole(1)%im], [modes%residue(1)%re], &
+                                [modes%residue(1)%im], [1.0_dp], dt, n_steps, 0.01_dp, trim(methods(m)), handle, &
+                                ierr, message)
+                end if
+                call check(error, ierr == 0, label//': the convolver: '//trim(message))
+                if (allocated(error)) return
+                call door_run(door, handle, scene, road, f, ierr, message)
+                call check(error, ierr == 0, label//': the run, no accuracy asked: '//trim(message))
+                if (.not. allocated(error)) then
+                    if (door == 1) call gcest(handle, estimate, ierr, message)
+                    if (door == 2) call gcmest(handle, estimate, ierr, message)
+                    truth = norm2(f - f_ref)/norm2(f_ref - scene%preload)
+                    call report_case('doors_1ms', label, estimate, truth)
+                    call check(error, ierr == 0 .and. estimate <= factor*truth .and. truth <= factor*estimate, &
+                               label//': the estimate is more than 3x off the true error')
+                end if
+                if (.not. allocated(error)) then
+                    if (door == 1) call gcacc(handle, accuracy, ierr, message)
+                    if (door == 2) call gcmacc(handle, accuracy, ierr, message)
+                    call door_run(door, handle, scene, road, f_asked, ierr, message)
+                    call check(error, ierr == merge(4, 0, estimate > accuracy) .and. all(f_asked == f), &
+                               label//': at accuracy 1e-3, expected IERR '//merge('4', '0', estimate > accuracy) &
+                               //' and the same forces: '//trim(message))
+                end if
+                if (.not. allocated(error) .and. door == 2) then
+                    call gcmacc(handle, 0.0_dp, ierr, message)
+                    call gcmbeg(handle, 1, [scene%law%stiffness], [scene%law%exponent], [scene%preload], ierr, message)
+                    do n = 1, n_steps
+                        if (ierr /= 0) exit
+                        call gcmstp(handle, 1, road(n:n), one, f_asked(n:n), one, ierr, message)
+                    end do
+                    call gcmest(handle, stepped, ierr, message)
+                    call check(error, ierr == 0 .and. abs(stepped - estimate) <= 1.0e-12_dp*estimate, &
+                               label//': the run stepped by GCMSTP does not end with the whole run''s estimate')
+                end if
+                if (door == 1) call gcfree(handle)
+                if (door == 2) call gcmfre(handle)
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine test_doors
+
+    !> mdof_random's ten modes (100 Hz to 1 kHz) on its random road, 0.3 s at 0.1 and 0.4 ms:
+    !> the time step's term of every single-point method, `backward` (first order in g's
+    !> sampling, its forces converging at second order here: observed ratios 3.4 to 3.8) too.
+    subroutine test_mdof(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=8), parameter :: methods(6) = ['direct  ', 'modal   ', 'exact   ', 'backward', 'fft     ', &
+                                                     'paper   ']
+
+        call budget_case('data/mdof_random.nml', 'mdof_01ms', 1.0e-4_dp, 3000, methods, 1.0e-3_dp, error)
+        if (.not. allocated(error)) call budget_case('data/mdof_random.nml', 'mdof_04ms', 4.0e-4_dp, 750, methods, &
+                                                      1.0e-3_dp, error)
+    end subroutine test_mdof
+
+    !> A whole run through the single-point (door 1: GCCONT) or the multi-point door (GCMRUN).
+    subroutine door_run(door, handle, scene, road, force, ierr, message)
+        integer, intent(in) :: door
+        integer(int64), intent(in) :: handle
+        type(scene_type), intent(in) :: scene
+        real(dp), intent(in) :: road(:)
+        real(dp), intent(out) :: force(:)
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: message
+
+        real(dp) :: u(size(road)), delta(size(road))
+
+        if (door == 1) then
+            call gccont(handle, scene%law%stiffness, scene%law%exponent, scene%preload, size(road), road, u, force, &
+                        delta, ierr, message)
+        else
+            call gcmrun(handle, 1, size(road), [scene%law%stiffness], [scene%law%exponent], [scene%preload], road, &
+                        u, force, delta, ierr, message)
+        end if
+    end subroutine door_run
 
     !> One case's line: estimate, true error, their ratio.
     subroutine report_case(label, method, estimate, truth)

@@ -28,9 +28,9 @@ module greenconv_capi
     use greenconv_contact_single, only: contact_law, contact_options, contact_response
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
-                                    step_box, start_point_box, advance_point_box, point_history, point_push, &
-                                    reset_box, describe_box
+                                    samples_structure, frf_file_structure, identify_file, check_steps, &
+                                    step_box, point_history, point_push, reset_box, describe_box
+    use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
     use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door
     implicit none
     private
@@ -691,8 +691,8 @@ contains
                 f(:) = 0.0_dp
             else
                 call c_f_pointer(road, heights, [n])
-                call run_box(box, contact_law(k_c, p), preload, heights, settings, u, f, delta, error)
-                if (allocated(error)) error%message = 'gc_run_contact: '//error%message
+                call run_point_budget('gc_run_contact', box, contact_law(k_c, p), preload, heights, settings, u, f, &
+                                      delta, error)
             end if
         end if
         if (c_associated(compression) .and. n > 0) then
@@ -734,7 +734,8 @@ contains
             box%stepping = .false.
             call check_contact_law(contact_law(k_c, p), preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
-            if (.not. allocated(error)) call start_point_box(box, contact_law(k_c, p), preload, settings, error)
+            if (.not. allocated(error)) call start_point_budget('gc_contact_start', box, contact_law(k_c, p), preload, &
+                                                                settings, error)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_contact_start
@@ -778,7 +779,7 @@ contains
                              //'gc_contact_start first (a fault or a reset ends a run)')
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
-            if (.not. allocated(error)) call advance_point_box(box, [real(road, dp)], response, error)
+            if (.not. allocated(error)) call advance_point_budget(box, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
                 if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &

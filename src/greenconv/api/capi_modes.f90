@@ -4,9 +4,10 @@
 !> - `gc_multi_new_modes_file`: the file's nodes the contact points, its modes up to a band
 !>   stepped, as a scene's `&structure model = 'modes_file'`, then stepped from the
 !>   host's loop with the other `gc_multi_*` functions;
-!> - `gc_multi_estimate`: the method's own estimate of its relative error;
-!> - `gc_multi_set_accuracy`: the accuracy the host asks; beyond it, the calls that run contact
-!>   return GC_ACCURACY (4, "ran, but outside the accuracy asked");
+!> - `gc_multi_estimate`, `gc_convolver_estimate`: the method's own estimate of its relative
+!>   error, the contact run's time-step and band terms included (greenconv_api_budget);
+!> - `gc_multi_set_accuracy`, `gc_convolver_set_accuracy`: the accuracy the host asks; beyond
+!>   it, the calls that run contact return GC_ACCURACY (4, "ran, but outside the accuracy asked");
 !> - `gc_identify_ml_file`: the modes of a receptance file by maximum likelihood, with their
 !>   standard deviations and whether the data determine each.
 !>
@@ -19,7 +20,8 @@ module greenconv_capi_modes
     use greenconv_core_text, only: int_text
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_api_handle, only: identify_file_ml
-    use greenconv_api_multi_handle, only: modes_file_box, check_box, set_box_accuracy
+    use greenconv_api_multi_handle, only: modes_file_box, check_box
+    use greenconv_api_budget, only: set_box_accuracy
     use greenconv_api_doors, only: finish, from_c, start_door, need_pointer, need_pointers
     use greenconv_api_handle, only: convolver_box, box_at
     use greenconv_capi_multi, only: made, tolerance_of, null_handle
@@ -27,6 +29,10 @@ module greenconv_capi_modes
     private
 
     public :: gc_multi_new_modes_file, gc_multi_estimate, gc_multi_set_accuracy, gc_identify_ml_file
+    public :: gc_convolver_estimate, gc_convolver_set_accuracy
+
+    !> What the single-point doors say of a null handle.
+    character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
 
 contains
 
@@ -76,7 +82,7 @@ contains
 
     !> int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg,
     !> size_t errmsg_len): the method's own estimate of the relative error of its contact forces
-    !> (the model's terms, plus the last whole run's time-step and band terms).
+    !> (the model's terms, plus the time-step and band terms of the contact run going on or last run).
     function gc_multi_estimate(conv, estimate, errmsg, errmsg_len) bind(c, name='gc_multi_estimate') result(status)
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
@@ -88,19 +94,25 @@ contains
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
-        type(error_type), allocatable :: error
-        type(convolver_box), pointer :: box
-        real(c_double), pointer :: value_out
-
-        box => box_at(conv)
-        call check_box('gc_multi_estimate', null_handle, box, error=error)
-        call need_pointer('gc_multi_estimate', estimate, 'estimate', 'pass the address of a double', error)
-        if (.not. allocated(error)) then
-            call c_f_pointer(estimate, value_out)
-            value_out = box%estimate + box%run_terms
-        end if
-        status = finish(error, errmsg, errmsg_len)
+        status = estimate_door('gc_multi_estimate', null_handle, conv, estimate, errmsg, errmsg_len)
     end function gc_multi_estimate
+
+    !> int gc_convolver_estimate(const gc_convolver *conv, double *estimate, char *errmsg,
+    !> size_t errmsg_len): the single-point twin of gc_multi_estimate.
+    function gc_convolver_estimate(conv, estimate, errmsg, errmsg_len) bind(c, name='gc_convolver_estimate') &
+        result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Where the estimate goes [-].
+        type(c_ptr), value, intent(in) :: estimate
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        status = estimate_door('gc_convolver_estimate', point_null_handle, conv, estimate, errmsg, errmsg_len)
+    end function gc_convolver_estimate
 
     !> int gc_multi_set_accuracy(gc_multi_convolver *conv, double accuracy, char *errmsg,
     !> size_t errmsg_len): the relative accuracy the host asks (0: none); GC_ACCURACY at once
@@ -118,14 +130,64 @@ contains
         integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
+        status = accuracy_door('gc_multi_set_accuracy', null_handle, conv, accuracy, errmsg, errmsg_len)
+    end function gc_multi_set_accuracy
+
+    !> int gc_convolver_set_accuracy(gc_convolver *conv, double accuracy, char *errmsg,
+    !> size_t errmsg_len): the single-point twin of gc_multi_set_accuracy (GC_ACCURACY from
+    !> gc_run_contact, gc_run_contact_opts and gc_contact_start).
+    function gc_convolver_set_accuracy(conv, accuracy, errmsg, errmsg_len) &
+        bind(c, name='gc_convolver_set_accuracy') result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(c_double), value, intent(in) :: accuracy
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        status = accuracy_door('gc_convolver_set_accuracy', point_null_handle, conv, accuracy, errmsg, errmsg_len)
+    end function gc_convolver_set_accuracy
+
+    !> The estimate doors: the model's terms plus the run's, into *estimate.
+    function estimate_door(caller, missing, conv, estimate, errmsg, errmsg_len) result(status)
+        character(len=*), intent(in) :: caller, missing
+        type(c_ptr), intent(in) :: conv, estimate, errmsg
+        integer(c_size_t), intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+        real(c_double), pointer :: value_out
+
+        box => box_at(conv)
+        call check_box(caller, missing, box, error=error)
+        call need_pointer(caller, estimate, 'estimate', 'pass the address of a double', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(estimate, value_out)
+            value_out = box%estimate + box%run_terms
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function estimate_door
+
+    !> The accuracy doors: the accuracy asked kept, GC_ACCURACY when already outside it.
+    function accuracy_door(caller, missing, conv, accuracy, errmsg, errmsg_len) result(status)
+        character(len=*), intent(in) :: caller, missing
+        type(c_ptr), intent(in) :: conv, errmsg
+        real(c_double), intent(in) :: accuracy
+        integer(c_size_t), intent(in) :: errmsg_len
+        integer(c_int) :: status
+
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
         box => box_at(conv)
-        call check_box('gc_multi_set_accuracy', null_handle, box, error=error)
-        if (.not. allocated(error)) call set_box_accuracy('gc_multi_set_accuracy', box, accuracy, error)
+        call check_box(caller, missing, box, error=error)
+        if (.not. allocated(error)) call set_box_accuracy(caller, box, accuracy, error)
         status = finish(error, errmsg, errmsg_len)
-    end function gc_multi_set_accuracy
+    end function accuracy_door
 
     !> int gc_identify_ml_file(const char *path, const char *noise_model, int max_order, int capacity,
     !> int *n_modes, int *n_determined, double *pole_re, double *pole_im, double *residue_re,

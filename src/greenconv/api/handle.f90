@@ -33,12 +33,13 @@ module greenconv_api_handle
     use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
                                         copy_histories, start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_state
+    use greenconv_contact_budget, only: doubling_sums
     use greenconv_scene_limits, only: max_lsce_modes
-    use greenconv_api_library, only: new_convolver, check_contact_law, contact_step
+    use greenconv_api_library, only: new_convolver, check_contact_law, contact_step, default_truncation_tol
     implicit none
     private
 
-    public :: convolver_box, new_box, free_box, box_at
+    public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
     public :: run_box, identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
     public :: point_history, point_push, reset_box, describe_box
@@ -46,6 +47,41 @@ module greenconv_api_handle
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
     !> goes back to the allocator.
     integer(int64), parameter :: live_mark = int(z'6763636F6E763031', int64)
+
+    !> One companion of a contact run's error budget (greenconv_api_budget): the box's method on
+    !> its source at another time step or with a wider band, stepped alongside the run.
+    type :: companion_run
+        !> Its convolver (a single-point one as the 1 x 1 case).
+        class(multipoint_convolver), allocatable :: conv
+        !> Its contact run.
+        type(multi_contact_state) :: state
+        !> Whether it is running (false when it could not be built or started, or failed).
+        logical :: running = .false.
+    end type companion_run
+
+    !> The error budget of the contact run going on (or last run) on a box: its companions at
+    !> 2*dt and 4*dt and, for a modes file's box, with the modes up to twice the band, and the
+    !> sums their forces add (greenconv_contact_budget).
+    type :: door_budget
+        !> The companions: 1 at 2*dt, 2 at 4*dt, 3 at dt with the wider band.
+        type(companion_run) :: run(3)
+        !> Whether the run is a single-point one, stepped with its scheme.
+        logical :: single = .false.
+        !> Order of the method in dt (1 for `backward`, else 2).
+        integer :: order = 2
+        !> Steps of the run fed so far.
+        integer(int64) :: step = 0_int64
+        !> Whether the companion at 2*dt is missing (could not be built, or failed).
+        logical :: step_missing = .false.
+        !> Whether the band's term is doubled (the wider run does not hold every mode).
+        logical :: band_doubled = .false.
+        !> Static preloads F0_i [N] of the run.
+        real(dp), allocatable :: preload(:)
+        !> The sums of step doubling [N^2].
+        type(doubling_sums) :: sums
+        !> Sums over the steps of |F - F_band|^2 and |F_band - F0|^2 [N^2], over the points.
+        real(dp) :: band_difference = 0.0_dp, band_reference = 0.0_dp
+    end type door_budget
 
     !> What a foreign handle points to.
     type :: convolver_box
@@ -94,9 +130,17 @@ module greenconv_api_handle
         type(file_modes), allocatable :: source_file
         !> Top of the band of a modes file's modes stepped [Hz] (0: no band).
         real(dp) :: band = 0.0_dp
-        !> The time-step and band terms [-] of the last whole contact run's error budget (0
-        !> before one), added to `estimate` by gc_multi_estimate, GCMEST and the accuracy check.
+        !> The time-step and band terms [-] of the error budget of the contact run going on or
+        !> last run (0 before one), added to `estimate` by the estimate doors and the accuracy check.
         real(dp) :: run_terms = 0.0_dp
+        !> The companions and sums behind `run_terms`.
+        type(door_budget) :: budget
+        !> Number of steps N_t the convolver was built for (caps the companions' kernels).
+        integer :: n_steps = 0
+        !> The single-point structure the convolver was built on; unallocated for a multi-point box.
+        type(structure_model), allocatable :: structure
+        !> The scheme of the single-point contact run stepped one call at a time.
+        type(contact_options) :: point_options
         !> Node labels of the points of a convolver made from a modes file (gc_multi_new_modes_file,
         !> GCMMFL); unallocated otherwise.
         integer, allocatable :: node(:)
@@ -129,7 +173,7 @@ contains
 
         allocate (box)
         call new_convolver(lower_text(method), structure, dt, n_steps, point, error, truncation_tol, accuracy, &
-                           box%description)
+                           box%description, box%estimate, box%method)
         if (allocated(error)) then
             deallocate (box)
             box => null()
@@ -142,6 +186,11 @@ contains
         end select
         box%warning = ''
         if (structure%identified .and. allocated(structure%fit%warning)) box%warning = structure%fit%warning
+        box%dt = dt
+        box%n_steps = n_steps
+        box%truncation_tol = default_truncation_tol
+        if (present(truncation_tol)) box%truncation_tol = truncation_tol
+        box%structure = structure
     end subroutine new_box
 
     !> Free a box and its convolver (FFTW plans too), single- or multi-point; nothing for a null
@@ -156,9 +205,26 @@ contains
             call box%conv%release()
             deallocate (box%conv)
         end if
+        call release_companions(box%budget)
         deallocate (box)
         box => null()
     end subroutine free_box
+
+    !> Release the companions of a budget (their FFTW plans too) and stop them.
+    subroutine release_companions(budget)
+        !> The budget.
+        type(door_budget), intent(inout) :: budget
+
+        integer :: f
+
+        do f = 1, size(budget%run)
+            if (allocated(budget%run(f)%conv)) then
+                call budget%run(f)%conv%release()
+                deallocate (budget%run(f)%conv)
+            end if
+            budget%run(f)%running = .false.
+        end do
+    end subroutine release_companions
 
     !> The box at a C address: a C handle, or the address a Fortran 77 handle stands for
     !> (greenconv_api_doors's `handle_address`); null for C NULL, and for a box without the
@@ -183,6 +249,7 @@ contains
 
         call box%conv%reset()
         box%stepping = .false.
+        call release_companions(box%budget)
     end subroutine reset_box
 
     !> "method: what the model neglects", and with `n` present ", N_g = n" (or N_m): the model's

@@ -30,9 +30,10 @@ module greenconv_legacy
     use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_api_library, only: check_contact_law, run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, run_box, identify_file, check_steps, &
+                                    samples_structure, frf_file_structure, identify_file, check_steps, &
                                     identify_file_ml, &
                                     point_history, point_push, step_box, reset_box, describe_box
+    use greenconv_api_budget, only: run_point_budget
     use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
     implicit none
@@ -397,7 +398,7 @@ contains
         else if (nstep < 1) then
             call fatal_error(error, 'gccont: the number of steps must be >= 1')
         else
-            call run_box(box, contact_law(kc, p), f0, road, contact_options(), u, f, delta, error)
+            call run_point_budget('gccont', box, contact_law(kc, p), f0, road, contact_options(), u, f, delta, error)
         end if
         if (.not. associated(box) .or. nstep < 1) then
             u(1:max(nstep, 0)) = 0.0_dp

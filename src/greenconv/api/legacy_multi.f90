@@ -22,19 +22,24 @@ module greenconv_legacy_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, modes_file_box, box_points, set_box_accuracy, &
+                                          file_e_modes, modes_file_box, box_points, &
                                           file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
+    use greenconv_api_budget, only: set_box_accuracy
     use greenconv_legacy, only: gcfree
     implicit none
     private
 
     public :: gcmmod, gcmsmp, gcmplt, gcmfre, gcmnpt, gcmhis, gcmpsh, gcmw0, gcmrst, gcmdsc
     public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum, gcmmfl, gcmest, gcmacc
+    public :: gcest, gcacc
 
     !> What a 0 handle's message says.
     character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP, GCMFIL or GCMMFL'
+    !> What a 0 single-point handle's message says.
+    character(len=*), parameter :: point_null_handle = 'the handle is 0: make a convolver with GCSDOF, GCMODE, ' &
+                                                       //'GCSAMP or GCFRF'
 
 contains
 
@@ -184,8 +189,9 @@ contains
 
     !> The method's own estimate of the relative error of its contact forces: the model's terms
     !> (0 for modes given exactly, E of eq. (7) of an identified model, what a sampled kernel
-    !> leaves out), plus, after a whole run (GCMRUN), that run's time-step and band terms (its
-    !> companions at 2*dt and 4*dt, and with a modes file's modes up to twice the band).
+    !> leaves out), plus the time-step and band terms of the contact run going on (GCMBEG,
+    !> GCMSTP) or last run (GCMRUN): its companions at 2*dt and 4*dt, and with a modes file's
+    !> modes up to twice the band.
     subroutine gcmest(handle, est, ierr, errmsg)
         !> The handle.
         integer(int64), intent(in) :: handle
@@ -196,14 +202,22 @@ contains
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
 
-        type(error_type), allocatable :: error
-        type(convolver_box), pointer :: box
-
-        est = 0.0_dp
-        box => checked('gcmest', handle, error=error)
-        if (.not. allocated(error)) est = box%estimate + box%run_terms
-        call report(error, ierr, errmsg)
+        call estimate_of('gcmest', null_handle, handle, est, ierr, errmsg)
     end subroutine gcmest
+
+    !> GCMEST's single-point twin, for a handle of GCSDOF, GCMODE, GCSAMP or GCFRF (after GCCONT).
+    subroutine gcest(handle, est, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> The estimate [-] (0 on failure).
+        real(dp), intent(out) :: est
+        !> Status: 0, or 2 for a 0 handle.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call estimate_of('gcest', point_null_handle, handle, est, ierr, errmsg)
+    end subroutine gcest
 
     !> The relative accuracy the host asks (0: none): IERR = 4 at once when the method's own
     !> estimate exceeds it, and from GCMBEG and GCMRUN afterwards (their results whole).
@@ -217,13 +231,57 @@ contains
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
 
+        call accuracy_of('gcmacc', null_handle, handle, acc, ierr, errmsg)
+    end subroutine gcmacc
+
+    !> GCMACC's single-point twin: IERR = 4 from GCCONT when outside ACC (its results whole).
+    subroutine gcacc(handle, acc, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(dp), intent(in) :: acc
+        !> Status: 0, 2 for a 0 handle or a bad ACC, 4 when the method is outside ACC.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call accuracy_of('gcacc', point_null_handle, handle, acc, ierr, errmsg)
+    end subroutine gcacc
+
+    !> The estimate of a handle's box (GCMEST, GCEST).
+    subroutine estimate_of(caller, missing, handle, est, ierr, errmsg)
+        character(len=*), intent(in) :: caller, missing
+        integer(int64), intent(in) :: handle
+        real(dp), intent(out) :: est
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => checked('gcmacc', handle, error=error)
-        if (.not. allocated(error)) call set_box_accuracy('gcmacc', box, acc, error)
+        est = 0.0_dp
+        box => box_at(handle_address(handle))
+        call check_box(caller, missing, box, error=error)
+        if (.not. allocated(error)) est = box%estimate + box%run_terms
         call report(error, ierr, errmsg)
-    end subroutine gcmacc
+    end subroutine estimate_of
+
+    !> The accuracy asked of a handle's box (GCMACC, GCACC).
+    subroutine accuracy_of(caller, missing, handle, acc, ierr, errmsg)
+        character(len=*), intent(in) :: caller, missing
+        integer(int64), intent(in) :: handle
+        real(dp), intent(in) :: acc
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        box => box_at(handle_address(handle))
+        call check_box(caller, missing, box, error=error)
+        if (.not. allocated(error)) call set_box_accuracy(caller, box, acc, error)
+        call report(error, ierr, errmsg)
+    end subroutine accuracy_of
 
     !> Another method (or time step) on the file GCMFIL read into HFROM, without a second identification.
     subroutine gcmmth(hfrom, method, dt, nstep, tol, handle, ierr, errmsg)

@@ -41,16 +41,16 @@ module greenconv_api_multi_handle
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
-    use greenconv_contact_budget, only: doubling_sums, add_doubling_sums, step_doubling_error
     use greenconv_scene_limits, only: max_lsce_modes, max_contact_points
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
+    use greenconv_api_budget, only: run_budget, start_budget, feed_budget, stop_budget, outside_accuracy
     implicit none
     private
 
     public :: modes_multi_box, samples_multi_box, patch_modes, file_multi_box
     public :: method_multi_box, check_file_box, file_e_modes, modes_file_box, box_points
-    public :: set_box_accuracy, outside_accuracy, file_summary
+    public :: file_summary
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
 
 contains
@@ -134,7 +134,7 @@ contains
                                        box%description, error, box%estimate, residual)
         call keep_or_drop(caller, box, error)
         if (.not. associated(box)) return
-        call keep_recipe(box, method, dt, truncation_tol)
+        call keep_recipe(box, method, dt, truncation_tol, n_steps)
         box%source_modes = description
         if (present(residual)) then
             if (allocated(residual)) box%source_residual = residual
@@ -142,14 +142,16 @@ contains
     end subroutine modes_box
 
     !> Keep what the error budget's companions of a box's whole runs are built with.
-    subroutine keep_recipe(box, method, dt, truncation_tol)
+    subroutine keep_recipe(box, method, dt, truncation_tol, n_steps)
         type(convolver_box), intent(inout) :: box
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: dt, truncation_tol
+        integer, intent(in) :: n_steps
 
         box%method = lower_text(method)
         box%dt = dt
         box%truncation_tol = truncation_tol
+        box%n_steps = n_steps
     end subroutine keep_recipe
 
     !> A new box on a universal file of normal modes (greenconv_model_modes_file): every node of
@@ -271,7 +273,7 @@ contains
         call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
         if (.not. associated(box)) return
-        call keep_recipe(box, method, dt, truncation_tol)
+        call keep_recipe(box, method, dt, truncation_tol, n_steps)
         box%source_g = g
     end subroutine samples_multi_box
 
@@ -439,7 +441,7 @@ contains
 
         call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error, &
                                   box%estimate)
-        call keep_recipe(box, method, dt, truncation_tol)
+        call keep_recipe(box, method, dt, truncation_tol, n_steps)
     end subroutine build_on_file
 
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
@@ -539,46 +541,6 @@ contains
         end if
     end subroutine set_multi_options
 
-    !> Set the relative accuracy the host asks of a box's runs (0: none); `error` says, with
-    !> status 4, when the box's method is already outside it (`outside_accuracy`).
-    subroutine set_box_accuracy(caller, box, accuracy, error)
-        !> Name of the front-door routine, first word of a message.
-        character(len=*), intent(in) :: caller
-        !> The box.
-        type(convolver_box), intent(inout) :: box
-        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
-        real(dp), intent(in) :: accuracy
-        !> Set (`stat_input`) for an accuracy out of range, (`stat_accuracy`) when outside it.
-        type(error_type), allocatable, intent(out) :: error
-
-        if (.not. (accuracy >= 0.0_dp .and. ieee_is_finite(accuracy))) then
-            call fatal_error(error, caller//': accuracy = '//sci_text(accuracy)//': give a finite relative ' &
-                             //'accuracy > 0, or 0 to ask none')
-            return
-        end if
-        box%accuracy = accuracy
-        call outside_accuracy(caller, box, error)
-    end subroutine set_box_accuracy
-
-    !> Status 4 (`stat_accuracy`) when the host asked an accuracy and the box's method's own
-    !> error estimate exceeds it: the message names both and what to do.
-    subroutine outside_accuracy(caller, box, error)
-        !> Name of the front-door routine, first word of a message.
-        character(len=*), intent(in) :: caller
-        !> The box.
-        type(convolver_box), intent(in) :: box
-        !> Set (`stat_accuracy`) when outside the accuracy asked.
-        type(error_type), allocatable, intent(out) :: error
-
-        if (.not. (box%accuracy > 0.0_dp .and. box%estimate + box%run_terms > box%accuracy)) return
-        call fatal_error(error, caller//': outside the accuracy asked: the method''s own error estimate ' &
-                         //sci_text(box%estimate + box%run_terms)//' > accuracy '//sci_text(box%accuracy) &
-                         //' (model '//sci_text(box%estimate)//', time step and band of the last whole run ' &
-                         //sci_text(box%run_terms)//'; the results are ' &
-                         //'whole); use exact on identified modes, a model with a smaller E, or ask a larger ' &
-                         //'accuracy', stat_accuracy)
-    end subroutine outside_accuracy
-
     !> Start a contact run stepped one call at a time (`advance_multi_box`): laws and preloads
     !> checked point by point, the convolver reset.
     subroutine start_multi_box(caller, box, stiffness, exponent, preload, error)
@@ -602,7 +564,9 @@ contains
         call start_multi_contact(box%conv, laws_of(stiffness, exponent), preload, box%contact, error, box%settings)
         if (allocated(error)) error%message = caller//': '//error%message
         box%stepping = .not. allocated(error)
-        if (box%stepping) call outside_accuracy(caller, box, error)
+        if (.not. box%stepping) return
+        call start_budget(box, laws_of(stiffness, exponent), preload, box%n_steps)
+        call outside_accuracy(caller, box, error)
     end subroutine start_multi_box
 
     !> The next step of the run `start_multi_box` began, exactly as `run_multi_contact` takes
@@ -636,12 +600,14 @@ contains
         call multi_contact_block(box%conv, box%contact, reshape(road, [1, size(road)]), response, error)
         if (allocated(error)) then
             box%stepping = .false.
+            call stop_budget(box)
             error%message = caller//': '//error%message
             return
         end if
         displacement(:) = response%displacement(0, :)
         force(:) = response%force(0, :)
         compression(:) = response%compression(0, :)
+        call feed_budget(box, reshape(road, [1, size(road)]), response%force)
     end subroutine advance_multi_box
 
     !> A whole contact run (`run_multi_contact`, the convolver reset first) into arrays
@@ -692,95 +658,6 @@ contains
         call run_budget(box, laws_of(stiffness, exponent), preload, road, response%force)
         call outside_accuracy(caller, box, error)
     end subroutine run_multi_box
-
-    !> The time-step and band terms of a whole run's error budget (`box%run_terms`), as a
-    !> scene's runner finds them (doc/methods.md, "The error budget"): the same run at 2*dt and
-    !> 4*dt on every second and fourth road height (greenconv_contact_budget), and, for a modes
-    !> file's box with modes above its band, the same run at dt with the modes up to twice the
-    !> band (the difference, doubled unless that holds every mode). A run of fewer than 8 steps
-    !> has no time-step term; a run at 2*dt that cannot be made or fails sets it to 1.
-    subroutine run_budget(box, laws, preload, road, force)
-        !> The box, its convolver run.
-        type(convolver_box), intent(inout) :: box
-        !> The contact laws and static preloads F0_i [N] of the run.
-        type(contact_law), intent(in) :: laws(:)
-        real(dp), intent(in) :: preload(:)
-        !> Road heights road(n, i) [m] and the run's forces force(n, i) [N].
-        real(dp), intent(in) :: road(0:, :), force(0:, :)
-
-        type(multi_contact_response) :: coarse(2), wide
-        class(multipoint_convolver), allocatable :: conv
-        type(error_type), allocatable :: fault
-        type(doubling_sums) :: sums
-        type(point_modes) :: description
-        real(dp), allocatable :: residual(:, :)
-        character(len=:), allocatable :: text
-        real(dp) :: step_part, band_part, ratio
-        integer :: f, n_t, i
-
-        box%run_terms = 0.0_dp
-        n_t = size(force, 1)
-        if (.not. allocated(box%method) .or. n_t < 8) return
-        step_part = 0.0_dp
-        do f = 1, 2
-            call companion_convolver(box, 2**f, (n_t + 2**f - 1)/2**f, conv, fault)
-            if (.not. allocated(fault)) call run_multi_contact(conv, laws, road(0::2**f, :), preload, coarse(f), &
-                                                               fault, box%settings)
-            if (allocated(conv)) call conv%release()
-            if (allocated(fault)) then
-                if (f == 1) step_part = 1.0_dp
-                if (allocated(coarse(f)%force)) deallocate (coarse(f)%force)
-                allocate (coarse(f)%force(0:-1, size(force, 2)))
-                deallocate (fault)
-            end if
-        end do
-        if (step_part == 0.0_dp) then
-            call add_doubling_sums(sums, force, coarse(1)%force, coarse(2)%force, preload)
-            call step_doubling_error(sums, 2, step_part, ratio)
-        end if
-        band_part = 0.0_dp
-        if (allocated(box%source_file)) then
-            call split_band(box%source_file, 2.0_dp*box%band, [(i, i=1, size(box%source_file%x))], 0.0_dp, &
-                            description, residual, text, fault)
-            if (.not. allocated(fault)) call make_multipoint_convolver(box%method, description, box%dt, &
-                box%truncation_tol, n_t, conv, text, fault, residual=residual)
-            if (.not. allocated(fault)) call run_multi_contact(conv, laws, road, preload, wide, fault, box%settings)
-            if (allocated(conv)) call conv%release()
-            if (.not. allocated(fault)) then
-                band_part = norm2(force - wide%force)/max(norm2(wide%force - spread(preload, 1, n_t)), tiny(1.0_dp))
-                if (allocated(residual)) band_part = 2.0_dp*band_part
-            end if
-        end if
-        box%run_terms = step_part + band_part
-    end subroutine run_budget
-
-    !> The box's method on its source at dt*factor for n_steps (the error budget's companions):
-    !> its modes, its samples every factor-th, or its file.
-    subroutine companion_convolver(box, factor, n_steps, conv, error)
-        type(convolver_box), intent(in) :: box
-        integer, intent(in) :: factor, n_steps
-        class(multipoint_convolver), allocatable, intent(out) :: conv
-        type(error_type), allocatable, intent(out) :: error
-
-        character(len=:), allocatable :: text
-
-        if (allocated(box%source_modes)) then
-            call make_multipoint_convolver(box%method, box%source_modes, box%dt*factor, box%truncation_tol, n_steps, &
-                                           conv, text, error, residual=box%source_residual)
-        else if (allocated(box%source_g)) then
-            if (size(box%source_g, 1) < 2*factor) then
-                call fatal_error(error, 'the samples are too few for a run at '//int_text(factor)//'*dt')
-                return
-            end if
-            call table_convolver(box%method, box%source_g(0::factor, :, :), box%dt*factor, box%truncation_tol, &
-                                 n_steps, conv, text, error)
-        else if (allocated(box%green)) then
-            call green_file_convolver(box%green, box%method, box%dt*factor, box%truncation_tol, n_steps, conv, text, &
-                                      error)
-        else
-            call fatal_error(error, 'no source kept for a run at another time step')
-        end if
-    end subroutine companion_convolver
 
     !> The contact laws of the points.
     pure function laws_of(stiffness, exponent) result(laws)

@@ -54,7 +54,8 @@ contains
     !> that the method can run on it (greenconv_conv_methods's `check_method`: `direct` and
     !> `fft` need g, exact modes or g sampled at dt; the modal methods need modes; `auto`
     !> needs both). See `make_convolver` for what each method computes.
-    subroutine new_convolver(method, structure, dt, n_steps, conv, error, truncation_tol, accuracy, description)
+    subroutine new_convolver(method, structure, dt, n_steps, conv, error, truncation_tol, accuracy, description, &
+                             estimate, chosen)
         !> Method, one of greenconv_conv_methods's `method_list()`.
         character(len=*), intent(in) :: method
         !> The structure (from `structure_from_modes`, `structure_from_frf` or `structure_from_samples`).
@@ -73,8 +74,12 @@ contains
         real(dp), intent(in), optional :: accuracy
         !> What the model neglects, in words (and, for `auto`, what it chose and why).
         character(len=:), allocatable, intent(out), optional :: description
+        !> The method's own estimate of its relative error [-] (see `make_convolver`).
+        real(dp), intent(out), optional :: estimate
+        !> The method built: `method` itself, or the one `auto` chose.
+        character(len=:), allocatable, intent(out), optional :: chosen
 
-        character(len=:), allocatable :: text
+        character(len=:), allocatable :: text, built
         real(dp) :: tol, requested
 
         tol = default_truncation_tol
@@ -83,9 +88,10 @@ contains
         if (present(accuracy)) requested = accuracy
         call check_request(method, structure, dt, n_steps, tol, requested, error)
         if (allocated(error)) return
-        call make_convolver(method, structure, dt, tol, n_steps, conv, text, error, requested)
+        call make_convolver(method, structure, dt, tol, n_steps, conv, text, error, requested, estimate, built)
         if (allocated(error)) return
         if (present(description)) description = text
+        if (present(chosen)) chosen = built
     end subroutine new_convolver
 
     !> Refuse (`stat_input`) a sampled kernel larger than `max_kernel_values`: a `direct` or
@@ -210,7 +216,7 @@ contains
     !> `accuracy` says in words how far the model is from the exact g (and, for `auto`, what it
     !> chose and why).
     subroutine make_convolver(method, structure, dt, truncation_tol, n_steps, conv, accuracy, error, requested, &
-                              estimate)
+                              estimate, chosen_method)
         !> Method, one of greenconv_conv_methods's `method_list()`.
         character(len=*), intent(in) :: method
         !> The structure.
@@ -232,6 +238,8 @@ contains
         !> The method's own estimate of its relative error, to compare with an accuracy asked
         !> (see `build_method`); 0 when nothing beyond the truncation asked is neglected.
         real(dp), intent(out), optional :: estimate
+        !> The method built: `method` itself, or the one `auto` chose.
+        character(len=:), allocatable, intent(out), optional :: chosen_method
 
         character(len=:), allocatable :: chosen, reason, brief
         type(engine_constructors) :: engine
@@ -249,6 +257,7 @@ contains
         if (.not. engine%chooses) then
             call build_method(method, structure, dt, truncation_tol, n_steps, conv, accuracy, own)
             if (present(estimate)) estimate = own
+            if (present(chosen_method)) chosen_method = method
             return
         end if
         target = default_accuracy
@@ -256,6 +265,7 @@ contains
         call choose_method(structure, dt, truncation_tol, n_steps, target, chosen, reason)
         call build_method(chosen, structure, dt, truncation_tol, n_steps, conv, accuracy, own)
         if (present(estimate)) estimate = own
+        if (present(chosen_method)) chosen_method = chosen
         conv%name = 'auto'
         ! A kernel method on an identified structure: the identification is quoted all the same.
         if (structure%identified .and. .not. method_needs(chosen, needs_modes)) then

@@ -129,7 +129,7 @@ module greenconv_scene_stream
     !> (no file, no spectra), and the contact forces F_i compared where the grids meet. With the
     !> differences d_1 = ||F(dt) - F(2 dt)|| on the 2*dt grid and the ratio
     !> r = ||F(2 dt) - F(4 dt)||/||F(dt) - F(2 dt)|| on the 4*dt grid, the run's own error is
-    !> about d_1/sqrt((r - 1)*(2^p - 1)) relative to ||F(dt) - F0||, r held within [1.75, 2^p] for
+    !> about d_1/sqrt((r - 1)*(2^p - 1)) relative to ||F(dt) - F0||, r held within [1.75, 4] for
     !> a method of order p (1 for `backward`, else 2): Richardson's d_1/(rho - 1) with the ratio rho
     !> of the errors at 2*dt and dt taken between the ratio observed at the coarser pair and the
     !> method's asymptotic 2^p (geometrically), as the order of a pair approaches p from the coarse
