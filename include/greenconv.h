@@ -569,7 +569,8 @@ int gc_multi_new_modes_file(const char *path, int direction, double damping_rati
  * (gc_multi_run_contact, 8 steps or more), that run's time-step term (the same run at 2*dt and
  * 4*dt on every second and fourth road height, by Richardson) and, for
  * gc_multi_new_modes_file with modes above its band, the band's term (the same run with the
- * modes up to twice the band). A run stepped one call at a time (gc_multi_contact_start,
+ * modes up to twice the band); before a run, the share of the static flexibility the modes above
+ * the band carry, for a method that leaves it out ("modal", "recursive"). A run stepped one call at a time (gc_multi_contact_start,
  * gc_multi_contact_step) steps the same companions alongside, so that the estimate holds the
  * steps so far at every step (from the 8th on; they cost about 3/4 of the run). GC_ERROR_INPUT
  * for a NULL pointer.

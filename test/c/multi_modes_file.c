@@ -108,11 +108,17 @@ static void compare_with_scene(const char *name, const char *method, double f_ba
         p[i] = exponent;
         preload[i] = total_preload / NC;
     }
+    /* Before a run: 0 for modes given exactly, but for "modal" with modes above the band the
+     * static flexibility it leaves out (the description's 3.22 %). */
+    int leaves_static = f_band > 0.0 && strcmp(method, "modal") == 0;
     double estimate = -1.0;
     status = gc_multi_estimate(conv, &estimate, msg, sizeof msg);
-    check(status == GC_OK && estimate == 0.0, "modes given exactly: the estimate is 0 before a run", msg);
+    snprintf(what, sizeof what, "%s, f_band %g Hz: before a run the estimate is %s (%.4g)", method, f_band,
+             leaves_static ? "the static share above the band" : "0", estimate);
+    check(status == GC_OK && (leaves_static ? fabs(estimate - 0.0322) < 5e-5 : estimate == 0.0), what, msg);
     status = gc_multi_set_accuracy(conv, 1e-15, msg, sizeof msg);
-    check_status(status, GC_OK, msg, "", "an estimate of 0 meets any accuracy");
+    check_status(status, leaves_static ? GC_ACCURACY : GC_OK, msg, "", "1e-15 asked before a run");
+    status = gc_multi_set_accuracy(conv, 0.0, msg, sizeof msg);
     status = gc_multi_contact_start(conv, NC, k_c, p, preload, msg, sizeof msg);
     check_status(status, GC_OK, msg, "", "the contact run starts");
     double worst_u = 0.0, worst_f = 0.0, peak_u = 0.0, peak_f = 0.0;

@@ -13,7 +13,8 @@
 !>
 !> A whole run (`run_budget`) feeds its arrays to the companions once; a run stepped one call
 !> at a time (`start_budget`, `feed_budget`) feeds each step, so that its terms are known at
-!> every step. Companions cost 1/2 + 1/4 of the run for a modal method (1/4 + 1/16 for
+!> every step. Before a run has 8 steps the terms are what is known without one (`prior_terms`:
+!> the static share of a modes file's modes above the band for a method that leaves it out). Companions cost 1/2 + 1/4 of the run for a modal method (1/4 + 1/16 for
 !> `direct`), and the band's a run with the wider band. A companion at 2*dt that cannot be
 !> built or fails makes the time-step term 1 (unknown); a run of fewer than 8 steps has none.
 !>
@@ -64,7 +65,7 @@ contains
         !> Road heights road(n, i) [m] and the run's forces force(n, i) [N].
         real(dp), intent(in) :: road(0:, :), force(0:, :)
 
-        box%run_terms = 0.0_dp
+        box%run_terms = box%prior_terms
         if (size(force, 1) < min_budget_steps) return
         call start_budget(box, laws, preload, size(force, 1))
         call feed_budget(box, road, force)
@@ -166,7 +167,7 @@ contains
         integer :: f, i
 
         call stop_budget(box)
-        box%run_terms = 0.0_dp
+        box%run_terms = box%prior_terms
         box%budget = door_budget()
         box%budget%single = allocated(box%structure)
         box%budget%preload = preload
@@ -231,7 +232,8 @@ contains
             end if
             budget%step = budget%step + n_rows
         end associate
-        box%run_terms = budget_terms(box%budget)
+        box%run_terms = box%prior_terms
+        if (box%budget%step >= min_budget_steps) box%run_terms = budget_terms(box%budget)
     end subroutine feed_budget
 
     !> Release the companions (their FFTW plans too); the sums and `run_terms` stay.
@@ -402,7 +404,7 @@ contains
         if (.not. (box%accuracy > 0.0_dp .and. box%estimate + box%run_terms > box%accuracy)) return
         call fatal_error(error, caller//': outside the accuracy asked: the method''s own error estimate ' &
                          //sci_text(box%estimate + box%run_terms)//' > accuracy '//sci_text(box%accuracy) &
-                         //' (model '//sci_text(box%estimate)//', time step and band of the run ' &
+                         //' (model '//sci_text(box%estimate)//', time step and band ' &
                          //sci_text(box%run_terms)//'; the results are whole); use a smaller dt, exact on ' &
                          //'identified modes, a model with a smaller E, or ask a larger accuracy', stat_accuracy)
     end subroutine outside_accuracy

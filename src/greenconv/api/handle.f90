@@ -135,6 +135,9 @@ module greenconv_api_handle
         real(dp) :: run_terms = 0.0_dp
         !> The companions and sums behind `run_terms`.
         type(door_budget) :: budget
+        !> What is known of the run's terms before a run [-] (`run_terms` until a run has 8
+        !> steps): a modes file's static share above its band for a method that leaves it out.
+        real(dp) :: prior_terms = 0.0_dp
         !> Number of steps N_t the convolver was built for (caps the companions' kernels).
         integer :: n_steps = 0
         !> The single-point structure the convolver was built on; unallocated for a multi-point box.

@@ -37,6 +37,7 @@ module greenconv_api_multi_handle
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, check_kernel_values
     use greenconv_conv_green_file, only: green_file_convolver
+    use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure, summary_text
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
@@ -189,7 +190,8 @@ contains
         type(point_modes) :: description
         real(dp), allocatable :: residual(:, :)
         character(len=:), allocatable :: summary
-        real(dp) :: band
+        type(engine_constructors) :: engine
+        real(dp) :: band, share
         integer :: i
 
         box => null()
@@ -219,7 +221,7 @@ contains
                 //'the patch''s nodes')
         end if
         if (.not. allocated(error)) call split_band(modes, band, [(i, i=1, size(modes%x))], damping_ratio, description, &
-                                                    residual, summary, error)
+                                                    residual, summary, error, share)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
@@ -232,6 +234,12 @@ contains
         if (allocated(residual)) then
             box%source_file = modes
             box%band = band
+            ! Before a run: the static flexibility the band leaves out, for a method that does
+            ! not hold it in W0 (an upper bound of the static share of the forces' error); a
+            ! run's band companion then measures the band's whole term.
+            engine = engine_of(lower_text(method))
+            if (.not. (engine%samples_g() .or. engine%instant_part)) box%prior_terms = share
+            box%run_terms = box%prior_terms
         end if
         box%description = box%description//'; modes of '//path//', '//summary
     end subroutine modes_file_box

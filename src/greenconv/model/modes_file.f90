@@ -141,7 +141,8 @@ contains
     !> 125.4 Hz up to the band, 1000.0 Hz (23 above it as a static compliance, 3.22 % of the static
     !> flexibility at the points, largest R_ii 1.23E-09 m/N; damping ratio from the file for
     !> 16, 0.030 for 16 modes)`.
-    subroutine split_band(modes, f_band, selected, damping_ratio, description, residual, summary, error)
+    subroutine split_band(modes, f_band, selected, damping_ratio, description, residual, summary, error, &
+                          static_share)
         !> The file's modes, as `band_modes` takes them.
         type(file_modes), intent(in) :: modes
         !> The band's top [Hz], as `band_modes` takes it.
@@ -159,6 +160,8 @@ contains
         character(len=:), allocatable, intent(out) :: summary
         !> Set (status 2) when no mode lies in the band.
         type(error_type), allocatable, intent(out) :: error
+        !> Share [-] of the static flexibility at the points the modes above f_band carry.
+        real(dp), intent(out), optional :: static_share
 
         real(dp), allocatable :: static(:, :)
         real(dp) :: share, largest
@@ -168,6 +171,7 @@ contains
 
         call band_modes(modes, f_band, selected, description, static, share, error)
         if (allocated(error)) return
+        if (present(static_share)) static_share = share
         n_above = size(modes%frequency) - description%modes%n_modes()
         largest = maxval([(static(i, i), i=1, size(selected))])
         if (n_above > 0) call move_alloc(static, residual)
