@@ -31,8 +31,7 @@ module greenconv
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact, contact_state, &
                                         start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_scene_facade, only: scene_type, read_scene, run_scene, check_scene
     use greenconv_api_library, only: new_convolver, free_convolver, contact_step, run_scene_file
     implicit none
     private

@@ -2,6 +2,7 @@
 # Check the layering of src/ (doc/layout.md): a module in src/greenconv/<layer>/ may use
 # modules of its own layer and of the layers below it, never one above. The layers, bottom
 # to top, are listed in LAYERS; src/greenconv.f90 (the facade) sits at the top with api.
+# Above the scene layer its modules are reached through greenconv_scene_facade only.
 # Every module under src/greenconv/<layer>/<name>.f90 must be named greenconv_<layer>_<name>
 # (the path says the layer and the name), and every layer folder must be in LAYERS.
 #
@@ -94,6 +95,9 @@ for file in "${files[@]}"; do
         [ -z "$other" ] && continue   # a module not defined under SRC (FFTW's, the compiler's)
         if [ "$(rank_of "$other")" -gt "$own" ]; then
             echo "$file:$line: layer '$layer' uses $used of the higher layer '$other'"
+            status=1
+        elif [ "$other" = scene ] && [ "$layer" != scene ] && [ "$used" != greenconv_scene_facade ]; then
+            echo "$file:$line: layer '$layer' uses $used: outside the scene layer use greenconv_scene_facade"
             status=1
         fi
     done < <(modules_used "$file")

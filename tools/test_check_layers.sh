@@ -88,6 +88,16 @@ sed -i '0,/^[[:space:]]*implicit none/s//    use greenconv_contact_single, only:
 expect_violation 'an existing model file (sdof.f90) uses the contact layer' greenconv/model/sdof.f90 \
     "uses greenconv_contact_single of the higher layer 'contact'"
 
+# Above the scene layer only its facade: api reaching a scene module is caught, the facade not.
+fresh_copy
+plant greenconv/api/planted.f90 "module greenconv_api_planted
+    use greenconv_scene_facade, only: scene_type
+    use greenconv_scene_input, only: read_scene
+    implicit none
+end module greenconv_api_planted"
+expect_violation 'api uses greenconv_scene_input, not the facade' greenconv/api/planted.f90:3 \
+    "outside the scene layer use greenconv_scene_facade"
+
 # A file holding one module: a name that does not match its path, a name of another layer
 # than its folder, a folder that is not a layer.
 for planted in 'model/planted.f90 greenconv_model_other expected module greenconv_model_planted' \

@@ -21,22 +21,20 @@ module greenconv_api_all
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, write_frf
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
-    use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_conv_multipoint, only: multipoint_convolver, sample_green_matrix
     use greenconv_model_point_modes, only: point_modes
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, &
                                  multi_contact_state, start_multi_contact, multi_contact_block
-    use greenconv_scene_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, &
                                     contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, sample_road, check_road_coverage, &
                                          sample_road_steps, file_road, road_travel
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
                                          structure_from_samples
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: run_scene, check_scene, make_convolver, output_path
+    use greenconv_scene_facade, only: scene_type, read_scene, run_scene, check_scene, make_convolver, output_path, &
+                                      build_structure, write_multi_contact
     use greenconv_api_library, only: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file, &
                            default_truncation_tol, default_accuracy
     implicit none

@@ -34,7 +34,7 @@ module greenconv_api_handle
                                         copy_histories, start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_state
     use greenconv_contact_budget, only: doubling_sums
-    use greenconv_scene_limits, only: max_lsce_modes
+    use greenconv_scene_facade, only: max_lsce_modes
     use greenconv_api_library, only: new_convolver, check_contact_law, contact_step, default_truncation_tol
     implicit none
     private

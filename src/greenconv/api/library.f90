@@ -16,8 +16,7 @@ module greenconv_api_library
     use greenconv_contact_single, only: contact_law
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_conv_builder, only: new_convolver
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_facade, only: scene_type, read_scene, run_scene
     implicit none
     private
 

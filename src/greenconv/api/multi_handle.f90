@@ -42,7 +42,7 @@ module greenconv_api_multi_handle
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_multi, only: newton_options, multi_contact_response, &
                                        start_multi_contact, multi_contact_block, run_multi_contact
-    use greenconv_scene_limits, only: max_lsce_modes, max_contact_points
+    use greenconv_scene_facade, only: max_lsce_modes, max_contact_points
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
     use greenconv_api_budget, only: run_budget, start_budget, feed_budget, stop_budget, outside_accuracy
