@@ -249,14 +249,18 @@ contains
         type(door_budget), intent(in) :: budget
         real(dp) :: terms
 
+        type(doubling_sums) :: sums
         real(dp) :: step_part, ratio
 
         terms = 0.0_dp
         if (budget%step < min_budget_steps) return
+        sums = budget%sums
+        ! a run at 4*dt that failed gives no ratio
+        if (.not. budget%run(2)%running) sums%grid_12 = 0.0_dp
         if (budget%step_missing) then
             step_part = 1.0_dp
         else
-            call step_doubling_error(budget%sums, budget%order, step_part, ratio)
+            call step_doubling_error(sums, budget%order, step_part, ratio)
         end if
         terms = step_part
         if (budget%band_reference > 0.0_dp) terms = terms + merge(2.0_dp, 1.0_dp, budget%band_doubled) &

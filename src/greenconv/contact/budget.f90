@@ -9,9 +9,11 @@
 !>
 !> the run's relative error ||F(dt) - F_true||/||F(dt) - F0|| is about
 !>
-!>     sqrt(S_1/S_0)/sqrt((r - 1)*(2^p - 1)),   r = sqrt(S_24/S_12) held within [1.75, 4],
+!>     sqrt(S_1/S_0)/sqrt((r - 1)*(2^p - 1)),   r = sqrt(S_24/S_12) held within [1.75, 4]
 !>
-!> for a method of order p in dt: Richardson's d/(rho - 1), the ratio rho of the errors at 2*dt
+!> (1.75 when the run at 4*dt is missing, or more than 25 % off the run at 2*dt: near the
+!> method's stable step a coarse pair's ratio says nothing), for a method of order p in dt: Richardson's
+!> d/(rho - 1), the ratio rho of the errors at 2*dt
 !> and dt taken between the ratio r observed on the coarser pair and the asymptotic 2^p (their
 !> geometric mean), as a pair's ratio approaches 2^p from the coarse side (doc/methods.md, "The
 !> error budget"). The scene driver (greenconv_scene_stream) adds the sums block by block as its
@@ -22,6 +24,10 @@ module greenconv_contact_budget
     private
 
     public :: doubling_sums, add_doubling_sums, step_doubling_error
+
+    !> The largest relative difference ||F(2 dt) - F(4 dt)||/||F - F0|| [-] whose ratio is
+    !> taken: beyond it the coarse pair is far from the asymptotic range.
+    real(dp), parameter :: coarse_limit = 0.25_dp
 
     !> The sums of step doubling [N^2], over the run and the points (module comment).
     type :: doubling_sums
@@ -77,9 +83,14 @@ contains
 
         estimate = 0.0_dp
         asymptotic = 2.0_dp**order
-        ratio = asymptotic
+        ! without the run at 4*dt (it failed: 4*dt is beyond the method's stable step, so dt is
+        ! not far into the asymptotic range) the slowest convergence held
+        ratio = 1.75_dp
         if (sums%fine <= 0.0_dp) return
-        if (sums%grid_12 > 0.0_dp) ratio = sqrt(sums%grid_24/sums%grid_12)
+        ! a coarse pair more than `coarse_limit` apart is far from the asymptotic range (near the
+        ! method's stable step its ratio can be anything): its ratio is not taken either
+        if (sums%grid_12 > 0.0_dp .and. 2.0_dp*sums%grid_24 <= coarse_limit**2*sums%fine) &
+            ratio = sqrt(sums%grid_24/sums%grid_12)
         ! held below 4, not 2^p: a first-order method's forces may converge at second order
         ratio = min(max(ratio, 1.75_dp), 4.0_dp)
         estimate = sqrt(sums%fine_2/sums%fine)/sqrt((ratio - 1.0_dp)*(asymptotic - 1.0_dp))

@@ -32,7 +32,7 @@ module greenconv_scene_runner
     use greenconv_scene_output, only: multi_contact_header, check_inputs_kept, totals_header
     use greenconv_scene_spectra_output, only: spectra_line, spectra_path
     use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
-                                      step_doubling, start_step_doubling, time_step_estimate, band_estimate
+                                      halve_step, step_doubling, start_step_doubling, time_step_estimate, band_estimate
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_limits, only: work_rate, projected_run, smaller_step
     use greenconv_scene_linear_reference, only: write_linear_reference, write_patch_reference, contact_loss_text
@@ -349,6 +349,7 @@ contains
             call run%conv%model_size(n, label)
             call run%conv%release()
             if (allocated(error)) return
+            call halve_step(doubling, run, scene, structure, method, block)
             call close_budget(doubling, scene, method, run%points, estimate, accuracy, text)
             if (run%several) accuracy = accuracy//'; peak total force '//sci_text(run%peak)//' N'
             if (len(text) > 0) then

@@ -23,7 +23,7 @@
 module greenconv_scene_stream
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type
+    use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: sci_text, trimmed_real_text, int_text
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
@@ -46,7 +46,7 @@ module greenconv_scene_stream
     private
 
     public :: contact_run, stream_sinks, force_summary, stream_run, make_run_convolver, start_run
-    public :: step_doubling, start_step_doubling, time_step_estimate, band_estimate
+    public :: step_doubling, start_step_doubling, time_step_estimate, band_estimate, halve_step
 
     !> One method's contact run of a scene, single- or multi-point.
     type :: contact_run
@@ -165,6 +165,11 @@ module greenconv_scene_stream
         real(dp) :: band_difference = 0.0_dp, band_reference = 0.0_dp
         !> Why the band is not estimated, or ''.
         character(len=:), allocatable :: band_missing
+        !> The time-step term [-] from the same run at dt/2 (`halve_step`), when the run at 2*dt
+        !> failed; negative: none.
+        real(dp) :: halved = -1.0_dp
+        !> How the run at dt/2 went, in words.
+        character(len=:), allocatable :: halved_text
     end type step_doubling
 
 contains
@@ -214,6 +219,76 @@ contains
             if (allocated(error)) deallocate (error)
         end do
     end subroutine start_step_doubling
+
+    !> When the run at 2*dt failed (dt within a factor 2 of the method's stable step), the
+    !> time-step term from the other side: the same run at dt/2 over the whole time, with its own
+    !> companion at dt (the run itself again), so that d = ||F(dt) - F(dt/2)||/||F(dt/2) - F0||
+    !> and F(dt/2)'s own term e_2 (from its pair dt/2, dt, the ratio held at 1.75 without the run
+    !> at 2*dt) give F(dt)'s as d + e_2: the two errors add along F(dt) - F(dt/2) + F(dt/2) -
+    !> F_true, and with the asymptotic ratio 2^p this is Richardson's 2^p*d/(2^p - 1). It costs
+    !> twice the run and its companion at dt once more (for `direct` on g's samples, four times:
+    !> the kernel is twice as long); a g sampled at dt only (from a receptance, or given) has no
+    !> samples at dt/2 and keeps the term at 1.
+    subroutine halve_step(doubling, run, scene, structure, method, block)
+        !> The run's companions, the run done; `halved` set.
+        type(step_doubling), intent(inout) :: doubling
+        !> The run (its points).
+        type(contact_run), intent(in) :: run
+        !> The run's scene.
+        type(scene_type), intent(in) :: scene
+        !> The structure of a single-point scene.
+        type(structure_model), intent(in) :: structure
+        !> The method's name.
+        character(len=*), intent(in) :: method
+        !> Rows of a block of the stream.
+        integer, intent(in) :: block
+
+        type(scene_type) :: half
+        type(contact_run) :: fine
+        type(step_doubling) :: fine_doubling
+        type(stream_sinks) :: none
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: text
+        real(dp) :: seconds, e_half, begin, finish
+
+        if (.not. doubling%active .or. doubling%running(1)) return
+        if (.not. run%several .and. allocated(structure%sampled_g)) then
+            doubling%halved_text = 'g is sampled at dt only: no run at dt/2'
+            return
+        end if
+        call cpu_time(begin)
+        half = scene
+        half%dt = scene%dt/2
+        half%n_steps = 2*scene%n_steps
+        half%progress = .false.
+        half%spectra = .false.
+        fine%points = run%points
+        call make_run_convolver(fine, half, structure, method, text, fault)
+        if (.not. allocated(fault)) call start_run(fine, half, fault)
+        if (.not. allocated(fault)) then
+            call start_step_doubling(fine_doubling, fine, half, structure, method)
+            ! the band's companion is the run's own business
+            if (allocated(fine_doubling%band_run%conv)) call fine_doubling%band_run%conv%release()
+            fine_doubling%band_running = .false.
+            call stream_run(fine, half, method, block, none, '', seconds, fault, fine_doubling)
+        end if
+        if (allocated(fine%conv)) call fine%conv%release()
+        if (.not. allocated(fault) .and. .not. fine_doubling%running(1)) then
+            call fatal_error(fault, fine_doubling%missing)
+        end if
+        call cpu_time(finish)
+        doubling%seconds = doubling%seconds + (finish - begin)
+        if (allocated(fault)) then
+            doubling%halved_text = 'the same run at dt/2 failed too ('//fault%message//')'
+            return
+        end if
+        call time_step_estimate(fine_doubling, e_half, text)
+        doubling%halved = 0.0_dp
+        if (fine_doubling%sums%fine > 0.0_dp) doubling%halved = sqrt(fine_doubling%sums%fine_2/fine_doubling%sums%fine)
+        doubling%halved = doubling%halved + e_half
+        doubling%halved_text = 'its difference '//sci_text(doubling%halved - e_half)//' plus its own term ' &
+                               //sci_text(e_half)//' ('//text//', in '//sci_text(finish - begin)//' s)'
+    end subroutine halve_step
 
     !> Start the band's companion of a multi-point run whose model steps the modes up to a band
     !> (`run%points%band` > 0) and leaves some out: the same method at the same dt with the modes
@@ -401,6 +476,12 @@ contains
         if (.not. doubling%running(1)) then
             estimate = 1.0_dp
             text = 'the same run at 2*dt failed ('//doubling%missing//'): dt is near the limit of the method'
+            if (doubling%halved >= 0.0_dp) then
+                estimate = doubling%halved
+                text = text//'; dt from the same run at dt/2, '//doubling%halved_text
+            else if (allocated(doubling%halved_text)) then
+                text = text//'; '//doubling%halved_text
+            end if
             return
         end if
         if (doubling%sums%fine <= 0.0_dp) then
