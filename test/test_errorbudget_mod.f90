@@ -238,42 +238,7 @@ contains
     subroutine test_green_file(error)
         type(test_error), allocatable, intent(out) :: error
 
-        real(dp), parameter :: dt = 2.0e-5_dp, preload = 1200.0_dp
-        integer, parameter :: n_c = 12, n_steps = 1500
-        character(len=*), parameter :: label = 'green_20us'
-        character(len=*), parameter :: methods(4) = ['exact ', 'modal ', 'direct', 'fft   ']
-        type(point_modes) :: description
-        type(road_file) :: road
-        type(file_road) :: roads(n_c)
-        type(error_type), allocatable :: fail
-        type(scene_type) :: scene
-        character(len=:), allocatable :: directory
-        real(dp), allocatable :: u(:, :), reference(:, :)
-        real(dp) :: x(n_c), y(n_c)
-        integer :: i
-
-        directory = scratch//'/'//label
-        call make_directory(directory, fail)
-        if (.not. allocated(fail)) call twelve_point_plate(directory//'/plate_12.uff', x, y, description, fail)
-        if (.not. allocated(fail)) call write_wave_road(directory//'/wave.dat')
-        if (.not. allocated(fail)) call read_road_file(directory//'/wave.dat', road, fail)
-        call check(error, .not. allocated(fail), label//': the plate''s file and road: '//message_of(fail))
-        if (allocated(error)) return
-        do i = 1, n_c
-            roads(i)%profile = road
-            roads(i)%x_start = 0.3_dp + x(i) - sum(x)/n_c
-            roads(i)%speed = 5.0_dp
-        end do
-        call multi_contact_reference(description, [(contact_law(1.0e8_dp, 1.5_dp), i=1, n_c)], roads, &
-                                     [(preload/n_c, i=1, n_c)], dt, n_steps, u, reference, 1.0e-10_dp)
-        call read_scene_text(directory, label//'.nml', "&scene name = '"//label//"', output_dir = '"//directory &
-            //"', dt = 2.0e-5, n_steps = 1500 / &structure model = 'green_file', green_file = '"//directory &
-            //"/plate_12.uff' / &road profile = 'file', road_file = '"//directory//"/wave.dat', x_start = 0.3, " &
-            //"speed = 5.0 / &contact stiffness = 1.0e8, exponent = 1.5, preload = 1200.0 / &convolution methods " &
-            //"= 'exact', 'modal', 'direct', 'fft', accuracy = 1.0e-2 /", scene, fail)
-        call check(error, .not. allocated(fail), label//': the scene reads: '//message_of(fail))
-        if (allocated(error)) return
-        call multi_point_case(scene, label, methods, reference, preload/n_c, 1.0e-2_dp, error)
+        call green_case('green_20us', 2.0e-5_dp, 1500, error)
     end subroutine test_green_file
 
     !> The same plate file and scene at 80 us (375 steps): the explicit methods' and direct's
@@ -283,9 +248,19 @@ contains
     subroutine test_green_coarse(error)
         type(test_error), allocatable, intent(out) :: error
 
-        real(dp), parameter :: dt = 8.0e-5_dp, preload = 1200.0_dp
-        integer, parameter :: n_c = 12, n_steps = 375
-        character(len=*), parameter :: label = 'green_80us'
+        call green_case('green_80us', 8.0e-5_dp, 375, error)
+    end subroutine test_green_coarse
+
+    !> The plate's 12-point file (`twelve_point_plate`) as a green_file scene at dt for n_steps
+    !> over the wave road, every method against the ODE on the plate's true modes.
+    subroutine green_case(label, dt, n_steps, error)
+        character(len=*), intent(in) :: label
+        real(dp), intent(in) :: dt
+        integer, intent(in) :: n_steps
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), parameter :: preload = 1200.0_dp
+        integer, parameter :: n_c = 12
         character(len=*), parameter :: methods(4) = ['exact ', 'modal ', 'direct', 'fft   ']
         type(point_modes) :: description
         type(road_file) :: road
@@ -293,6 +268,7 @@ contains
         type(error_type), allocatable :: fail
         type(scene_type) :: scene
         character(len=:), allocatable :: directory
+        character(len=16) :: dt_text, steps_text
         real(dp), allocatable :: u(:, :), reference(:, :)
         real(dp) :: x(n_c), y(n_c)
         integer :: i
@@ -311,15 +287,19 @@ contains
         end do
         call multi_contact_reference(description, [(contact_law(1.0e8_dp, 1.5_dp), i=1, n_c)], roads, &
                                      [(preload/n_c, i=1, n_c)], dt, n_steps, u, reference, 1.0e-10_dp)
+        write (dt_text, '(es9.2)') dt
+        write (steps_text, '(i0)') n_steps
         call read_scene_text(directory, label//'.nml', "&scene name = '"//label//"', output_dir = '"//directory &
-            //"', dt = 8.0e-5, n_steps = 375 / &structure model = 'green_file', green_file = '"//directory &
+            //"', dt = "//trim(dt_text)//", n_steps = "//trim(steps_text)//" / &structure model = 'green_file', " &
+            //"green_file = '"//directory &
             //"/plate_12.uff' / &road profile = 'file', road_file = '"//directory//"/wave.dat', x_start = 0.3, " &
             //"speed = 5.0 / &contact stiffness = 1.0e8, exponent = 1.5, preload = 1200.0 / &convolution methods " &
             //"= 'exact', 'modal', 'direct', 'fft', accuracy = 1.0e-2 /", scene, fail)
         call check(error, .not. allocated(fail), label//': the scene reads: '//message_of(fail))
         if (allocated(error)) return
         call multi_point_case(scene, label, methods, reference, preload/n_c, 1.0e-2_dp, error)
-    end subroutine test_green_coarse
+    end subroutine green_case
+
 
     !> Run `file` at dt for n_steps with `methods` and `accuracy`; each method's estimate within
     !> `factor` of its true error, and status 4 exactly when one exceeds the accuracy.
