@@ -121,11 +121,12 @@ contains
 
         n_g = size(self%weight)
         known = capped_step(self%step, n_g)
-        ! The terms every sum has (m + block_size - 1 <= N_g), a multiple of 4, by block_sums.
+        ! The terms every sum has (m + block_size - 1 <= N_g), an even number, by block_sums.
         n = max(0, min(known, n_g - block_size + 1))
-        n = n - mod(n, 4)
+        n = n - mod(n, 2)
         if (n > 0) then
-            call block_sums(n, self%weight(1:n + 3), self%past(self%head:self%head + n - 1), self%older)
+            call block_sums(n, self%weight(1:n + block_size - 1), self%past(self%head:self%head + n - 1), &
+                            self%older)
         else
             self%older = 0.0_dp
         end if

@@ -10,7 +10,7 @@
 !> partial sums (about 5x the rate of `dot_product` or reference BLAS ddot at N_g = 19000; the
 !> benchmark prints both). `block_sums` gives `block_size` dot products of one force history
 !> against the kernel shifted by 0..block_size-1 taps (a Toeplitz matrix-vector product): each
-!> force is loaded once for all of them, so that four histories cost about the memory traffic of
+!> force is loaded once for all of them, so that eight histories cost about the memory traffic of
 !> one, which is what bounds `lane_dot` once the kernel outgrows the first-level cache.
 module greenconv_conv_kernel
     use greenconv_core_kinds, only: dp
@@ -21,7 +21,7 @@ module greenconv_conv_kernel
     public :: truncation_length, sample_kernel, lane_dot, block_sums, period_end_level, beyond_nyquist
 
     !> Number of consecutive histories `block_sums` sums together.
-    integer, parameter, public :: block_size = 4
+    integer, parameter, public :: block_size = 8
 
     !> Fraction of a period at its end that `period_end_level` looks at (a tenth, as the
     !> identification's wrap-around check).
@@ -160,55 +160,51 @@ contains
         end do
     end function lane_dot
 
-    !> The block_size = 4 sums s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..3, of one vector p
-    !> against w shifted by i taps, in 4 x 4 interleaved partial sums. Each differs from a
+    !> The block_size = 8 sums s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..7, of one vector p
+    !> against w shifted by i taps, in 2 x 8 interleaved partial sums. Each differs from a
     !> left-to-right sum by round-off only.
     pure subroutine block_sums(n, w, p, s)
-        !> Number of terms of each sum, a multiple of 4.
+        !> Number of terms of each sum, even.
         integer, intent(in) :: n
-        !> The shifted factor, at least n + 3 entries (contiguous).
-        real(dp), intent(in) :: w(n + 3)
+        !> The shifted factor, at least n + 7 entries (contiguous).
+        real(dp), intent(in) :: w(n + block_size - 1)
         !> The common factor, at least n entries (contiguous).
         real(dp), intent(in) :: p(n)
-        !> The four sums.
+        !> The eight sums.
         real(dp), intent(out) :: s(0:block_size - 1)
 
-        ! w passed as four overlapping views, so that the compiler keeps no window of w across
+        ! w passed as two overlapping views, so that the compiler keeps no window of w across
         ! iterations (which, two doubles to a register, costs shuffles and spills).
-        call toeplitz_streams(n, w(1:n), w(2:n + 1), w(3:n + 2), w(4:n + 3), p, s)
+        call toeplitz_streams(n, w(1:n + block_size - 2), w(2:n + block_size - 1), p, s)
     end subroutine block_sums
 
-    !> s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..3, from the views w1 = w(1:n), w2 = w(2:n+1),
-    !> w3 = w(3:n+2), w4 = w(4:n+3): four streams over m (m = 1, 5, ...; 2, 6, ...; ...), each
-    !> a vector of the four sums times one p(m), so that every p(m) is loaded once and the 16
-    !> partial sums are independent.
-    pure subroutine toeplitz_streams(n, w1, w2, w3, w4, p, s)
-        !> Number of terms, a multiple of 4.
+    !> s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..7, from the views w1 = w(1:n+6) and
+    !> w2 = w(2:n+7): two streams over m (m = 1, 3, ... and 2, 4, ...), each a vector of the
+    !> eight sums times one p(m), so that every p(m) is loaded once and the 16 partial sums are
+    !> independent.
+    pure subroutine toeplitz_streams(n, w1, w2, p, s)
+        !> Number of terms, even.
         integer, intent(in) :: n
-        !> w shifted by 0, 1, 2 and 3 taps.
-        real(dp), intent(in) :: w1(n), w2(n), w3(n), w4(n)
+        !> w shifted by 0 and 1 taps.
+        real(dp), intent(in) :: w1(n + block_size - 2), w2(n + block_size - 2)
         !> The common factor.
         real(dp), intent(in) :: p(n)
-        !> The four sums.
+        !> The eight sums.
         real(dp), intent(out) :: s(0:block_size - 1)
 
-        real(dp) :: a1(block_size), a2(block_size), a3(block_size), a4(block_size)
+        real(dp) :: a1(block_size), a2(block_size)
         integer :: m
 
         a1 = 0.0_dp
         a2 = 0.0_dp
-        a3 = 0.0_dp
-        a4 = 0.0_dp
         ! Each statement is one short vector operation; vectorising the loop over m as well
         ! would interleave the streams through shuffles.
         !GCC$ novector
-        do m = 1, n - 3, 4
-            a1 = a1 + w1(m:m + 3)*p(m)
-            a2 = a2 + w2(m:m + 3)*p(m + 1)
-            a3 = a3 + w3(m:m + 3)*p(m + 2)
-            a4 = a4 + w4(m:m + 3)*p(m + 3)
+        do m = 1, n - 1, 2
+            a1 = a1 + w1(m:m + block_size - 1)*p(m)
+            a2 = a2 + w2(m:m + block_size - 1)*p(m + 1)
         end do
-        s = (a1 + a2) + (a3 + a4)
+        s = a1 + a2
     end subroutine toeplitz_streams
 
 end module greenconv_conv_kernel
