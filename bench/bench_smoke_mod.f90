@@ -9,6 +9,8 @@ module bench_smoke_mod
     use greenconv_model_tyre, only: tyre_belt, tyre_mode_count, tyre_band
     use bench_contact_stability_mod, only: stability_cell, stability_map
     use bench_multipoint_mod, only: multipoint_cost_table
+    use greenconv_conv_direct, only: direct_convolver, new_direct_convolver
+    use bench_direct_mod, only: plain_loop, new_plain_loop
     implicit none
     private
 
@@ -40,6 +42,7 @@ contains
 
         call run_one('stability map: edges near omega_c*dt = 2 and 2*sqrt(3)', check_stability_map)
         call run_one('cost table: header, rows, model sizes', check_cost_table)
+        call run_one('plain loop: the sum of direct, to round-off', check_plain_loop)
 
     contains
 
@@ -60,6 +63,34 @@ contains
         end subroutine run_one
 
     end subroutine run_smoke_checks
+
+    !> The plain loop of bench_direct_mod against `direct` on a 37-tap kernel over 300 steps (the
+    !> ring wrapped, every step of direct's blocks, the loop's force array grown from room for
+    !> 100): the same sum in two orders, so within 2*N_g*eps of sum |w_k|*max|q|.
+    subroutine check_plain_loop(failure)
+        type(error_type), allocatable, intent(out) :: failure
+
+        integer, parameter :: n_g = 37, n_steps = 300
+        type(direct_convolver) :: direct
+        type(plain_loop) :: loop
+        real(dp) :: kernel(0:n_g), q, worst, bound
+        integer :: n, j
+
+        kernel = [(sin(1.3_dp*j)*exp(-0.05_dp*j), j=0, n_g)]
+        direct = new_direct_convolver(kernel, 1.0e-4_dp)
+        loop = new_plain_loop(direct, 100)
+        worst = 0.0_dp
+        do n = 0, n_steps - 1
+            worst = max(worst, abs(direct%history() - loop%history()))
+            q = cos(0.7_dp*n) + 0.5_dp
+            call direct%push(q)
+            call loop%push(q)
+        end do
+        bound = 2.0_dp*n_g*epsilon(1.0_dp)*sum(abs(direct%weight))*1.5_dp
+        if (.not. worst <= bound .or. loop%step /= n_steps) then
+            call fatal_error(failure, 'plain loop and direct differ beyond round-off')
+        end if
+    end subroutine check_plain_loop
 
     !> A small map with A0 = 1 um (a closed contact, where the linear stability edges hold):
     !> k_c = 1e9 N/m and dt = 12.5 us * 2^k, k = 0..4, i.e. omega_c*dt = 0.40, 0.79, 1.58, 3.16,

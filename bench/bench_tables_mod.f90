@@ -22,7 +22,7 @@ module bench_tables_mod
     implicit none
     private
 
-    public :: print_tables, load_scene
+    public :: print_tables, load_scene, verdict
 
     !> Methods timed in the tables, in column order.
     character(len=9), parameter :: methods(5) = [character(len=9) :: 'direct', 'fft', 'recursive', 'paper', 'exact']
@@ -208,8 +208,11 @@ contains
 
     !> One line: what is compared, the measured ratio, the target and whether it is met.
     subroutine verdict(unit, what, ratio, target)
+        !> Unit the line is printed on.
         integer, intent(in) :: unit
+        !> What is compared.
         character(len=*), intent(in) :: what
+        !> The measured ratio and its target.
         real(dp), intent(in) :: ratio, target
 
         character(len=*), parameter :: yes = 'met', no = 'NOT met'

@@ -8,6 +8,7 @@
 !>     greenconv-bench --output [ANCHOR]
 !>     greenconv-bench --ident
 !>     greenconv-bench --scale
+!>     greenconv-bench --direct [SDOF_SCENE]
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
 !> directory: `make bench`). `--smoke` runs only the smoke checks of the benchmark's code
@@ -17,7 +18,8 @@
 !> only the output benchmark (bench_output_mod), with the C anchor ANCHOR (default
 !> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist);
 !> `--ident` only the identification's cost (bench_ident_mod); `--scale` only the multi-point
-!> cost against N_c up to 4,000 points (bench_scale_mod, out/bench/scale_cost.dat).
+!> cost against N_c up to 4,000 points (bench_scale_mod, out/bench/scale_cost.dat); `--direct` only
+!> `direct` against a plain compiled loop of the same sum (bench_direct_mod).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -32,6 +34,7 @@ program greenconv_bench
     use bench_accuracy_mod, only: accuracy_charts
     use bench_ident_mod, only: identification_table
     use bench_scale_mod, only: scale_cost_table
+    use bench_direct_mod, only: direct_loop_table
     implicit none
 
     type(error_type), allocatable :: error
@@ -54,6 +57,14 @@ program greenconv_bench
     case ('--ident')
         ! The identification's cost alone.
         call identification_table(output_unit, error)
+        if (allocated(error)) then
+            write (error_unit, '(a)') 'greenconv-bench: '//error%message
+            stop 2, quiet=.true.
+        end if
+        stop
+    case ('--direct')
+        ! direct against a plain compiled loop of the same sum alone.
+        call direct_loop_table(output_unit, argument(2, 'data/sdof_sine.nml'), error)
         if (allocated(error)) then
             write (error_unit, '(a)') 'greenconv-bench: '//error%message
             stop 2, quiet=.true.
@@ -87,6 +98,7 @@ program greenconv_bench
     mdof_file = argument(2, 'data/mdof_random.nml')
     call make_directory(output_dir, error)
     if (.not. allocated(error)) call print_tables(output_unit, sdof_file, mdof_file, error)
+    if (.not. allocated(error)) call direct_loop_table(output_unit, sdof_file, error)
     if (.not. allocated(error)) call overflow_map(output_unit, output_dir//'/overflow_map.dat', error)
     if (.not. allocated(error)) call stability_map(output_dir//'/contact_stability_map.dat', error)
     if (.not. allocated(error)) write (output_unit, '(a)') '# Contact stability map (explicit and implicit step over ' &

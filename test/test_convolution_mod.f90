@@ -11,8 +11,11 @@ module test_convolution_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use duhamel_mod, only: step_response, sine_response
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use greenconv_api_all, only: convolver, modal_set, sdof_modes, sdof_impulse, new_direct_convolver, &
-                                 new_paper_convolver, truncation_length, sample_kernel
+                                 new_paper_convolver, truncation_length, sample_kernel, direct_convolver, lane_dot
+    use greenconv_core_random, only: random_stream
     implicit none
     private
 
@@ -35,6 +38,8 @@ contains
                      new_unittest('modal: sine load against Duhamel', test_modal_sine), &
                      new_unittest('second order in dt (step and sine, both methods)', test_order), &
                      new_unittest('direct and modal agree to round-off on a full kernel', test_agreement), &
+                     new_unittest('direct: blocked sum against a plain sum, reset, NaN past the kernel', &
+                                  test_direct_plain), &
                      new_unittest('truncation rule on a known kernel', test_truncation_rule), &
                      new_unittest('truncated sdof kernel: length and neglected tail', test_sdof_truncation)]
     end subroutine collect_convolution
@@ -170,6 +175,91 @@ contains
         end do
         call check(error, worst/scale, 0.0_dp, 'max |u_direct - u_modal|/(F/K)', thr=1.0e-11_dp)
     end subroutine test_agreement
+
+    !> The blocked direct sum against a plain left-to-right sum of eq. (20) computed here from
+    !> the same forces, and against one dot product per step (`lane_dot`, eight partial sums):
+    !> random kernels of N_g = 1..9, 13, 64 and 1001 taps (every N_g mod 4 and every step of a
+    !> block), random loads over 2*N_g + 23 steps (the ring filled and wrapped). Each sum is the
+    !> same m = min(n, N_g) terms in its own order, so each lies within gamma_m*S of the exact
+    !> one (gamma_m = m*eps/(1 - m*eps), S = sum |w_k*q_{n-k}|): the test asks
+    !> |u - u_other| <= 2*gamma_m*S of both. A reset in the middle of a block repeats the first
+    !> steps bit for bit; a kernel valid for 10 steps gives NaN at step 10 and not before.
+    subroutine test_direct_plain(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: lengths(12) = [1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 64, 1001]
+        real(dp), parameter :: dt = 1.0e-4_dp
+        type(random_stream) :: stream
+        type(direct_convolver) :: conv
+        real(dp), allocatable :: kernel(:), w(:), q(:), first(:), newest(:)
+        real(dp) :: u, plain, scale, gamma, worst_plain, worst_lane, relative_plain, relative_lane
+        integer :: c, n_g, n_steps, n, k, m
+        logical :: same, nan_late, finite_before
+
+        stream = random_stream(2011)
+        worst_plain = 0.0_dp
+        worst_lane = 0.0_dp
+        relative_plain = 0.0_dp
+        relative_lane = 0.0_dp
+        same = .true.
+        do c = 1, size(lengths)
+            n_g = lengths(c)
+            n_steps = 2*n_g + 23
+            allocate (kernel(0:n_g), q(0:n_steps - 1), first(0:n_steps - 1))
+            do k = 0, n_g
+                kernel(k) = stream%between(-1.0_dp, 1.0_dp)
+            end do
+            w = dt*kernel(1:n_g)
+            conv = new_direct_convolver(kernel, dt)
+            do n = 0, n_steps - 1
+                m = min(n, n_g)
+                u = conv%history()
+                first(n) = u
+                if (m == 0) then
+                    same = same .and. u == 0.0_dp
+                else
+                    plain = 0.0_dp
+                    scale = 0.0_dp
+                    do k = 1, m
+                        plain = plain + w(k)*q(n - k)
+                        scale = scale + abs(w(k)*q(n - k))
+                    end do
+                    newest = [(q(n - k), k=1, m)]
+                    gamma = m*epsilon(1.0_dp)/(1.0_dp - m*epsilon(1.0_dp))
+                    worst_plain = max(worst_plain, abs(u - plain)/(2.0_dp*gamma*scale))
+                    worst_lane = max(worst_lane, abs(u - lane_dot(m, w, newest))/(2.0_dp*gamma*scale))
+                    relative_plain = max(relative_plain, abs(u - plain)/scale)
+                    relative_lane = max(relative_lane, abs(u - lane_dot(m, w, newest))/scale)
+                end if
+                q(n) = stream%between(-10.0_dp, 10.0_dp)
+                call conv%push(q(n))
+            end do
+            ! n_steps = 2*N_g + 23 leaves the block at every phase over the lengths.
+            call conv%reset()
+            do n = 0, min(n_steps, n_g + 9) - 1
+                same = same .and. conv%history() == first(n)
+                call conv%push(q(n))
+            end do
+            if (c < size(lengths)) deallocate (kernel)
+            deallocate (q, first)
+        end do
+        call note('max |u - u_plain|/S', relative_plain)
+        call note('max |u - u_lane_dot|/S', relative_lane)
+        call check(error, same, 'direct: the history at step 0 is 0, and a reset repeats the run bit for bit')
+        if (allocated(error)) return
+        call check(error, worst_plain, 0.0_dp, 'max |u - u_plain|/(2*gamma_m*S)', thr=1.0_dp)
+        if (allocated(error)) return
+        call check(error, worst_lane, 0.0_dp, 'max |u - u_lane_dot|/(2*gamma_m*S)', thr=1.0_dp)
+        if (allocated(error)) return
+        conv = new_direct_convolver(kernel(0:3), dt, valid_steps=10_int64)
+        finite_before = .true.
+        do n = 0, 9
+            finite_before = finite_before .and. .not. ieee_is_nan(conv%history())
+            call conv%push(1.0_dp)
+        end do
+        nan_late = ieee_is_nan(conv%history())
+        call check(error, finite_before .and. nan_late, 'direct: NaN from valid_steps on, finite before')
+    end subroutine test_direct_plain
 
     !> g_j = (-1/2)^j: with tol = 0.01 the last kept sample is j = 6 (1/64 >= 0.01 > 1/128).
     subroutine test_truncation_rule(error)

@@ -2,8 +2,22 @@
 !>
 !> The kernel is w_j = dt*g(t_j), j = 0..N_g, truncated by the paper's rule (section 2.1;
 !> see greenconv_conv_kernel). Past forces sit in a doubled ring buffer, newest first, so
-!> that the history is one contiguous dot product of length min(n, N_g) per step, summed by
-!> `lane_dot` (greenconv_conv_kernel) in eight interleaved partial sums.
+!> that any stretch of the last N_g forces is contiguous.
+!>
+!> The steps go in blocks of B = `block_size` (greenconv_conv_kernel). When a block starts at
+!> step n0, the part of its B histories that comes from the forces already known,
+!>
+!>     older(i) = sum_{j=i+1..N_g} w_j*q(t_{n0+i-j}),   i = 0..B-1,
+!>
+!> is one small Toeplitz matrix-vector product (`block_sums`: each force loaded once for the B
+!> sums, so that the sum is bound by arithmetic and not by the memory traffic of a dot product
+!> per step). Within the block the history of step n0 + i adds only the i forces pushed since:
+!>
+!>     u_h(n0 + i) = older(i) + sum_{j=1..min(i,N_g)} w_j*q(t_{n0+i-j}).
+!>
+!> This is the same sum as eq. (20), term for term, in another order of addition: equal to
+!> round-off. The seam does not change: `history` reads, `push` advances (and, at the end of a
+!> block, sums the next one's `older`), `reset` returns to the start of a block.
 !>
 !> A kernel cut at the length of the run it was made for (g not yet below the truncation
 !> level there) is wrong for any later step: such a convolver knows its `valid_steps`
@@ -13,7 +27,7 @@ module greenconv_conv_direct
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_conv_convolver, only: convolver, capped_step
-    use greenconv_conv_kernel, only: lane_dot
+    use greenconv_conv_kernel, only: block_sums, block_size
     implicit none
     private
 
@@ -27,6 +41,11 @@ module greenconv_conv_direct
         real(dp), allocatable :: past(:)
         !> Position of the newest force in `past`.
         integer :: head = 1
+        !> Steps taken since the current block started, 0..block_size - 1.
+        integer :: offset = 0
+        !> Part of the block's histories [m] from the forces older than the block: entry i
+        !> belongs to the block's step i.
+        real(dp) :: older(0:block_size - 1) = 0.0_dp
     contains
         procedure :: history => direct_history
         procedure :: push => direct_push
@@ -63,17 +82,20 @@ contains
         class(direct_convolver), intent(in) :: self
         real(dp) :: u
 
-        integer :: m
+        integer :: j
 
         if (self%step >= self%valid_steps) then
             u = ieee_value(u, ieee_quiet_nan)
             return
         end if
-        m = capped_step(self%step, size(self%weight))
-        u = lane_dot(m, self%weight, self%past(self%head:))
+        u = self%older(self%offset)
+        do j = 1, min(self%offset, size(self%weight))
+            u = u + self%weight(j)*self%past(self%head + j - 1)
+        end do
     end function direct_history
 
-    !> Store the force of the current step in both halves of the ring and advance.
+    !> Store the force of the current step in both halves of the ring and advance; at the end
+    !> of a block, sum the next block's `older`.
     subroutine direct_push(self, force)
         class(direct_convolver), intent(inout) :: self
         real(dp), intent(in) :: force
@@ -86,14 +108,44 @@ contains
         self%past(self%head) = force
         self%past(self%head + n_g) = force
         self%step = self%step + 1
+        self%offset = self%offset + 1
+        if (self%offset == block_size) call start_block(self)
     end subroutine direct_push
 
-    !> Clear the force history.
+    !> Start a block at the current step n0: older(i) = sum_{m=1..min(L,N_g-i)} w_{m+i}*p_m,
+    !> with p_m = q(t_{n0-m}) the L = min(n0, N_g) forces known, newest first.
+    subroutine start_block(self)
+        class(direct_convolver), intent(inout) :: self
+
+        integer :: n_g, known, n, i, m
+
+        n_g = size(self%weight)
+        known = capped_step(self%step, n_g)
+        ! The terms every sum has (m + block_size - 1 <= N_g), an even number, by block_sums.
+        n = max(0, min(known, n_g - block_size + 1))
+        n = n - mod(n, 2)
+        if (n > 0) then
+            call block_sums(n, self%weight(1:n + block_size - 1), self%past(self%head:self%head + n - 1), &
+                            self%older)
+        else
+            self%older = 0.0_dp
+        end if
+        do i = 0, block_size - 1
+            do m = n + 1, min(known, n_g - i)
+                self%older(i) = self%older(i) + self%weight(m + i)*self%past(self%head + m - 1)
+            end do
+        end do
+        self%offset = 0
+    end subroutine start_block
+
+    !> Clear the force history and start a block.
     subroutine direct_clear(self)
         class(direct_convolver), intent(inout) :: self
 
         self%past = 0.0_dp
         self%head = 1
+        self%offset = 0
+        self%older = 0.0_dp
     end subroutine direct_clear
 
 end module greenconv_conv_direct

@@ -1,21 +1,27 @@
 !> Sampled kernels shared by the direct engines, single- and multi-point: the paper's
-!> truncation rule (section 2.1), sampling g from modes, and the vectorisable dot product of
-!> the direct sum.
+!> truncation rule (section 2.1), sampling g from modes, and the vectorisable sums of the
+!> direct convolution.
 !>
 !> The kernel is w_j = dt*g(t_j), j = 0..N_g, truncated by the paper's rule: N_g is the last
 !> sample whose magnitude reaches a fraction `tol` of max |g| (1/100 in the paper), so every
-!> neglected sample is below tol*max|g|. The direct sum is done in eight interleaved partial
-!> sums (`lane_dot`): a single running sum cannot be vectorised without reassociating
-!> floating-point additions (-ffast-math), eight independent ones can, and gfortran does so
-!> at -O2 and above (about 5x the rate of `dot_product` or reference BLAS ddot at
-!> N_g = 19000; the benchmark prints both).
+!> neglected sample is below tol*max|g|. A single running sum cannot be vectorised without
+!> reassociating floating-point additions (-ffast-math); independent partial sums can, and
+!> gfortran does so at -O2 and above. `lane_dot` is one dot product in eight interleaved
+!> partial sums (about 5x the rate of `dot_product` or reference BLAS ddot at N_g = 19000; the
+!> benchmark prints both). `block_sums` gives `block_size` dot products of one force history
+!> against the kernel shifted by 0..block_size-1 taps (a Toeplitz matrix-vector product): each
+!> force is loaded once for all of them, so that eight histories cost about the memory traffic of
+!> one, which is what bounds `lane_dot` once the kernel outgrows the first-level cache.
 module greenconv_conv_kernel
     use greenconv_core_kinds, only: dp
     use greenconv_model_modal_set, only: modal_set
     implicit none
     private
 
-    public :: truncation_length, sample_kernel, lane_dot, period_end_level, beyond_nyquist
+    public :: truncation_length, sample_kernel, lane_dot, block_sums, period_end_level, beyond_nyquist
+
+    !> Number of consecutive histories `block_sums` sums together.
+    integer, parameter, public :: block_size = 8
 
     !> Fraction of a period at its end that `period_end_level` looks at (a tenth, as the
     !> identification's wrap-around check).
@@ -153,5 +159,52 @@ contains
             s = s + a(i)*b(i)
         end do
     end function lane_dot
+
+    !> The block_size = 8 sums s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..7, of one vector p
+    !> against w shifted by i taps, in 2 x 8 interleaved partial sums. Each differs from a
+    !> left-to-right sum by round-off only.
+    pure subroutine block_sums(n, w, p, s)
+        !> Number of terms of each sum, even.
+        integer, intent(in) :: n
+        !> The shifted factor, at least n + 7 entries (contiguous).
+        real(dp), intent(in) :: w(n + block_size - 1)
+        !> The common factor, at least n entries (contiguous).
+        real(dp), intent(in) :: p(n)
+        !> The eight sums.
+        real(dp), intent(out) :: s(0:block_size - 1)
+
+        ! w passed as two overlapping views, so that the compiler keeps no window of w across
+        ! iterations (which, two doubles to a register, costs shuffles and spills).
+        call toeplitz_streams(n, w(1:n + block_size - 2), w(2:n + block_size - 1), p, s)
+    end subroutine block_sums
+
+    !> s_i = sum_{m=1..n} w(m + i)*p(m), i = 0..7, from the views w1 = w(1:n+6) and
+    !> w2 = w(2:n+7): two streams over m (m = 1, 3, ... and 2, 4, ...), each a vector of the
+    !> eight sums times one p(m), so that every p(m) is loaded once and the 16 partial sums are
+    !> independent.
+    pure subroutine toeplitz_streams(n, w1, w2, p, s)
+        !> Number of terms, even.
+        integer, intent(in) :: n
+        !> w shifted by 0 and 1 taps.
+        real(dp), intent(in) :: w1(n + block_size - 2), w2(n + block_size - 2)
+        !> The common factor.
+        real(dp), intent(in) :: p(n)
+        !> The eight sums.
+        real(dp), intent(out) :: s(0:block_size - 1)
+
+        real(dp) :: a1(block_size), a2(block_size)
+        integer :: m
+
+        a1 = 0.0_dp
+        a2 = 0.0_dp
+        ! Each statement is one short vector operation; vectorising the loop over m as well
+        ! would interleave the streams through shuffles.
+        !GCC$ novector
+        do m = 1, n - 1, 2
+            a1 = a1 + w1(m:m + block_size - 1)*p(m)
+            a2 = a2 + w2(m:m + block_size - 1)*p(m + 1)
+        end do
+        s = a1 + a2
+    end subroutine toeplitz_streams
 
 end module greenconv_conv_kernel
