@@ -38,6 +38,7 @@ module greenconv_api_budget
     use greenconv_contact_single, only: contact_response, start_contact, contact_block
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
+    use greenconv_conv_methods, only: method_order
     use greenconv_contact_single, only: contact_options
     use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, run_box, &
                                     start_point_box, advance_point_box
@@ -172,7 +173,7 @@ contains
         box%budget%single = allocated(box%structure)
         box%budget%preload = preload
         if (.not. allocated(box%method) .or. n_steps < min_budget_steps) return
-        box%budget%order = merge(1, 2, box%method == 'backward')
+        box%budget%order = method_order(box%method)
         do f = 1, 2
             call companion_convolver(box, 2**f, (n_steps + 2**f - 1)/2**f, box%budget%run(f)%conv, fault)
             if (.not. allocated(fault)) call start_companion(box, box%budget%run(f), laws, preload, fault)

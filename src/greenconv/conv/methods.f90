@@ -17,7 +17,7 @@ module greenconv_conv_methods
     public :: default_truncation_tol, default_accuracy
     public :: method_name_length, n_methods
     public :: is_method, canonical_method, method_engine, method_names, method_list, method_summary
-    public :: method_needs, check_method, method_scheme, is_modal_recursion
+    public :: method_needs, check_method, method_scheme, is_modal_recursion, method_order
 
     !> What a method may need of a structure (`method_needs`): the sampled impulse response g.
     integer, parameter, public :: needs_sampled_g = 1
@@ -69,27 +69,30 @@ module greenconv_conv_methods
         logical :: single_point
         !> Whether it serves several contact points (a `multipoint_convolver`).
         logical :: multi_point
+        !> Its order p in dt, which the error budget's step doubling assumes (its contact forces
+        !> converge as dt^p): 1 for the force held over the step ending at its sample, else 2.
+        integer :: order
         !> What it computes, in one line.
         character(len=96) :: summary
     end type method_entry
 
     !> The methods, in the order messages list them.
     type(method_entry), parameter :: registry(*) = [ &
-        method_entry('direct', 'direct', 'direct', scheme_direct, .true., .false., .true., .true., &
+        method_entry('direct', 'direct', 'direct', scheme_direct, .true., .false., .true., .true., 2, &
                      'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)'), &
-        method_entry('fft', 'fft', 'fft', scheme_fft, .true., .false., .true., .true., &
+        method_entry('fft', 'fft', 'fft', scheme_fft, .true., .false., .true., .true., 2, &
                      'the same truncated sum by partitioned FFT convolution'), &
-        method_entry('modal', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., &
+        method_entry('modal', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., 2, &
                      'the modal recursion of the paper with decaying factors (an alias of recursive)'), &
-        method_entry('paper', 'paper', 'paper', scheme_paper, .false., .true., .true., .false., &
+        method_entry('paper', 'paper', 'paper', scheme_paper, .false., .true., .true., .false., 2, &
                      'the modal recursion as eqs. (15)-(17) write it'), &
-        method_entry('recursive', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., &
+        method_entry('recursive', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., 2, &
                      'the modal recursion (rectangle rule) with decaying factors, explicit'), &
-        method_entry('exact', 'exact', 'recursive', scheme_first_order, .false., .true., .true., .true., &
+        method_entry('exact', 'exact', 'recursive', scheme_first_order, .false., .true., .true., .true., 2, &
                      'the modal recursion with the force linear within a step (first-order hold)'), &
-        method_entry('backward', 'backward', 'recursive', scheme_backward, .false., .true., .true., .false., &
+        method_entry('backward', 'backward', 'recursive', scheme_backward, .false., .true., .true., .false., 1, &
                      'the modal recursion with the force constant over the step ending at its sample'), &
-        method_entry('auto', 'auto', '', scheme_auto, .true., .true., .true., .false., &
+        method_entry('auto', 'auto', '', scheme_auto, .true., .true., .true., .false., 2, &
                      'the cheapest of direct, exact and fft that meets the requested accuracy')]
 
     !> Number of methods in the registry.
@@ -223,6 +226,18 @@ contains
         if (i > 0) method_scheme = registry(i)%scheme
     end function method_scheme
 
+    !> A method's order p in dt (its registry row), 2 for an unknown name.
+    elemental integer function method_order(name)
+        !> A method name.
+        character(len=*), intent(in) :: name
+
+        integer :: i
+
+        method_order = 2
+        i = find(name)
+        if (i > 0) method_order = registry(i)%order
+    end function method_order
+
     !> Whether a method is stepped by the decaying modal recursion of greenconv_conv_recursive
     !> (`recursive`, `modal`, `exact`, `backward`).
     logical function is_modal_recursion(name)
@@ -307,7 +322,7 @@ contains
         if (i > 0) then
             entry = registry(i)
         else
-            entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., '')
+            entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., 2, '')
         end if
     end function entry_of
 

@@ -18,7 +18,7 @@ module greenconv_scene_runner
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text, trimmed_real_text
     use greenconv_core_error, only: error_type, fatal_error, stat_accuracy
-    use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes
+    use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes, method_order
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
     use greenconv_conv_engines, only: engine_constructors, engine_of
@@ -539,7 +539,7 @@ contains
                //', '
         if (step_part >= 0.5_dp*estimate) then
             line = line//'the time step dominates: dt = '//sci_text(smaller_step(dt, step_part, accuracy, &
-                                                                                     merge(1, 2, method == 'backward'))) &
+                                                                                     method_order(method))) &
                    //' s or less, or ask a larger accuracy'
         else if (band_part >= 0.5_dp*estimate) then
             line = line//'the modes above the band dominate: &structure f_modes = ' &

@@ -33,6 +33,7 @@ module greenconv_scene_stream
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
                                        start_multi_contact, newton_options
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
+    use greenconv_conv_methods, only: method_order
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
     use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
     use greenconv_scene_input, only: scene_type
@@ -199,7 +200,7 @@ contains
         doubling%band_missing = ''
         if (.not. doubling%active) return
         call start_band_companion(doubling, run, scene, structure, method)
-        doubling%order = merge(1, 2, method == 'backward')
+        doubling%order = method_order(method)
         do f = 1, 2
             doubling%scenes(f) = scene
             doubling%scenes(f)%dt = scene%dt*2**f
