@@ -116,6 +116,9 @@ module greenconv_scene_models
         !> points from a file), 1 (`&contact n_points` on a line), 2 (`n_points_x` by
         !> `n_points_y`).
         integer :: grid_dimensions = 0
+        !> Whether each mode carries a full residue matrix over the points (shared poles identified
+        !> from a Green's matrix: N_c terms a mode in a modal recursion), not a mode shape.
+        logical :: residue_matrices = .false.
         !> Builder of a single-point model's structure; unassociated for a multi-point model.
         procedure(structure_builder), pointer, nopass :: build => null()
         !> Finder of a multi-point model's contact points (N_c >= 1, `&contact n_points`);
@@ -152,7 +155,7 @@ contains
         models(5) = structure_kind(5, 'tyre_plate', '', exact_modes=.true., grid_dimensions=2, &
                                    find_points=plate_scene_points, slowest_decay=plate_decay)
         models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
-                                   find_points=green_file_points, check_file=check_green_file)
+                                   residue_matrices=.true., find_points=green_file_points, check_file=check_green_file)
         ! a modes file's modes are known once it is read, not from the scene's values: no decay
         ! bound before the run (its direct and fft kernels are sized when they are built)
         models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &

@@ -200,7 +200,7 @@ contains
         end if
         ! a Green's matrix's modal terms: each mode with its residues at every pair of points
         n_terms = n_m
-        if (scene%model == 'green_file') n_terms = n_m*n_c
+        if (model%residue_matrices) n_terms = n_m*n_c
         file_bytes = output_bytes(scene, n_c)
         allocate (lines(size(scene%methods)))
         if (present(seconds)) seconds = [(0.0_dp, i=1, size(scene%methods))]
@@ -224,14 +224,17 @@ contains
         integer, intent(in) :: n_c
 
         real(dp) :: rows, values, value_bytes
+        type(structure_kind) :: model
 
+        model = find_model(scene%model)
         value_bytes = merge(8.0_dp, text_value_bytes, scene%output_format == 'binary')
         rows = real(scene%n_steps/max(scene%output_every, 1) + 1, dp)
-        if (.not. multi_point_model(scene%model)) then
+        if (.not. model%multi_point()) then
             output_bytes = rows*5.0_dp*value_bytes
             return
         end if
-        values = merge(7.0_dp, 8.0_dp, scene%model == 'tyre')*n_c
+        ! points on a line (the tyre's) have no y column
+        values = merge(7.0_dp, 8.0_dp, model%grid_dimensions == 1)*n_c
         output_bytes = rows*4.0_dp*text_value_bytes + size(scene%map_times)*values*text_value_bytes
         if (writes_point_histories(scene, n_c)) output_bytes = output_bytes &
             + real(scene%n_steps/point_every(scene) + 1, dp)*values*value_bytes
