@@ -199,6 +199,7 @@ module greenconv_ident_mlfit
 
     public :: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
     public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
+    public :: search_iterations, max_outside, outside_start
 
     real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
 
