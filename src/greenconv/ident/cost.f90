@@ -73,7 +73,8 @@ module greenconv_ident_cost
         real(dp) :: lm_iterations = 0.0_dp
     end type green_cost
 
-    !> Largest multiple of mu's start that a fit reaches before it stops (1e12/1e-4, as powers of 10).
+    !> Powers of ten from mu's start to the value past which a fit stops (1e-4 to 1e12): a fit of
+    !> I iterations makes at most 2I + mu_decades + 1 trial steps.
     integer, parameter :: mu_decades = 16
 
 contains
@@ -96,7 +97,8 @@ contains
         logical, intent(in) :: poly_reference
         type(green_cost) :: cost
 
-        real(dp) :: l, m, p, q, iterations, passes, searches, calls, order_flops, s, k, n_t, n_b, search, final
+        real(dp) :: l, m, p, q, passes, searches, calls, order_flops, s, k, n_t, n_b, search, short_fits, long_fits
+        real(dp) :: trials, rounds
         integer :: n, orders
 
         l = real(n_lines, dp)
@@ -105,29 +107,34 @@ contains
         q = 2.0_dp*m + 2.0_dp
         ! one order search: at most max_changes changes and 3*(max_changes + 1) calls that
         ! change nothing, each at most a drop's 2M + 5 fits; an outlier fit after each change,
-        ! the residual terms' two tests at the end
+        ! the residual terms' two tests at the end: fits of at most search_iterations each
         calls = 4.0_dp*options%max_changes + 3.0_dp
-        search = calls*(2.0_dp*m + 5.0_dp)*search_iterations + options%max_changes*search_iterations &
-                 + 2.0_dp*(search_iterations + 1.0_dp)
+        search = calls*(2.0_dp*m + 5.0_dp) + options%max_changes + 2.0_dp
         ! one identification: passes of a start fit and a search; the final refinement and at
-        ! most 2M drops refitted, the terms' pruning; with outside modes, each round's starts and
-        ! search and a second final refinement
+        ! most 2M drops refitted, the terms' pruning (fits of max_iterations); with outside
+        ! modes, each round's starts and search and a second final refinement
         passes = real(max(options%outlier_restarts, 0) + 1, dp)
-        final = (2.0_dp*m + 3.0_dp)*options%max_iterations
-        iterations = passes*(search_iterations + search) + final
-        if (options%outside_modes == 'auto') iterations = iterations &
-            + max_outside*(size(outside_start)*search_iterations + search) + final
+        short_fits = passes*(1.0_dp + search)
+        long_fits = 2.0_dp*m + 3.0_dp
+        rounds = passes
+        if (options%outside_modes == 'auto') then
+            short_fits = short_fits + max_outside*(size(outside_start) + search)
+            long_fits = 2.0_dp*long_fits
+            rounds = rounds + max_outside
+        end if
         searches = merge(2.0_dp, 1.0_dp, options%global_search)
         if (options%noise_model == 'auto' .and. .not. allocated(options%sigma)) searches = 4.0_dp*searches
-        cost%lm_iterations = searches*iterations
-        ! the fits: per iteration the information and at most two trial steps, 17 more per fit
-        ! (charged to every iteration: a fit has at least one); per call of the search its
-        ! information and covariance and the candidates' scores (every diagram pole of the top
-        ! order and three residual peaks at six dampings, one pass over the lines each)
+        cost%lm_iterations = searches*(short_fits*search_iterations + long_fits*options%max_iterations)
+        ! each fit of at most I iterations: one linear least squares, then per iteration the
+        ! information, and at most 2I + 17 trial steps in all (mu from 1e-4, tenfold down at an
+        ! accepted step, up at a refused one, the fit ends past 1e12); per call of the search
+        ! its information and covariance and the candidates' scores (every diagram pole of the
+        ! top order and three residual peaks at six dampings, one pass over the lines each)
+        trials = searches*(short_fits*(2.0_dp*search_iterations + mu_decades + 2.0_dp) &
+                           + long_fits*(2.0_dp*options%max_iterations + mu_decades + 2.0_dp))
         orders = 2*options%max_order + options%stable_orders
-        cost%pole_fit = cost%lm_iterations*(information_flops(l, m, p, q) + (2.0_dp + mu_decades + 1.0_dp) &
-                                            *trial_flops(l, m, p, q)) &
-                        + searches*passes*calls*(information_flops(l, m, p, q) + 2.0_dp*p**3 &
+        cost%pole_fit = cost%lm_iterations*information_flops(l, m, p, q) + trials*trial_flops(l, m, p, q) &
+                        + searches*rounds*calls*(information_flops(l, m, p, q) + 2.0_dp*p**3 &
                                                  + (2.0_dp*orders + 18.0_dp)*80.0_dp*l) &
                         + searches*100.0_dp*l*m
         ! the stabilisation diagram of each pass: the impulse response and every order
