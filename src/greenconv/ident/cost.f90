@@ -19,8 +19,10 @@
 !> - **One order search** (greenconv_ident_order_search's `choose_order`): at most
 !>   max_changes changes; the calls that change nothing end a phase (add, drop) or a round
 !>   (death move), at most 3*(max_changes + 1) of them. The dearest call is a drop (a spike
-!>   test and a degenerate test refitting each of M poles, tries_per_add removals, a
-!>   refinement: 2M + 5 fits of search_iterations); after each change an outlier fit.
+!>   test and a degenerate test refitting each of M poles, a merged pole's drop,
+!>   tries_per_add removals, a refinement: 2M + 5 fits of search_iterations; an add is at
+!>   most an outlier's refit, a batch and tries_per_add trials and a refinement); after each
+!>   change an outlier fit.
 !> - **One identification under one noise model** (greenconv_ident_mlfit's `identify_with`):
 !>   outlier_restarts + 1 passes, each the noise estimate, the stabilisation diagram to
 !>   2*max_order + stable_orders (each order a least squares on at most max_samples impulse
@@ -49,7 +51,7 @@ module greenconv_ident_cost
     use greenconv_ident_ml_types, only: ml_options
     use greenconv_ident_dense, only: gram
     use greenconv_ident_mlfit, only: search_iterations, max_outside, outside_start
-    use greenconv_ident_order_search, only: tries_per_add, trial_iterations
+    use greenconv_ident_order_search, only: tries_per_add
     use greenconv_ident_shared_poles, only: refine_iterations, refine_attempts
     use greenconv_ident_polyref, only: max_polynomial_order, common_step
     implicit none
@@ -109,7 +111,7 @@ contains
         ! change nothing, each at most a drop's 2M + 5 fits; an outlier fit after each change,
         ! the residual terms' two tests at the end: fits of at most search_iterations each
         calls = 4.0_dp*options%max_changes + 3.0_dp
-        search = calls*(2.0_dp*m + 5.0_dp) + options%max_changes + 2.0_dp
+        search = calls*(2.0_dp*m + tries_per_add + 2.0_dp) + options%max_changes + 2.0_dp
         ! one identification: passes of a start fit and a search; the final refinement and at
         ! most 2M drops refitted, the terms' pruning (fits of max_iterations); with outside
         ! modes, each round's starts and search and a second final refinement
