@@ -219,6 +219,12 @@ contains
             call check(error, size(result%outlier_line) == 0, kind//' '//trim(label)//': a line taken for an outlier')
             if (allocated(error)) return
             call note(kind//' '//trim(label)//': modes found', real(result%modes%n_modes(), dp))
+            ! The determined modes, for tools/ident_machines.sh's table of set-ups.
+            call note(kind//' '//trim(label)//': modes determined', real(count(result%determined), dp))
+            do k = 1, result%modes%n_modes()
+                if (result%determined(k)) call note(kind//' '//trim(label)//': f [Hz]', &
+                                                    natural_frequency(result%modes%pole(k))/two_pi)
+            end do
             call note(kind//' '//trim(label)//': worst |df| [Hz]', maxval(abs(f_found - f_true)))
             call note(kind//' '//trim(label)//': worst |dxi|/xi', maxval(abs(xi_found - xi_true)/xi_true))
             if (sdypy_close(f_found, xi_found, f_true, xi_true)) passed = passed + 1

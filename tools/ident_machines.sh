@@ -16,7 +16,8 @@
 #   make         the Makefile's build (make lib, -O2 with OpenMP): test/threads/ident_threads
 #                (pyuff's beam FRF 1 and sdypy's H_51) under the default, Haswell and reference set-ups
 # SUITES (default: identreal outofband identsearch mlfit polyref) chooses the suites.
-# Each run prints "setup suite: N passed, N failed" and the measured beam's determined modes;
+# Each run prints "setup suite: N passed, N failed" and the determined modes of the measured beam
+# (outofband) and of sdypy's FRFs (identreal);
 # the last line is the total "N passed, N failed"; the exit status is 1 when any run failed.
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -72,10 +73,10 @@ for setup in $setups; do
         f=${f%% failed*}
         passed=$((passed + p))
         failed=$((failed + f))
-        # The measured beam's determined modes per FRF, as the suite notes them.
-        if [ "$suite" = outofband ]; then
-            grep -oE 'measured beam, FRF [0-9]: (modes determined|f \[Hz\]) = [0-9.E+-]+' "$log" |
-                awk -F': ' '{split($2, v, " = "); key = $1; if (v[1] ~ /^modes/) {printf "%s%s:", (n++ ? "\n" : ""), "    " key; } else printf " %.2f", v[2] + 0}
+        # The determined modes per FRF (pyuff's measured beam, sdypy's FRFs), as the suites note them.
+        if [ "$suite" = outofband ] || [ "$suite" = identreal ]; then
+            grep -oE '(measured beam, FRF [0-9]|(receptance|accelerance) H_[0-9]+): (modes determined|f \[Hz\]) = [0-9.E+-]+' "$log" |
+                awk -F': ' '{split($2, v, " = "); key = $1; if (v[1] ~ /^modes/) {printf "%s%s:", (n++ ? "\n" : ""), "    " key; } else printf " %.4f", v[2] + 0}
                      END {if (n) print ""}'
         fi
     done

@@ -14,7 +14,7 @@ module greenconv_ident_lm_fit
 
     public :: model_type, data_type, narrow_band, final_tolerance
     public :: evaluate, chi_square, n_parameters, criterion, fit, refine, reweight, information, covariance
-    public :: widened, narrowest, leave_out
+    public :: widened, narrowest, leave_out, within_range
 
     interface
         !> g_l += sum_k r_k/(i*omega_l - lambda_k) + conj(r_k)/(i*omega_l - conj(lambda_k)), the
@@ -83,6 +83,19 @@ module greenconv_ident_lm_fit
     !> Fall of chi2 in one iteration below which the fit of the final model stops: a parameter
     !> change of a few hundredths of its standard deviation.
     real(dp), parameter :: final_tolerance = 1.0e-3_dp
+    !> Smallest sigma_l of a noise model that follows |G| (relative, floor, band), as a fraction
+    !> of the largest (80 dB), in the order search and in the final refinement alike: the data's
+    !> own level floors the weights. Without it the weights of an FRF rolling off as omega^-10
+    !> (sdypy-EMA's far transfers, 11 decades from the peak to 1700 Hz) span 1e22: the fit is
+    !> ruled by the lines of the tail, where the five mode terms cancel to 1e-7 of each, and
+    !> resonances 100 dB above them were thrown out as outliers at 1e13 sigma or merged (chi2/nu
+    !> 3e11, 600-800 LM iterations, the 50 Hz mode lost). The final refinement's weights
+    !> rho*|G_model| were not capped before: on sdypy's accelerance H_51 the search's model
+    !> (chi2/nu 0.54) went to chi2/nu 5e7 under weights spanning 1e10 to 1e21 [N/m], where the
+    !> Levenberg-Marquardt steps no longer moved, and the clean-up that followed ended at
+    !> chi2/nu 2e12 under some BLAS kernels and at the five modes under others. Where the noise
+    !> spans less than 80 dB nothing changes.
+    real(dp), parameter :: dynamic_range = 1.0e-4_dp
 
     !> A model under fit: G(omega) = sum_k [r_k/(i*omega - lambda_k) + conj(r_k)/(i*omega -
     !> conj(lambda_k))] + R_u - R_l/omega^2.
@@ -388,7 +401,8 @@ contains
     end subroutine fit
 
     !> The final refinement: for the relative noise model with the weights 1/max(rho*|G_model|,
-    !> floor) from the model rather than from the noisy |G|.
+    !> floor) from the model rather than from the noisy |G|, each sigma at least dynamic_range
+    !> of the largest (`within_range`).
     subroutine reweight(data, model, lm_iterations)
         !> The weighted data (its weights replaced for the relative noise model).
         type(data_type), intent(inout) :: data
@@ -398,14 +412,27 @@ contains
         integer, intent(inout) :: lm_iterations
 
         if (data%relative .and. data%absolute_floor > 0.0_dp) then
-            data%weight = 1.0_dp/max(hypot(data%level*abs(evaluate(model, data%omega)), data%absolute_floor), data%floor)
+            data%weight = 1.0_dp/max(within_range(hypot(data%level*abs(evaluate(model, data%omega)), &
+                                                        data%absolute_floor)), data%floor)
         else if (data%relative .and. allocated(data%line_level)) then
-            data%weight = 1.0_dp/max(data%line_level*abs(evaluate(model, data%omega)), data%floor)
+            data%weight = 1.0_dp/max(within_range(data%line_level*abs(evaluate(model, data%omega))), data%floor)
         else if (data%relative) then
-            data%weight = 1.0_dp/max(data%level*abs(evaluate(model, data%omega)), data%floor)
+            data%weight = 1.0_dp/max(within_range(data%level*abs(evaluate(model, data%omega))), data%floor)
         end if
         call refine(data, model, lm_iterations)
     end subroutine reweight
+
+    !> Standard deviations of a noise model that follows |G|, each raised to at least
+    !> dynamic_range of the largest [m/N].
+    pure function within_range(sigma) result(capped)
+        !> sigma_l of each line [m/N].
+        real(dp), intent(in) :: sigma(:)
+        !> max(sigma_l, dynamic_range*max_l sigma_l) [m/N].
+        real(dp) :: capped(size(sigma))
+
+        capped = sigma
+        if (size(sigma) > 0) capped = max(sigma, dynamic_range*maxval(sigma))
+    end function within_range
 
     !> Levenberg-Marquardt on all parameters (the step of every parameter from the information,
     !> scaled to unit diagonal, damped by mu*I, by Cholesky), or, when data%projection (the

@@ -38,7 +38,7 @@
 !>    without a refit after each change; one outlier line moves no weight), at least 1e-4 of
 !>    the largest such sigma (`dynamic_range`: an FRF rolling off as omega^-10 otherwise has
 !>    the fit ruled by its tail and its resonances thrown out); for the final fit and the
-!>    uncertainty rho*|G_model|.
+!>    uncertainty rho*|G_model|, again at least 1e-4 of the largest (lm_fit's `within_range`).
 !> 2. **Stabilisation diagram** with the linear LSCE step only (greenconv_ident_lsce's
 !>    lsce_poles, no out-of-band correction, no residues, no polish) at N = 1..max_order modes:
 !>    each physical pole is flagged 2 (its f within stable_frequency and its xi within
@@ -199,6 +199,7 @@ module greenconv_ident_mlfit
 
     public :: ml_options, ml_result, identify_ml, estimate_noise, smoothed_magnitude
     public :: dropped_by_criterion, dropped_left_band, dropped_degenerate, dropped_boundary, max_lines
+    public :: search_iterations, max_outside, outside_start
 
     real(dp), parameter :: two_pi = 2.0_dp*3.141592653589793238462643383279_dp
 

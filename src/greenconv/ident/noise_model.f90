@@ -10,7 +10,7 @@ module greenconv_ident_noise_model
     use greenconv_core_sorting, only: median, heap_sort
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_ml_types, only: ml_options, ml_result
-    use greenconv_ident_lm_fit, only: data_type, narrow_band
+    use greenconv_ident_lm_fit, only: data_type, narrow_band, within_range
     implicit none
     private
 
@@ -20,17 +20,6 @@ module greenconv_ident_noise_model
 
     !> A line whose |G| exceeds the median |G| by this factor is an outlier before any fit.
     real(dp), parameter :: gross_ratio = 1.0e100_dp
-    !> Smallest estimated relative-noise sigma of the order search, as a fraction of the
-    !> largest (80 dB): lines further below the peak are weighted as if they were this far
-    !> below until the final refinement, whose weights rho*|G_model| are not capped (the
-    !> likelihood of the relative model, started from the modes found). Without it the
-    !> weights of an FRF rolling off as omega^-10 (sdypy-EMA's far transfers, 11 decades from
-    !> the peak to 1700 Hz) span 1e22: the fit is ruled by the lines of the tail, where the
-    !> five mode terms cancel to 1e-7 of each, and resonances 100 dB above them were thrown
-    !> out as outliers at 1e13 sigma or merged (chi2/nu 3e11, 600-800 LM iterations, the 50 Hz
-    !> mode lost); with it the same FRFs give the five modes to 1e-7 in 30-70 iterations.
-    !> Where the estimated noise spans less than 80 dB nothing changes.
-    real(dp), parameter :: dynamic_range = 1.0e-4_dp
     !> The 'band' noise model: at most this many bands, each of at least band_lines lines.
     integer, parameter :: max_bands = 32, band_lines = 32
 
@@ -248,14 +237,12 @@ contains
             if (options%noise_model == 'absolute') then
                 sigma(:) = result%noise_level
             else if (options%noise_model == 'floor') then
-                sigma(:) = hypot(result%noise_level*smoothed_magnitude(frf%receptance), result%noise_floor_level)
-                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
+                sigma(:) = within_range(hypot(result%noise_level*smoothed_magnitude(frf%receptance), &
+                                              result%noise_floor_level))
             else if (options%noise_model == 'band') then
-                sigma(:) = line_level*smoothed_magnitude(frf%receptance)
-                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
+                sigma(:) = within_range(line_level*smoothed_magnitude(frf%receptance))
             else
-                sigma(:) = result%noise_level*smoothed_magnitude(frf%receptance)
-                sigma(:) = max(sigma, dynamic_range*maxval(sigma))
+                sigma(:) = within_range(result%noise_level*smoothed_magnitude(frf%receptance))
             end if
         end if
         sigma(:) = max(sigma, floor)

@@ -31,6 +31,7 @@ module greenconv_ident_order_search
     private
 
     public :: choose_order, drop_outside, drop_needles, drop_undetermined, prune_terms
+    public :: tries_per_add
 
 
     !> Half-power half-width xi*f of a pole, as a fraction of the line spacing df, from which

@@ -55,6 +55,7 @@ module greenconv_ident_polyref
     private
 
     public :: polyref_poles, pole_covariance, pole_design, pole_spread
+    public :: max_polynomial_order, common_step
 
     !> Poles with a larger damping ratio are taken as mathematical, not modes.
     real(dp), parameter :: max_damping = 0.3_dp

@@ -51,6 +51,11 @@ module greenconv_ident_shared_poles
     private
 
     public :: shared_fit, identify_shared, shared_point_modes, shared_receptance
+    public :: refine_iterations, refine_attempts
+
+    !> Most Gauss-Newton iterations of the poles' refinement over all receptances (`refine_poles`),
+    !> and most trial steps (mu raised tenfold each) per iteration.
+    integer, parameter :: refine_iterations = 40, refine_attempts = 8
 
 
     !> A Green's matrix identified with shared poles.
@@ -359,7 +364,6 @@ contains
         !> The fit; its poles are replaced by the refined ones.
         type(shared_fit), intent(inout) :: fit
 
-        integer, parameter :: max_iterations = 40, max_attempts = 8
         real(dp), allocatable :: targets(:, :), scale(:), p(:), trial(:), r(:, :), r_trial(:, :)
         real(dp), allocatable :: normal(:, :), gradient(:), step(:), lhs(:, :), q_basis(:, :), coefficients(:, :)
         real(dp), allocatable :: derivative(:, :), d_gram(:, :), q_d(:, :), d_r(:, :), e_q(:, :)
@@ -399,7 +403,7 @@ contains
         cost_trial = cost
         mu = 1.0e-3_dp
         allocate (normal(2*n_m, 2*n_m), gradient(2*n_m), e_q(size(q_basis, 2), 2*n_m))
-        do iteration = 1, max_iterations
+        do iteration = 1, refine_iterations
             derivative = pole_derivatives(p)
             d_gram = matmul(transpose(derivative), derivative)
             q_d = matmul(transpose(q_basis), derivative)
@@ -428,7 +432,7 @@ contains
                 normal(q + 1:, q) = normal(q, q + 1:)
             end do
             accepted = .false.
-            do attempt = 1, max_attempts
+            do attempt = 1, refine_attempts
                 lhs = normal
                 do q = 1, 2*n_m
                     lhs(q, q) = normal(q, q)*(1.0_dp + mu) + tiny(1.0_dp)

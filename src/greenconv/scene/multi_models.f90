@@ -29,7 +29,7 @@ module greenconv_scene_multi_models
     use greenconv_model_tyre, only: tyre_frequency
     use greenconv_model_plate, only: plate_frequency, plate_modes, patch_points
     use greenconv_ident_green_structure, only: green_options, green_structure, identify_green, read_green_layout, &
-                                               sampled_kernel, summary_text
+                                               sampled_kernel, summary_text, cost_bound_text
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_scene_point_set, only: scene_points
@@ -149,10 +149,7 @@ contains
         points%y = points%green%matrix%y
         call place_patch(scene, points%x, points%y, points%road_x, points%road_y, error)
         if (allocated(error)) return
-        options%fit%max_order = scene%max_order
-        if (allocated(scene%ident_search)) options%fit%global_search = scene%ident_search == 'global'
-        if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
-        if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
+        options = green_settings(scene)
         call identify_green(options, points%green, error)
         if (allocated(error)) then
             call place_error(error, scene, 'structure', 'green_file')
@@ -163,6 +160,19 @@ contains
                   //int_text(points%n_points())//' contact points, '//run_text(scene)//new_line('a') &
                   //fit_summary
     end subroutine green_file_points
+
+    !> The identification settings of a `green_file` scene (&structure max_order, ident_search,
+    !> ident_method).
+    function green_settings(scene) result(options)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+        type(green_options) :: options
+
+        options%fit%max_order = scene%max_order
+        if (allocated(scene%ident_search)) options%fit%global_search = scene%ident_search == 'global'
+        if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
+        if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
+    end function green_settings
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its
     !> points stay on the road for the whole run, and append what was found to `line`.
@@ -178,7 +188,7 @@ contains
 
         type(green_structure) :: green
         real(dp), allocatable :: road_x(:), road_y(:), kernel(:, :, :)
-        character(len=:), allocatable :: source
+        character(len=:), allocatable :: source, bound
         integer :: i
 
         green%path = scene%green_file
@@ -205,7 +215,8 @@ contains
             end do
             line = line//' ('//scene%green_file//': '//int_text(matrix%n_points())//' points, '
             if (matrix%function_type == 4) then
-                line = line//int_text(size(matrix%frequency))//' lines of G_ij)'
+                call cost_bound_text(matrix, green_settings(scene), bound)
+                line = line//int_text(size(matrix%frequency))//' lines of G_ij; '//bound//')'
             else
                 line = line//int_text(size(matrix%frequency))//' samples of g_ij(t))'
             end if
