@@ -354,13 +354,15 @@ contains
         real(dp), allocatable :: rows(:, :)
         integer :: lost
 
+        ! accuracy 0.2: the loss of contact is under test; fft's budget here is about 6e-2 (model
+        ! 3.4e-2, time step 3e-2 with the coarse pair far apart)
         call summary_of(rail_scene('5.0e-5', '8192', '', "profile = 'sine', amplitude = 1.0e-7, omega = 12566.0", &
-                                   "'fft'"), 'fft', line, error)
+                                   "'fft'", accuracy='0.2'), 'fft', line, error)
         if (allocated(error)) return
         call check(error, index(line, 'contact never lost') > 0, 'small roughness: '//line)
         if (allocated(error)) return
         call summary_of(rail_scene('5.0e-5', '8192', '', "profile = 'sine', amplitude = 1.0e-4, omega = 12566.0", &
-                                   "'fft'"), 'fft', line, error)
+                                   "'fft'", accuracy='0.2'), 'fft', line, error)
         if (allocated(error)) return
         call check(error, index(line, 'contact lost in ') > 0, 'large roughness: '//line)
         if (allocated(error)) return
@@ -690,8 +692,10 @@ contains
 
         character(len=:), allocatable :: line
 
+        ! accuracy 0.2: what auto says is under test; its budget here is about 5.8e-2 (E 2.1e-2, time
+        ! step 3.7e-2)
         call summary_of(rail_scene('1.0e-4', '4096', '', "profile = 'sine', amplitude = 1.0e-7, omega = 3000.0", &
-                                   "'auto'", 'max_order = 8'), 'auto', line, error)
+                                   "'auto'", 'max_order = 8', accuracy='0.2'), 'auto', line, error)
         if (allocated(error)) return
         call check(error, index(line, 'chose ') > 0, 'auto says what it chose: '//line)
     end subroutine test_scene_auto
