@@ -310,18 +310,20 @@ contains
                /max(finish - start, epsilon(1.0_dp))
     end function measured_rate
 
-    !> The bound in words: flop, seconds at the rate, the parts.
-    function cost_text(cost, rate) result(text)
+    !> The bound in words: flop, seconds at the rate, the parts (a subroutine: a deferred-length
+    !> function result is static storage at its call site, see tools/check_statics.sh).
+    subroutine cost_text(cost, rate, text)
         !> The bound.
         type(green_cost), intent(in) :: cost
         !> Floating-point operations per second [flop/s] (`measured_rate`).
         real(dp), intent(in) :: rate
-        character(len=:), allocatable :: text
+        !> The bound in words.
+        character(len=:), allocatable, intent(out) :: text
 
         text = 'identification cost at most '//sci_text(cost%total)//' flop, '//sci_text(cost%total/rate) &
                //' s of CPU at '//sci_text(rate)//' flop/s (the fits'' Gram product measured here; pole fit ' &
                //sci_text(cost%pole_fit)//', shared-pole refinement '//sci_text(cost%refinement)//', poly-reference ' &
                //sci_text(cost%poly_reference)//', residues '//sci_text(cost%residues)//'; every limit reached at once)'
-    end function cost_text
+    end subroutine cost_text
 
 end module greenconv_ident_cost

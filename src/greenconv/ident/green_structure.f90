@@ -198,7 +198,7 @@ contains
         bound = green_cost_bound(matrix%n_points(), size(matrix%frequency), matrix%reciprocal, options%fit, &
                                  options%choose_poles .or. .not. options%poly_reference, &
                                  options%choose_poles .or. options%poly_reference)
-        text = cost_text(bound, measured_rate(0.05_dp))
+        call cost_text(bound, measured_rate(0.05_dp), text)
         if (present(cost)) cost = bound
     end subroutine cost_bound_text
 

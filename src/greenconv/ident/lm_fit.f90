@@ -248,7 +248,10 @@ contains
             if (.not. (norms(col) > 0.0_dp)) norms(col) = 1.0_dp
             a(:, col) = a(:, col)/norms(col)
         end do
-        b = stack(data%weight*data%g)
+        ! allocated before the assignment: gfortran's reallocation of an unallocated local
+        ! reads its unset bounds first (UBSan's signed overflow, harmless but not clean)
+        allocate (b(2*size(data%g)))
+        b(:) = stack(data%weight*data%g)
         ! Normal equations of the unit-norm columns by Cholesky (a tenth of the SVD's time);
         ! the SVD when a pivot shows a condition beyond 1e8 (near-duplicate poles).
         allocate (normal(size(a, 2), size(a, 2)), projection(size(a, 2)))
