@@ -67,7 +67,7 @@ extern "C" {
 
 /** Version of the library this header describes (fpm.toml's `version`; `make ctest` checks
  *  that it equals what gc_version reports). */
-#define GREENCONV_VERSION "0.1.0"
+#define GREENCONV_VERSION "0.2.0"
 
 /**
  * The version of the library linked, "major.minor.patch" (fpm.toml's `version`), written to
