@@ -1,4 +1,4 @@
-!> The cost of the maximum-likelihood identification (greenconv_ident_mlfit, issue 13):
+!> The cost of the maximum-likelihood identification (greenconv_ident_mlfit):
 !> CPU seconds of `identify_ml` on receptances made here, with the modes chosen, the LM
 !> iterations and the outlier lines left out, all measured in one run.
 !>
@@ -9,7 +9,7 @@
 !>   part, a zero in the 412/418 Hz pair);
 !> - 30 modes spread over the same band (xi 0.005 to 0.05, mixed signs) on the same grid at
 !>   1 %, max_order = 30 and 40; 50 modes so spread, max_order = 60 (one run: about 10 s,
-!>   19 s before issue 26's faster fits);
+!>   19 s before the fits by variable projection);
 !> - data/sample_receptance.frf (4 clean modes, 2001 lines) with max_order = 8, intact and with
 !>   one line 1e16 times too large: the fuzz test's case, 5 to 24 s and 40 modes before the
 !>   order search was bounded and outlier lines detected.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Identification benchmark (issue 13): greenconv's maximum-likelihood fit against sdypy-EMA's
+"""Identification benchmark: greenconv's maximum-likelihood fit against sdypy-EMA's
 LSCE and LSCF on the same noisy receptances, errors in units of the Cramer-Rao bound.
 
 Files: the 12-mode receptance of data/noisy_receptance.uff (example/write_noisy_receptance.f90:
@@ -26,7 +26,7 @@ parameters and the generator's noise, level*|G_true| per line) and the CPU time.
 A mode counts as found when a returned mode lies within 1 % of its frequency (each returned
 mode matched at most once, nearest first); spurious = returned modes not matched.
 
-Speed (issue 26): the spread structures of bench/bench_ident_mod.f90 (n modes from 100 Hz to
+Speed: the spread structures of bench/bench_ident_mod.f90 (n modes from 100 Hz to
 4.8 kHz in geometric steps, xi 0.005/0.01/0.02/0.05 in turn, peaks of alternating sign, 8193
 lines to 5 kHz, 1 % complex noise, numpy's generator seeded with n), written as a column file
 that both tools read in the same run: greenconv with max_order = SPEED_ORDER (the scene's CPU

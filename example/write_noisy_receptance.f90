@@ -72,7 +72,7 @@ program write_noisy_receptance
         b = gaussian(stream)
         frf%receptance(k) = frf%receptance(k)*(1.0_dp + rho*cmplx(a, b, kind=dp)/sqrt(2.0_dp))
     end do
-    write (how, '(a,es8.2,a,i0,a)') '12 modes (issue 13), 0-5 kHz, 8193 lines, noise ', rho, ' of |G| (seed ', &
+    write (how, '(a,es8.2,a,i0,a)') '12 modes, 0-5 kHz, 8193 lines, noise ', rho, ' of |G| (seed ', &
         seed, ')'
     functions(1) = receptance_function([1, 3], [1, 3], 0.0_dp, frf%frequency(2), frf%receptance, &
                                        'noisy point receptance of a 12-mode structure')

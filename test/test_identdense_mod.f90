@@ -1,4 +1,4 @@
-!> The dense linear algebra of the identification fits (greenconv_ident_dense, issue 26's
+!> The dense linear algebra of the identification fits (greenconv_ident_dense, the global order search's
 !> speed): the Gram matrix by upper-triangle blocks against the sums written out, on sizes
 !> below, at and across the block size; the Cholesky solve and inverse against the matrix they
 !> invert; a matrix that is not positive definite, or holds a NaN, reported rather than solved;

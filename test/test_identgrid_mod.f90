@@ -1,5 +1,5 @@
 !> The maximum-likelihood identification on grids other than the uniform grid from 0 Hz
-!> (issue 13: "even abscissa spacing, and uneven too"): a uniform grid from df (no 0 Hz line),
+!> (even abscissa spacing, and uneven too): a uniform grid from df (no 0 Hz line),
 !> a band from f_min > 0 and log-spaced lines, each against the Cramér-Rao bound computed on
 !> those same lines (test_mlfit_mod's `cramer_rao`, the Jacobian of the true model); a clean
 !> uneven receptance to round-off; the LSCE path refused with the line and the way out; g for

@@ -1,4 +1,4 @@
-!> The global order search of the maximum-likelihood identification (issue 26: "6 overlapping
+!> The global order search of the maximum-likelihood identification ("6 overlapping
 !> modes at 3 %: an 11-mode fit chosen while the true 6-mode model is 136 lower in MDL; a
 !> 12-mode case at 1 %: one mode missed, one spurious at xi = 0.99").
 !>
@@ -44,8 +44,8 @@ contains
         testsuite = [new_unittest('six overlapping modes (xi 0.05-0.15) at 3 %: the MDL minimum', test_overlapping), &
                      new_unittest('twelve modes, pairs and xi to 0.1, at 1 %: the MDL minimum', test_twelve), &
                      new_unittest('not tuned on: two overlapping triples at 1 and 3 %', test_untuned), &
-                     new_unittest('not tuned on (round 30): a quadruple at 2 %', test_quadruple), &
-                     new_unittest('not tuned on (round 32): a close pair, a triple, two modes above the band', &
+                     new_unittest('not tuned on: a quadruple at 2 %', test_quadruple), &
+                     new_unittest('not tuned on: a close pair, a triple, two modes above the band', &
                                   test_edges), &
                      new_unittest('sdypy-EMA H_51 receptance (roll-off): five modes, no needle determined', &
                                   test_needle), &
@@ -84,7 +84,7 @@ contains
                           1.0e-6_dp*[1.0_dp, 1.5_dp, -1.0_dp, 2.0_dp, 0.5_dp, -1.2_dp, 2.0_dp, 1.0_dp])
     end function triples
 
-    !> Four overlapping modes 300-350 Hz between three single ones to 1.2 kHz (written in round 30
+    !> Four overlapping modes 300-350 Hz between three single ones to 1.2 kHz (written
     !> after the final pruning; not used while writing it).
     function quadruple() result(modes)
         type(modal_set) :: modes
@@ -101,7 +101,7 @@ contains
     end subroutine test_quadruple
 
     !> A pair 1 % apart, a triple of overlapping modes and two modes above the band's 1.2 kHz
-    !> (written in round 32 with the global search on by default; not used while changing it).
+    !> (written with the global search on by default; not used while changing it).
     function edges() result(modes)
         type(modal_set) :: modes
 

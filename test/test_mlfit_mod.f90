@@ -908,7 +908,7 @@ contains
         end function quotes_all
     end subroutine test_summaries
 
-    ! ---- the scene path and universal files (issue 13) ----------------------------------
+    ! ---- the scene path and universal files -----------------------------------------
 
     !> A noisy receptance of structure (a) at 1 % written as a universal file, a scene naming it
     !> (method 'ml' by default for a file), the structure built and its files written: every

@@ -1,4 +1,4 @@
-!> Modes outside the band (issue 26): a free-free Euler-Bernoulli beam's receptance (its
+!> Modes outside the band: a free-free Euler-Bernoulli beam's receptance (its
 !> accelerance divided by -omega^2) with its two rigid-body modes at 0 Hz and elastic modes past
 !> the upper edge of the band, and a measured beam (pyuff's test data).
 !>
@@ -276,7 +276,7 @@ contains
     !> mode a pole of the structure: within 0.2 % of a pole fitted on another FRF (a mode of the
     !> beam is a pole of each of its FRFs; the 900.9 Hz of FRF 3, a jump of |A| by half and 20
     !> degrees of phase on lines 900-902 Hz, is fitted on FRFs 1 and 2 at 901.9 and 900.9 Hz).
-    !> Before the determined rule judged the noise per band of lines (round 30): FRF 2 gave a
+    !> Before the determined rule judged the noise per band of lines: FRF 2 gave a
     !> determined pole at 4.5 Hz (xi 0.63, on the lines below 8 Hz whose phase wanders) and left
     !> 51.5 and 278.7 Hz undetermined (chi2/nu 21 inflated every sigma); FRF 3 gave 101.3, 160.1
     !> and 958.6 Hz besides. Noted: the determined poles, the undetermined ones, chi2/nu, the time.

@@ -340,7 +340,7 @@ contains
         if (allocated(error)) return
         call check(error, fit%e_worst <= 1.0e-2_dp, label//': E worst above 1e-2')
         if (allocated(error)) return
-        ! The time (issue 23 asks under 10 s) is printed above, not asserted: a CPU time moves with
+        ! The time (under 10 s is asked) is printed above, not asserted: a CPU time moves with
         ! the machine, its load and the BLAS's threads, and a test must not fail on a slow machine.
     end subroutine check_case
 
@@ -422,7 +422,7 @@ contains
         if (.not. allocated(fail)) call write_uff(path, functions, nodes, fail, node_dataset=2411)
     end subroutine write_case_file
 
-    !> Issue 23's done-when at scene level: the dense plate's measured matrix (0.5 % noise) as a
+    !> At scene level: the dense plate's measured matrix (0.5 % noise) as a
     !> universal file, rolled by the scene driver over data/road_sample.dat at 2 m/s (Hertz contact
     !> 1e7 N/m^1.5, 2 kN shared, 20 us, 40 ms, accuracy 3e-2) with the four multi-point methods;
     !> each method's contact forces against the true structure's modal ODE on the road the scene

@@ -1,5 +1,5 @@
 !> A structure known by the Green's matrix between its N_c contact points, read from a
-!> universal file (issue 14), made ready for the multi-point convolvers:
+!> universal file, made ready for the multi-point convolvers:
 !>
 !> - **Receptances** G_ij(f) (datasets 58 of function type 4, greenconv_model_green_matrix_file):
 !>   the poles are identified once for the whole matrix with a residue matrix per pole

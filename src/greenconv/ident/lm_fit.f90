@@ -439,7 +439,7 @@ contains
 
     !> Levenberg-Marquardt on all parameters (the step of every parameter from the information,
     !> scaled to unit diagonal, damped by mu*I, by Cholesky), or, when data%projection (the
-    !> global order search), with variable projection (issue 26): the poles are the only
+    !> global order search), with variable projection: the poles are the only
     !> nonlinear parameters; at every trial the residues and residual terms are the weighted
     !> linear least squares for the trial poles (`fit_linear`), and the poles' step solves the
     !> Gauss-Newton system of the projected problem (`projected`: Kaufman's J^T J, the Schur

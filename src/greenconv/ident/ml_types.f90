@@ -64,7 +64,7 @@ module greenconv_ident_ml_types
         integer :: max_iterations = 60
         !> Most modes added or dropped in the order search.
         integer :: max_changes = 40
-        !> Global order search (issue 26): variable projection in the fits of the search, death
+        !> Global order search: variable projection in the fits of the search, death
         !> moves after its greedy rounds and the final pruning under the final weights
         !> (greenconv_ident_order_search), so that the model is the MDL minimum rather than a
         !> neighbour. Its model is used when its residual is explained by the noise model; when

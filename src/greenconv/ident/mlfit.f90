@@ -1,4 +1,4 @@
-!> Maximum-likelihood identification of a noisy receptance (issue 13): the modes, their
+!> Maximum-likelihood identification of a noisy receptance: the modes, their
 !> number and their uncertainty from the data alone, at the statistical limit.
 !>
 !> Model and convention as in greenconv_ident_lsce:
@@ -137,7 +137,7 @@
 !>    result%determined is false for it (it stays in the model; mark_undetermined says why).
 !> Modes whose half-power band 2*xi*f holds fewer than `min_band_lines` lines are reported
 !> as under-resolved in the warning (their xi and r rest on the few lines near the peak).
-!> 8. **Modes above the band** (`outside_modes = 'auto'`, issue 26). R_u is the first term of
+!> 8. **Modes above the band** (`outside_modes = 'auto'`). R_u is the first term of
 !>    the modes past f_max; a mode just above the edge (a free-free beam's next bending mode
 !>    at 1.1*f_max) bends G near the edge far more than a constant: the fit then pulls the
 !>    highest modes (635 CRB sigma at 0.1 % on suite outofband's beam, chi2/nu 7e3). After the

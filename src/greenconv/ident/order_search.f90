@@ -6,8 +6,8 @@
 !>
 !> The greedy rounds (add while MDL falls, then drop) can end in a local optimum: a mode split
 !> over two poles with large residues of opposite sign, or a pole on a noise bump that the
-!> others would take up once it is gone (issue 26: 12 modes kept for 8, 149 above the true
-!> model's MDL). `death_move` then removes, in turn, each mode whose residue the information
+!> others would take up once it is gone (on a measured receptance: 12 modes kept for 8, 149
+!> above the true model's MDL). `death_move` then removes, in turn, each mode whose residue the information
 !> barely separates from zero or from another's, refits, and keeps the first removal that
 !> lowers MDL; the greedy rounds start again from it (births at the residual's peaks). When
 !> the best rejected removal is within `close_call` (10) of the chosen model's MDL, a warning

@@ -1,4 +1,4 @@
-!> Shared-pole identification of a Green's matrix G_ij(omega), i, j = 1..N_c (issue 14): the
+!> Shared-pole identification of a Green's matrix G_ij(omega), i, j = 1..N_c: the
 !> poles are the structure's, the same in all N_c^2 receptances, so they are identified once and
 !> only the residues differ from pair to pair:
 !>
@@ -140,7 +140,7 @@ contains
         ! a noise taken relative to the sum alone lets the fit put spurious poles there.
         pole_options = options
         ! The residues of every G_ij are fitted later with R_u and R_l only: no pseudo-modes above
-        ! the band for the sum either (issue 26's are for a single FRF).
+        ! the band for the sum either (they are for a single FRF).
         pole_options%outside_modes = 'none'
         level = 1.0_dp
         if (.not. allocated(options%sigma)) then
