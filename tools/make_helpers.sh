@@ -71,9 +71,10 @@
 #       size) and detect_leaks=0 (leaks are valgrind's: `make valgrind`).
 #
 #   tools/make_helpers.sh fpm-test [ARGS...]
-#       `fpm test ARGS`; when it fails, repeat the harness's "N passed, N failed" line
-#       after fpm's own error lines, so that it stays the last line of the test output.
-#       A run that ends without that line (the program was stopped early) fails.
+#       `fpm test ARGS`, then the sum of the test programs' "N passed, N failed" lines (one
+#       per layer's program, test/<layer>/main.f90, or the one line of a suite named after
+#       "--") as the last line of the test output. A run with fewer of those lines than
+#       expected (a program was stopped early) fails.
 set -euo pipefail
 
 # The fpm command (the Makefile exports its FPM variable).
@@ -634,22 +635,36 @@ cmd_fuzz() {
 # ---------------------------------------------------------------------------------
 
 cmd_fpm_test() {
-    local log rc=0 summary
+    local log rc=0 lines expected passed=0 failed=0 line count
     log=$(mktemp)
     $FPM test "$@" 2>&1 | tee "$log" || rc=$?
-    summary=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1 || true)
+    # Each layer's test program (test/<layer>/main.f90) ends with "<layer>: N passed, N failed";
+    # the one program that runs a suite named on the command line, with "N passed, N failed".
+    lines=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" || true)
     rm -f "$log"
+    # Every layer's line, or the one line of the suite that the arguments after "--" name.
+    expected=$(grep -c '^name = "greenconv-tests-' fpm.toml)
+    case " $* " in *" -- "?*) expected=1 ;; esac
+    count=0
+    while IFS= read -r line; do
+        [ -n "$line" ] || continue
+        line=${line#*: }
+        passed=$((passed + ${line%% passed*}))
+        line=${line#*passed, }
+        failed=$((failed + ${line%% failed*}))
+        count=$((count + 1))
+    done <<< "$lines"
     # A program stopped inside a library (the reference LAPACK's XERBLA stops with status 0)
     # exits "successfully" without the harness's closing line: that is a failure too.
-    if [ "$rc" -eq 0 ] && [ -z "$summary" ]; then
-        say "fpm test ended without its \"N passed, N failed\" line: the test program was stopped" \
-            "early (see the last lines above, e.g. a LAPACK \"On entry to ...\" message)"
+    if [ "$rc" -eq 0 ] && [ "$count" -ne "$expected" ]; then
+        say "fpm test printed $count of the $expected \"N passed, N failed\" lines its test programs end" \
+            "with: a test program was stopped early (see the lines above, e.g. a LAPACK \"On entry to ...\" message)"
         rc=1
     fi
     if [ "$rc" -ne 0 ]; then
         say "fpm test failed (exit status $rc)"
-        if [ -n "$summary" ]; then printf '%s\n' "$summary"; fi
     fi
+    if [ "$count" -gt 0 ]; then printf '%d passed, %d failed\n' "$passed" "$failed"; fi
     return "$rc"
 }
 

@@ -2,7 +2,7 @@
 """Write test/data/uff/modes_plate_2414.uff: the plate of tools/make_modes_plate.py (its modes
 and its 3 x 3 nodes) as an FE code exports it, the nodes as dataset 2411 and every mode as a
 dataset 2414 (analysis data at nodes), with pyuff's own 2414 writer, for the modes_file
-model's test that both files give the same modes (test/test_modesfile_mod.f90).
+model's test that both files give the same modes (test/model/test_modesfile_mod.f90).
 
     pip install pyuff          # a tool for this script only, never a dependency of greenconv
     python3 tools/make_modes_2414.py [OUTPUT_DIRECTORY]     # default: test/data/uff

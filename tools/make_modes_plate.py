@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write test/data/uff/modes_plate.uff, the normal modes of a plate greenconv does not ship, with
-pyuff (an independent writer), for the modes_file model's tests (test/test_modesfile_mod.f90).
+pyuff (an independent writer), for the modes_file model's tests (test/model/test_modesfile_mod.f90).
 
     pip install pyuff          # a tool for this script only, never a dependency of greenconv
     python3 tools/make_modes_plate.py [OUTPUT_DIRECTORY]     # default: test/data/uff

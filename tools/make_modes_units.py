@@ -2,7 +2,7 @@
 """Write test/data/uff/modes_plate_mm.uff and modes_plate_mm_unit.uff: the plate of
 tools/make_modes_plate.py (the same nodes and modes), written by pyuff (an independent writer)
 in the unit system "MN: mm (newton)" that their dataset 164 states, for the modes_file model's
-tests of units (test/test_modesfile_mod.f90).
+tests of units (test/model/test_modesfile_mod.f90).
 
     pip install pyuff          # a tool for this script only, never a dependency of greenconv
     python3 tools/make_modes_units.py [OUTPUT_DIRECTORY]     # default: test/data/uff

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the universal-file fixtures of test/test_uff_mod.f90 with pyuff, an independent writer.
+"""Write the universal-file fixtures of test/io/test_uff_mod.f90 with pyuff, an independent writer.
 
     pip install pyuff          # a tool for this script only, never a dependency of greenconv
     python3 tools/make_uff_fixtures.py [OUTPUT_DIRECTORY]     # default: test/data/uff

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write test/data/uff/wheel_modes.uff, a wheel's normal modes written by pyuff (an independent
-writer), for the wheel_rail model's wheel from a universal file (test/test_wheelrail_mod.f90).
+writer), for the wheel_rail model's wheel from a universal file (test/scene/test_wheelrail_mod.f90).
 
     pip install pyuff          # a tool for this script only, never a dependency of greenconv
     python3 tools/make_wheel_modes.py [OUTPUT_DIRECTORY]     # default: test/data/uff

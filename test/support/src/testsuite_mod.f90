@@ -1,14 +1,17 @@
 !> A small unit-test harness in the pattern of test-drive: each module of tests returns
 !> a list of named tests, each test reports a failure through an allocatable error, and
-!> `check` compares values with explicit tolerances. `run_selected` runs every suite, one
-!> suite or one test of a suite, as the command line asks (`fpm test -- SUITE [TEST]`).
+!> `check` compares values with explicit tolerances. The suites sit in test/<layer>/, one
+!> folder and one test program per layer of the library; `run_layer` runs a layer's suites,
+!> one suite or one test of a suite, as the command line asks (`fpm test -- SUITE [TEST]`
+!> reaches every layer's program, and the one that holds SUITE runs it).
 module testsuite_mod
-    use, intrinsic :: iso_fortran_env, only: dp => real64, error_unit
+    use, intrinsic :: iso_fortran_env, only: dp => real64, error_unit, output_unit
+    use suite_index_mod, only: suite_index, index_layer, index_name
     implicit none
     private
 
     public :: test_error, unittest_type, new_unittest, check, note, run_testsuite, collect_interface, test_interface
-    public :: testsuite_type, new_testsuite, run_selected
+    public :: testsuite_type, new_testsuite, run_selected, run_layer
 
     !> A failed check: what was compared and by how much it missed.
     type :: test_error
@@ -220,6 +223,81 @@ contains
             //'"; its tests are (quote the name):'
         write (error_unit, '(4x,a)') (tests(i)%name, i=1, size(tests))
     end subroutine run_selected
+
+    !> The program of one layer's folder test/<layer>/: check that the folder, the layer's
+    !> suites and the index of every suite (greenconv_test_support's suite_index_mod) agree,
+    !> then run what the command line asks. No argument: every suite of the layer, ending
+    !> with `<layer>: N passed, N failed`. `SUITE [TEST]`: run by the layer that holds SUITE,
+    !> ending with `N passed, N failed`; the other layers' programs stay silent. A suite that
+    !> no layer holds is reported by the first layer's program (status 2). Stops with status 1
+    !> when a test failed or the folder and the index disagree.
+    subroutine run_layer(layer, suites)
+        !> The layer: the folder's name under test/.
+        character(len=*), intent(in) :: layer
+        !> The layer's suites, in the order they run.
+        type(testsuite_type), intent(in) :: suites(:)
+
+        integer :: n_passed, n_failed, disagreements, i
+        logical :: valid
+
+        call check_layer_folder(layer, suites, disagreements)
+        n_passed = 0
+        n_failed = disagreements
+        if (command_argument_count() == 0) then
+            call run_selected(suites, output_unit, n_passed, n_failed, valid)
+            write (output_unit, '(a,i0,a,i0,a)') layer//': ', n_passed, ' passed, ', n_failed, ' failed'
+        else if (any([(suites(i)%name == argument(1), i=1, size(suites))])) then
+            call run_selected(suites, output_unit, n_passed, n_failed, valid)
+            if (.not. valid) stop 2, quiet=.true.
+            write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
+        else if (any([(index_name(i) == argument(1), i=1, size(suite_index))])) then
+            continue
+        else if (layer == index_layer(1)) then
+            write (error_unit, '(a)') 'greenconv-tests: no suite named "'//argument(1)//'"; the suites are:'
+            write (error_unit, '(4x,a)') (index_layer(i)//' '//index_name(i), i=1, size(suite_index))
+            stop 2, quiet=.true.
+        end if
+        if (n_failed > 0) stop 1, quiet=.true.
+    end subroutine run_layer
+
+    !> Compare a layer's suites with its folder and the index: each suite is in the index under
+    !> this layer and has its module file test/<layer>/test_<name>_mod.f90, and the index names
+    !> no suite of this layer that the program does not run. Prints a line per disagreement.
+    subroutine check_layer_folder(layer, suites, disagreements)
+        character(len=*), intent(in) :: layer
+        type(testsuite_type), intent(in) :: suites(:)
+        integer, intent(out) :: disagreements
+
+        character(len=:), allocatable :: file
+        integer :: i, k
+        logical :: exists
+
+        disagreements = 0
+        do i = 1, size(suites)
+            file = 'test/'//layer//'/test_'//suites(i)%name//'_mod.f90'
+            inquire (file=file, exist=exists)
+            if (.not. exists) call disagree('suite "'//suites(i)%name//'" runs in layer "'//layer//'" but '// &
+                                            file//' does not exist: move its file there')
+            if (.not. any([(index_layer(k) == layer .and. index_name(k) == suites(i)%name, &
+                            k=1, size(suite_index))])) &
+                call disagree('suite "'//suites(i)%name//'" runs in layer "'//layer//'" but the index '// &
+                              '(test/support/src/suite_index_mod.f90) does not list it there')
+        end do
+        do k = 1, size(suite_index)
+            if (index_layer(k) /= layer) cycle
+            if (.not. any([(suites(i)%name == index_name(k), i=1, size(suites))])) &
+                call disagree('the index lists suite "'//index_name(k)//'" in layer "'//layer// &
+                              '" but test/'//layer//'/main.f90 does not run it')
+        end do
+
+    contains
+
+        subroutine disagree(message)
+            character(len=*), intent(in) :: message
+            disagreements = disagreements + 1
+            write (error_unit, '(a)') 'greenconv-tests-'//layer//': '//message
+        end subroutine disagree
+    end subroutine check_layer_folder
 
     !> Command-line argument i.
     function argument(i) result(value)

@@ -7,6 +7,7 @@ module test_patch_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_core_error, only: error_type
+    use scene_text_mod, only: message_of
     use greenconv_core_random, only: random_stream
     use greenconv_io_files, only: make_directory
     use greenconv_io_uff, only: uff_function, uff_node
@@ -22,7 +23,7 @@ module test_patch_mod
 
     public :: collect_patch
     ! shared with the universal-file checks of test_uffchecks_mod
-    public :: two_point_file, message_of
+    public :: two_point_file
 
     !> Scratch directory for the files the tests write.
     character(len=*), parameter :: scratch = 'build/test_scratch/patch'
@@ -334,13 +335,5 @@ contains
             if (.not. any(abs(distinct - values(k)) <= 1.0e-9_dp*abs(values(k)))) distinct = [distinct, values(k)]
         end do
     end function unique
-
-    pure function message_of(fail) result(text)
-        type(error_type), allocatable, intent(in) :: fail
-        character(len=:), allocatable :: text
-
-        text = ''
-        if (allocated(fail)) text = fail%message
-    end function message_of
 
 end module test_patch_mod

@@ -21,7 +21,7 @@ module test_errorbudget_mod
     use greenconv_scene_runner, only: run_scene, check_scene
     use greenconv_verify_contact, only: contact_reference
     use scene_text_mod, only: message_of, read_table, read_scene_text
-    use test_modesfile_mod, only: write_wave_road, wave_roads, plate_file
+    use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
     use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_road_file, only: road_file, read_road_file, file_road

@@ -20,10 +20,11 @@ module test_wheelrail_mod
     use greenconv_io_columns, only: read_columns
     use scene_text_mod, only: read_scene_text, write_text
     use greenconv_scene_sweep, only: run_sweep
+    use fixture_files_mod, only: read_bands
     implicit none
     private
 
-    public :: collect_wheelrail, read_bands
+    public :: collect_wheelrail
 
     real(dp), parameter :: pi = acos(-1.0_dp)
     !> A UIC60-like rail in round numbers on a pad of 300 MN/m per 0.6 m sleeper spacing.
@@ -744,24 +745,6 @@ contains
                           [character(len=1) :: 's', 'm', 'm', 'N', 'm'], rows, line_of, fault)
         call check(error, .not. allocated(fault), 'read '//path)
     end subroutine read_history
-
-    !> The first n columns of a 1/3-octave band file (7 for a run's, with spread_db; 6 for a
-    !> linear reference's).
-    subroutine read_bands(path, n, rows, error)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: n
-        real(dp), allocatable, intent(out) :: rows(:, :)
-        type(test_error), allocatable, intent(out) :: error
-
-        type(error_type), allocatable :: fault
-        integer, allocatable :: line_of(:)
-        character(len=12) :: names(7)
-        integer :: i
-
-        names = [character(len=12) :: 'f_nominal', 'f_centre', 'f_lower', 'f_upper', 'power', 'level', 'spread_db']
-        call read_columns(path, names(:n), [(' ', i=1, n)], rows, line_of, fault)
-        call check(error, .not. allocated(fault), 'read '//path)
-    end subroutine read_bands
 
     pure function itoa(i) result(text)
         integer, intent(in) :: i

@@ -31,14 +31,13 @@ module test_modesfile_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_verify_contact, only: multi_contact_reference
     use greenconv_legacy_multi, only: gcmmfl, gcmrun, gcmfre, gcmnpt
+    use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
     implicit none
     private
 
-    public :: collect_modesfile, write_wave_road, wave_roads, plate_file
+    public :: collect_modesfile
 
     character(len=*), parameter :: scratch = 'build/test_scratch/modesfile'
-    !> The plate's modes (32 modes, a 3 x 3 grid of nodes), written by pyuff.
-    character(len=*), parameter :: plate_file = 'test/data/uff/modes_plate.uff'
     character(len=*), parameter :: expected_file = 'test/data/uff/modes_plate.expected'
     character(len=*), parameter :: plate_2414 = 'test/data/uff/modes_plate_2414.uff'
     !> The plate in mm and newtons (dataset 164), with modal masses and mass-normalised
@@ -514,23 +513,6 @@ contains
         call check(error, all(abs(e(:, 3)/e(:, 2) - 1.0_dp) <= 1.0e-3_dp), 'the scene runs with R in W0')
     end subroutine test_static_residual
 
-    !> The wave road under each of the plate's nodes: the patch's middle at x = 0.3 m at t = 0,
-    !> travelling at 5 m/s.
-    function wave_roads(modes, road) result(roads)
-        type(file_modes), intent(in) :: modes
-        type(road_file), intent(in) :: road
-        type(file_road), allocatable :: roads(:)
-
-        integer :: i
-
-        allocate (roads(size(modes%x)))
-        do i = 1, size(roads)
-            roads(i)%profile = road
-            roads(i)%x_start = 0.3_dp + modes%x(i) - sum(modes%x)/size(modes%x)
-            roads(i)%speed = 5.0_dp
-        end do
-    end function wave_roads
-
     !> e = ||F - F_ref||/||F_ref - F0||, F(n, i) against every `stride`-th sample of the
     !> reference, F0 = 100 N the preload of each of the 9 points.
     real(dp) function force_error(force, reference, stride) result(e)
@@ -620,23 +602,6 @@ contains
                    index(fail%message, new_line('a')) == 0, 'one line naming stiffness_per_area and the grid: ' &
                    //fail%message)
     end subroutine test_off_grid
-
-    !> A smooth road, 0 to 1 m every 0.1 mm: 0.1 mm at a 50 mm wavelength plus 0.05 mm at 21 mm.
-    subroutine write_wave_road(path)
-        character(len=*), intent(in) :: path
-
-        integer :: unit, j
-        real(dp) :: x
-
-        open (newunit=unit, file=path, status='replace', action='write')
-        write (unit, '(a)') '# x [m], height [m]: test_modesfile_mod''s wave road'
-        do j = 0, 10000
-            x = 1.0e-4_dp*j
-            write (unit, '(es24.16,1x,es24.16)') x, 1.0e-4_dp*sin(2.0_dp*pi*x/0.05_dp) &
-                + 0.5e-4_dp*sin(2.0_dp*pi*x/0.021_dp)
-        end do
-        close (unit)
-    end subroutine write_wave_road
 
     !> Node 101 given again in the first mode, in place of node 102: with node 102's values it
     !> is refused naming both lines and the first value that differs; with its own values it is

@@ -15,8 +15,8 @@ module test_uffchecks_mod
     use greenconv_io_uff_write, only: write_uff, receptance_function
     use greenconv_model_green_matrix_file, only: green_matrix, read_green_matrix
     use greenconv_model_frf, only: frf_type, read_frf
-    use test_patch_mod, only: two_point_file, message_of
-    use scene_text_mod, only: write_text
+    use test_patch_mod, only: two_point_file
+    use scene_text_mod, only: write_text, message_of
     implicit none
     private
 

@@ -25,10 +25,11 @@ module test_patchscene_mod
     use greenconv_scene_runner, only: run_scene, check_scene
     use greenconv_scene_sweep, only: run_sweep
     use greenconv_core_text, only: int_text
+    use fixture_files_mod, only: write_receptance_file
     implicit none
     private
 
-    public :: collect_patchscene, write_receptance_file
+    public :: collect_patchscene
 
     !> Scratch directory for the files the tests write.
     character(len=*), parameter :: scratch = 'build/test_scratch/patchscene'
@@ -731,32 +732,5 @@ contains
         call plate_modes(tyre_plate(damping_ratio=0.02_dp), x, y, 300.0_dp, truth, fail)
         if (.not. allocated(fail)) call write_receptance_file(path, truth, x, y, 1.0_dp, 401, fail)
     end subroutine small_patch
-
-    !> Receptances of modes at points, lines 0, df, ..., (n - 1)*df, as a universal file with the nodes.
-    subroutine write_receptance_file(path, modes, x, y, df, n, fail)
-        character(len=*), intent(in) :: path
-        type(point_modes), intent(in) :: modes
-        real(dp), intent(in) :: x(:), y(:), df
-        integer, intent(in) :: n
-        type(error_type), allocatable, intent(out) :: fail
-
-        type(uff_function), allocatable :: functions(:)
-        type(uff_node), allocatable :: nodes(:)
-        complex(dp), allocatable :: g(:, :, :)
-        integer :: i, j, l, n_c
-
-        n_c = size(x)
-        allocate (g(n_c, n_c, n), functions(n_c*n_c), nodes(n_c))
-        do l = 1, n
-            g(:, :, l) = patch_receptance(modes, 2.0_dp*pi*df*(l - 1))
-        end do
-        do i = 1, n_c
-            do j = 1, n_c
-                functions((i - 1)*n_c + j) = receptance_function([i, 3], [j, 3], 0.0_dp, df, g(i, j, :), 'G')
-            end do
-            nodes(i) = uff_node(label=i, position=[x(i), y(i), 0.0_dp])
-        end do
-        call write_uff(path, functions, nodes, fail, node_dataset=2411)
-    end subroutine write_receptance_file
 
 end module test_patchscene_mod

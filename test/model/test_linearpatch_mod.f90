@@ -25,7 +25,7 @@ module test_linearpatch_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
-    use test_linearpatch_scene_mod, only: test_scene_tyre
+    use linearpatch_scene_mod, only: test_scene_tyre
     implicit none
     private
 

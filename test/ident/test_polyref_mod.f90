@@ -30,8 +30,7 @@ module test_polyref_mod
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_runner, only: run_scene
-    use test_patch_mod, only: message_of
-    use scene_text_mod, only: read_scene_text, read_table
+    use scene_text_mod, only: read_scene_text, read_table, message_of
     implicit none
     private
 

@@ -33,8 +33,8 @@ module test_accuracystatus_mod
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_scene_runner, only: run_scene
-    use test_patchscene_mod, only: write_receptance_file
-    use test_multiorder_mod, only: run_setup, wave_setup, measure
+    use fixture_files_mod, only: write_receptance_file
+    use order_runs_mod, only: run_setup, wave_setup, measure
     use scene_text_mod, only: message_of
     implicit none
     private

@@ -20,7 +20,7 @@ module test_greenfiles_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_conv_green_file, only: green_file_convolver
-    use test_patch_mod, only: message_of
+    use scene_text_mod, only: message_of
     implicit none
     private
 
