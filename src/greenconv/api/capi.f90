@@ -34,7 +34,8 @@ module greenconv_capi
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
                                     step_box, describe_box
     use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
-    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door
+    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door, &
+                                   need_capacity, modes_to_c
     implicit none
     private
 
@@ -615,18 +616,14 @@ contains
         type(error_type), allocatable :: error
         type(modal_set) :: modes
         integer(c_int), pointer :: count
-        real(c_double), pointer :: e_out, out(:)
+        real(c_double), pointer :: e_out
         real(dp) :: e_value
-        integer :: n
 
         call check_outputs(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, error_e], &
                            [character(len=10) :: 'n_modes', 'pole_re', 'pole_im', 'residue_re', 'residue_im', &
                             'error_e'], error)
-        if (.not. allocated(error) .and. .not. c_associated(path)) then
-            call fatal_error(error, caller//': path is NULL: pass the name of a receptance file')
-        else if (.not. allocated(error) .and. capacity < 0) then
-            call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': expected >= 0')
-        end if
+        call need_pointer(caller, path, 'path', 'pass the name of a receptance file', error)
+        call need_capacity(caller, int(capacity), error)
         if (allocated(error)) then
             status = finish(error, errmsg, errmsg_len)
             return
@@ -636,23 +633,8 @@ contains
         count = 0
         call identify_file(from_c(path), tol_e, int(max_modes), modes, e_value, error)
         e_out = e_value
-        if (.not. allocated(error)) then
-            n = modes%n_modes()
-            count = int(n, c_int)
-            if (n > capacity) then
-                call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
-                                 //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
-            else
-                call c_f_pointer(pole_re, out, [n])
-                out = real(modes%pole, dp)
-                call c_f_pointer(pole_im, out, [n])
-                out = aimag(modes%pole)
-                call c_f_pointer(residue_re, out, [n])
-                out = real(modes%residue, dp)
-                call c_f_pointer(residue_im, out, [n])
-                out = aimag(modes%residue)
-            end if
-        end if
+        if (.not. allocated(error)) count = int(modes%n_modes(), c_int)
+        call modes_to_c(caller, modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
         status = finish(error, errmsg, errmsg_len)
     end function gc_identify_frf_file
 
