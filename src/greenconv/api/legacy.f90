@@ -23,7 +23,7 @@
 !> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
 !> impulse-response samples g [m/(N*s)], frequencies [Hz].
 module greenconv_legacy
-    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
+    use, intrinsic :: iso_c_binding, only: c_loc
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
@@ -31,10 +31,10 @@ module greenconv_legacy
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_api_library, only: check_contact_law, run_scene_file
+    use greenconv_api_library, only: run_scene_file
     use greenconv_api_handle, only: convolver_box, new_box, box_at, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    identify_file_ml, step_box, describe_box
+                                    samples_structure, frf_file_structure, identify_file, identify_file_ml, step_box, &
+                                    describe_box
     use greenconv_legacy_multi, only: gcmfre, gcmhis, gcmpsh, gcmw0, gcmrst
     use greenconv_api_budget, only: run_point_budget
     use greenconv_api_doors, only: report, handle_address, address_handle
