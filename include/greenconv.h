@@ -183,7 +183,8 @@ void gc_convolver_free(gc_convolver *conv);
 int gc_build_options_init(gc_build_options *options);
 
 /**
- * The constructors above with build options (NULL: the defaults), e.g. a finer truncation
+ * The constructors above with build options (NULL: the defaults; the constructors above are
+ * these with options = NULL), e.g. a finer truncation
  * of g for "direct" and "fft" or another accuracy for "auto". Bad options give
  * GC_ERROR_INPUT with a message naming them.
  */
@@ -202,6 +203,13 @@ int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *meth
                                    gc_convolver **conv, char *errmsg, size_t errmsg_len);
 
 /* ---- stepping a convolver ------------------------------------------------------------- */
+
+/*
+ * A single-point convolver is the multi-point convolver of one point (one object behind both
+ * handle types): gc_convolver_history, _push, _instant_weight and _reset are gc_multi_history,
+ * _push, _instant_matrix and _reset with n_points = 1 and no message buffer, and refuse a
+ * handle of more points (GC_ERROR_INPUT).
+ */
 
 /** History displacement u_h(n) [m] at t_n from the forces pushed so far. */
 int gc_convolver_history(const gc_convolver *conv, double *displacement);

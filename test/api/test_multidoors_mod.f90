@@ -2,7 +2,8 @@
 !> layer greenconv_capi_multi) against the Fortran API: a 4 x 3 patch of the plate model run
 !> by `GCMMOD` + `GCMRUN` and by a `GCMSTP` loop equals `make_multipoint_convolver` +
 !> `run_multi_contact` to the bit for every multi-point method; `GCMSMP` equals the sampled
-!> engine on the same table; statuses and messages of bad input and of a diverged run.
+!> engine on the same table; statuses and messages of bad input and of a diverged run; the
+!> single-point doors `GCHIST`, `GCPUSH`, `GCW0` refuse a handle of more than one point.
 module test_multidoors_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
@@ -12,6 +13,7 @@ module test_multidoors_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_legacy_multi, only: gcmmod, gcmsmp, gcmplt, gcmfre, gcmrun, gcmbeg, gcmstp, gcmhis, gcmw0, gcmnpt, &
                                       gcmopt, gcmdsc
+    use greenconv_legacy, only: gchist, gcpush, gcw0
     implicit none
     private
 
@@ -224,6 +226,18 @@ contains
         if (allocated(error)) return
         call gcmhis(handle, n_c - 1, uh, ierr, message)
         call check(error, ierr == 2 .and. index(message, 'n_points = 11') > 0, 'wrong NC: '//message)
+        if (allocated(error)) return
+        ! GCHIST, GCPUSH and GCW0 are the GCM doors of one point: a 12-point handle is refused
+        uh(1) = -1.0_dp
+        call gchist(handle, uh(1), ierr)
+        call check(error, ierr == 2 .and. uh(1) == 0.0_dp, 'GCHIST on a 12-point handle: IERR = 2, 0')
+        if (allocated(error)) return
+        call gcpush(handle, 1.0_dp, ierr)
+        call check(error, ierr == 2, 'GCPUSH on a 12-point handle: IERR = 2')
+        if (allocated(error)) return
+        uh(1) = -1.0_dp
+        call gcw0(handle, uh(1), ierr)
+        call check(error, ierr == 2 .and. uh(1) == 0.0_dp, 'GCW0 on a 12-point handle: IERR = 2, 0')
         if (allocated(error)) return
         road = patch_road()
         kc(:) = k_c

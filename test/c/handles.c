@@ -2,7 +2,8 @@
  * Handles: NULL everywhere is refused with GC_ERROR_INPUT, never a crash; gc_convolver_free
  * of NULL does nothing; gc_convolver_delete (and gc_multi_delete) frees once and then finds
  * NULL, however often it is called, and every call on the deleted handle is refused; two
- * convolvers are independent.
+ * convolvers are independent. A single-point door is the multi-point door of one point: on a
+ * one-point multi-point handle it steps the same box, a handle of more points it refuses.
  */
 #include "greenconv.h"
 #include "check.h"
@@ -72,6 +73,45 @@ int main(void)
         check_status(status, GC_ERROR_INPUT, msg, "conv", "multi history on the deleted handle: status 2");
         status = gc_multi_push(multi, 1, &u, msg, sizeof msg);
         check_status(status, GC_ERROR_INPUT, msg, "conv", "multi push on the deleted handle: status 2");
+    }
+
+    /* One handle family: the single-point doors are the multi-point ones of one point. On a
+     * one-point multi-point convolver they step and read the same box; given a two-point one
+     * (cast), they refuse it instead of reading or writing one value of a two-value array. */
+    {
+        double pole_re = -30.0, pole_im = 600.0, res_re = 0.0, res_im = -1.0 / 1200.0, shape[2] = {1.0, 0.5};
+        double u_point = -1.0, u_multi = -2.0, w_point = -1.0, w_multi = -2.0, q[2] = {1.0, 1.0};
+        gc_multi_convolver *multi = NULL;
+        int k;
+        status = gc_multi_new_modes(1, 1, &pole_re, &pole_im, &res_re, &res_im, shape, 1e-4, "exact", 100, NULL,
+                                    &multi, msg, sizeof msg);
+        check(status == GC_OK, "a one-point multi-point convolver", msg);
+        status = 0;
+        for (k = 0; k < 20; k++) {
+            status += gc_convolver_push((gc_convolver *)multi, 1.0 + 0.1 * k);
+            status += gc_convolver_history((const gc_convolver *)multi, &u_point);
+            status += gc_multi_history(multi, 1, &u_multi, msg, sizeof msg);
+            if (u_point != u_multi) status += 100;
+        }
+        status += gc_convolver_instant_weight((const gc_convolver *)multi, &w_point);
+        status += gc_multi_instant_matrix(multi, 1, &w_multi, msg, sizeof msg);
+        check(status == GC_OK && u_point == u_multi && u_point != 0.0 && w_point == w_multi,
+              "one point: gc_convolver_push/history/instant_weight step and read the multi-point box", msg);
+        check(gc_convolver_reset((gc_convolver *)multi) == GC_OK && gc_multi_history(multi, 1, &u_multi, msg,
+              sizeof msg) == GC_OK && u_multi == 0.0, "one point: gc_convolver_reset resets the multi-point box", msg);
+        gc_multi_delete(&multi);
+
+        status = gc_multi_new_modes(2, 1, &pole_re, &pole_im, &res_re, &res_im, shape, 1e-4, "exact", 100, NULL,
+                                    &multi, msg, sizeof msg);
+        check(status == GC_OK, "a two-point multi-point convolver", msg);
+        gc_multi_push(multi, 2, q, msg, sizeof msg);
+        check(gc_convolver_history((const gc_convolver *)multi, &u_point) == GC_ERROR_INPUT,
+              "two points: gc_convolver_history refuses the handle (status 2)", NULL);
+        check(gc_convolver_push((gc_convolver *)multi, 1.0) == GC_ERROR_INPUT,
+              "two points: gc_convolver_push refuses the handle (status 2)", NULL);
+        check(gc_convolver_instant_weight((const gc_convolver *)multi, &w_point) == GC_ERROR_INPUT,
+              "two points: gc_convolver_instant_weight refuses the handle (status 2)", NULL);
+        gc_multi_delete(&multi);
     }
     return check_exit();
 }

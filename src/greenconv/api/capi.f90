@@ -8,6 +8,9 @@
 !> neglects and the state of a contact run stepped one call at a time. The work is done by
 !> greenconv_api_handle's procedures, shared with the Fortran 77 layer; these functions only
 !> convert arguments and messages. No function keeps state outside the handles it is given.
+!> The doors that are another door with a fixed argument (the constructors and the run without
+!> options, the single-point history, push, weight and reset as the multi-point doors of one
+!> point) are one-line C functions in capi_aliases.c.
 !>
 !> Conventions (see the header): functions return a status, 0 (`GC_OK`), 2 (`GC_ERROR_INPUT`)
 !> or 3 (`GC_ERROR_NUMERICAL`), the codes of greenconv_core_error. A message buffer `errmsg`
@@ -29,20 +32,19 @@ module greenconv_capi
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    step_box, point_history, point_push, reset_box, describe_box
+                                    step_box, describe_box
     use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
-    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door
+    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door, &
+                                   need_capacity, modes_to_c
     implicit none
     private
 
     public :: gc_contact_options, gc_build_options, gc_scheme_explicit, gc_scheme_implicit
-    public :: gc_convolver_new_sdof, gc_convolver_new_modes, gc_convolver_new_samples, gc_convolver_new_frf_file
     public :: gc_build_options_init, gc_convolver_new_sdof_opts, gc_convolver_new_modes_opts
     public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_opts
-    public :: gc_convolver_free, gc_convolver_delete, gc_convolver_history, gc_convolver_push
-    public :: gc_convolver_instant_weight, gc_convolver_reset, gc_convolver_model_size, gc_convolver_describe
+    public :: gc_convolver_free, gc_convolver_delete, gc_convolver_model_size, gc_convolver_describe
     public :: gc_convolver_warnings
-    public :: gc_contact_step, gc_run_contact, gc_contact_options_init, gc_run_contact_opts
+    public :: gc_contact_step, gc_contact_options_init, gc_run_contact_opts
     public :: gc_contact_start, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
     !> The message and string conversions of greenconv_api_doors, named here too for the
@@ -94,34 +96,6 @@ contains
         status = 0
     end function gc_build_options_init
 
-    !> int gc_convolver_new_sdof(double mass, double stiffness, double damping_ratio, double dt,
-    !> const char *method, int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
-    function gc_convolver_new_sdof(mass, stiffness, damping_ratio, dt, method, n_steps, conv, errmsg, errmsg_len) &
-        bind(c, name='gc_convolver_new_sdof') result(status)
-        !> Mass M [kg], > 0.
-        real(c_double), value, intent(in) :: mass
-        !> Stiffness K [N/m], > 0.
-        real(c_double), value, intent(in) :: stiffness
-        !> Damping ratio xi, 0 <= xi < 1.
-        real(c_double), value, intent(in) :: damping_ratio
-        !> Time step dt [s], > 0.
-        real(c_double), value, intent(in) :: dt
-        !> Method name, a NUL-terminated string.
-        type(c_ptr), value, intent(in) :: method
-        !> Number of steps N_t of the run, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Where the new convolver goes (NULL there on failure).
-        type(c_ptr), value, intent(in) :: conv
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = gc_convolver_new_sdof_opts(mass, stiffness, damping_ratio, dt, method, n_steps, c_null_ptr, conv, &
-                                            errmsg, errmsg_len)
-    end function gc_convolver_new_sdof
-
     !> int gc_convolver_new_sdof_opts(double mass, double stiffness, double damping_ratio,
     !> double dt, const char *method, int n_steps, const gc_build_options *options,
     !> gc_convolver **conv, char *errmsg, size_t errmsg_len)
@@ -156,39 +130,6 @@ contains
         status = made('gc_convolver_new_sdof', method, structure, dt, n_steps, options, conv, error, errmsg, &
                       errmsg_len)
     end function gc_convolver_new_sdof_opts
-
-    !> int gc_convolver_new_modes(int n_modes, const double *pole_re, const double *pole_im,
-    !> const double *residue_re, const double *residue_im, double dt, const char *method,
-    !> int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
-    function gc_convolver_new_modes(n_modes, pole_re, pole_im, residue_re, residue_im, dt, method, n_steps, conv, &
-                                    errmsg, errmsg_len) bind(c, name='gc_convolver_new_modes') result(status)
-        !> Number of modes (conjugate pairs), >= 1.
-        integer(c_int), value, intent(in) :: n_modes
-        !> Real parts of the poles lambda_k [rad/s], < 0.
-        type(c_ptr), value, intent(in) :: pole_re
-        !> Imaginary parts of the poles [rad/s], > 0.
-        type(c_ptr), value, intent(in) :: pole_im
-        !> Real parts of the residues r_k [m/(N*s)].
-        type(c_ptr), value, intent(in) :: residue_re
-        !> Imaginary parts of the residues [m/(N*s)].
-        type(c_ptr), value, intent(in) :: residue_im
-        !> Time step dt [s], > 0.
-        real(c_double), value, intent(in) :: dt
-        !> Method name, a NUL-terminated string.
-        type(c_ptr), value, intent(in) :: method
-        !> Number of steps N_t of the run, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Where the new convolver goes (NULL there on failure).
-        type(c_ptr), value, intent(in) :: conv
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = gc_convolver_new_modes_opts(n_modes, pole_re, pole_im, residue_re, residue_im, dt, method, n_steps, &
-                                             c_null_ptr, conv, errmsg, errmsg_len)
-    end function gc_convolver_new_modes
 
     !> int gc_convolver_new_modes_opts(int n_modes, const double *pole_re, const double *pole_im,
     !> const double *residue_re, const double *residue_im, double dt, const char *method,
@@ -243,32 +184,6 @@ contains
                       errmsg_len)
     end function gc_convolver_new_modes_opts
 
-    !> int gc_convolver_new_samples(int n_samples, const double *g, double dt, const char *method,
-    !> int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
-    function gc_convolver_new_samples(n_samples, g, dt, method, n_steps, conv, errmsg, errmsg_len) &
-        bind(c, name='gc_convolver_new_samples') result(status)
-        !> Number of samples, >= 2.
-        integer(c_int), value, intent(in) :: n_samples
-        !> Samples g(n*dt), n = 0..n_samples-1 [m/(N*s)].
-        type(c_ptr), value, intent(in) :: g
-        !> Time step dt [s] of the samples and of the run, > 0.
-        real(c_double), value, intent(in) :: dt
-        !> Method name, "direct" or "fft".
-        type(c_ptr), value, intent(in) :: method
-        !> Number of steps N_t of the run, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Where the new convolver goes (NULL there on failure).
-        type(c_ptr), value, intent(in) :: conv
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = gc_convolver_new_samples_opts(n_samples, g, dt, method, n_steps, c_null_ptr, conv, errmsg, &
-                                               errmsg_len)
-    end function gc_convolver_new_samples
-
     !> int gc_convolver_new_samples_opts(int n_samples, const double *g, double dt,
     !> const char *method, int n_steps, const gc_build_options *options, gc_convolver **conv,
     !> char *errmsg, size_t errmsg_len)
@@ -307,34 +222,6 @@ contains
         status = made('gc_convolver_new_samples', method, structure, dt, n_steps, options, conv, error, errmsg, &
                       errmsg_len)
     end function gc_convolver_new_samples_opts
-
-    !> int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps,
-    !> double tol_e, int max_modes, gc_convolver **conv, char *errmsg, size_t errmsg_len)
-    function gc_convolver_new_frf_file(path, dt, method, n_steps, tol_e, max_modes, conv, errmsg, errmsg_len) &
-        bind(c, name='gc_convolver_new_frf_file') result(status)
-        !> Path of the receptance file (f [Hz], Re G, Im G [m/N]), NUL-terminated.
-        type(c_ptr), value, intent(in) :: path
-        !> Time step dt [s], > 0.
-        real(c_double), value, intent(in) :: dt
-        !> Method name, a NUL-terminated string.
-        type(c_ptr), value, intent(in) :: method
-        !> Number of steps N_t of the run, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Target of the identification error E of eq. (7), > 0.
-        real(c_double), value, intent(in) :: tol_e
-        !> Largest number of modes the LSCE scan tries, >= 1.
-        integer(c_int), value, intent(in) :: max_modes
-        !> Where the new convolver goes (NULL there on failure).
-        type(c_ptr), value, intent(in) :: conv
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, c_null_ptr, conv, &
-                                                errmsg, errmsg_len)
-    end function gc_convolver_new_frf_file
 
     !> int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method,
     !> int n_steps, double tol_e, int max_modes, const gc_build_options *options,
@@ -400,78 +287,6 @@ contains
     end subroutine gc_convolver_delete
 
     ! ---- stepping a convolver ---------------------------------------------------------------
-
-    !> int gc_convolver_history(const gc_convolver *conv, double *displacement)
-    function gc_convolver_history(conv, displacement) bind(c, name='gc_convolver_history') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Where the history displacement u_h(n) [m] goes.
-        type(c_ptr), value, intent(in) :: displacement
-        integer(c_int) :: status
-
-        type(convolver_box), pointer :: box
-        type(error_type), allocatable :: error
-        real(dp) :: u
-
-        box => box_at(conv)
-        status = stat_input
-        if (.not. (associated(box) .and. c_associated(displacement))) return
-        call point_history('gc_convolver_history', box, u, error)
-        if (allocated(error)) return
-        call put(displacement, u)
-        status = 0
-    end function gc_convolver_history
-
-    !> int gc_convolver_push(gc_convolver *conv, double force)
-    function gc_convolver_push(conv, force) bind(c, name='gc_convolver_push') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Force q(t_n) [N] of the current step.
-        real(c_double), value, intent(in) :: force
-        integer(c_int) :: status
-
-        type(convolver_box), pointer :: box
-        type(error_type), allocatable :: error
-
-        box => box_at(conv)
-        status = stat_input
-        if (.not. associated(box)) return
-        call point_push('gc_convolver_push', box, force, error)
-        if (allocated(error)) return
-        status = 0
-    end function gc_convolver_push
-
-    !> int gc_convolver_instant_weight(const gc_convolver *conv, double *weight)
-    function gc_convolver_instant_weight(conv, weight) bind(c, name='gc_convolver_instant_weight') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Where the instantaneous weight w0 [m/N] goes.
-        type(c_ptr), value, intent(in) :: weight
-        integer(c_int) :: status
-
-        type(convolver_box), pointer :: box
-
-        box => box_at(conv)
-        status = stat_input
-        if (.not. (associated(box) .and. c_associated(weight))) return
-        call put(weight, box%conv%weight0(1, 1))
-        status = 0
-    end function gc_convolver_instant_weight
-
-    !> int gc_convolver_reset(gc_convolver *conv)
-    function gc_convolver_reset(conv) bind(c, name='gc_convolver_reset') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        integer(c_int) :: status
-
-        type(convolver_box), pointer :: box
-
-        box => box_at(conv)
-        status = stat_input
-        if (.not. associated(box)) return
-        call reset_box(box)
-        status = 0
-    end function gc_convolver_reset
 
     !> int gc_convolver_model_size(const gc_convolver *conv, int *size)
     function gc_convolver_model_size(conv, size) bind(c, name='gc_convolver_model_size') result(status)
@@ -599,39 +414,6 @@ contains
         settings%tolerance = defaults%tolerance
         status = 0
     end function gc_contact_options_init
-
-    !> int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps,
-    !> const double *road, double *displacement, double *force, double *compression,
-    !> char *errmsg, size_t errmsg_len): the explicit step, default options.
-    function gc_run_contact(conv, k_c, p, preload, n_steps, road, displacement, force, compression, errmsg, &
-                            errmsg_len) bind(c, name='gc_run_contact') result(status)
-        !> The convolver (reset first).
-        type(c_ptr), value, intent(in) :: conv
-        !> Contact stiffness k_c [N/m^p], > 0.
-        real(c_double), value, intent(in) :: k_c
-        !> Contact exponent p, > 0.
-        real(c_double), value, intent(in) :: p
-        !> Static preload F0 [N], >= 0.
-        real(c_double), value, intent(in) :: preload
-        !> Number of steps N_t, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Road heights u_r(t_n) [m], n_steps values.
-        type(c_ptr), value, intent(in) :: road
-        !> Body displacements u(t_n) [m], n_steps values (0 after a fault).
-        type(c_ptr), value, intent(in) :: displacement
-        !> Contact forces F(t_n) [N], n_steps values (0 after a fault).
-        type(c_ptr), value, intent(in) :: force
-        !> Compressions delta(t_n) [m], n_steps values (0 after a fault), or NULL.
-        type(c_ptr), value, intent(in) :: compression
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, c_null_ptr, displacement, force, &
-                                     compression, errmsg, errmsg_len)
-    end function gc_run_contact
 
     !> int gc_run_contact_opts(gc_convolver *conv, double k_c, double p, double preload,
     !> int n_steps, const double *road, const gc_contact_options *options, double *displacement,
@@ -834,18 +616,14 @@ contains
         type(error_type), allocatable :: error
         type(modal_set) :: modes
         integer(c_int), pointer :: count
-        real(c_double), pointer :: e_out, out(:)
+        real(c_double), pointer :: e_out
         real(dp) :: e_value
-        integer :: n
 
         call check_outputs(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, error_e], &
                            [character(len=10) :: 'n_modes', 'pole_re', 'pole_im', 'residue_re', 'residue_im', &
                             'error_e'], error)
-        if (.not. allocated(error) .and. .not. c_associated(path)) then
-            call fatal_error(error, caller//': path is NULL: pass the name of a receptance file')
-        else if (.not. allocated(error) .and. capacity < 0) then
-            call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': expected >= 0')
-        end if
+        call need_pointer(caller, path, 'path', 'pass the name of a receptance file', error)
+        call need_capacity(caller, int(capacity), error)
         if (allocated(error)) then
             status = finish(error, errmsg, errmsg_len)
             return
@@ -855,23 +633,8 @@ contains
         count = 0
         call identify_file(from_c(path), tol_e, int(max_modes), modes, e_value, error)
         e_out = e_value
-        if (.not. allocated(error)) then
-            n = modes%n_modes()
-            count = int(n, c_int)
-            if (n > capacity) then
-                call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
-                                 //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
-            else
-                call c_f_pointer(pole_re, out, [n])
-                out = real(modes%pole, dp)
-                call c_f_pointer(pole_im, out, [n])
-                out = aimag(modes%pole)
-                call c_f_pointer(residue_re, out, [n])
-                out = real(modes%residue, dp)
-                call c_f_pointer(residue_im, out, [n])
-                out = aimag(modes%residue)
-            end if
-        end if
+        if (.not. allocated(error)) count = int(modes%n_modes(), c_int)
+        call modes_to_c(caller, modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
         status = finish(error, errmsg, errmsg_len)
     end function gc_identify_frf_file
 

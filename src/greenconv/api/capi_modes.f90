@@ -16,13 +16,12 @@
 module greenconv_capi_modes
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_f_pointer, c_associated
     use greenconv_core_kinds, only: dp
-    use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text
+    use greenconv_core_error, only: error_type
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_api_handle, only: identify_file_ml
     use greenconv_api_multi_handle, only: modes_file_box, check_box
     use greenconv_api_budget, only: set_box_accuracy
-    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer, need_pointers
+    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer, need_pointers, need_capacity, modes_to_c
     use greenconv_api_handle, only: convolver_box, box_at
     use greenconv_capi_multi, only: made, tolerance_of, null_handle
     implicit none
@@ -243,9 +242,7 @@ contains
         call need_pointers(caller, [n_modes, n_determined, pole_re, pole_im, residue_re, residue_im, sigma_f, &
                                     sigma_xi, determined], 'n_modes, n_determined, pole_re, pole_im, residue_re, ' &
                            //'residue_im, sigma_f, sigma_xi and determined', 'pass where they should go', error)
-        if (.not. allocated(error) .and. capacity < 0) then
-            call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': expected >= 0')
-        end if
+        call need_capacity(caller, int(capacity), error)
         if (allocated(error)) then
             status = finish(error, errmsg, errmsg_len)
             return
@@ -261,18 +258,8 @@ contains
             n = result%modes%n_modes()
             found = int(n, c_int)
             flags(1) = int(count(result%determined_modes()), c_int)
-            if (n > capacity) then
-                call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
-                                 //int_text(int(capacity))//': pass arrays of at least '//int_text(n)//' values')
-            else
-                call c_f_pointer(pole_re, out, [n])
-                out = real(result%modes%pole, dp)
-                call c_f_pointer(pole_im, out, [n])
-                out = aimag(result%modes%pole)
-                call c_f_pointer(residue_re, out, [n])
-                out = real(result%modes%residue, dp)
-                call c_f_pointer(residue_im, out, [n])
-                out = aimag(result%modes%residue)
+            call modes_to_c(caller, result%modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
+            if (.not. allocated(error)) then
                 call c_f_pointer(sigma_f, out, [n])
                 out = result%sigma_frequency
                 call c_f_pointer(sigma_xi, out, [n])

@@ -21,13 +21,13 @@ module greenconv_capi_multi
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes, box_points, file_summary
-    use greenconv_capi, only: gc_build_options, gc_convolver_free, gc_convolver_delete
+    use greenconv_capi, only: gc_build_options
     use greenconv_api_doors, only: finish, from_c, to_c, start_door, need_pointer, need_pointers, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
     implicit none
     private
 
-    public :: gc_multi_new_modes, gc_multi_new_samples, gc_multi_plate_patch, gc_multi_free, gc_multi_delete
+    public :: gc_multi_new_modes, gc_multi_new_samples, gc_multi_plate_patch
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
     public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
@@ -409,24 +409,6 @@ contains
         call file_summary(box, summary)
         call to_c(summary, text, text_len)
     end function gc_multi_file_summary
-
-    !> void gc_multi_free(gc_multi_convolver *conv): free a convolver (NULL: nothing); the one
-    !> box behind every handle is freed as greenconv_capi's `gc_convolver_free` does.
-    subroutine gc_multi_free(conv) bind(c, name='gc_multi_free')
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-
-        call gc_convolver_free(conv)
-    end subroutine gc_multi_free
-
-    !> void gc_multi_delete(gc_multi_convolver **conv): free *conv and set it to NULL, as
-    !> `gc_convolver_delete` does.
-    subroutine gc_multi_delete(conv) bind(c, name='gc_multi_delete')
-        !> Address of the caller's handle (NULL, or *conv NULL: nothing).
-        type(c_ptr), value, intent(in) :: conv
-
-        call gc_convolver_delete(conv)
-    end subroutine gc_multi_delete
 
     !> int gc_multi_n_points(const gc_multi_convolver *conv, int *n_points, char *errmsg, size_t errmsg_len)
     function gc_multi_n_points(conv, n_points, errmsg, errmsg_len) bind(c, name='gc_multi_n_points') result(status)

@@ -13,12 +13,13 @@ module greenconv_api_doors
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text
+    use greenconv_model_modal_set, only: modal_set
     use greenconv_conv_methods, only: check_method
     implicit none
     private
 
     public :: finish, from_c, to_c, put, report, handle_address, address_handle
-    public :: need_pointer, need_pointers, need_count, need_method, start_door
+    public :: need_pointer, need_pointers, need_count, need_method, need_capacity, start_door, modes_to_c
 
     interface
         !> size_t strlen(const char *s)
@@ -239,6 +240,56 @@ contains
         call check_method(lower_text(method), .true., has_g, has_modes, error)
         if (allocated(error)) error%message = caller//': '//error%message
     end subroutine need_method
+
+    !> Refuse (status 2) a negative capacity of a door's output arrays: "<caller>: capacity =
+    !> <value>: expected >= 0".
+    subroutine need_capacity(caller, capacity, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The capacity given (values each output array holds).
+        integer, intent(in) :: capacity
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (allocated(error) .or. capacity >= 0) return
+        call fatal_error(error, caller//': capacity = '//int_text(capacity)//': expected >= 0')
+    end subroutine need_capacity
+
+    !> Copy modes into a C door's four output arrays of `capacity` values (poles [rad/s] and
+    !> residues [m/(N*s)], real and imaginary parts), or refuse (status 2) more modes than they
+    !> hold: "<caller>: <n> modes found, more than capacity = <capacity>: pass arrays of at least
+    !> <n> values".
+    subroutine modes_to_c(caller, modes, capacity, pole_re, pole_im, residue_re, residue_im, error)
+        !> Name of the front-door routine, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> The modes.
+        type(modal_set), intent(in) :: modes
+        !> Values each output array holds.
+        integer, intent(in) :: capacity
+        !> C `double *` arrays (not NULL) for Re and Im of the poles and of the residues.
+        type(c_ptr), intent(in) :: pole_re, pole_im, residue_re, residue_im
+        !> Set unless already set.
+        type(error_type), allocatable, intent(inout) :: error
+
+        real(c_double), pointer :: out(:)
+        integer :: n
+
+        if (allocated(error)) return
+        n = modes%n_modes()
+        if (n > capacity) then
+            call fatal_error(error, caller//': '//int_text(n)//' modes found, more than capacity = ' &
+                             //int_text(capacity)//': pass arrays of at least '//int_text(n)//' values')
+            return
+        end if
+        call c_f_pointer(pole_re, out, [n])
+        out = real(modes%pole, dp)
+        call c_f_pointer(pole_im, out, [n])
+        out = aimag(modes%pole)
+        call c_f_pointer(residue_re, out, [n])
+        out = real(modes%residue, dp)
+        call c_f_pointer(residue_im, out, [n])
+        out = aimag(modes%residue)
+    end subroutine modes_to_c
 
     !> The start of a C constructor: clear the caller's handle (*conv = NULL) and refuse a NULL
     !> `conv` or `method`.

@@ -42,7 +42,7 @@ module greenconv_api_handle
     public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
     public :: run_box, identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
-    public :: point_history, point_push, reset_box, describe_box
+    public :: reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
     !> goes back to the allocator.
@@ -448,44 +448,6 @@ contains
         end if
         call copy_histories(response, displacement, force, compression)
     end subroutine run_box
-
-    !> u_h(n) [m] of a single-point box, the history displacement at the current step; 0 and
-    !> `error` when the step lies past the kernel's validity (`check_steps`).
-    subroutine point_history(caller, box, displacement, error)
-        !> Name of the front-door routine, first word of a message.
-        character(len=*), intent(in) :: caller
-        !> The box of a single-point structure.
-        type(convolver_box), intent(in) :: box
-        !> u_h(n) [m].
-        real(dp), intent(out) :: displacement
-        !> Set (`stat_input`) for a step past the kernel.
-        type(error_type), allocatable, intent(out) :: error
-
-        real(dp) :: values(1)
-
-        displacement = 0.0_dp
-        call check_steps(box, caller, 1_int64, error)
-        if (allocated(error)) return
-        call box%conv%history(values)
-        displacement = values(1)
-    end subroutine point_history
-
-    !> Push the force q(t_n) [N] of the current step into a single-point box and advance,
-    !> unless the step lies past the kernel's validity (`check_steps`).
-    subroutine point_push(caller, box, force, error)
-        !> Name of the front-door routine, first word of a message.
-        character(len=*), intent(in) :: caller
-        !> The box of a single-point structure.
-        type(convolver_box), intent(inout) :: box
-        !> Force q(t_n) [N].
-        real(dp), intent(in) :: force
-        !> Set (`stat_input`) for a step past the kernel.
-        type(error_type), allocatable, intent(out) :: error
-
-        call check_steps(box, caller, 1_int64, error)
-        if (allocated(error)) return
-        call box%conv%push([force])
-    end subroutine point_push
 
     !> One explicit step of the single-point contact loop on a box (the law and the kernel's
     !> validity checked first): u, F and delta of this step, the convolver advanced; all zero

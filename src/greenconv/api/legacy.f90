@@ -14,13 +14,16 @@
 !>
 !> Methods (the `METHOD` string, any case): 'direct', 'fft', 'modal' (= 'recursive'),
 !> 'paper', 'exact', 'backward' and 'auto'; see `new_convolver` (greenconv_api_library).
-!> Each routine is a thin conversion onto the Fortran API (greenconv_api_handle).
+!> Each routine is a thin conversion onto the Fortran API (greenconv_api_handle). A single-point
+!> convolver is the multi-point one of one point: `GCFREE`, `GCHIST`, `GCPUSH`, `GCW0` and
+!> `GCRSET` are greenconv_legacy_multi's `GCMFRE`, `GCMHIS`, `GCMPSH`, `GCMW0` and `GCMRST` with
+!> NC = 1 (the same box behind every handle), without their message.
 !>
 !> Units: masses [kg], stiffnesses [N/m], contact stiffness k_c [N/m^p], time step [s],
 !> forces [N], displacements and heights [m], poles [rad/s], residues [m/(N*s)],
 !> impulse-response samples g [m/(N*s)], frequencies [Hz].
 module greenconv_legacy
-    use, intrinsic :: iso_c_binding, only: c_loc, c_f_pointer
+    use, intrinsic :: iso_c_binding, only: c_loc
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
@@ -28,11 +31,11 @@ module greenconv_legacy
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_api_library, only: check_contact_law, run_scene_file
-    use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    identify_file_ml, &
-                                    point_history, point_push, step_box, reset_box, describe_box
+    use greenconv_api_library, only: run_scene_file
+    use greenconv_api_handle, only: convolver_box, new_box, box_at, sdof_structure, modes_structure, &
+                                    samples_structure, frf_file_structure, identify_file, identify_file_ml, step_box, &
+                                    describe_box
+    use greenconv_legacy_multi, only: gcmfre, gcmhis, gcmpsh, gcmw0, gcmrst
     use greenconv_api_budget, only: run_point_budget
     use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
@@ -199,11 +202,7 @@ contains
         !> The handle; 0 on return.
         integer(int64), intent(inout) :: handle
 
-        type(convolver_box), pointer :: box
-
-        box => box_at(handle_address(handle))
-        call free_box(box)
-        handle = 0_int64
+        call gcmfre(handle)
     end subroutine gcfree
 
     !> History displacement u_h(n) [m]: the displacement at t_n from the forces pushed so far.
@@ -212,17 +211,15 @@ contains
         integer(int64), intent(in) :: handle
         !> u_h(n) [m]; 0 on failure.
         real(dp), intent(out) :: uh
-        !> Status: 0 success, 2 null handle or a step past a cut kernel's validity.
+        !> Status: 0 success, 2 null handle, a multi-point handle or a step past a cut kernel's validity.
         integer, intent(out) :: ierr
 
-        type(convolver_box), pointer :: box
-        type(error_type), allocatable :: error
+        real(dp) :: values(1)
+        character(len=1) :: message
 
-        uh = 0.0_dp
-        box => checked_box(handle, ierr)
-        if (.not. associated(box)) return
-        call point_history('gchist', box, uh, error)
-        if (allocated(error)) ierr = error%stat
+        values(1) = 0.0_dp
+        call gcmhis(handle, 1, values, ierr, message)
+        uh = values(1)
     end subroutine gchist
 
     !> Push the force q(t_n) [N] of the current step and advance to step n + 1.
@@ -231,16 +228,12 @@ contains
         integer(int64), intent(in) :: handle
         !> Force q(t_n) [N] on the structure at this step.
         real(dp), intent(in) :: q
-        !> Status: 0 success, 2 null handle.
+        !> Status: 0 success, 2 null handle, a multi-point handle or a step past a cut kernel's validity.
         integer, intent(out) :: ierr
 
-        type(convolver_box), pointer :: box
-        type(error_type), allocatable :: error
+        character(len=1) :: message
 
-        box => checked_box(handle, ierr)
-        if (.not. associated(box)) return
-        call point_push('gcpush', box, q, error)
-        if (allocated(error)) ierr = error%stat
+        call gcmpsh(handle, 1, [q], ierr, message)
     end subroutine gcpush
 
     !> Instantaneous weight w0 [m/N]: displacement per newton of the current step's own
@@ -250,14 +243,15 @@ contains
         integer(int64), intent(in) :: handle
         !> w0 [m/N]; 0 on failure.
         real(dp), intent(out) :: w0
-        !> Status: 0 success, 2 null handle.
+        !> Status: 0 success, 2 null handle or a multi-point handle.
         integer, intent(out) :: ierr
 
-        type(convolver_box), pointer :: box
+        real(dp) :: matrix(1, 1)
+        character(len=1) :: message
 
-        w0 = 0.0_dp
-        box => checked_box(handle, ierr)
-        if (associated(box)) w0 = box%conv%weight0(1, 1)
+        matrix(1, 1) = 0.0_dp
+        call gcmw0(handle, 1, matrix, ierr, message)
+        w0 = matrix(1, 1)
     end subroutine gcw0
 
     !> Forget every force pushed: back to step 0 (the structure at rest).
@@ -267,10 +261,9 @@ contains
         !> Status: 0 success, 2 null handle.
         integer, intent(out) :: ierr
 
-        type(convolver_box), pointer :: box
+        character(len=1) :: message
 
-        box => checked_box(handle, ierr)
-        if (associated(box)) call reset_box(box)
+        call gcmrst(handle, ierr, message)
     end subroutine gcrset
 
     !> Size of the convolver's model: N_g kernel samples ('direct', 'fft') or N_m modes.

@@ -25,9 +25,8 @@ module greenconv_legacy_multi
                                           file_e_modes, modes_file_box, box_points, &
                                           file_summary
     use greenconv_api_doors, only: report, handle_address, address_handle, need_count
-    use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
+    use greenconv_api_handle, only: convolver_box, box_at, free_box, reset_box, describe_box, check_steps
     use greenconv_api_budget, only: set_box_accuracy
-    use greenconv_legacy, only: gcfree
     implicit none
     private
 
@@ -439,13 +438,17 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcmplt
 
-    !> Free a multi-point convolver (its FFTW plans too); the handle is 0 on return. The one
-    !> box behind every handle is freed as greenconv_legacy's `GCFREE` does.
+    !> Free a convolver (its FFTW plans too), multi- or single-point (the one box behind every
+    !> handle; greenconv_legacy's `GCFREE` is this door); the handle is 0 on return.
     subroutine gcmfre(handle)
         !> The handle (0: nothing).
         integer(int64), intent(inout) :: handle
 
-        call gcfree(handle)
+        type(convolver_box), pointer :: box
+
+        box => box_at(handle_address(handle))
+        call free_box(box)
+        handle = 0_int64
     end subroutine gcmfre
 
     !> Number of points N_c of a multi-point convolver.

@@ -1,0 +1,88 @@
+/* The C doors that are another door with a fixed argument: each is one line, so that one
+ * body (src/greenconv/api/capi.f90, capi_multi.f90) serves both names and the header
+ * (include/greenconv.h) keeps every name it has declared.
+ *
+ * - The constructors and the whole run without build or contact options are their `_opts`
+ *   door with NULL options (the library's defaults).
+ * - A single-point convolver is the multi-point convolver of one point (n_points = 1, the
+ *   same box behind both handle types): its history, push, instantaneous weight and reset
+ *   are the gc_multi_* doors on arrays of one value, with no message buffer (these
+ *   single-point doors return a status alone). gc_multi_free and gc_multi_delete are the
+ *   single-point ones, the box being the same.
+ *
+ * The doors that stay apart, and why: the single-point constructors accept every method of
+ * the registry ("paper", "backward", "auto") and the build option `accuracy`, the
+ * multi-point ones a subset; gc_run_contact_opts and gc_contact_start take a scheme and a
+ * divergence bound of 0.1 m in gc_contact_options, the multi-point runs take the Newton
+ * settings of gc_multi_set_newton (bound 1 m) and choose the step from W0, and they keep the
+ * error budget of a single-point run; gc_contact_step takes one explicit step without a
+ * start; gc_convolver_model_size refuses a NULL size where gc_multi_describe skips it; the
+ * estimate and accuracy doors name themselves in their messages. */
+#include <stddef.h>
+
+#include "../../../include/greenconv.h"
+
+int gc_convolver_new_sdof(double mass, double stiffness, double damping_ratio, double dt, const char *method,
+                          int n_steps, gc_convolver **conv, char *errmsg, size_t errmsg_len)
+{
+    return gc_convolver_new_sdof_opts(mass, stiffness, damping_ratio, dt, method, n_steps, NULL, conv, errmsg,
+                                      errmsg_len);
+}
+
+int gc_convolver_new_modes(int n_modes, const double *pole_re, const double *pole_im, const double *residue_re,
+                           const double *residue_im, double dt, const char *method, int n_steps,
+                           gc_convolver **conv, char *errmsg, size_t errmsg_len)
+{
+    return gc_convolver_new_modes_opts(n_modes, pole_re, pole_im, residue_re, residue_im, dt, method, n_steps, NULL,
+                                       conv, errmsg, errmsg_len);
+}
+
+int gc_convolver_new_samples(int n_samples, const double *g, double dt, const char *method, int n_steps,
+                             gc_convolver **conv, char *errmsg, size_t errmsg_len)
+{
+    return gc_convolver_new_samples_opts(n_samples, g, dt, method, n_steps, NULL, conv, errmsg, errmsg_len);
+}
+
+int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps, double tol_e,
+                              int max_modes, gc_convolver **conv, char *errmsg, size_t errmsg_len)
+{
+    return gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, NULL, conv, errmsg,
+                                          errmsg_len);
+}
+
+int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps, const double *road,
+                   double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len)
+{
+    return gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, NULL, displacement, force, compression, errmsg,
+                               errmsg_len);
+}
+
+int gc_convolver_history(const gc_convolver *conv, double *displacement)
+{
+    return gc_multi_history((const gc_multi_convolver *)conv, 1, displacement, NULL, 0);
+}
+
+int gc_convolver_push(gc_convolver *conv, double force)
+{
+    return gc_multi_push((gc_multi_convolver *)conv, 1, &force, NULL, 0);
+}
+
+int gc_convolver_instant_weight(const gc_convolver *conv, double *weight)
+{
+    return gc_multi_instant_matrix((const gc_multi_convolver *)conv, 1, weight, NULL, 0);
+}
+
+int gc_convolver_reset(gc_convolver *conv)
+{
+    return gc_multi_reset((gc_multi_convolver *)conv, NULL, 0);
+}
+
+void gc_multi_free(gc_multi_convolver *conv)
+{
+    gc_convolver_free((gc_convolver *)conv);
+}
+
+void gc_multi_delete(gc_multi_convolver **conv)
+{
+    gc_convolver_delete((gc_convolver **)conv);
+}
