@@ -34,7 +34,7 @@ module bench_accuracy_mod
     use greenconv_conv_direct, only: new_direct_convolver
     use greenconv_conv_kernel, only: sample_kernel
     use greenconv_contact_single, only: contact_response, run_contact
-    use greenconv_verify_contact, only: contact_reference
+    use verify_contact_mod, only: contact_reference
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_structure, only: build_structure

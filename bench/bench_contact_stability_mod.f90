@@ -26,7 +26,7 @@ module bench_contact_stability_mod
     use greenconv_contact_single, only: contact_law, contact_response, contact_options, run_contact
     use greenconv_model_road, only: sine_road
     use greenconv_io_files, only: write_columns, make_directory
-    use greenconv_verify_contact, only: contact_frequency
+    use verify_contact_mod, only: contact_frequency
     implicit none
     private
 

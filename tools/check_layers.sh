@@ -28,7 +28,7 @@ else
     root=src
 fi
 
-LAYERS=(core ext io model ident conv contact verify scene api)
+LAYERS=(core ext io model ident conv contact scene api)
 
 rank_of() { # rank of a layer name, or -1
     local i

@@ -14,7 +14,8 @@ module test_accuracy_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_api_all, only: convolver, contact_law, contact_response, run_contact, sdof_modes, make_convolver, &
-                                 error_type, sine_road, structure_from_modes, structure_model, contact_reference
+                                 error_type, sine_road, structure_from_modes, structure_model
+    use verify_contact_mod, only: contact_reference
     implicit none
     private
 

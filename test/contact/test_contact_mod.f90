@@ -5,9 +5,10 @@
 module test_contact_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use greenconv_verify_ode, only: ode_system, integrate
+    use verify_ode_mod, only: ode_system, integrate
     use greenconv_api_all, only: convolver, contact_law, contact_response, run_contact, sdof_modes, make_convolver, &
-                                 error_type, sine_road, structure_from_modes, contact_reference
+                                 error_type, sine_road, structure_from_modes
+    use verify_contact_mod, only: contact_reference
     implicit none
     private
 

@@ -2,15 +2,15 @@
 !> against something that does not share the step under test: the explicit step where the
 !> two must agree, closed forms of the linear contact (static balance, steady state through
 !> the combined receptance), and the state-space ODE of the oscillator on its contact spring
-!> integrated by the adaptive Dormand-Prince 5(4) pair (greenconv_verify_contact).
+!> integrated by the adaptive Dormand-Prince 5(4) pair (verify_contact_mod).
 module test_implicit_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use greenconv_api_all, only: convolver, contact_law, contact_response, contact_options, run_contact, sdof_modes, &
                                  sdof_receptance, make_convolver, error_type, stat_input, stat_numerical, sine_road, &
-                                 structure_from_modes, new_direct_convolver, direct_convolver, &
-                                 contact_frequency, contact_reference
+                                 structure_from_modes, new_direct_convolver, direct_convolver
+    use verify_contact_mod, only: contact_frequency, contact_reference
     implicit none
     private
 

@@ -1,5 +1,5 @@
 !> Order in dt of multi-point contact: every multi-point method against the
-!> independent reference of greenconv_verify_contact (the modal ODE of the true structure with
+!> independent reference of verify_contact_mod (the modal ODE of the true structure with
 !> the contact law at every point, adaptive Dormand-Prince at rtol 1e-10), on structures the
 !> project does not ship:
 !>

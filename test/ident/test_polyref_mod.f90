@@ -6,7 +6,7 @@
 !> 0.5 % of |G_ij| per line. The identification is compared with the Cramer-Rao bound of the
 !> shared-pole model (greenconv_ident_polyref's `pole_covariance` at the true poles and
 !> residues, the true noise), and the multi-point methods run on the identified model with the
-!> true structure's modal ODE (greenconv_verify_contact).
+!> true structure's modal ODE (verify_contact_mod).
 module test_polyref_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64, compiler_options
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
@@ -23,7 +23,7 @@ module test_polyref_mod
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_green_file, only: green_file_convolver
-    use greenconv_verify_contact, only: multi_contact_reference
+    use verify_contact_mod, only: multi_contact_reference
     use greenconv_ident_mlfit, only: ml_options
     use greenconv_ident_shared_poles, only: shared_fit, identify_shared
     use greenconv_ident_polyref, only: pole_covariance, pole_spread
@@ -425,7 +425,7 @@ contains
     !> universal file, rolled by the scene driver over data/road_sample.dat at 2 m/s (Hertz contact
     !> 1e7 N/m^1.5, 2 kN shared, 20 us, 40 ms, accuracy 3e-2) with the four multi-point methods;
     !> each method's contact forces against the true structure's modal ODE on the road the scene
-    !> ran on (greenconv_verify_contact), e = ||F - F_ODE||_2/||F_ODE - F0||_2. With `method = 'auto'`
+    !> ran on (verify_contact_mod), e = ||F - F_ODE||_2/||F_ODE - F0||_2. With `method = 'auto'`
     !> the best e must be <= 1e-2 and no method that ends inside the accuracy (status 0, its
     !> summary line not "outside the accuracy asked") may be beyond 3e-2; the same for the summed
     !> driving points (`method = 'ml'`, which now keeps 25 poles, E worst 1.2e-2, on this file).

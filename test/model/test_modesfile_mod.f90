@@ -9,7 +9,7 @@
 !>   e 3.3e-2 without R, 4.2e-3 with it at 40 and 20 us (what is left is the modes' dynamics
 !>   above 1 kHz, not dt), and the scene with f_modes = 1000 Hz gives the run with R;
 !> - the scene `&structure model = 'modes_file'` run with `exact` and `modal` at 80, 40 and
-!>   20 us against the independent modal ODE of greenconv_verify_contact (adaptive
+!>   20 us against the independent modal ODE of verify_contact_mod (adaptive
 !>   Dormand-Prince, rtol 1e-10) on the file's modes: e = ||F - F_ref||/||F_ref - F0|| <= 5e-3
 !>   at 20 us and the observed order log2(e(2 dt)/e(dt)) >= 1.8 for both halvings.
 module test_modesfile_mod
@@ -29,7 +29,7 @@ module test_modesfile_mod
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
-    use greenconv_verify_contact, only: multi_contact_reference
+    use verify_contact_mod, only: multi_contact_reference
     use greenconv_legacy_multi, only: gcmmfl, gcmrun, gcmfre, gcmnpt
     use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
     implicit none

@@ -13,7 +13,7 @@
 !>   estimate must be at least that error; `auto` at accuracy 1e-3 picks exact on the
 !>   identified mode (before: direct, N_t*N_g small), at 0.2 direct;
 !> - a clean Green's file of a 12-point plate: direct and fft within 5e-3 of the independent
-!>   reference (greenconv_verify_contact) at 20 us and second order, or their estimate above
+!>   reference (verify_contact_mod) at 20 us and second order, or their estimate above
 !>   5e-3 (then a run at that accuracy ends with status 4).
 module test_accuracystatus_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64

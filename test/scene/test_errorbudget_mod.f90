@@ -3,7 +3,7 @@
 !> each method's estimate (the summary line's `estimate` column: the model's terms plus the
 !> time step's, from the runs at 2*dt and 4*dt, plus the modes above the band's, from the run
 !> with the modes to twice the band) is compared with the relative L2 error of its contact
-!> forces against the independent modal ODE (greenconv_verify_contact, Dormand-Prince at
+!> forces against the independent modal ODE (verify_contact_mod, Dormand-Prince at
 !> rtol 1e-10, all the structure's modes), e = ||F - F_ODE||_2/||F_ODE - F0||_2 over the run
 !> and the points. The factor estimate/true is printed for each case.
 !>
@@ -19,14 +19,14 @@ module test_errorbudget_mod
     use greenconv_scene_input, only: scene_type, read_scene
     use greenconv_scene_structure, only: build_structure
     use greenconv_scene_runner, only: run_scene, check_scene
-    use greenconv_verify_contact, only: contact_reference
+    use verify_contact_mod, only: contact_reference
     use scene_text_mod, only: message_of, read_table, read_scene_text
     use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
     use greenconv_model_modes_file, only: file_modes, read_file_modes, band_modes
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_road_file, only: road_file, read_road_file, file_road
     use greenconv_contact_single, only: contact_law
-    use greenconv_verify_contact, only: multi_contact_reference
+    use verify_contact_mod, only: multi_contact_reference
     use test_accuracystatus_mod, only: twelve_point_plate
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_legacy, only: gcsdof, gccont, gcfree

@@ -16,8 +16,6 @@ module greenconv_api_all
     use greenconv_conv_fft, only: fft_convolver, new_fft_convolver, default_head
     use greenconv_contact_single, only: contact_law, contact_response, contact_options, run_contact, contact_state, &
                            start_contact, contact_block
-    use greenconv_verify_ode, only: ode_system, integrate
-    use greenconv_verify_contact, only: contact_reference, contact_frequency
     use greenconv_model_road, only: road_profile, sine_road, random_road, new_random_road
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, write_frf
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form
@@ -51,8 +49,6 @@ module greenconv_api_all
     public :: fft_convolver, new_fft_convolver, default_head
     public :: contact_law, contact_response, contact_options, run_contact
     public :: contact_state, start_contact, contact_block
-    public :: ode_system, integrate, contact_reference
-    public :: contact_frequency
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form

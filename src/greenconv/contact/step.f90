@@ -39,7 +39,7 @@
 !> parameters and those three procedures), the scene's rows for its parameters
 !> (scene/schema.f90, and scene/input.f90 where `&contact` becomes a law) and the check of
 !> its values (api/library.f90's `check_contact_law`); nothing here, in the single- and
-!> multi-point loops, the runner or verify/contact changes, and the C and Fortran 77 doors
+!> multi-point loops, the runner or the tests' ODE reference changes, and the C and Fortran 77 doors
 !> only if the law is to be given other parameters than k_c and p.
 module greenconv_contact_step
     use, intrinsic :: iso_fortran_env, only: int64

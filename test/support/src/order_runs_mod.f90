@@ -1,5 +1,5 @@
 !> Multi-point contact runs whose forces are measured against the modal ODE of the true
-!> structure (greenconv_verify_contact) at three time steps: the setup (structure, laws,
+!> structure (verify_contact_mod) at three time steps: the setup (structure, laws,
 !> preloads, a smooth road of three waves), the forces of a method and of the reference, the
 !> error and the observed order. Shared by the suites multiorder (contact) and accuracystatus
 !> (scene).
@@ -13,7 +13,7 @@ module order_runs_mod
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
-    use greenconv_verify_contact, only: multi_contact_reference
+    use verify_contact_mod, only: multi_contact_reference
     use greenconv_ident_green_structure, only: green_structure
     use greenconv_conv_green_file, only: green_file_convolver
     implicit none

@@ -1,12 +1,11 @@
-!> Verification, a user feature: an independent reference integrator to check a scene's
-!> results against, the embedded Runge-Kutta pair of Dormand and Prince, order 5(4)
-!> (J. Comput. Appl. Math. 6, 1980), with adaptive steps, for small systems y' = f(t, y).
-!> It shares nothing with the convolution code it checks. Extend `ode_system` with your
-!> structure's state-space equations and `integrate` them at a tight tolerance to check a
-!> convolution method on your own structure; greenconv_verify_contact does so for a modal
-!> structure in contact with a road. The library's tests and the benchmark (bench/) measure
-!> every convolution method against it.
-module greenconv_verify_ode
+!> The independent reference integrator of the tests and the benchmark: the embedded
+!> Runge-Kutta pair of Dormand and Prince, order 5(4) (J. Comput. Appl. Math. 6, 1980), with
+!> adaptive steps, for small systems y' = f(t, y). It shares nothing with the convolution
+!> code it checks: an `ode_system` extension holds a structure's state-space equations, and
+!> `integrate` solves them at a tight tolerance; verify_contact_mod does so for a modal
+!> structure in contact with a road. The tests and the benchmark (bench/) measure every
+!> convolution method against it.
+module verify_ode_mod
     use greenconv_core_kinds, only: dp
     implicit none
     private
@@ -99,4 +98,4 @@ contains
         end do
     end subroutine integrate
 
-end module greenconv_verify_ode
+end module verify_ode_mod

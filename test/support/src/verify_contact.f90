@@ -1,14 +1,12 @@
-!> Verification of contact runs, a user feature: the independent reference of a contact run
-!> at one point or at N_c points, and the contact frequency that tells whether a time step can
-!> be trusted. Use it to check your own scene: run it with your convolution method and with
-!> `contact_reference` (one point) or `multi_contact_reference` (a Green's matrix of shared
-!> modes), at your dt, and compare u and F; keep omega_c*dt = `contact_frequency(...)`*dt
-!> below 2 for the explicit contact step and below 2*sqrt(3) for the implicit one
-!> (greenconv_contact_single). The library's tests and the benchmark (bench/) check every
-!> method against it the same way.
+!> The independent reference of contact runs for the tests and the benchmark: a contact run
+!> at one point (`contact_reference`) or at N_c points (`multi_contact_reference`, a Green's
+!> matrix of shared modes), to compare u and F with a convolution method's at the same dt, and
+!> the contact frequency that tells whether a time step can be trusted: omega_c*dt =
+!> `contact_frequency(...)`*dt below 2 for the explicit contact step and below 2*sqrt(3) for
+!> the implicit one (greenconv_contact_single).
 !>
 !> The reference solves the structure's state-space equations, not its convolution,
-!> integrated by the adaptive Dormand-Prince pair of greenconv_verify_ode at a tight tolerance.
+!> integrated by the adaptive Dormand-Prince pair of verify_ode_mod at a tight tolerance.
 !> For modes shared by N_c points, g_ij(t) = sum_k phi_ik*phi_jk*2*Re(r_k*exp(lambda_k*t))
 !> (greenconv_model_point_modes), each mode carries one complex state x_k with
 !>
@@ -21,9 +19,9 @@
 !> its own: its only error is the integrator's tolerance (halve rtol by 100 and compare to
 !> measure it). The structure starts at rest, u(0) = 0; a road that is not zero at t = 0
 !> switches the loads on at t = 0+.
-module greenconv_verify_contact
+module verify_contact_mod
     use greenconv_core_kinds, only: dp
-    use greenconv_verify_ode, only: ode_system, integrate
+    use verify_ode_mod, only: ode_system, integrate
     use greenconv_model_modal_set, only: modal_set
     use greenconv_contact_single, only: contact_law
     use greenconv_model_road, only: road_profile
@@ -208,4 +206,4 @@ contains
         end do
     end subroutine modal_contact_rhs
 
-end module greenconv_verify_contact
+end module verify_contact_mod
