@@ -418,8 +418,8 @@ contains
         call read_scene_text(scratch, 'lsce.nml', head//" &identification method = 'lsce' /"//road//tail, scene, fail)
         call check(error, allocated(fail), 'lsce accepted for green_file')
         if (allocated(error)) return
-        call check(error, index(fail%message, "lsce.nml:1: &identification method: expected 'ml' for model " &
-                                //"'green_file'") > 0, 'message: '//fail%message)
+        call check(error, index(fail%message, "lsce.nml:1: &identification method: expected 'ml', 'poly_reference' " &
+                                //"or 'auto' for model 'green_file'") > 0, 'message: '//fail%message)
         if (allocated(error)) return
         call read_scene_text(scratch, 'sdof_texture.nml', "&scene dt = 1.0e-4, n_steps = 100 / " &
                              //"&structure model = 'sdof', " &

@@ -34,6 +34,8 @@ module greenconv_scene_input
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
+    use greenconv_ident_methods, only: check_ident_method, default_ident_method, ident_scheme, &
+                                       ident_one_receptance, ident_green_matrix
     use greenconv_conv_builder, only: check_kernel_values
     use greenconv_scene_settings, only: scene_type, scene_files, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
@@ -386,6 +388,9 @@ contains
         integer :: n_freq, max_order, order, stat
         character(len=name_length) :: method, noise_model, search
         character(len=512) :: message
+        character(len=:), allocatable :: refused
+        type(error_type), allocatable :: why
+        integer :: what
         namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model, search
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
@@ -403,21 +408,23 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        call require(any(trim(method) == [character(len=14) :: '', 'ml', 'lsce', 'poly_reference', 'auto']), error, &
-                     this, 'identification', 'method', "'ml' (maximum likelihood), 'lsce', 'poly_reference' or 'auto'", &
-                     method)
-        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
-                     'method', "'ml' for model 'green_file' (or 'poly_reference', 'auto': its shared poles)", method)
-        call require(all(trim(method) /= [character(len=14) :: 'poly_reference', 'auto']) .or. this%model == &
-                     'green_file', error, this, 'identification', 'method', "'ml' or 'lsce' for model '" &
-                     //trim(this%model)//"' ('poly_reference' and 'auto' are for a Green's matrix file)", method)
-        if (len_trim(method) == 0 .and. this%model == 'green_file') method = 'auto'
-        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file')
-        call require(order == 0 .or. trim(method) == 'lsce', error, this, 'identification', 'order', &
-                     "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
-                     //"method = 'lsce')", order)
+        if (this%model == 'green_file') then
+            what = ident_green_matrix
+        else
+            what = ident_one_receptance
+        end if
+        if (len_trim(method) == 0) method = default_ident_method(what, this%model == 'frf_file')
+        call check_ident_method(trim(method), what, this%model, order, refused, why)
+        if (allocated(why)) then
+            if (refused == 'order') then
+                call require(.false., error, this, 'identification', 'order', why%message, order)
+            else
+                call require(.false., error, this, 'identification', 'method', why%message, method)
+            end if
+        end if
         this%order = order
         this%ident_method = trim(method)
+        this%identification = ident_scheme(method)
         call require(any(trim(noise_model) == ['auto    ', 'relative', 'absolute', 'floor   ', 'band    ']), error, &
                      this, 'identification', 'noise_model', "'auto', 'relative', 'absolute', 'floor' or 'band'", &
                      noise_model)

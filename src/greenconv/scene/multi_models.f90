@@ -32,6 +32,7 @@ module greenconv_scene_multi_models
                                                sampled_kernel, summary_text, cost_bound_text
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, place_error
+    use greenconv_ident_methods, only: ident_poly_reference, ident_auto
     use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_patch, only: place_patch, run_text
     use greenconv_scene_tyre, only: tyre_points, place_band_error, tyre_band_top
@@ -170,8 +171,8 @@ contains
 
         options%fit%max_order = scene%max_order
         if (allocated(scene%ident_search)) options%fit%global_search = scene%ident_search == 'global'
-        if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
-        if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
+        options%poly_reference = scene%identification == ident_poly_reference
+        options%choose_poles = scene%identification == ident_auto
     end function green_settings
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its

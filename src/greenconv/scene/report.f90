@@ -13,6 +13,7 @@ module greenconv_scene_report
     use greenconv_io_files, only: write_columns
     use greenconv_scene_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
+    use greenconv_ident_methods, only: ident_ml
     implicit none
     private
 
@@ -34,7 +35,7 @@ contains
         if (allocated(structure%frf%source)) then
             if (len(structure%frf%source) > 0) call add_line(text, '# receptance: '//structure%frf%source)
         end if
-        if (structure%method == 'ml') then
+        if (structure%method == ident_ml) then
             call ml_summary(structure, text)
             return
         end if
@@ -157,7 +158,7 @@ contains
         character(len=:), allocatable :: stem
 
         stem = scene%output_dir//'/'//scene%name
-        if (structure%method == 'ml') then
+        if (structure%method == ident_ml) then
             call write_ml_modes(stem//'_modes.dat', structure, error)
             if (allocated(error)) return
             call write_diagram(stem//'_diagram.dat', structure, error)
@@ -293,7 +294,7 @@ contains
         allocate (fitted(structure%frf%n_freq()))
         associate (f => structure%frf%frequency, g => structure%frf%receptance)
             fitted(:) = structure%fitted(two_pi*f)
-            if (structure%method == 'ml') then
+            if (structure%method == ident_ml) then
                 call write_ml_fit(path, structure, fitted, error)
                 return
             end if

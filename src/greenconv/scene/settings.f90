@@ -14,6 +14,7 @@ module greenconv_scene_settings
     use greenconv_model_road_file, only: road_file_type => road_file
     use greenconv_model_road_texture, only: road_texture
     use greenconv_scene_scan, only: namelist_scan
+    use greenconv_ident_methods, only: ident_none
     implicit none
     private
 
@@ -115,8 +116,12 @@ module greenconv_scene_settings
         integer :: max_order
         !> Fixed number of modes (0: the smallest order that meets tol_e).
         integer :: order
-        !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
+        !> Identification of G as the scene names it: 'ml', 'lsce', 'poly_reference' or 'auto'
+        !> (greenconv_ident_methods).
         character(len=:), allocatable :: ident_method
+        !> The same resolved once by the registry (greenconv_ident_methods's `ident_scheme`):
+        !> `ident_ml`, `ident_lsce`, ...; `ident_none` when the scene names none.
+        integer :: identification = ident_none
         !> Noise model of the 'ml' identification: 'auto' (the default), 'relative', 'absolute',
         !> 'floor' or 'band' (ml_options%noise_model).
         character(len=:), allocatable :: ident_noise

@@ -23,6 +23,7 @@ module greenconv_scene_single_models
                                          structure_from_frf_ml, structure_from_receptance
     use greenconv_conv_methods, only: method_scheme, scheme_auto, method_needs, needs_modes
     use greenconv_scene_settings, only: scene_type, place_error
+    use greenconv_ident_methods, only: ident_ml
     implicit none
     private
 
@@ -183,11 +184,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(ml_options) :: options
-        logical :: ml
 
-        ml = .false.
-        if (allocated(scene%ident_method)) ml = scene%ident_method == 'ml'
-        if (ml) then
+        if (scene%identification == ident_ml) then
             options%max_order = scene%max_order
             if (allocated(scene%ident_noise)) options%noise_model = scene%ident_noise
             if (allocated(scene%ident_search)) options%global_search = scene%ident_search == 'global'
