@@ -79,8 +79,51 @@ module greenconv_ident_methods
 
     !> Number of identification methods in the registry.
     integer, parameter :: n_ident_methods = size(registry)
+    !> Length of `ident_summary`'s line.
+    integer, parameter :: summary_length = len(registry%summary) + len(registry%procedure) + 3
+
+    !> The method names for messages, "'ml', 'lsce', 'poly_reference' or 'auto'": all of them
+    !> (`ident_list()`) or those that identify `what` (`ident_list(what)`: `ident_one_receptance`,
+    !> `ident_green_matrix`).
+    interface ident_list
+        module procedure ident_list_all
+        module procedure ident_list_of
+    end interface ident_list
 
 contains
+
+    !> Whether a method identifies `what`.
+    elemental logical function serves(entry, what)
+        type(ident_entry), intent(in) :: entry
+        integer, intent(in) :: what
+
+        serves = (what == ident_one_receptance .and. entry%one_receptance) .or. &
+                 (what == ident_green_matrix .and. entry%green_matrix)
+    end function serves
+
+    !> The entry of `name`, or a blank one (scheme `ident_none`, identifying nothing) when unknown.
+    elemental function entry_of(name) result(entry)
+        character(len=*), intent(in) :: name
+        type(ident_entry) :: entry
+
+        integer :: i
+
+        entry = ident_entry('', ident_none, .false., .false., .false., .false., .false., .false., '', '')
+        i = find(name)
+        if (i > 0) entry = registry(i)
+    end function entry_of
+
+    !> Length of `joined(keep)`: the quoted names kept, ", " between them and " or " before the
+    !> last (a length given by a specification expression: see greenconv_core_text).
+    pure integer function joined_length(keep)
+        !> Which methods of the registry to name.
+        logical, intent(in) :: keep(n_ident_methods)
+
+        integer :: n
+
+        n = count(keep)
+        joined_length = sum(len_trim(registry%name) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
+    end function joined_length
 
     !> Whether `name` is an identification method of the registry (trailing blanks ignored).
     elemental logical function is_ident_method(name)
@@ -117,12 +160,12 @@ contains
     end function ident_name
 
     !> What a method does and the procedure that runs it, in one line, "summary (module:
-    !> procedure)"; '' for an unknown name.
+    !> procedure)", blank-padded; '' for an unknown name.
     pure function ident_summary(name) result(text)
         !> A method name.
         character(len=*), intent(in) :: name
         !> Its line.
-        character(len=:), allocatable :: text
+        character(len=summary_length) :: text
 
         type(ident_entry) :: entry
 
@@ -131,33 +174,52 @@ contains
         if (entry%scheme /= ident_none) text = trim(entry%summary)//' ('//trim(entry%procedure)//')'
     end function ident_summary
 
-    !> The method names for messages, "'ml', 'lsce', 'poly_reference' or 'auto'": all of them
-    !> (`what` absent) or those that identify `what` (`ident_one_receptance`, `ident_green_matrix`).
-    pure function ident_list(what) result(text)
-        !> Keep only the methods that identify this.
-        integer, intent(in), optional :: what
+    !> Every method name for messages, "'ml', 'lsce', 'poly_reference' or 'auto'".
+    pure function ident_list_all() result(text)
         !> The names.
-        character(len=:), allocatable :: text
+        character(len=joined_length(spread(.true., 1, n_ident_methods))) :: text
 
-        integer :: i, k, n
-        logical :: keep(n_ident_methods)
+        text = joined(spread(.true., 1, n_ident_methods))
+    end function ident_list_all
 
-        keep = .true.
-        if (present(what)) keep = serves(registry, what)
+    !> The names of the methods that identify `what` (`ident_one_receptance`,
+    !> `ident_green_matrix`), "'ml' or 'lsce'".
+    pure function ident_list_of(what) result(text)
+        !> Keep only the methods that identify this.
+        integer, intent(in) :: what
+        !> The names.
+        character(len=joined_length(serves(registry, what))) :: text
+
+        text = joined(serves(registry, what))
+    end function ident_list_of
+
+    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
+    pure function joined(keep) result(text)
+        !> Which methods of the registry to name.
+        logical, intent(in) :: keep(n_ident_methods)
+        !> The names.
+        character(len=joined_length(keep)) :: text
+
+        integer :: i, k, n, at, width
+
         n = count(keep)
-        text = ''
         k = 0
+        at = 0
         do i = 1, n_ident_methods
             if (.not. keep(i)) cycle
             k = k + 1
             if (k > 1 .and. k == n) then
-                text = text//' or '
+                text(at + 1:at + 4) = ' or '
+                at = at + 4
             else if (k > 1) then
-                text = text//', '
+                text(at + 1:at + 2) = ', '
+                at = at + 2
             end if
-            text = text//"'"//trim(registry(i)%name)//"'"
+            width = len_trim(registry(i)%name) + 2
+            text(at + 1:at + width) = "'"//trim(registry(i)%name)//"'"
+            at = at + width
         end do
-    end function ident_list
+    end function joined
 
     !> The method a structure gets when its scene names none: `what` is `ident_green_matrix`
     !> for a Green's matrix file, else `ident_one_receptance` with `measured` true for a
@@ -167,8 +229,8 @@ contains
         integer, intent(in) :: what
         !> Whether a single receptance was measured (an FRF file) rather than sampled.
         logical, intent(in) :: measured
-        !> The default method's name.
-        character(len=:), allocatable :: name
+        !> The default method's name, blank-padded.
+        character(len=ident_name_length) :: name
 
         integer :: i
         logical :: hit
@@ -183,7 +245,7 @@ contains
                 hit = registry(i)%default_sampled
             end if
             if (hit) then
-                name = trim(registry(i)%name)
+                name = registry(i)%name
                 return
             end if
         end do
@@ -234,38 +296,10 @@ contains
 
     !> The methods that take a fixed order, "'lsce'".
     pure function fixed_order_list() result(text)
-        character(len=:), allocatable :: text
+        character(len=joined_length(registry%fixed_order)) :: text
 
-        integer :: i
-
-        text = ''
-        do i = 1, n_ident_methods
-            if (.not. registry(i)%fixed_order) cycle
-            if (len(text) > 0) text = text//' or '
-            text = text//"'"//trim(registry(i)%name)//"'"
-        end do
+        text = joined(registry%fixed_order)
     end function fixed_order_list
-
-    !> Whether a method identifies `what`.
-    elemental logical function serves(entry, what)
-        type(ident_entry), intent(in) :: entry
-        integer, intent(in) :: what
-
-        serves = (what == ident_one_receptance .and. entry%one_receptance) .or. &
-                 (what == ident_green_matrix .and. entry%green_matrix)
-    end function serves
-
-    !> The entry of `name`, or a blank one (scheme `ident_none`, identifying nothing) when unknown.
-    elemental function entry_of(name) result(entry)
-        character(len=*), intent(in) :: name
-        type(ident_entry) :: entry
-
-        integer :: i
-
-        entry = ident_entry('', ident_none, .false., .false., .false., .false., .false., .false., '', '')
-        i = find(name)
-        if (i > 0) entry = registry(i)
-    end function entry_of
 
     !> Index of `name` in the registry, 0 when unknown (trailing blanks ignored).
     elemental integer function find(name)
