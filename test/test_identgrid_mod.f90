@@ -17,8 +17,8 @@ module test_identgrid_mod
     use greenconv_ident_structure, only: structure_model, structure_from_frf, structure_from_frf_ml
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_models_structure, only: build_structure
     use scene_text_mod, only: read_scene_text
     use test_mlfit_mod, only: fit_draw_on, structure
     implicit none

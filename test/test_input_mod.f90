@@ -12,9 +12,9 @@ module test_input_mod
     use greenconv_api_all, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
                                  structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
                                  new_convolver, convolver, sdof_modes
-    use greenconv_scene_input, only: write_scene_template
-    use greenconv_scene_schema, only: scene_variable, scene_table, scene_group_names
-    use greenconv_scene_models, only: structure_kind, structure_models, model_names, model_requires
+    use greenconv_scene_read_input, only: write_scene_template
+    use greenconv_scene_read_schema, only: scene_variable, scene_table, scene_group_names
+    use greenconv_scene_models_registry, only: structure_kind, structure_models, model_names, model_requires
     use greenconv_scene_scan, only: value_real, value_integer, value_logical
     use greenconv_ident_methods, only: n_ident_methods, ident_name, ident_scheme, ident_list, ident_summary, &
                                        default_ident_method, check_ident_method, ident_one_receptance, &
@@ -31,7 +31,8 @@ module test_input_mod
 
 contains
 
-    !> Tests of greenconv_scene_scan, greenconv_scene_schema, greenconv_scene_input's checks and the file readers.
+    !> Tests of greenconv_scene_scan, greenconv_scene_read_schema, greenconv_scene_read_input's checks and the
+    !> file readers.
     subroutine collect_input(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
@@ -50,7 +51,8 @@ contains
                      new_unittest('library: modes with Re lambda >= 0 or NaN refused', test_library_modes), &
                      new_unittest('scene table: each namelist holds the table''s variables', test_table_namelists), &
                      new_unittest('scene table: defaults read as their kind', test_table_defaults), &
-                     new_unittest('model registry: names, required variables, one builder per row', test_model_registry), &
+                     new_unittest('model registry: names, required variables, one builder per row', &
+                                  test_model_registry), &
                      new_unittest('identification registry: defaults, names, refusals by kind and order', &
                                   test_ident_registry)]
     end subroutine collect_input
@@ -681,7 +683,7 @@ contains
                    default_ident_method(ident_green_matrix, .false.) == 'auto', 'defaults: ml, lsce, auto')
         if (allocated(error)) return
         do k = 1, n_ident_methods
-            call check(error, ident_scheme(ident_name(k)) == k .and. len(ident_summary(ident_name(k))) > 0, &
+            call check(error, ident_scheme(ident_name(k)) == k .and. len_trim(ident_summary(ident_name(k))) > 0, &
                        'scheme '//ident_name(k)//' round trip')
             if (allocated(error)) return
         end do

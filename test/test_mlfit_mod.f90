@@ -22,13 +22,13 @@ module test_mlfit_mod
     use greenconv_model_frf, only: read_frf
     use greenconv_io_uff, only: uff_function, uff_node
     use greenconv_io_uff_write, only: write_uff, receptance_function, impulse_function
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use greenconv_ident_methods, only: ident_ml
     use greenconv_ident_structure, only: structure_model, structure_from_frf_ml
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_report, only: write_identification, identification_summary
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_report, only: write_identification, identification_summary
     use scene_text_mod, only: read_scene_text
     implicit none
     private

@@ -21,8 +21,8 @@ module test_patchscene_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_conv_green_file, only: green_file_convolver, new_green_file_convolver, green_file_report
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_run_runner, only: run_scene, check_scene
     use greenconv_scene_sweep, only: run_sweep
     use greenconv_core_text, only: int_text
     implicit none

@@ -99,7 +99,7 @@ contains
     !> `fft` convolver stores N_g*N_c^2 + 2*N_g*N_c values, with N_g estimated from the slowest
     !> decay rate (the envelope exp(-sigma*t) falls to tol by t = ln(1/tol)/sigma, and the
     !> kernel never exceeds the run's N_t samples), counted as a real so that absurd sizes do
-    !> not overflow. The one cap check of scenes (greenconv_scene_input) and of every door.
+    !> not overflow. The one cap check of scenes (greenconv_scene_read_input) and of every door.
     subroutine check_kernel_values(method, decay_rate, dt, tol, n_steps, n_points, error)
         !> Method name (lower case): nothing is checked for one that needs no sampled g.
         character(len=*), intent(in) :: method

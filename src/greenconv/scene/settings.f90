@@ -1,6 +1,6 @@
 !> What a scene is once read: `scene_type`, every value a run needs in SI units, and where
 !> each value stood in its file (`place_error`, for messages). Below the registry of structure
-!> models (greenconv_scene_models) and the scene reader (greenconv_scene_input), so that each
+!> models (greenconv_scene_models_registry) and the scene reader (greenconv_scene_read_input), so that each
 !> structure model's builder takes a scene without depending on the reader that checks it.
 module greenconv_scene_settings
     use greenconv_core_kinds, only: dp
@@ -47,7 +47,7 @@ module greenconv_scene_settings
         !> Show a progress line on standard error for long runs (only when it is a terminal).
         logical :: progress
         !> Whether a contact run also writes the 1/3-octave spectrum of its contact force
-        !> (greenconv_scene_spectra_output).
+        !> (greenconv_scene_run_spectra_output).
         logical :: spectra = .false.
         !> Exact centre frequencies [Hz] of the lowest and highest band of the spectra, as
         !> `check_spectra` resolved them from the file's values or the defaults.
@@ -55,7 +55,7 @@ module greenconv_scene_settings
         !> Whether the spectra of a multi-point run also give each point's level.
         logical :: spectra_points = .false.
         !> Per-point histories of a multi-point run: `auto` (all for N_c <= 100, none above),
-        !> `all` or `none` (greenconv_scene_runner).
+        !> `all` or `none` (greenconv_scene_run_runner).
         character(len=8) :: point_histories = 'auto'
         !> Steps between two rows of the per-point histories (0: `output_every`).
         integer :: point_every = 0

@@ -1,4 +1,4 @@
-!> The single-point structure models of the registry (greenconv_scene_models), each as what the
+!> The single-point structure models of the registry (greenconv_scene_models_registry), each as what the
 !> registry's row names: its builder (a `structure_model` from the scene's values), and what the
 !> scene's checks and `--check` ask of it.
 !>
@@ -9,7 +9,7 @@
 !> - `wheel_rail`: a wheel on an infinite rail (greenconv_model_rail), its receptance
 !>   alpha_w + alpha_r sampled from 0 to f_max in closed form and then used as a file's:
 !>   identified by the scene's method, g by inverse FFT at the scene's dt.
-module greenconv_scene_single_models
+module greenconv_scene_models_single
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text, sci_text
@@ -219,4 +219,4 @@ contains
         options%fixed_modes = scene%order
     end function scene_options
 
-end module greenconv_scene_single_models
+end module greenconv_scene_models_single

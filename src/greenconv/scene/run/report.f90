@@ -2,7 +2,7 @@
 !> E of eq. 7, CPU time, poles dropped, warnings) and column files of the modes (with their
 !> standard deviations for the maximum-likelihood fit), of G against its fit and residual,
 !> and of the stabilisation diagram.
-module greenconv_scene_report
+module greenconv_scene_run_report
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_model_modal_set, only: modal_set
@@ -11,7 +11,7 @@ module greenconv_scene_report
     use greenconv_ident_mlfit, only: ml_result, dropped_by_criterion, dropped_left_band, dropped_degenerate, &
                                      dropped_boundary
     use greenconv_io_files, only: write_columns
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_facade, only: scene_type
     use greenconv_ident_structure, only: structure_model
     use greenconv_ident_methods, only: ident_ml
     implicit none
@@ -345,4 +345,4 @@ contains
                          aimag(model), abs(model), degrees*atan2(aimag(model), real(model, dp))], [size(f), 9])
     end function fit_columns
 
-end module greenconv_scene_report
+end module greenconv_scene_run_report
