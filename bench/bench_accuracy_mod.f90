@@ -35,10 +35,10 @@ module bench_accuracy_mod
     use greenconv_conv_kernel, only: sample_kernel
     use greenconv_contact_single, only: contact_response, run_contact
     use verify_contact_mod, only: contact_reference
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: make_convolver
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_runner, only: make_convolver
     use greenconv_io_files, only: write_columns, make_directory
     use bench_tables_mod, only: load_scene
     use bench_timing_mod, only: contact_seconds

@@ -18,9 +18,9 @@ module bench_direct_mod
     use greenconv_conv_convolver, only: convolver, capped_step, free_convolver
     use greenconv_conv_direct, only: direct_convolver
     use greenconv_contact_single, only: contact_response
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_runner, only: make_convolver
+    use greenconv_scene_run_runner, only: make_convolver
     use bench_timing_mod, only: contact_seconds, step_seconds
     use bench_tables_mod, only: load_scene, verdict
     implicit none

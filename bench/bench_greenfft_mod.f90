@@ -14,8 +14,8 @@ module bench_greenfft_mod
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_conv_green_fft, only: fft_green_matrix, new_fft_green_matrix
-    use greenconv_scene_input, only: scene_type, read_scene, output_path
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_read_input, only: scene_type, read_scene, output_path
+    use greenconv_scene_run_runner, only: run_scene
     implicit none
     private
 

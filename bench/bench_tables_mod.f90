@@ -14,10 +14,10 @@ module bench_tables_mod
     use greenconv_conv_recursive, only: new_recursive_convolver
     use greenconv_conv_fft, only: new_fft_convolver
     use greenconv_contact_single, only: contact_response
-    use greenconv_scene_input, only: scene_type, read_scene
+    use greenconv_scene_read_input, only: scene_type, read_scene
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: make_convolver
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_runner, only: make_convolver
     use bench_timing_mod, only: contact_seconds, step_seconds
     implicit none
     private

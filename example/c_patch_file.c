@@ -9,7 +9,7 @@
  * as the scene's &identification max_order), builds "exact" (implicit, on the identified
  * modes and the fit's upper residual) and, on the same file without a second identification,
  * "fft" (g_ij from the inverse FFT of the file's receptances; gc_multi_new_method). It then
- * follows the scene's conventions (greenconv_scene_patch): preload 3000 N shared evenly by
+ * follows the scene's conventions (greenconv_scene_models_patch): preload 3000 N shared evenly by
  * the points, a linear law k_c = 5e4 N/m per point, point i at x_i sees the road of
  * data/road_sample.dat (linearly interpolated) at x_start + (x_i - mean x) + V*t_n,
  * x_start = 0.5 m, V = 5 m/s, t_n = n*dt, dt = 2e-4 s, 3000 steps. One

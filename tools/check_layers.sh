@@ -3,6 +3,11 @@
 # modules of its own layer and of the layers below it, never one above. The layers, bottom
 # to top, are listed in LAYERS; src/greenconv.f90 (the facade) sits at the top with api.
 # Above the scene layer its modules are reached through greenconv_scene_facade only.
+# Inside it, the scene layer has floors of its own, bottom to top (SCENE_PARTS): the files
+# directly in scene/ (settings, scan, limits: the floor every part shares), models/, read/,
+# run/, sweep/ (with scene/sweep.f90), and scene/facade.f90 on top. A file may use the
+# modules of its own part and of the floor, and of a lower part only that part's facade
+# (scene/<part>/facade.f90, greenconv_scene_<part>_facade; greenconv_scene_sweep for sweep/).
 # Every module under src/greenconv/<layer>/<name>.f90 must be named greenconv_<layer>_<name>
 # (the path says the layer and the name), and every layer folder must be in LAYERS.
 #
@@ -29,6 +34,30 @@ else
 fi
 
 LAYERS=(core ext io model ident conv contact scene api)
+SCENE_PARTS=(floor models read run sweep door)
+
+scene_rank() { # rank of a scene part, or -1
+    local i
+    for i in "${!SCENE_PARTS[@]}"; do [ "${SCENE_PARTS[$i]}" = "$1" ] && { echo "$i"; return; }; done
+    echo -1
+}
+
+# The part of the scene layer a file is in: its sub-folder, `floor` for a file directly in
+# scene/, `sweep` for scene/sweep.f90 and `door` for scene/facade.f90.
+scene_part_of_file() {
+    local rel=${1#"$root"/greenconv/scene/}
+    case $rel in
+        facade.f90) echo door ;;
+        sweep.f90) echo sweep ;;
+        */*) echo "${rel%%/*}" ;;
+        *) echo floor ;;
+    esac
+}
+
+# The module a lower part shows the parts above it.
+scene_facade_of() {
+    if [ "$1" = sweep ]; then echo greenconv_scene_sweep; else echo "greenconv_scene_$1_facade"; fi
+}
 
 rank_of() { # rank of a layer name, or -1
     local i
@@ -61,7 +90,7 @@ modules_used() {
 mapfile -t files < <(find "$root" -name '*.f90' -o -name '*.F90' | sort)
 
 # module name -> layer, from the file that defines it
-declare -A layer_of
+declare -A layer_of part_of
 status=0
 for file in "${files[@]}"; do
     layer=$(layer_of_file "$file")
@@ -69,6 +98,12 @@ for file in "${files[@]}"; do
     if [ "$rel" != greenconv.f90 ]; then
         if [ "$(rank_of "$layer")" -lt 0 ]; then
             echo "$file: expected a file in a layer folder $root/greenconv/{$(IFS=,; echo "${LAYERS[*]}")}/, found folder '$layer'"
+            status=1; continue
+        fi
+        if [ "$layer" = scene ] && [ "$(scene_rank "$(scene_part_of_file "$file")")" -lt 0 ]; then
+            parts=$(IFS=,; echo "${SCENE_PARTS[*]:1:4}")
+            echo "$file: expected a file in scene/ or a scene part folder scene/{$parts}/," \
+                 "found folder '$(scene_part_of_file "$file")'"
             status=1; continue
         fi
         stem=${rel#greenconv/"$layer"/}; stem=${stem%.*}; stem=${stem//\//_}
@@ -82,6 +117,7 @@ for file in "${files[@]}"; do
     fi
     while IFS= read -r module; do
         layer_of[$module]=$layer
+        [ "$layer" = scene ] && part_of[$module]=$(scene_part_of_file "$file")
     done < <(modules_defined "$file")
 done
 
@@ -99,6 +135,16 @@ for file in "${files[@]}"; do
         elif [ "$other" = scene ] && [ "$layer" != scene ] && [ "$used" != greenconv_scene_facade ]; then
             echo "$file:$line: layer '$layer' uses $used: outside the scene layer use greenconv_scene_facade"
             status=1
+        elif [ "$other" = scene ] && [ "$layer" = scene ]; then
+            mine=$(scene_part_of_file "$file")
+            theirs=${part_of[$used]}
+            if [ "$(scene_rank "$theirs")" -gt "$(scene_rank "$mine")" ]; then
+                echo "$file:$line: scene/$mine uses $used of the higher part scene/$theirs"
+                status=1
+            elif [ "$theirs" != "$mine" ] && [ "$theirs" != floor ] && [ "$used" != "$(scene_facade_of "$theirs")" ]; then
+                echo "$file:$line: scene/$mine uses $used: from scene/$theirs use $(scene_facade_of "$theirs")"
+                status=1
+            fi
         fi
     done < <(modules_used "$file")
 done

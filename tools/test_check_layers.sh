@@ -65,11 +65,11 @@ expect_clean 'model uses core, model and io (any case, use ::, non_intrinsic): a
 
 # Each spelling of a use of a higher layer is caught.
 n=0
-for statement in 'use greenconv_scene_input, only: scene_type' \
-                 'USE Greenconv_Scene_Input, ONLY: scene_type' \
-                 'use :: greenconv_scene_input' \
-                 'use, non_intrinsic :: greenconv_scene_input, only: scene_type' \
-                 '  Use ,  NON_INTRINSIC::GREENCONV_SCENE_INPUT'; do
+for statement in 'use greenconv_scene_read_input, only: scene_type' \
+                 'USE Greenconv_Scene_Read_Input, ONLY: scene_type' \
+                 'use :: greenconv_scene_read_input' \
+                 'use, non_intrinsic :: greenconv_scene_read_input, only: scene_type' \
+                 '  Use ,  NON_INTRINSIC::GREENCONV_SCENE_READ_INPUT'; do
     n=$((n + 1))
     fresh_copy
     plant greenconv/model/planted.f90 "module greenconv_model_planted
@@ -78,7 +78,7 @@ $statement
     implicit none
 end module greenconv_model_planted"
     expect_violation "model uses scene: '$statement'" greenconv/model/planted.f90:3 \
-        "layer 'model' uses greenconv_scene_input of the higher layer 'scene'"
+        "layer 'model' uses greenconv_scene_read_input of the higher layer 'scene'"
 done
 
 # A use inside an existing module, not only in a new file.
@@ -92,11 +92,42 @@ expect_violation 'an existing model file (sdof.f90) uses the contact layer' gree
 fresh_copy
 plant greenconv/api/planted.f90 "module greenconv_api_planted
     use greenconv_scene_facade, only: scene_type
-    use greenconv_scene_input, only: read_scene
+    use greenconv_scene_read_input, only: read_scene
     implicit none
 end module greenconv_api_planted"
-expect_violation 'api uses greenconv_scene_input, not the facade' greenconv/api/planted.f90:3 \
+expect_violation 'api uses greenconv_scene_read_input, not the facade' greenconv/api/planted.f90:3 \
     "outside the scene layer use greenconv_scene_facade"
+
+# Inside the scene layer: a lower part through its facade only, never a higher part, never
+# an unknown part folder; the floor (scene/*.f90) and the own part freely.
+fresh_copy
+plant greenconv/scene/run/planted.f90 "module greenconv_scene_run_planted
+    use greenconv_scene_settings, only: scene_type
+    use greenconv_scene_read_facade, only: read_scene
+    use greenconv_scene_run_stream, only: stream_run
+    implicit none
+end module greenconv_scene_run_planted"
+expect_clean 'scene/run uses the floor, the read facade and its own part: allowed'
+fresh_copy
+plant greenconv/scene/run/planted.f90 "module greenconv_scene_run_planted
+    use greenconv_scene_read_facade, only: scene_type
+    use greenconv_scene_read_input, only: read_scene
+    implicit none
+end module greenconv_scene_run_planted"
+expect_violation 'scene/run uses greenconv_scene_read_input, not the read facade' greenconv/scene/run/planted.f90:3 \
+    "from scene/read use greenconv_scene_read_facade"
+fresh_copy
+plant greenconv/scene/models/planted.f90 "module greenconv_scene_models_planted
+    use greenconv_scene_read_facade, only: scene_type
+    implicit none
+end module greenconv_scene_models_planted"
+expect_violation 'scene/models uses the read facade of a higher part' greenconv/scene/models/planted.f90:2 \
+    "of the higher part scene/read"
+fresh_copy
+plant greenconv/scene/extra/planted.f90 "module greenconv_scene_extra_planted
+    implicit none
+end module greenconv_scene_extra_planted"
+expect_violation 'a scene file in a folder that is no part' greenconv/scene/extra/planted.f90 "found folder 'extra'"
 
 # A file holding one module: a name that does not match its path, a name of another layer
 # than its folder, a folder that is not a layer.

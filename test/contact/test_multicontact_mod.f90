@@ -43,7 +43,7 @@ module test_multicontact_mod
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
-    use greenconv_scene_output, only: write_multi_contact
+    use greenconv_scene_run_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, sample_road, road_travel
     implicit none

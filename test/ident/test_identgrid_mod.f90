@@ -13,11 +13,12 @@ module test_identgrid_mod
     use greenconv_model_frf, only: frf_type, add_relative_noise, read_frf
     use greenconv_ident_lsce, only: lsce_options, natural_frequency, damping_ratio
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    use greenconv_ident_methods, only: ident_ml
     use greenconv_ident_structure, only: structure_model, structure_from_frf, structure_from_frf_ml
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_structure, only: build_structure
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_models_structure, only: build_structure
     use scene_text_mod, only: read_scene_text
     use test_mlfit_mod, only: fit_draw_on, structure
     implicit none
@@ -267,7 +268,7 @@ contains
         call build_structure(scene, built, failure)
         if (allocated(failure)) call check(error, .false., 'scene built: '//failure%message)
         if (allocated(error)) return
-        call check(error, built%method == 'ml' .and. built%model%n_modes() == 1, 'one mode by ML')
+        call check(error, built%method == ident_ml .and. built%model%n_modes() == 1, 'one mode by ML')
         if (allocated(error)) return
         f_found = natural_frequency(built%model%pole(1))/two_pi
         xi_found = damping_ratio(built%model%pole(1))

@@ -1,5 +1,5 @@
 !> The noise model from the data, the modes the data determine, and the identification's
-!> limits and messages (greenconv_ident_mlfit, greenconv_scene_report, the C and F77 doors).
+!> limits and messages (greenconv_ident_mlfit, greenconv_scene_run_report, the C and F77 doors).
 !>
 !> Synthetic receptances with known noise: 3 modes to 500 Hz on 1025 lines (xi 0.01 to 0.04,
 !> modal constants of both signs: test_mlfit_mod's case (c)), complex Gaussian noise of standard
@@ -19,10 +19,10 @@ module test_identnoise_mod
     use greenconv_model_frf, only: frf_type, frf_from_modes, add_relative_noise
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml, max_lines
     use greenconv_ident_noise_model, only: band_bounds
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use greenconv_io_files, only: make_directory
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_report, only: write_identification
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_report, only: write_identification
     use greenconv_ident_structure, only: structure_model
     use greenconv_capi_modes, only: gc_identify_ml_file
     use greenconv_legacy, only: gcidml

@@ -22,12 +22,13 @@ module test_mlfit_mod
     use greenconv_model_frf, only: read_frf
     use greenconv_io_uff, only: uff_function, uff_node
     use greenconv_io_uff_write, only: write_uff, receptance_function, impulse_function
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_ident_methods, only: ident_ml
     use greenconv_ident_structure, only: structure_model, structure_from_frf_ml
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_builder, only: make_convolver
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_report, only: write_identification, identification_summary
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_report, only: write_identification, identification_summary
     use scene_text_mod, only: read_scene_text
     implicit none
     private
@@ -945,7 +946,7 @@ contains
         call build_structure(scene, built, failure)
         if (allocated(failure)) call check(error, .false., failure%message)
         if (allocated(error)) return
-        call check(error, built%method == 'ml' .and. index(built%frf%source, 'response 7-Y, reference 3+X') > 0, &
+        call check(error, built%method == ident_ml .and. index(built%frf%source, 'response 7-Y, reference 3+X') > 0, &
                    'method ml and the DOFs reported, source: '//built%frf%source)
         if (allocated(error)) return
         call check(error, built%model%n_modes() == truth%n_modes(), 'modes found: expected 12')

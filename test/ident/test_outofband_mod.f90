@@ -25,7 +25,7 @@ module test_outofband_mod
     use greenconv_ident_lsce, only: natural_frequency, damping_ratio
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     use test_mlfit_mod, only: cramer_rao
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use scene_text_mod, only: read_scene_text
     implicit none
     private

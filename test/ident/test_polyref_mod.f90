@@ -29,7 +29,7 @@ module test_polyref_mod
     use greenconv_ident_polyref, only: pole_covariance, pole_spread
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_scene_settings, only: scene_type
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_run_runner, only: run_scene
     use scene_text_mod, only: read_scene_text, read_table, message_of
     implicit none
     private

@@ -1,11 +1,11 @@
 !> The matrix form of the linear reference written beside a multi-point scene's runs
-!> (greenconv_scene_linear_reference's `write_patch_reference`), for test_linearpatch_mod.
+!> (greenconv_scene_run_linear_reference's `write_patch_reference`), for test_linearpatch_mod.
 module linearpatch_scene_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, check, note
     use greenconv_core_error, only: error_type
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_run_runner, only: run_scene
     use scene_text_mod, only: read_scene_text
     use fixture_files_mod, only: read_bands
     implicit none

@@ -17,7 +17,7 @@ module test_modesfile_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use scene_text_mod, only: run_scene_text, read_table, message_of, write_text, read_scene_text
     use greenconv_scene_settings, only: scene_type
-    use greenconv_scene_runner, only: check_scene
+    use greenconv_scene_run_runner, only: check_scene
     use greenconv_core_error, only: error_type, stat_input
     use greenconv_io_files, only: make_directory
     use greenconv_io_uff_types, only: uff_node

@@ -31,8 +31,8 @@ module test_accuracystatus_mod
     use greenconv_conv_builder, only: make_convolver
     use greenconv_conv_kernel, only: beyond_nyquist
     use greenconv_conv_green_file, only: green_file_convolver
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_read_input, only: scene_type, read_scene
+    use greenconv_scene_run_runner, only: run_scene
     use fixture_files_mod, only: write_receptance_file
     use order_runs_mod, only: run_setup, wave_setup, measure
     use scene_text_mod, only: message_of

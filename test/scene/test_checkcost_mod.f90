@@ -6,7 +6,7 @@ module test_checkcost_mod
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check
     use greenconv, only: scene_type, error_type
     use greenconv_core_error, only: stat_input
-    use greenconv_scene_runner, only: check_scene
+    use greenconv_scene_run_runner, only: check_scene
     use greenconv_scene_limits, only: work_rate
     use scene_text_mod, only: tab1_scene, read_scene_text
     implicit none

@@ -16,9 +16,9 @@ module test_errorbudget_mod
     use greenconv_io_files, only: make_directory
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_scene_read_input, only: scene_type, read_scene
+    use greenconv_scene_models_structure, only: build_structure
+    use greenconv_scene_run_runner, only: run_scene, check_scene
     use verify_contact_mod, only: contact_reference
     use scene_text_mod, only: message_of, read_table, read_scene_text
     use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
@@ -243,7 +243,7 @@ contains
 
     !> The same plate file and scene at 80 us (375 steps): the explicit methods' and direct's
     !> runs at 2*dt diverge (the contact's stable step), so their time-step term comes from the
-    !> same run at dt/2 (greenconv_scene_stream's `halve_step`); exact's coarse pair is more than
+    !> same run at dt/2 (greenconv_scene_run_stream's `halve_step`); exact's coarse pair is more than
     !> 25 % apart, so its ratio is not taken.
     subroutine test_green_coarse(error)
         type(test_error), allocatable, intent(out) :: error

@@ -12,10 +12,13 @@ module test_input_mod
     use greenconv_api_all, only: scene_type, read_scene, error_type, structure_model, build_structure, modal_set, &
                                  structure_from_modes, frf_from_modes, frf_type, lsce_options, lsce_result, identify, &
                                  new_convolver, convolver, sdof_modes
-    use greenconv_scene_input, only: write_scene_template
-    use greenconv_scene_schema, only: scene_variable, scene_table, scene_group_names
-    use greenconv_scene_models, only: structure_kind, structure_models, model_names, model_requires
+    use greenconv_scene_read_input, only: write_scene_template
+    use greenconv_scene_read_schema, only: scene_variable, scene_table, scene_group_names
+    use greenconv_scene_models_registry, only: structure_kind, structure_models, model_names, model_requires
     use greenconv_scene_scan, only: value_real, value_integer, value_logical
+    use greenconv_ident_methods, only: n_ident_methods, ident_name, ident_scheme, ident_list, ident_summary, &
+                                       default_ident_method, check_ident_method, ident_one_receptance, &
+                                       ident_green_matrix, ident_none, ident_ml, ident_lsce, ident_auto
     implicit none
     private
 
@@ -28,7 +31,8 @@ module test_input_mod
 
 contains
 
-    !> Tests of greenconv_scene_scan, greenconv_scene_schema, greenconv_scene_input's checks and the file readers.
+    !> Tests of greenconv_scene_scan, greenconv_scene_read_schema, greenconv_scene_read_input's checks and the
+    !> file readers.
     subroutine collect_input(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 
@@ -47,7 +51,10 @@ contains
                      new_unittest('library: modes with Re lambda >= 0 or NaN refused', test_library_modes), &
                      new_unittest('scene table: each namelist holds the table''s variables', test_table_namelists), &
                      new_unittest('scene table: defaults read as their kind', test_table_defaults), &
-                     new_unittest('model registry: names, required variables, one builder per row', test_model_registry)]
+                     new_unittest('model registry: names, required variables, one builder per row', &
+                                  test_model_registry), &
+                     new_unittest('identification registry: defaults, names, refusals by kind and order', &
+                                  test_ident_registry)]
     end subroutine collect_input
 
     !> Write `text` as scratch/name, read it as the driver does (read_scene, and
@@ -659,5 +666,51 @@ contains
                 count_words = count_words + 1
         end do
     end function count_words
+
+    !> The identification registry against what doc/scenes.md documents: `ml` the default of a
+    !> measured receptance, `lsce` of one sampled from modes, `auto` of a Green's matrix; every
+    !> name resolves to its scheme and back; a method refused for what it cannot identify and a
+    !> fixed order refused by a method that chooses its own, each naming the variable.
+    subroutine test_ident_registry(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: refused
+        character(len=:), allocatable :: variable
+        integer :: k
+
+        call check(error, default_ident_method(ident_one_receptance, .true.) == 'ml' .and. &
+                   default_ident_method(ident_one_receptance, .false.) == 'lsce' .and. &
+                   default_ident_method(ident_green_matrix, .false.) == 'auto', 'defaults: ml, lsce, auto')
+        if (allocated(error)) return
+        do k = 1, n_ident_methods
+            call check(error, ident_scheme(ident_name(k)) == k .and. len_trim(ident_summary(ident_name(k))) > 0, &
+                       'scheme '//ident_name(k)//' round trip')
+            if (allocated(error)) return
+        end do
+        call check(error, ident_scheme('ml') == ident_ml .and. ident_scheme('lsce') == ident_lsce .and. &
+                   ident_scheme('auto') == ident_auto .and. ident_scheme('mle') == ident_none .and. &
+                   ident_scheme('') == ident_none, 'schemes of the documented names')
+        if (allocated(error)) return
+        call check(error, ident_list() == "'ml', 'lsce', 'poly_reference' or 'auto'" .and. &
+                   ident_list(ident_one_receptance) == "'ml' or 'lsce'", 'lists: '//ident_list())
+        if (allocated(error)) return
+        call check_ident_method('lsce', ident_one_receptance, 'frf_file', 4, variable, refused)
+        call check(error, .not. allocated(refused), 'lsce with a fixed order accepted')
+        if (allocated(error)) return
+        call check_ident_method('lsce', ident_green_matrix, 'green_file', 0, variable, refused)
+        call check(error, allocated(refused) .and. variable == 'method', 'lsce refused for a Green''s matrix')
+        if (allocated(error)) return
+        call check_ident_method('poly_reference', ident_one_receptance, 'frf_file', 0, variable, refused)
+        call check(error, allocated(refused) .and. variable == 'method', 'poly_reference refused for one receptance')
+        if (allocated(error)) return
+        call check_ident_method('ml', ident_one_receptance, 'frf_file', 3, variable, refused)
+        call check(error, allocated(refused) .and. variable == 'order', 'ml refused a fixed order')
+        if (allocated(error)) return
+        call check(error, index(refused%message, "method = 'lsce'") > 0, 'order message: '//refused%message)
+        if (allocated(error)) return
+        call check_ident_method('mle', ident_one_receptance, 'frf_file', 0, variable, refused)
+        call check(error, allocated(refused) .and. variable == 'method' .and. refused%message == ident_list(), &
+                   'an unknown name refused with the list')
+    end subroutine test_ident_registry
 
 end module test_input_mod

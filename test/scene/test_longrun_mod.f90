@@ -7,7 +7,7 @@ module test_longrun_mod
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
     use scene_text_mod, only: tab1_scene, read_scene_text
-    use greenconv_scene_progress, only: progress_meter, start_progress, progress_line, progress_due
+    use greenconv_scene_run_progress, only: progress_meter, start_progress, progress_line, progress_due
     use greenconv_api_all, only: scene_type, read_scene, run_scene, error_type, stat_numerical, convolver, &
                                  contact_law, contact_options, contact_response, run_contact, contact_state, &
                                  start_contact, contact_block, road_profile, sine_road, sdof_modes, &

@@ -21,8 +21,8 @@ module test_patchscene_mod
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_conv_green_file, only: green_file_convolver, new_green_file_convolver, green_file_report
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene, check_scene
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_run_runner, only: run_scene, check_scene
     use greenconv_scene_sweep, only: run_sweep
     use greenconv_core_text, only: int_text
     use fixture_files_mod, only: write_receptance_file
@@ -419,8 +419,8 @@ contains
         call read_scene_text(scratch, 'lsce.nml', head//" &identification method = 'lsce' /"//road//tail, scene, fail)
         call check(error, allocated(fail), 'lsce accepted for green_file')
         if (allocated(error)) return
-        call check(error, index(fail%message, "lsce.nml:1: &identification method: expected 'ml' for model " &
-                                //"'green_file'") > 0, 'message: '//fail%message)
+        call check(error, index(fail%message, "lsce.nml:1: &identification method: expected 'ml', 'poly_reference' " &
+                                //"or 'auto' for model 'green_file'") > 0, 'message: '//fail%message)
         if (allocated(error)) return
         call read_scene_text(scratch, 'sdof_texture.nml', "&scene dt = 1.0e-4, n_steps = 100 / " &
                              //"&structure model = 'sdof', " &

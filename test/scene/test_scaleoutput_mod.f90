@@ -8,7 +8,7 @@ module test_scaleoutput_mod
     use scene_text_mod, only: read_scene_text, run_scene_text, read_table, message_of, write_text
     use greenconv_core_error, only: error_type, stat_input
     use greenconv_io_files, only: make_directory
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_input, only: scene_type
     use test_tyrepatch_mod, only: bumps
     implicit none
     private

@@ -20,7 +20,7 @@ module test_scene_mod
 
 contains
 
-    !> Tests of greenconv_scene_input, greenconv_ident_structure and greenconv_scene_runner.
+    !> Tests of greenconv_scene_read_input, greenconv_ident_structure and greenconv_scene_run_runner.
     subroutine collect_scene(testsuite)
         type(unittest_type), allocatable, intent(out) :: testsuite(:)
 

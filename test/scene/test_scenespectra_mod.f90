@@ -1,4 +1,4 @@
-!> Force spectra of the contact scenes (`&scene spectra`, greenconv_scene_spectra_output):
+!> Force spectra of the contact scenes (`&scene spectra`, greenconv_scene_run_spectra_output):
 !> the band level of a linear contact on an SDOF under a sine road against its closed form;
 !> the spectra of runs streamed in blocks against the whole run and against the library's
 !> band_levels of the force history the column file holds (single point, and the tyre with

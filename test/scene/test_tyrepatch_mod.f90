@@ -18,12 +18,12 @@ module test_tyrepatch_mod
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene
-    use greenconv_scene_models, only: structure_kind, find_model
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_points, only: points_convolver
-    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_run_runner, only: run_scene
+    use greenconv_scene_models_registry, only: structure_kind, find_model
+    use greenconv_scene_models_point_set, only: scene_points
+    use greenconv_scene_run_points, only: points_convolver
+    use greenconv_scene_models_patch, only: sample_patch_road
     implicit none
     private
 
@@ -170,7 +170,7 @@ contains
     end function area_scene
 
     !> Read a scene and run its first method on its points as the runner does (points from
-    !> the model's row, road heights from greenconv_scene_patch, preload shared evenly), without
+    !> the model's row, road heights from greenconv_scene_models_patch, preload shared evenly), without
     !> writing rows: the rms fluctuation and the peak of the total force [N].
     subroutine total_force(text, rms, peak, error)
         character(len=*), intent(in) :: text

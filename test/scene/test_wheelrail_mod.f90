@@ -15,8 +15,8 @@ module test_wheelrail_mod
     use greenconv_conv_builder, only: make_convolver
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact
     use greenconv_core_error, only: stat_input
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_read_input, only: scene_type
+    use greenconv_scene_run_runner, only: run_scene
     use greenconv_io_columns, only: read_columns
     use scene_text_mod, only: read_scene_text, write_text
     use greenconv_scene_sweep, only: run_sweep

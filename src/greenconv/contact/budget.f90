@@ -16,7 +16,7 @@
 !> d/(rho - 1), the ratio rho of the errors at 2*dt
 !> and dt taken between the ratio r observed on the coarser pair and the asymptotic 2^p (their
 !> geometric mean), as a pair's ratio approaches 2^p from the coarse side (doc/methods.md, "The
-!> error budget"). The scene driver (greenconv_scene_stream) adds the sums block by block as its
+!> error budget"). The scene driver (greenconv_scene_run_stream) adds the sums block by block as its
 !> companions step alongside a run; the C and Fortran 77 doors from a whole run's arrays.
 module greenconv_contact_budget
     use greenconv_core_kinds, only: dp

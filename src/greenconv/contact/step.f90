@@ -37,7 +37,7 @@
 !> The law is greenconv_contact_law's concrete `contact_law`, and the step calls only its
 !> `force`, `compression` and `tangent`. A new law therefore changes contact/law.f90 (its
 !> parameters and those three procedures), the scene's rows for its parameters
-!> (scene/schema.f90, and scene/input.f90 where `&contact` becomes a law) and the check of
+!> (scene/read/schema.f90, and scene/read/input.f90 where `&contact` becomes a law) and the check of
 !> its values (api/library.f90's `check_contact_law`); nothing here, in the single- and
 !> multi-point loops, the runner or the tests' ODE reference changes, and the C and Fortran 77 doors
 !> only if the law is to be given other parameters than k_c and p.

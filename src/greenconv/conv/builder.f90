@@ -24,6 +24,7 @@ module greenconv_conv_builder
     use greenconv_model_modal_set, only: modal_set
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_structure, only: structure_model
+    use greenconv_ident_methods, only: ident_ml
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, method_needs, needs_sampled_g, &
                                        needs_modes, check_method
     use greenconv_conv_convolver, only: convolver
@@ -98,7 +99,7 @@ contains
     !> `fft` convolver stores N_g*N_c^2 + 2*N_g*N_c values, with N_g estimated from the slowest
     !> decay rate (the envelope exp(-sigma*t) falls to tol by t = ln(1/tol)/sigma, and the
     !> kernel never exceeds the run's N_t samples), counted as a real so that absurd sizes do
-    !> not overflow. The one cap check of scenes (greenconv_scene_input) and of every door.
+    !> not overflow. The one cap check of scenes (greenconv_scene_read_input) and of every door.
     subroutine check_kernel_values(method, decay_rate, dt, tol, n_steps, n_points, error)
         !> Method name (lower case): nothing is checked for one that needs no sampled g.
         character(len=*), intent(in) :: method
@@ -306,7 +307,7 @@ contains
             chosen = 'exact'
             reason = 'N_t*N_g = '//sci_text(work)//' and the '//int_text(structure%model%n_modes()) &
                      //' modes are the structure''s own'
-        else if (structure%fit_e() <= requested .and. structure%method == 'ml') then
+        else if (structure%fit_e() <= requested .and. structure%method == ident_ml) then
             chosen = 'exact'
             reason = 'the maximum-likelihood model''s E <= '//sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
         else if (structure%fit_e() <= requested) then
@@ -315,7 +316,7 @@ contains
                      //sci_text(requested)//' (N_t*N_g = '//sci_text(work)//')'
         else
             chosen = 'fft'
-            reason = 'no '//trim(merge('ML  ', 'LSCE', structure%method == 'ml'))//' model meets E <= ' &
+            reason = 'no '//trim(merge('ML  ', 'LSCE', structure%method == ident_ml))//' model meets E <= ' &
                      //sci_text(requested)//' (best E = '//sci_text(structure%fit_e())//'), N_t*N_g = '//sci_text(work)
         end if
     end subroutine choose_method

@@ -18,6 +18,7 @@ module greenconv_conv_methods
     public :: method_name_length, n_methods
     public :: is_method, canonical_method, method_engine, method_names, method_list, method_summary
     public :: method_needs, check_method, method_scheme, is_modal_recursion, method_order
+    public :: method_cost, cost_model
 
     !> What a method may need of a structure (`method_needs`): the sampled impulse response g.
     integer, parameter, public :: needs_sampled_g = 1
@@ -49,6 +50,62 @@ module greenconv_conv_methods
     !> Length of a method name in the registry (names are shorter and blank-padded).
     integer, parameter :: method_name_length = 9
 
+    !> What a step and a run of a method cost, as multiples of its sizes: N_c contact points,
+    !> N_m modes, N_T modal terms at each point (N_m, or N_m*N_c for a Green's matrix), N_g
+    !> kernel samples. A step's multiply-adds are the sum of the `work_*` coefficients times
+    !> their sizes, the memory [bytes] the sum of the `bytes_*` ones; a method that picks
+    !> another (`auto`) names in `dearer_of` the methods whose dearer cost bounds its own.
+    type :: cost_model
+        !> Multiply-adds per past force of each pair of points (N_c^2*N_g): a direct sum.
+        real(dp) :: work_pair_kernel = 0.0_dp
+        !> Multiply-adds per pair of points and per log2 of the block length 2*N_g (N_c^2*log2(2*N_g)):
+        !> a partitioned FFT convolution's kernel products.
+        real(dp) :: work_pair_fft = 0.0_dp
+        !> Multiply-adds per modal term at each point (N_c*N_T): the state update, the force's
+        !> convolution term and the displacement's sum.
+        real(dp) :: work_point_term = 0.0_dp
+        !> Multiply-adds per mode at each point (N_c*N_m) of the implicit step's Newton iterations
+        !> (about three, each a recursion's work over the modes at the points: the low-rank solve).
+        real(dp) :: work_point_mode = 0.0_dp
+        !> Bytes per kernel sample of each pair of points (N_c^2*N_g): the kernel, its spectra.
+        real(dp) :: bytes_pair_kernel = 0.0_dp
+        !> Bytes per pair of points (N_c^2): the spectra's extra line.
+        real(dp) :: bytes_pair = 0.0_dp
+        !> Bytes per past force at each point (N_c*N_g): the force history, the FFT's blocks.
+        real(dp) :: bytes_point_kernel = 0.0_dp
+        !> Bytes per modal term (N_T): states and factors.
+        real(dp) :: bytes_term = 0.0_dp
+        !> Bytes per modal term at each point (N_c*N_T): residues and shapes at the points.
+        real(dp) :: bytes_point_term = 0.0_dp
+        !> Bytes per pair of points of a multi-point run (N_c^2 when N_c > 1): the implicit
+        !> step's instantaneous matrix.
+        real(dp) :: bytes_pair_implicit = 0.0_dp
+        !> The methods whose dearer cost bounds this one's (a method that picks one of them).
+        character(len=method_name_length) :: dearer_of(2) = ''
+    end type cost_model
+
+    !> Multiply-adds of one modal term at one point per step of a modal recursion.
+    real(dp), parameter :: term_work = 4.0_dp
+    !> Newton iterations of an implicit step that the cost assumes.
+    real(dp), parameter :: newton_iterations = 3.0_dp
+
+    !> The cost of the direct sum: N_c^2*N_g multiply-adds a step; the kernel and the histories.
+    type(cost_model), parameter :: direct_cost = cost_model(work_pair_kernel=1.0_dp, bytes_pair_kernel=8.0_dp, &
+                                                            bytes_point_kernel=16.0_dp)
+    !> The cost of the partitioned FFT convolution: eight multiply-adds per kernel product and
+    !> log2 of the block; the kernel, its complex spectra (twice N_g) and the blocks.
+    type(cost_model), parameter :: fft_cost = cost_model(work_pair_fft=8.0_dp, bytes_pair_kernel=24.0_dp, &
+                                                         bytes_pair=16.0_dp, bytes_point_kernel=32.0_dp)
+    !> The cost of an explicit modal recursion: its states, residues and shapes at the points.
+    type(cost_model), parameter :: recursion_cost = cost_model(work_point_term=term_work, bytes_term=32.0_dp, &
+                                                               bytes_point_term=24.0_dp)
+    !> The cost of an implicit modal recursion (`exact`, `backward`): the recursion's, the
+    !> Newton iterations over the modes at the points and the instantaneous matrix.
+    type(cost_model), parameter :: implicit_cost = cost_model(work_point_term=term_work, &
+                                                              work_point_mode=newton_iterations*term_work, &
+                                                              bytes_term=32.0_dp, bytes_point_term=24.0_dp, &
+                                                              bytes_pair_implicit=8.0_dp)
+
     !> One method.
     type :: method_entry
         !> Name a scene or a caller gives.
@@ -74,26 +131,36 @@ module greenconv_conv_methods
         integer :: order
         !> What it computes, in one line.
         character(len=96) :: summary
+        !> What a step and a run of it cost (`cost_model`).
+        type(cost_model) :: cost
     end type method_entry
 
     !> The methods, in the order messages list them.
     type(method_entry), parameter :: registry(*) = [ &
         method_entry('direct', 'direct', 'direct', scheme_direct, .true., .false., .true., .true., 2, &
-                     'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)'), &
+                     'the direct sum with g truncated by the paper''s rule (N_g multiply-adds a step)', &
+                     direct_cost), &
         method_entry('fft', 'fft', 'fft', scheme_fft, .true., .false., .true., .true., 2, &
-                     'the same truncated sum by partitioned FFT convolution'), &
+                     'the same truncated sum by partitioned FFT convolution', &
+                     fft_cost), &
         method_entry('modal', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., 2, &
-                     'the modal recursion of the paper with decaying factors (an alias of recursive)'), &
+                     'the modal recursion of the paper with decaying factors (an alias of recursive)', &
+                     recursion_cost), &
         method_entry('paper', 'paper', 'paper', scheme_paper, .false., .true., .true., .false., 2, &
-                     'the modal recursion as eqs. (15)-(17) write it'), &
+                     'the modal recursion as eqs. (15)-(17) write it', &
+                     recursion_cost), &
         method_entry('recursive', 'recursive', 'recursive', scheme_rectangle, .false., .true., .true., .true., 2, &
-                     'the modal recursion (rectangle rule) with decaying factors, explicit'), &
+                     'the modal recursion (rectangle rule) with decaying factors, explicit', &
+                     recursion_cost), &
         method_entry('exact', 'exact', 'recursive', scheme_first_order, .false., .true., .true., .true., 2, &
-                     'the modal recursion with the force linear within a step (first-order hold)'), &
+                     'the modal recursion with the force linear within a step (first-order hold)', &
+                     implicit_cost), &
         method_entry('backward', 'backward', 'recursive', scheme_backward, .false., .true., .true., .false., 1, &
-                     'the modal recursion with the force constant over the step ending at its sample'), &
+                     'the modal recursion with the force constant over the step ending at its sample', &
+                     implicit_cost), &
         method_entry('auto', 'auto', '', scheme_auto, .true., .true., .true., .false., 2, &
-                     'the cheapest of direct, exact and fft that meets the requested accuracy')]
+                     'the cheapest of direct, exact and fft that meets the requested accuracy', &
+                     cost_model(dearer_of=['direct   ', 'exact    ']))]
 
     !> Number of methods in the registry.
     integer, parameter :: n_methods = size(registry)
@@ -238,6 +305,20 @@ contains
         if (i > 0) method_order = registry(i)%order
     end function method_order
 
+    !> What a step and a run of a method cost (its registry row's `cost_model`); no cost for an
+    !> unknown name.
+    elemental function method_cost(name) result(cost)
+        !> A method name.
+        character(len=*), intent(in) :: name
+        !> Its cost coefficients.
+        type(cost_model) :: cost
+
+        type(method_entry) :: entry
+
+        entry = entry_of(name)
+        cost = entry%cost
+    end function method_cost
+
     !> Whether a method is stepped by the decaying modal recursion of greenconv_conv_recursive
     !> (`recursive`, `modal`, `exact`, `backward`).
     logical function is_modal_recursion(name)
@@ -322,7 +403,7 @@ contains
         if (i > 0) then
             entry = registry(i)
         else
-            entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., 2, '')
+            entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., 2, '', cost_model())
         end if
     end function entry_of
 

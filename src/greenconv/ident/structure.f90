@@ -17,6 +17,7 @@ module greenconv_ident_structure
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
+    use greenconv_ident_methods, only: ident_none, ident_lsce, ident_ml
     implicit none
     private
 
@@ -50,8 +51,9 @@ module greenconv_ident_structure
         logical :: identified = .false.
         !> The sampled receptance that was identified.
         type(frf_type) :: frf
-        !> The identification used: 'lsce' (`fit`) or 'ml' (`ml`); '' when not identified.
-        character(len=4) :: method = ''
+        !> The identification used, a scheme of greenconv_ident_methods: `ident_lsce` (`fit`) or
+        !> `ident_ml` (`ml`); `ident_none` when not identified.
+        integer :: method = ident_none
         !> The LSCE identification (method 'lsce'): order, E of eq. (7), warnings.
         type(lsce_result) :: fit
         !> The maximum-likelihood identification (method 'ml'): modes with their standard
@@ -213,10 +215,10 @@ contains
         call cpu_time(finish)
         structure%cpu_time = finish - start
         if (present(lsce)) then
-            structure%method = 'lsce'
+            structure%method = ident_lsce
             structure%model = sorted_by_frequency(structure%fit%modes)
         else
-            structure%method = 'ml'
+            structure%method = ident_ml
             structure%model = structure%ml%modes
         end if
         structure%identified = .true.
@@ -228,9 +230,9 @@ contains
         class(structure_model), intent(in) :: self
 
         select case (self%method)
-        case ('lsce')
+        case (ident_lsce)
             structure_fit_e = self%fit%e
-        case ('ml')
+        case (ident_ml)
             structure_fit_e = self%ml%e
         case default
             structure_fit_e = 1.0_dp
@@ -247,9 +249,9 @@ contains
         character(len=:), allocatable, intent(out) :: text
 
         select case (self%method)
-        case ('lsce')
+        case (ident_lsce)
             text = 'LSCE fit of G: E = '//sci_text(self%fit%e)//' (eq. 7)'
-        case ('ml')
+        case (ident_ml)
             call self%ml%brief(text)
             text = 'ML fit of G: '//text//', E = '//sci_text(self%ml%e)//' (eq. 7)'
         case default
@@ -265,9 +267,9 @@ contains
         real(dp), intent(in) :: omega
 
         select case (self%method)
-        case ('lsce')
+        case (ident_lsce)
             structure_fitted = self%fit%receptance(omega)
-        case ('ml')
+        case (ident_ml)
             structure_fitted = self%ml%receptance(omega)
         case default
             structure_fitted = (0.0_dp, 0.0_dp)

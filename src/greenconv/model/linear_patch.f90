@@ -1,8 +1,8 @@
 !> The linear frequency-domain reference of a contact patch of N_c points, the matrix form of
-!> the single-point F = -r/(alpha + 1/k_H) (greenconv_scene_linear_reference): each point's
+!> the single-point F = -r/(alpha + 1/k_H) (greenconv_scene_run_linear_reference): each point's
 !> contact law linearised at its share of the preload, k_i [N/m], the structure by its point
 !> receptance matrix A(omega) [m/N] (time factor exp(i*omega*t), A_ij the displacement at i
-!> under a unit force at j). With the patch's conventions (greenconv_scene_patch: compression
+!> under a unit force at j). With the patch's conventions (greenconv_scene_models_patch: compression
 !> delta_i = delta0_i + u_r,i - u_i, the body loaded by F_i - F0_i), the force's change at
 !> angular frequency omega under road heights u_r(omega) [m] is
 !>

@@ -12,7 +12,7 @@
 !> are not stepped: at the run's frequencies, well below theirs, they respond without lag, as
 !> a static compliance R_ij = sum_k phi_ik*phi_jk/(m_k*omega_k**2) over those modes (the
 !> residual flexibility), returned with its share of the whole static flexibility at the
-!> nodes. `split_band` is what a scene (greenconv_scene_multi_models) and the C and F77 doors
+!> nodes. `split_band` is what a scene (greenconv_scene_models_multi) and the C and F77 doors
 !> (greenconv_api_multi_handle) both call: the modes in band, R when any mode lies above, and
 !> the one line that reports them; both then give R to greenconv_conv_builder's
 !> `make_multipoint_convolver`, which adds it to the instant compliance W0 of the convolver

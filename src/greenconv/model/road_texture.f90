@@ -1,5 +1,5 @@
 !> A road texture read from a file: heights over a grid of positions x along the road and y
-!> across it, for a contact patch whose width sees the texture (greenconv_scene_patch).
+!> across it, for a contact patch whose width sees the texture (greenconv_scene_models_patch).
 !>
 !> File format: lines starting with `#` (comments) and blank lines anywhere; the first data
 !> line holds the lateral positions, every later data line a position along the road and

@@ -5,17 +5,16 @@
 !> (`make layers` checks it), so that the scene's own modules (its reading, its models, its
 !> runs) can change without touching a door.
 module greenconv_scene_facade
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_runner, only: run_scene, check_scene, make_convolver, output_path
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_output, only: write_multi_contact
+    use greenconv_scene_read_facade, only: scene_type, read_scene
+    use greenconv_scene_run_facade, only: run_scene, check_scene, make_convolver, output_path, write_multi_contact
+    use greenconv_scene_models_facade, only: build_structure
     use greenconv_scene_limits, only: max_lsce_modes, max_contact_points
     implicit none
     private
 
-    !> Re-exported: the scene (greenconv_scene_input), its run and check (greenconv_scene_runner),
-    !> the single-point structure it builds (greenconv_scene_structure), the multi-point column
-    !> file (greenconv_scene_output), the limits on the modes identified and the contact points
+    !> Re-exported: the scene (greenconv_scene_read_input), its run and check (greenconv_scene_run_runner),
+    !> the single-point structure it builds (greenconv_scene_models_structure), the multi-point column
+    !> file (greenconv_scene_run_output), the limits on the modes identified and the contact points
     !> (greenconv_scene_limits).
     public :: scene_type, read_scene, run_scene, check_scene, make_convolver, output_path
     public :: build_structure, write_multi_contact, max_lsce_modes, max_contact_points

@@ -4,8 +4,7 @@
 module greenconv_scene_limits
     use greenconv_core_kinds, only: dp
     use greenconv_conv_builder, only: max_kernel_values
-    use greenconv_conv_methods, only: method_scheme, scheme_direct, scheme_fft, scheme_first_order, &
-                                      scheme_backward, scheme_auto
+    use greenconv_conv_methods, only: cost_model, method_cost
     implicit none
     private
 
@@ -36,27 +35,20 @@ module greenconv_scene_limits
 
     !> Multiply-adds per second [1/s] that `--check` assumes to turn a run's projected work
     !> into seconds: direct's inner sum measured at 3.1e9 to 5.7e9 per second on this 2-core
-    !> machine (one core, gfortran -O2); the other methods' factors below are fitted to the
-    !> shipped scenes' CPU times, doc/scenes.md gives the ratios of projected to measured time.
+    !> machine (one core, gfortran -O2); the other methods' factors (their registry rows'
+    !> `cost_model`) are fitted to the shipped scenes' CPU times, doc/scenes.md gives the ratios
+    !> of projected to measured time.
     real(dp), parameter :: work_rate = 3.0e9_dp
-    !> Multiply-adds of one modal term at one point per step of a modal recursion (the state
-    !> update, the force's convolution term and the displacement's sum).
-    real(dp), parameter :: recursion_work = 4.0_dp
-    !> Newton iterations of an implicit step (`exact`, `backward`) for the projection; each
-    !> costs about a recursion's work over the modes at the points (the low-rank solve,
-    !> O(N_c*N_m)).
-    real(dp), parameter :: newton_iterations = 3.0_dp
-    !> Multiply-adds per kernel product of one step of `fft`, per log2 of its block length.
-    real(dp), parameter :: fft_work = 8.0_dp
     !> Work of a step whatever its sizes (the contact law, the road, the block's bookkeeping).
     real(dp), parameter :: step_work = 200.0_dp
 
 contains
 
-    !> What a contact run of one method is projected to take, from its sizes: the work
+    !> What a contact run of one method is projected to take, from its sizes and the cost
+    !> coefficients of its registry row (greenconv_conv_methods's `cost_model`): the work
     !> [multiply-adds] of its steps and the memory [bytes] it holds (kernel, modal states and
-    !> shapes, the instantaneous matrix of an implicit multi-point step). `auto` is projected
-    !> as the dearer of `direct` and `exact`, the methods it chooses between.
+    !> shapes, the instantaneous matrix of an implicit multi-point step). A method that picks
+    !> another (`auto`) is projected as the dearer of those it chooses between.
     pure recursive subroutine projected_run(method, n_c, n_m, n_terms, n_g, n_steps, work, bytes)
         !> Method name (lower case).
         character(len=*), intent(in) :: method
@@ -76,37 +68,32 @@ contains
         !> Memory [bytes] the run holds.
         real(dp), intent(out) :: bytes
 
+        type(cost_model) :: cost
         real(dp) :: c, m, terms, g, t, other_work, other_bytes
+        integer :: i
 
+        cost = method_cost(method)
+        if (any(len_trim(cost%dearer_of) > 0)) then
+            work = 0.0_dp
+            bytes = 0.0_dp
+            do i = 1, size(cost%dearer_of)
+                if (len_trim(cost%dearer_of(i)) == 0) cycle
+                call projected_run(trim(cost%dearer_of(i)), n_c, n_m, n_terms, n_g, n_steps, other_work, other_bytes)
+                work = max(work, other_work)
+                bytes = max(bytes, other_bytes)
+            end do
+            return
+        end if
         c = real(max(n_c, 1), dp)
         m = real(max(n_m, 1), dp)
         terms = real(max(n_terms, 1), dp)
         g = max(n_g, 1.0_dp)
         t = real(max(n_steps, 0), dp)
-        select case (method_scheme(method))
-        case (scheme_direct)
-            ! the sum over N_g past forces of every pair of points, each step
-            work = t*(c*c*g + step_work)
-            bytes = 8.0_dp*(c*c*g + 2.0_dp*c*g)
-        case (scheme_fft)
-            ! blocks of N_g steps convolved by FFT: the kernel's spectra (complex, twice N_g)
-            ! and the products of every pair of points
-            work = t*(c*c*fft_work*log(2.0_dp*g)/log(2.0_dp) + step_work)
-            bytes = 8.0_dp*c*c*g + 16.0_dp*c*c*(g + 1.0_dp) + 32.0_dp*c*g
-        case (scheme_auto)
-            call projected_run('direct', n_c, n_m, n_terms, n_g, n_steps, work, bytes)
-            call projected_run('exact', n_c, n_m, n_terms, n_g, n_steps, other_work, other_bytes)
-            work = max(work, other_work)
-            bytes = max(bytes, other_bytes)
-        case default
-            ! a modal recursion: its states, residues and shapes at the points
-            work = t*(c*terms*recursion_work + step_work)
-            bytes = 8.0_dp*(4.0_dp*terms + 3.0_dp*c*terms)
-            if (method_scheme(method) == scheme_first_order .or. method_scheme(method) == scheme_backward) then
-                work = work + t*newton_iterations*c*m*recursion_work
-                if (n_c > 1) bytes = bytes + 8.0_dp*c*c
-            end if
-        end select
+        work = t*(c*c*g*cost%work_pair_kernel + c*c*cost%work_pair_fft*log(2.0_dp*g)/log(2.0_dp) &
+                  + c*terms*cost%work_point_term + c*m*cost%work_point_mode + step_work)
+        bytes = c*c*g*cost%bytes_pair_kernel + c*c*cost%bytes_pair + c*g*cost%bytes_point_kernel &
+                + terms*cost%bytes_term + c*terms*cost%bytes_point_term
+        if (n_c > 1) bytes = bytes + c*c*cost%bytes_pair_implicit
     end subroutine projected_run
 
     !> The time step [s] at which a method of order p in dt brings a time-step error

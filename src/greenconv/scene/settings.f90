@@ -1,6 +1,6 @@
 !> What a scene is once read: `scene_type`, every value a run needs in SI units, and where
 !> each value stood in its file (`place_error`, for messages). Below the registry of structure
-!> models (greenconv_scene_models) and the scene reader (greenconv_scene_input), so that each
+!> models (greenconv_scene_models_registry) and the scene reader (greenconv_scene_read_input), so that each
 !> structure model's builder takes a scene without depending on the reader that checks it.
 module greenconv_scene_settings
     use greenconv_core_kinds, only: dp
@@ -14,6 +14,7 @@ module greenconv_scene_settings
     use greenconv_model_road_file, only: road_file_type => road_file
     use greenconv_model_road_texture, only: road_texture
     use greenconv_scene_scan, only: namelist_scan
+    use greenconv_ident_methods, only: ident_none
     implicit none
     private
 
@@ -46,7 +47,7 @@ module greenconv_scene_settings
         !> Show a progress line on standard error for long runs (only when it is a terminal).
         logical :: progress
         !> Whether a contact run also writes the 1/3-octave spectrum of its contact force
-        !> (greenconv_scene_spectra_output).
+        !> (greenconv_scene_run_spectra_output).
         logical :: spectra = .false.
         !> Exact centre frequencies [Hz] of the lowest and highest band of the spectra, as
         !> `check_spectra` resolved them from the file's values or the defaults.
@@ -54,7 +55,7 @@ module greenconv_scene_settings
         !> Whether the spectra of a multi-point run also give each point's level.
         logical :: spectra_points = .false.
         !> Per-point histories of a multi-point run: `auto` (all for N_c <= 100, none above),
-        !> `all` or `none` (greenconv_scene_runner).
+        !> `all` or `none` (greenconv_scene_run_runner).
         character(len=8) :: point_histories = 'auto'
         !> Steps between two rows of the per-point histories (0: `output_every`).
         integer :: point_every = 0
@@ -115,8 +116,12 @@ module greenconv_scene_settings
         integer :: max_order
         !> Fixed number of modes (0: the smallest order that meets tol_e).
         integer :: order
-        !> Identification of G: 'ml' (maximum likelihood, greenconv_ident_mlfit) or 'lsce'.
+        !> Identification of G as the scene names it: 'ml', 'lsce', 'poly_reference' or 'auto'
+        !> (greenconv_ident_methods).
         character(len=:), allocatable :: ident_method
+        !> The same resolved once by the registry (greenconv_ident_methods's `ident_scheme`):
+        !> `ident_ml`, `ident_lsce`, ...; `ident_none` when the scene names none.
+        integer :: identification = ident_none
         !> Noise model of the 'ml' identification: 'auto' (the default), 'relative', 'absolute',
         !> 'floor' or 'band' (ml_options%noise_model).
         character(len=:), allocatable :: ident_noise

@@ -12,7 +12,7 @@
 !> group is blanked and the task set to 'contact', so lines keep their numbers in messages.
 !> Each variant is checked when it is taken (by the process that runs it), so no serial
 !> phase grows with the number of variants. A variant runs each method of the scene through
-!> the driver's streaming loop (greenconv_scene_stream), keeping only a summary of the total
+!> the driver's streaming loop (greenconv_scene_run_stream), keeping only a summary of the total
 !> contact force: max,
 !> mean, rms, the fraction of steps in contact, the status (0, 2 bad input, 3 numerical
 !> fault, 4 ran whole but outside the scene's `accuracy` by the method's own estimate, as

@@ -1,11 +1,11 @@
 !> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
-!> (greenconv_scene_schema), any group replaced or left out, and a writer of small text files.
+!> (greenconv_scene_read_schema), any group replaced or left out, and a writer of small text files.
 module scene_text_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use greenconv_io_files, only: make_directory
     use greenconv, only: scene_type, read_scene, error_type
     use greenconv_io_columns, only: read_columns
-    use greenconv_scene_runner, only: run_scene
+    use greenconv_scene_run_runner, only: run_scene
     implicit none
     private
 

@@ -3,8 +3,8 @@
 !> format). A variant is the base scene's text with each varied value written in (replacing
 !> the assignment, or added to its group); the `&sweep` group is blanked and the task set to
 !> 'contact', so lines keep their numbers in messages. A variant's scene is read from these
-!> lines in memory (greenconv_scene_input's `read_scene_lines`) and checked as the driver's
-!> `--check` does (greenconv_scene_runner's `check_scene_line`): no file is written.
+!> lines in memory (greenconv_scene_read_input's `read_scene_lines`) and checked as the driver's
+!> `--check` does (greenconv_scene_run_runner's `check_scene_line`): no file is written.
 module greenconv_scene_sweep_plan
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
@@ -12,9 +12,8 @@ module greenconv_scene_sweep_plan
     use greenconv_core_text, only: int_text, lower_text, real_text
     use greenconv_io_columns, only: read_line
     use greenconv_io_spectra, only: segment_for_band, first_band, default_lines_per_band, third_octave_bands
-    use greenconv_scene_schema, only: scene_table, scene_variable
-    use greenconv_scene_input, only: scene_type, scene_files, read_scene_lines
-    use greenconv_scene_runner, only: check_scene_line
+    use greenconv_scene_read_facade, only: scene_table, scene_variable, scene_type, scene_files, read_scene_lines
+    use greenconv_scene_run_facade, only: check_scene_line
     implicit none
     private
 

@@ -11,7 +11,7 @@ module greenconv_scene_sweep_record
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, write_text
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_facade, only: scene_type
     use greenconv_scene_settings, only: scene_files, file_print
     use greenconv_scene_sweep_plan, only: sweep_text, sweep_plan, variant_lines, read_text_lines, append_text
     implicit none

@@ -11,8 +11,8 @@ module greenconv_scene_sweep_report
     use greenconv_core_text, only: int_text, real_text
     use greenconv_io_files, only: make_directory, write_text
     use greenconv_io_spectra, only: band_spectrum, band_levels
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_stream, only: force_summary
+    use greenconv_scene_read_facade, only: scene_type
+    use greenconv_scene_run_facade, only: force_summary
     use greenconv_scene_sweep_plan, only: sweep_plan, padded, column_width, lines_per_band, nominal_margin
     use greenconv_scene_sweep_record, only: variant_outcome
     implicit none
@@ -201,7 +201,7 @@ contains
     subroutine add_method(outcome, summary, seconds, error, step, prefix)
         !> The variant's outcome so far.
         type(variant_outcome), intent(inout) :: outcome
-        !> The method's summary of the total contact force (greenconv_scene_stream).
+        !> The method's summary of the total contact force (greenconv_scene_run_stream).
         type(force_summary), intent(in) :: summary
         !> CPU seconds of its contact loop.
         real(dp), intent(in) :: seconds

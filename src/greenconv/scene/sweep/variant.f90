@@ -1,7 +1,7 @@
 !> One variant of a sweep, taken as a whole by whichever process runs it: its scene
 !> read from memory and checked, its content key, its record when a previous run finished it
 !> (then nothing runs), else each method of its scene run through the one streaming loop
-!> (greenconv_scene_stream's `stream_run`) into the sinks a sweep asks for: the force summary
+!> (greenconv_scene_run_stream's `stream_run`) into the sinks a sweep asks for: the force summary
 !> of the table's row, the total-force history of the band levels (`spectra`) and the column
 !> file of each method (`histories`: `<name>_v<k>_<method>.dat`, or `.bin` with its header
 !> `.bin.txt` for `output_format = 'binary'`; a numerical fault keeps the rows before it).
@@ -14,12 +14,11 @@ module greenconv_scene_sweep_variant
     use greenconv_core_text, only: int_text, real_text, sci_text
     use greenconv_io_files, only: make_directory, block_rows
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_models, only: structure_kind, find_model
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_output, only: multi_contact_header
-    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
-                                      step_doubling, start_step_doubling, time_step_estimate, band_estimate
+    use greenconv_scene_read_facade, only: scene_type
+    use greenconv_scene_models_facade, only: structure_kind, find_model, build_structure
+    use greenconv_scene_run_facade, only: multi_contact_header, contact_run, stream_sinks, stream_run, &
+                                          make_run_convolver, start_run, step_doubling, start_step_doubling, &
+                                          time_step_estimate, band_estimate
     use greenconv_scene_sweep_plan, only: sweep_plan, scene_files, read_variant
     use greenconv_scene_sweep_record, only: variant_outcome, content_key, load_record, record_path
     use greenconv_scene_sweep_report, only: add_method, failed_outcome, band_text, estimate_width
@@ -86,7 +85,7 @@ contains
 
     !> Run variant k's scene: every method, summarised. A fault (bad input, divergence) is
     !> kept in the outcome; so is a method that ran whole but whose own error estimate
-    !> (greenconv_scene_stream's `make_run_convolver`) exceeds the scene's `accuracy`, with
+    !> (greenconv_scene_run_stream's `make_run_convolver`) exceeds the scene's `accuracy`, with
     !> status 4 (`stat_accuracy`), as the driver's runner says it.
     subroutine run_variant(plan, k, scene, outcome)
         type(sweep_plan), intent(in) :: plan

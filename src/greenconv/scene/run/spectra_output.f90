@@ -10,13 +10,13 @@
 !> streams: each block's forces go into a Welch accumulator that holds one segment per
 !> history, so the memory stays that of one segment, whatever N_t, and the file is the same
 !> whatever the block size. The band range was resolved and checked when the scene was read
-!> (greenconv_scene_input's `check_spectra`). The file is always text, written atomically
+!> (greenconv_scene_read_input's `check_spectra`). The file is always text, written atomically
 !> when the run ends; a run stopped by a numerical fault writes none (and removes one left
 !> by an earlier run, which would no longer match the column file, as its narrowband file).
 !>
 !> A single-point run of a structure whose receptance is known (a model whose registry row
 !> names `receptance`, as `wheel_rail`, which writes a linear reference beside the runs,
-!> greenconv_scene_linear_reference) also writes `<output_dir>/<name>_<method>_narrowband.dat`:
+!> greenconv_scene_run_linear_reference) also writes `<output_dir>/<name>_<method>_narrowband.dat`:
 !> f [Hz] and the force PSD [N^2/Hz] on the Welch lines, the lines of the reference's
 !> `<name>_linear_narrowband.dat`.
 !>
@@ -24,7 +24,7 @@
 !> spread_db [dB] (the statistical standard deviation of the level for a random force), then
 !> level_1 .. level_Nc [dB re 1 N] of the points. The header states the window, the segment
 !> length and count, the overlap and the spread.
-module greenconv_scene_spectra_output
+module greenconv_scene_run_spectra_output
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -34,8 +34,8 @@ module greenconv_scene_spectra_output
     use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, &
                                     third_octave_bands, first_band, segment_for_band, nominal_frequency, band_powers, &
                                     level_spread, default_lines_per_band
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_models, only: structure_kind, find_model
+    use greenconv_scene_read_facade, only: scene_type
+    use greenconv_scene_models_facade, only: structure_kind, find_model
     implicit none
     private
 
@@ -305,4 +305,4 @@ contains
         if (steps >= n) segments = int(1 + (steps - n)/(n/2))
     end function segments
 
-end module greenconv_scene_spectra_output
+end module greenconv_scene_run_spectra_output

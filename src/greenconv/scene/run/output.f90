@@ -3,11 +3,11 @@
 !> whole; a 2D patch (a Green's matrix file's points) adds the column y [m] last. And the
 !> totals of a multi-point run (one row per kept step: t, the total force, the contact area,
 !> the points in contact), which it writes whatever its per-point histories.
-module greenconv_scene_output
+module greenconv_scene_run_output
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_io_files, only: write_columns, check_input_kept
-    use greenconv_scene_input, only: scene_type, place_error
+    use greenconv_scene_read_facade, only: scene_type, place_error
     use greenconv_contact_multi, only: multi_contact_response
     implicit none
     private
@@ -170,4 +170,4 @@ contains
         end do
     end function totals_table
 
-end module greenconv_scene_output
+end module greenconv_scene_run_output

@@ -1,9 +1,9 @@
 !> The scene table: every variable a scene file may set, written once with its group, kind,
 !> default, units, meaning and when it is required. Everything else derives from it: the
 !> groups and kinds the pre-scan (greenconv_scene_scan) checks and suggests names from, the
-!> required-value checks, the defaults greenconv_scene_input starts each namelist from, and
+!> required-value checks, the defaults greenconv_scene_read_input starts each namelist from, and
 !> the scene table of doc/scenes.md. Which `&structure` variables a model requires comes from the
-!> model registry (greenconv_scene_models).
+!> model registry (greenconv_scene_models_registry).
 !>
 !> Required:
 !>
@@ -18,16 +18,16 @@
 !>
 !> Adding a scene variable: one `row` in `scene_table` (with its range and message, when a
 !> value can be wrong), the variable in its group's namelist, its `check_value` and a
-!> component of `scene_type` (greenconv_scene_input), and its use. test_input_mod fails
+!> component of `scene_type` (greenconv_scene_read_input), and its use. test_input_mod fails
 !> when a namelist and the table disagree.
-module greenconv_scene_schema
+module greenconv_scene_read_schema
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text, exact_text
     use greenconv_core_kinds, only: dp
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
-    use greenconv_scene_models, only: structure_kind, find_model, model_names, model_requires, quoted_list
+    use greenconv_scene_models_facade, only: structure_kind, find_model, model_names, model_requires, quoted_list
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
                                       max_contact_points
     implicit none
@@ -54,7 +54,7 @@ module greenconv_scene_schema
         !> Number of elements: 1 for a scalar, max_methods for the list of methods.
         integer :: size = 1
         !> Default as the file would write it ('' for a text: empty); a formula naming other
-        !> variables (`1/(2*dt)`, `mass*gravity`) is computed by greenconv_scene_input.
+        !> variables (`1/(2*dt)`, `mass*gravity`) is computed by greenconv_scene_read_input.
         character(len=:), allocatable :: default
         !> Units of its values ('' when dimensionless or a name).
         character(len=:), allocatable :: units
@@ -67,7 +67,7 @@ module greenconv_scene_schema
         !> (not required then); '' for none.
         character(len=:), allocatable :: unless
         !> What a set value must be, as messages say it after "expected" ("a time step > 0 s");
-        !> '' when the group's reader (greenconv_scene_input) checks the variable itself.
+        !> '' when the group's reader (greenconv_scene_read_input) checks the variable itself.
         character(len=:), allocatable :: expect
         !> Range of a real or integer value, in its units: above `low` (or at it, with
         !> `low_in`) and below `high` (or at it, with `high_in`); by default any finite value.
@@ -732,4 +732,4 @@ contains
         end select
     end subroutine scene_default
 
-end module greenconv_scene_schema
+end module greenconv_scene_read_schema

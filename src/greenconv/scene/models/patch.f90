@@ -1,6 +1,6 @@
 !> The conventions of a multi-point scene, written once for every model whose body touches the
-!> road at several points (the tyre belt's line of points, greenconv_scene_tyre; the nodes of a
-!> Green's matrix file, greenconv_scene_points):
+!> road at several points (the tyre belt's line of points, greenconv_scene_models_tyre; the nodes of a
+!> Green's matrix file, greenconv_scene_run_points):
 !>
 !> - the body rests in static equilibrium under the total preload F0 (`&contact preload`)
 !>   shared evenly by its N_c points, F0_i = F0/N_c, each compressed by delta0_i = the law's
@@ -14,7 +14,7 @@
 !>   h(X_i(t), Y_i) for a road texture (greenconv_model_road_texture, bilinear);
 !> - compression delta_i = delta0_i + u_r,i - u_i, force F_i from the law, and the body is
 !>   loaded by F_i - F0_i (greenconv_contact_multi).
-module greenconv_scene_patch
+module greenconv_scene_models_patch
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
@@ -87,7 +87,7 @@ contains
         type(scene_type), intent(in) :: scene
         !> Positions x_i, y_i [m] of the points on the body.
         real(dp), intent(in) :: x(:), y(:)
-        !> Whether the scene's model places its points on a patch grid (greenconv_scene_models's
+        !> Whether the scene's model places its points on a patch grid (greenconv_scene_models_registry's
         !> `grid_dimensions` > 0).
         logical, intent(in) :: on_grid
 
@@ -166,4 +166,4 @@ contains
         text = trim(run_numbers(scene))//run_road(scene)
     end function run_text
 
-end module greenconv_scene_patch
+end module greenconv_scene_models_patch

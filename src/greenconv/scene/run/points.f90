@@ -1,16 +1,16 @@
 !> The contact points of a multi-point scene, found by its model's row of the registry
-!> (greenconv_scene_models' `find_points`: the tyre's line of points, a Green's file's nodes,
+!> (greenconv_scene_models_registry' `find_points`: the tyre's line of points, a Green's file's nodes,
 !> ...), and the convolver of each method on them: on the points' modes (greenconv_conv_builder) or on the
 !> identified Green's matrix of a file (greenconv_conv_green_file).
-module greenconv_scene_points
+module greenconv_scene_run_points
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_scene_settings, only: scene_type
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_output, only: multi_contact_table
+    use greenconv_scene_models_facade, only: scene_points
+    use greenconv_scene_run_output, only: multi_contact_table
     use greenconv_contact_multi, only: multi_contact_response
     implicit none
     private
@@ -21,7 +21,7 @@ contains
 
     !> The convolver called `method` on a scene's points, and what its model neglects.
     subroutine points_convolver(points, scene, method, conv, accuracy, error, estimate)
-        !> The points (the `find_points` of the scene's model, greenconv_scene_models).
+        !> The points (the `find_points` of the scene's model, greenconv_scene_models_registry).
         type(scene_points), intent(in) :: points
         !> The scene (dt, n_steps, truncation_tol).
         type(scene_type), intent(in) :: scene
@@ -51,7 +51,7 @@ contains
         if (present(estimate)) estimate = own
     end subroutine points_convolver
 
-    !> Output rows of a multi-point run (greenconv_scene_output's `multi_contact_table`): N_c
+    !> Output rows of a multi-point run (greenconv_scene_run_output's `multi_contact_table`): N_c
     !> rows per kept step, with the column y [m] for points spread across the patch.
     function point_rows(points, response, first, every) result(table)
         !> The points.
@@ -72,4 +72,4 @@ contains
         end if
     end function point_rows
 
-end module greenconv_scene_points
+end module greenconv_scene_run_points

@@ -2,7 +2,7 @@
 !> E of eq. 7, CPU time, poles dropped, warnings) and column files of the modes (with their
 !> standard deviations for the maximum-likelihood fit), of G against its fit and residual,
 !> and of the stabilisation diagram.
-module greenconv_scene_report
+module greenconv_scene_run_report
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_model_modal_set, only: modal_set
@@ -11,8 +11,9 @@ module greenconv_scene_report
     use greenconv_ident_mlfit, only: ml_result, dropped_by_criterion, dropped_left_band, dropped_degenerate, &
                                      dropped_boundary
     use greenconv_io_files, only: write_columns
-    use greenconv_scene_input, only: scene_type
+    use greenconv_scene_read_facade, only: scene_type
     use greenconv_ident_structure, only: structure_model
+    use greenconv_ident_methods, only: ident_ml
     implicit none
     private
 
@@ -34,7 +35,7 @@ contains
         if (allocated(structure%frf%source)) then
             if (len(structure%frf%source) > 0) call add_line(text, '# receptance: '//structure%frf%source)
         end if
-        if (structure%method == 'ml') then
+        if (structure%method == ident_ml) then
             call ml_summary(structure, text)
             return
         end if
@@ -157,7 +158,7 @@ contains
         character(len=:), allocatable :: stem
 
         stem = scene%output_dir//'/'//scene%name
-        if (structure%method == 'ml') then
+        if (structure%method == ident_ml) then
             call write_ml_modes(stem//'_modes.dat', structure, error)
             if (allocated(error)) return
             call write_diagram(stem//'_diagram.dat', structure, error)
@@ -293,7 +294,7 @@ contains
         allocate (fitted(structure%frf%n_freq()))
         associate (f => structure%frf%frequency, g => structure%frf%receptance)
             fitted(:) = structure%fitted(two_pi*f)
-            if (structure%method == 'ml') then
+            if (structure%method == ident_ml) then
                 call write_ml_fit(path, structure, fitted, error)
                 return
             end if
@@ -344,4 +345,4 @@ contains
                          aimag(model), abs(model), degrees*atan2(aimag(model), real(model, dp))], [size(f), 9])
     end function fit_columns
 
-end module greenconv_scene_report
+end module greenconv_scene_run_report

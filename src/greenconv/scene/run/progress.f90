@@ -8,7 +8,7 @@
 !> carriage return before it) at most every `refresh_seconds`, and ended with a newline by
 !> `finish_progress`. Wall time comes from `system_clock` with 64-bit counts. The caller
 !> updates it between blocks of steps, so reading the clock costs nothing per step.
-module greenconv_scene_progress
+module greenconv_scene_run_progress
     use, intrinsic :: iso_c_binding, only: c_int
     use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use greenconv_core_kinds, only: dp
@@ -224,4 +224,4 @@ contains
         seconds_since_start = real(now - meter%start, dp)/real(meter%rate, dp)
     end function seconds_since_start
 
-end module greenconv_scene_progress
+end module greenconv_scene_run_progress

@@ -1,4 +1,4 @@
-!> The single-point structure models of the registry (greenconv_scene_models), each as what the
+!> The single-point structure models of the registry (greenconv_scene_models_registry), each as what the
 !> registry's row names: its builder (a `structure_model` from the scene's values), and what the
 !> scene's checks and `--check` ask of it.
 !>
@@ -9,7 +9,7 @@
 !> - `wheel_rail`: a wheel on an infinite rail (greenconv_model_rail), its receptance
 !>   alpha_w + alpha_r sampled from 0 to f_max in closed form and then used as a file's:
 !>   identified by the scene's method, g by inverse FFT at the scene's dt.
-module greenconv_scene_single_models
+module greenconv_scene_models_single
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_core_text, only: int_text, sci_text
@@ -23,6 +23,7 @@ module greenconv_scene_single_models
                                          structure_from_frf_ml, structure_from_receptance
     use greenconv_conv_methods, only: method_scheme, scheme_auto, method_needs, needs_modes
     use greenconv_scene_settings, only: scene_type, place_error
+    use greenconv_ident_methods, only: ident_ml
     implicit none
     private
 
@@ -183,11 +184,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         type(ml_options) :: options
-        logical :: ml
 
-        ml = .false.
-        if (allocated(scene%ident_method)) ml = scene%ident_method == 'ml'
-        if (ml) then
+        if (scene%identification == ident_ml) then
             options%max_order = scene%max_order
             if (allocated(scene%ident_noise)) options%noise_model = scene%ident_noise
             if (allocated(scene%ident_search)) options%global_search = scene%ident_search == 'global'
@@ -221,4 +219,4 @@ contains
         options%fixed_modes = scene%order
     end function scene_options
 
-end module greenconv_scene_single_models
+end module greenconv_scene_models_single

@@ -1,9 +1,9 @@
-!> The multi-point structure models of the registry (greenconv_scene_models), each as what the
+!> The multi-point structure models of the registry (greenconv_scene_models_registry), each as what the
 !> registry's row names: the finder of its contact points, and what `--check` and the scene's
 !> checks ask of it.
 !>
 !> - `tyre`: a line of points under the belt of greenconv_model_tyre, its exact modes
-!>   (greenconv_scene_tyre);
+!>   (greenconv_scene_models_tyre);
 !> - `green_file`: the nodes of a universal file of a Green's matrix (`&structure green_file`),
 !>   at their coordinates, any layout, 1D or 2D: the file is read and its receptances
 !>   identified once with shared poles (greenconv_ident_green_structure, the pole fit's
@@ -15,14 +15,14 @@
 !>   (`&structure modes_file`, datasets 15/2411 and 55, greenconv_model_modes_file), at their
 !>   x, y; the modes up to the band (`f_modes`, or the Nyquist frequency 1/(2*dt)) are stepped;
 !>   those above are kept as their static compliance (residual flexibility), added to the
-!>   instant compliance W0 of the methods that have one (greenconv_scene_points), and the
+!>   instant compliance W0 of the methods that have one (greenconv_scene_run_points), and the
 !>   summary says how many and their share of the static flexibility at the points.
 !>
-!> All follow the conventions of greenconv_scene_patch (preload shared evenly, the points
+!> All follow the conventions of greenconv_scene_models_patch (preload shared evenly, the points
 !> seeing the road around x_start and y_start). The summary of a Green's file names the file,
 !> its points and the identification: E of eq. (7) per receptance (worst, mean) and per point,
 !> the worst pole uncertainty, the modes the modal methods run on.
-module greenconv_scene_multi_models
+module greenconv_scene_models_multi
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, sci_text
@@ -32,9 +32,10 @@ module greenconv_scene_multi_models
                                                sampled_kernel, summary_text, cost_bound_text
     use greenconv_conv_methods, only: check_method, method_needs, needs_sampled_g
     use greenconv_scene_settings, only: scene_type, place_error
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_patch, only: place_patch, run_text
-    use greenconv_scene_tyre, only: tyre_points, place_band_error, tyre_band_top
+    use greenconv_ident_methods, only: ident_poly_reference, ident_auto
+    use greenconv_scene_models_point_set, only: scene_points
+    use greenconv_scene_models_patch, only: place_patch, run_text
+    use greenconv_scene_models_tyre, only: tyre_points, place_band_error, tyre_band_top
     use greenconv_model_modes_file, only: file_modes, read_file_modes, split_band, band_bytes
     use greenconv_scene_limits, only: max_contact_points
     implicit none
@@ -55,7 +56,7 @@ contains
         type(scene_points), intent(out) :: points
         !> The scene's summary line.
         character(len=:), allocatable, intent(out) :: summary
-        !> Set for an unusable scene (greenconv_scene_tyre's `tyre_points`).
+        !> Set for an unusable scene (greenconv_scene_models_tyre's `tyre_points`).
         type(error_type), allocatable, intent(out) :: error
 
         call tyre_points(scene, points%modes, points%x, points%road_x, summary, error, points%road_y)
@@ -170,8 +171,8 @@ contains
 
         options%fit%max_order = scene%max_order
         if (allocated(scene%ident_search)) options%fit%global_search = scene%ident_search == 'global'
-        if (allocated(scene%ident_method)) options%poly_reference = scene%ident_method == 'poly_reference'
-        if (allocated(scene%ident_method)) options%choose_poles = scene%ident_method == 'auto'
+        options%poly_reference = scene%identification == ident_poly_reference
+        options%choose_poles = scene%identification == ident_auto
     end function green_settings
 
     !> For `--check`: read a scene's Green's matrix file (without identifying it), check that its
@@ -322,4 +323,4 @@ contains
             size(modes%frequency))/1.0e9_dp)//' GB: give a smaller modes_patch_length x modes_patch_width')
     end subroutine patch_nodes
 
-end module greenconv_scene_multi_models
+end module greenconv_scene_models_multi

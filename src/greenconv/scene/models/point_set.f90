@@ -1,8 +1,8 @@
 !> The contact points of a multi-point scene and what their convolvers are built from: the
 !> modes of a structure and their shapes at the points (a built-in model), or a Green's matrix
 !> read from a file and identified. A multi-point structure model of the registry
-!> (greenconv_scene_models) fills one; greenconv_scene_points builds each method on it.
-module greenconv_scene_point_set
+!> (greenconv_scene_models_registry) fills one; greenconv_scene_run_points builds each method on it.
+module greenconv_scene_models_point_set
     use greenconv_core_kinds, only: dp
     use greenconv_model_point_modes, only: point_modes
     use greenconv_ident_green_structure, only: green_structure
@@ -15,7 +15,7 @@ module greenconv_scene_point_set
     type :: scene_points
         !> Positions x_i, y_i [m] of the points on the body (the columns x, y of the output).
         real(dp), allocatable :: x(:), y(:)
-        !> Positions X_i(0), Y_i [m] of the points on the road (greenconv_scene_patch).
+        !> Positions X_i(0), Y_i [m] of the points on the road (greenconv_scene_models_patch).
         real(dp), allocatable :: road_x(:), road_y(:)
         !> Whether the points come from a Green's matrix file (else from `modes`).
         logical :: from_file = .false.
@@ -51,4 +51,4 @@ contains
         if (allocated(self%x)) points_n_points = size(self%x)
     end function points_n_points
 
-end module greenconv_scene_point_set
+end module greenconv_scene_models_point_set

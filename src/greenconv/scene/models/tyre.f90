@@ -1,21 +1,21 @@
 !> The tyre/road scene: a line of N_c contact points under the tyre belt of
 !> greenconv_model_tyre, rolling over a road read from a file, all forces solved together at each
-!> step (greenconv_contact_multi), with the conventions of greenconv_scene_patch (the points at
+!> step (greenconv_contact_multi), with the conventions of greenconv_scene_models_patch (the points at
 !> y = 0 on the belt). This module turns the scene into what a multi-point run
 !> needs (the points, the belt's modes at them, where each point meets the road) and the
-!> scene's summary line; greenconv_scene_runner streams each method's run into
+!> scene's summary line; greenconv_scene_run_runner streams each method's run into
 !> `<output_dir>/<name>_<method>.dat`, one row per step and point (t x u_road u f_contact
 !> delta f_total), as it streams the single-point runs.
 !>
 !> The methods are those of the registry (greenconv_conv_methods) that serve multi-point
 !> contact, built by greenconv_conv_builder's `make_multipoint_convolver`.
-module greenconv_scene_tyre
+module greenconv_scene_models_tyre
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_scene_settings, only: scene_type, place_error
     use greenconv_model_tyre, only: tyre_modes, tyre_band, contact_positions, tyre_frequency
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_scene_patch, only: place_patch, run_text, road_step
+    use greenconv_scene_models_patch, only: place_patch, run_text, road_step
     implicit none
     private
 
@@ -105,4 +105,4 @@ contains
         call place_error(error, scene, 'structure', 'f_modes')
     end subroutine place_band_error
 
-end module greenconv_scene_tyre
+end module greenconv_scene_models_tyre

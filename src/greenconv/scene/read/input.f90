@@ -1,12 +1,12 @@
 !> A scene read from a namelist file: task, time grid, structure, road, contact law,
-!> identification and convolution methods. The file is first scanned (greenconv_scene_schema,
+!> identification and convolution methods. The file is first scanned (greenconv_scene_read_schema,
 !> greenconv_scene_scan: unknown names, wrong kinds, NaN/Inf, required values, each with its
 !> line); then each group is read with a namelist read, starting from the defaults of the
-!> scene table (greenconv_scene_schema's `scene_table`: the paper's Tab. 1 and section 3.1,
+!> scene table (greenconv_scene_read_schema's `scene_table`: the paper's Tab. 1 and section 3.1,
 !> section 3.2 for the random road and random modes), and its values checked, messages
 !> carrying the line of the variable. So a scene file states only what differs. The table
 !> lists every variable with its units; doc/scenes.md shows it.
-module greenconv_scene_input
+module greenconv_scene_read_input
     use, intrinsic :: iso_fortran_env, only: iostat_end
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use greenconv_core_kinds, only: dp
@@ -25,15 +25,17 @@ module greenconv_scene_input
                                          check_road_coverage, road_travel
     use greenconv_model_road_texture, only: road_texture, read_road_texture, check_texture_coverage
     use greenconv_scene_scan, only: namelist_scan
-    use greenconv_scene_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
+    use greenconv_scene_read_schema, only: scan_scene, max_methods, scene_default, group_defaults, scene_variable, &
                                       scene_row, admits, max_map_times, max_roughness_bands
     use greenconv_io_columns, only: read_lines
-    use greenconv_scene_models, only: structure_kind, find_model, model_id, model_names, model_requires, &
-                                      multi_point_model
+    use greenconv_scene_models_facade, only: structure_kind, find_model, model_id, model_names, model_requires, &
+                                             multi_point_model
     use greenconv_core_number_text, only: compact_real
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
+    use greenconv_ident_methods, only: check_ident_method, default_ident_method, ident_scheme, &
+                                       ident_one_receptance, ident_green_matrix
     use greenconv_conv_builder, only: check_kernel_values
     use greenconv_scene_settings, only: scene_type, scene_files, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
@@ -167,7 +169,7 @@ contains
     !> &scene: task, name, output_dir, dt [s], n_steps, output_every, output_format, progress.
     subroutine read_scene_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -220,7 +222,7 @@ contains
     !> &structure: the model and its parameters.
     subroutine read_structure_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -377,7 +379,7 @@ contains
     !> &identification: frequency grid of the sampled G and LSCE options.
     subroutine read_identification_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -386,6 +388,9 @@ contains
         integer :: n_freq, max_order, order, stat
         character(len=name_length) :: method, noise_model, search
         character(len=512) :: message
+        character(len=:), allocatable :: refused
+        type(error_type), allocatable :: why
+        integer :: what
         namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model, search
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
@@ -403,21 +408,23 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        call require(any(trim(method) == [character(len=14) :: '', 'ml', 'lsce', 'poly_reference', 'auto']), error, &
-                     this, 'identification', 'method', "'ml' (maximum likelihood), 'lsce', 'poly_reference' or 'auto'", &
-                     method)
-        call require(trim(method) /= 'lsce' .or. this%model /= 'green_file', error, this, 'identification', &
-                     'method', "'ml' for model 'green_file' (or 'poly_reference', 'auto': its shared poles)", method)
-        call require(all(trim(method) /= [character(len=14) :: 'poly_reference', 'auto']) .or. this%model == &
-                     'green_file', error, this, 'identification', 'method', "'ml' or 'lsce' for model '" &
-                     //trim(this%model)//"' ('poly_reference' and 'auto' are for a Green's matrix file)", method)
-        if (len_trim(method) == 0 .and. this%model == 'green_file') method = 'auto'
-        if (len_trim(method) == 0) method = merge('ml  ', 'lsce', this%model == 'frf_file')
-        call require(order == 0 .or. trim(method) == 'lsce', error, this, 'identification', 'order', &
-                     "0 with method 'ml' (it chooses the order from the data; a fixed order needs " &
-                     //"method = 'lsce')", order)
+        if (this%model == 'green_file') then
+            what = ident_green_matrix
+        else
+            what = ident_one_receptance
+        end if
+        if (len_trim(method) == 0) method = default_ident_method(what, this%model == 'frf_file')
+        call check_ident_method(trim(method), what, this%model, order, refused, why)
+        if (allocated(why)) then
+            if (refused == 'order') then
+                call require(.false., error, this, 'identification', 'order', why%message, order)
+            else
+                call require(.false., error, this, 'identification', 'method', why%message, method)
+            end if
+        end if
         this%order = order
         this%ident_method = trim(method)
+        this%identification = ident_scheme(method)
         call require(any(trim(noise_model) == ['auto    ', 'relative', 'absolute', 'floor   ', 'band    ']), error, &
                      this, 'identification', 'noise_model', "'auto', 'relative', 'absolute', 'floor' or 'band'", &
                      noise_model)
@@ -430,7 +437,7 @@ contains
     !> &road: profile and its parameters.
     subroutine read_road_group(source, defaults, this, error, files)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -582,7 +589,7 @@ contains
     !> Profile 'file' or 'texture': every contact point stays on the road for the whole run (a
     !> single point at x_start + V*t; the tyre's points spread over the patch around it, at
     !> y_start across a texture), so that `--check` finds a road too short as a run would. A
-    !> Green's matrix file's points are known once the file is read (greenconv_scene_points).
+    !> Green's matrix file's points are known once the file is read (greenconv_scene_run_points).
     subroutine check_scene_road(this, error)
         type(scene_type), intent(in) :: this
         type(error_type), allocatable, intent(inout) :: error
@@ -748,7 +755,7 @@ contains
     !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
     subroutine read_contact_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -865,7 +872,7 @@ contains
     !> &convolution: methods (list of names), truncation_tol, accuracy.
     subroutine read_convolution_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
-        !> The group's defaults, a namelist record (greenconv_scene_schema's `group_defaults`).
+        !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
         character(len=*), intent(in) :: defaults
         type(scene_type), intent(inout) :: this
         type(error_type), allocatable, intent(out) :: error
@@ -948,7 +955,7 @@ contains
 
     !> Whether a group reader stops after its namelist read or write: it failed (the status
     !> made an error, "file:line: &group: message") or wrote a template. A missing group is no
-    !> error here (greenconv_scene_schema checks the required ones).
+    !> error here (greenconv_scene_read_schema checks the required ones).
     logical function group_failed(scene, group, source, stat, message, error)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: group, message
@@ -989,7 +996,7 @@ contains
         call fatal_error(error, line)
     end subroutine expect
 
-    !> Check a value a group read against its row of the scene table (greenconv_scene_schema):
+    !> Check a value a group read against its row of the scene table (greenconv_scene_read_schema):
     !> its range or choices; its message says what the row expects and what was found.
     subroutine check_value(this, group, name, value, error)
         type(scene_type), intent(in) :: this
@@ -1030,4 +1037,4 @@ contains
         call expect(error, scene, group, variable, what, found)
     end subroutine require
 
-end module greenconv_scene_input
+end module greenconv_scene_read_input

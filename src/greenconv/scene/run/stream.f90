@@ -1,4 +1,4 @@
-!> The one streaming loop of a contact run, used by the driver's runner (greenconv_scene_runner),
+!> The one streaming loop of a contact run, used by the driver's runner (greenconv_scene_run_runner),
 !> by each variant of a sweep (greenconv_scene_sweep_variant) and so by the library's
 !> `gc_run_scene`: a run is streamed in blocks of steps, the road sampled per block, the
 !> contact loop continued from the convolver's state, and each block handed to the sinks the
@@ -9,7 +9,7 @@
 !> - a multi-point run's totals file (t, total force, contact area, points in contact, every
 !>   `output_every`-th step), its map file (the per-point rows at the steps of `map_times`) and,
 !>   with the spectra, the spectra of its contact area;
-!> - the scene's force spectra (`&scene spectra`, greenconv_scene_spectra_output);
+!> - the scene's force spectra (`&scene spectra`, greenconv_scene_run_spectra_output);
 !> - a force summary (max, mean, rms of the total contact force, steps in contact: a sweep row);
 !> - the whole total-force history (a sweep's band levels).
 !>
@@ -20,7 +20,7 @@
 !> case, greenconv_conv_point_matrix) stepped by greenconv_contact_multi's loop. Only what a
 !> scene asks for differs: where the road is sampled (under the one point, or under the
 !> points of the tyre or of a Green's matrix file) and how the rows are laid out.
-module greenconv_scene_stream
+module greenconv_scene_run_stream
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -35,14 +35,13 @@ module greenconv_scene_stream
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
-    use greenconv_scene_progress, only: progress_meter, start_progress, update_progress, finish_progress
-    use greenconv_scene_input, only: scene_type
-    use greenconv_scene_models, only: multi_point_model, structure_kind, find_model
-    use greenconv_scene_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
+    use greenconv_scene_run_progress, only: progress_meter, start_progress, update_progress, finish_progress
+    use greenconv_scene_read_facade, only: scene_type
+    use greenconv_scene_models_facade, only: multi_point_model, structure_kind, find_model, sample_patch_road
+    use greenconv_scene_run_spectra_output, only: force_spectra, start_force_spectra, add_contact_forces, &
                                               finish_force_spectra
-    use greenconv_scene_points, only: scene_points, point_rows, points_convolver
-    use greenconv_scene_output, only: totals_table
-    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_scene_run_points, only: scene_points, point_rows, points_convolver
+    use greenconv_scene_run_output, only: totals_table
     implicit none
     private
 
@@ -63,7 +62,7 @@ module greenconv_scene_stream
         !> Road heights [m] under the points, heights(step, point), of the block.
         real(dp), allocatable :: heights(:, :)
         !> The points of a multi-point scene: on the body (x, y) and on the road
-        !> (the `find_points` of the scene's model, greenconv_scene_models, called by the owner of the run).
+        !> (the `find_points` of the scene's model, greenconv_scene_models_registry, called by the owner of the run).
         type(scene_points) :: points
         !> Largest total force [N] so far.
         real(dp) :: peak = -huge(1.0_dp)
@@ -658,7 +657,7 @@ contains
         !> Set when the method cannot run on the structure.
         type(error_type), allocatable, intent(out) :: error
         !> The method's own estimate of its relative error, to compare with the scene's
-        !> `accuracy` (greenconv_conv_builder's `make_convolver`, greenconv_scene_points's
+        !> `accuracy` (greenconv_conv_builder's `make_convolver`, greenconv_scene_run_points's
         !> `points_convolver`).
         real(dp), intent(out), optional :: estimate
 
@@ -737,7 +736,7 @@ contains
     end subroutine run_advance
 
     !> The rows of the steps of the block that are multiples of `every`: t, u_road, u,
-    !> f_contact, delta for one point; N_c rows per step for several (greenconv_scene_points's
+    !> f_contact, delta for one point; N_c rows per step for several (greenconv_scene_run_points's
     !> `point_rows`, with the column y for a Green's matrix file's points).
     subroutine run_rows(self, first, every, table)
         class(contact_run), intent(in) :: self
@@ -786,4 +785,4 @@ contains
         end if
     end subroutine run_forces
 
-end module greenconv_scene_stream
+end module greenconv_scene_run_stream

@@ -2,25 +2,25 @@
 !> its name, the `&structure` variables it requires, what it gives the convolution methods,
 !> and the procedures that build it (a single-point structure, or the contact points of a
 !> multi-point one), bound its kernel's length and check its file for `--check`. The scene's
-!> checks (greenconv_scene_schema, greenconv_scene_input), its builders
-!> (greenconv_scene_structure's `build_structure`; the runner and the sweep call a multi-point
-!> model's `find_points`) and `--check` (greenconv_scene_runner) ask this registry, and nothing
+!> checks (greenconv_scene_read_schema, greenconv_scene_read_input), its builders
+!> (greenconv_scene_models_structure's `build_structure`; the runner and the sweep call a multi-point
+!> model's `find_points`) and `--check` (greenconv_scene_run_runner) ask this registry, and nothing
 !> else compares model names.
 !>
 !> A new structure model is its module (its builder or its points' finder, as
-!> greenconv_scene_single_models and greenconv_scene_multi_models hold the shipped ones) and
+!> greenconv_scene_models_single and greenconv_scene_models_multi hold the shipped ones) and
 !> its row in `structure_models`, plus the rows of any new `&structure` variable in the scene
-!> table (greenconv_scene_schema).
-module greenconv_scene_models
+!> table (greenconv_scene_read_schema).
+module greenconv_scene_models_registry
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_settings, only: scene_type
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_single_models, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
+    use greenconv_scene_models_point_set, only: scene_points
+    use greenconv_scene_models_single, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
                                              frf_file_structure, check_frf_file, wheel_rail_structure, &
                                              wheel_rail_receptance
-    use greenconv_scene_multi_models, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
+    use greenconv_scene_models_multi, only: tyre_scene_points, tyre_decay, plate_scene_points, plate_decay, &
                                             green_file_points, check_green_file, modes_file_points, check_modes_file
     implicit none
     private
@@ -130,7 +130,7 @@ module greenconv_scene_models
         !> `--check` of the file the model names; unassociated when it names none.
         procedure(file_check), pointer, nopass :: check_file => null()
         !> The receptance of a model known in closed form: its runs get the linear reference
-        !> (greenconv_scene_linear_reference) and report loss of contact; else unassociated.
+        !> (greenconv_scene_run_linear_reference) and report loss of contact; else unassociated.
         procedure(contact_receptance), pointer, nopass :: receptance => null()
     contains
         !> Whether the contact has several points (the model finds its points).
@@ -275,4 +275,4 @@ contains
         multi_point_model = model%multi_point()
     end function multi_point_model
 
-end module greenconv_scene_models
+end module greenconv_scene_models_registry

@@ -19,7 +19,7 @@
 !>
 !> A multi-point scene of a modal structure (its points' `modes`: models 'tyre', 'tyre_plate',
 !> 'modes_file') gets the matrix form (greenconv_model_linear_patch): each point's law
-!> linearised at its share F0/N_c of the preload (greenconv_scene_patch), the force's change
+!> linearised at its share F0/N_c of the preload (greenconv_scene_models_patch), the force's change
 !> dF = (A + K^-1)^-1 u_r under the road heights u_r,i at the points, and the total force's
 !> PSD that of sum_j c_j(f)*u_r,j(f), c = (A + K^-1)^-1 1 (A and K symmetric), averaged by
 !> Welch as the runs' spectra are, each segment's lines of the points' heights filtered and
@@ -30,7 +30,7 @@
 !> Where the time-domain run departs from this, the contact is nonlinear (the Hertz law over a
 !> large roughness, or contact lost): each method's summary line says for how many steps and
 !> how long the contact was lost (`contact_loss_text`).
-module greenconv_scene_linear_reference
+module greenconv_scene_run_linear_reference
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_constants, only: two_pi
@@ -41,10 +41,8 @@ module greenconv_scene_linear_reference
                                     third_octave_bands, band_powers, nominal_frequency, segment_for_band, first_band, &
                                     default_lines_per_band, set_welch_gains
     use greenconv_scene_settings, only: scene_type
-    use greenconv_scene_models, only: contact_receptance
-    use greenconv_scene_stream, only: force_summary
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_scene_models_facade, only: contact_receptance, scene_points, sample_patch_road
+    use greenconv_scene_run_stream, only: force_summary
     use greenconv_model_linear_patch, only: modal_receptance_matrix, linear_patch_force
     implicit none
     private
@@ -270,4 +268,4 @@ contains
         end if
     end subroutine contact_loss_text
 
-end module greenconv_scene_linear_reference
+end module greenconv_scene_run_linear_reference

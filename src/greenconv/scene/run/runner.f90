@@ -2,8 +2,8 @@
 !> write the identification (task `identify`) or run the contact loop with one convolver
 !> per method (task `contact`), writing column files and a summary line per method.
 !>
-!> Single- and multi-point runs (the tyre scene, greenconv_scene_tyre; a Green's matrix file,
-!> greenconv_scene_points) are one `contact_run` each, streamed by greenconv_scene_stream's
+!> Single- and multi-point runs (the tyre scene, greenconv_scene_models_tyre; a Green's matrix file,
+!> greenconv_scene_run_points) are one `contact_run` each, streamed by greenconv_scene_run_stream's
 !> `stream_run` into the method's column file (and its force spectra with `&scene spectra`);
 !> this module starts each method's run, in one loop for both, and prints its summary line.
 !>
@@ -13,7 +13,7 @@
 !> as `point_histories` asks (`auto`: for at most `auto_history_points` points), a row every
 !> `point_every` steps; and with `map_times`, `<name>_<method>_maps.dat`, the per-point rows
 !> at the steps nearest those times, one block of N_c rows a time.
-module greenconv_scene_runner
+module greenconv_scene_run_runner
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_text, only: int_text, sci_text, trimmed_real_text
@@ -23,19 +23,17 @@ module greenconv_scene_runner
     use greenconv_conv_builder, only: make_convolver
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
-    use greenconv_scene_input, only: scene_type, output_path, place_error
-    use greenconv_scene_models, only: structure_kind, find_model, multi_point_model
-    use greenconv_scene_patch, only: point_share
+    use greenconv_scene_read_facade, only: scene_type, output_path, place_error
+    use greenconv_scene_models_facade, only: structure_kind, find_model, multi_point_model, point_share, &
+                                             build_structure, scene_points
     use greenconv_ident_structure, only: structure_model
-    use greenconv_scene_structure, only: build_structure
-    use greenconv_scene_report, only: write_identification, identification_summary
-    use greenconv_scene_output, only: multi_contact_header, check_inputs_kept, totals_header
-    use greenconv_scene_spectra_output, only: spectra_line, spectra_path
-    use greenconv_scene_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
+    use greenconv_scene_run_report, only: write_identification, identification_summary
+    use greenconv_scene_run_output, only: multi_contact_header, check_inputs_kept, totals_header
+    use greenconv_scene_run_spectra_output, only: spectra_line, spectra_path
+    use greenconv_scene_run_stream, only: contact_run, stream_sinks, stream_run, make_run_convolver, start_run, &
                                       halve_step, step_doubling, start_step_doubling, time_step_estimate, band_estimate
-    use greenconv_scene_point_set, only: scene_points
     use greenconv_scene_limits, only: work_rate, projected_run, smaller_step
-    use greenconv_scene_linear_reference, only: write_linear_reference, write_patch_reference, contact_loss_text
+    use greenconv_scene_run_linear_reference, only: write_linear_reference, write_patch_reference, contact_loss_text
     implicit none
     private
 
@@ -669,4 +667,4 @@ contains
                               //int_text(2*every)//', ...)'
     end subroutine title
 
-end module greenconv_scene_runner
+end module greenconv_scene_run_runner

@@ -1,12 +1,12 @@
 !> The structure of a single-point scene: its `&structure` and `&identification` groups turned
 !> into a `structure_model` (greenconv_ident_structure) by the builder its model's row of the
-!> registry names (greenconv_scene_models), with the scene's file and line put in front of any
+!> registry names (greenconv_scene_models_registry), with the scene's file and line put in front of any
 !> error.
-module greenconv_scene_structure
+module greenconv_scene_models_structure
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_ident_structure, only: structure_model
     use greenconv_scene_settings, only: scene_type, place_error
-    use greenconv_scene_models, only: structure_kind, find_model
+    use greenconv_scene_models_registry, only: structure_kind, find_model
     implicit none
     private
 
@@ -37,4 +37,4 @@ contains
         end if
     end subroutine build_structure
 
-end module greenconv_scene_structure
+end module greenconv_scene_models_structure
