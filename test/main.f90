@@ -59,6 +59,7 @@ program greenconv_tests
     use test_errorbudget_mod, only: collect_errorbudget
     use test_linearpatch_mod, only: collect_linearpatch
     use test_identcost_mod, only: collect_identcost
+    use test_separable_mod, only: collect_separable
     implicit none
 
     integer :: n_passed, n_failed
@@ -115,7 +116,8 @@ program greenconv_tests
                        new_testsuite('identnoise', collect_identnoise), &
                        new_testsuite('errorbudget', collect_errorbudget), &
                        new_testsuite('linearpatch', collect_linearpatch), &
-                       new_testsuite('identcost', collect_identcost)], output_unit, n_passed, n_failed, valid)
+                       new_testsuite('identcost', collect_identcost), &
+                       new_testsuite('separable', collect_separable)], output_unit, n_passed, n_failed, valid)
     if (.not. valid) stop 2, quiet=.true.
     write (output_unit, '(i0,a,i0,a)') n_passed, ' passed, ', n_failed, ' failed'
     if (n_failed > 0) stop 1, quiet=.true.
