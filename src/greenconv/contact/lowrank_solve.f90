@@ -126,9 +126,12 @@ contains
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%low_rank = .true.
                 compliance%rank = k - 1
-                compliance%left = left(:, 1:k - 1)
-                compliance%right = right(:, 1:k - 1)
-                compliance%right_t = transpose(compliance%right)
+                ! allocated before the assignments: the sanitizer flags gfortran's reallocation
+                ! reading the unset bounds of an unallocated component
+                allocate (compliance%left(n_c, k - 1), compliance%right(n_c, k - 1), compliance%right_t(k - 1, n_c))
+                compliance%left(:, :) = left(:, 1:k - 1)
+                compliance%right(:, :) = right(:, 1:k - 1)
+                compliance%right_t(:, :) = transpose(compliance%right)
                 return
             end if
             if (k > max_rank) return
