@@ -29,7 +29,7 @@
 !> greenconv_model_point_modes): the convolver then holds the factors instead of the dense
 !> shapes, and the history, the modal forces and W0's columns (W0*e_j = Phi*(w o Phi^T*e_j))
 !> cost n_col*(N_m + n_row*N_y) multiplications each instead of N_c*N_m: for 100 x 50 points
-!> and 441 modes about 20 times fewer, with factors that stay in the caches. Each sum is
+!> and 441 modes 25 times fewer, with factors that stay in the caches. Each sum is
 !> taken in a fixed order there too, so one and two threads give the same bits.
 module greenconv_conv_green_modal
     !$ use omp_lib, only: omp_in_parallel
