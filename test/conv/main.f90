@@ -7,6 +7,7 @@ program greenconv_tests_conv
     use test_fft_mod, only: collect_fft
     use test_greenfft_mod, only: collect_greenfft
     use test_greenfiles_mod, only: collect_greenfiles
+    use test_separable_mod, only: collect_separable
     implicit none
 
     call run_layer('conv', [ &
@@ -14,5 +15,6 @@ program greenconv_tests_conv
                     new_testsuite('engines', collect_engines), &
                     new_testsuite('fft', collect_fft), &
                     new_testsuite('greenfft', collect_greenfft), &
-                    new_testsuite('greenfiles', collect_greenfiles)])
+                    new_testsuite('greenfiles', collect_greenfiles), &
+                    new_testsuite('separable', collect_separable)])
 end program greenconv_tests_conv

@@ -120,21 +120,24 @@ contains
         if (.not. (largest > 0.0_dp)) return
         allocate (remainder(n_c, n_c), left(n_c, max_rank), right(n_c, max_rank))
         remainder(:, :) = weight0
+        at = largest_entry(remainder)
         do k = 1, max_rank + 1
-            at = largest_entry(remainder)
             pivot = remainder(at(1), at(2))
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%low_rank = .true.
                 compliance%rank = k - 1
-                compliance%left = left(:, 1:k - 1)
-                compliance%right = right(:, 1:k - 1)
-                compliance%right_t = transpose(compliance%right)
+                ! allocated before the assignments: the sanitizer flags gfortran's reallocation
+                ! reading the unset bounds of an unallocated component
+                allocate (compliance%left(n_c, k - 1), compliance%right(n_c, k - 1), compliance%right_t(k - 1, n_c))
+                compliance%left(:, :) = left(:, 1:k - 1)
+                compliance%right(:, :) = right(:, 1:k - 1)
+                compliance%right_t(:, :) = transpose(compliance%right)
                 return
             end if
             if (k > max_rank) return
             left(:, k) = remainder(:, at(2))
             right(:, k) = remainder(at(1), :)/pivot
-            call subtract_outer(remainder, left(:, k), right(:, k))
+            call subtract_outer(remainder, left(:, k), right(:, k), at)
         end do
     end subroutine factor_compliance
 
@@ -159,15 +162,28 @@ contains
         end do
     end function largest_entry
 
-    !> A = A - x*y^T.
-    pure subroutine subtract_outer(a, x, y)
+    !> A = A - x*y^T, and the indices of the first largest |a_ij| of the result in array
+    !> element order (as `largest_entry`), found in the same pass over A: an elimination step
+    !> then reads the N_c x N_c remainder once instead of twice.
+    pure subroutine subtract_outer(a, x, y, at)
         real(dp), intent(inout) :: a(:, :)
         real(dp), intent(in) :: x(:), y(:)
+        integer, intent(out) :: at(2)
 
-        integer :: j
+        real(dp) :: largest
+        integer :: i, j
 
+        at = [1, 1]
+        largest = 0.0_dp
         do j = 1, size(a, 2)
             if (y(j) /= 0.0_dp) a(:, j) = a(:, j) - x*y(j)
+            if (j == 1) largest = abs(a(1, 1))
+            do i = 1, size(a, 1)
+                if (abs(a(i, j)) > largest) then
+                    largest = abs(a(i, j))
+                    at = [i, j]
+                end if
+            end do
         end do
     end subroutine subtract_outer
 

@@ -24,12 +24,20 @@
 !> the step is called from inside a parallel region of a host (`omp_in_parallel`: each host
 !> thread then steps its own convolvers alone) and when N_c*N_m is below `threads_from` (a
 !> region costs a few microseconds).
+!>
+!> Separable shapes (a plate's modes on a grid of points, `separable_shapes` of
+!> greenconv_model_point_modes): the convolver then holds the factors instead of the dense
+!> shapes, and the history, the modal forces and W0's columns (W0*e_j = Phi*(w o Phi^T*e_j))
+!> cost n_col*(N_m + n_row*N_y) multiplications each instead of N_c*N_m: for 100 x 50 points
+!> and 441 modes 25 times fewer, with factors that stay in the caches. Each sum is
+!> taken in a fixed order there too, so one and two threads give the same bits.
 module greenconv_conv_green_modal
     !$ use omp_lib, only: omp_in_parallel
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_point_modes, only: point_modes, separable_shapes, separable_displacements, &
+                                           separable_modal_forces, separable_work
     use greenconv_conv_recursive, only: recursive_convolver, new_modal_engine
     use greenconv_conv_methods, only: method_scheme, is_modal_recursion, method_list
     implicit none
@@ -46,8 +54,12 @@ module greenconv_conv_green_modal
     type, extends(multipoint_convolver) :: modal_green_matrix
         !> The modal engine: decay factors z_k, input coefficients c_k and states p_k.
         type(recursive_convolver) :: engine
-        !> Mode shapes at the points, shape(i, k) = phi_ik (N_c x N_m).
+        !> Mode shapes at the points, shape(i, k) = phi_ik (N_c x N_m); unallocated when the
+        !> factors below are held instead.
         real(dp), allocatable :: shape(:, :)
+        !> The shapes' factors over a grid of points, when the description has them and they
+        !> cost fewer multiplications a product than the dense shapes.
+        type(separable_shapes), allocatable :: separable
         !> Modal forces Q_k [N] of the last push (work space).
         real(dp), allocatable :: modal_force(:)
     contains
@@ -131,7 +143,18 @@ contains
         n_m = description%modes%n_modes()
         conv%engine = engine
         call conv%set_model(conv%engine%name, dt, n_m, 'N_m')
-        allocate (conv%shape(n_c, n_m), conv%modal_force(n_m), weight0(n_c, n_c))
+        allocate (conv%modal_force(n_m), weight0(n_c, n_c))
+        if (allocated(description%separable)) then
+            if (real(separable_work(description%separable), dp) < real(n_c, dp)*n_m) &
+                conv%separable = description%separable
+        end if
+        if (allocated(conv%separable)) then
+            call separable_weight0(conv%separable, conv%engine%mode_weight, weight0)
+            call conv%set_instant_matrix(weight0)
+            call conv%reset()
+            return
+        end if
+        allocate (conv%shape(n_c, n_m))
         conv%shape(:, :) = description%shape
         ! W0_ij = sum_k (w_k*phi_ik)*phi_jk in the order of k, column by column (N_c^2*N_m
         ! multiply-adds once, without temporaries; columns shared among threads).
@@ -149,6 +172,33 @@ contains
         call conv%reset()
     end subroutine set_up_matrix
 
+    !> W0 = Phi*diag(w)*Phi^T from the shapes' factors, column by column: W0*e_j = Phi*(w o phi_j.),
+    !> phi_jk = X_f(k)(x_col(j))*Y_n(k)(y_row(j)); columns shared among threads. Zero when every
+    !> w_k is (the explicit scheme).
+    subroutine separable_weight0(factors, weight, weight0)
+        type(separable_shapes), intent(in) :: factors
+        real(dp), intent(in) :: weight(:)
+        real(dp), intent(out) :: weight0(:, :)
+
+        real(dp) :: scaled(size(weight))
+        integer :: j
+        logical :: share
+
+        if (maxval(abs(weight)) <= 0.0_dp) then
+            weight0(:, :) = 0.0_dp
+            return
+        end if
+        share = real(separable_work(factors), dp)*size(weight0, 2) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        !$omp parallel do if (share) default(none) shared(factors, weight, weight0) private(scaled) schedule(static)
+        do j = 1, size(weight0, 2)
+            scaled(:) = weight*factors%along(factors%column(j), factors%mode_along) &
+                        *factors%across(factors%row(j), factors%mode_across)
+            call separable_displacements(factors, scaled, weight0(:, j), .false.)
+        end do
+        !$omp end parallel do
+    end subroutine separable_weight0
+
     !> u_h,i(n) = sum_k phi_ik*Re(p_k(n)) [m].
     subroutine modal_history(self, u)
         class(modal_green_matrix), intent(in) :: self
@@ -157,6 +207,12 @@ contains
         integer :: block, first, last, k
         logical :: share
 
+        if (allocated(self%separable)) then
+            share = separable_work(self%separable) >= threads_from
+            !$ share = share .and. .not. omp_in_parallel()
+            call separable_displacements(self%separable, self%engine%state_re, u, share)
+            return
+        end if
         share = size(self%shape) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
         ! Blocks of points, each summed over the modes column by column (contiguous in shape):
@@ -184,6 +240,16 @@ contains
         logical :: share
 
         load(:) = self%recorded_load(forces)
+        if (allocated(self%separable)) then
+            share = separable_work(self%separable) >= threads_from
+            !$ share = share .and. .not. omp_in_parallel()
+            call separable_modal_forces(self%separable, load, self%modal_force, share)
+            do k = 1, size(self%modal_force)
+                call step_mode(self%engine, k, self%modal_force(k))
+            end do
+            self%step = self%step + 1
+            return
+        end if
         share = size(self%shape) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
         !$omp parallel do if (share) default(none) shared(self, load) schedule(static)

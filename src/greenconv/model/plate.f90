@@ -67,7 +67,7 @@ module greenconv_model_plate
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text, int_text
     use greenconv_model_modal_set, only: modes_from_paper
-    use greenconv_model_point_modes, only: point_modes, check_on_belt
+    use greenconv_model_point_modes, only: point_modes, separable_shapes, check_on_belt
     use greenconv_model_tyre, only: contact_positions
     implicit none
     private
@@ -148,17 +148,32 @@ contains
         !> Position across the belt [m], 0..b.
         real(dp), intent(in) :: y
 
-        real(dp) :: along
+        plate_mode_shape = plate_along(plate, mode, x)*plate_across(plate, mode%n, y)
+    end function plate_mode_shape
+
+    !> The x factor of a mode shape [1/sqrt(kg)]: c_m*cos(k_m*x) or c_m*sin(k_m*x).
+    elemental real(dp) function plate_along(plate, mode, x)
+        type(tyre_plate), intent(in) :: plate
+        type(plate_mode), intent(in) :: mode
+        real(dp), intent(in) :: x
 
         if (mode%m == 0) then
-            along = sqrt(2.0_dp/(plate%mass_per_area*plate%length*plate%width))
+            plate_along = sqrt(2.0_dp/(plate%mass_per_area*plate%length*plate%width))
         else if (mode%sine) then
-            along = 2.0_dp/sqrt(plate%mass_per_area*plate%length*plate%width)*sin(2.0_dp*pi*mode%m*x/plate%length)
+            plate_along = 2.0_dp/sqrt(plate%mass_per_area*plate%length*plate%width)*sin(2.0_dp*pi*mode%m*x/plate%length)
         else
-            along = 2.0_dp/sqrt(plate%mass_per_area*plate%length*plate%width)*cos(2.0_dp*pi*mode%m*x/plate%length)
+            plate_along = 2.0_dp/sqrt(plate%mass_per_area*plate%length*plate%width)*cos(2.0_dp*pi*mode%m*x/plate%length)
         end if
-        plate_mode_shape = along*sin(mode%n*pi*y/plate%width)
-    end function plate_mode_shape
+    end function plate_along
+
+    !> The y factor of a mode shape: sin(q_n*y), dimensionless.
+    elemental real(dp) function plate_across(plate, n, y)
+        type(tyre_plate), intent(in) :: plate
+        integer, intent(in) :: n
+        real(dp), intent(in) :: y
+
+        plate_across = sin(n*pi*y/plate%width)
+    end function plate_across
 
     !> Every mode whose natural frequency is at most f_max [Hz], by increasing frequency (a
     !> cosine before its sine; equal frequencies by m, then n). omega_mn grows with m and with
@@ -259,7 +274,84 @@ contains
         do k = 1, n_m
             description%shape(:, k) = plate_mode_shape(plate, modes(k), x, y)
         end do
+        call grid_factors(plate, modes, x, y, description%separable)
     end subroutine plate_modes
+
+    !> The shapes' factors (greenconv_model_point_modes's `separable_shapes`) when the points
+    !> form a grid: n_col distinct x by n_row distinct y with every (x, y) pair taken by one
+    !> point (`patch_points` gives one, in any order); unallocated otherwise. The x functions
+    !> are the modes' distinct (m, cosine or sine), the y functions their distinct n, each
+    !> numbered by its first mode; shape(i, k) is the product of the two factors bit for bit.
+    subroutine grid_factors(plate, modes, x, y, factors)
+        type(tyre_plate), intent(in) :: plate
+        type(plate_mode), intent(in) :: modes(:)
+        real(dp), intent(in) :: x(:), y(:)
+        type(separable_shapes), allocatable, intent(out) :: factors
+
+        real(dp), allocatable :: columns(:), rows(:)
+        integer, allocatable :: column(:), row(:)
+        type(plate_mode), allocatable :: along(:)
+        integer, allocatable :: across(:)
+        logical, allocatable :: taken(:, :)
+        integer :: i, k, f
+
+        call distinct_values(x, columns, column)
+        call distinct_values(y, rows, row)
+        if (size(columns)*size(rows) /= size(x)) return
+        allocate (taken(size(columns), size(rows)), source=.false.)
+        do i = 1, size(x)
+            if (taken(column(i), row(i))) return
+            taken(column(i), row(i)) = .true.
+        end do
+        allocate (factors)
+        allocate (factors%mode_along(size(modes)), factors%mode_across(size(modes)), along(0), across(0))
+        do k = 1, size(modes)
+            f = findloc(along%m == modes(k)%m .and. (along%sine .eqv. modes(k)%sine), .true., dim=1)
+            if (f == 0) then
+                along = [along, modes(k)]
+                f = size(along)
+            end if
+            factors%mode_along(k) = f
+            f = findloc(across, modes(k)%n, dim=1)
+            if (f == 0) then
+                across = [across, modes(k)%n]
+                f = size(across)
+            end if
+            factors%mode_across(k) = f
+        end do
+        allocate (factors%along(size(columns), size(along)), factors%across(size(rows), size(across)))
+        do f = 1, size(along)
+            factors%along(:, f) = plate_along(plate, along(f), columns)
+        end do
+        do f = 1, size(across)
+            factors%across(:, f) = plate_across(plate, across(f), rows)
+        end do
+        factors%column = column
+        factors%row = row
+    end subroutine grid_factors
+
+    !> The distinct values of a list in the order of their first appearance, and the index of
+    !> each entry among them.
+    pure subroutine distinct_values(values, found, index)
+        real(dp), intent(in) :: values(:)
+        real(dp), allocatable, intent(out) :: found(:)
+        integer, allocatable, intent(out) :: index(:)
+
+        integer :: i, j, count
+
+        allocate (found(size(values)), index(size(values)))
+        count = 0
+        do i = 1, size(values)
+            j = findloc(found(1:count), values(i), dim=1)
+            if (j == 0) then
+                count = count + 1
+                found(count) = values(i)
+                j = count
+            end if
+            index(i) = j
+        end do
+        found = found(1:count)
+    end subroutine distinct_values
 
     !> Points of an n_x by n_y contact patch, each the middle of its share of the patch, x
     !> fastest: point i = (i_y - 1)*n_x + i_x is at (x(i_x), y(i_y)) (the layout of

@@ -5,6 +5,22 @@
 !>
 !> h_k the unit modal impulse response in pole-residue form (greenconv_model_modal_set); for
 !> a mode of unit modal mass, r_k = 1/(2i*omega_k^d) [1/(kg*s)] and phi_ik is in 1/sqrt(kg).
+!>
+!> **Separable shapes.** When every mode shape is a product of a function of x and a function
+!> of y (a plate's c_m*cos(k_m*x)*sin(q_n*y)) and the points sit on the cells of a grid of
+!> n_col distinct x (columns) by n_row distinct y (rows), the description may also carry the
+!> factors (`separable_shapes`): phi_ik = X_f(k)(x_col(i))*Y_n(k)(y_row(i)), N_x functions of x
+!> at the columns and N_y functions of y at the rows. The two products a modal convolver needs
+!> each step then cost O(n_col*(N_m + n_row*N_y)) instead of O(N_c*N_m):
+!>
+!>     u_i = sum_k phi_ik*a_k:   B(c, n) = sum_{k: n(k) = n} X_f(k)(c)*a_k,
+!>                               u_i = sum_n B(col(i), n)*Y_n(row(i)),
+!>     Q_k = sum_i phi_ik*q_i:   H(c, n) = sum_{i in column c} q_i*Y_n(row(i)),
+!>                               Q_k = sum_c X_f(k)(c)*H(c, n(k)),
+!>
+!> every sum taken in a fixed order, so that the result does not depend on the threads that
+!> share the columns or the modes. The dense `shape` stays the reference: its columns are the
+!> products of the factors.
 module greenconv_model_point_modes
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -13,7 +29,24 @@ module greenconv_model_point_modes
     implicit none
     private
 
-    public :: point_modes, check_on_belt
+    public :: point_modes, separable_shapes, check_on_belt
+    public :: separable_displacements, separable_modal_forces, separable_work
+
+    !> Shapes of the form phi_ik = X_f(k)(x_col(i))*Y_n(k)(y_row(i)) on a grid of points.
+    type :: separable_shapes
+        !> Functions of x at the grid's columns, along(c, f) = X_f(x_c) [1/sqrt(kg)] (n_col x N_x).
+        real(dp), allocatable :: along(:, :)
+        !> Functions of y at the grid's rows, across(r, n) = Y_n(y_r) (n_row x N_y), dimensionless.
+        real(dp), allocatable :: across(:, :)
+        !> The function of x of each mode, f(k) in 1..N_x (N_m).
+        integer, allocatable :: mode_along(:)
+        !> The function of y of each mode, n(k) in 1..N_y (N_m).
+        integer, allocatable :: mode_across(:)
+        !> The column of each point, col(i) in 1..n_col (N_c).
+        integer, allocatable :: column(:)
+        !> The row of each point, row(i) in 1..n_row (N_c).
+        integer, allocatable :: row(:)
+    end type separable_shapes
 
     !> Modes shared by N_c points: g_ij(t) = sum_k phi_ik*phi_jk*2*Re(r_k*exp(lambda_k*t)).
     type :: point_modes
@@ -22,6 +55,10 @@ module greenconv_model_point_modes
         !> Mode shapes at the points, shape(i, k) = phi_ik (N_c x N_m), in units such that
         !> phi_ik*phi_jk*r_k is in m/(N*s) (1/sqrt(kg) for unit-modal-mass modes).
         real(dp), allocatable :: shape(:, :)
+        !> The same shapes as factors over a grid of points, when the model's shapes separate
+        !> and the points form a grid (unallocated otherwise): shape(i, k) =
+        !> along(column(i), mode_along(k))*across(row(i), mode_across(k)).
+        type(separable_shapes), allocatable :: separable
     contains
         !> Number of points N_c.
         procedure :: n_points => modes_n_points
@@ -56,6 +93,100 @@ contains
         modes_green = 2.0_dp*sum(self%shape(i, :)*self%shape(j, :) &
                                  *real(self%modes%residue*exp(self%modes%pole*t), kind=dp))
     end function modes_green
+
+    !> Multiplications of one product by the factors, n_col*(N_m + n_row*N_y): what a caller
+    !> compares with N_c*N_m to choose a path or to share the work among threads.
+    pure integer function separable_work(factors)
+        !> The factors.
+        type(separable_shapes), intent(in) :: factors
+
+        separable_work = size(factors%along, 1)*(size(factors%mode_along) &
+                                                 + size(factors%across, 1)*size(factors%across, 2))
+    end function separable_work
+
+    !> u_i = sum_k phi_ik*a_k from the factors: B(:, n) = sum_k X_f(k)*a_k over the modes of
+    !> each n in the order of k, then the grid's displacements sum_n B(:, n)*Y_n(y_r) in the
+    !> order of n, read at each point's cell. The y functions, then the rows, then the points
+    !> are shared among threads when `threaded` (each sum is the serial one).
+    subroutine separable_displacements(factors, amplitudes, u, threaded)
+        !> The factors.
+        type(separable_shapes), intent(in) :: factors
+        !> Modal amplitudes a_k (N_m), in the units that make phi_ik*a_k a displacement [m].
+        real(dp), intent(in) :: amplitudes(:)
+        !> Displacements u_i at the points (N_c) [m].
+        real(dp), intent(out) :: u(:)
+        !> Whether to share the work among the threads of a parallel region.
+        logical, intent(in) :: threaded
+
+        real(dp), allocatable :: by_column(:, :), grid(:, :)
+        integer :: i, k, n, r
+
+        allocate (by_column(size(factors%along, 1), size(factors%across, 2)), &
+                  grid(size(factors%along, 1), size(factors%across, 1)))
+        !$omp parallel if (threaded) default(none) shared(factors, amplitudes, u, by_column, grid) private(i, k, n, r)
+        !$omp do schedule(static)
+        do n = 1, size(factors%across, 2)
+            by_column(:, n) = 0.0_dp
+            do k = 1, size(factors%mode_along)
+                if (factors%mode_across(k) == n) then
+                    by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
+                end if
+            end do
+        end do
+        !$omp end do
+        !$omp do schedule(static)
+        do r = 1, size(factors%across, 1)
+            grid(:, r) = 0.0_dp
+            do n = 1, size(factors%across, 2)
+                grid(:, r) = grid(:, r) + by_column(:, n)*factors%across(r, n)
+            end do
+        end do
+        !$omp end do
+        !$omp do schedule(static)
+        do i = 1, size(u)
+            u(i) = grid(factors%column(i), factors%row(i))
+        end do
+        !$omp end do
+        !$omp end parallel
+    end subroutine separable_displacements
+
+    !> Q_k = sum_i phi_ik*q_i from the factors: H(c, n) = sum_i q_i*Y_n(y_row(i)) over the points
+    !> of column c in the order of i, then Q_k = sum_c X_f(k)(x_c)*H(c, n(k)) in the order of c.
+    !> The y functions, then the modes, are shared among threads when `threaded`.
+    subroutine separable_modal_forces(factors, loads, modal, threaded)
+        !> The factors.
+        type(separable_shapes), intent(in) :: factors
+        !> Loads q_i at the points (N_c) [N].
+        real(dp), intent(in) :: loads(:)
+        !> Modal loads Q_k = sum_i phi_ik*q_i (N_m) [N/sqrt(kg) for shapes in 1/sqrt(kg)].
+        real(dp), intent(out) :: modal(:)
+        !> Whether to share the work among the threads of a parallel region.
+        logical, intent(in) :: threaded
+
+        real(dp), allocatable :: by_column(:, :)
+        integer :: c, i, k, n
+
+        allocate (by_column(size(factors%along, 1), size(factors%across, 2)))
+        !$omp parallel if (threaded) default(none) shared(factors, loads, modal, by_column) private(c, i, k, n)
+        !$omp do schedule(static)
+        do n = 1, size(factors%across, 2)
+            by_column(:, n) = 0.0_dp
+            do i = 1, size(loads)
+                by_column(factors%column(i), n) = by_column(factors%column(i), n) &
+                                                  + loads(i)*factors%across(factors%row(i), n)
+            end do
+        end do
+        !$omp end do
+        !$omp do schedule(static)
+        do k = 1, size(modal)
+            modal(k) = 0.0_dp
+            do c = 1, size(factors%along, 1)
+                modal(k) = modal(k) + factors%along(c, factors%mode_along(k))*by_column(c, factors%mode_across(k))
+            end do
+        end do
+        !$omp end do
+        !$omp end parallel
+    end subroutine separable_modal_forces
 
     !> An error unless every contact point lies on the belt of an analytic model in one
     !> coordinate, 0 <= value <= extent; the message names the model, the coordinate and

@@ -38,6 +38,7 @@ module suite_index_mod
         'conv    fft             ', &
         'conv    greenfft        ', &
         'conv    greenfiles      ', &
+        'conv    separable       ', &
         'contact contact         ', &
         'contact multicontact    ', &
         'contact lowrank         ', &
