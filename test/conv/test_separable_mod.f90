@@ -14,11 +14,11 @@ module test_separable_mod
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
-    use greenconv_scene_input, only: scene_type, read_scene
-    use greenconv_scene_models, only: structure_kind, find_model
-    use greenconv_scene_point_set, only: scene_points
-    use greenconv_scene_points, only: points_convolver
-    use greenconv_scene_patch, only: sample_patch_road
+    use greenconv_scene_read_input, only: scene_type, read_scene
+    use greenconv_scene_models_registry, only: structure_kind, find_model
+    use greenconv_scene_models_point_set, only: scene_points
+    use greenconv_scene_run_points, only: points_convolver
+    use greenconv_scene_models_patch, only: sample_patch_road
     implicit none
     private
 
