@@ -6,11 +6,13 @@ program greenconv_tests_core
     use test_realtext_mod, only: collect_realtext
     use test_lapack_mod, only: collect_lapack
     use test_version_mod, only: collect_version
+    use test_sorting_mod, only: collect_sorting
     implicit none
 
     call run_layer('core', [ &
                     new_testsuite('random', collect_random), &
                     new_testsuite('realtext', collect_realtext), &
                     new_testsuite('lapack', collect_lapack), &
-                    new_testsuite('version', collect_version)])
+                    new_testsuite('version', collect_version), &
+                    new_testsuite('sorting', collect_sorting)])
 end program greenconv_tests_core

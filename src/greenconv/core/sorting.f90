@@ -1,7 +1,7 @@
 !> Sorting of real vectors: an in-place ascending heap sort (O(n log n) whatever the order of
-!> the input, no work array) and the median that rests on it. Used by the identification's
+!> the input, with a work array of n indices) and the median that rests on it. Used by the identification's
 !> noise estimate and outlier screening; generic over any real(dp) data. `sort_order` gives
-!> the order that sorts integer keys (node labels), by the same heap sort on indices.
+!> the order that sorts integer keys (node labels). Both are one heap sort on indices.
 module greenconv_core_sorting
     use greenconv_core_kinds, only: dp
     implicit none
@@ -26,53 +26,31 @@ contains
         median = 0.5_dp*(s((n + 1)/2) + s(n/2 + 1))
     end function median
 
-    !> Ascending heap sort in place.
+    !> Ascending heap sort in place: the values moved by the permutation `order_by` finds, so
+    !> each one lands where the heap sort of the values themselves puts it.
     pure subroutine heap_sort(a)
         !> The values, sorted ascending on return (any units).
         real(dp), intent(inout) :: a(:)
 
-        integer :: n, i, last
-        real(dp) :: t
-
-        n = size(a)
-        do i = n/2, 1, -1
-            call sift(a, i, n)
-        end do
-        do last = n, 2, -1
-            t = a(1)
-            a(1) = a(last)
-            a(last) = t
-            call sift(a, 1, last - 1)
-        end do
+        a(:) = a(order_by(a))
     end subroutine heap_sort
-
-    !> Move a(start) down the heap a(1:n) until both its children are no larger.
-    pure subroutine sift(a, start, n)
-        real(dp), intent(inout) :: a(:)
-        integer, intent(in) :: start, n
-
-        integer :: root, child
-        real(dp) :: t
-
-        root = start
-        do while (2*root <= n)
-            child = 2*root
-            if (child < n) then
-                if (a(child + 1) > a(child)) child = child + 1
-            end if
-            if (a(root) >= a(child)) return
-            t = a(root)
-            a(root) = a(child)
-            a(child) = t
-            root = child
-        end do
-    end subroutine sift
 
     !> The permutation that sorts integer keys ascending: keys(order) is ascending (equal keys
     !> in any order). O(n log n).
     pure function sort_order(keys) result(order)
         !> The keys (e.g. node labels).
         integer, intent(in) :: keys(:)
+        integer :: order(size(keys))
+
+        ! Every default integer is a double exactly, so the comparisons are those of the integers.
+        order = order_by(real(keys, dp))
+    end function sort_order
+
+    !> The heap sort on indices: keys(order) is ascending, the order of equal keys that of the
+    !> heap sort. O(n log n), no work array but the order.
+    pure function order_by(keys) result(order)
+        !> The keys (any units).
+        real(dp), intent(in) :: keys(:)
         integer :: order(size(keys))
 
         integer :: n, i, last, t
@@ -91,7 +69,7 @@ contains
 
     contains
 
-        !> Move order(start) down the heap order(1:m) of keys.
+        !> Move order(start) down the heap order(1:m) of keys until both its children are no larger.
         pure subroutine sift_order(start, m)
             !> Position to sift down from, and the heap's size.
             integer, intent(in) :: start, m
@@ -111,6 +89,6 @@ contains
                 root = child
             end do
         end subroutine sift_order
-    end function sort_order
+    end function order_by
 
 end module greenconv_core_sorting

@@ -14,7 +14,8 @@ module greenconv_io_columns
     implicit none
     private
 
-    public :: read_columns, read_line, read_lines, max_line_length, parse_row, count_tokens, byte_order_mark
+    public :: read_columns, read_line, read_lines, open_to_read, text_line, max_line_length, parse_row, count_tokens
+    public :: byte_order_mark
 
     !> Longest line the readers accept [characters]: a longer one is not a scene, receptance
     !> or road file (a binary file, a file without line ends) and is refused at that line.
@@ -26,8 +27,9 @@ module greenconv_io_columns
     !> Most bytes of a text file `read_lines` holds, as its lines padded to the longest one.
     integer, parameter :: max_text_bytes = 64*1048576
 
-    !> One line of a text file.
+    !> One line of a text file, without its line end.
     type :: text_line
+        !> The text of the line.
         character(len=:), allocatable :: text
     end type text_line
 
@@ -53,62 +55,48 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         !$omp critical (greenconv_input_files)
-        call read_columns_alone(path, names, units, table, line_of, error)
+        call read_table()
         !$omp end critical (greenconv_input_files)
+
+    contains
+
+        !> The reading itself, inside the lock (the arguments are the host's).
+        subroutine read_table()
+            character(len=:), allocatable :: line
+            real(dp) :: row(size(names))
+            integer :: unit, stat, line_number, n
+            logical :: too_long
+
+            allocate (table(64, size(names)), line_of(64))
+            call open_to_read(path, '', '', unit, error)
+            if (allocated(error)) return
+            n = 0
+            line_number = 0
+            do
+                call read_line(unit, line, stat, too_long)
+                if (too_long) call fatal_error(error, long_line(path, line_number + 1))
+                if (stat /= 0) exit
+                line_number = line_number + 1
+                if (len_trim(line) == 0) cycle
+                if (index(adjustl(line), '#') == 1) cycle
+                call parse_row(path//':'//int_text(line_number)//': ', names, units, line, row, error)
+                if (allocated(error)) exit
+                n = n + 1
+                if (n > size(table, 1)) call grow(table, line_of, stat)
+                if (stat /= 0) then
+                    call fatal_error(error, path//':'//int_text(line_number) &
+                                     //': expected a file that fits in memory, found more than ' &
+                                     //int_text(n - 1)//' data lines')
+                    exit
+                end if
+                table(n, :) = row
+                line_of(n) = line_number
+            end do
+            close (unit)
+            if (allocated(error)) return
+            call shrink(table, line_of, n)
+        end subroutine read_table
     end subroutine read_columns
-
-    !> `read_columns` without the lock.
-    subroutine read_columns_alone(path, names, units, table, line_of, error)
-        !> File to read.
-        character(len=*), intent(in) :: path
-        !> Short name of each column, for messages (e.g. `x`, `height`).
-        character(len=*), intent(in) :: names(:)
-        !> Unit of each column, for messages (e.g. `m`).
-        character(len=*), intent(in) :: units(:)
-        !> The numbers, one row per data line.
-        real(dp), allocatable, intent(out) :: table(:, :)
-        !> Line number in the file of each row.
-        integer, allocatable, intent(out) :: line_of(:)
-        !> Set when the file cannot be opened or a data line does not hold N finite numbers.
-        type(error_type), allocatable, intent(out) :: error
-
-        character(len=:), allocatable :: line
-        character(len=512) :: message
-        real(dp) :: row(size(names))
-        integer :: unit, stat, line_number, n
-        logical :: too_long
-
-        allocate (table(64, size(names)), line_of(64))
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open: '//trim(message))
-            return
-        end if
-        n = 0
-        line_number = 0
-        do
-            call read_line(unit, line, stat, too_long)
-            if (too_long) call fatal_error(error, long_line(path, line_number + 1))
-            if (stat /= 0) exit
-            line_number = line_number + 1
-            if (len_trim(line) == 0) cycle
-            if (index(adjustl(line), '#') == 1) cycle
-            call parse_row(path//':'//int_text(line_number)//': ', names, units, line, row, error)
-            if (allocated(error)) exit
-            n = n + 1
-            if (n > size(table, 1)) call grow(table, line_of, stat)
-            if (stat /= 0) then
-                call fatal_error(error, path//':'//int_text(line_number)//': expected a file that fits in memory, ' &
-                                 //'found more than '//int_text(n - 1)//' data lines')
-                exit
-            end if
-            table(n, :) = row
-            line_of(n) = line_number
-        end do
-        close (unit)
-        if (allocated(error)) return
-        call shrink(table, line_of, n)
-    end subroutine read_columns_alone
 
     !> Keep the first n rows of the row storage.
     pure subroutine shrink(table, line_of, n)
@@ -312,63 +300,79 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         !$omp critical (greenconv_input_files)
-        call read_lines_alone(path, what, lines, error)
+        call read_text()
         !$omp end critical (greenconv_input_files)
+
+    contains
+
+        !> The reading itself, inside the lock (the arguments are the host's).
+        subroutine read_text()
+            type(text_line), allocatable :: list(:), longer(:)
+            integer :: unit, stat, n, longest
+            logical :: too_long
+
+            call open_to_read(path, what, '', unit, error)
+            if (allocated(error)) return
+            allocate (list(64))
+            n = 0
+            longest = 0
+            do
+                if (n == size(list)) then
+                    allocate (longer(2*n))
+                    longer(1:n) = list
+                    call move_alloc(longer, list)
+                end if
+                call read_line(unit, list(n + 1)%text, stat, too_long)
+                if (too_long) then
+                    call fatal_error(error, long_line(path, n + 1))
+                    exit
+                end if
+                if (stat /= 0) exit
+                n = n + 1
+                if (n == 1 .and. index(list(1)%text, byte_order_mark) == 1) &
+                    list(1)%text = list(1)%text(len(byte_order_mark) + 1:)
+                longest = max(longest, len(list(n)%text))
+                if (real(longest, dp)*real(n, dp) > real(max_text_bytes, dp)) then
+                    call fatal_error(error, path//':'//int_text(n)//': expected a '//what//' of at most ' &
+                                     //int_text(max_text_bytes/1048576)//' MiB, found more')
+                    exit
+                end if
+            end do
+            close (unit)
+            if (allocated(error)) return
+            allocate (character(len=max(longest, 1)) :: lines(n))
+            do n = 1, size(lines)
+                lines(n) = list(n)%text
+            end do
+        end subroutine read_text
     end subroutine read_lines
 
-    !> `read_lines` without the lock.
-    subroutine read_lines_alone(path, what, lines, error)
+    !> Open an existing file to read it, on a new unit; when it cannot be opened, the message
+    !> `PATH: cannot open the WHAT: REASON` + `advice` (`PATH: cannot open: REASON` + `advice`
+    !> for an empty `what`), status 2.
+    subroutine open_to_read(path, what, advice, unit, error)
         !> The file.
         character(len=*), intent(in) :: path
-        !> What the file is, for messages (e.g. `scene file`).
+        !> What the file is, for messages (e.g. `scene file`), or empty.
         character(len=*), intent(in) :: what
-        !> Its lines, without their ends, padded with blanks to the longest.
-        character(len=:), allocatable, intent(out) :: lines(:)
-        !> Set when the file cannot be read, naming it (and the line).
+        !> What the message ends with after the system's reason (e.g. `; check the file name`).
+        character(len=*), intent(in) :: advice
+        !> The unit it is connected to.
+        integer, intent(out) :: unit
+        !> Set when the file cannot be opened.
         type(error_type), allocatable, intent(out) :: error
 
-        type(text_line), allocatable :: list(:), longer(:)
         character(len=512) :: message
-        integer :: unit, stat, n, longest
-        logical :: too_long
+        integer :: stat
 
         open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open the '//what//': '//trim(message))
-            return
+        if (stat == 0) return
+        if (len(what) == 0) then
+            call fatal_error(error, path//': cannot open: '//trim(message)//advice)
+        else
+            call fatal_error(error, path//': cannot open the '//what//': '//trim(message)//advice)
         end if
-        allocate (list(64))
-        n = 0
-        longest = 0
-        do
-            if (n == size(list)) then
-                allocate (longer(2*n))
-                longer(1:n) = list
-                call move_alloc(longer, list)
-            end if
-            call read_line(unit, list(n + 1)%text, stat, too_long)
-            if (too_long) then
-                call fatal_error(error, long_line(path, n + 1))
-                exit
-            end if
-            if (stat /= 0) exit
-            n = n + 1
-            if (n == 1 .and. index(list(1)%text, byte_order_mark) == 1) &
-                list(1)%text = list(1)%text(len(byte_order_mark) + 1:)
-            longest = max(longest, len(list(n)%text))
-            if (real(longest, dp)*real(n, dp) > real(max_text_bytes, dp)) then
-                call fatal_error(error, path//':'//int_text(n)//': expected a '//what//' of at most ' &
-                                 //int_text(max_text_bytes/1048576)//' MiB, found more')
-                exit
-            end if
-        end do
-        close (unit)
-        if (allocated(error)) return
-        allocate (character(len=max(longest, 1)) :: lines(n))
-        do n = 1, size(lines)
-            lines(n) = list(n)%text
-        end do
-    end subroutine read_lines_alone
+    end subroutine open_to_read
 
     !> The message on a line longer than `max_line_length`.
     function long_line(path, line_number) result(text)

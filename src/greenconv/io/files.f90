@@ -108,7 +108,7 @@ module greenconv_io_files
             integer(c_int) :: stat
         end function c_access
 
-        !> C library getpid(2).
+        !> C library realpath(3).
         function c_realpath(path, resolved) bind(c, name='realpath') result(answer)
             import :: c_char, c_ptr
             character(kind=c_char), intent(in) :: path(*)
@@ -116,6 +116,7 @@ module greenconv_io_files
             type(c_ptr) :: answer
         end function c_realpath
 
+        !> C library getpid(2).
         function c_getpid() bind(c, name='getpid') result(pid)
             import :: c_int
             implicit none

@@ -8,19 +8,13 @@ module greenconv_io_uff_records
     use greenconv_core_text, only: int_text
     use greenconv_core_sorting, only: heap_sort
     use greenconv_core_number_text, only: is_number, is_nan_or_inf, is_integer, read_real, read_integer
-    use greenconv_io_columns, only: read_line, byte_order_mark
+    use greenconv_io_columns, only: read_line, byte_order_mark, open_to_read, text_line
     implicit none
     private
 
     public :: text_line, dataset_extent, load_lines, find_datasets, record_prefix
     public :: columns, span, quoted, number_words, integer_field, real_field, parse_real
     public :: repeated_labels, locate_label, quick_integer, quick_real
-
-    !> One line of the file, without its line end.
-    type :: text_line
-        !> The text of the line.
-        character(len=:), allocatable :: text
-    end type text_line
 
     !> Extent of one dataset in the file's lines.
     type :: dataset_extent
@@ -45,54 +39,44 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         !$omp critical (greenconv_input_files)
-        call load_lines_alone(path, lines, error)
+        call read_records()
         !$omp end critical (greenconv_input_files)
-    end subroutine load_lines
 
-    !> `load_lines` without the lock.
-    subroutine load_lines_alone(path, lines, error)
-        !> File to read.
-        character(len=*), intent(in) :: path
-        !> Its lines, in order.
-        type(text_line), allocatable, intent(out) :: lines(:)
-        !> Set (status 2) when the file cannot be opened or is empty.
-        type(error_type), allocatable, intent(out) :: error
+    contains
 
-        character(len=:), allocatable :: line
-        character(len=512) :: message
-        integer :: unit, stat, n, i
+        !> The reading itself, inside the lock (the arguments are the host's).
+        subroutine read_records()
+            character(len=:), allocatable :: line
+            integer :: unit, stat, n, i
 
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open the universal file: '//trim(message) &
-                             //'; check the file name and that it is readable')
-            return
-        end if
-        n = 0
-        do
-            call read_line(unit, line, stat)
-            if (stat /= 0) exit
-            n = n + 1
-        end do
-        if (n == 0) then
-            close (unit)
-            call fatal_error(error, path//':1: universal file: expected datasets between lines "    -1", ' &
-                             //'found an empty file')
-            return
-        end if
-        rewind (unit)
-        allocate (lines(n))
-        do i = 1, n
-            call read_line(unit, line, stat)
-            if (len(line) > 0) then
-                if (line(len(line):len(line)) == achar(13)) line = line(:len(line) - 1)
+            call open_to_read(path, 'universal file', '; check the file name and that it is readable', unit, error)
+            if (allocated(error)) return
+            n = 0
+            do
+                call read_line(unit, line, stat)
+                if (stat /= 0) exit
+                n = n + 1
+            end do
+            if (n == 0) then
+                close (unit)
+                call fatal_error(error, path//':1: universal file: expected datasets between lines "    -1", ' &
+                                 //'found an empty file')
+                return
             end if
-            ! A UTF-8 byte-order mark (what some editors write first) is not part of the text.
-            if (i == 1 .and. index(line, byte_order_mark) == 1) line = line(len(byte_order_mark) + 1:)
-            lines(i)%text = line
-        end do
-        close (unit)
-    end subroutine load_lines_alone
+            rewind (unit)
+            allocate (lines(n))
+            do i = 1, n
+                call read_line(unit, line, stat)
+                if (len(line) > 0) then
+                    if (line(len(line):len(line)) == achar(13)) line = line(:len(line) - 1)
+                end if
+                ! A UTF-8 byte-order mark (what some editors write first) is not part of the text.
+                if (i == 1 .and. index(line, byte_order_mark) == 1) line = line(len(byte_order_mark) + 1:)
+                lines(i)%text = line
+            end do
+            close (unit)
+        end subroutine read_records
+    end subroutine load_lines
 
     !> Whether a line is a dataset delimiter: `-1` ending within columns 1-6, nothing else.
     pure logical function is_delimiter(line)

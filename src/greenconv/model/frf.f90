@@ -47,7 +47,7 @@ module greenconv_model_frf
     implicit none
     private
 
-    public :: frf_type, frf_from_modes, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
+    public :: frf_type, frf_from_modes, frf_grid, read_frf, write_frf, min_frf_lines, frf_from_uff, is_universal_file
     public :: add_relative_noise, check_contact_function, max_green_magnitude, green_values
 
     !> Largest magnitude a value of a universal file's Green's function may have, in its own
@@ -195,13 +195,25 @@ contains
         integer, intent(in) :: n_freq
         type(frf_type) :: frf
 
+        frf%frequency = frf_grid(f_max, n_freq)
+        frf%receptance = modes%receptance(two_pi*frf%frequency)
+    end function frf_from_modes
+
+    !> The uniform grid of n_freq lines from 0 to f_max [Hz] (the last line exactly f_max), on
+    !> which a receptance computed from a model is sampled.
+    pure function frf_grid(f_max, n_freq) result(frequency)
+        !> Highest frequency [Hz], > 0.
+        real(dp), intent(in) :: f_max
+        !> Number of lines, >= 2.
+        integer, intent(in) :: n_freq
+        !> The lines [Hz].
+        real(dp) :: frequency(n_freq)
+
         integer :: j
 
-        allocate (frf%frequency(n_freq), frf%receptance(n_freq))
-        frf%frequency(:) = [(j*(f_max/(n_freq - 1)), j=0, n_freq - 1)]
-        frf%frequency(n_freq) = f_max
-        frf%receptance(:) = modes%receptance(two_pi*frf%frequency)
-    end function frf_from_modes
+        frequency(:) = [(j*(f_max/(n_freq - 1)), j=0, n_freq - 1)]
+        frequency(n_freq) = f_max
+    end function frf_grid
 
     !> Write an FRF in the format read_frf reads (atomically, through greenconv_io_files).
     subroutine write_frf(path, frf, error, comments)

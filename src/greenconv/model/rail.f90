@@ -53,7 +53,7 @@ module greenconv_model_rail
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: sci_text, int_text
-    use greenconv_model_frf, only: frf_type
+    use greenconv_model_frf, only: frf_type, frf_grid
     use greenconv_model_modes_file, only: file_modes, read_file_modes
     implicit none
     private
@@ -320,12 +320,8 @@ contains
         integer, intent(in) :: n_freq
         type(frf_type) :: frf
 
-        integer :: j
-
-        allocate (frf%frequency(n_freq), frf%receptance(n_freq))
-        frf%frequency(:) = [(j*(f_max/(n_freq - 1)), j=0, n_freq - 1)]
-        frf%frequency(n_freq) = f_max
-        frf%receptance(:) = wheel%receptance(two_pi*frf%frequency) + track%receptance(two_pi*frf%frequency)
+        frf%frequency = frf_grid(f_max, n_freq)
+        frf%receptance = wheel%receptance(two_pi*frf%frequency) + track%receptance(two_pi*frf%frequency)
         frf%source = 'wheel on rail, closed form'
     end function wheel_rail_frf
 

@@ -13,6 +13,7 @@ module suite_index_mod
         'core    realtext        ', &
         'core    lapack          ', &
         'core    version         ', &
+        'core    sorting         ', &
         'io      uff             ', &
         'io      uffwrite        ', &
         'io      spectra         ', &
