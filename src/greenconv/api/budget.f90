@@ -35,11 +35,10 @@ module greenconv_api_budget
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, new_convolver
     use greenconv_conv_green_file, only: green_file_convolver
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_single, only: contact_response, start_contact, contact_block
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
-    use greenconv_contact_single, only: contact_options
+    use greenconv_contact_single, only: contact_options, contact_response
     use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, run_box, &
                                     start_point_box, advance_point_box
     implicit none
@@ -206,7 +205,7 @@ contains
             do f = 1, 2
                 ! the first row whose step is a multiple of 2^f
                 first(f) = int(modulo(-budget%step, int(2**f, int64)))
-                call advance_companion(budget%run(f), budget%single, road(first(f)::2**f, :), coarse)
+                call advance_companion(budget%run(f), road(first(f)::2**f, :), coarse)
                 if (f == 1) call move_alloc(coarse, coarse_2)
                 if (f == 2) call move_alloc(coarse, coarse_4)
             end do
@@ -224,7 +223,7 @@ contains
                 end do
             end if
             if (budget%run(3)%running) then
-                call advance_companion(budget%run(3), .false., road, wide)
+                call advance_companion(budget%run(3), road, wide)
                 if (budget%run(3)%running) then
                     budget%band_difference = budget%band_difference + sum((force - wide)**2)
                     budget%band_reference = budget%band_reference &
@@ -278,10 +277,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         if (box%budget%single) then
-            select type (matrix => companion%conv)
-            type is (point_matrix)
-                call start_contact(matrix%point, laws(1), preload(1), companion%state, error, box%point_options)
-            end select
+            call start_multi_contact(companion%conv, laws, preload, companion%state, error, &
+                                     settings=box%point_options)
         else
             call start_multi_contact(companion%conv, laws, preload, companion%state, error, box%settings)
         end if
@@ -290,41 +287,21 @@ contains
 
     !> Step a companion over `road`'s rows; `force` gets its forces (rows done); a fault stops
     !> it for the rest of the run.
-    subroutine advance_companion(companion, single, road, force)
+    subroutine advance_companion(companion, road, force)
         type(companion_run), intent(inout) :: companion
-        logical, intent(in) :: single
         real(dp), intent(in) :: road(0:, :)
         real(dp), allocatable, intent(out) :: force(:, :)
 
-        type(contact_response) :: point_response
         type(multi_contact_response) :: response
         type(error_type), allocatable :: fault
 
         allocate (force(0:-1, size(road, 2)))
         if (.not. companion%running .or. size(road, 1) == 0) return
-        if (single) then
-            select type (matrix => companion%conv)
-            type is (point_matrix)
-                call contact_block(matrix%point, companion%state, road(:, 1), point_response, fault)
-                matrix%step = matrix%point%step
-                if (.not. allocated(fault)) then
-                    deallocate (force)
-                    allocate (force(0:size(road, 1) - 1, 1))
-                    force(:, 1) = point_response%force
-                end if
-            end select
-        else
-            call multi_contact_block(companion%conv, companion%state, road, response, fault)
-            if (.not. allocated(fault)) then
-                deallocate (force)
-                allocate (force(0:size(road, 1) - 1, size(road, 2)))
-                force(:, :) = response%force
-            end if
-        end if
+        call multi_contact_block(companion%conv, companion%state, road, response, fault)
         if (allocated(fault)) then
             companion%running = .false.
-            deallocate (force)
-            allocate (force(0:-1, size(road, 2)))
+        else
+            call move_alloc(response%force, force)
         end if
     end subroutine advance_companion
 

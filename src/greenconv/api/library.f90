@@ -13,7 +13,8 @@ module greenconv_api_library
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_convolver, only: convolver, free_convolver
-    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact, step_load
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_conv_builder, only: new_convolver
     use greenconv_scene_facade, only: scene_type, read_scene, run_scene
@@ -25,14 +26,21 @@ module greenconv_api_library
     public :: new_convolver, free_convolver, contact_step, check_contact_law, run_scene_file
     public :: default_truncation_tol, default_accuracy
 
+    !> The paper's explicit step with no bound on |u| (`contact_step` stops only on a value
+    !> that is not finite).
+    type(contact_options), parameter :: unbounded = contact_options(divergence_bound=huge(1.0_dp))
+
 contains
 
-    !> One explicit step n of the contact loop, exactly as `run_contact` takes it (eqs. 20-24):
-    !> u_h = history, delta = delta0 + u_r - u_h with delta0 = (F0/k_c)^(1/p), F = k_c*delta^p
-    !> (0 when delta <= 0), the load F - F0 pushed (half of it at step 0, greenconv_contact_step's
-    !> `step_load`), u = u_h + w0*(F - F0). Start from a convolver at step 0 (new or reset): the
-    !> body rests in static equilibrium under F0.
-    subroutine contact_step(conv, law, road, preload, displacement, force, compression)
+    !> One explicit step n of the contact loop, greenconv_contact_step's `step_contact` as
+    !> `run_contact` takes it (eqs. 20-24): u_h = history, delta = delta0 + u_r - u_h with
+    !> delta0 = (F0/k_c)^(1/p), F = k_c*delta^p (0 when delta <= 0), u = u_h + w0*(F - F0), the
+    !> load F - F0 pushed (half of it at step 0, `step_load`). Start from a convolver at step 0
+    !> (new or reset): the body rests in static equilibrium under F0. No divergence bound is set
+    !> on |u|. When u, F or delta is not a finite number, the values of the step are returned as
+    !> they came out and, with `error` present, the step is refused (the convolver not advanced);
+    !> without it the step is pushed like any other.
+    subroutine contact_step(conv, law, road, preload, displacement, force, compression, error)
         !> The convolver, advanced by one step.
         class(convolver), intent(inout) :: conv
         !> The contact law (k_c [N/m^p], p).
@@ -47,18 +55,38 @@ contains
         real(dp), intent(out) :: force
         !> Compression delta(t_n) [m] of the contact spring (<= 0: no contact).
         real(dp), intent(out), optional :: compression
+        !> Set (`stat_numerical`, naming the step) when u, F or delta is not finite; the
+        !> convolver is then not advanced. Absent: such a step is pushed as it came out.
+        type(error_type), allocatable, intent(out), optional :: error
 
-        real(dp) :: u_h, delta, load
+        type(contact_state) :: state
+        type(error_type), allocatable :: fault
+        real(dp) :: weight0(1, 1), u_h(1), step_force(1), u(1), load(1)
+        integer :: iterations
 
-        u_h = conv%history()
-        delta = law%compression(preload) + road - u_h
-        force = law%force(delta)
-        load = force - preload
-        displacement = u_h + conv%instant_weight()*load
-        ! half the first load: greenconv_contact_step's `step_load`
-        if (conv%step == 0) load = 0.5_dp*load
-        call conv%push(load)
-        if (present(compression)) compression = delta
+        weight0(1, 1) = conv%instant_weight()
+        displacement = 0.0_dp
+        force = 0.0_dp
+        if (present(compression)) compression = 0.0_dp
+        call start_state([law], [preload], weight0, conv%dt, unbounded, state, fault)
+        if (allocated(fault)) then
+            if (present(error)) call move_alloc(fault, error)
+            return
+        end if
+        state%step = conv%step
+        u_h(1) = conv%history()
+        call step_contact(state, weight0, u_h, [road], step_force, u, iterations, fault)
+        displacement = u(1)
+        force = step_force(1)
+        if (present(compression)) compression = state%delta(1)
+        if (allocated(fault) .and. present(error)) then
+            call move_alloc(fault, error)
+            return
+        end if
+        ! without `error` a step whose values are not finite is pushed as any other, as step n
+        if (allocated(fault)) state%step = state%step + 1
+        load = step_load(state, step_force)
+        call conv%push(load(1))
     end subroutine contact_step
 
     !> Check a contact law (its own `check`) and a preload F0 >= 0, finite.

@@ -49,9 +49,12 @@
 !> A run that diverges is stopped (`contact_options%divergence_bound`): the response keeps
 !> the steps computed before, and never holds a NaN or an infinity.
 !>
-!> The step itself is greenconv_contact_step's, the one multi-point contact takes too (this is
-!> its case N_c = 1, the implicit step then solved by the scalar Newton iteration above); here
-!> is only the loop that feeds it the history of a single-point convolver.
+!> The step itself is greenconv_contact_step's and the loop greenconv_contact_multi's: a
+!> single-point run is the multi-point run of N_c = 1 (the implicit step then solved by the
+!> scalar Newton iteration above), its convolver lent to that loop as a 1 x 1 Green's matrix
+!> for the length of a call (`lent_point`). The procedures here only convert the arguments and
+!> the histories, so that a single-point run and the same structure run as one point of a
+!> multi-point run agree bit for bit.
 !>
 !> Long runs. `run_contact` takes the whole road and returns the whole history. A run too long
 !> to hold is streamed instead: `start_contact` resets the convolver into a `contact_state`,
@@ -60,13 +63,13 @@
 !> step hands the next (the step index and the implicit step's first guess), so the blocks of
 !> a run put together equal `run_contact` on the whole road bit for bit.
 module greenconv_contact_single
-    use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
+    use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact, step_load
-    use greenconv_contact_rows, only: keep_first, keep_all
+    use greenconv_contact_step, only: contact_options, contact_state
+    use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     implicit none
     private
 
@@ -92,6 +95,18 @@ module greenconv_contact_single
         real(dp), allocatable :: compression(:)
     end type contact_response
 
+    !> A single-point convolver lent to the multi-point loop as the 1 x 1 Green's matrix
+    !> W0 = [w0] for one call: the engine does the arithmetic and keeps its own step, as in
+    !> greenconv_conv_point_matrix, which owns the engine it wraps where this one borrows it.
+    type, extends(multipoint_convolver) :: lent_point
+        !> The caller's engine.
+        class(convolver), pointer :: point => null()
+    contains
+        procedure :: history => lent_history
+        procedure :: push => lent_push
+        procedure :: clear => lent_clear
+    end type lent_point
+
 contains
 
     !> Run the contact loop over size(road) steps with any convolver.
@@ -104,7 +119,7 @@ contains
     !> the program with the message (`error stop`, as stdlib does): pass `error` to handle it.
     subroutine run_contact(conv, law, road, preload, response, options, error)
         !> The convolution method: history before each step, load pushed after it.
-        class(convolver), intent(inout) :: conv
+        class(convolver), intent(inout), target :: conv
         !> The contact law.
         type(contact_law), intent(in) :: law
         !> Road heights u_r(t_n) [m], n = 0..N_t-1.
@@ -125,7 +140,7 @@ contains
 
         call start_contact(conv, law, preload, state, fault, options)
         if (allocated(fault)) then
-            call keep_rows(response, 0)
+            call point_histories(multi_contact_response(), response)
         else
             call contact_block(conv, state, road, response, fault)
         end if
@@ -164,7 +179,7 @@ contains
     !> once per block of road heights.
     subroutine start_contact(conv, law, preload, state, error, options)
         !> The convolution method; reset here.
-        class(convolver), intent(inout) :: conv
+        class(convolver), intent(inout), target :: conv
         !> The contact law.
         type(contact_law), intent(in) :: law
         !> Static preload F0 [N] pressing the body onto the road, >= 0.
@@ -177,12 +192,11 @@ contains
         type(contact_options), intent(in), optional :: options
 
         type(contact_options) :: settings
+        type(lent_point) :: matrix
 
         if (present(options)) settings = options
-        call start_state([law], [preload], reshape([conv%instant_weight()], [1, 1]), conv%dt, settings, state, &
-                         error)
-        if (allocated(error)) return
-        call conv%reset()
+        call lend(conv, matrix)
+        call start_multi_contact(matrix, [law], [preload], state, error, settings=settings)
     end subroutine start_contact
 
     !> Continue a contact run over the next size(road) steps, n = state%step onwards.
@@ -192,7 +206,7 @@ contains
     !> `error` then names the step (`stat_numerical`) and the run must not be continued.
     subroutine contact_block(conv, state, road, response, error)
         !> The convolver, as the previous block (or `start_contact`) left it.
-        class(convolver), intent(inout) :: conv
+        class(convolver), intent(inout), target :: conv
         !> The run; advanced by the steps done.
         type(contact_state), intent(inout) :: state
         !> Road heights u_r(t_n) [m] of this block's steps.
@@ -203,43 +217,74 @@ contains
         !> (`stat_input`, nothing done) for a block reaching past the steps a cut kernel covers.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: w0(1, 1), u_h(1), force(1), u(1), load(1)
-        integer :: j, n_t, iterations
+        type(lent_point) :: matrix
+        type(multi_contact_response) :: block
 
-        n_t = size(road)
-        allocate (response%time(0:n_t - 1), response%road(0:n_t - 1), response%displacement(0:n_t - 1), &
-                  response%force(0:n_t - 1), response%compression(0:n_t - 1))
-        call conv%check_validity(int(n_t, int64), error)
-        if (allocated(error)) then
-            call keep_rows(response, 0)
-            return
-        end if
-        w0(1, 1) = conv%instant_weight()
-        do j = 0, n_t - 1
-            u_h(1) = conv%history()
-            response%time(j) = state%step*conv%dt
-            call step_contact(state, w0, u_h, road(j:j), force, u, iterations, error)
-            if (allocated(error)) then
-                call keep_rows(response, j)
-                return
-            end if
-            load = step_load(state, force)
-            call conv%push(load(1))
-            response%road(j) = road(j)
-            response%displacement(j) = u(1)
-            response%force(j) = force(1)
-            response%compression(j) = state%delta(1)
-        end do
+        call lend(conv, matrix)
+        call multi_contact_block(matrix, state, reshape(road, [size(road), 1]), block, error)
+        call point_histories(block, response)
     end subroutine contact_block
 
-    !> Shorten the histories to their first n_done steps, keeping the lower bound 0
-    !> (histories never allocated get n_done = 0 rows).
-    subroutine keep_rows(response, n_done)
-        type(contact_response), intent(inout) :: response
-        integer, intent(in) :: n_done
+    !> The histories of the one point of a multi-point run (none when unallocated), indexed from 0.
+    subroutine point_histories(block, response)
+        type(multi_contact_response), intent(in) :: block
+        type(contact_response), intent(out) :: response
 
-        call keep_all(n_done, response%time, response%road, response%displacement, response%force)
-        call keep_first(response%compression, n_done)
-    end subroutine keep_rows
+        integer :: n
+
+        n = 0
+        if (allocated(block%time)) n = size(block%time)
+        allocate (response%time(0:n - 1), response%road(0:n - 1), response%displacement(0:n - 1), &
+                  response%force(0:n - 1), response%compression(0:n - 1))
+        if (n == 0) return
+        response%time(:) = block%time
+        response%road(:) = block%road(:, 1)
+        response%displacement(:) = block%displacement(:, 1)
+        response%force(:) = block%force(:, 1)
+        response%compression(:) = block%compression(:, 1)
+    end subroutine point_histories
+
+    !> Lend a convolver to `matrix`: its name, step, dt, valid steps and W0 = [w0].
+    subroutine lend(point, matrix)
+        class(convolver), intent(in), target :: point
+        type(lent_point), intent(out) :: matrix
+
+        character(len=:), allocatable :: label
+        integer :: n
+
+        call point%model_size(n, label)
+        call matrix%set_model(point%name, point%dt, n, label)
+        matrix%step = point%step
+        matrix%valid_steps = point%valid_steps
+        call matrix%set_instant_matrix(reshape([point%instant_weight()], [1, 1]))
+        matrix%point => point
+    end subroutine lend
+
+    !> u_h(n) [m] of the engine, at the one point.
+    subroutine lent_history(self, u)
+        class(lent_point), intent(in) :: self
+        real(dp), intent(out) :: u(:)
+
+        u(1) = self%point%history()
+    end subroutine lent_history
+
+    !> Push the force [N] of the one point (halved at step 0) and advance.
+    subroutine lent_push(self, forces)
+        class(lent_point), intent(inout) :: self
+        real(dp), intent(in) :: forces(:)
+
+        real(dp) :: load(1)
+
+        load = self%recorded_load(forces(1:1))
+        call self%point%push(load(1))
+        self%step = self%point%step
+    end subroutine lent_push
+
+    !> The engine back to step 0.
+    subroutine lent_clear(self)
+        class(lent_point), intent(inout) :: self
+
+        call self%point%reset()
+    end subroutine lent_clear
 
 end module greenconv_contact_single
