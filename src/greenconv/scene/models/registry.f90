@@ -15,6 +15,7 @@ module greenconv_scene_models_registry
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ident_structure, only: structure_model
+    use greenconv_ident_methods, only: ident_one_receptance, ident_green_matrix
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_models_point_set, only: scene_points
     use greenconv_scene_models_single, only: sdof_structure, sdof_decay, random_modes_structure, random_modes_decay, &
@@ -27,7 +28,7 @@ module greenconv_scene_models_registry
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
     public :: multi_point_model, quoted_list
-    public :: structure_builder, points_finder, decay_bound, file_check, contact_receptance
+    public :: structure_builder, points_finder, decay_bound, file_check, contact_receptance, mode_counter
 
     abstract interface
         !> Build a single-point model's structure from a scene.
@@ -74,6 +75,14 @@ module greenconv_scene_models_registry
             !> The receptance at each.
             complex(dp), intent(out) :: alpha(:)
         end subroutine contact_receptance
+
+        !> For `--check`: the number of modes N_m a model's modal methods step, from the scene's
+        !> values before anything is built (or its upper bound, `modes_bounded`).
+        pure integer function mode_counter(scene)
+            import :: scene_type
+            !> The scene.
+            type(scene_type), intent(in) :: scene
+        end function mode_counter
 
         !> For `--check`: read the file a model names without building the structure and
         !> append what was found to the check's line.
@@ -132,6 +141,23 @@ module greenconv_scene_models_registry
         !> The receptance of a model known in closed form: its runs get the linear reference
         !> (greenconv_scene_run_linear_reference) and report loss of contact; else unassociated.
         procedure(contact_receptance), pointer, nopass :: receptance => null()
+        !> `--check`'s number of modes N_m from the scene's values; unassociated for a
+        !> multi-point model whose points carry their modes (counted once they are found).
+        procedure(mode_counter), pointer, nopass :: mode_count => null()
+        !> Whether `mode_count` is only an upper bound (the largest order an identification
+        !> may choose), which `--check` prints as "<= N_m".
+        logical :: modes_bounded = .false.
+        !> A multi-point model's kind of scene, first words of its runs' file titles
+        !> ("greenconv tyre/road scene NAME, method M").
+        character(len=16) :: title = 'patch'
+        !> Whether those titles name the scene's Green's matrix file after the scene's name.
+        logical :: title_names_file = .true.
+        !> What an identification of the model identifies: `ident_one_receptance` or
+        !> `ident_green_matrix` (greenconv_ident_methods), for the default method and its check.
+        integer :: identifies = ident_one_receptance
+        !> Whether the receptance identified is a measured one (a file), not one sampled from the
+        !> scene's values: the identification registry's default differs.
+        logical :: measured = .false.
     contains
         !> Whether the contact has several points (the model finds its points).
         procedure :: multi_point => kind_multi_point
@@ -145,17 +171,21 @@ contains
         type(structure_kind) :: models(model_count)
 
         models(1) = structure_kind(1, 'sdof', 'mass stiffness damping_ratio', has_mass=.true., exact_modes=.true., &
-                                   build=sdof_structure, slowest_decay=sdof_decay)
+                                   build=sdof_structure, slowest_decay=sdof_decay, mode_count=one_mode)
         models(2) = structure_kind(2, 'random_modes', '', exact_modes=.true., identified_modes=.true., &
-                                   build=random_modes_structure, slowest_decay=random_modes_decay)
+                                   build=random_modes_structure, slowest_decay=random_modes_decay, &
+                                   mode_count=scene_modes)
         models(3) = structure_kind(3, 'frf_file', 'frf_file', identified_modes=.true., sampled_g=.true., &
-                                   build=frf_file_structure, check_file=check_frf_file)
+                                   build=frf_file_structure, check_file=check_frf_file, mode_count=largest_order, &
+                                   modes_bounded=.true., measured=.true.)
         models(4) = structure_kind(4, 'tyre', '', exact_modes=.true., grid_dimensions=1, &
-                                   find_points=tyre_scene_points, slowest_decay=tyre_decay)
+                                   find_points=tyre_scene_points, slowest_decay=tyre_decay, title='tyre/road', &
+                                   title_names_file=.false.)
         models(5) = structure_kind(5, 'tyre_plate', '', exact_modes=.true., grid_dimensions=2, &
                                    find_points=plate_scene_points, slowest_decay=plate_decay)
         models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
-                                   residue_matrices=.true., find_points=green_file_points, check_file=check_green_file)
+                                   residue_matrices=.true., find_points=green_file_points, check_file=check_green_file, &
+                                   mode_count=largest_order, modes_bounded=.true., identifies=ident_green_matrix)
         ! a modes file's modes are known once it is read, not from the scene's values: no decay
         ! bound before the run (its direct and fft kernels are sized when they are built)
         models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &
@@ -163,8 +193,34 @@ contains
         ! the rail's receptance is no finite sum of modes: sampled and identified as a file's
         models(8) = structure_kind(8, 'wheel_rail', 'rail_bending rail_mass support_stiffness wheel_mass', &
                                    identified_modes=.true., sampled_g=.true., build=wheel_rail_structure, &
-                                   receptance=wheel_rail_receptance)
+                                   receptance=wheel_rail_receptance, mode_count=scene_modes)
     end function structure_models
+
+    !> One mode (a mass-spring system).
+    pure integer function one_mode(scene)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+
+        associate (unused => scene%n_modes)
+        end associate
+        one_mode = 1
+    end function one_mode
+
+    !> The scene's `&structure n_modes`.
+    pure integer function scene_modes(scene)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+
+        scene_modes = scene%n_modes
+    end function scene_modes
+
+    !> The largest order the identification may choose, `&identification max_order`.
+    pure integer function largest_order(scene)
+        !> The scene.
+        type(scene_type), intent(in) :: scene
+
+        largest_order = scene%max_order
+    end function largest_order
 
     !> The model called `name` (exact, lower case); one with `id` 0 when there is none.
     function find_model(name) result(model)

@@ -51,8 +51,7 @@ contains
         real(dp) :: f_max
         integer :: i
 
-        if (scene%model /= 'tyre' .or. scene%task /= 'contact' .or. .not. (allocated(scene%road_data%x) .or. &
-                                                                             allocated(scene%texture%x))) then
+        if (scene%task /= 'contact' .or. .not. (allocated(scene%road_data%x) .or. allocated(scene%texture%x))) then
             call fatal_error(error, scene%file//": &structure model: tyre points need model 'tyre', task = " &
                              //"'contact' and &road profile = 'file' or 'texture', found model '"//scene%model//"'")
             return

@@ -34,8 +34,7 @@ module greenconv_scene_read_input
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
-    use greenconv_ident_methods, only: check_ident_method, default_ident_method, ident_scheme, &
-                                       ident_one_receptance, ident_green_matrix
+    use greenconv_ident_methods, only: check_ident_method, default_ident_method, ident_scheme
     use greenconv_conv_builder, only: check_kernel_values
     use greenconv_scene_settings, only: scene_type, scene_files, place, name_length, place_error
     use greenconv_io_spectra, only: band_centre, first_band, edge_band, nominal_frequency, segment_for_band, &
@@ -391,6 +390,7 @@ contains
         character(len=:), allocatable :: refused
         type(error_type), allocatable :: why
         integer :: what
+        type(structure_kind) :: model
         namelist /identification/ f_max, n_freq, tol_e, max_order, order, method, noise_model, search
 
         ! The table's default `1/(2*dt)`: G up to the Nyquist frequency of the run's step.
@@ -408,12 +408,9 @@ contains
         this%n_freq = n_freq
         this%tol_e = tol_e
         this%max_order = max_order
-        if (this%model == 'green_file') then
-            what = ident_green_matrix
-        else
-            what = ident_one_receptance
-        end if
-        if (len_trim(method) == 0) method = default_ident_method(what, this%model == 'frf_file')
+        model = find_model(this%model)
+        what = model%identifies
+        if (len_trim(method) == 0) method = default_ident_method(what, model%measured)
         call check_ident_method(trim(method), what, this%model, order, refused, why)
         if (allocated(why)) then
             if (refused == 'order') then

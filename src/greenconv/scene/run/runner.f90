@@ -175,22 +175,17 @@ contains
         end if
         model = find_model(scene%model)
         bound = ''
-        select case (scene%model)
-        case ('sdof')
-            n_m = 1
-        case ('random_modes')
-            n_m = scene%n_modes
-        case ('frf_file', 'green_file')
-            n_m = scene%max_order
-            bound = '<= '
-        case default
+        if (model%modes_bounded) bound = '<= '
+        if (associated(model%mode_count)) then
+            n_m = model%mode_count(scene)
+        else
             n_m = scene%n_modes
             if (associated(model%find_points)) then
                 call model%find_points(scene, points, summary, error)
                 if (allocated(error)) return
                 n_m = points%modes%modes%n_modes()
             end if
-        end select
+        end if
         n_g = real(scene%n_steps, dp)
         if (associated(model%slowest_decay)) then
             if (model%slowest_decay(scene) > 0.0_dp) n_g = min(n_g, log(1.0_dp/scene%truncation_tol) &
@@ -660,9 +655,12 @@ contains
         integer, intent(in) :: every
         character(len=:), allocatable, intent(out) :: line
 
-        line = 'greenconv tyre/road scene '//scene%name//', method '//method
-        if (scene%model /= 'tyre') line = 'greenconv patch scene '//scene%name//' ('//scene%green_file//'), method ' &
-                                          //method
+        type(structure_kind) :: model
+
+        model = find_model(scene%model)
+        line = 'greenconv '//trim(model%title)//' scene '//scene%name
+        if (model%title_names_file) line = line//' ('//scene%green_file//')'
+        line = line//', method '//method
         if (every > 1) line = line//', a row every '//int_text(every)//' steps (steps 0, '//int_text(every)//', ' &
                               //int_text(2*every)//', ...)'
     end subroutine title
