@@ -91,7 +91,8 @@ static int compare(const char *dir, const char *method, const char *how, const d
     return failures;
 }
 
-/* LSCE on a receptance file of 4 modes: the modes, E, and an "exact" convolver on them. */
+/* A receptance file of 4 modes: its modes and E by LSCE, and an "exact" convolver on the modes
+ * gc_convolver_new_frf_file identifies (maximum likelihood, as a scene's frf_file model). */
 static int identify(const char *frf)
 {
     double pole_re[8], pole_im[8], residue_re[8], residue_im[8], e = 1.0;

@@ -153,9 +153,11 @@ int gc_convolver_new_samples(int n_samples, const double *g, double dt, const ch
 /**
  * Convolver of a structure known by a receptance file: lines starting with '#' are comments,
  * then columns f [Hz], Re G, Im G [m/N] on a uniform grid from 0 Hz. The modal methods run on
- * modes identified by LSCE (the smallest model with error E <= tol_e, eq. 7, trying up to
- * max_modes modes; 1e-6 and 30 are usual); "direct" and "fft" on g from the inverse FFT of G
- * (dt must then be a whole multiple of 1/(2*f_max)).
+ * modes identified as a scene's `frf_file` model identifies them: by maximum likelihood, the
+ * order chosen by MDL up to max_modes modes (30 is usual) and the noise model from the data
+ * (gc_convolver_new_frf_file_ident selects LSCE instead, which uses tol_e: the smallest model
+ * with error E <= tol_e, eq. 7; 1e-6 is usual); "direct" and "fft" on g from the inverse FFT
+ * of G (dt must then be a whole multiple of 1/(2*f_max)).
  */
 int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps,
                               double tol_e, int max_modes, gc_convolver **conv,
@@ -201,6 +203,17 @@ int gc_convolver_new_samples_opts(int n_samples, const double *g, double dt, con
 int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method, int n_steps,
                                    double tol_e, int max_modes, const gc_build_options *options,
                                    gc_convolver **conv, char *errmsg, size_t errmsg_len);
+
+/**
+ * gc_convolver_new_frf_file_opts with the identification method: "ml" (maximum likelihood,
+ * the default, as a scene's `&identification method`) or "lsce" (the smallest model with
+ * E <= tol_e up to max_modes modes); NULL or "" for the default. Another name gives
+ * GC_ERROR_INPUT naming the methods that identify one receptance.
+ */
+int gc_convolver_new_frf_file_ident(const char *path, double dt, const char *method, int n_steps,
+                                    const char *identification, double tol_e, int max_modes,
+                                    const gc_build_options *options, gc_convolver **conv,
+                                    char *errmsg, size_t errmsg_len);
 
 /* ---- stepping a convolver ------------------------------------------------------------- */
 

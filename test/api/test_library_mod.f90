@@ -8,7 +8,11 @@ module test_library_mod
                                  sdof_modes, sdof_impulse, structure_model, structure_from_modes, &
                                  structure_from_samples, new_convolver, free_convolver, contact_step, read_frf, &
                                  frf_type, lsce_options, structure_from_frf, frf_from_modes
-    use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcdesc, gcscen
+    use greenconv_legacy, only: gcsdof, gcsamp, gcmode, gccont, gcstep, gchist, gcfree, gcid, gcfrf, gcfrfi, gcdesc, &
+                                gcscen
+    use greenconv_api_all, only: scene_type, build_structure
+    use greenconv_api_handle, only: frf_file_structure
+    use scene_text_mod, only: read_scene_text
     implicit none
     private
 
@@ -31,6 +35,7 @@ contains
                      new_unittest('legacy: gcsdof + gccont and gcstep equal the Fortran API', test_legacy_contact), &
                      new_unittest('legacy: statuses and messages, null handles', test_legacy_errors), &
                      new_unittest('legacy: gcid and gcfrf on data/sample_receptance.frf', test_legacy_frf), &
+                     new_unittest('a door identifies a file as a scene does, ml and lsce', test_door_as_scene), &
                      new_unittest('g from a receptance runs only at the dt it was sampled at', test_sample_step)]
     end subroutine collect_library
 
@@ -240,8 +245,54 @@ contains
         call gcfrf(path, dt, n_steps, 'modal', options%tol_e, options%max_modes, handle, ierr, message)
         call gcdesc(handle, description, ierr)
         call gcfree(handle)
-        call check(error, ierr == 0 .and. index(description, 'LSCE') > 0, 'gcfrf: '//trim(description))
+        call check(error, ierr == 0 .and. index(description, 'ML fit') > 0, 'gcfrf: '//trim(description))
+        if (allocated(error)) return
+        call gcfrfi(path, dt, n_steps, 'modal', 'LSCE', options%tol_e, options%max_modes, handle, ierr, message)
+        call gcdesc(handle, description, ierr)
+        call gcfree(handle)
+        call check(error, ierr == 0 .and. index(description, 'LSCE') > 0, 'gcfrfi lsce: '//trim(description))
+        if (allocated(error)) return
+        call gcfrfi(path, dt, n_steps, 'modal', 'poly_reference', options%tol_e, options%max_modes, handle, ierr, &
+                    message)
+        call check(error, ierr == stat_input .and. handle == 0 .and. index(message, 'poly_reference') > 0, &
+                   'gcfrfi poly_reference: '//trim(message))
     end subroutine test_legacy_frf
+
+    !> The doors' receptance file and a scene's `frf_file` model on the same file identify the
+    !> same modes to the bit: by maximum likelihood by default, by LSCE when both ask it.
+    subroutine test_door_as_scene(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: path = 'data/sample_receptance.frf'
+        character(len=*), parameter :: scratch = 'build/test_scratch/door_ident'
+        character(len=4), parameter :: methods(2) = ['    ', 'lsce']
+        type(scene_type) :: scene
+        type(structure_model) :: by_scene, by_door
+        type(error_type), allocatable :: fault
+        character(len=:), allocatable :: text
+        integer :: i
+
+        do i = 1, size(methods)
+            text = "&scene task = 'identify', name = 'door_ident', output_dir = '"//scratch//"' /" &
+                   //new_line('a')//"&structure model = 'frf_file', frf_file = '"//path//"' /"//new_line('a')
+            if (len_trim(methods(i)) > 0) text = text//"&identification method = '"//trim(methods(i))//"' /" &
+                                                 //new_line('a')
+            call read_scene_text(scratch, 'door_ident.nml', text, scene, fault)
+            if (.not. allocated(fault)) call build_structure(scene, by_scene, fault)
+            if (.not. allocated(fault)) call frf_file_structure(path, 'modal', dt, scene%tol_e, scene%max_order, &
+                                                                by_door, fault, methods(i))
+            call check(error, .not. allocated(fault), 'identification '//trim(methods(i)))
+            if (allocated(error)) return
+            call note('modes, '//merge('default', methods(i)//'   ', methods(i) == ''), real(by_door%model%n_modes(), dp))
+            call check(error, by_door%method == by_scene%method .and. by_door%model%n_modes() > 0 .and. &
+                       by_door%model%n_modes() == by_scene%model%n_modes(), 'same method and order '//trim(methods(i)))
+            if (allocated(error)) return
+            call check(error, all(by_door%model%pole == by_scene%model%pole) .and. &
+                       all(by_door%model%residue == by_scene%model%residue) .and. by_door%fit_e() == by_scene%fit_e(), &
+                       'poles, residues and E to the bit '//trim(methods(i)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_door_as_scene
 
     !> A structure from a receptance samples g at the dt it is given; `direct`, `fft` and
     !> `auto` at another dt are refused (stat_input, naming both steps), at the same dt built.

@@ -90,13 +90,18 @@ int main(void)
     check(status == GC_OK, "direct with a decayed kernel: 5000 steps past its 2000", NULL);
     gc_convolver_delete(&conv);
 
-    /* Identification warnings: a lightly damped receptance on a coarse grid wraps around. */
+    /* Identification warnings: a lightly damped receptance on a coarse grid wraps around
+     * within the period 1/df, which LSCE, fitting g from the inverse FFT of G, warns of. */
     if (write_sdof_frf("build/ctest_wrap.frf", 1e-4, 0.25, 50.0)) {
-        status = gc_convolver_new_frf_file("build/ctest_wrap.frf", 0.01, "modal", RUN, 1e-3, 4, &conv, message,
-                                           sizeof message);
+        status = gc_convolver_new_frf_file_ident("build/ctest_wrap.frf", 0.01, "modal", RUN, "lsce", 1e-3, 4, NULL,
+                                                 &conv, message, sizeof message);
         if (status == GC_OK) status = gc_convolver_warnings(conv, message, sizeof message);
         check(status == GC_OK && strstr(message, "wrap-around") != NULL, "wrap-around warning returned", message);
         gc_convolver_delete(&conv);
+        status = gc_convolver_new_frf_file_ident("build/ctest_wrap.frf", 0.01, "modal", RUN, "poly_reference", 1e-3,
+                                                 4, NULL, &conv, message, sizeof message);
+        check_status(status, GC_ERROR_INPUT, message, "poly_reference", "an identification that fits no receptance");
+        check(conv == NULL, "refused: no convolver", NULL);
         remove("build/ctest_wrap.frf");
     }
     gc_convolver_new_sdof(1.0, 1e4, 0.02, 1e-3, "modal", RUN, &conv, message, sizeof message);

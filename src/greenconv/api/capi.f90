@@ -41,7 +41,7 @@ module greenconv_capi
 
     public :: gc_contact_options, gc_build_options, gc_scheme_explicit, gc_scheme_implicit
     public :: gc_build_options_init, gc_convolver_new_sdof_opts, gc_convolver_new_modes_opts
-    public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_opts
+    public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_ident
     public :: gc_convolver_free, gc_convolver_delete, gc_convolver_model_size, gc_convolver_describe
     public :: gc_convolver_warnings
     public :: gc_contact_step, gc_contact_options_init, gc_run_contact_opts
@@ -223,11 +223,12 @@ contains
                       errmsg_len)
     end function gc_convolver_new_samples_opts
 
-    !> int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method,
-    !> int n_steps, double tol_e, int max_modes, const gc_build_options *options,
-    !> gc_convolver **conv, char *errmsg, size_t errmsg_len)
-    function gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, options, conv, errmsg, &
-                                            errmsg_len) bind(c, name='gc_convolver_new_frf_file_opts') result(status)
+    !> int gc_convolver_new_frf_file_ident(const char *path, double dt, const char *method,
+    !> int n_steps, const char *identification, double tol_e, int max_modes,
+    !> const gc_build_options *options, gc_convolver **conv, char *errmsg, size_t errmsg_len)
+    function gc_convolver_new_frf_file_ident(path, dt, method, n_steps, identification, tol_e, max_modes, options, &
+                                             conv, errmsg, errmsg_len) &
+        bind(c, name='gc_convolver_new_frf_file_ident') result(status)
         !> Path of the receptance file (f [Hz], Re G, Im G [m/N]), NUL-terminated.
         type(c_ptr), value, intent(in) :: path
         !> Time step dt [s], > 0.
@@ -236,9 +237,11 @@ contains
         type(c_ptr), value, intent(in) :: method
         !> Number of steps N_t of the run, >= 1.
         integer(c_int), value, intent(in) :: n_steps
-        !> Target of the identification error E of eq. (7), > 0.
+        !> Identification method, "ml" or "lsce" (NUL-terminated); NULL or "": "ml", as a scene's.
+        type(c_ptr), value, intent(in) :: identification
+        !> Target of the identification error E of eq. (7), > 0 (LSCE's).
         real(c_double), value, intent(in) :: tol_e
-        !> Largest number of modes the LSCE scan tries, >= 1.
+        !> Largest number of modes the order search tries, >= 1.
         integer(c_int), value, intent(in) :: max_modes
         !> Build options, or NULL for the defaults.
         type(c_ptr), value, intent(in) :: options
@@ -253,10 +256,11 @@ contains
         type(structure_model) :: structure
         type(error_type), allocatable :: error
 
-        call frf_file_structure(from_c(path), from_c(method), dt, tol_e, int(max_modes), structure, error)
+        call frf_file_structure(from_c(path), from_c(method), dt, tol_e, int(max_modes), structure, error, &
+                                from_c(identification))
         status = made('gc_convolver_new_frf_file', method, structure, dt, n_steps, options, conv, error, errmsg, &
                       errmsg_len)
-    end function gc_convolver_new_frf_file_opts
+    end function gc_convolver_new_frf_file_ident
 
     !> void gc_convolver_free(gc_convolver *conv): free a convolver (NULL: nothing).
     subroutine gc_convolver_free(conv) bind(c, name='gc_convolver_free')

@@ -4,6 +4,9 @@
  *
  * - The constructors and the whole run without build or contact options are their `_opts`
  *   door with NULL options (the library's defaults).
+ * - gc_convolver_new_frf_file and its `_opts` door are gc_convolver_new_frf_file_ident with
+ *   the identification method NULL: the identification registry's default for a measured
+ *   receptance ("ml"), as a scene's `frf_file` model.
  * - A single-point convolver is the multi-point convolver of one point (n_points = 1, the
  *   same box behind both handle types): its history, push, instantaneous weight and reset
  *   are the gc_multi_* doors on arrays of one value, with no message buffer (these
@@ -46,8 +49,16 @@ int gc_convolver_new_samples(int n_samples, const double *g, double dt, const ch
 int gc_convolver_new_frf_file(const char *path, double dt, const char *method, int n_steps, double tol_e,
                               int max_modes, gc_convolver **conv, char *errmsg, size_t errmsg_len)
 {
-    return gc_convolver_new_frf_file_opts(path, dt, method, n_steps, tol_e, max_modes, NULL, conv, errmsg,
-                                          errmsg_len);
+    return gc_convolver_new_frf_file_ident(path, dt, method, n_steps, NULL, tol_e, max_modes, NULL, conv, errmsg,
+                                           errmsg_len);
+}
+
+int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *method, int n_steps, double tol_e,
+                                   int max_modes, const gc_build_options *options, gc_convolver **conv, char *errmsg,
+                                   size_t errmsg_len)
+{
+    return gc_convolver_new_frf_file_ident(path, dt, method, n_steps, NULL, tol_e, max_modes, options, conv, errmsg,
+                                           errmsg_len);
 }
 
 int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps, const double *road,

@@ -21,7 +21,8 @@ module greenconv_api_handle
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_samples, &
-                                         structure_from_frf
+                                         receptance_identification, identify_receptance
+    use greenconv_ident_methods, only: check_ident_method, ident_scheme, ident_one_receptance
     use greenconv_ident_green_structure, only: green_structure
     use greenconv_model_point_modes, only: point_modes
     use greenconv_model_modes_file, only: file_modes
@@ -187,8 +188,7 @@ contains
         type is (point_matrix)
             call wrap_point(point, matrix)
         end select
-        box%warning = ''
-        if (structure%identified .and. allocated(structure%fit%warning)) box%warning = structure%fit%warning
+        call structure%fit_warnings(box%warning)
         box%dt = dt
         box%n_steps = n_steps
         box%truncation_tol = default_truncation_tol
@@ -374,33 +374,56 @@ contains
         end if
     end subroutine samples_structure
 
-    !> The structure known by a receptance file: modes by LSCE, and g at dt for the methods
-    !> that convolve with it (`direct`, `fft`, `auto`).
-    subroutine frf_file_structure(path, method, dt, tol_e, max_modes, structure, error)
+    !> The structure known by a receptance file, identified as a scene's `frf_file` model is
+    !> (greenconv_ident_structure's `identify_receptance`): by default with the identification
+    !> registry's method for a measured receptance (maximum likelihood, the order by MDL up to
+    !> max_modes, the noise model chosen from the data), or by LSCE when asked (the smallest
+    !> model with E <= tol_e up to max_modes modes); and g at dt for the methods that convolve
+    !> with it (`direct`, `fft`, `auto`).
+    subroutine frf_file_structure(path, method, dt, tol_e, max_modes, structure, error, identification)
         !> Path of the receptance file (`#` comments, then f [Hz], Re G, Im G [m/N]).
         character(len=*), intent(in) :: path
         !> Method name, any case.
         character(len=*), intent(in) :: method
         !> Time step dt [s] of the run.
         real(dp), intent(in) :: dt
-        !> Target of the identification error E of eq. (7), > 0.
+        !> Target of the identification error E of eq. (7), > 0 (LSCE's).
         real(dp), intent(in) :: tol_e
-        !> Largest number of modes the LSCE order scan tries, >= 1.
+        !> Largest number of modes the order search tries, >= 1.
         integer, intent(in) :: max_modes
         !> The structure.
         type(structure_model), intent(out) :: structure
-        !> Set when the file is unusable (`stat_input`) or the fit fails (`stat_numerical`).
+        !> Set when the file or the identification method is unusable (`stat_input`) or the fit
+        !> fails (`stat_numerical`).
         type(error_type), allocatable, intent(out) :: error
+        !> Identification method, any case: 'ml' or 'lsce'; absent or blank: the registry's
+        !> default for a measured receptance ('ml').
+        character(len=*), intent(in), optional :: identification
 
         type(frf_type) :: frf
         type(lsce_options) :: options
+        type(receptance_identification) :: settings
+        character(len=:), allocatable :: refused
         real(dp) :: dt_g
 
+        if (present(identification)) then
+            if (len_trim(identification) > 0) then
+                call check_ident_method(lower_text(trim(identification)), ident_one_receptance, 'frf_file', 0, &
+                                        refused, error)
+                if (allocated(error)) then
+                    error%message = 'identification method = '''//trim(identification)//''': expected '//error%message
+                    return
+                end if
+                settings%scheme = ident_scheme(lower_text(trim(identification)))
+            end if
+        end if
         call read_receptance(path, tol_e, max_modes, frf, options, error)
         if (allocated(error)) return
+        settings%tol_e = options%tol_e
+        settings%max_order = options%max_modes
         dt_g = 0.0_dp
         if (method_needs(lower_text(method), needs_sampled_g)) dt_g = dt
-        call structure_from_frf(frf, options, dt_g, structure, error)
+        call identify_receptance(frf, settings, dt_g, structure, error)
     end subroutine frf_file_structure
 
     !> A whole contact run on a box's convolver (reset first) into arrays of the road's length:

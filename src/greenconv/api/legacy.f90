@@ -42,7 +42,7 @@ module greenconv_legacy
     implicit none
     private
 
-    public :: gcsdof, gcmode, gcsamp, gcfrf, gcfree
+    public :: gcsdof, gcmode, gcsamp, gcfrf, gcfrfi, gcfree
     public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
     public :: gcstep, gccont, gcid, gcidml, gcscen
     public :: gcvers
@@ -146,9 +146,10 @@ contains
     end subroutine gcsamp
 
     !> Convolver of a structure known by a receptance file (`#` comments, then columns
-    !> f [Hz], Re G, Im G [m/N] on a uniform grid from 0 Hz): modes identified by LSCE for the
-    !> modal methods, g by inverse FFT for 'direct' and 'fft' (dt a whole multiple of
-    !> 1/(2*f_max) then).
+    !> f [Hz], Re G, Im G [m/N] on a uniform grid from 0 Hz): modes identified for the modal
+    !> methods as a scene's `frf_file` model identifies them (maximum likelihood, the order by
+    !> MDL up to maxmod modes; `GCFRFI` selects LSCE), g by inverse FFT for 'direct' and 'fft'
+    !> (dt a whole multiple of 1/(2*f_max) then). `GCFRFI` with a blank IDENT.
     subroutine gcfrf(path, dt, nstep, method, tole, maxmod, handle, ierr, errmsg)
         !> Path of the receptance file.
         character(len=*), intent(in) :: path
@@ -158,9 +159,36 @@ contains
         integer, intent(in) :: nstep
         !> Method name (see `gcsdof`).
         character(len=*), intent(in) :: method
-        !> Target of the identification error E of eq. (7), > 0 (1e-6 is usual).
+        !> Target of the identification error E of eq. (7), > 0 (1e-6 is usual; LSCE's).
         real(dp), intent(in) :: tole
-        !> Largest number of modes the LSCE order scan tries, >= 1 (30 is usual).
+        !> Largest number of modes the order search tries, >= 1 (30 is usual).
+        integer, intent(in) :: maxmod
+        !> Handle of the new convolver on the identified structure; 0 on failure.
+        integer(int64), intent(out) :: handle
+        !> Status: 0 success, 2 bad input, 3 failed identification.
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call gcfrfi(path, dt, nstep, method, ' ', tole, maxmod, handle, ierr, errmsg)
+    end subroutine gcfrf
+
+    !> `gcfrf` with the identification method IDENT: 'ml' (maximum likelihood, the default, as a
+    !> scene's), 'lsce' (the smallest model with E <= tole up to maxmod modes), blank for the default.
+    subroutine gcfrfi(path, dt, nstep, method, ident, tole, maxmod, handle, ierr, errmsg)
+        !> Path of the receptance file.
+        character(len=*), intent(in) :: path
+        !> Time step dt [s], > 0; for 'direct' and 'fft' a whole multiple of 1/(2*f_max).
+        real(dp), intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer, intent(in) :: nstep
+        !> Method name (see `gcsdof`).
+        character(len=*), intent(in) :: method
+        !> Identification method, 'ml' or 'lsce'; blank: 'ml'.
+        character(len=*), intent(in) :: ident
+        !> Target of the identification error E of eq. (7), > 0 (LSCE's).
+        real(dp), intent(in) :: tole
+        !> Largest number of modes the order search tries, >= 1 (30 is usual).
         integer, intent(in) :: maxmod
         !> Handle of the new convolver on the identified structure; 0 on failure.
         integer(int64), intent(out) :: handle
@@ -172,9 +200,9 @@ contains
         type(error_type), allocatable :: error
         type(structure_model) :: structure
 
-        call frf_file_structure(trim(path), method, dt, tole, maxmod, structure, error)
+        call frf_file_structure(trim(path), method, dt, tole, maxmod, structure, error, ident)
         call new_handle(method, structure, dt, nstep, handle, ierr, errmsg, error)
-    end subroutine gcfrf
+    end subroutine gcfrfi
 
     !> Build a convolver for a structure and return its handle, unless `error` already says
     !> the structure could not be made.

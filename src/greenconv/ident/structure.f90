@@ -17,12 +17,14 @@ module greenconv_ident_structure
     use greenconv_model_frf, only: frf_type
     use greenconv_ident_lsce, only: lsce_options, lsce_result, identify, impulse_from_frf
     use greenconv_ident_mlfit, only: ml_options, ml_result, identify_ml
-    use greenconv_ident_methods, only: ident_none, ident_lsce, ident_ml
+    use greenconv_ident_methods, only: ident_none, ident_lsce, ident_ml, ident_one_receptance, default_ident_method, &
+                                       ident_scheme
     implicit none
     private
 
     public :: structure_model, structure_from_modes, structure_from_frf, structure_from_samples
     public :: structure_from_frf_ml, structure_from_receptance
+    public :: receptance_identification, identify_receptance
 
     !> g sampled from modes reaches until the modal envelope has fallen to this fraction of its
     !> value at t = 0 (far below any truncation a run asks, 1e-2 in the paper) ...
@@ -66,11 +68,68 @@ module greenconv_ident_structure
         procedure :: fit_e => structure_fit_e
         !> The identification in one phrase for a method's summary line ('' when not identified).
         procedure :: fit_brief => structure_fit_brief
+        !> The identification's warnings, '; '-separated ('' when none or not identified).
+        procedure :: fit_warnings => structure_fit_warnings
         !> Receptance [m/N] of the identified model, residual terms included, at omega [rad/s].
         procedure :: fitted => structure_fitted
     end type structure_model
 
+    !> How one measured receptance is identified, by a scene's `frf_file` model and by the C and
+    !> Fortran 77 doors alike: a method of the identification registry (greenconv_ident_methods)
+    !> and its settings, with the defaults of a scene's `&identification` group.
+    type :: receptance_identification
+        !> The method's scheme: `ident_ml` or `ident_lsce` (`ident_none`: the registry's default
+        !> for a measured receptance, `default_ident_method`).
+        integer :: scheme = ident_none
+        !> Largest order (number of modes) the order search tries (ml: the diagram's top; lsce:
+        !> its scan), >= 1.
+        integer :: max_order = 30
+        !> lsce: the order fixed (0: the smallest model with E <= tol_e).
+        integer :: order = 0
+        !> lsce: the target of the error E of eq. (7), > 0.
+        real(dp) :: tol_e = 1.0e-6_dp
+        !> ml: the noise model, 'auto' (chosen from the data), 'relative', 'absolute', 'floor' or 'band'.
+        character(len=16) :: noise_model = 'auto'
+        !> ml: the global order search (greedy rounds, death moves, projected fits), or the
+        !> greedy rounds alone.
+        logical :: global_search = .true.
+    end type receptance_identification
+
 contains
+
+    !> A structure known by a measured receptance, identified as `settings` say: by maximum
+    !> likelihood (`structure_from_frf_ml`) or by LSCE (`structure_from_frf`); g at dt when
+    !> dt > 0.
+    subroutine identify_receptance(frf, settings, dt, structure, error)
+        !> The receptance G [m/N].
+        type(frf_type), intent(in) :: frf
+        !> The method and its settings.
+        type(receptance_identification), intent(in) :: settings
+        !> Time step [s] of the convolvers; 0 for the modes alone.
+        real(dp), intent(in) :: dt
+        !> The structure.
+        type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the grid.
+        type(error_type), allocatable, intent(out) :: error
+
+        type(ml_options) :: ml
+        type(lsce_options) :: lsce
+        integer :: scheme
+
+        scheme = settings%scheme
+        if (scheme == ident_none) scheme = ident_scheme(default_ident_method(ident_one_receptance, .true.))
+        if (scheme == ident_ml) then
+            ml%max_order = settings%max_order
+            ml%noise_model = settings%noise_model
+            ml%global_search = settings%global_search
+            call structure_from_frf_ml(frf, ml, dt, structure, error)
+        else
+            lsce%tol_e = settings%tol_e
+            lsce%max_modes = settings%max_order
+            lsce%fixed_modes = settings%order
+            call structure_from_frf(frf, lsce, dt, structure, error)
+        end if
+    end subroutine identify_receptance
 
     !> A structure known by its modes, used as they are by the modal methods.
     function structure_from_modes(modes) result(structure)
@@ -258,6 +317,23 @@ contains
             text = ''
         end select
     end subroutine structure_fit_brief
+
+    !> The identification's warnings (wrap-around, a fit that missed its target, dropped
+    !> poles, modes sampled short), '; '-separated; '' when there are none or G was not identified.
+    pure subroutine structure_fit_warnings(self, text)
+        !> The structure.
+        class(structure_model), intent(in) :: self
+        !> The warnings.
+        character(len=:), allocatable, intent(out) :: text
+
+        text = ''
+        select case (self%method)
+        case (ident_lsce)
+            if (allocated(self%fit%warning)) text = self%fit%warning
+        case (ident_ml)
+            if (allocated(self%ml%warning)) text = self%ml%warning
+        end select
+    end subroutine structure_fit_warnings
 
     !> Receptance of the identified model [m/N] at omega [rad/s] (0 when not identified).
     elemental complex(dp) function structure_fitted(self, omega)

@@ -17,13 +17,11 @@ module greenconv_scene_models_single
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
     use greenconv_model_rail, only: wheel_rail_frf, band_tail
-    use greenconv_ident_lsce, only: lsce_options
-    use greenconv_ident_mlfit, only: ml_options
-    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_frf, &
-                                         structure_from_frf_ml, structure_from_receptance
+    use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_receptance, &
+                                         receptance_identification, identify_receptance
     use greenconv_conv_methods, only: method_scheme, scheme_auto, method_needs, needs_modes
     use greenconv_scene_settings, only: scene_type, place_error
-    use greenconv_ident_methods, only: ident_ml
+    use greenconv_ident_methods, only: ident_ml, ident_lsce
     implicit none
     private
 
@@ -175,7 +173,8 @@ contains
                //sci_text(frf%frequency(size(frf%frequency)))//' Hz)'
     end subroutine check_frf_file
 
-    !> Identify G by the scene's method (`&identification method`).
+    !> Identify G by the scene's method (`&identification method`), as the C and Fortran 77
+    !> doors identify a receptance file (greenconv_ident_structure's `identify_receptance`).
     subroutine identify_scene(scene, frf, dt, structure, error)
         type(scene_type), intent(in) :: scene
         type(frf_type), intent(in) :: frf
@@ -183,16 +182,20 @@ contains
         type(structure_model), intent(out) :: structure
         type(error_type), allocatable, intent(out) :: error
 
-        type(ml_options) :: options
+        type(receptance_identification) :: settings
 
-        if (scene%identification == ident_ml) then
-            options%max_order = scene%max_order
-            if (allocated(scene%ident_noise)) options%noise_model = scene%ident_noise
-            if (allocated(scene%ident_search)) options%global_search = scene%ident_search == 'global'
-            call structure_from_frf_ml(frf, options, dt, structure, error)
-        else
-            call structure_from_frf(frf, scene_options(scene), dt, structure, error)
+        settings%scheme = merge(ident_ml, ident_lsce, scene%identification == ident_ml)
+        settings%max_order = scene%max_order
+        settings%order = scene%order
+        settings%tol_e = scene%tol_e
+        ! `auto` (by the registry's scheme, not its spelling) wants the smallest model that
+        ! meets the scene's accuracy, not more.
+        if (allocated(scene%methods)) then
+            if (any(method_scheme(scene%methods) == scheme_auto)) settings%tol_e = scene%accuracy
         end if
+        if (allocated(scene%ident_noise)) settings%noise_model = scene%ident_noise
+        if (allocated(scene%ident_search)) settings%global_search = scene%ident_search == 'global'
+        call identify_receptance(frf, settings, dt, structure, error)
     end subroutine identify_scene
 
     !> The step [s] g is sampled at: the scene's dt for a contact run (the step every convolver
@@ -203,20 +206,5 @@ contains
         sampling_step = 0.0_dp
         if (scene%task == 'contact') sampling_step = scene%dt
     end function sampling_step
-
-    !> The scene's identification settings.
-    function scene_options(scene) result(options)
-        type(scene_type), intent(in) :: scene
-        type(lsce_options) :: options
-
-        options%tol_e = scene%tol_e
-        ! `auto` (by the registry's scheme, not its spelling) wants the smallest model that
-        ! meets the scene's accuracy, not more.
-        if (allocated(scene%methods)) then
-            if (any(method_scheme(scene%methods) == scheme_auto)) options%tol_e = scene%accuracy
-        end if
-        options%max_modes = scene%max_order
-        options%fixed_modes = scene%order
-    end function scene_options
 
 end module greenconv_scene_models_single
