@@ -283,7 +283,8 @@ contains
                                                                 by_door, fault, methods(i))
             call check(error, .not. allocated(fault), 'identification '//trim(methods(i)))
             if (allocated(error)) return
-            call note('modes, '//merge('default', methods(i)//'   ', methods(i) == ''), real(by_door%model%n_modes(), dp))
+            call note('modes, '//merge('default', methods(i)//'   ', methods(i) == ''), &
+                      real(by_door%model%n_modes(), dp))
             call check(error, by_door%method == by_scene%method .and. by_door%model%n_modes() > 0 .and. &
                        by_door%model%n_modes() == by_scene%model%n_modes(), 'same method and order '//trim(methods(i)))
             if (allocated(error)) return

@@ -184,8 +184,9 @@ contains
         models(5) = structure_kind(5, 'tyre_plate', '', exact_modes=.true., grid_dimensions=2, &
                                    find_points=plate_scene_points, slowest_decay=plate_decay)
         models(6) = structure_kind(6, 'green_file', 'green_file', identified_modes=.true., sampled_g=.true., &
-                                   residue_matrices=.true., find_points=green_file_points, check_file=check_green_file, &
-                                   mode_count=largest_order, modes_bounded=.true., identifies=ident_green_matrix)
+                                   residue_matrices=.true., find_points=green_file_points, &
+                                   check_file=check_green_file, mode_count=largest_order, modes_bounded=.true., &
+                                   identifies=ident_green_matrix)
         ! a modes file's modes are known once it is read, not from the scene's values: no decay
         ! bound before the run (its direct and fft kernels are sized when they are built)
         models(7) = structure_kind(7, 'modes_file', 'modes_file', find_points=modes_file_points, &
