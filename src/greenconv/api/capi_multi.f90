@@ -16,6 +16,7 @@ module greenconv_capi_multi
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
+    use greenconv_contact_laws, only: contact_law
     use greenconv_api_library, only: default_truncation_tol
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
@@ -633,7 +634,7 @@ contains
             call c_f_pointer(k_c, stiffness, [n_points])
             call c_f_pointer(p, exponent, [n_points])
             call c_f_pointer(preload, load, [n_points])
-            call start_multi_box('gc_multi_contact_start', box, stiffness, exponent, load, error)
+            call start_multi_box('gc_multi_contact_start', box, contact_law(stiffness, exponent), load, error)
         else if (associated(box)) then
             box%stepping = .false.
         end if
@@ -734,7 +735,7 @@ contains
             call c_f_pointer(road, heights, [n_steps, n_points])
             call c_f_pointer(displacement, u, [n_steps, n_points])
             call c_f_pointer(force, f, [n_steps, n_points])
-            call run_multi_box(caller, box, stiffness, exponent, load, heights, u, f, delta, error)
+            call run_multi_box(caller, box, contact_law(stiffness, exponent), load, heights, u, f, delta, error)
             if (c_associated(compression)) then
                 call c_f_pointer(compression, delta_out, [n_steps, n_points])
                 delta_out(:, :) = delta

@@ -35,8 +35,8 @@ contains
     subroutine contact_step(conv, law, road, preload, displacement, force, compression)
         !> The convolver, advanced by one step.
         class(convolver), intent(inout) :: conv
-        !> The contact law (k_c [N/m^p], p).
-        type(contact_law), intent(in) :: law
+        !> The contact law.
+        class(contact_law), intent(in) :: law
         !> Road height u_r(t_n) [m] under the contact.
         real(dp), intent(in) :: road
         !> Static preload F0 [N], >= 0.
@@ -64,7 +64,7 @@ contains
     !> Check a contact law (its own `check`) and a preload F0 >= 0, finite.
     subroutine check_contact_law(law, preload, error)
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N].
         real(dp), intent(in) :: preload
         !> Set (status `stat_input`) when a value is out of range.

@@ -64,13 +64,13 @@ module greenconv_contact_single
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact, step_load
     use greenconv_contact_rows, only: keep_first, keep_all
     implicit none
     private
 
-    !> The contact law, greenconv_contact_law's, named here too for the callers that take it from this module.
+    !> The contact law (greenconv_contact_laws: the abstract type, and `contact_law(k_c, p)` a power law).
     public :: contact_law
     !> The options and the state of a run, greenconv_contact_step's (a single-point run is a run at one point).
     public :: contact_options, contact_state
@@ -106,7 +106,7 @@ contains
         !> The convolution method: history before each step, load pushed after it.
         class(convolver), intent(inout) :: conv
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Road heights u_r(t_n) [m], n = 0..N_t-1.
         real(dp), intent(in) :: road(0:)
         !> Static preload F0 [N] pressing the body onto the road, >= 0.
@@ -166,7 +166,7 @@ contains
         !> The convolution method; reset here.
         class(convolver), intent(inout) :: conv
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N] pressing the body onto the road, >= 0.
         real(dp), intent(in) :: preload
         !> The run at step 0.
@@ -177,9 +177,11 @@ contains
         type(contact_options), intent(in), optional :: options
 
         type(contact_options) :: settings
+        class(contact_law), allocatable :: laws(:)
 
         if (present(options)) settings = options
-        call start_state([law], [preload], reshape([conv%instant_weight()], [1, 1]), conv%dt, settings, state, &
+        call replicate_law(law, 1, laws)
+        call start_state(laws, [preload], reshape([conv%instant_weight()], [1, 1]), conv%dt, settings, state, &
                          error)
         if (allocated(error)) return
         call conv%reset()

@@ -822,7 +822,8 @@ contains
         this%stiffness_per_area = stiffness_per_area
         ! a law per area: each point carries its element's share, patch_length*patch_width/N_c
         if (stiffness_per_area > 0.0_dp) stiffness = stiffness_per_area*patch_length*patch_width/this%n_points
-        this%law = contact_law(stiffness=stiffness, exponent=exponent)
+        if (allocated(this%law)) deallocate(this%law)
+        allocate(this%law, source=contact_law(stiffness=stiffness, exponent=exponent))
         ! the law's own check, as at every door (the table's rows already bound its values)
         if (.not. allocated(error)) then
             call this%law%check(error)
