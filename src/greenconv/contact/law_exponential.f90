@@ -88,7 +88,8 @@ contains
         if (.not. (self%force_scale > 0.0_dp .and. ieee_is_finite(self%force_scale))) then
             call fatal_error(error, 'contact: the exponential law''s force scale F_s must be finite and > 0 N')
         else if (.not. (self%compression_scale > 0.0_dp .and. ieee_is_finite(self%compression_scale))) then
-            call fatal_error(error, 'contact: the exponential law''s compression scale delta_s must be finite and > 0 m')
+            call fatal_error(error, 'contact: the exponential law''s compression scale delta_s must be finite and ' &
+                             //'> 0 m')
         end if
     end subroutine exponential_check
 

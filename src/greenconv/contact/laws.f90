@@ -18,6 +18,7 @@ module greenconv_contact_laws
 
     public :: contact_law, power_law, exponential_law
     public :: law_kind, law_kinds, find_law, law_names, new_law, describe_law, replicate_law
+    public :: parameter_list, parameter_text, first_bad_parameter, law_choices
     public :: max_law_parameters
 
     !> Most parameters of a law in the registry.
@@ -58,6 +59,9 @@ module greenconv_contact_laws
         real(dp) :: above(max_law_parameters) = 0.0_dp
         !> What the law is, in one line.
         character(len=80) :: summary = ''
+        !> Whether a scene may give its parameters as `&contact stiffness` and `exponent` (the
+        !> power law, as scenes always have) instead of `law_parameters`.
+        logical :: from_stiffness = .false.
         !> Its constructor.
         procedure(law_builder), pointer, nopass :: build => null()
     end type law_kind
@@ -71,10 +75,10 @@ contains
 
         laws(1) = law_kind(1, 'power', 2, ['k_c     ', 'p       ', '        '], ['N/m^p   ', '        ', '        '], &
                            [0.0_dp, 0.0_dp, 0.0_dp], 'F = k_c*delta^p (p = 3/2: Hertz, p = 1: linear spring)', &
-                           build_power_law)
+                           from_stiffness=.true., build=build_power_law)
         laws(2) = law_kind(2, 'exponential', 2, ['F_s     ', 'delta_s ', '        '], ['N       ', 'm       ', &
                            '        '], [0.0_dp, 0.0_dp, 0.0_dp], &
-                           'F = F_s*(exp(delta/delta_s) - 1), pressure-overclosure', build_exponential_law)
+                           'F = F_s*(exp(delta/delta_s) - 1), pressure-overclosure', build=build_exponential_law)
     end function law_kinds
 
     !> The law called `name` (exact, lower case); a row with `id` 0 when there is none.
@@ -95,6 +99,17 @@ contains
             end if
         end do
     end function find_law
+
+    !> The registry's names, one a row, blank-padded.
+    pure function law_choices() result(names)
+        !> The names.
+        character(len=16) :: names(law_count)
+
+        type(law_kind) :: laws(law_count)
+
+        laws = law_kinds()
+        names = laws%name
+    end function law_choices
 
     !> The registry's names, quoted and separated by commas: "'power', 'exponential'".
     pure function law_names() result(text)
@@ -138,13 +153,12 @@ contains
                              //' parameters ('//parameter_list(kind)//'), found '//int_text(size(values)))
             return
         end if
-        do i = 1, kind%n_parameters
-            if (.not. (values(i) > kind%above(i) .and. ieee_is_finite(values(i)))) then
-                call fatal_error(error, "contact law '"//trim(kind%name)//"': parameter "//parameter_text(kind, i) &
-                                 //' must be finite and > '//sci_text(kind%above(i))//', found '//sci_text(values(i)))
-                return
-            end if
-        end do
+        i = first_bad_parameter(kind, values)
+        if (i > 0) then
+            call fatal_error(error, "contact law '"//trim(kind%name)//"': parameter "//parameter_text(kind, i) &
+                             //' must be finite and > '//sci_text(kind%above(i))//', found '//sci_text(values(i)))
+            return
+        end if
         call kind%build(values, law)
         call law%check(error)
         if (allocated(error)) deallocate(law)
@@ -182,6 +196,25 @@ contains
 
         allocate(laws(n), source=law)
     end subroutine replicate_law
+
+    !> The first of a row's parameter values that is not finite or not above its bound; 0 when
+    !> all are in range (`values` holds the row's count).
+    pure integer function first_bad_parameter(kind, values)
+        !> The row.
+        type(law_kind), intent(in) :: kind
+        !> Parameter values, in the row's order and units.
+        real(dp), intent(in) :: values(:)
+
+        integer :: i
+
+        first_bad_parameter = 0
+        do i = 1, min(kind%n_parameters, size(values))
+            if (.not. (values(i) > kind%above(i) .and. ieee_is_finite(values(i)))) then
+                first_bad_parameter = i
+                return
+            end if
+        end do
+    end function first_bad_parameter
 
     !> "k_c [N/m^p], p": the parameters of a row with their units.
     pure function parameter_list(kind) result(text)

@@ -21,6 +21,7 @@ module greenconv_scene_run_runner
     use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes, method_order
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
+    use greenconv_contact_laws, only: describe_law
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_read_facade, only: scene_type, output_path, place_error
@@ -106,6 +107,11 @@ contains
             write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         end if
         if (present(block)) block_size = max(block, 1)
+        if (model%multi_point()) then
+            write (unit, '(a)') '# contact: '//describe_law(scene%law)//' at each point'
+        else
+            write (unit, '(a)') '# contact: '//describe_law(scene%law)
+        end if
         call run_methods(scene, structure, run, unit, block_size, error)
         if (associated(model%receptance)) call write_linear_reference(scene, model%receptance, unit, error)
         if (model%multi_point()) call write_patch_reference(scene, run%points, unit, error)
