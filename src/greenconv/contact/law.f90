@@ -31,6 +31,11 @@ module greenconv_contact_law
         procedure(law_name), deferred :: name
         !> The law's parameters in the order of its registry row, in their SI units.
         procedure(law_parameters), deferred :: parameters
+        !> Forces F_i(delta_i) [N] of the points' laws, an array of this law's dynamic type
+        !> (`call laws(1)%forces(laws, delta, force)`): the steppers' call on every point at
+        !> once. By default each point's `force`; a law may override it with a loop the compiler
+        !> inlines (the power law does).
+        procedure, nopass :: forces => point_forces
     end type contact_law
 
     abstract interface
@@ -90,5 +95,19 @@ module greenconv_contact_law
             real(dp), allocatable :: values(:)
         end function law_parameters
     end interface
+
+contains
+
+    !> F_i = laws(i)%force(delta(i)) [N] for every point.
+    subroutine point_forces(laws, delta, force)
+        !> The points' laws (N_c), of one dynamic type.
+        class(contact_law), intent(in) :: laws(:)
+        !> Compressions delta_i [m] (N_c).
+        real(dp), intent(in) :: delta(:)
+        !> Forces F_i [N] (N_c).
+        real(dp), intent(out) :: force(:)
+
+        force(:) = laws%force(delta)
+    end subroutine point_forces
 
 end module greenconv_contact_law

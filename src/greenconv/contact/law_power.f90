@@ -30,6 +30,8 @@ module greenconv_contact_law_power
         procedure :: name => power_name
         !> [k_c, p].
         procedure :: parameters => power_parameters
+        !> k_c,i*delta_i^p_i [N] at every point, the law's `force` inlined.
+        procedure, nopass :: forces => power_forces
     end type power_law
 
 contains
@@ -63,6 +65,28 @@ contains
             power_force = self%stiffness*delta**self%exponent
         end if
     end function power_force
+
+    !> F_i = k_c,i*delta_i^p_i [N] for every point (zero where delta_i <= 0): `power_force` in a
+    !> loop the compiler inlines, no call through the type's table per point.
+    subroutine power_forces(laws, delta, force)
+        !> The points' laws (N_c), all power laws.
+        class(contact_law), intent(in) :: laws(:)
+        !> Compressions delta_i [m] (N_c).
+        real(dp), intent(in) :: delta(:)
+        !> Forces F_i [N] (N_c).
+        real(dp), intent(out) :: force(:)
+
+        integer :: i
+
+        select type (laws)
+        type is (power_law)
+            do i = 1, size(laws)
+                force(i) = power_force(laws(i), delta(i))
+            end do
+        class default
+            force(:) = laws%force(delta)
+        end select
+    end subroutine power_forces
 
     !> Compression [m] at which the spring carries a force F >= 0 [N]: (F/k_c)^(1/p).
     elemental real(dp) function power_compression(self, force)

@@ -194,7 +194,7 @@ contains
             call step_fault(state, road, point, message, fault)
             return
         end if
-        force(:) = state%laws%force(state%delta)
+        call law_forces(state%laws, state%delta, force)
         if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
         else if (state%coupled .and. state%settings%scheme == 'implicit') then
@@ -339,11 +339,13 @@ contains
                 delta(:) = free - state%coupling
                 deallocate (state%coupling)
             else
-                load(:) = laws%force(delta) - state%preload
+                call law_forces(laws, delta, load)
+                load(:) = load - state%preload
                 delta(:) = free - apply_compliance(compliance, weight0, load)
             end if
             step(:) = slope(laws, delta)
-            load(:) = laws%force(delta) - state%preload - step*(delta - free)
+            call law_forces(laws, delta, load)
+            load(:) = load - state%preload - step*(delta - free)
             call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
             if (allocated(error)) return
             if (taken) then
@@ -395,11 +397,26 @@ contains
 
         real(dp) :: load(size(delta))
 
-        load(:) = laws%force(delta) - preload
+        call law_forces(laws, delta, load)
+        load(:) = load - preload
         coupling(:) = apply_compliance(compliance, weight0, load)
         r(:) = delta - free + coupling
         scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
     end subroutine residual
+
+    !> The forces F_i(delta_i) [N] of the points' laws: one point's `force`, or the laws' `forces`
+    !> at several (one call through the type's table for all points).
+    subroutine law_forces(laws, delta, force)
+        class(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: delta(:)
+        real(dp), intent(out) :: force(:)
+
+        if (size(laws) == 1) then
+            force(1) = laws(1)%force(delta(1))
+        else if (size(laws) > 1) then
+            call laws(1)%forces(laws, delta, force)
+        end if
+    end subroutine law_forces
 
     !> dF/ddelta [N/m] (the law's tangent) in compression, zero otherwise.
     elemental real(dp) function slope(law, delta)
