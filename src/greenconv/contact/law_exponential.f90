@@ -35,16 +35,19 @@ module greenconv_contact_law_exponential
 
 contains
 
-    !> The exponential law of the parameters [F_s [N], delta_s [m]] (the registry's constructor).
-    subroutine build_exponential_law(values, law)
-        !> F_s [N] and delta_s [m].
-        real(dp), intent(in) :: values(:)
-        !> The law.
-        class(contact_law), allocatable, intent(out) :: law
+    !> Exponential laws of the parameters values(:, i) = [F_s [N], delta_s [m]], one a point
+    !> (the registry's constructor).
+    subroutine build_exponential_law(values, laws)
+        !> F_s [N] and delta_s [m] of each law (2 x n).
+        real(dp), intent(in) :: values(:, :)
+        !> The laws (n).
+        class(contact_law), allocatable, intent(out) :: laws(:)
 
-        allocate(law, source=exponential_law(force_scale=values(1), compression_scale=values(2)))
+        integer :: i
+
+        allocate (laws, source=[(exponential_law(force_scale=values(1, i), compression_scale=values(2, i)), &
+                                 i=1, size(values, 2))])
     end subroutine build_exponential_law
-
     !> Contact force [N]: F_s*(exp(delta/delta_s) - 1) when delta > 0, exactly zero otherwise
     !> (exp(x) - 1 to full relative accuracy at small x: a light touch keeps its digits).
     elemental real(dp) function exponential_force(self, delta)

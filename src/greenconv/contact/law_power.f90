@@ -36,16 +36,18 @@ module greenconv_contact_law_power
 
 contains
 
-    !> The power law of the parameters [k_c [N/m^p], p] (the registry's constructor).
-    subroutine build_power_law(values, law)
-        !> k_c [N/m^p] and p.
-        real(dp), intent(in) :: values(:)
-        !> The law.
-        class(contact_law), allocatable, intent(out) :: law
+    !> Power laws of the parameters values(:, i) = [k_c [N/m^p], p], one a point (the
+    !> registry's constructor).
+    subroutine build_power_law(values, laws)
+        !> k_c [N/m^p] and p of each law (2 x n).
+        real(dp), intent(in) :: values(:, :)
+        !> The laws (n).
+        class(contact_law), allocatable, intent(out) :: laws(:)
 
-        allocate(law, source=power_law(stiffness=values(1), exponent=values(2)))
+        integer :: i
+
+        allocate (laws, source=[(power_law(stiffness=values(1, i), exponent=values(2, i)), i=1, size(values, 2))])
     end subroutine build_power_law
-
     !> Contact force [N]: k_c*delta^p when delta > 0, exactly zero otherwise.
     elemental real(dp) function power_force(self, delta)
         !> The contact law.

@@ -17,7 +17,7 @@ module greenconv_contact_laws
     private
 
     public :: contact_law, power_law, exponential_law
-    public :: law_kind, law_kinds, find_law, law_names, new_law, describe_law, replicate_law
+    public :: law_kind, law_kinds, find_law, law_names, new_law, new_laws, describe_law, replicate_law
     public :: parameter_list, parameter_text, first_bad_parameter, law_choices
     public :: max_law_parameters
 
@@ -33,13 +33,14 @@ module greenconv_contact_laws
     end interface contact_law
 
     abstract interface
-        !> A law of the parameter values given (their count and ranges checked by `new_law`).
-        subroutine law_builder(values, law)
+        !> Laws of the parameter values given, one a column (their count and ranges checked by
+        !> `new_laws`).
+        subroutine law_builder(values, laws)
             import :: contact_law, dp
-            !> Parameter values, in the row's order and units.
-            real(dp), intent(in) :: values(:)
-            !> The law.
-            class(contact_law), allocatable, intent(out) :: law
+            !> Parameter values, a column a law, in the row's order and units.
+            real(dp), intent(in) :: values(:, :)
+            !> The laws, of the row's type.
+            class(contact_law), allocatable, intent(out) :: laws(:)
         end subroutine law_builder
     end interface
 
@@ -140,30 +141,59 @@ contains
         !> Set when the name or a value is refused.
         type(error_type), allocatable, intent(out) :: error
 
+        class(contact_law), allocatable :: laws(:)
+
+        call new_laws(name, reshape(values, [size(values), 1]), laws, error)
+        if (.not. allocated(error)) allocate (law, source=laws(1))
+    end subroutine new_law
+
+    !> The laws `name` of the parameters values(:, i), one a point, an array of one dynamic
+    !> type as the steppers take it; checked as `new_law` checks one, the message naming the
+    !> point when there are several.
+    subroutine new_laws(name, values, laws, error)
+        !> Law name, as the registry writes it.
+        character(len=*), intent(in) :: name
+        !> Parameter values, a column a point, in the row's order and units.
+        real(dp), intent(in) :: values(:, :)
+        !> The laws; unallocated on error.
+        class(contact_law), allocatable, intent(out) :: laws(:)
+        !> Set when the name or a value is refused.
+        type(error_type), allocatable, intent(out) :: error
+
         type(law_kind) :: kind
-        integer :: i
+        character(len=:), allocatable :: point
+        integer :: i, j
 
         kind = find_law(name)
         if (kind%id == 0) then
             call fatal_error(error, "contact law: unknown law '"//trim(name)//"', expected one of "//law_names())
             return
         end if
-        if (size(values) /= kind%n_parameters) then
+        if (size(values, 1) /= kind%n_parameters) then
             call fatal_error(error, "contact law '"//trim(kind%name)//"': expected "//int_text(kind%n_parameters) &
-                             //' parameters ('//parameter_list(kind)//'), found '//int_text(size(values)))
+                             //' parameters ('//parameter_list(kind)//'), found '//int_text(size(values, 1)))
             return
         end if
-        i = first_bad_parameter(kind, values)
-        if (i > 0) then
-            call fatal_error(error, "contact law '"//trim(kind%name)//"': parameter "//parameter_text(kind, i) &
-                             //' must be finite and > '//sci_text(kind%above(i))//', found '//sci_text(values(i)))
-            return
-        end if
-        call kind%build(values, law)
-        call law%check(error)
-        if (allocated(error)) deallocate(law)
-    end subroutine new_law
-
+        do j = 1, size(values, 2)
+            point = ''
+            if (size(values, 2) > 1) point = 'point '//int_text(j)//': '
+            i = first_bad_parameter(kind, values(:, j))
+            if (i > 0) then
+                call fatal_error(error, point//"contact law '"//trim(kind%name)//"': parameter " &
+                                 //parameter_text(kind, i)//' must be finite and > '//sci_text(kind%above(i)) &
+                                 //', found '//sci_text(values(i, j)))
+                return
+            end if
+        end do
+        call kind%build(values, laws)
+        do j = 1, size(laws)
+            call laws(j)%check(error)
+            if (allocated(error)) then
+                deallocate (laws)
+                return
+            end if
+        end do
+    end subroutine new_laws
     !> One line naming a law with its parameters, e.g. "power law k_c = 1.00E+06 N/m^p, p = 1.50E+00".
     function describe_law(law) result(text)
         !> The law.
