@@ -413,7 +413,7 @@ contains
                 end if
                 if (.not. allocated(error) .and. door == 2) then
                     call gcmacc(handle, 0.0_dp, ierr, message)
-                    call gcmbeg(handle, 1, [k_c(scene)], [p_of(scene)], [scene%preload], ierr, message)
+                    call gcmbeg(handle, 1, [law_value(scene, 1)], [law_value(scene, 2)], [scene%preload], ierr, message)
                     do n = 1, n_steps
                         if (ierr /= 0) exit
                         call gcmstp(handle, 1, road(n:n), one, f_asked(n:n), one, ierr, message)
@@ -456,33 +456,24 @@ contains
         real(dp) :: u(size(road)), delta(size(road))
 
         if (door == 1) then
-            call gccont(handle, k_c(scene), p_of(scene), scene%preload, size(road), road, u, force, &
+            call gccont(handle, law_value(scene, 1), law_value(scene, 2), scene%preload, size(road), road, u, force, &
                         delta, ierr, message)
         else
-            call gcmrun(handle, 1, size(road), [k_c(scene)], [p_of(scene)], [scene%preload], road, &
+            call gcmrun(handle, 1, size(road), [law_value(scene, 1)], [law_value(scene, 2)], [scene%preload], road, &
                         u, force, delta, ierr, message)
         end if
     end subroutine door_run
 
-    !> The stiffness k_c [N/m^p] of a scene's power law.
-    real(dp) function k_c(scene)
+    !> Parameter i of a scene's law (its power law: 1 the stiffness k_c [N/m^p], 2 the exponent p).
+    real(dp) function law_value(scene, i)
         type(scene_type), intent(in) :: scene
+        integer, intent(in) :: i
 
         real(dp), allocatable :: values(:)
 
         values = scene%law%parameters()
-        k_c = values(1)
-    end function k_c
-
-    !> The exponent p of a scene's power law.
-    real(dp) function p_of(scene)
-        type(scene_type), intent(in) :: scene
-
-        real(dp), allocatable :: values(:)
-
-        values = scene%law%parameters()
-        p_of = values(2)
-    end function p_of
+        law_value = values(i)
+    end function law_value
 
     !> One case's line: estimate, true error, their ratio.
     subroutine report_case(label, method, estimate, truth)
