@@ -239,7 +239,7 @@ contains
         contacts(5) = 'n_points_x = 100, n_points_y = 100, stiffness = 1e5, preload = 100.0, exponent = 1.0'
         expected(5) = '&contact n_points_x, n_points_y: expected at most'
         contacts(6) = 'n_points_x = 4, preload = 100.0, exponent = 1.0'
-        expected(6) = 'or stiffness_per_area or wheel_radius, found neither'
+        expected(6) = 'or stiffness_per_area or wheel_radius or law_parameters, found neither'
         do k = 1, size(contacts)
             call read_scene_text(scratch, 'bad.nml', head//new_line('a')//" &structure model = '" &
                                  //trim(models(k))//"' /"//new_line('a')//road//new_line('a')//new_line('a') &
