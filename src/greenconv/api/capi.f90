@@ -29,7 +29,7 @@ module greenconv_capi
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
     use greenconv_contact_single, only: contact_options, contact_response
-    use greenconv_capi_law, only: law_box, law_at, door_of
+    use greenconv_capi_law, only: law_box, law_at, door_name
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
@@ -380,6 +380,7 @@ contains
 
         type(convolver_box), pointer :: box
         type(law_box), pointer :: spring
+        character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         real(dp) :: u, f, delta
 
@@ -388,7 +389,8 @@ contains
         status = stat_input
         if (.not. (associated(box) .and. associated(spring) .and. c_associated(displacement) .and. &
                    c_associated(force))) return
-        call step_box(door_of(spring, 'gc_contact_step_law'), box, spring%law, preload, road, u, f, delta, error)
+        call door_name(spring, 'gc_contact_step_law', caller)
+        call step_box(caller, box, spring%law, preload, road, u, f, delta, error)
         if (allocated(error)) return
         call put(displacement, u)
         call put(force, f)
@@ -457,8 +459,7 @@ contains
 
         box => box_at(conv)
         spring => law_at(law)
-        caller = 'gc_run_contact_law'
-        if (associated(spring)) caller = door_of(spring, caller)
+        call door_name(spring, 'gc_run_contact_law', caller)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
@@ -517,8 +518,7 @@ contains
 
         box => box_at(conv)
         spring => law_at(law)
-        caller = 'gc_contact_start_law'
-        if (associated(spring)) caller = door_of(spring, caller)
+        call door_name(spring, 'gc_contact_start_law', caller)
         if (.not. associated(box)) then
             call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
         else if (.not. associated(spring)) then

@@ -17,7 +17,7 @@ module greenconv_capi_law
     implicit none
     private
 
-    public :: law_box, law_at, door_of, laws_at
+    public :: law_box, law_at, door_name, laws_at
     public :: gc_law_new, gc_law_free, gc_law_force, gc_law_compression, greenconv_law_for_door
 
     !> What a `gc_law *` points to.
@@ -42,18 +42,21 @@ contains
         if (c_associated(handle)) call c_f_pointer(handle, box)
     end function law_at
 
-    !> The name a door's messages give: the door a law was made for, else the door's own.
-    function door_of(box, own) result(name)
-        !> The law's box.
-        type(law_box), intent(in) :: box
+    !> The name a door's messages give: the door a law was made for, else the door's own (a
+    !> subroutine: a deferred-length function result would keep its length in static storage).
+    subroutine door_name(box, own, name)
+        !> The law's box, or null.
+        type(law_box), pointer, intent(in) :: box
         !> The door's own name.
         character(len=*), intent(in) :: own
         !> The name.
-        character(len=:), allocatable :: name
+        character(len=:), allocatable, intent(out) :: name
 
         name = own
-        if (allocated(box%door)) name = box%door
-    end function door_of
+        if (associated(box)) then
+            if (allocated(box%door)) name = box%door
+        end if
+    end subroutine door_name
 
     !> The laws of n points from a C array of n `gc_law *` (one law, parameters free per point),
     !> an array of one dynamic type as the steppers take it; status 2 naming the point for a
@@ -87,11 +90,11 @@ contains
                 return
             end if
             if (i == 1) then
-                name = box%law%name()
+                name = trim(box%law%name())
                 point_values = box%law%parameters()
                 allocate (values(size(point_values), n))
             else if (box%law%name() /= name) then
-                call fatal_error(error, caller//': laws['//int_text(i - 1)//"] is a law '"//box%law%name() &
+                call fatal_error(error, caller//': laws['//int_text(i - 1)//"] is a law '"//trim(box%law%name()) &
                                  //"', laws[0] a law '"//name//"': give every point the same law (its parameters " &
                                  //'may differ)')
                 return

@@ -16,6 +16,9 @@ module greenconv_contact_law
 
     public :: contact_law
 
+    !> Length of a law's name (`name`), blank-padded.
+    integer, parameter, public :: law_name_length = 16
+
     !> A contact spring F(delta), active in compression (delta > 0) only: F = 0 for delta <= 0.
     type, abstract :: contact_law
     contains
@@ -79,11 +82,11 @@ module greenconv_contact_law
 
         !> The law's registry name.
         pure function law_name(self) result(name)
-            import :: contact_law
+            import :: contact_law, law_name_length
             !> The contact law.
             class(contact_law), intent(in) :: self
-            !> Its name, e.g. 'power'.
-            character(len=:), allocatable :: name
+            !> Its name, e.g. 'power', blank-padded (a fixed length: no static length per call site).
+            character(len=law_name_length) :: name
         end function law_name
 
         !> The law's parameters [their SI units], in its registry row's order.

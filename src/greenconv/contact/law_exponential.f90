@@ -6,7 +6,7 @@ module greenconv_contact_law_exponential
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_law, only: contact_law, law_name_length
     implicit none
     private
 
@@ -101,7 +101,7 @@ contains
         !> The contact law.
         class(exponential_law), intent(in) :: self
         !> 'exponential'.
-        character(len=:), allocatable :: name
+        character(len=law_name_length) :: name
 
         name = 'exponential'
     end function exponential_name

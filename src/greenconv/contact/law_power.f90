@@ -5,7 +5,7 @@ module greenconv_contact_law_power
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_law, only: contact_law, law_name_length
     implicit none
     private
 
@@ -130,7 +130,7 @@ contains
         !> The contact law.
         class(power_law), intent(in) :: self
         !> 'power'.
-        character(len=:), allocatable :: name
+        character(len=law_name_length) :: name
 
         name = 'power'
     end function power_name

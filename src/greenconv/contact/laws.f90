@@ -10,7 +10,7 @@ module greenconv_contact_laws
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, sci_text
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_law, only: contact_law, law_name_length
     use greenconv_contact_law_power, only: power_law, build_power_law
     use greenconv_contact_law_exponential, only: exponential_law, build_exponential_law
     implicit none
@@ -49,7 +49,7 @@ module greenconv_contact_laws
         !> Row number (1, 2, ...); 0 for no law.
         integer :: id = 0
         !> Name scenes and doors give (`&contact law`, `gc_law_new`).
-        character(len=16) :: name = ''
+        character(len=law_name_length) :: name = ''
         !> Number of parameters.
         integer :: n_parameters = 0
         !> Their names, as messages and summaries write them.
@@ -104,7 +104,7 @@ contains
     !> The registry's names, one a row, blank-padded.
     pure function law_choices() result(names)
         !> The names.
-        character(len=16) :: names(law_count)
+        character(len=law_name_length) :: names(law_count)
 
         type(law_kind) :: laws(law_count)
 
@@ -112,22 +112,36 @@ contains
         names = laws%name
     end function law_choices
 
-    !> The registry's names, quoted and separated by commas: "'power', 'exponential'".
+    !> Length of `law_names()`.
+    pure integer function law_names_length()
+        type(law_kind) :: laws(law_count)
+
+        laws = law_kinds()
+        law_names_length = sum(len_trim(laws%name)) + 2*law_count + 2*(law_count - 1)
+    end function law_names_length
+
+    !> The registry's names, quoted and separated by commas: "'power', 'exponential'" (a
+    !> specification length: no static length per call site, which threads would share).
     pure function law_names() result(text)
         !> The list.
-        character(len=:), allocatable :: text
+        character(len=law_names_length()) :: text
 
         type(law_kind) :: laws(law_count)
-        integer :: i
+        integer :: i, at, width
 
         laws = law_kinds()
         text = ''
+        at = 0
         do i = 1, law_count
-            if (i > 1) text = text//', '
-            text = text//"'"//trim(laws(i)%name)//"'"
+            if (i > 1) then
+                text(at + 1:at + 2) = ', '
+                at = at + 2
+            end if
+            width = len_trim(laws(i)%name) + 2
+            text(at + 1:at + width) = "'"//trim(laws(i)%name)//"'"
+            at = at + width
         end do
     end function law_names
-
     !> The law `name` of the parameters `values`, checked: an unknown name, a wrong count or a
     !> value out of range sets `error` (status `stat_input`) with a message that names the law,
     !> the parameter, its unit and range, and the value found.
@@ -195,11 +209,11 @@ contains
         end do
     end subroutine new_laws
     !> One line naming a law with its parameters, e.g. "power law k_c = 1.00E+06 N/m^p, p = 1.50E+00".
-    function describe_law(law) result(text)
+    subroutine describe_law(law, text)
         !> The law.
         class(contact_law), intent(in) :: law
         !> Its description.
-        character(len=:), allocatable :: text
+        character(len=:), allocatable, intent(out) :: text
 
         type(law_kind) :: kind
         real(dp), allocatable :: values(:)
@@ -207,14 +221,13 @@ contains
 
         kind = find_law(law%name())
         values = law%parameters()
-        text = law%name()//' law'
+        text = trim(law%name())//' law'
         do i = 1, min(kind%n_parameters, size(values))
             if (i > 1) text = text//','
             text = text//' '//trim(kind%parameter_names(i))//' = '//sci_text(values(i))
             if (len_trim(kind%units(i)) > 0) text = text//' '//trim(kind%units(i))
         end do
-    end function describe_law
-
+    end subroutine describe_law
     !> `n` copies of one law, a polymorphic array of its dynamic type (one law at every point).
     subroutine replicate_law(law, n, laws)
         !> The law.
@@ -246,21 +259,48 @@ contains
         end do
     end function first_bad_parameter
 
+    !> Length of `parameter_list(kind)`.
+    pure integer function parameter_list_length(kind)
+        type(law_kind), intent(in) :: kind
+
+        integer :: i
+
+        parameter_list_length = 2*max(kind%n_parameters - 1, 0)
+        do i = 1, kind%n_parameters
+            parameter_list_length = parameter_list_length + parameter_text_length(kind, i)
+        end do
+    end function parameter_list_length
+
     !> "k_c [N/m^p], p": the parameters of a row with their units.
     pure function parameter_list(kind) result(text)
         !> The row.
         type(law_kind), intent(in) :: kind
         !> The list.
-        character(len=:), allocatable :: text
+        character(len=parameter_list_length(kind)) :: text
 
-        integer :: i
+        integer :: i, at, width
 
         text = ''
+        at = 0
         do i = 1, kind%n_parameters
-            if (i > 1) text = text//', '
-            text = text//parameter_text(kind, i)
+            if (i > 1) then
+                text(at + 1:at + 2) = ', '
+                at = at + 2
+            end if
+            width = parameter_text_length(kind, i)
+            text(at + 1:at + width) = parameter_text(kind, i)
+            at = at + width
         end do
     end function parameter_list
+
+    !> Length of `parameter_text(kind, i)`.
+    pure integer function parameter_text_length(kind, i)
+        type(law_kind), intent(in) :: kind
+        integer, intent(in) :: i
+
+        parameter_text_length = len_trim(kind%parameter_names(i))
+        if (len_trim(kind%units(i)) > 0) parameter_text_length = parameter_text_length + len_trim(kind%units(i)) + 3
+    end function parameter_text_length
 
     !> "k_c [N/m^p]" or "p": one parameter of a row with its unit.
     pure function parameter_text(kind, i) result(text)
@@ -269,12 +309,14 @@ contains
         !> The parameter's index.
         integer, intent(in) :: i
         !> Its name and unit.
-        character(len=:), allocatable :: text
+        character(len=parameter_text_length(kind, i)) :: text
 
-        text = trim(kind%parameter_names(i))
-        if (len_trim(kind%units(i)) > 0) text = text//' ['//trim(kind%units(i))//']'
+        if (len_trim(kind%units(i)) > 0) then
+            text = trim(kind%parameter_names(i))//' ['//trim(kind%units(i))//']'
+        else
+            text = trim(kind%parameter_names(i))
+        end if
     end function parameter_text
-
     !> The power law k_c*delta^p (defaults: k_c = 1e6 N/m^p, p = 3/2), unchecked.
     elemental function power_contact_law(stiffness, exponent) result(law)
         !> Contact stiffness k_c [N/m^p].

@@ -80,7 +80,7 @@ contains
         type(structure_model) :: structure
         type(structure_kind) :: model
         type(contact_run) :: run
-        character(len=:), allocatable :: summary
+        character(len=:), allocatable :: summary, law_line
         integer :: block_size
 
         call check_inputs_kept(scene, error)
@@ -107,11 +107,9 @@ contains
             write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         end if
         if (present(block)) block_size = max(block, 1)
-        if (model%multi_point()) then
-            write (unit, '(a)') '# contact: '//describe_law(scene%law)//' at each point'
-        else
-            write (unit, '(a)') '# contact: '//describe_law(scene%law)
-        end if
+        call describe_law(scene%law, law_line)
+        if (model%multi_point()) law_line = law_line//' at each point'
+        write (unit, '(a)') '# contact: '//law_line
         call run_methods(scene, structure, run, unit, block_size, error)
         if (associated(model%receptance)) call write_linear_reference(scene, model%receptance, unit, error)
         if (model%multi_point()) call write_patch_reference(scene, run%points, unit, error)
