@@ -27,6 +27,7 @@ module bench_contact_stability_mod
     use greenconv_model_road, only: sine_road
     use greenconv_io_files, only: write_columns, make_directory
     use verify_contact_mod, only: contact_frequency
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -118,7 +119,7 @@ contains
         if (allocated(error)) return
         allocate (map(size(k_c)*levels))
         do i = 1, size(k_c)
-            call map_row(contact_law(k_c(i), p), smallest, levels, height, t_end, &
+            call map_row(power_law(k_c(i), p), smallest, levels, height, t_end, &
                          map((i - 1)*levels + 1:i*levels), error)
             if (allocated(error)) return
         end do
@@ -152,7 +153,7 @@ contains
 
     !> The cells of one contact law: a reference run, then each dt with both schemes.
     subroutine map_row(law, dt_min, n_dt, amplitude, duration, row, error)
-        type(contact_law), intent(in) :: law
+        type(power_law), intent(in) :: law
         real(dp), intent(in) :: dt_min, amplitude, duration
         integer, intent(in) :: n_dt
         type(stability_cell), intent(out) :: row(:)
@@ -206,7 +207,7 @@ contains
 
     !> One run of a cell against the reference samples u_ref at its own times.
     subroutine run_cell(law, dt, amplitude, scheme, u_ref, bounded, relative_error)
-        type(contact_law), intent(in) :: law
+        type(power_law), intent(in) :: law
         real(dp), intent(in) :: dt, amplitude
         character(len=*), intent(in) :: scheme
         real(dp), intent(in) :: u_ref(:)
@@ -226,7 +227,7 @@ contains
 
     !> The scene over n_steps steps of dt (n_steps + 1 samples, t = 0 to n_steps*dt).
     subroutine run_scene(law, dt, n_steps, amplitude, options, response, error)
-        type(contact_law), intent(in) :: law
+        type(power_law), intent(in) :: law
         real(dp), intent(in) :: dt, amplitude
         integer, intent(in) :: n_steps
         type(contact_options), intent(in) :: options

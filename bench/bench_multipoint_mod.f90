@@ -28,6 +28,7 @@ module bench_multipoint_mod
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_contact_multi, only: newton_options, multi_contact_step
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_band, contact_positions
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -40,7 +41,7 @@ module bench_multipoint_mod
 
     !> The contact scene a timing runs.
     type :: bench_scene
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preload(:), delta0(:), road(:, :)
     end type bench_scene
 
@@ -147,7 +148,7 @@ contains
 
         allocate (scene%laws(n_c), scene%preload(n_c), scene%delta0(n_c), scene%road(0:n_steps - 1, n_c))
         scene%preload(:) = wheel_load/n_c
-        scene%laws(:) = contact_law(wheel_load/n_c/compression0**1.5_dp, 1.5_dp)
+        scene%laws(:) = power_law(wheel_load/n_c/compression0**1.5_dp, 1.5_dp)
         scene%delta0(:) = scene%laws%compression(scene%preload)
         road = new_random_road(35, 10, 0.5e-3_dp, 0.05_dp, speed)
         offset(:) = contact_positions(0.0_dp, patch, n_c)/speed

@@ -19,7 +19,7 @@
 module bench_scale_mod
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law
     use greenconv_model_road, only: random_road, new_random_road
     use greenconv_conv_multipoint, only: sample_green_matrix
     use greenconv_model_point_modes, only: point_modes
@@ -28,6 +28,7 @@ module bench_scale_mod
     use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
                                        multi_contact_block
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_band, contact_positions
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -161,7 +162,7 @@ contains
         type(modal_green_matrix) :: conv
         type(multi_contact_state) :: state
         type(multi_contact_response) :: response
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preload(:), road(:, :), offset(:)
         real(dp) :: t0, t1, t2
         type(random_road) :: profile
@@ -173,7 +174,7 @@ contains
         n_m = size(description%shape, 2)
         allocate (laws(n_c), preload(n_c), road(0:steps - 1, n_c))
         preload(:) = wheel_load/n_c
-        laws(:) = contact_law(wheel_load/n_c/compression0**1.5_dp, 1.5_dp)
+        laws(:) = power_law(wheel_load/n_c/compression0**1.5_dp, 1.5_dp)
         profile = new_random_road(35, 10, 0.5e-3_dp, 0.05_dp, speed)
         offset = contact_positions(0.0_dp, patch, n_c)/speed
         do i = 1, n_c

@@ -19,7 +19,7 @@ contains
         !> The convolution method.
         class(convolver), intent(inout) :: conv
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Road heights u_r(t_n) [m].
         real(dp), intent(in) :: road(:)
         !> Static preload F0 [N].

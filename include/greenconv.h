@@ -266,10 +266,46 @@ int gc_convolver_warnings(const gc_convolver *conv, char *text, size_t text_len)
 /*
  * The contact (eqs. 21-24): the body displacement u [m] and the road height u_r [m] point
  * up, u is measured from the static equilibrium under the preload F0 [N]; the compression is
- * delta = delta0 + u_r - u with delta0 = (F0/k_c)^(1/p); the contact force is
- * F = k_c*delta^p for delta > 0, else 0 (p = 1.5: Hertz, p = 1: linear spring); the structure
- * is loaded by F - F0. Each step is explicit: delta from the history displacement u_h.
+ * delta = delta0 + u_r - u with delta0 the compression that carries F0; the contact force is
+ * F(delta) for delta > 0, else 0; the structure is loaded by F - F0. Each step is explicit:
+ * delta from the history displacement u_h. The law F(delta) is a gc_law, or, at the doors that
+ * take (k_c, p), the power law F = k_c*delta^p (p = 1.5: Hertz, p = 1: linear spring), which
+ * are the `_law` doors with that law.
  */
+
+/**
+ * A contact law: an opaque object made by gc_law_new from a name of the law registry and its
+ * parameter values (SI units, in this order), freed by gc_law_free:
+ *   "power"        F = k_c*delta^p:                  k_c [N/m^p] > 0, p > 0
+ *   "exponential"  F = F_s*(exp(delta/delta_s) - 1): F_s [N] > 0, delta_s [m] > 0
+ *                  (pressure-overclosure: soft at first touch, stiffening without bound)
+ * A law is read-only once made: one law may serve several convolvers, points and threads.
+ */
+typedef struct gc_law gc_law;
+
+/** Make a law: GC_ERROR_INPUT for an unknown name (the message lists the laws), a wrong count
+ *  or a value out of range (the message names the parameter, its unit and range, and the
+ *  value), *law then NULL. */
+int gc_law_new(const char *name, const double *parameters, int n_parameters, gc_law **law, char *errmsg,
+               size_t errmsg_len);
+/** Free a law (NULL: nothing); the contact runs it was given to do not keep it. */
+void gc_law_free(gc_law *law);
+/** The force F(delta) [N] at a compression delta [m] (0 for delta <= 0) into *force. */
+int gc_law_force(const gc_law *law, double compression, double *force);
+/** The compression [m] that carries a force F >= 0 [N] (the static compression under a
+ *  preload) into *compression; GC_ERROR_INPUT for F < 0. */
+int gc_law_compression(const gc_law *law, double force, double *compression);
+
+/** gc_contact_step with a law. */
+int gc_contact_step_law(gc_convolver *conv, const gc_law *law, double preload, double road,
+                        double *displacement, double *force, double *compression);
+/** gc_run_contact_opts with a law (options NULL: the defaults). */
+int gc_run_contact_law(gc_convolver *conv, const gc_law *law, double preload, int n_steps,
+                       const double *road, const gc_contact_options *options, double *displacement,
+                       double *force, double *compression, char *errmsg, size_t errmsg_len);
+/** gc_contact_start with a law; then gc_contact_advance as for gc_contact_start. */
+int gc_contact_start_law(gc_convolver *conv, const gc_law *law, double preload,
+                         const gc_contact_options *options, char *errmsg, size_t errmsg_len);
 
 /**
  * One contact step: road height `road` [m] at this step in; displacement u [m], contact force
@@ -558,6 +594,16 @@ int gc_multi_contact_step(gc_multi_convolver *conv, int n_points, const double *
 int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps, const double *k_c,
                          const double *p, const double *preload, const double *road, double *displacement,
                          double *force, double *compression, char *errmsg, size_t errmsg_len);
+/** gc_multi_contact_start with laws: laws[i] is point i's law, n_points handles (one handle may
+ *  serve several points); every point has the same law (the same name), its parameters free
+ *  per point, else GC_ERROR_INPUT naming the point. The power law with k_c[i], p[i] gives what
+ *  gc_multi_contact_start gives. */
+int gc_multi_contact_start_law(gc_multi_convolver *conv, int n_points, const gc_law *const *laws,
+                               const double *preload, char *errmsg, size_t errmsg_len);
+/** gc_multi_run_contact with laws as gc_multi_contact_start_law takes them. */
+int gc_multi_run_contact_law(gc_multi_convolver *conv, int n_points, int n_steps, const gc_law *const *laws,
+                             const double *preload, const double *road, double *displacement, double *force,
+                             double *compression, char *errmsg, size_t errmsg_len);
 
 /**
  * A multi-point convolver on a universal file of normal modes from an FE model (path: nodes

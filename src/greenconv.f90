@@ -31,6 +31,7 @@ module greenconv
     use greenconv_contact_single, only: contact_law, contact_options, contact_response, run_contact, contact_state, &
                                         start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact
+    use greenconv_contact_laws, only: power_law, exponential_law, new_law, describe_law, law_names
     use greenconv_scene_facade, only: scene_type, read_scene, run_scene, check_scene
     use greenconv_api_library, only: new_convolver, free_convolver, contact_step, run_scene_file
     implicit none
@@ -52,6 +53,8 @@ module greenconv
     public :: convolver, new_convolver, free_convolver
     ! single-point contact: whole runs, single steps, streamed blocks
     public :: contact_law, contact_options, contact_response, run_contact, contact_step
+    ! contact laws: the registry's constructor by name, the shipped laws, one line naming a law
+    public :: power_law, exponential_law, new_law, describe_law, law_names
     public :: contact_state, start_contact, contact_block
     ! multi-point contact
     public :: point_modes, multipoint_convolver, new_multipoint_convolver

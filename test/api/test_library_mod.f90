@@ -13,6 +13,7 @@ module test_library_mod
     use greenconv_api_all, only: scene_type, build_structure
     use greenconv_api_handle, only: frf_file_structure
     use scene_text_mod, only: read_scene_text
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -66,10 +67,10 @@ contains
                                conv, build_error)
             call check(error, .not. allocated(build_error), 'new_convolver '//trim(methods(i)))
             if (allocated(error)) return
-            call run_contact(conv, contact_law(k_c, exponent), heights, preload, response)
+            call run_contact(conv, power_law(k_c, exponent), heights, preload, response)
             call conv%reset()
             do n = 1, n_steps
-                call contact_step(conv, contact_law(k_c, exponent), heights(n), preload, u(n), f(n), delta(n))
+                call contact_step(conv, power_law(k_c, exponent), heights(n), preload, u(n), f(n), delta(n))
             end do
             worst = max(worst, maxval(abs(u - response%displacement)), maxval(abs(f - response%force)), &
                         maxval(abs(delta - response%compression)))
@@ -97,8 +98,8 @@ contains
         if (.not. allocated(build_error)) call new_convolver('direct', sampled, dt, n_steps, on_samples, build_error)
         call check(error, .not. allocated(build_error), 'both convolvers built')
         if (allocated(error)) return
-        call run_contact(on_modes, contact_law(k_c, exponent), road(), preload, a)
-        call run_contact(on_samples, contact_law(k_c, exponent), road(), preload, b)
+        call run_contact(on_modes, power_law(k_c, exponent), road(), preload, a)
+        call run_contact(on_samples, power_law(k_c, exponent), road(), preload, b)
         call note('max|u_samples - u_modes|/max|u|', maxval(abs(a%displacement - b%displacement)) &
                   /maxval(abs(a%displacement)))
         call check(error, maxval(abs(a%displacement - b%displacement)), 0.0_dp, 'same displacements', &
@@ -158,10 +159,10 @@ contains
         heights = road()
         call new_convolver('modal', structure_from_modes(sdof_modes(mass, stiffness, xi)), dt, n_steps, conv, &
                            build_error)
-        call run_contact(conv, contact_law(k_c, exponent), heights, preload, modal)
+        call run_contact(conv, power_law(k_c, exponent), heights, preload, modal)
         call new_convolver('direct', structure_from_modes(sdof_modes(mass, stiffness, xi)), dt, n_steps, conv, &
                            build_error)
-        call run_contact(conv, contact_law(k_c, exponent), heights, preload, direct)
+        call run_contact(conv, power_law(k_c, exponent), heights, preload, direct)
         call gcsdof(mass, stiffness, xi, dt, n_steps, 'MODAL', handle, ierr, message)
         call gccont(handle, k_c, exponent, preload, n_steps, heights, u, f, delta, ierr, message)
         call gcfree(handle)

@@ -14,6 +14,7 @@ module test_multidoors_mod
     use greenconv_legacy_multi, only: gcmmod, gcmsmp, gcmplt, gcmfre, gcmrun, gcmbeg, gcmstp, gcmhis, gcmw0, gcmnpt, &
                                       gcmopt, gcmdsc
     use greenconv_legacy, only: gchist, gcpush, gcw0
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -130,7 +131,7 @@ contains
         worst = 0.0_dp
         do m = 1, size(methods)
             call make_multipoint_convolver(trim(methods(m)), modes, dt, 0.01_dp, n_steps, conv, accuracy, fail)
-            call run_multi_contact(conv, [(contact_law(k_c, exponent), n=1, n_c)], road, f0, response, fail)
+            call run_multi_contact(conv, [(power_law(k_c, exponent), n=1, n_c)], road, f0, response, fail)
             call check(error, .not. allocated(fail), trim(methods(m))//': the Fortran API''s run failed')
             if (allocated(error)) return
             call conv%release()
@@ -182,7 +183,7 @@ contains
         p(:) = exponent
         f0(:) = preload
         call new_sampled_green_matrix(g, dt, conv, fail)
-        call run_multi_contact(conv, [(contact_law(k_c, exponent), i=1, n_c)], road, f0, response, fail)
+        call run_multi_contact(conv, [(power_law(k_c, exponent), i=1, n_c)], road, f0, response, fail)
         call gcmsmp(n_c, n_steps, g, dt, n_steps, 0.0_dp, 'Direct', handle, ierr, message)
         call check(error, ierr == 0, 'gcmsmp: '//trim(message))
         if (allocated(error)) return

@@ -20,6 +20,7 @@ module test_reliability_mod
                                  multi_contact_response, contact_law
     use greenconv_conv_builder, only: make_multipoint_convolver
     use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmhis, gcmpsh, gcmfre, gcmplt
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -530,7 +531,7 @@ contains
             call make_multipoint_convolver(trim(methods(m)), modes, dt, 0.01_dp, n_short, conv, accuracy, run_error)
             call check(error, .not. allocated(run_error), trim(methods(m))//': not made')
             if (allocated(error)) return
-            call run_multi_contact(conv, [(contact_law(k_c(i), p(i)), i=1, n_c)], road, preload, response, run_error)
+            call run_multi_contact(conv, [(power_law(k_c(i), p(i)), i=1, n_c)], road, preload, response, run_error)
             if (cut) then
                 call check(error, allocated(run_error), trim(methods(m))//': a run of 400 steps accepted')
                 if (allocated(error)) return

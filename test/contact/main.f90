@@ -8,6 +8,7 @@ program greenconv_tests_contact
     use test_implicit_mod, only: collect_implicit
     use test_accuracy_mod, only: collect_accuracy
     use test_multiorder_mod, only: collect_multiorder
+    use test_laws_mod, only: collect_laws
     implicit none
 
     call run_layer('contact', [ &
@@ -16,5 +17,6 @@ program greenconv_tests_contact
                     new_testsuite('lowrank', collect_lowrank), &
                     new_testsuite('implicit', collect_implicit), &
                     new_testsuite('accuracy', collect_accuracy), &
-                    new_testsuite('multiorder', collect_multiorder)])
+                    new_testsuite('multiorder', collect_multiorder), &
+                    new_testsuite('laws', collect_laws)])
 end program greenconv_tests_contact

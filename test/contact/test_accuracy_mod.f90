@@ -16,6 +16,7 @@ module test_accuracy_mod
     use greenconv_api_all, only: convolver, contact_law, contact_response, run_contact, sdof_modes, make_convolver, &
                                  error_type, sine_road, structure_from_modes, structure_model
     use verify_contact_mod, only: contact_reference
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -53,7 +54,7 @@ contains
         real(dp), intent(in) :: dt
         real(dp), allocatable, intent(out) :: u(:), f(:)
 
-        call contact_reference(sdof_modes(mass, stiffness, xi), contact_law(k_contact, exponent), scene_road(), &
+        call contact_reference(sdof_modes(mass, stiffness, xi), power_law(k_contact, exponent), scene_road(), &
                                preload, dt, nint(duration/dt), u, f)
     end subroutine reference
 
@@ -82,7 +83,7 @@ contains
         call check(error, .not. allocated(failure), method//': make_convolver failed')
         if (allocated(error)) return
         road = scene_road()
-        call run_contact(conv, contact_law(k_contact, exponent), road%sample(dt, n_steps), preload, response)
+        call run_contact(conv, power_law(k_contact, exponent), road%sample(dt, n_steps), preload, response)
         err = norm2(response%displacement - u_fine(::stride))/norm2(u_fine(::stride))
     end subroutine method_error
 

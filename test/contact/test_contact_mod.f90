@@ -9,6 +9,7 @@ module test_contact_mod
     use greenconv_api_all, only: convolver, contact_law, contact_response, run_contact, sdof_modes, make_convolver, &
                                  error_type, sine_road, structure_from_modes
     use verify_contact_mod, only: contact_reference
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -64,15 +65,15 @@ contains
         if (allocated(error)) error stop 'test_contact_mod: cannot build a convolver'
         road%amplitude = amplitude
         road%omega = omega_road
-        call run_contact(conv, contact_law(k_contact, exponent), road%sample(dt, n_steps), preload, response)
+        call run_contact(conv, power_law(k_contact, exponent), road%sample(dt, n_steps), preload, response)
     end subroutine run_method
 
     subroutine test_law(error)
         type(test_error), allocatable, intent(out) :: error
 
-        type(contact_law) :: law
+        type(power_law) :: law
 
-        law = contact_law(k_contact, exponent)
+        law = power_law(k_contact, exponent)
         call check(error, law%force(4.0e-4_dp), k_contact*4.0e-4_dp*sqrt(4.0e-4_dp), 'k_c*delta^1.5', &
                    thr=1.0e-14_dp, rel=.true.)
         if (allocated(error)) return
@@ -143,7 +144,7 @@ contains
         road%amplitude = amplitude
         road%omega = omega_road
         call reference_solution(u_ref, f_ref)
-        call contact_reference(sdof_modes(mass, stiffness, xi), contact_law(k_contact, exponent), road, preload, &
+        call contact_reference(sdof_modes(mass, stiffness, xi), power_law(k_contact, exponent), road, preload, &
                                dt, n_steps, u_lib, f_lib)
         call note('max du/max|u|', maxval(abs(u_lib - u_ref))/maxval(abs(u_ref)))
         call note('max dF/max F', maxval(abs(f_lib - f_ref))/maxval(f_ref))

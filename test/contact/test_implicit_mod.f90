@@ -11,6 +11,7 @@ module test_implicit_mod
                                  sdof_receptance, make_convolver, error_type, stat_input, stat_numerical, sine_road, &
                                  structure_from_modes, new_direct_convolver, direct_convolver
     use verify_contact_mod, only: contact_frequency, contact_reference
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -48,7 +49,7 @@ contains
     !> The SDOF of Tab. 1 on a sine road, through the driver's convolver factory.
     subroutine run_sdof(method, law, road_amplitude, road_omega, step, n_steps, options, response, error)
         character(len=*), intent(in) :: method
-        type(contact_law), intent(in) :: law
+        type(power_law), intent(in) :: law
         real(dp), intent(in) :: road_amplitude, road_omega, step
         integer, intent(in) :: n_steps
         type(contact_options), intent(in) :: options
@@ -101,11 +102,11 @@ contains
             call make_sdof(trim(methods(i)), dt, 2000, conv)
             call check(error, conv%instant_weight() == 0.0_dp, trim(methods(i))//': w0 = 0')
             if (allocated(error)) return
-            call run_sdof(trim(methods(i)), contact_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
+            call run_sdof(trim(methods(i)), power_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
                           scheme('implicit'), implicit)
-            call run_sdof(trim(methods(i)), contact_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
+            call run_sdof(trim(methods(i)), power_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
                           scheme('explicit'), explicit)
-            call run_sdof(trim(methods(i)), contact_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
+            call run_sdof(trim(methods(i)), power_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, &
                           contact_options(), default)
             call check(error, same(implicit, explicit) .and. same(default, explicit), &
                        trim(methods(i))//': implicit, explicit and default histories identical')
@@ -145,8 +146,8 @@ contains
         road = h
         call make_sdof('exact', dt, n_steps, conv)
         w0 = conv%instant_weight()
-        call run_contact(conv, contact_law(k_c, 1.0_dp), road, preload, implicit, scheme('implicit'))
-        call run_contact(conv, contact_law(k_c, 1.0_dp), road, preload, explicit, scheme('explicit'))
+        call run_contact(conv, power_law(k_c, 1.0_dp), road, preload, implicit, scheme('implicit'))
+        call run_contact(conv, power_law(k_c, 1.0_dp), road, preload, explicit, scheme('explicit'))
         exact = k_c*h/(stiffness + k_c)
         explicit_limit = k_c*h/(stiffness + k_c - stiffness*k_c*w0)
         call note('implicit |u - static|/static', abs(implicit%displacement(n_steps - 1) - exact)/exact)
@@ -182,7 +183,7 @@ contains
         do i = 1, 2
             step = dt/i
             n_steps = nint(3.0_dp/step)
-            call run_sdof('exact', contact_law(k_c, 1.0_dp), a, w, step, n_steps, scheme('implicit'), response)
+            call run_sdof('exact', power_law(k_c, 1.0_dp), a, w, step, n_steps, scheme('implicit'), response)
             call check(error, all(response%force > 0.0_dp), 'the contact stays closed')
             if (allocated(error)) return
             errors(i) = 0.0_dp
@@ -217,9 +218,9 @@ contains
         type(error_type), allocatable :: fault
         real(dp) :: u_ref(0:n_steps - 1), omega_c, relative
 
-        omega_c = contact_frequency(contact_law(k_c, 1.0_dp), preload, mass)
+        omega_c = contact_frequency(power_law(k_c, 1.0_dp), preload, mass)
         call note('omega_c*dt', omega_c*dt)
-        call run_sdof('exact', contact_law(k_c, 1.0_dp), a, omega_road, dt, n_steps, scheme('implicit'), implicit, &
+        call run_sdof('exact', power_law(k_c, 1.0_dp), a, omega_road, dt, n_steps, scheme('implicit'), implicit, &
                       fault)
         call check(error, .not. allocated(fault) .and. size(implicit%time) == n_steps, 'implicit: the whole run')
         if (allocated(error)) return
@@ -231,7 +232,7 @@ contains
         call check(error, relative, 0.0_dp, 'implicit: relative L2 error of u against the ODE', &
                    thr=3.0_dp*omega_road/omega_c)
         if (allocated(error)) return
-        call run_sdof('exact', contact_law(k_c, 1.0_dp), a, omega_road, dt, n_steps, scheme('explicit'), explicit, &
+        call run_sdof('exact', power_law(k_c, 1.0_dp), a, omega_road, dt, n_steps, scheme('explicit'), explicit, &
                       fault)
         call check_stopped(error, explicit, fault, n_steps, 'explicit')
     end subroutine test_stiff
@@ -279,11 +280,11 @@ contains
         type(contact_response) :: explicit, implicit
         type(error_type), allocatable :: fault
 
-        call run_sdof('exact', contact_law(1.0e9_dp, 1.0_dp), amplitude, omega_road, dt, n_steps, scheme('explicit'), &
+        call run_sdof('exact', power_law(1.0e9_dp, 1.0_dp), amplitude, omega_road, dt, n_steps, scheme('explicit'), &
                       explicit, fault)
         call check_stopped(error, explicit, fault, n_steps, 'explicit')
         if (allocated(error)) return
-        call run_sdof('exact', contact_law(1.0e9_dp, 1.0_dp), amplitude, omega_road, dt, n_steps, scheme('implicit'), &
+        call run_sdof('exact', power_law(1.0e9_dp, 1.0_dp), amplitude, omega_road, dt, n_steps, scheme('implicit'), &
                       implicit, fault)
         call note('implicit steps done', real(size(implicit%time), dp))
         call note('implicit max|u| [m]', maxval(abs(implicit%displacement)))
@@ -313,7 +314,7 @@ contains
         do i = 1, 3
             step = dt/2**(i - 1)
             n_steps = nint(duration/step)
-            call run_sdof('backward', contact_law(k_c, 1.0_dp), amplitude, omega_road, step, n_steps, &
+            call run_sdof('backward', power_law(k_c, 1.0_dp), amplitude, omega_road, step, n_steps, &
                           scheme('implicit'), implicit, fault)
             call check(error, .not. allocated(fault) .and. size(implicit%time) == n_steps, &
                        'backward, implicit: the whole run without a fault')
@@ -356,7 +357,7 @@ contains
         road%omega = omega_road
         sample_step = dt
         if (present(step)) sample_step = step
-        call contact_reference(sdof_modes(mass, stiffness, xi), contact_law(k_c, p), road, preload, sample_step, &
+        call contact_reference(sdof_modes(mass, stiffness, xi), power_law(k_c, p), road, preload, sample_step, &
                                size(u_ref), u, f, rtol=1.0e-11_dp)
         u_ref(:) = u
         if (present(f_ref)) f_ref(:) = f
@@ -374,9 +375,9 @@ contains
 
         do i = 1, 3
             step = dt/2**(i - 1)
-            call run_sdof('exact', contact_law(k_hertz, p_hertz), amplitude, omega_road, step, 2000*2**(i - 1), &
+            call run_sdof('exact', power_law(k_hertz, p_hertz), amplitude, omega_road, step, 2000*2**(i - 1), &
                           scheme('implicit'), implicit)
-            call run_sdof('exact', contact_law(k_hertz, p_hertz), amplitude, omega_road, step, 2000*2**(i - 1), &
+            call run_sdof('exact', power_law(k_hertz, p_hertz), amplitude, omega_road, step, 2000*2**(i - 1), &
                           scheme('explicit'), explicit)
             differences(i) = maxval(abs(implicit%displacement - explicit%displacement)) &
                              /maxval(abs(implicit%displacement))
@@ -406,9 +407,9 @@ contains
         call make_sdof('exact', dt, 2000, conv)
         w0 = conv%instant_weight()
         do i = 1, 2
-            call run_sdof('exact', contact_law(k_c(i), p(i)), amplitude, omega_road, dt, 2000, scheme('implicit'), &
+            call run_sdof('exact', power_law(k_c(i), p(i)), amplitude, omega_road, dt, 2000, scheme('implicit'), &
                           implicit)
-            call run_sdof('exact', contact_law(k_c(i), p(i)), amplitude, omega_road, dt, 2000, scheme('explicit'), &
+            call run_sdof('exact', power_law(k_c(i), p(i)), amplitude, omega_road, dt, 2000, scheme('explicit'), &
                           explicit)
             call check(error, all(implicit%force >= 0.0_dp) .and. &
                        all((implicit%force == 0.0_dp) .eqv. (implicit%compression <= 0.0_dp)), &
@@ -417,8 +418,8 @@ contains
             call check(error, count(implicit%force == 0.0_dp) > 100 .and. count(implicit%force > 0.0_dp) > 100, &
                        labels(i)//': the body both loses and regains contact')
             if (allocated(error)) return
-            worst = relation_error(implicit, contact_law(k_c(i), p(i)), w0)
-            broken = relation_error(explicit, contact_law(k_c(i), p(i)), w0)
+            worst = relation_error(implicit, power_law(k_c(i), p(i)), w0)
+            broken = relation_error(explicit, power_law(k_c(i), p(i)), w0)
             call note(labels(i)//' implicit relation error/bound', worst)
             call note('explicit', broken)
             call check(error, worst <= 1.0_dp .and. broken > 1.0e3_dp, &
@@ -431,7 +432,7 @@ contains
     !> max(b, delta0), b = delta + w0*F, plus eight round-offs of the terms of r.
     pure real(dp) function relation_error(response, law, w0)
         type(contact_response), intent(in) :: response
-        type(contact_law), intent(in) :: law
+        type(power_law), intent(in) :: law
         real(dp), intent(in) :: w0
 
         real(dp) :: delta0
@@ -461,7 +462,7 @@ contains
         options = scheme('implicit')
         options%max_iterations = 1
         options%tolerance = 1.0e-17_dp
-        call run_sdof('exact', contact_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, options, response, fault)
+        call run_sdof('exact', power_law(k_hertz, p_hertz), amplitude, omega_road, dt, 2000, options, response, fault)
         call check(error, allocated(fault), 'one iteration to 1e-17: a fault')
         if (allocated(error)) return
         write (step_text, '(i0)') size(response%time)
@@ -481,7 +482,7 @@ contains
             case default
                 options%max_iterations = 0
             end select
-            call run_sdof('exact', contact_law(k_hertz, p_hertz), amplitude, omega_road, dt, 10, options, response, &
+            call run_sdof('exact', power_law(k_hertz, p_hertz), amplitude, omega_road, dt, 10, options, response, &
                           fault)
             call check(error, allocated(fault), 'bad option: a fault')
             if (allocated(error)) return
@@ -490,7 +491,7 @@ contains
             if (allocated(error)) return
         end do
         negative = new_direct_convolver([-1.0_dp, 1.0_dp, 1.0_dp], dt)
-        call run_contact(negative, contact_law(k_hertz, p_hertz), [0.0_dp, 0.0_dp], preload, response, &
+        call run_contact(negative, power_law(k_hertz, p_hertz), [0.0_dp, 0.0_dp], preload, response, &
                          scheme('implicit'), fault)
         call check(error, allocated(fault), 'implicit with w0 < 0: a fault')
         if (allocated(error)) return

@@ -45,11 +45,12 @@ module test_lowrank_mod
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_model_road, only: random_road, new_random_road
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law
     use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
                                        multi_contact_block
     use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
                                                newton_solve
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -204,7 +205,7 @@ contains
         type(point_modes), intent(in) :: description
         integer, intent(in) :: n_t
         type(modal_green_matrix), intent(out) :: conv
-        type(contact_law), allocatable, intent(out) :: laws(:)
+        type(power_law), allocatable, intent(out) :: laws(:)
         real(dp), allocatable, intent(out) :: preloads(:), road(:, :)
         real(dp), intent(in), optional :: exponent
 
@@ -222,7 +223,7 @@ contains
         preloads(:) = 3000.0_dp/n_c
         p = 1.5_dp
         if (present(exponent)) p = exponent
-        laws(:) = contact_law(preloads(1)/(2.0e-3_dp)**p, p)
+        laws(:) = power_law(preloads(1)/(2.0e-3_dp)**p, p)
         conv = exact_matrix(description)
     end subroutine set_up_run
 
@@ -252,7 +253,7 @@ contains
         type(modal_green_matrix) :: conv
         type(multi_contact_state) :: state
         type(error_type), allocatable :: failure
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: road(:, :), preloads(:)
 
         call set_up_run(description, n_t, conv, laws, preloads, road, exponent)

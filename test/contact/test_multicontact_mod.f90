@@ -46,6 +46,7 @@ module test_multicontact_mod
     use greenconv_scene_run_output, only: write_multi_contact
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, tyre_mode_count, tyre_band, contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, sample_road, road_travel
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -126,7 +127,7 @@ contains
     !> Run the loop, or stop with the message: these scenes must run.
     subroutine run_or_stop(conv, laws, road, preloads, response)
         class(multipoint_convolver), intent(inout) :: conv
-        type(contact_law), intent(in) :: laws(:)
+        type(power_law), intent(in) :: laws(:)
         real(dp), intent(in) :: road(0:, :), preloads(:)
         type(multi_contact_response), intent(out) :: response
 
@@ -161,11 +162,11 @@ contains
     subroutine hertz_points(n, f0, delta0, laws, preloads)
         integer, intent(in) :: n
         real(dp), intent(in) :: f0, delta0
-        type(contact_law), allocatable, intent(out) :: laws(:)
+        type(power_law), allocatable, intent(out) :: laws(:)
         real(dp), allocatable, intent(out) :: preloads(:)
 
         allocate (laws(n), preloads(n))
-        laws(:) = contact_law(f0/delta0**1.5_dp, 1.5_dp)
+        laws(:) = power_law(f0/delta0**1.5_dp, 1.5_dp)
         preloads(:) = f0
     end subroutine hertz_points
 
@@ -223,9 +224,9 @@ contains
 
         road = sine_column()
         multi_conv = modal_matrix(sdof_description(), 'recursive')
-        call run_or_stop(multi_conv, [contact_law(k_contact, exponent)], road, [preload], multi)
+        call run_or_stop(multi_conv, [power_law(k_contact, exponent)], road, [preload], multi)
         single_conv = new_recursive_convolver(sdof_modes(mass, stiffness, xi), dt)
-        call run_contact(single_conv, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call run_contact(single_conv, power_law(k_contact, exponent), road(:, 1), preload, single)
         call note('max relative difference', worst_difference(single, multi))
         call check(error, worst_difference(single, multi), 0.0_dp, 'u, F, delta: multi-point against run_contact', &
                    thr=1.0e-15_dp)
@@ -256,18 +257,18 @@ contains
         call check(error, wrapped%n_points() == 1 .and. wrapped%is_explicit() .and. wrapped%name == 'recursive' &
                    .and. .not. allocated(engine), 'the engine moved into a 1 x 1 matrix, W0 = 0, its name kept')
         if (allocated(error)) return
-        call run_or_stop(wrapped, [contact_law(k_contact, exponent)], road, [preload], multi)
+        call run_or_stop(wrapped, [power_law(k_contact, exponent)], road, [preload], multi)
         single_conv = new_recursive_convolver(sdof_modes(mass, stiffness, xi), dt)
-        call run_contact(single_conv, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call run_contact(single_conv, power_law(k_contact, exponent), road(:, 1), preload, single)
         call check(error, worst_difference(single, multi) == 0.0_dp .and. wrapped%step == n_steps, &
                    'recursive: u, F, delta bit for bit, the steps counted')
         if (allocated(error)) return
         call sample_kernel(sdof_modes(mass, stiffness, xi), dt, 0.01_dp, n_steps, kernel, tail)
         engine = new_direct_convolver(kernel, dt)
         call wrap_point(engine, wrapped)
-        call run_or_stop(wrapped, [contact_law(k_contact, exponent)], road, [preload], multi)
+        call run_or_stop(wrapped, [power_law(k_contact, exponent)], road, [preload], multi)
         engine = new_direct_convolver(kernel, dt)
-        call run_contact(engine, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call run_contact(engine, power_law(k_contact, exponent), road(:, 1), preload, single)
         call check(error, worst_difference(single, multi) == 0.0_dp, 'direct: u, F, delta bit for bit')
     end subroutine test_wrapped_point
 
@@ -288,9 +289,9 @@ contains
         road = sine_column()
         engine = new_exact_convolver(sdof_modes(mass, stiffness, xi), dt)
         call wrap_point(engine, wrapped)
-        call run_or_stop(wrapped, [contact_law(k_contact, exponent)], road, [preload], multi)
+        call run_or_stop(wrapped, [power_law(k_contact, exponent)], road, [preload], multi)
         engine = new_exact_convolver(sdof_modes(mass, stiffness, xi), dt)
-        call run_contact(engine, contact_law(k_contact, exponent), road(:, 1), preload, single, &
+        call run_contact(engine, power_law(k_contact, exponent), road(:, 1), preload, single, &
                          contact_options(scheme='implicit', divergence_bound=1.0_dp, max_iterations=50), failure)
         call check(error, .not. allocated(failure), 'run_contact failed')
         if (allocated(error)) return
@@ -357,9 +358,9 @@ contains
         call new_sampled_green_matrix(table, dt, multi_conv, failure)
         call check(error, .not. allocated(failure), 'new_sampled_green_matrix failed')
         if (allocated(error)) return
-        call run_or_stop(multi_conv, [contact_law(k_contact, exponent)], road, [preload], multi)
+        call run_or_stop(multi_conv, [power_law(k_contact, exponent)], road, [preload], multi)
         direct = new_direct_convolver(kernel, dt)
-        call run_contact(direct, contact_law(k_contact, exponent), road(:, 1), preload, single)
+        call run_contact(direct, power_law(k_contact, exponent), road(:, 1), preload, single)
         call note('max relative difference', worst_difference(single, multi))
         ! The same N_g products summed in two orders (one dot product per step, and direct's
         ! blocks): round-off of the order of eps per term, at most N_g*eps relative (5e-13 here).
@@ -413,7 +414,7 @@ contains
         type(contact_response) :: single
         type(modal_set) :: driving
         type(recursive_convolver) :: single_conv
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preloads(:)
         real(dp) :: road(0:n_steps - 1, 1)
 
@@ -443,7 +444,7 @@ contains
         type(sampled_green_matrix) :: sampled
         type(multi_contact_response) :: by_modes, by_table
         type(error_type), allocatable :: failure
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: table(:, :, :), preloads(:)
         real(dp) :: positions(n_c), tail, worst, peak
 
@@ -518,7 +519,7 @@ contains
         type(point_modes) :: description
         type(modal_green_matrix) :: conv
         type(multi_contact_response) :: response
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preloads(:)
         real(dp) :: positions(n_c), road(0:n_steps - 1, n_c), centre, asymmetry
         integer :: i, n, s
@@ -575,7 +576,7 @@ contains
         if (allocated(failure)) error stop 'test_static: '//failure%message
         road(:, :) = step
         conv = modal_matrix(tyre_description(positions, 300.0_dp), 'exact')
-        call run_or_stop(conv, [(contact_law(k_c, 1.0_dp), i=1, n_c)], road, [(f0, i=1, n_c)], response)
+        call run_or_stop(conv, [(power_law(k_c, 1.0_dp), i=1, n_c)], road, [(f0, i=1, n_c)], response)
         worst = maxval(abs(response%force(n_run - 1, :) - f0 - change))/maxval(abs(change))
         call note('N_m', real(n_m, dp))
         call note('max|dF - closed form|/max|dF|', worst)
@@ -618,7 +619,7 @@ contains
         character(len=*), parameter :: schemes(2) = ['recursive', 'exact    ']
         type(modal_green_matrix) :: conv
         type(multi_contact_response) :: response
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preloads(:)
         real(dp) :: positions(n_c), mismatch, scale
         integer :: s, i, mixed
@@ -662,7 +663,7 @@ contains
         type(multi_contact_response) :: response
         type(newton_options) :: options
         type(error_type), allocatable :: failure
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preloads(:)
         real(dp) :: positions(n_c)
 
@@ -682,7 +683,7 @@ contains
         if (allocated(error)) return
         ! Explicit scheme, contact 1e5 times stiffer than the oscillator: unstable, caught.
         conv = modal_matrix(sdof_description(), 'recursive')
-        call run_multi_contact(conv, [contact_law(1.0e11_dp, 1.0_dp)], sine_column(), [preload], response, failure)
+        call run_multi_contact(conv, [power_law(1.0e11_dp, 1.0_dp)], sine_column(), [preload], response, failure)
         call check(error, allocated(failure), 'no error for a diverging run')
         if (allocated(error)) return
         call note('steps kept', real(size(response%time), dp))
@@ -691,7 +692,7 @@ contains
                    size(response%time) < n_steps .and. all(abs(response%displacement) <= 1.0_dp), &
                    'divergence message and rows kept: '//failure%message)
         if (allocated(error)) return
-        call run_multi_contact(conv, [contact_law(), contact_law()], sine_column(), [preload], response, failure)
+        call run_multi_contact(conv, [power_law(), power_law()], sine_column(), [preload], response, failure)
         call check(error, allocated(failure), 'no error for inconsistent sizes')
         if (allocated(error)) return
         call check(error, failure%stat == stat_input .and. index(failure%message, 'the laws 2') > 0, &
@@ -903,7 +904,7 @@ contains
         type(modal_green_matrix) :: conv
         type(multi_contact_response) :: response
         type(error_type), allocatable :: failure
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preloads(:), table(:, :)
         integer, allocatable :: line_of(:)
         real(dp) :: positions(3)

@@ -50,11 +50,12 @@ module test_multiorder_mod
     use greenconv_model_plate, only: tyre_plate, plate_modes
     use greenconv_model_tyre, only: tyre_belt, tyre_modes, contact_positions
     use greenconv_model_road_file, only: file_road, read_road_file
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law
     use order_runs_mod, only: run_setup, wave_setup, reference_forces, force_error, measure
     use fixture_files_mod, only: write_receptance_file
     use greenconv_io_files, only: make_directory
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -264,7 +265,7 @@ contains
             roads(i)%speed = 20.0_dp
         end do
         call move_alloc(roads, setup%roads)
-        setup%laws = [(contact_law(2.0e5_dp, 1.0_dp), i=1, size(x))]
+        setup%laws = [(power_law(2.0e5_dp, 1.0_dp), i=1, size(x))]
         setup%preload = [(3000.0_dp/size(x), i=1, size(x))]
         setup%duration = 0.1_dp
         setup%fine_dt = 1.25e-5_dp

@@ -22,6 +22,7 @@ module test_greenfft_mod
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
                                        multi_contact_block
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -215,7 +216,7 @@ contains
         integer, intent(in) :: n_c, n_steps
         real(dp), intent(in) :: step
         type(point_modes), intent(out) :: description
-        type(contact_law), allocatable, intent(out) :: laws(:)
+        type(power_law), allocatable, intent(out) :: laws(:)
         real(dp), allocatable, intent(out) :: preload(:), road(:, :)
 
         type(error_type), allocatable :: failure
@@ -229,7 +230,7 @@ contains
         if (allocated(failure)) error stop 'test_greenfft_mod: '//failure%message
         allocate (laws(n_c), preload(n_c), road(0:n_steps - 1, n_c))
         preload(:) = 3000.0_dp/n_c
-        laws(:) = contact_law(preload(1)/1.0e-3_dp**1.5_dp, 1.5_dp)
+        laws(:) = power_law(preload(1)/1.0e-3_dp**1.5_dp, 1.5_dp)
         profile = new_random_road(35, 10, 0.5e-3_dp, 0.05_dp, 20.0_dp)
         do i = 1, n_c
             road(:, i) = profile%height([(m*step + (positions(i) - positions(1))/20.0_dp, m=0, n_steps - 1)])
@@ -239,7 +240,7 @@ contains
     !> Forces of a tyre contact run stepped in blocks of `block` steps.
     function blocked_forces(conv, laws, preload, road, block) result(forces)
         class(multipoint_convolver), intent(inout) :: conv
-        type(contact_law), intent(in) :: laws(:)
+        type(power_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), road(0:, :)
         integer, intent(in) :: block
         real(dp), allocatable :: forces(:, :)
@@ -267,7 +268,7 @@ contains
 
         integer, parameter :: n_steps = 3000, blocks(*) = [1, 7, 1000]
         type(point_modes) :: description
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preload(:), road(:, :), whole(:, :)
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy
@@ -300,7 +301,7 @@ contains
 
         integer, parameter :: n_steps = 4000
         type(point_modes) :: description
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         real(dp), allocatable :: preload(:), road(:, :), with_fft(:, :), with_direct(:, :)
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy, label

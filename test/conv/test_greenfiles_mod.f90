@@ -21,6 +21,7 @@ module test_greenfiles_mod
     use greenconv_ident_green_structure, only: green_options, green_structure, read_green_structure
     use greenconv_conv_green_file, only: green_file_convolver
     use scene_text_mod, only: message_of
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -337,7 +338,7 @@ contains
         if (.not. allocated(fail)) &
             call sample_road(road, road_travel(x=x_start + (x - sum(x)/size(x)), speed=5.0_dp, dt=dt), n_steps, heights, fail)
         if (.not. allocated(fail)) &
-            call run_multi_contact(conv, [(contact_law(stiffness, 1.0_dp), i=1, size(x))], heights, &
+            call run_multi_contact(conv, [(power_law(stiffness, 1.0_dp), i=1, size(x))], heights, &
                                    [(preload/size(x), i=1, size(x))], response, fail)
     end subroutine roll
 

@@ -14,6 +14,7 @@ module test_separable_mod
     use greenconv_conv_green_modal, only: modal_green_matrix, new_modal_green_matrix
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_scene_read_input, only: scene_type, read_scene
     use greenconv_scene_models_registry, only: structure_kind, find_model
     use greenconv_scene_models_point_set, only: scene_points
@@ -263,11 +264,13 @@ contains
         type(multi_contact_response) :: response
         type(error_type), allocatable :: fail
         character(len=:), allocatable :: accuracy
+        class(contact_law), allocatable :: laws(:)
         integer :: i, n_c
 
         n_c = points%n_points()
         call points_convolver(points, scene, method, conv, accuracy, fail)
-        if (.not. allocated(fail)) call run_multi_contact(conv, [(scene%law, i=1, n_c)], heights, &
+        call replicate_law(scene%law, n_c, laws)
+        if (.not. allocated(fail)) call run_multi_contact(conv, laws, heights, &
                                                           [(scene%preload/n_c, i=1, n_c)], response, fail)
         call check(error, .not. allocated(fail), method//': the run: '//message_of(fail))
         if (allocated(error)) return

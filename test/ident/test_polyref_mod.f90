@@ -31,6 +31,7 @@ module test_polyref_mod
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_run_runner, only: run_scene
     use scene_text_mod, only: read_scene_text, read_table, message_of
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -360,7 +361,7 @@ contains
         type(green_options) :: options
         type(error_type), allocatable :: fail
         type(wave_road) :: roads(12)
-        type(contact_law) :: laws(12)
+        type(power_law) :: laws(12)
         type(multi_contact_response) :: response
         class(multipoint_convolver), allocatable :: conv
         character(len=:), allocatable :: accuracy
@@ -377,7 +378,7 @@ contains
         call check(error, .not. allocated(fail), path)
         if (allocated(error)) return
         write (*, '(a)') structure%summary()
-        laws = [(contact_law(1.0e7_dp, 1.5_dp), i=1, 12)]
+        laws = [(power_law(1.0e7_dp, 1.5_dp), i=1, 12)]
         preload = 2000.0_dp/12
         roads(:)%x0 = [(0.013_dp*i, i=1, 12)]
         call multi_contact_reference(truth, laws, roads, preload, dt, n_steps, u, reference, 1.0e-10_dp)
@@ -442,7 +443,7 @@ contains
         type(scene_type) :: scene
         type(error_type), allocatable :: fail
         type(sampled_road) :: roads(n_c)
-        type(contact_law) :: laws(n_c)
+        type(power_law) :: laws(n_c)
         real(dp), allocatable :: rows(:, :), u(:, :), reference(:, :), force(:, :)
         real(dp) :: preload(n_c), e(4), cpu_start, cpu_end
         logical :: outside(4), passed(2)
@@ -455,7 +456,7 @@ contains
         call write_case_file(case, truth, path, fail)
         call check(error, .not. allocated(fail), path//': '//message_of(fail))
         if (allocated(error)) return
-        laws = [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)]
+        laws = [(power_law(1.0e7_dp, 1.5_dp), i=1, n_c)]
         preload = 2000.0_dp/n_c
         do c = 1, size(choices)
             name = 'dense_'//trim(choices(c))

@@ -26,6 +26,7 @@ module test_linearpatch_mod
     use greenconv_contact_single, only: contact_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use linearpatch_scene_mod, only: test_scene_tyre
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -118,7 +119,7 @@ contains
         type(point_modes) :: modes
         class(multipoint_convolver), allocatable :: conv
         type(multi_contact_response) :: response
-        type(contact_law) :: laws(3)
+        type(power_law) :: laws(3)
         type(error_type), allocatable :: fault
         character(len=:), allocatable :: accuracy
         real(dp), allocatable :: road(:, :), basis(:, :)
@@ -128,7 +129,7 @@ contains
         character(len=80) :: label
 
         modes = coupled_modes()
-        laws = contact_law(stiffness=c_hertz, exponent=1.5_dp)
+        laws = power_law(stiffness=c_hertz, exponent=1.5_dp)
         k_h = 1.5_dp*c_hertz**(2.0_dp/3.0_dp)*share**(1.0_dp/3.0_dp)
         worst = 0.0_dp
         do i = 1, size(f)

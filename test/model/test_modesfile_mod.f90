@@ -32,6 +32,7 @@ module test_modesfile_mod
     use verify_contact_mod, only: multi_contact_reference
     use greenconv_legacy_multi, only: gcmmfl, gcmrun, gcmfre, gcmnpt
     use fixture_files_mod, only: write_wave_road, wave_roads, plate_file
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -378,7 +379,7 @@ contains
         if (allocated(error)) return
         n_c = 9
         roads = wave_roads(modes, road)
-        call multi_contact_reference(description, [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)], roads, &
+        call multi_contact_reference(description, [(power_law(1.0e7_dp, 1.5_dp), i=1, n_c)], roads, &
                                      [(preload/n_c, i=1, n_c)], steps(3), nint(duration/steps(3)), u, reference, &
                                      1.0e-10_dp)
         do m = 1, size(methods)
@@ -430,7 +431,7 @@ contains
         type(road_file) :: road
         type(file_road), allocatable :: roads(:)
         type(error_type), allocatable :: fail
-        type(contact_law) :: laws(n_c)
+        type(power_law) :: laws(n_c)
         class(multipoint_convolver), allocatable :: conv
         type(multi_contact_response) :: response
         real(dp), allocatable :: none(:, :), static(:, :), u(:, :), reference(:, :), heights(:, :), rows(:, :)
@@ -454,7 +455,7 @@ contains
                    '9 modes up to 1 kHz; no residual when every mode is in the band')
         if (allocated(error)) return
         call note('static share of the 23 modes above 1 kHz', share)
-        laws = contact_law(1.0e7_dp, 1.5_dp)
+        laws = power_law(1.0e7_dp, 1.5_dp)
         roads = wave_roads(modes, road)
         call multi_contact_reference(all_modes, laws, roads, [(preload/n_c, i=1, n_c)], steps(2), &
                                      nint(duration/steps(2)), u, reference, 1.0e-10_dp)

@@ -31,6 +31,7 @@ module test_errorbudget_mod
     use greenconv_model_sdof, only: sdof_modes
     use greenconv_legacy, only: gcsdof, gccont, gcfree
     use greenconv_legacy_multi, only: gcmmod, gcmbeg, gcmstp, gcmrun, gcmest, gcmacc, gcest, gcacc, gcmfre
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -183,7 +184,7 @@ contains
         if (allocated(error)) return
         n_steps = nint(duration/dt)
         roads = wave_roads(modes, road)
-        call multi_contact_reference(all_modes, [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)], roads, &
+        call multi_contact_reference(all_modes, [(power_law(1.0e7_dp, 1.5_dp), i=1, n_c)], roads, &
                                      [(preload/n_c, i=1, n_c)], dt, n_steps, u, reference, 1.0e-10_dp)
         write (dt_text, '(es9.2)') dt
         write (steps_text, '(i0)') n_steps
@@ -285,7 +286,7 @@ contains
             roads(i)%x_start = 0.3_dp + x(i) - sum(x)/n_c
             roads(i)%speed = 5.0_dp
         end do
-        call multi_contact_reference(description, [(contact_law(1.0e8_dp, 1.5_dp), i=1, n_c)], roads, &
+        call multi_contact_reference(description, [(power_law(1.0e8_dp, 1.5_dp), i=1, n_c)], roads, &
                                      [(preload/n_c, i=1, n_c)], dt, n_steps, u, reference, 1.0e-10_dp)
         write (dt_text, '(es9.2)') dt
         write (steps_text, '(i0)') n_steps
@@ -412,7 +413,7 @@ contains
                 end if
                 if (.not. allocated(error) .and. door == 2) then
                     call gcmacc(handle, 0.0_dp, ierr, message)
-                    call gcmbeg(handle, 1, [scene%law%stiffness], [scene%law%exponent], [scene%preload], ierr, message)
+                    call gcmbeg(handle, 1, [law_value(scene, 1)], [law_value(scene, 2)], [scene%preload], ierr, message)
                     do n = 1, n_steps
                         if (ierr /= 0) exit
                         call gcmstp(handle, 1, road(n:n), one, f_asked(n:n), one, ierr, message)
@@ -455,13 +456,24 @@ contains
         real(dp) :: u(size(road)), delta(size(road))
 
         if (door == 1) then
-            call gccont(handle, scene%law%stiffness, scene%law%exponent, scene%preload, size(road), road, u, force, &
+            call gccont(handle, law_value(scene, 1), law_value(scene, 2), scene%preload, size(road), road, u, force, &
                         delta, ierr, message)
         else
-            call gcmrun(handle, 1, size(road), [scene%law%stiffness], [scene%law%exponent], [scene%preload], road, &
+            call gcmrun(handle, 1, size(road), [law_value(scene, 1)], [law_value(scene, 2)], [scene%preload], road, &
                         u, force, delta, ierr, message)
         end if
     end subroutine door_run
+
+    !> Parameter i of a scene's law (its power law: 1 the stiffness k_c [N/m^p], 2 the exponent p).
+    real(dp) function law_value(scene, i)
+        type(scene_type), intent(in) :: scene
+        integer, intent(in) :: i
+
+        real(dp), allocatable :: values(:)
+
+        values = scene%law%parameters()
+        law_value = values(i)
+    end function law_value
 
     !> One case's line: estimate, true error, their ratio.
     subroutine report_case(label, method, estimate, truth)

@@ -245,7 +245,7 @@ contains
         if (allocated(error)) return
         call expect_error(error, 'no_exponent.nml', tab1_scene(contact='stiffness = 1.0e6'), &
                           [character(len=piece) :: ':4: &contact exponent: expected the contact exponent p ' &
-                           //"(required for task 'contact'), found no value"])
+                           //"(required for task 'contact') or law_parameters, found neither"])
         if (allocated(error)) return
         call expect_error(error, 'no_methods.nml', tab1_scene(convolution=omit), [character(len=piece) :: &
                           ": &convolution: expected the group &convolution ... / (required: methods, for task " &
@@ -590,7 +590,8 @@ contains
 
     !> Every default of a real, integer or logical variable reads as that kind, but for the two
     !> computed from other variables (f_max = 1/(2*dt), preload = mass*gravity), the list
-    !> map_times, none by default, and the roughness band lists, the ISO 3095 limit by default.
+    !> map_times, none by default, the roughness band lists, the ISO 3095 limit by default, and
+    !> law_parameters, none by default (the power law's come from stiffness and exponent).
     subroutine test_table_defaults(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -611,7 +612,7 @@ contains
                 read (table(i)%default, *, iostat=stat) flag
             end select
             if (any(table(i)%name == [character(len=21) :: 'f_max', 'preload', 'map_times', 'roughness_wavelengths', &
-                                      'roughness_levels'])) stat = 0
+                                      'roughness_levels', 'law_parameters'])) stat = 0
             call check(error, stat == 0, '&'//table(i)%group//' '//table(i)%name//': default "' &
                        //table(i)%default//'" does not read as its kind')
             if (allocated(error)) return

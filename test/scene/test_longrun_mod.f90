@@ -16,6 +16,7 @@ module test_longrun_mod
                                  contact_positions, modal_green_matrix, new_modal_green_matrix, &
                                  multi_contact_response, run_multi_contact, multi_contact_state, start_multi_contact, &
                                  multi_contact_block, road_file, read_road_file, sample_road, road_travel
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -194,7 +195,7 @@ contains
 
         type(contact_response) :: whole, part
         type(contact_state) :: state
-        type(contact_law) :: law
+        type(power_law) :: law
         type(sine_road) :: road
         type(error_type), allocatable :: failure
         real(dp), allocatable :: heights(:)
@@ -238,14 +239,14 @@ contains
         type(multi_contact_response) :: whole, part
         type(multi_contact_state) :: state
         type(error_type), allocatable :: failure
-        type(contact_law) :: laws(n_c)
+        type(power_law) :: laws(n_c)
         real(dp) :: positions(n_c), preloads(n_c)
         real(dp), allocatable :: heights(:, :)
         logical :: same
         integer :: i, j, first, last
 
         positions = contact_positions(0.5_dp*tyre%length, 0.1_dp, n_c)
-        laws(:) = contact_law(2.0e5_dp, 1.0_dp)
+        laws(:) = power_law(2.0e5_dp, 1.0_dp)
         preloads(:) = 200.0_dp
         call tyre_modes(tyre, positions, 1000.0_dp, description, failure)
         if (.not. allocated(failure)) call read_road_file('data/road_sample.dat', profile, failure)

@@ -26,6 +26,7 @@ module test_patchscene_mod
     use greenconv_scene_sweep, only: run_sweep
     use greenconv_core_text, only: int_text
     use fixture_files_mod, only: write_receptance_file
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -118,7 +119,7 @@ contains
                        all(rows(1:4, 3) == heights(0, :)), trim(methods(m))//': columns x, y and u_road at t = 0')
             if (allocated(error)) return
             call make_multipoint_convolver(trim(methods(m)), truth, 5.0e-4_dp, 0.01_dp, 400, conv, accuracy, fail)
-            call run_multi_contact(conv, [(contact_law(5.0e4_dp, 1.0_dp), i=1, 4)], heights, [(250.0_dp, i=1, 4)], &
+            call run_multi_contact(conv, [(power_law(5.0e4_dp, 1.0_dp), i=1, 4)], heights, [(250.0_dp, i=1, 4)], &
                                    response, fail)
             call check(error, .not. allocated(fail), trim(methods(m))//': reference run: '//message_of(fail))
             if (allocated(error)) return
@@ -167,7 +168,7 @@ contains
         if (allocated(fail)) return
         call patch_road(shipped%matrix%x, heights, fail)
         if (allocated(fail)) return
-        call run_multi_contact(conv, [(contact_law(5.0e4_dp, 1.0_dp), n=1, 12)], heights, &
+        call run_multi_contact(conv, [(power_law(5.0e4_dp, 1.0_dp), n=1, 12)], heights, &
                                [(250.0_dp, n=1, 12)], response, fail)
         call conv%release()
         total = response%total_force
@@ -209,7 +210,7 @@ contains
         call plate_modes(tyre_plate(damping_ratio=0.02_dp), shipped%matrix%x, shipped%matrix%y, 1.0e4_dp, truth, fail)
         call patch_road(shipped%matrix%x, heights, fail)
         call make_multipoint_convolver('exact', truth, 2.0e-4_dp, 0.01_dp, 1000, conv, accuracy, fail)
-        call run_multi_contact(conv, [(contact_law(5.0e4_dp, 1.0_dp), n=1, 12)], heights, [(250.0_dp, n=1, 12)], &
+        call run_multi_contact(conv, [(power_law(5.0e4_dp, 1.0_dp), n=1, 12)], heights, [(250.0_dp, n=1, 12)], &
                                response, fail)
         call check(error, .not. allocated(fail), 'exact on the plate''s modes: '//message_of(fail))
         if (allocated(error)) return
@@ -288,7 +289,7 @@ contains
         if (allocated(error)) return
         heights = reshape([((1.0e-3_dp*sin(2.0_dp*pi*30.0_dp*4.0e-4_dp*m + i), m=0, 499), i=1, 2)], [500, 2])
         call make_multipoint_convolver('direct', truth, 4.0e-4_dp, 0.01_dp, 500, conv, accuracy, fail)
-        call run_multi_contact(conv, [contact_law(5.0e4_dp, 1.0_dp), contact_law(5.0e4_dp, 1.0_dp)], heights, &
+        call run_multi_contact(conv, [power_law(5.0e4_dp, 1.0_dp), power_law(5.0e4_dp, 1.0_dp)], heights, &
                                [200.0_dp, 200.0_dp], reference, fail)
         do m = 1, size(methods)
             call new_green_file_convolver(path, trim(methods(m)), 4.0e-4_dp, 500, conv, report, fail)
@@ -297,7 +298,7 @@ contains
             call check(error, all(report%node == [1, 2]) .and. all(abs(report%x - x) <= 1.0e-6_dp*maxval(x)) .and. &
                        index(report%accuracy, 'of the file') > 0, trim(methods(m))//': report '//report%accuracy)
             if (allocated(error)) return
-            call run_multi_contact(conv, [contact_law(5.0e4_dp, 1.0_dp), contact_law(5.0e4_dp, 1.0_dp)], heights, &
+            call run_multi_contact(conv, [power_law(5.0e4_dp, 1.0_dp), power_law(5.0e4_dp, 1.0_dp)], heights, &
                                    [200.0_dp, 200.0_dp], response, fail)
             call conv%release()
             worst = maxval(abs(response%force - reference%force))/maxval(abs(reference%force))

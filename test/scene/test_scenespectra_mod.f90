@@ -264,6 +264,8 @@ contains
         rewind (unit)
         read (unit, '(a)') line
         read (unit, '(a)') line
+        ! the scene's line, its contact law's, then the spectra's
+        read (unit, '(a)') line
         close (unit)
         call check(error, .not. allocated(failure) .and. trim(line) == '# '//summary//': '//scratch &
                    //'/defaults_<method>_spectra.dat', 'summary: '//trim(line))

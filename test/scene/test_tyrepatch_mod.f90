@@ -14,7 +14,7 @@ module test_tyrepatch_mod
     use greenconv_model_plate, only: tyre_plate, plate_modes, patch_points
     use greenconv_model_road_texture, only: road_texture, read_road_texture
     use greenconv_model_road_file, only: road_travel, sample_road_steps
-    use greenconv_contact_single, only: contact_law
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
@@ -24,6 +24,7 @@ module test_tyrepatch_mod
     use greenconv_scene_models_point_set, only: scene_points
     use greenconv_scene_run_points, only: points_convolver
     use greenconv_scene_models_patch, only: sample_patch_road
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -91,7 +92,7 @@ contains
         worst = 0.0_dp
         do m = 1, size(methods)
             call make_multipoint_convolver(trim(methods(m)), modes, dt, 0.01_dp, n_t, conv, accuracy, fail)
-            if (.not. allocated(fail)) call run_multi_contact(conv, [(contact_law(k_a*0.06_dp*0.08_dp/n_c, 1.0_dp), &
+            if (.not. allocated(fail)) call run_multi_contact(conv, [(power_law(k_a*0.06_dp*0.08_dp/n_c, 1.0_dp), &
                                                              i=1, n_c)], road, [(preload/n_c, i=1, n_c)], response, fail)
             call check(error, .not. allocated(fail), trim(methods(m))//' on the modes: '//message_of(fail))
             if (allocated(error)) return
@@ -123,6 +124,7 @@ contains
         type(scene_type) :: scene
         type(error_type), allocatable :: fail
         real(dp) :: rms(3), peak(3), fixed_peak(3), rms_fixed
+        real(dp), allocatable :: law_values(:)
         integer :: g
 
         call make_directory(scratch, fail)
@@ -131,7 +133,8 @@ contains
             call read_scene_text(scratch, 'area.nml', area_scene(grids(g), 'stiffness_per_area = 3.0e8'), scene, fail)
             call check(error, .not. allocated(fail), 'the scene reads: '//message_of(fail))
             if (allocated(error)) return
-            call check(error, scene%n_points == grids(g)**2 .and. abs(scene%law%stiffness*scene%n_points &
+            law_values = scene%law%parameters()
+            call check(error, scene%n_points == grids(g)**2 .and. abs(law_values(1)*scene%n_points &
                        - 3.0e8_dp*0.12_dp*0.12_dp) <= 1.0e-12_dp*3.0e8_dp*0.12_dp*0.12_dp, &
                        'N_c*k_c is not k_a times the patch area')
             if (allocated(error)) return
@@ -185,6 +188,7 @@ contains
         type(error_type), allocatable :: fail
         character(len=:), allocatable :: summary, accuracy
         real(dp), allocatable :: heights(:, :), total(:)
+        class(contact_law), allocatable :: laws(:)
         integer :: n_c, i
 
         call read_scene_text(scratch, 'area.nml', text, scene, fail)
@@ -197,7 +201,8 @@ contains
         if (allocated(error)) return
         n_c = points%n_points()
         call sample_patch_road(scene, points%road_x, points%road_y, 0_int64, scene%n_steps, heights)
-        call run_multi_contact(conv, [(scene%law, i=1, n_c)], heights, [(scene%preload/n_c, i=1, n_c)], response, fail)
+        call replicate_law(scene%law, n_c, laws)
+        call run_multi_contact(conv, laws, heights, [(scene%preload/n_c, i=1, n_c)], response, fail)
         call check(error, .not. allocated(fail), 'the run: '//message_of(fail))
         if (allocated(error)) return
         total = sum(response%force, dim=2)
@@ -234,7 +239,7 @@ contains
         contacts(5) = 'n_points_x = 100, n_points_y = 100, stiffness = 1e5, preload = 100.0, exponent = 1.0'
         expected(5) = '&contact n_points_x, n_points_y: expected at most'
         contacts(6) = 'n_points_x = 4, preload = 100.0, exponent = 1.0'
-        expected(6) = 'or stiffness_per_area or wheel_radius, found neither'
+        expected(6) = 'or stiffness_per_area or wheel_radius or law_parameters, found neither'
         do k = 1, size(contacts)
             call read_scene_text(scratch, 'bad.nml', head//new_line('a')//" &structure model = '" &
                                  //trim(models(k))//"' /"//new_line('a')//road//new_line('a')//new_line('a') &

@@ -21,6 +21,7 @@ module test_wheelrail_mod
     use scene_text_mod, only: read_scene_text, write_text
     use greenconv_scene_sweep, only: run_sweep
     use fixture_files_mod, only: read_bands
+    use greenconv_contact_law_power, only: power_law
     implicit none
     private
 
@@ -227,7 +228,7 @@ contains
         type(frf_type) :: frf
         type(structure_model) :: structure
         class(convolver), allocatable :: conv
-        type(contact_law) :: law
+        type(power_law) :: law
         type(contact_options) :: options
         type(contact_response) :: response
         type(error_type), allocatable :: fault
@@ -245,7 +246,7 @@ contains
         call check(error, .not. allocated(fault) .and. abs(dt_g - dt) < 1.0e-12_dp*dt, 'g from G at dt')
         if (allocated(error)) return
         structure = structure_from_samples(g(1:size(g)/2))
-        law = contact_law(stiffness=c_hertz, exponent=1.5_dp)
+        law = power_law(stiffness=c_hertz, exponent=1.5_dp)
         options%scheme = 'implicit'
         k_h = (c_hertz*(((preload/c_hertz)**(2.0_dp/3.0_dp))*(1.0_dp + 1.0e-6_dp))**1.5_dp &
                - c_hertz*(((preload/c_hertz)**(2.0_dp/3.0_dp))*(1.0_dp - 1.0e-6_dp))**1.5_dp) &

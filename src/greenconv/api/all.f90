@@ -25,6 +25,8 @@ module greenconv_api_all
     use greenconv_conv_green_sampled, only: sampled_green_matrix, new_sampled_green_matrix
     use greenconv_contact_multi, only: newton_options, multi_contact_response, run_multi_contact, multi_contact_step, &
                                  multi_contact_state, start_multi_contact, multi_contact_block
+    use greenconv_contact_laws, only: power_law, exponential_law, new_law, describe_law, law_names, law_kind, &
+                                      law_kinds, find_law, replicate_law, max_law_parameters
     use greenconv_model_tyre, only: tyre_belt, tyre_frequency, tyre_mode_shape, tyre_modes, tyre_band, &
                                     contact_positions
     use greenconv_model_road_file, only: road_file, read_road_file, sample_road, check_road_coverage, &
@@ -49,6 +51,8 @@ module greenconv_api_all
     public :: fft_convolver, new_fft_convolver, default_head
     public :: contact_law, contact_response, contact_options, run_contact
     public :: contact_state, start_contact, contact_block
+    public :: power_law, exponential_law, new_law, describe_law, law_names, law_kind, law_kinds, find_law, &
+              replicate_law, max_law_parameters
     public :: road_profile, sine_road, random_road, new_random_road
     public :: frf_type, frf_from_modes, read_frf, write_frf
     public :: lsce_options, lsce_result, identify, impulse_from_frf, error_e, paper_form

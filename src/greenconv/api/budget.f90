@@ -34,7 +34,7 @@ module greenconv_api_budget
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
     use greenconv_conv_builder, only: make_multipoint_convolver, table_convolver, new_convolver
     use greenconv_conv_green_file, only: green_file_convolver
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
@@ -59,7 +59,7 @@ contains
         !> The box, its convolver run.
         type(convolver_box), intent(inout) :: box
         !> The contact laws of the run.
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Static preloads F0_i [N] of the run.
         real(dp), intent(in) :: preload(:)
         !> Road heights road(n, i) [m] and the run's forces force(n, i) [N].
@@ -79,8 +79,8 @@ contains
         character(len=*), intent(in) :: caller
         !> The box of a single-point structure.
         type(convolver_box), intent(inout) :: box
-        !> The contact law (k_c [N/m^p], p).
-        type(contact_law), intent(in) :: law
+        !> The contact law.
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(dp), intent(in) :: preload
         !> Road heights u_r(t_n) [m], one per step.
@@ -94,13 +94,16 @@ contains
         !> accuracy asked (`stat_accuracy`).
         type(error_type), allocatable, intent(out) :: error
 
+        class(contact_law), allocatable :: laws(:)
+
         call run_box(box, law, preload, road, options, displacement, force, compression, error)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
         end if
         box%point_options = options
-        call run_budget(box, [law], [preload], reshape(road, [size(road), 1]), reshape(force, [size(force), 1]))
+        call replicate_law(law, 1, laws)
+        call run_budget(box, laws, [preload], reshape(road, [size(road), 1]), reshape(force, [size(force), 1]))
         call outside_accuracy(caller, box, error)
     end subroutine run_point_budget
 
@@ -113,7 +116,7 @@ contains
         !> The box of a single-point structure.
         type(convolver_box), intent(inout) :: box
         !> The contact law (checked by the caller).
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(dp), intent(in) :: preload
         !> Scheme, divergence bound and Newton settings.
@@ -122,10 +125,13 @@ contains
         !> when outside the accuracy asked.
         type(error_type), allocatable, intent(out) :: error
 
+        class(contact_law), allocatable :: laws(:)
+
         call start_point_box(box, law, preload, options, error)
         if (allocated(error)) return
         box%point_options = options
-        call start_budget(box, [law], [preload], box%n_steps)
+        call replicate_law(law, 1, laws)
+        call start_budget(box, laws, [preload], box%n_steps)
         call outside_accuracy(caller, box, error)
     end subroutine start_point_budget
 
@@ -154,7 +160,7 @@ contains
         !> The box, its run starting.
         type(convolver_box), intent(inout) :: box
         !> The contact laws of the run.
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Static preloads F0_i [N] of the run.
         real(dp), intent(in) :: preload(:)
         !> Number of steps N_t the run will take at most.
@@ -272,7 +278,7 @@ contains
     subroutine start_companion(box, companion, laws, preload, error)
         type(convolver_box), intent(in) :: box
         type(companion_run), intent(inout) :: companion
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:)
         type(error_type), allocatable, intent(out) :: error
 

@@ -28,7 +28,8 @@ module greenconv_capi
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_law, contact_options, contact_response
+    use greenconv_contact_single, only: contact_options, contact_response
+    use greenconv_capi_law, only: law_box, law_at, door_name
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
@@ -44,8 +45,8 @@ module greenconv_capi
     public :: gc_convolver_new_samples_opts, gc_convolver_new_frf_file_ident
     public :: gc_convolver_free, gc_convolver_delete, gc_convolver_model_size, gc_convolver_describe
     public :: gc_convolver_warnings
-    public :: gc_contact_step, gc_contact_options_init, gc_run_contact_opts
-    public :: gc_contact_start, gc_contact_advance
+    public :: gc_contact_step_law, gc_contact_options_init, gc_run_contact_law
+    public :: gc_contact_start_law, gc_contact_advance
     public :: gc_identify_frf_file, gc_run_scene
     !> The message and string conversions of greenconv_api_doors, named here too for the
     !> callers that took them from this module.
@@ -361,16 +362,14 @@ contains
 
     ! ---- dynamic contact --------------------------------------------------------------------
 
-    !> int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road,
+    !> int gc_contact_step_law(gc_convolver *conv, const gc_law *law, double preload, double road,
     !> double *displacement, double *force, double *compression): one explicit step.
-    function gc_contact_step(conv, k_c, p, preload, road, displacement, force, compression) &
-        bind(c, name='gc_contact_step') result(status)
+    function gc_contact_step_law(conv, law, preload, road, displacement, force, compression) &
+        bind(c, name='gc_contact_step_law') result(status)
         !> The convolver, advanced by one step.
         type(c_ptr), value, intent(in) :: conv
-        !> Contact stiffness k_c [N/m^p], > 0.
-        real(c_double), value, intent(in) :: k_c
-        !> Contact exponent p, > 0.
-        real(c_double), value, intent(in) :: p
+        !> The contact law (gc_law_new).
+        type(c_ptr), value, intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(c_double), value, intent(in) :: preload
         !> Road height u_r(t_n) [m].
@@ -384,19 +383,24 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        type(law_box), pointer :: spring
+        character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         real(dp) :: u, f, delta
 
         box => box_at(conv)
+        spring => law_at(law)
         status = stat_input
-        if (.not. (associated(box) .and. c_associated(displacement) .and. c_associated(force))) return
-        call step_box('gc_contact_step', box, contact_law(k_c, p), preload, road, u, f, delta, error)
+        if (.not. (associated(box) .and. associated(spring) .and. c_associated(displacement) .and. &
+                   c_associated(force))) return
+        call door_name(spring, 'gc_contact_step_law', caller)
+        call step_box(caller, box, spring%law, preload, road, u, f, delta, error)
         if (allocated(error)) return
         call put(displacement, u)
         call put(force, f)
         if (c_associated(compression)) call put(compression, delta)
         status = 0
-    end function gc_contact_step
+    end function gc_contact_step_law
 
     !> int gc_contact_options_init(gc_contact_options *options): the library's defaults (the
     !> paper's explicit step).
@@ -419,17 +423,15 @@ contains
         status = 0
     end function gc_contact_options_init
 
-    !> int gc_run_contact_opts(gc_convolver *conv, double k_c, double p, double preload,
-    !> int n_steps, const double *road, const gc_contact_options *options, double *displacement,
-    !> double *force, double *compression, char *errmsg, size_t errmsg_len)
-    function gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, options, displacement, force, compression, &
-                                 errmsg, errmsg_len) bind(c, name='gc_run_contact_opts') result(status)
+    !> int gc_run_contact_law(gc_convolver *conv, const gc_law *law, double preload, int n_steps,
+    !> const double *road, const gc_contact_options *options, double *displacement, double *force,
+    !> double *compression, char *errmsg, size_t errmsg_len): a whole run (the convolver reset first).
+    function gc_run_contact_law(conv, law, preload, n_steps, road, options, displacement, force, compression, &
+                                errmsg, errmsg_len) bind(c, name='gc_run_contact_law') result(status)
         !> The convolver (reset first).
         type(c_ptr), value, intent(in) :: conv
-        !> Contact stiffness k_c [N/m^p], > 0.
-        real(c_double), value, intent(in) :: k_c
-        !> Contact exponent p, > 0.
-        real(c_double), value, intent(in) :: p
+        !> The contact law (gc_law_new).
+        type(c_ptr), value, intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(c_double), value, intent(in) :: preload
         !> Number of steps N_t, >= 1.
@@ -451,6 +453,8 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        type(law_box), pointer :: spring
+        character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         type(contact_options) :: settings
         real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
@@ -458,15 +462,19 @@ contains
         integer :: n
 
         box => box_at(conv)
+        spring => law_at(law)
+        call door_name(spring, 'gc_run_contact_law', caller)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
         if (.not. associated(box)) then
-            call fatal_error(error, 'gc_run_contact: conv is NULL: make a convolver with gc_convolver_new_*')
+            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
+        else if (.not. associated(spring)) then
+            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
         else if (n_steps < 1) then
-            call fatal_error(error, 'gc_run_contact: n_steps = '//int_text(int(n_steps))//': give at least 1 step')
+            call fatal_error(error, caller//': n_steps = '//int_text(int(n_steps))//': give at least 1 step')
         else if (.not. (c_associated(road) .and. c_associated(displacement) .and. c_associated(force))) then
-            call fatal_error(error, 'gc_run_contact: road, displacement and force must not be NULL: pass arrays ' &
+            call fatal_error(error, caller//': road, displacement and force must not be NULL: pass arrays ' &
                              //'of n_steps values')
         else
             call options_from_c(options, settings, error)
@@ -477,8 +485,7 @@ contains
                 f(:) = 0.0_dp
             else
                 call c_f_pointer(road, heights, [n])
-                call run_point_budget('gc_run_contact', box, contact_law(k_c, p), preload, heights, settings, u, f, &
-                                      delta, error)
+                call run_point_budget(caller, box, spring%law, preload, heights, settings, u, f, delta, error)
             end if
         end if
         if (c_associated(compression) .and. n > 0) then
@@ -486,19 +493,17 @@ contains
             delta_out(:) = delta
         end if
         status = finish(error, errmsg, errmsg_len)
-    end function gc_run_contact_opts
+    end function gc_run_contact_law
 
-    !> int gc_contact_start(gc_convolver *conv, double k_c, double p, double preload,
+    !> int gc_contact_start_law(gc_convolver *conv, const gc_law *law, double preload,
     !> const gc_contact_options *options, char *errmsg, size_t errmsg_len): reset the convolver
     !> and start a contact run stepped by gc_contact_advance.
-    function gc_contact_start(conv, k_c, p, preload, options, errmsg, errmsg_len) &
-        bind(c, name='gc_contact_start') result(status)
+    function gc_contact_start_law(conv, law, preload, options, errmsg, errmsg_len) &
+        bind(c, name='gc_contact_start_law') result(status)
         !> The convolver; reset here.
         type(c_ptr), value, intent(in) :: conv
-        !> Contact stiffness k_c [N/m^p], > 0.
-        real(c_double), value, intent(in) :: k_c
-        !> Contact exponent p, > 0.
-        real(c_double), value, intent(in) :: p
+        !> The contact law (gc_law_new).
+        type(c_ptr), value, intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(c_double), value, intent(in) :: preload
         !> Contact options, or NULL for the defaults.
@@ -510,21 +515,27 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
+        type(law_box), pointer :: spring
+        character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         type(contact_options) :: settings
 
         box => box_at(conv)
+        spring => law_at(law)
+        call door_name(spring, 'gc_contact_start_law', caller)
         if (.not. associated(box)) then
-            call fatal_error(error, 'gc_contact_start: conv is NULL: make a convolver with gc_convolver_new_*')
+            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
+        else if (.not. associated(spring)) then
+            box%stepping = .false.
+            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
         else
             box%stepping = .false.
-            call check_contact_law(contact_law(k_c, p), preload, error)
+            call check_contact_law(spring%law, preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
-            if (.not. allocated(error)) call start_point_budget('gc_contact_start', box, contact_law(k_c, p), preload, &
-                                                                settings, error)
+            if (.not. allocated(error)) call start_point_budget(caller, box, spring%law, preload, settings, error)
         end if
         status = finish(error, errmsg, errmsg_len)
-    end function gc_contact_start
+    end function gc_contact_start_law
 
     !> int gc_contact_advance(gc_convolver *conv, double road, double *displacement,
     !> double *force, double *compression, char *errmsg, size_t errmsg_len): the next step of

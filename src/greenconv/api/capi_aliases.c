@@ -7,6 +7,9 @@
  * - gc_convolver_new_frf_file and its `_opts` door are gc_convolver_new_frf_file_ident with
  *   the identification method NULL: the identification registry's default for a measured
  *   receptance ("ml"), as a scene's `frf_file` model.
+=======
+ * - The single-point contact doors that take the power law's (k_c, p) are their `_law` door with
+ *   that power law, made for the call and freed after it; their messages name them as before.
  * - A single-point convolver is the multi-point convolver of one point (n_points = 1, the
  *   same box behind both handle types): its history, push, instantaneous weight and reset
  *   are the gc_multi_* doors on arrays of one value, with no message buffer (these
@@ -20,7 +23,10 @@
  * settings of gc_multi_set_newton (bound 1 m) and choose the step from W0, and they keep the
  * error budget of a single-point run; gc_contact_step takes one explicit step without a
  * start; gc_convolver_model_size refuses a NULL size where gc_multi_describe skips it; the
- * estimate and accuracy doors name themselves in their messages. */
+ * estimate and accuracy doors name themselves in their messages; gc_multi_contact_start and
+ * gc_multi_run_contact build their points' power laws themselves, since reading k_c[i] and p[i]
+ * is safe only once n_points is checked against the convolver (one body, multi_handle.f90's,
+ * serves them and the `_law` doors). */
 #include <stddef.h>
 
 #include "../../../include/greenconv.h"
@@ -61,11 +67,48 @@ int gc_convolver_new_frf_file_opts(const char *path, double dt, const char *meth
                                            errmsg_len);
 }
 
+/* The power law (k_c, p), unchecked, whose door names itself `door` in its messages
+ * (src/greenconv/api/capi_law.f90): the law door then checks it as the (k_c, p) door did. */
+int greenconv_law_for_door(const char *door, double k_c, double p, gc_law **law);
+
 int gc_run_contact(gc_convolver *conv, double k_c, double p, double preload, int n_steps, const double *road,
                    double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len)
 {
     return gc_run_contact_opts(conv, k_c, p, preload, n_steps, road, NULL, displacement, force, compression, errmsg,
                                errmsg_len);
+}
+
+int gc_run_contact_opts(gc_convolver *conv, double k_c, double p, double preload, int n_steps, const double *road,
+                        const gc_contact_options *options, double *displacement, double *force, double *compression,
+                        char *errmsg, size_t errmsg_len)
+{
+    gc_law *law = NULL;
+    int status = greenconv_law_for_door("gc_run_contact", k_c, p, &law);
+    if (status == GC_OK)
+        status = gc_run_contact_law(conv, law, preload, n_steps, road, options, displacement, force, compression,
+                                    errmsg, errmsg_len);
+    gc_law_free(law);
+    return status;
+}
+
+int gc_contact_start(gc_convolver *conv, double k_c, double p, double preload, const gc_contact_options *options,
+                     char *errmsg, size_t errmsg_len)
+{
+    gc_law *law = NULL;
+    int status = greenconv_law_for_door("gc_contact_start", k_c, p, &law);
+    if (status == GC_OK) status = gc_contact_start_law(conv, law, preload, options, errmsg, errmsg_len);
+    gc_law_free(law);
+    return status;
+}
+
+int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road, double *displacement,
+                    double *force, double *compression)
+{
+    gc_law *law = NULL;
+    int status = greenconv_law_for_door("gc_contact_step", k_c, p, &law);
+    if (status == GC_OK) status = gc_contact_step_law(conv, law, preload, road, displacement, force, compression);
+    gc_law_free(law);
+    return status;
 }
 
 int gc_convolver_history(const gc_convolver *conv, double *displacement)

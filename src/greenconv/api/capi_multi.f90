@@ -16,6 +16,8 @@ module greenconv_capi_multi
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
+    use greenconv_contact_laws, only: contact_law
+    use greenconv_capi_law, only: laws_at
     use greenconv_api_library, only: default_truncation_tol
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
@@ -31,6 +33,7 @@ module greenconv_capi_multi
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
     public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
+    public :: gc_multi_contact_start_law, gc_multi_run_contact_law
     public :: made, tolerance_of, null_handle
 
     !> What a NULL handle's message says.
@@ -633,7 +636,7 @@ contains
             call c_f_pointer(k_c, stiffness, [n_points])
             call c_f_pointer(p, exponent, [n_points])
             call c_f_pointer(preload, load, [n_points])
-            call start_multi_box('gc_multi_contact_start', box, stiffness, exponent, load, error)
+            call start_multi_box('gc_multi_contact_start', box, contact_law(stiffness, exponent), load, error)
         else if (associated(box)) then
             box%stepping = .false.
         end if
@@ -719,32 +722,133 @@ contains
         character(len=*), parameter :: caller = 'gc_multi_run_contact'
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        real(c_double), pointer :: stiffness(:), exponent(:), load(:), heights(:, :), u(:, :), f(:, :), &
-                                   delta_out(:, :)
-        real(dp), allocatable :: delta(:, :)
+        real(c_double), pointer :: stiffness(:), exponent(:)
 
         box => checked(caller, conv, n_points, [k_c, p, preload, road, displacement, force], &
                        'k_c, p, preload, road, displacement and force', error)
         call need_count(caller, 'n_steps', int(n_steps), 1, 'step', error)
         if (.not. allocated(error)) then
-            allocate (delta(n_steps, n_points))
             call c_f_pointer(k_c, stiffness, [n_points])
             call c_f_pointer(p, exponent, [n_points])
-            call c_f_pointer(preload, load, [n_points])
-            call c_f_pointer(road, heights, [n_steps, n_points])
-            call c_f_pointer(displacement, u, [n_steps, n_points])
-            call c_f_pointer(force, f, [n_steps, n_points])
-            call run_multi_box(caller, box, stiffness, exponent, load, heights, u, f, delta, error)
-            if (c_associated(compression)) then
-                call c_f_pointer(compression, delta_out, [n_steps, n_points])
-                delta_out(:, :) = delta
-            end if
+            call run_on_laws(caller, box, contact_law(stiffness, exponent), n_points, n_steps, preload, road, &
+                             displacement, force, compression, error)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_run_contact
 
+    !> int gc_multi_contact_start_law(gc_multi_convolver *conv, int n_points,
+    !> const gc_law *const *laws, const double *preload, char *errmsg, size_t errmsg_len): reset
+    !> the convolver and start a run stepped by gc_multi_contact_step, laws[i] the law of point i
+    !> (one law for every point, its parameters free per point; a handle may repeat).
+    function gc_multi_contact_start_law(conv, n_points, laws, preload, errmsg, errmsg_len) &
+        bind(c, name='gc_multi_contact_start_law') result(status)
+        !> The convolver; reset here.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> The law of each point, n_points `gc_law *` (gc_law_new).
+        type(c_ptr), value, intent(in) :: laws
+        !> Static preload F0_i [N] of each point, >= 0.
+        type(c_ptr), value, intent(in) :: preload
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_contact_start_law'
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+        class(contact_law), allocatable :: springs(:)
+        real(c_double), pointer :: load(:)
+
+        box => checked(caller, conv, n_points, [laws, preload], 'laws and preload', error)
+        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(preload, load, [n_points])
+            call start_multi_box(caller, box, springs, load, error)
+        else if (associated(box)) then
+            box%stepping = .false.
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_contact_start_law
+
+    !> int gc_multi_run_contact_law(gc_multi_convolver *conv, int n_points, int n_steps,
+    !> const gc_law *const *laws, const double *preload, const double *road, double *displacement,
+    !> double *force, double *compression, char *errmsg, size_t errmsg_len): a whole run (the
+    !> convolver reset first), laws as gc_multi_contact_start_law takes them; arrays
+    !> road[i*n_steps + n].
+    function gc_multi_run_contact_law(conv, n_points, n_steps, laws, preload, road, displacement, force, &
+                                      compression, errmsg, errmsg_len) bind(c, name='gc_multi_run_contact_law') &
+        result(status)
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Number of steps N_t, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> The law of each point, n_points `gc_law *` (gc_law_new).
+        type(c_ptr), value, intent(in) :: laws
+        !> Static preload F0_i [N] of each point, >= 0.
+        type(c_ptr), value, intent(in) :: preload
+        !> Road heights road[i*n_steps + n] = u_r,i(t_n) [m].
+        type(c_ptr), value, intent(in) :: road
+        !> Displacements u_i(t_n) [m], same layout (0 from a fault on).
+        type(c_ptr), value, intent(in) :: displacement
+        !> Forces F_i(t_n) [N], same layout (0 from a fault on).
+        type(c_ptr), value, intent(in) :: force
+        !> Compressions delta_i(t_n) [m], same layout (0 from a fault on), or NULL.
+        type(c_ptr), value, intent(in) :: compression
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_run_contact_law'
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+        class(contact_law), allocatable :: springs(:)
+
+        box => checked(caller, conv, n_points, [laws, preload, road, displacement, force], &
+                       'laws, preload, road, displacement and force', error)
+        call need_count(caller, 'n_steps', int(n_steps), 1, 'step', error)
+        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, error)
+        if (.not. allocated(error)) then
+            call run_on_laws(caller, box, springs, n_points, n_steps, preload, road, displacement, force, &
+                             compression, error)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_multi_run_contact_law
+
     ! ---- conversions -------------------------------------------------------------------------
 
+
+    !> A whole multi-point run on checked C arrays (`run_multi_box`): the laws of the points,
+    !> then preloads, road and outputs in the C layout [i*n_steps + n].
+    subroutine run_on_laws(caller, box, laws, n_points, n_steps, preload, road, displacement, force, compression, &
+                           error)
+        character(len=*), intent(in) :: caller
+        type(convolver_box), pointer, intent(in) :: box
+        class(contact_law), intent(in) :: laws(:)
+        integer(c_int), intent(in) :: n_points, n_steps
+        type(c_ptr), intent(in) :: preload, road, displacement, force, compression
+        type(error_type), allocatable, intent(out) :: error
+
+        real(c_double), pointer :: load(:), heights(:, :), u(:, :), f(:, :), delta_out(:, :)
+        real(dp), allocatable :: delta(:, :)
+
+        allocate (delta(n_steps, n_points))
+        call c_f_pointer(preload, load, [n_points])
+        call c_f_pointer(road, heights, [n_steps, n_points])
+        call c_f_pointer(displacement, u, [n_steps, n_points])
+        call c_f_pointer(force, f, [n_steps, n_points])
+        call run_multi_box(caller, box, laws, load, heights, u, f, delta, error)
+        if (c_associated(compression)) then
+            call c_f_pointer(compression, delta_out, [n_steps, n_points])
+            delta_out(:, :) = delta
+        end if
+    end subroutine run_on_laws
 
     !> The box behind a handle, checked with its count of points and the arrays it needs.
     function checked(caller, conv, n_points, arrays, names, error) result(box)

@@ -431,8 +431,8 @@ contains
     subroutine run_box(box, law, preload, road, options, displacement, force, compression, error)
         !> The box.
         type(convolver_box), intent(inout) :: box
-        !> The contact law (k_c [N/m^p], p).
-        type(contact_law), intent(in) :: law
+        !> The contact law.
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(dp), intent(in) :: preload
         !> Road heights u_r(t_n) [m], one per step.
@@ -480,8 +480,8 @@ contains
         character(len=*), intent(in) :: caller
         !> The box of a single-point structure.
         type(convolver_box), intent(inout) :: box
-        !> The spring F = k_c*delta^p between body and road, checked here.
-        type(contact_law), intent(in) :: law
+        !> The contact law between body and road, checked here.
+        class(contact_law), intent(in) :: law
         !> F0 [N] pressing the body onto the road at rest, checked here (>= 0).
         real(dp), intent(in) :: preload
         !> u_r(t_n) [m] under the contact at this step.
@@ -514,7 +514,7 @@ contains
         !> The box of a single-point structure.
         type(convolver_box), intent(inout) :: box
         !> The contact law (checked by the caller).
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N], >= 0.
         real(dp), intent(in) :: preload
         !> Scheme, divergence bound and Newton settings.

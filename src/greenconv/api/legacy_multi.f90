@@ -19,6 +19,7 @@ module greenconv_legacy_multi
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text
     use greenconv_model_point_modes, only: point_modes
+    use greenconv_contact_laws, only: contact_law
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
@@ -623,7 +624,7 @@ contains
 
         box => checked('gcmbeg', handle, nc, error)
         if (.not. allocated(error)) then
-            call start_multi_box('gcmbeg', box, kc(1:nc), p(1:nc), f0(1:nc), error)
+            call start_multi_box('gcmbeg', box, contact_law(kc(1:nc), p(1:nc)), f0(1:nc), error)
         else if (associated(box)) then
             box%stepping = .false.
         end if
@@ -690,8 +691,8 @@ contains
 
         box => checked('gcmrun', handle, nc, error)
         call need_count('gcmrun', 'NSTEP', nstep, 1, 'step', error)
-        if (.not. allocated(error)) call run_multi_box('gcmrun', box, kc(1:nc), p(1:nc), f0(1:nc), road(:, 1:nc), &
-                                                       u(:, 1:nc), f(:, 1:nc), delta(:, 1:nc), error)
+        if (.not. allocated(error)) call run_multi_box('gcmrun', box, contact_law(kc(1:nc), p(1:nc)), f0(1:nc), &
+                                                       road(:, 1:nc), u(:, 1:nc), f(:, 1:nc), delta(:, 1:nc), error)
         call report(error, ierr, errmsg)
     end subroutine gcmrun
 

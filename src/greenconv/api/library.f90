@@ -13,7 +13,7 @@ module greenconv_api_library
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_convolver, only: convolver, free_convolver
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_step, only: contact_options, contact_state, start_state, step_contact, step_load
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_conv_builder, only: new_convolver
@@ -43,8 +43,8 @@ contains
     subroutine contact_step(conv, law, road, preload, displacement, force, compression, error)
         !> The convolver, advanced by one step.
         class(convolver), intent(inout) :: conv
-        !> The contact law (k_c [N/m^p], p).
-        type(contact_law), intent(in) :: law
+        !> The contact law.
+        class(contact_law), intent(in) :: law
         !> Road height u_r(t_n) [m] under the contact.
         real(dp), intent(in) :: road
         !> Static preload F0 [N], >= 0.
@@ -61,6 +61,7 @@ contains
 
         type(contact_state) :: state
         type(error_type), allocatable :: fault
+        class(contact_law), allocatable :: laws(:)
         real(dp) :: weight0(1, 1), u_h(1), step_force(1), u(1), load(1)
         integer :: iterations
 
@@ -68,7 +69,8 @@ contains
         displacement = 0.0_dp
         force = 0.0_dp
         if (present(compression)) compression = 0.0_dp
-        call start_state([law], [preload], weight0, conv%dt, unbounded, state, fault)
+        call replicate_law(law, 1, laws)
+        call start_state(laws, [preload], weight0, conv%dt, unbounded, state, fault)
         if (allocated(fault)) then
             if (present(error)) call move_alloc(fault, error)
             return
@@ -92,7 +94,7 @@ contains
     !> Check a contact law (its own `check`) and a preload F0 >= 0, finite.
     subroutine check_contact_law(law, preload, error)
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N].
         real(dp), intent(in) :: preload
         !> Set (status `stat_input`) when a value is out of range.

@@ -551,15 +551,13 @@ contains
 
     !> Start a contact run stepped one call at a time (`advance_multi_box`): laws and preloads
     !> checked point by point, the convolver reset.
-    subroutine start_multi_box(caller, box, stiffness, exponent, preload, error)
+    subroutine start_multi_box(caller, box, laws, preload, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
         type(convolver_box), intent(inout) :: box
-        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
-        real(dp), intent(in) :: stiffness(:)
-        !> Contact exponent p_i of each point, > 0.
-        real(dp), intent(in) :: exponent(:)
+        !> Contact law of each point (N_c, of one dynamic type), checked here.
+        class(contact_law), intent(in) :: laws(:)
         !> Static preload F0_i [N] of each point, >= 0.
         real(dp), intent(in) :: preload(:)
         !> Set (`stat_input`) naming the point whose law is out of range; (`stat_accuracy`) when
@@ -567,13 +565,13 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         box%stepping = .false.
-        call check_laws(caller, stiffness, exponent, preload, error)
+        call check_laws(caller, laws, preload, error)
         if (allocated(error)) return
-        call start_multi_contact(box%conv, laws_of(stiffness, exponent), preload, box%contact, error, box%settings)
+        call start_multi_contact(box%conv, laws, preload, box%contact, error, box%settings)
         if (allocated(error)) error%message = caller//': '//error%message
         box%stepping = .not. allocated(error)
         if (.not. box%stepping) return
-        call start_budget(box, laws_of(stiffness, exponent), preload, box%n_steps)
+        call start_budget(box, laws, preload, box%n_steps)
         call outside_accuracy(caller, box, error)
     end subroutine start_multi_box
 
@@ -621,16 +619,13 @@ contains
     !> A whole contact run (`run_multi_contact`, the convolver reset first) into arrays
     !> road-shaped (0:N_t-1, N_c): the steps done, then zero after a fault, which `error`
     !> names (step, time, point).
-    subroutine run_multi_box(caller, box, stiffness, exponent, preload, road, displacement, force, compression, &
-                             error)
+    subroutine run_multi_box(caller, box, laws, preload, road, displacement, force, compression, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The box.
         type(convolver_box), intent(inout) :: box
-        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
-        real(dp), intent(in) :: stiffness(:)
-        !> Contact exponent p_i of each point, > 0.
-        real(dp), intent(in) :: exponent(:)
+        !> Contact law of each point (N_c, of one dynamic type), checked here.
+        class(contact_law), intent(in) :: laws(:)
         !> Static preload F0_i [N] of each point, >= 0.
         real(dp), intent(in) :: preload(:)
         !> Road heights road(n, i) = u_r,i(t_n) [m].
@@ -652,9 +647,9 @@ contains
         displacement(:, :) = 0.0_dp
         force(:, :) = 0.0_dp
         compression(:, :) = 0.0_dp
-        call check_laws(caller, stiffness, exponent, preload, error)
+        call check_laws(caller, laws, preload, error)
         if (allocated(error)) return
-        call run_multi_contact(box%conv, laws_of(stiffness, exponent), road, preload, response, error, &
+        call run_multi_contact(box%conv, laws, road, preload, response, error, &
                                box%settings)
         if (allocated(error)) error%message = caller//': '//error%message
         if (.not. allocated(response%force)) return
@@ -663,30 +658,21 @@ contains
         force(0:n_done - 1, :) = response%force
         compression(0:n_done - 1, :) = response%compression
         if (allocated(error)) return
-        call run_budget(box, laws_of(stiffness, exponent), preload, road, response%force)
+        call run_budget(box, laws, preload, road, response%force)
         call outside_accuracy(caller, box, error)
     end subroutine run_multi_box
 
-    !> The contact laws of the points.
-    pure function laws_of(stiffness, exponent) result(laws)
-        real(dp), intent(in) :: stiffness(:), exponent(:)
-        type(contact_law) :: laws(size(stiffness))
-
-        integer :: i
-
-        laws = [(contact_law(stiffness(i), exponent(i)), i=1, size(stiffness))]
-    end function laws_of
-
     !> Every point's law checked, the message naming the point.
-    subroutine check_laws(caller, stiffness, exponent, preload, error)
+    subroutine check_laws(caller, laws, preload, error)
         character(len=*), intent(in) :: caller
-        real(dp), intent(in) :: stiffness(:), exponent(:), preload(:)
+        class(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: preload(:)
         type(error_type), allocatable, intent(out) :: error
 
         integer :: i
 
-        do i = 1, size(stiffness)
-            call check_contact_law(contact_law(stiffness(i), exponent(i)), preload(i), error)
+        do i = 1, size(laws)
+            call check_contact_law(laws(i), preload(i), error)
             if (allocated(error)) then
                 error%message = caller//': point '//int_text(i)//': '//error%message
                 return

@@ -94,7 +94,7 @@ contains
         !> The Green's matrix of the N_c points.
         class(multipoint_convolver), intent(inout) :: conv
         !> Contact law of each point (N_c).
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Road heights road(n, i) = u_r,i(t_n) [m], n = 0..N_t-1, i = 1..N_c.
         real(dp), intent(in) :: road(0:, :)
         !> Static preloads F0_i [N], >= 0 (N_c).
@@ -123,7 +123,7 @@ contains
         !> The Green's matrix of the N_c points; reset here.
         class(multipoint_convolver), intent(inout) :: conv
         !> Contact law of each point (N_c).
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Static preloads F0_i [N], >= 0 (N_c).
         real(dp), intent(in) :: preload(:)
         !> The run at step 0.
@@ -212,7 +212,7 @@ contains
         !> The Green's matrix of the N_c points, at step n; advanced to n + 1.
         class(multipoint_convolver), intent(inout) :: conv
         !> Contact law of each point.
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Static compressions delta0_i [m].
         real(dp), intent(in) :: delta0(:)
         !> Static preloads F0_i [N].

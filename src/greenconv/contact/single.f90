@@ -67,13 +67,13 @@ module greenconv_contact_single
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
     use greenconv_conv_multipoint, only: multipoint_convolver
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_step, only: contact_options, contact_state
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     implicit none
     private
 
-    !> The contact law, greenconv_contact_law's, named here too for the callers that take it from this module.
+    !> The contact law (greenconv_contact_laws: the abstract type, and `contact_law(k_c, p)` a power law).
     public :: contact_law
     !> The options and the state of a run, greenconv_contact_step's (a single-point run is a run at one point).
     public :: contact_options, contact_state
@@ -121,7 +121,7 @@ contains
         !> The convolution method: history before each step, load pushed after it.
         class(convolver), intent(inout), target :: conv
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Road heights u_r(t_n) [m], n = 0..N_t-1.
         real(dp), intent(in) :: road(0:)
         !> Static preload F0 [N] pressing the body onto the road, >= 0.
@@ -181,7 +181,7 @@ contains
         !> The convolution method; reset here.
         class(convolver), intent(inout), target :: conv
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N] pressing the body onto the road, >= 0.
         real(dp), intent(in) :: preload
         !> The run at step 0.
@@ -193,10 +193,12 @@ contains
 
         type(contact_options) :: settings
         type(lent_point) :: matrix
+        class(contact_law), allocatable :: laws(:)
 
         if (present(options)) settings = options
         call lend(conv, matrix)
-        call start_multi_contact(matrix, [law], [preload], state, error, settings=settings)
+        call replicate_law(law, 1, laws)
+        call start_multi_contact(matrix, laws, [preload], state, error, settings=settings)
     end subroutine start_contact
 
     !> Continue a contact run over the next size(road) steps, n = state%step onwards.

@@ -34,13 +34,11 @@
 !> finite - before the caller pushes the load: a fault leaves the convolver where it was and
 !> names the step, its time, the point (when N_c > 1) and what to change.
 !>
-!> The law is greenconv_contact_law's concrete `contact_law`, and the step calls only its
-!> `force`, `compression` and `tangent`. A new law therefore changes contact/law.f90 (its
-!> parameters and those three procedures), the scene's rows for its parameters
-!> (scene/read/schema.f90, and scene/read/input.f90 where `&contact` becomes a law) and the check of
-!> its values (api/library.f90's `check_contact_law`); nothing here, in the single- and
-!> multi-point loops, the runner or the tests' ODE reference changes, and the C and Fortran 77 doors
-!> only if the law is to be given other parameters than k_c and p.
+!> The laws are `class(contact_law)` (greenconv_contact_law), the points' laws one polymorphic
+!> array of one dynamic type, and the step calls only their `force`, `compression` and
+!> `tangent`. A new law is its module and its row in the registry greenconv_contact_laws;
+!> nothing here, in the single- and multi-point loops, the runner, the doors or the tests' ODE
+!> reference changes.
 module greenconv_contact_step
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -83,7 +81,7 @@ module greenconv_contact_step
     !> A contact run at N_c points between two steps: what one step hands the next.
     type :: contact_state
         !> Contact law of each point (N_c).
-        type(contact_law), allocatable :: laws(:)
+        class(contact_law), allocatable :: laws(:)
         !> Static preloads F0_i [N] (N_c).
         real(dp), allocatable :: preload(:)
         !> Static compressions delta0_i = law_i%compression(F0_i) [m] (N_c).
@@ -117,7 +115,7 @@ contains
     !> A run at step 0: the options checked against W0, the static compressions computed.
     subroutine start_state(laws, preload, weight0, dt, options, state, error)
         !> Contact law of each point (N_c).
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> Static preloads F0_i [N], >= 0 (N_c).
         real(dp), intent(in) :: preload(:)
         !> The convolver's instant compliance W0 [m/N] (N_c x N_c).
@@ -133,7 +131,7 @@ contains
 
         call check_options(options, weight0, error)
         if (allocated(error)) return
-        state%laws = laws
+        allocate(state%laws, source=laws)
         state%preload = preload
         state%delta0 = laws%compression(preload)
         state%delta = state%delta0
@@ -196,7 +194,7 @@ contains
             call step_fault(state, road, point, message, fault)
             return
         end if
-        force(:) = state%laws%force(state%delta)
+        call law_forces(state%laws, state%delta, force)
         if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
         else if (state%coupled .and. state%settings%scheme == 'implicit') then
@@ -265,7 +263,7 @@ contains
     !> `scale` is delta0 [m]; the iteration stops at |r| <= tolerance*max(b, delta0).
     !> `iterations` is the number of updates made, max_iterations + 1 when not converged.
     pure subroutine implicit_compression(law, b, w0, scale, settings, delta, residual, iterations)
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         real(dp), intent(in) :: b, w0, scale
         type(contact_options), intent(in) :: settings
         real(dp), intent(inout) :: delta
@@ -341,11 +339,13 @@ contains
                 delta(:) = free - state%coupling
                 deallocate (state%coupling)
             else
-                load(:) = laws%force(delta) - state%preload
+                call law_forces(laws, delta, load)
+                load(:) = load - state%preload
                 delta(:) = free - apply_compliance(compliance, weight0, load)
             end if
             step(:) = slope(laws, delta)
-            load(:) = laws%force(delta) - state%preload - step*(delta - free)
+            call law_forces(laws, delta, load)
+            load(:) = load - state%preload - step*(delta - free)
             call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
             if (allocated(error)) return
             if (taken) then
@@ -391,21 +391,36 @@ contains
     subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, scale)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
         real(dp), intent(out) :: r(:), coupling(:), scale
 
         real(dp) :: load(size(delta))
 
-        load(:) = laws%force(delta) - preload
+        call law_forces(laws, delta, load)
+        load(:) = load - preload
         coupling(:) = apply_compliance(compliance, weight0, load)
         r(:) = delta - free + coupling
         scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
     end subroutine residual
 
-    !> dF/ddelta = p*k_c*delta^(p - 1) [N/m] in compression, zero otherwise.
+    !> The forces F_i(delta_i) [N] of the points' laws: one point's `force`, or the laws' `forces`
+    !> at several (one call through the type's table for all points).
+    subroutine law_forces(laws, delta, force)
+        class(contact_law), intent(in) :: laws(:)
+        real(dp), intent(in) :: delta(:)
+        real(dp), intent(out) :: force(:)
+
+        if (size(laws) == 1) then
+            force(1) = laws(1)%force(delta(1))
+        else if (size(laws) > 1) then
+            call laws(1)%forces(laws, delta, force)
+        end if
+    end subroutine law_forces
+
+    !> dF/ddelta [N/m] (the law's tangent) in compression, zero otherwise.
     elemental real(dp) function slope(law, delta)
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         real(dp), intent(in) :: delta
 
         slope = 0.0_dp

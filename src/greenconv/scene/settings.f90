@@ -154,7 +154,7 @@ module greenconv_scene_settings
         !> Single point: contact step (`explicit` or `implicit`) and divergence bound [m].
         type(contact_options) :: contact
         !> Contact law.
-        type(contact_law) :: law
+        class(contact_law), allocatable :: law
         !> Wheel radius R_w [m] Hertz's constant was computed from (0: `&contact stiffness` given).
         real(dp) :: wheel_radius = 0.0_dp
         !> Static preload F0 [N].

@@ -9,7 +9,7 @@ module order_runs_mod
     use greenconv_core_error, only: error_type
     use greenconv_model_road, only: road_profile
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_contact_law, only: contact_law
+    use greenconv_contact_laws, only: contact_law, power_law
     use greenconv_contact_multi, only: multi_contact_response, run_multi_contact
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_multipoint_convolver
@@ -37,7 +37,7 @@ module order_runs_mod
         !> The structure's modes and shapes at the points.
         type(point_modes) :: description
         !> Contact law of each point.
-        type(contact_law), allocatable :: laws(:)
+        type(power_law), allocatable :: laws(:)
         !> Static preloads F0_i [N].
         real(dp), allocatable :: preload(:)
         !> The road under each point.
@@ -79,7 +79,7 @@ contains
 
         n_c = description%n_points()
         setup%description = description
-        setup%laws = [(contact_law(1.0e7_dp, 1.5_dp), i=1, n_c)]
+        setup%laws = [(power_law(1.0e7_dp, 1.5_dp), i=1, n_c)]
         setup%preload = [(2000.0_dp/n_c, i=1, n_c)]
         allocate (roads(n_c))
         roads(:)%x0 = [(0.013_dp*i, i=1, n_c)]

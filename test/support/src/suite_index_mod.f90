@@ -46,6 +46,7 @@ module suite_index_mod
         'contact implicit        ', &
         'contact accuracy        ', &
         'contact multiorder      ', &
+        'contact laws            ', &
         'scene   scene           ', &
         'scene   input           ', &
         'scene   scenespectra    ', &

@@ -38,7 +38,7 @@ module verify_contact_mod
         !> Mode shapes at the points, shape(i, k) = phi_ik (N_c x N_m).
         real(dp), allocatable :: shape(:, :)
         !> The contact law of each point.
-        type(contact_law), allocatable :: laws(:)
+        class(contact_law), allocatable :: laws(:)
         !> The road under each point.
         class(road_profile), allocatable :: roads(:)
         !> Static preloads F0_i [N] and static compressions delta0_i [m].
@@ -55,7 +55,7 @@ contains
     !> omega_c*dt < 2, the implicit one for omega_c*dt < 2*sqrt(3) (greenconv_contact_single).
     elemental real(dp) function contact_frequency(law, preload, body_mass)
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> Static preload F0 [N], > 0.
         real(dp), intent(in) :: preload
         !> Mass M [kg] of the body on the spring, > 0.
@@ -71,7 +71,7 @@ contains
         !> The structure as modes (its true g, not a fitted one).
         type(modal_set), intent(in) :: modes
         !> The contact law.
-        type(contact_law), intent(in) :: law
+        class(contact_law), intent(in) :: law
         !> The road, evaluated continuously in time.
         class(road_profile), intent(in) :: road
         !> Static preload F0 [N].
@@ -93,7 +93,7 @@ contains
         system%modes = modes
         allocate (system%shape(1, modes%n_modes()))
         system%shape(:, :) = 1.0_dp
-        system%laws = [law]
+        allocate (system%laws(1), source=law)
         allocate (system%roads(1), source=road)
         system%preload = [preload]
         call integrate_run(system, dt, n_steps, u, f, rtol)
@@ -109,7 +109,7 @@ contains
         !> The structure as modes and mode shapes at the N_c points (its true g_ij).
         type(point_modes), intent(in) :: description
         !> The contact law of each point (N_c).
-        type(contact_law), intent(in) :: laws(:)
+        class(contact_law), intent(in) :: laws(:)
         !> The road under each point (N_c), evaluated continuously in time.
         class(road_profile), intent(in) :: roads(:)
         !> Static preloads F0_i [N] (N_c).
@@ -129,7 +129,7 @@ contains
 
         system%modes = description%modes
         system%shape = description%shape
-        system%laws = laws
+        allocate (system%laws, source=laws)
         allocate (system%roads, source=roads)
         system%preload = preload
         call integrate_run(system, dt, n_steps, displacement, force, rtol)

@@ -14,7 +14,9 @@ module greenconv_scene_read_input
     use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: real_text, int_text, sci_text
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
-    use greenconv_contact_single, only: contact_law, contact_options
+    use greenconv_contact_single, only: contact_options
+    use greenconv_contact_laws, only: law_kind, find_law, new_law, parameter_list, parameter_text, &
+                                      first_bad_parameter, max_law_parameters
     use greenconv_model_tyre, only: tyre_belt, contact_positions
     use greenconv_model_plate, only: tyre_plate
     use greenconv_model_roughness, only: new_roughness_road, iso3095_wavelengths, iso3095_levels
@@ -749,7 +751,8 @@ contains
         text = compact_real(nominal_frequency(band_centre(x)))//' Hz'
     end function band_name
 
-    !> &contact: stiffness [N/m^p], exponent, gravity [m/s^2], preload [N].
+    !> &contact: the law (`law`, its `law_parameters`, or the power law's stiffness [N/m^p] and
+    !> exponent), gravity [m/s^2], preload [N], the points and the contact step.
     subroutine read_contact_group(source, defaults, this, error)
         type(group_source), intent(in) :: source
         !> The group's defaults, a namelist record (greenconv_scene_read_schema's `group_defaults`).
@@ -759,16 +762,19 @@ contains
 
         real(dp) :: stiffness, exponent, gravity, preload, patch_length, divergence_bound, patch_width, &
                     stiffness_per_area, wheel_radius, rail_head_radius, young_modulus, poisson_ratio
-        character(len=name_length) :: scheme
+        real(dp) :: law_parameters(max_law_parameters)
+        character(len=name_length) :: scheme, law
         type(structure_kind) :: model
         integer :: stat, n_points, n_points_x, n_points_y
         character(len=512) :: message
-        namelist /contact/ stiffness, exponent, gravity, preload, n_points, patch_length, n_points_x, n_points_y, &
-            patch_width, stiffness_per_area, scheme, divergence_bound, wheel_radius, rail_head_radius, young_modulus, &
-            poisson_ratio
+        namelist /contact/ stiffness, exponent, law, law_parameters, gravity, preload, n_points, patch_length, &
+            n_points_x, n_points_y, patch_width, stiffness_per_area, scheme, divergence_bound, wheel_radius, &
+            rail_head_radius, young_modulus, poisson_ratio
 
         ! The table's default `mass*gravity`, set below when the file is silent.
         preload = -1.0_dp
+        ! a value no file can give (the scan refuses NaN) marks the parameters not given
+        law_parameters = ieee_value(1.0_dp, ieee_quiet_nan)
         read (defaults, nml=contact)
         if (source%unit /= no_unit) write (source%unit, nml=contact, delim='quote', iostat=stat, iomsg=message)
         if (source%unit == no_unit) read (source%lines, nml=contact, iostat=stat, iomsg=message)
@@ -819,17 +825,67 @@ contains
         this%stiffness_per_area = stiffness_per_area
         ! a law per area: each point carries its element's share, patch_length*patch_width/N_c
         if (stiffness_per_area > 0.0_dp) stiffness = stiffness_per_area*patch_length*patch_width/this%n_points
-        this%law = contact_law(stiffness=stiffness, exponent=exponent)
-        ! the law's own check, as at every door (the table's rows already bound its values)
-        if (.not. allocated(error)) then
-            call this%law%check(error)
-            if (allocated(error)) error%message = place(this, 'contact', 'stiffness, exponent')//': '//error%message
-        end if
+        call check_value(this, 'contact', 'law', law, error)
+        if (.not. allocated(error)) call contact_law_of(this, trim(law), law_parameters, stiffness, exponent, error)
         this%contact%scheme = trim(scheme)
         this%contact%divergence_bound = divergence_bound
         this%preload = preload
         if (preload < 0.0_dp) this%preload = this%mass*gravity
     end subroutine read_contact_group
+
+    !> The scene's contact law, built by the law registry (greenconv_contact_laws): from
+    !> `law_parameters` when given, else, for a law that takes them (the power law), from
+    !> `stiffness` and `exponent`. A message names the variable, what the law expects (its
+    !> parameters with their units and ranges) and what was found.
+    subroutine contact_law_of(this, name, values, stiffness, exponent, error)
+        type(scene_type), intent(inout) :: this
+        !> The law's name, one of the registry's.
+        character(len=*), intent(in) :: name
+        !> `law_parameters`, NaN where the file gives none.
+        real(dp), intent(in) :: values(:)
+        !> The power law's k_c [N/m^p] (from stiffness, stiffness_per_area or wheel_radius) and p.
+        real(dp), intent(in) :: stiffness, exponent
+        type(error_type), allocatable, intent(inout) :: error
+
+        type(law_kind) :: kind
+        character(len=:), allocatable :: expected
+        integer :: n_given, bad
+
+        kind = find_law(name)
+        expected = int_text(kind%n_parameters)//" values for law '"//name//"' ("//parameter_list(kind)//')'
+        n_given = count(.not. ieee_is_nan(values))
+        call require(all(.not. ieee_is_nan(values(:n_given))), error, this, 'contact', 'law_parameters', &
+                     expected//' without gaps')
+        call require(n_given == 0 .or. .not. any([this%input%has_value('contact', 'stiffness'), &
+                     this%input%has_value('contact', 'exponent'), this%input%has_value('contact', &
+                     'stiffness_per_area'), this%input%has_value('contact', 'wheel_radius')]), error, this, &
+                     'contact', 'law_parameters', 'no value beside stiffness, exponent, stiffness_per_area or ' &
+                     //'wheel_radius (they are the power law''s k_c and p)')
+        call require(n_given > 0 .or. kind%from_stiffness, error, this, 'contact', 'law_parameters', expected, &
+                     'none')
+        call require(kind%from_stiffness .or. .not. any([this%input%has_value('contact', 'stiffness'), &
+                     this%input%has_value('contact', 'exponent')]), error, this, 'contact', 'stiffness, exponent', &
+                     "no value for law '"//name//"' (its parameters are law_parameters: "//parameter_list(kind)//')')
+        call require(n_given == 0 .or. n_given == kind%n_parameters, error, this, 'contact', 'law_parameters', &
+                     expected, n_given)
+        if (allocated(error)) return
+        if (allocated(this%law)) deallocate (this%law)
+        if (n_given == 0) then
+            ! the power law's own check, as at every door (the table's rows already bound its values)
+            call new_law(name, [stiffness, exponent], this%law, error)
+            if (allocated(error)) error%message = place(this, 'contact', 'stiffness, exponent')//': '//error%message
+            return
+        end if
+        bad = first_bad_parameter(kind, values(:n_given))
+        if (bad > 0) then
+            call expect(error, this, 'contact', 'law_parameters', 'a finite '//parameter_text(kind, bad)//' > ' &
+                        //compact_real(kind%above(bad))//" (value "//int_text(bad)//" of law '"//name//"')", &
+                        values(bad))
+            return
+        end if
+        call new_law(name, values(:n_given), this%law, error)
+        if (allocated(error)) error%message = place(this, 'contact', 'law_parameters')//': '//error%message
+    end subroutine contact_law_of
 
     !> The contact points a scene asks for: one (single-point models); n_points on a line
     !> (`tyre`); n_points_x*n_points_y on a patch grid (`tyre_plate`, n_points_x = 0 taking

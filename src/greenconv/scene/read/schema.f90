@@ -25,6 +25,7 @@ module greenconv_scene_read_schema
     use greenconv_core_text, only: int_text, lower_text, exact_text
     use greenconv_core_kinds, only: dp
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
+    use greenconv_contact_laws, only: law_names, law_choices, max_law_parameters
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
     use greenconv_scene_models_facade, only: structure_kind, find_model, model_names, model_requires, quoted_list
@@ -362,10 +363,17 @@ contains
             expect='a length >= 0 m (0: no filter)', at_least=0.0_dp)
         call add(rows, n, 'contact', 'stiffness', value_real, '1.0e6', 'N/m^p', &
             'the contact stiffness k_c', "task 'contact'", &
-            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area wheel_radius')
+            expect='a stiffness k_c > 0 N/m^p', above=0.0_dp, unless='stiffness_per_area wheel_radius law_parameters')
         call add(rows, n, 'contact', 'exponent', value_real, '1.5', '', &
             'the contact exponent p', "task 'contact'", &
-            expect='an exponent p > 0', above=0.0_dp)
+            expect='an exponent p > 0', above=0.0_dp, unless='law_parameters')
+        call add(rows, n, 'contact', 'law', value_text, 'power', '', &
+            "the contact law, a name of the law registry (contact/laws.f90): 'power' takes stiffness and " &
+            //'exponent, every law law_parameters', '', &
+            expect='one of '//law_names(), choices=law_choices())
+        call add(rows, n, 'contact', 'law_parameters', value_real, 'none', 'SI', &
+            "the law's parameters in its registry's order and units (power: k_c [N/m^p], p; exponential: " &
+            //'F_s [N], delta_s [m])', '', count=max_law_parameters)
         call add(rows, n, 'contact', 'gravity', value_real, '9.81', 'm/s^2', &
             'the gravity g weighing the mass', '', &
             expect='an acceleration >= 0 m/s^2', at_least=0.0_dp)

@@ -21,6 +21,7 @@ module greenconv_scene_run_runner
     use greenconv_conv_methods, only: method_needs, needs_sampled_g, needs_modes, method_order
     use greenconv_conv_multipoint, only: multipoint_convolver
     use greenconv_conv_builder, only: make_convolver
+    use greenconv_contact_laws, only: describe_law
     use greenconv_conv_engines, only: engine_constructors, engine_of
     use greenconv_io_files, only: block_rows, make_directory, check_output_directory
     use greenconv_scene_read_facade, only: scene_type, output_path, place_error
@@ -79,7 +80,7 @@ contains
         type(structure_model) :: structure
         type(structure_kind) :: model
         type(contact_run) :: run
-        character(len=:), allocatable :: summary
+        character(len=:), allocatable :: summary, law_line
         integer :: block_size
 
         call check_inputs_kept(scene, error)
@@ -106,6 +107,9 @@ contains
             write (unit, '(a,i0,a,es10.3,a)') '# scene '//scene%name//': ', scene%n_steps, ' steps of ', scene%dt, ' s'
         end if
         if (present(block)) block_size = max(block, 1)
+        call describe_law(scene%law, law_line)
+        if (model%multi_point()) law_line = law_line//' at each point'
+        write (unit, '(a)') '# contact: '//law_line
         call run_methods(scene, structure, run, unit, block_size, error)
         if (associated(model%receptance)) call write_linear_reference(scene, model%receptance, unit, error)
         if (model%multi_point()) call write_patch_reference(scene, run%points, unit, error)

@@ -33,6 +33,7 @@ module greenconv_scene_run_stream
     use greenconv_contact_multi, only: multi_contact_response, multi_contact_state, multi_contact_block, &
                                        start_multi_contact, newton_options
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
+    use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_conv_methods, only: method_order
     use greenconv_io_files, only: column_writer, open_columns, append_rows, close_columns, discard_columns, first_kept
     use greenconv_scene_run_progress, only: progress_meter, start_progress, update_progress, finish_progress
@@ -693,15 +694,17 @@ contains
         !> Set when the contact settings are unusable with the convolver.
         type(error_type), allocatable, intent(out) :: error
 
+        class(contact_law), allocatable :: laws(:)
         integer :: n, n_c
 
         run%peak = -huge(1.0_dp)
         n_c = run%conv%n_points()
+        call replicate_law(scene%law, n_c, laws)
         if (run%several) then
-            call start_multi_contact(run%conv, [(scene%law, n=1, n_c)], [(scene%preload/n_c, n=1, n_c)], run%state, &
+            call start_multi_contact(run%conv, laws, [(scene%preload/n_c, n=1, n_c)], run%state, &
                                      error, newton_options(max_displacement=scene%contact%divergence_bound))
         else
-            call start_multi_contact(run%conv, [scene%law], [scene%preload], run%state, error, settings=scene%contact)
+            call start_multi_contact(run%conv, laws, [scene%preload], run%state, error, settings=scene%contact)
         end if
     end subroutine start_run
 
