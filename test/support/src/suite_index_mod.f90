@@ -14,6 +14,7 @@ module suite_index_mod
         'core    lapack          ', &
         'core    version         ', &
         'core    sorting         ', &
+        'core    text            ', &
         'io      uff             ', &
         'io      uffwrite        ', &
         'io      spectra         ', &
