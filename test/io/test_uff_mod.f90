@@ -10,6 +10,7 @@ module test_uff_mod
     use scene_text_mod, only: write_text
     use greenconv_core_error, only: error_type
     use greenconv_io_files, only: make_directory
+    use greenconv_io_columns, only: max_line_length
     use greenconv_io_uff, only: uff_file, read_uff, uff_summary, uff_kind_name, uff_data_type_name, &
                                 uff_function_type_name, uff_receptance, uff_mobility, uff_accelerance
     implicit none
@@ -44,7 +45,7 @@ contains
                                   test_layout), &
                      new_unittest('nodes: Fortran 1P3E13.5 and 1P3D25.16', test_fortran_nodes), &
                      new_unittest('names of kinds, data types and function types', test_names), &
-                     new_unittest('malformed: missing, empty, structure, binary', test_bad_structure), &
+                     new_unittest('malformed: missing, empty, structure, binary, long line', test_bad_structure), &
                      new_unittest('malformed: records 6 to 11', test_bad_header), &
                      new_unittest('malformed: data values and counts', test_bad_data), &
                      new_unittest('malformed: nodes', test_bad_nodes)]
@@ -570,6 +571,15 @@ contains
         call expect_error(error, 'binary.uff', 2, '    -1'//nl//'    58b     1     2'//nl//'    -1', &
                           [character(len=70) :: 'dataset 58b: expected an ASCII dataset, found a binary one', &
                            'export the file as an ASCII universal file'])
+        if (allocated(error)) return
+        ! A line longer than the readers take is refused at that line, not taken for the file's end.
+        call write_text(scratch//'/long_line.uff', '    -1'//nl//repeat('1', 2*max_line_length)//nl//'    -1'//nl)
+        call read_uff(scratch//'/long_line.uff', file, read_error)
+        call check(error, allocated(read_error), 'a line longer than max_line_length is refused')
+        if (allocated(error)) return
+        call check(error, read_error%stat == 2 .and. index(read_error%message, scratch//'/long_line.uff:2: ' &
+                                                           //'expected lines of at most') == 1, &
+                   'long line: '//read_error%message(:min(len(read_error%message), 200)))
     end subroutine test_bad_structure
 
     !> An empty file.

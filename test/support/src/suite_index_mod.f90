@@ -19,6 +19,7 @@ module suite_index_mod
         'io      uffwrite        ', &
         'io      spectra         ', &
         'io      writer          ', &
+        'io      columns         ', &
         'model   plate           ', &
         'model   patch           ', &
         'model   modesfile       ', &
