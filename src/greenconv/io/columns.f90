@@ -44,32 +44,32 @@ contains
         character(len=*), intent(in) :: names(:)
         !> Unit of each column, for messages (e.g. `m`).
         character(len=*), intent(in) :: units(:)
-        !> The numbers, one row per data line.
+        !> The numbers, one row per data_line line.
         real(dp), allocatable, intent(out) :: table(:, :)
         !> Line number in the file of each row.
         integer, allocatable, intent(out) :: line_of(:)
-        !> Set when the file cannot be opened or a data line does not hold N finite numbers.
+        !> Set when the file cannot be opened or a data_line line does not hold N finite numbers.
         type(error_type), allocatable, intent(out) :: error
 
         type(text_line), allocatable :: lines(:)
-        logical, allocatable :: data(:)
+        logical, allocatable :: data_line(:)
         integer :: i, n, stat
 
         call read_line_list(path, '', '', lines, error)
         if (allocated(error)) return
-        allocate (data(size(lines)))
+        allocate (data_line(size(lines)))
         do i = 1, size(lines)
-            data(i) = len_trim(lines(i)%text) > 0 .and. index(adjustl(lines(i)%text), '#') /= 1
+            data_line(i) = len_trim(lines(i)%text) > 0 .and. index(adjustl(lines(i)%text), '#') /= 1
         end do
-        allocate (table(count(data), size(names)), line_of(count(data)), stat=stat)
+        allocate (table(count(data_line), size(names)), line_of(count(data_line)), stat=stat)
         if (stat /= 0) then
-            call fatal_error(error, path//': expected a file that fits in memory, found '//int_text(count(data)) &
-                             //' data lines')
+            call fatal_error(error, path//': expected a file that fits in memory, found ' &
+                             //int_text(count(data_line))//' data lines')
             return
         end if
         n = 0
         do i = 1, size(lines)
-            if (.not. data(i)) cycle
+            if (.not. data_line(i)) cycle
             n = n + 1
             call parse_row(path//':'//int_text(i)//': ', names, units, lines(i)%text, table(n, :), error)
             if (allocated(error)) return
