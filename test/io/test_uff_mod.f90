@@ -7,7 +7,7 @@
 module test_uff_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use scene_text_mod, only: write_text
+    use scene_text_mod, only: write_text, feed_fifo
     use greenconv_core_error, only: error_type
     use greenconv_io_files, only: make_directory
     use greenconv_io_columns, only: max_line_length
@@ -46,6 +46,7 @@ contains
                      new_unittest('nodes: Fortran 1P3E13.5 and 1P3D25.16', test_fortran_nodes), &
                      new_unittest('names of kinds, data types and function types', test_names), &
                      new_unittest('malformed: missing, empty, structure, binary, long line', test_bad_structure), &
+                     new_unittest('a universal file from a FIFO, read once', test_fifo), &
                      new_unittest('malformed: records 6 to 11', test_bad_header), &
                      new_unittest('malformed: data values and counts', test_bad_data), &
                      new_unittest('malformed: nodes', test_bad_nodes)]
@@ -485,6 +486,37 @@ contains
                    uff_function_type_name(1) == 'time response' .and. uff_function_type_name(28) == 'type 28', &
                    'names')
     end subroutine test_names
+
+    !> A fixture read through a FIFO with one writer gives the summary of the file itself (the
+    !> lines are read once: a pipe cannot be rewound).
+    subroutine test_fifo(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: fifo = scratch//'/skipped.fifo'
+        character(len=*), parameter :: fixture = fixtures//'skipped_datasets.uff'
+        type(uff_file) :: file, piped
+        type(error_type), allocatable :: read_error
+        character(len=:), allocatable :: from_file, from_fifo
+        logical :: made
+
+        call read_uff(fixture, file, read_error)
+        call check(error, .not. allocated(read_error), 'the fixture refused')
+        if (allocated(error)) return
+        call feed_fifo(fifo, fixture, made)
+        if (.not. made) then
+            call note('skipped', 0.0_dp)
+            return
+        end if
+        call read_uff(fifo, piped, read_error)
+        call execute_command_line('rm -f '//fifo)
+        if (allocated(read_error)) then
+            call check(error, .false., 'a universal file from a FIFO refused: '//read_error%message)
+            return
+        end if
+        from_file = uff_summary(file)
+        from_fifo = uff_summary(piped)
+        call check(error, from_fifo == fifo//from_file(len(fixture) + 1:), 'FIFO: '//from_fifo//'; file: '//from_file)
+    end subroutine test_fifo
 
     ! ---- malformed files -----------------------------------------------------------------
 
