@@ -7,6 +7,7 @@ program greenconv_tests_core
     use test_lapack_mod, only: collect_lapack
     use test_version_mod, only: collect_version
     use test_sorting_mod, only: collect_sorting
+    use test_text_mod, only: collect_text
     implicit none
 
     call run_layer('core', [ &
@@ -14,5 +15,6 @@ program greenconv_tests_core
                     new_testsuite('realtext', collect_realtext), &
                     new_testsuite('lapack', collect_lapack), &
                     new_testsuite('version', collect_version), &
-                    new_testsuite('sorting', collect_sorting)])
+                    new_testsuite('sorting', collect_sorting), &
+                    new_testsuite('text', collect_text)])
 end program greenconv_tests_core

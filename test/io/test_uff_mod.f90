@@ -7,9 +7,10 @@
 module test_uff_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
-    use scene_text_mod, only: write_text
+    use scene_text_mod, only: write_text, feed_fifo
     use greenconv_core_error, only: error_type
     use greenconv_io_files, only: make_directory
+    use greenconv_io_columns, only: max_line_length
     use greenconv_io_uff, only: uff_file, read_uff, uff_summary, uff_kind_name, uff_data_type_name, &
                                 uff_function_type_name, uff_receptance, uff_mobility, uff_accelerance
     implicit none
@@ -44,7 +45,8 @@ contains
                                   test_layout), &
                      new_unittest('nodes: Fortran 1P3E13.5 and 1P3D25.16', test_fortran_nodes), &
                      new_unittest('names of kinds, data types and function types', test_names), &
-                     new_unittest('malformed: missing, empty, structure, binary', test_bad_structure), &
+                     new_unittest('malformed: missing, empty, structure, binary, long line', test_bad_structure), &
+                     new_unittest('a universal file from a FIFO, read once', test_fifo), &
                      new_unittest('malformed: records 6 to 11', test_bad_header), &
                      new_unittest('malformed: data values and counts', test_bad_data), &
                      new_unittest('malformed: nodes', test_bad_nodes)]
@@ -485,6 +487,37 @@ contains
                    'names')
     end subroutine test_names
 
+    !> A fixture read through a FIFO with one writer gives the summary of the file itself (the
+    !> lines are read once: a pipe cannot be rewound).
+    subroutine test_fifo(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        character(len=*), parameter :: fifo = scratch//'/skipped.fifo'
+        character(len=*), parameter :: fixture = fixtures//'skipped_datasets.uff'
+        type(uff_file) :: file, piped
+        type(error_type), allocatable :: read_error
+        character(len=:), allocatable :: from_file, from_fifo
+        logical :: made
+
+        call read_uff(fixture, file, read_error)
+        call check(error, .not. allocated(read_error), 'the fixture refused')
+        if (allocated(error)) return
+        call feed_fifo(fifo, fixture, made)
+        if (.not. made) then
+            call note('skipped', 0.0_dp)
+            return
+        end if
+        call read_uff(fifo, piped, read_error)
+        call execute_command_line('rm -f '//fifo)
+        if (allocated(read_error)) then
+            call check(error, .false., 'a universal file from a FIFO refused: '//read_error%message)
+            return
+        end if
+        from_file = uff_summary(file)
+        from_fifo = uff_summary(piped)
+        call check(error, from_fifo == fifo//from_file(len(fixture) + 1:), 'FIFO: '//from_fifo//'; file: '//from_file)
+    end subroutine test_fifo
+
     ! ---- malformed files -----------------------------------------------------------------
 
     !> Write `text` as scratch/name, read it, and check: an error, status 2, one line starting
@@ -570,6 +603,15 @@ contains
         call expect_error(error, 'binary.uff', 2, '    -1'//nl//'    58b     1     2'//nl//'    -1', &
                           [character(len=70) :: 'dataset 58b: expected an ASCII dataset, found a binary one', &
                            'export the file as an ASCII universal file'])
+        if (allocated(error)) return
+        ! A line longer than the readers take is refused at that line, not taken for the file's end.
+        call write_text(scratch//'/long_line.uff', '    -1'//nl//repeat('1', 2*max_line_length)//nl//'    -1'//nl)
+        call read_uff(scratch//'/long_line.uff', file, read_error)
+        call check(error, allocated(read_error), 'a line longer than max_line_length is refused')
+        if (allocated(error)) return
+        call check(error, read_error%stat == 2 .and. index(read_error%message, scratch//'/long_line.uff:2: ' &
+                                                           //'expected lines of at most') == 1, &
+                   'long line: '//read_error%message(:min(len(read_error%message), 200)))
     end subroutine test_bad_structure
 
     !> An empty file.

@@ -11,6 +11,7 @@
 module greenconv_conv_methods
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: quoted_list, quoted_list_length
     implicit none
     private
 
@@ -164,6 +165,8 @@ module greenconv_conv_methods
 
     !> Number of methods in the registry.
     integer, parameter :: n_methods = size(registry)
+    !> The methods' names, in the registry's order (one array, for the lists of names).
+    character(len=method_name_length), parameter :: registry_names(n_methods) = registry%name
 
 
     !> The method names for messages, "'direct', 'fft', ... or 'auto'": all of them
@@ -179,18 +182,6 @@ module greenconv_conv_methods
     integer, parameter :: field_canonical = 1, field_engine = 2, field_summary = 3
 
 contains
-
-    !> Length of `joined(keep)`: the quoted names kept, ", " between them and " or " before the
-    !> last (texts whose length is a specification expression: see greenconv_core_text).
-    pure integer function joined_length(keep)
-        !> Which methods of the registry to name.
-        logical, intent(in) :: keep(n_methods)
-
-        integer :: n
-
-        n = count(keep)
-        joined_length = sum(len_trim(registry%name) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
-    end function joined_length
 
     !> One text field of a method's entry (`field_canonical`, `field_engine`, `field_summary`),
     !> blank-padded; blank for an unknown name.
@@ -238,15 +229,15 @@ contains
     pure function method_names() result(names)
         character(len=method_name_length) :: names(n_methods)
 
-        names(:) = registry%name
+        names(:) = registry_names
     end function method_names
 
     !> Every method name for messages, "'direct', 'fft', ... or 'auto'".
     pure function method_list_all() result(text)
         !> The names.
-        character(len=joined_length(spread(.true., 1, n_methods))) :: text
+        character(len=quoted_list_length(registry_names, spread(.true., 1, n_methods))) :: text
 
-        text = joined(spread(.true., 1, n_methods))
+        text = quoted_list(registry_names, spread(.true., 1, n_methods))
     end function method_list_all
 
     !> The method names that serve single-point (`multi_point` false) or multi-point contact.
@@ -254,9 +245,10 @@ contains
         !> Keep only the methods for this kind of contact.
         logical, intent(in) :: multi_point
         !> The names.
-        character(len=joined_length(merge(registry%multi_point, registry%single_point, multi_point))) :: text
+        character(len=quoted_list_length(registry_names, &
+                                         merge(registry%multi_point, registry%single_point, multi_point))) :: text
 
-        text = joined(merge(registry%multi_point, registry%single_point, multi_point))
+        text = quoted_list(registry_names, merge(registry%multi_point, registry%single_point, multi_point))
     end function method_list_for
 
     !> The method names one engine steps (see `method_engine`).
@@ -264,9 +256,9 @@ contains
         !> Keep only the methods this engine steps.
         character(len=*), intent(in) :: engine
         !> The names.
-        character(len=joined_length(registry%engine == engine)) :: text
+        character(len=quoted_list_length(registry_names, registry%engine == engine)) :: text
 
-        text = joined(registry%engine == engine)
+        text = quoted_list(registry_names, registry%engine == engine)
     end function method_list_of
 
     !> The engine that steps a method: `direct`, `fft`, `paper` or `recursive`; '' for `auto`
@@ -425,34 +417,9 @@ contains
 
     !> The methods that need g alone, "'direct' or 'fft'".
     pure function g_only_list() result(text)
-        character(len=joined_length(registry%needs_g .and. .not. registry%needs_modes)) :: text
+        character(len=quoted_list_length(registry_names, registry%needs_g .and. .not. registry%needs_modes)) :: text
 
-        text = joined(registry%needs_g .and. .not. registry%needs_modes)
+        text = quoted_list(registry_names, registry%needs_g .and. .not. registry%needs_modes)
     end function g_only_list
-
-    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
-    pure function joined(keep) result(text)
-        logical, intent(in) :: keep(n_methods)
-        character(len=joined_length(keep)) :: text
-
-        integer :: i, k, n, at
-        character(len=:), allocatable :: piece
-
-        n = count(keep)
-        k = 0
-        at = 0
-        do i = 1, n_methods
-            if (.not. keep(i)) cycle
-            k = k + 1
-            piece = "'"//trim(registry(i)%name)//"'"
-            if (k > 1 .and. k == n) then
-                piece = ' or '//piece
-            else if (k > 1) then
-                piece = ', '//piece
-            end if
-            text(at + 1:at + len(piece)) = piece
-            at = at + len(piece)
-        end do
-    end function joined
 
 end module greenconv_conv_methods

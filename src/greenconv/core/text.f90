@@ -12,6 +12,7 @@ module greenconv_core_text
     private
 
     public :: int_text, real_text, sci_text, lower_text, exact_text, sci_digits, trimmed_real_text
+    public :: quoted_list, quoted_list_length
 
     !> An integer (default or 64-bit) as text, without blanks.
     interface int_text
@@ -213,5 +214,49 @@ contains
 
         text = sci_buffer(x, exact_digits(x) - 1)
     end function exact_text
+
+    !> Length of `quoted_list(names, keep)`: the trimmed names kept, each quoted, ", " between
+    !> them and " or " before the last.
+    pure integer function quoted_list_length(names, keep)
+        !> The names (blank-padded).
+        character(len=*), intent(in) :: names(:)
+        !> Which names to list.
+        logical, intent(in) :: keep(size(names))
+
+        integer :: n
+
+        n = count(keep)
+        quoted_list_length = sum(len_trim(names) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
+    end function quoted_list_length
+
+    !> The names kept, trimmed and quoted, in their order: "'a', 'b' or 'c'" (empty when none).
+    pure function quoted_list(names, keep) result(text)
+        !> The names (blank-padded).
+        character(len=*), intent(in) :: names(:)
+        !> Which names to list.
+        logical, intent(in) :: keep(size(names))
+        !> The list.
+        character(len=quoted_list_length(names, keep)) :: text
+
+        integer :: i, k, n, at, width
+
+        n = count(keep)
+        k = 0
+        at = 0
+        do i = 1, size(names)
+            if (.not. keep(i)) cycle
+            k = k + 1
+            if (k > 1 .and. k == n) then
+                text(at + 1:at + 4) = ' or '
+                at = at + 4
+            else if (k > 1) then
+                text(at + 1:at + 2) = ', '
+                at = at + 2
+            end if
+            width = len_trim(names(i)) + 2
+            text(at + 1:at + width) = "'"//trim(names(i))//"'"
+            at = at + width
+        end do
+    end function quoted_list
 
 end module greenconv_core_text

@@ -11,6 +11,7 @@
 !> greenconv_ident_green_structure for a Green's matrix).
 module greenconv_ident_methods
     use greenconv_core_error, only: error_type, fatal_error
+    use greenconv_core_text, only: quoted_list, quoted_list_length
     implicit none
     private
 
@@ -79,6 +80,8 @@ module greenconv_ident_methods
 
     !> Number of identification methods in the registry.
     integer, parameter :: n_ident_methods = size(registry)
+    !> The methods' names, in the registry's order (one array, for the lists of names).
+    character(len=ident_name_length), parameter :: registry_names(n_ident_methods) = registry%name
     !> Length of `ident_summary`'s line.
     integer, parameter :: summary_length = len(registry%summary) + len(registry%procedure) + 3
 
@@ -112,18 +115,6 @@ contains
         i = find(name)
         if (i > 0) entry = registry(i)
     end function entry_of
-
-    !> Length of `joined(keep)`: the quoted names kept, ", " between them and " or " before the
-    !> last (a length given by a specification expression: see greenconv_core_text).
-    pure integer function joined_length(keep)
-        !> Which methods of the registry to name.
-        logical, intent(in) :: keep(n_ident_methods)
-
-        integer :: n
-
-        n = count(keep)
-        joined_length = sum(len_trim(registry%name) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
-    end function joined_length
 
     !> Whether `name` is an identification method of the registry (trailing blanks ignored).
     elemental logical function is_ident_method(name)
@@ -177,9 +168,9 @@ contains
     !> Every method name for messages, "'ml', 'lsce', 'poly_reference' or 'auto'".
     pure function ident_list_all() result(text)
         !> The names.
-        character(len=joined_length(spread(.true., 1, n_ident_methods))) :: text
+        character(len=quoted_list_length(registry_names, spread(.true., 1, n_ident_methods))) :: text
 
-        text = joined(spread(.true., 1, n_ident_methods))
+        text = quoted_list(registry_names, spread(.true., 1, n_ident_methods))
     end function ident_list_all
 
     !> The names of the methods that identify `what` (`ident_one_receptance`,
@@ -188,38 +179,10 @@ contains
         !> Keep only the methods that identify this.
         integer, intent(in) :: what
         !> The names.
-        character(len=joined_length(serves(registry, what))) :: text
+        character(len=quoted_list_length(registry_names, serves(registry, what))) :: text
 
-        text = joined(serves(registry, what))
+        text = quoted_list(registry_names, serves(registry, what))
     end function ident_list_of
-
-    !> The names of the methods kept, quoted, "'a', 'b' or 'c'".
-    pure function joined(keep) result(text)
-        !> Which methods of the registry to name.
-        logical, intent(in) :: keep(n_ident_methods)
-        !> The names.
-        character(len=joined_length(keep)) :: text
-
-        integer :: i, k, n, at, width
-
-        n = count(keep)
-        k = 0
-        at = 0
-        do i = 1, n_ident_methods
-            if (.not. keep(i)) cycle
-            k = k + 1
-            if (k > 1 .and. k == n) then
-                text(at + 1:at + 4) = ' or '
-                at = at + 4
-            else if (k > 1) then
-                text(at + 1:at + 2) = ', '
-                at = at + 2
-            end if
-            width = len_trim(registry(i)%name) + 2
-            text(at + 1:at + width) = "'"//trim(registry(i)%name)//"'"
-            at = at + width
-        end do
-    end function joined
 
     !> The method a structure gets when its scene names none: `what` is `ident_green_matrix`
     !> for a Green's matrix file, else `ident_one_receptance` with `measured` true for a
@@ -296,9 +259,9 @@ contains
 
     !> The methods that take a fixed order, "'lsce'".
     pure function fixed_order_list() result(text)
-        character(len=joined_length(registry%fixed_order)) :: text
+        character(len=quoted_list_length(registry_names, registry%fixed_order)) :: text
 
-        text = joined(registry%fixed_order)
+        text = quoted_list(registry_names, registry%fixed_order)
     end function fixed_order_list
 
     !> Index of `name` in the registry, 0 when unknown (trailing blanks ignored).

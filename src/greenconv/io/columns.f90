@@ -14,8 +14,8 @@ module greenconv_io_columns
     implicit none
     private
 
-    public :: read_columns, read_line, read_lines, open_to_read, text_line, max_line_length, parse_row, count_tokens
-    public :: byte_order_mark
+    public :: read_columns, read_line, read_lines, read_line_list, open_to_read, text_line, max_line_length
+    public :: parse_row, count_tokens, byte_order_mark, pad_lines
 
     !> Longest line the readers accept [characters]: a longer one is not a scene, receptance
     !> or road file (a binary file, a file without line ends) and is refused at that line.
@@ -35,11 +35,8 @@ module greenconv_io_columns
 
 contains
 
-    !> Read all data lines of a file into table(:, 1:N), N = size(names), with the file line
-    !> number of each row in line_of.
-    !> Files are read one at a time in the process (the critical section greenconv_input_files):
-    !> a file may be connected to one Fortran unit only, so two threads opening the same file
-    !> at once would see "File already opened in another unit".
+    !> Read all data lines of a file (`read_line_list`) into table(:, 1:N), N = size(names),
+    !> with the file line number of each row in line_of.
     subroutine read_columns(path, names, units, table, line_of, error)
         !> File to read.
         character(len=*), intent(in) :: path
@@ -47,93 +44,38 @@ contains
         character(len=*), intent(in) :: names(:)
         !> Unit of each column, for messages (e.g. `m`).
         character(len=*), intent(in) :: units(:)
-        !> The numbers, one row per data line.
+        !> The numbers, one row per data_line line.
         real(dp), allocatable, intent(out) :: table(:, :)
         !> Line number in the file of each row.
         integer, allocatable, intent(out) :: line_of(:)
-        !> Set when the file cannot be opened or a data line does not hold N finite numbers.
+        !> Set when the file cannot be opened or a data_line line does not hold N finite numbers.
         type(error_type), allocatable, intent(out) :: error
 
-        !$omp critical (greenconv_input_files)
-        call read_table()
-        !$omp end critical (greenconv_input_files)
+        type(text_line), allocatable :: lines(:)
+        logical, allocatable :: data_line(:)
+        integer :: i, n, stat
 
-    contains
-
-        !> The reading itself, inside the lock (the arguments are the host's).
-        subroutine read_table()
-            character(len=:), allocatable :: line
-            real(dp) :: row(size(names))
-            integer :: unit, stat, line_number, n
-            logical :: too_long
-
-            allocate (table(64, size(names)), line_of(64))
-            call open_to_read(path, '', '', unit, error)
+        call read_line_list(path, '', '', lines, error)
+        if (allocated(error)) return
+        allocate (data_line(size(lines)))
+        do i = 1, size(lines)
+            data_line(i) = len_trim(lines(i)%text) > 0 .and. index(adjustl(lines(i)%text), '#') /= 1
+        end do
+        allocate (table(count(data_line), size(names)), line_of(count(data_line)), stat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, path//': expected a file that fits in memory, found ' &
+                             //int_text(count(data_line))//' data lines')
+            return
+        end if
+        n = 0
+        do i = 1, size(lines)
+            if (.not. data_line(i)) cycle
+            n = n + 1
+            call parse_row(path//':'//int_text(i)//': ', names, units, lines(i)%text, table(n, :), error)
             if (allocated(error)) return
-            n = 0
-            line_number = 0
-            do
-                call read_line(unit, line, stat, too_long)
-                if (too_long) call fatal_error(error, long_line(path, line_number + 1))
-                if (stat /= 0) exit
-                line_number = line_number + 1
-                if (len_trim(line) == 0) cycle
-                if (index(adjustl(line), '#') == 1) cycle
-                call parse_row(path//':'//int_text(line_number)//': ', names, units, line, row, error)
-                if (allocated(error)) exit
-                n = n + 1
-                if (n > size(table, 1)) call grow(table, line_of, stat)
-                if (stat /= 0) then
-                    call fatal_error(error, path//':'//int_text(line_number) &
-                                     //': expected a file that fits in memory, found more than ' &
-                                     //int_text(n - 1)//' data lines')
-                    exit
-                end if
-                table(n, :) = row
-                line_of(n) = line_number
-            end do
-            close (unit)
-            if (allocated(error)) return
-            call shrink(table, line_of, n)
-        end subroutine read_table
+            line_of(n) = i
+        end do
     end subroutine read_columns
-
-    !> Keep the first n rows of the row storage.
-    pure subroutine shrink(table, line_of, n)
-        real(dp), allocatable, intent(inout) :: table(:, :)
-        integer, allocatable, intent(inout) :: line_of(:)
-        integer, intent(in) :: n
-
-        real(dp), allocatable :: rows(:, :)
-        integer, allocatable :: lines(:)
-
-        allocate (rows(n, size(table, 2)), lines(n))
-        rows(:, :) = table(1:n, :)
-        lines(:) = line_of(1:n)
-        call move_alloc(rows, table)
-        call move_alloc(lines, line_of)
-    end subroutine shrink
-
-    !> Double the capacity of the row storage; stat /= 0 (storage unchanged) when that fails.
-    pure subroutine grow(table, line_of, stat)
-        real(dp), allocatable, intent(inout) :: table(:, :)
-        integer, allocatable, intent(inout) :: line_of(:)
-        integer, intent(out) :: stat
-
-        real(dp), allocatable :: bigger(:, :)
-        integer, allocatable :: longer(:)
-
-        stat = 1
-        if (size(table, 1) > huge(stat) - size(table, 1)) return
-        allocate (bigger(2*size(table, 1), size(table, 2)), stat=stat)
-        if (stat /= 0) return
-        allocate (longer(2*size(table, 1)), stat=stat)
-        if (stat /= 0) return
-        bigger(1:size(table, 1), :) = table
-        longer(1:size(line_of)) = line_of
-        call move_alloc(bigger, table)
-        call move_alloc(longer, line_of)
-    end subroutine grow
 
     !> Parse one data line: exactly N finite numbers, N = size(names), each refused with its
     !> column's name when it is not a finite number.
@@ -280,15 +222,8 @@ contains
         line = work(1:used)
     end subroutine read_line
 
-    !> Read a whole text file once, from its start to its end, without rewinding or opening it
-    !> again (so a pipe, a FIFO or a process substitution works): its lines padded to the
-    !> longest, a UTF-8 byte-order mark at its start skipped. Lines may end with LF, CR LF or a
-    !> CR alone (old Mac text): gfortran's runtime ends a record at each. Refused with a
-    !> message: a file that cannot be opened, a line longer than `max_line_length`, more than
-    !> `max_text_bytes` in all.
-    !> Files are read one at a time in the process (the critical section greenconv_input_files):
-    !> a file may be connected to one Fortran unit only, so two threads opening the same file
-    !> at once would see "File already opened in another unit".
+    !> A whole text file's lines, padded to the longest (`read_line_list`, at most
+    !> `max_text_bytes` once padded). Refused with `read_line_list`'s messages.
     subroutine read_lines(path, what, lines, error)
         !> The file.
         character(len=*), intent(in) :: path
@@ -299,6 +234,56 @@ contains
         !> Set when the file cannot be read, naming it (and the line).
         type(error_type), allocatable, intent(out) :: error
 
+        type(text_line), allocatable :: list(:)
+
+        call read_line_list(path, what, '', list, error, max_text_bytes)
+        if (allocated(error)) return
+        call pad_lines(list, lines)
+    end subroutine read_lines
+
+    !> Lines as one character array, each padded with blanks to the longest (at least 1).
+    pure subroutine pad_lines(list, lines)
+        !> The lines.
+        type(text_line), intent(in) :: list(:)
+        !> The same lines, padded.
+        character(len=:), allocatable, intent(out) :: lines(:)
+
+        integer :: i, longest
+
+        longest = 1
+        do i = 1, size(list)
+            longest = max(longest, len(list(i)%text))
+        end do
+        allocate (character(len=longest) :: lines(size(list)))
+        do i = 1, size(list)
+            lines(i) = list(i)%text
+        end do
+    end subroutine pad_lines
+
+    !> Read a whole text file once, from its start to its end, without rewinding or opening it
+    !> again (so a pipe, a FIFO or a process substitution works): its lines, a UTF-8 byte-order
+    !> mark at its start skipped. Lines may end with LF, CR LF or a CR alone (old Mac text):
+    !> gfortran's runtime ends a record at each. Refused with a message (and no lines): a file
+    !> that cannot be opened (`open_to_read`'s message, with `advice`), a line longer than
+    !> `max_line_length`, and with `max_bytes`, lines that padded to the longest would hold more
+    !> bytes than that.
+    !> Files are read one at a time in the process (the critical section greenconv_input_files):
+    !> a file may be connected to one Fortran unit only, so two threads opening the same file
+    !> at once would see "File already opened in another unit".
+    subroutine read_line_list(path, what, advice, lines, error, max_bytes)
+        !> The file.
+        character(len=*), intent(in) :: path
+        !> What the file is, for messages (e.g. `scene file`), or empty.
+        character(len=*), intent(in) :: what
+        !> What the message of a file that cannot be opened ends with (e.g. `; check the file name`).
+        character(len=*), intent(in) :: advice
+        !> Its lines, without their ends.
+        type(text_line), allocatable, intent(out) :: lines(:)
+        !> Set when the file cannot be read, naming it (and the line).
+        type(error_type), allocatable, intent(out) :: error
+        !> Most bytes [B] of the lines padded to the longest (a multiple of 1 MiB); no limit when absent.
+        integer, intent(in), optional :: max_bytes
+
         !$omp critical (greenconv_input_files)
         call read_text()
         !$omp end critical (greenconv_input_files)
@@ -307,45 +292,50 @@ contains
 
         !> The reading itself, inside the lock (the arguments are the host's).
         subroutine read_text()
-            type(text_line), allocatable :: list(:), longer(:)
-            integer :: unit, stat, n, longest
+            type(text_line), allocatable :: longer(:)
+            integer :: unit, stat, n, longest, i
             logical :: too_long
 
-            call open_to_read(path, what, '', unit, error)
+            call open_to_read(path, what, advice, unit, error)
             if (allocated(error)) return
-            allocate (list(64))
+            allocate (lines(64))
             n = 0
             longest = 0
             do
-                if (n == size(list)) then
+                if (n == size(lines)) then
                     allocate (longer(2*n))
-                    longer(1:n) = list
-                    call move_alloc(longer, list)
+                    longer(1:n) = lines
+                    call move_alloc(longer, lines)
                 end if
-                call read_line(unit, list(n + 1)%text, stat, too_long)
+                call read_line(unit, lines(n + 1)%text, stat, too_long)
                 if (too_long) then
                     call fatal_error(error, long_line(path, n + 1))
                     exit
                 end if
                 if (stat /= 0) exit
                 n = n + 1
-                if (n == 1 .and. index(list(1)%text, byte_order_mark) == 1) &
-                    list(1)%text = list(1)%text(len(byte_order_mark) + 1:)
-                longest = max(longest, len(list(n)%text))
-                if (real(longest, dp)*real(n, dp) > real(max_text_bytes, dp)) then
+                if (n == 1 .and. index(lines(1)%text, byte_order_mark) == 1) &
+                    lines(1)%text = lines(1)%text(len(byte_order_mark) + 1:)
+                longest = max(longest, len(lines(n)%text))
+                if (.not. present(max_bytes)) cycle
+                if (real(longest, dp)*real(n, dp) > real(max_bytes, dp)) then
                     call fatal_error(error, path//':'//int_text(n)//': expected a '//what//' of at most ' &
-                                     //int_text(max_text_bytes/1048576)//' MiB, found more')
+                                     //int_text(max_bytes/1048576)//' MiB, found more')
                     exit
                 end if
             end do
             close (unit)
-            if (allocated(error)) return
-            allocate (character(len=max(longest, 1)) :: lines(n))
-            do n = 1, size(lines)
-                lines(n) = list(n)%text
+            if (allocated(error)) then
+                deallocate (lines)
+                return
+            end if
+            allocate (longer(n))
+            do i = 1, n
+                call move_alloc(lines(i)%text, longer(i)%text)
             end do
+            call move_alloc(longer, lines)
         end subroutine read_text
-    end subroutine read_lines
+    end subroutine read_line_list
 
     !> Open an existing file to read it, on a new unit; when it cannot be opened, the message
     !> `PATH: cannot open the WHAT: REASON` + `advice` (`PATH: cannot open: REASON` + `advice`

@@ -8,7 +8,7 @@ module greenconv_io_uff_records
     use greenconv_core_text, only: int_text
     use greenconv_core_sorting, only: heap_sort
     use greenconv_core_number_text, only: is_number, is_nan_or_inf, is_integer, read_real, read_integer
-    use greenconv_io_columns, only: read_line, byte_order_mark, open_to_read, text_line
+    use greenconv_io_columns, only: read_line_list, text_line
     implicit none
     private
 
@@ -26,56 +26,30 @@ module greenconv_io_uff_records
 
 contains
 
-    !> Read every line of a file (a trailing carriage return and a UTF-8 byte-order mark at its start removed).
-    !> Files are read one at a time in the process (the critical section greenconv_input_files):
-    !> a file may be connected to one Fortran unit only, so two threads opening the same file
-    !> at once would see "File already opened in another unit".
+    !> Read every line of a file (`read_line_list`: a UTF-8 byte-order mark at its start and
+    !> a trailing carriage return of each line removed).
     subroutine load_lines(path, lines, error)
         !> File to read.
         character(len=*), intent(in) :: path
         !> Its lines, in order.
         type(text_line), allocatable, intent(out) :: lines(:)
-        !> Set (status 2) when the file cannot be opened or is empty.
+        !> Set (status 2) when the file cannot be opened, is empty or has a line longer than `max_line_length`.
         type(error_type), allocatable, intent(out) :: error
 
-        !$omp critical (greenconv_input_files)
-        call read_records()
-        !$omp end critical (greenconv_input_files)
+        integer :: i, n
 
-    contains
-
-        !> The reading itself, inside the lock (the arguments are the host's).
-        subroutine read_records()
-            character(len=:), allocatable :: line
-            integer :: unit, stat, n, i
-
-            call open_to_read(path, 'universal file', '; check the file name and that it is readable', unit, error)
-            if (allocated(error)) return
-            n = 0
-            do
-                call read_line(unit, line, stat)
-                if (stat /= 0) exit
-                n = n + 1
-            end do
-            if (n == 0) then
-                close (unit)
-                call fatal_error(error, path//':1: universal file: expected datasets between lines "    -1", ' &
-                                 //'found an empty file')
-                return
-            end if
-            rewind (unit)
-            allocate (lines(n))
-            do i = 1, n
-                call read_line(unit, line, stat)
-                if (len(line) > 0) then
-                    if (line(len(line):len(line)) == achar(13)) line = line(:len(line) - 1)
-                end if
-                ! A UTF-8 byte-order mark (what some editors write first) is not part of the text.
-                if (i == 1 .and. index(line, byte_order_mark) == 1) line = line(len(byte_order_mark) + 1:)
-                lines(i)%text = line
-            end do
-            close (unit)
-        end subroutine read_records
+        call read_line_list(path, 'universal file', '; check the file name and that it is readable', lines, error)
+        if (allocated(error)) return
+        if (size(lines) == 0) then
+            call fatal_error(error, path//':1: universal file: expected datasets between lines "    -1", ' &
+                             //'found an empty file')
+            return
+        end if
+        do i = 1, size(lines)
+            n = len(lines(i)%text)
+            if (n == 0) cycle
+            if (lines(i)%text(n:n) == achar(13)) lines(i)%text = lines(i)%text(:n - 1)
+        end do
     end subroutine load_lines
 
     !> Whether a line is a dataset delimiter: `-1` ending within columns 1-6, nothing else.

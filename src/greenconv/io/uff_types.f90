@@ -130,97 +130,70 @@ module greenconv_io_uff_types
         type(uff_skipped), allocatable :: skipped(:)
     end type uff_file
 
+    !> Names of the ordinate kinds, by kind (`uff_other` to `uff_accelerance`).
+    character(len=*), parameter :: kind_names(uff_other:uff_accelerance) = [character(len=11) :: 'other', &
+        'receptance', 'mobility', 'accelerance']
+
+    !> Names of the specific data types of records 8-11, by code; blank: a code the format does not list.
+    character(len=*), parameter :: data_type_names(0:20) = [character(len=16) :: 'unknown', 'general', 'stress', &
+        'strain', '', 'temperature', 'heat flux', '', 'displacement', 'reaction force', '', 'velocity', &
+        'acceleration', 'excitation force', '', 'pressure', 'mass', 'time', 'frequency', 'rpm', 'order']
+
+    !> Names of the function types of record 6 field 1, by code.
+    character(len=*), parameter :: function_type_names(0:27) = [character(len=34) :: 'general or unknown', &
+        'time response', 'auto spectrum', 'cross spectrum', 'frequency response function', 'transmissibility', &
+        'coherence', 'auto correlation', 'cross correlation', 'power spectral density', 'energy spectral density', &
+        'probability density function', 'spectrum', 'cumulative frequency distribution', 'peaks valley', &
+        'stress/cycles', 'strain/cycles', 'orbit', 'mode indicator function', 'force pattern', 'partial power', &
+        'partial coherence', 'eigenvalue', 'eigenvector', 'shock response spectrum', &
+        'finite impulse response filter', 'multiple coherence', 'order function']
+
 contains
 
-    !> `uff_kind_name` blank-padded to a fixed length, which gives that function a result of spec length.
-    pure function uff_kind_name_buffer(kind) result(name)
-        !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
-        integer, intent(in) :: kind
-        character(len=16) :: name
+    !> The name of `code` in a table of names from code 0, blank-padded; `unknown` for a code
+    !> outside the table or with a blank name (which gives the functions below a result of
+    !> spec length).
+    pure function code_name(names, code, unknown) result(name)
+        !> The names of codes 0, 1, ...
+        character(len=*), intent(in) :: names(0:)
+        !> The code.
+        integer, intent(in) :: code
+        !> The name of a code the table does not name.
+        character(len=*), intent(in) :: unknown
+        character(len=max(len(names), len(unknown))) :: name
 
-        character(len=*), parameter :: names(uff_other:uff_accelerance) = [character(len=11) :: 'other', &
-            'receptance', 'mobility', 'accelerance']
-
-        name = 'other'
-        if (kind >= lbound(names, 1) .and. kind <= ubound(names, 1)) name = trim(names(kind))
-    end function uff_kind_name_buffer
+        name = unknown
+        if (code < 0 .or. code > ubound(names, 1)) return
+        if (len_trim(names(code)) > 0) name = names(code)
+    end function code_name
 
     !> Name of an ordinate kind: `receptance`, `mobility`, `accelerance` or `other`.
     pure function uff_kind_name(kind) result(name)
         !> `uff_receptance`, `uff_mobility`, `uff_accelerance` or `uff_other`.
         integer, intent(in) :: kind
-        character(len=len_trim(uff_kind_name_buffer(kind))) :: name
+        character(len=len_trim(code_name(kind_names, kind, 'other'))) :: name
 
-        name = uff_kind_name_buffer(kind)
+        name = code_name(kind_names, kind, 'other')
     end function uff_kind_name
-
-    !> `uff_data_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
-    pure function uff_data_type_name_buffer(code) result(name)
-        !> Specific data type (record 8-11 field 1).
-        integer, intent(in) :: code
-        character(len=32) :: name
-
-        select case (code)
-        case (0); name = 'unknown'
-        case (1); name = 'general'
-        case (2); name = 'stress'
-        case (3); name = 'strain'
-        case (5); name = 'temperature'
-        case (6); name = 'heat flux'
-        case (8); name = 'displacement'
-        case (9); name = 'reaction force'
-        case (11); name = 'velocity'
-        case (12); name = 'acceleration'
-        case (13); name = 'excitation force'
-        case (15); name = 'pressure'
-        case (16); name = 'mass'
-        case (17); name = 'time'
-        case (18); name = 'frequency'
-        case (19); name = 'rpm'
-        case (20); name = 'order'
-        case default; name = 'type '//int_text(code)
-        end select
-    end function uff_data_type_name_buffer
 
     !> Name of a specific data type of records 8-11 (`displacement`, `excitation force`, ...);
     !> `type N` for a code the format does not list.
     pure function uff_data_type_name(code) result(name)
         !> Specific data type (record 8-11 field 1).
         integer, intent(in) :: code
-        character(len=len_trim(uff_data_type_name_buffer(code))) :: name
+        character(len=len_trim(code_name(data_type_names, code, 'type '//int_text(code)))) :: name
 
-        name = uff_data_type_name_buffer(code)
+        name = code_name(data_type_names, code, 'type '//int_text(code))
     end function uff_data_type_name
-
-    !> `uff_function_type_name` blank-padded to a fixed length, which gives that function a result of spec length.
-    pure function uff_function_type_name_buffer(code) result(name)
-        !> Function type (record 6 field 1).
-        integer, intent(in) :: code
-        character(len=40) :: name
-
-        character(len=*), parameter :: names(0:27) = [character(len=34) :: 'general or unknown', 'time response', &
-            'auto spectrum', 'cross spectrum', 'frequency response function', 'transmissibility', 'coherence', &
-            'auto correlation', 'cross correlation', 'power spectral density', 'energy spectral density', &
-            'probability density function', 'spectrum', 'cumulative frequency distribution', 'peaks valley', &
-            'stress/cycles', 'strain/cycles', 'orbit', 'mode indicator function', 'force pattern', 'partial power', &
-            'partial coherence', 'eigenvalue', 'eigenvector', 'shock response spectrum', &
-            'finite impulse response filter', 'multiple coherence', 'order function']
-
-        if (code >= lbound(names, 1) .and. code <= ubound(names, 1)) then
-            name = trim(names(code))
-        else
-            name = 'type '//int_text(code)
-        end if
-    end function uff_function_type_name_buffer
 
     !> Name of a function type of record 6 field 1 (`time response`, `frequency response
     !> function`, ...); `type N` for a code the format does not list.
     pure function uff_function_type_name(code) result(name)
         !> Function type (record 6 field 1).
         integer, intent(in) :: code
-        character(len=len_trim(uff_function_type_name_buffer(code))) :: name
+        character(len=len_trim(code_name(function_type_names, code, 'type '//int_text(code)))) :: name
 
-        name = uff_function_type_name_buffer(code)
+        name = code_name(function_type_names, code, 'type '//int_text(code))
     end function uff_function_type_name
 
 end module greenconv_io_uff_types

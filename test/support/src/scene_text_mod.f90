@@ -1,5 +1,6 @@
 !> Scene files for tests: the paper's Tab. 1 scene with the values a scene must state
-!> (greenconv_scene_read_schema), any group replaced or left out, and a writer of small text files.
+!> (greenconv_scene_read_schema), any group replaced or left out, a writer of small text files
+!> and a FIFO fed with a file.
 module scene_text_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64
     use greenconv_io_files, only: make_directory
@@ -9,7 +10,7 @@ module scene_text_mod
     implicit none
     private
 
-    public :: tab1_scene, write_text, read_scene_text, omit, run_scene_text, read_table, message_of
+    public :: tab1_scene, write_text, read_scene_text, omit, run_scene_text, read_table, message_of, feed_fifo
 
     !> Passed as a group's body: leave the group out.
     character(len=*), parameter :: omit = '-'
@@ -143,5 +144,24 @@ contains
         text = ''
         if (allocated(error)) text = error%message
     end function message_of
+
+    !> Make the FIFO `fifo` (its directory too when missing) and start one writer of the file
+    !> `source` into it in the background (stopped after 60 s); `made` false when mkfifo fails.
+    subroutine feed_fifo(fifo, source, made)
+        !> The FIFO's path.
+        character(len=*), intent(in) :: fifo
+        !> The file written into it.
+        character(len=*), intent(in) :: source
+        !> Whether the FIFO was made and its writer started.
+        logical, intent(out) :: made
+
+        type(error_type), allocatable :: directory_error
+        integer :: status
+
+        call make_directory(fifo(:index(fifo, '/', back=.true.) - 1), directory_error)
+        call execute_command_line('rm -f '//fifo//' && mkfifo '//fifo, exitstat=status)
+        made = status == 0
+        if (made) call execute_command_line('timeout 60 sh -c ''cat '//source//' > '//fifo//''' &')
+    end subroutine feed_fifo
 
 end module scene_text_mod

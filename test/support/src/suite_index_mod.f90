@@ -14,10 +14,12 @@ module suite_index_mod
         'core    lapack          ', &
         'core    version         ', &
         'core    sorting         ', &
+        'core    text            ', &
         'io      uff             ', &
         'io      uffwrite        ', &
         'io      spectra         ', &
         'io      writer          ', &
+        'io      columns         ', &
         'model   plate           ', &
         'model   patch           ', &
         'model   modesfile       ', &

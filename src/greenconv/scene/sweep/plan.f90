@@ -10,7 +10,8 @@ module greenconv_scene_sweep_plan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text, real_text
-    use greenconv_io_columns, only: read_line
+    ! sweep_text: a text of any length (a line of a file, a value as written, a name).
+    use greenconv_io_columns, only: sweep_text => text_line, read_line_list, pad_lines
     use greenconv_io_spectra, only: segment_for_band, first_band, default_lines_per_band, third_octave_bands
     use greenconv_scene_read_facade, only: scene_table, scene_variable, scene_type, scene_files, read_scene_lines
     use greenconv_scene_run_facade, only: check_scene_line
@@ -33,12 +34,6 @@ module greenconv_scene_sweep_plan
     !> Scene variables a sweep may not vary: they name the sweep and its columns.
     character(len=*), parameter :: fixed_variables(4) = [character(len=19) :: 'scene.task', 'scene.name', &
                                                           'scene.output_dir', 'convolution.methods']
-
-    !> A text of any length: a line of a file, a value as written, a name.
-    type :: sweep_text
-        !> The text.
-        character(len=:), allocatable :: text
-    end type sweep_text
 
     !> A sweep as read from its scene file: the base scene's text and the values of each variant.
     type :: sweep_plan
@@ -202,44 +197,18 @@ contains
             //int_text(scene%n_steps)//'; raise f_low, or &scene n_steps')
     end subroutine check_spectra
 
-    !> Every line of a text file, as it is (trailing blanks kept).
+    !> Every line of a text file (greenconv_io_columns's `read_line_list`), trailing blanks kept;
+    !> no lines when it cannot be read.
     subroutine read_text_lines(path, lines, error)
         !> The file.
         character(len=*), intent(in) :: path
         !> Its lines.
         type(sweep_text), allocatable, intent(out) :: lines(:)
-        !> Set when the file cannot be opened.
+        !> Set when the file cannot be opened or read.
         type(error_type), allocatable, intent(out) :: error
 
-        type(sweep_text), allocatable :: list(:), longer(:)
-        character(len=512) :: message
-        integer :: unit, stat, n, i
-
-        allocate (list(64))
-        n = 0
-        open (newunit=unit, file=path, status='old', action='read', iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path//': cannot open the file: '//trim(message))
-            allocate (lines(0))
-            return
-        end if
-        do
-            if (n == size(list)) then
-                allocate (longer(2*n))
-                do i = 1, n
-                    call move_alloc(list(i)%text, longer(i)%text)
-                end do
-                call move_alloc(longer, list)
-            end if
-            call read_line(unit, list(n + 1)%text, stat)
-            if (stat /= 0) exit
-            n = n + 1
-        end do
-        close (unit)
-        allocate (lines(n))
-        do i = 1, n
-            call move_alloc(list(i)%text, lines(i)%text)
-        end do
+        call read_line_list(path, 'file', '', lines, error)
+        if (allocated(error)) allocate (lines(0))
     end subroutine read_text_lines
 
     !> Read lines as a scene from memory and check it as `--check` does (the files it names
@@ -253,16 +222,8 @@ contains
         type(scene_files), intent(inout), optional :: files
 
         character(len=:), allocatable :: fixed(:), line
-        integer :: i, width
 
-        width = 1
-        do i = 1, size(lines)
-            width = max(width, len(lines(i)%text))
-        end do
-        allocate (character(len=width) :: fixed(size(lines)))
-        do i = 1, size(lines)
-            fixed(i) = lines(i)%text
-        end do
+        call pad_lines(lines, fixed)
         call read_scene_lines(plan%file//' ('//what//')', fixed, scene, error, files)
         if (.not. allocated(error)) call check_scene_line(scene, line, error)
         scene%file = plan%file
