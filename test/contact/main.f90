@@ -5,6 +5,7 @@ program greenconv_tests_contact
     use test_contact_mod, only: collect_contact
     use test_multicontact_mod, only: collect_multicontact
     use test_lowrank_mod, only: collect_lowrank
+    use test_lowrankbits_mod, only: collect_lowrankbits
     use test_implicit_mod, only: collect_implicit
     use test_accuracy_mod, only: collect_accuracy
     use test_multiorder_mod, only: collect_multiorder
@@ -15,6 +16,7 @@ program greenconv_tests_contact
                     new_testsuite('contact', collect_contact), &
                     new_testsuite('multicontact', collect_multicontact), &
                     new_testsuite('lowrank', collect_lowrank), &
+                    new_testsuite('lowrankbits', collect_lowrankbits), &
                     new_testsuite('implicit', collect_implicit), &
                     new_testsuite('accuracy', collect_accuracy), &
                     new_testsuite('multiorder', collect_multiorder), &

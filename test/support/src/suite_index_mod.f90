@@ -45,6 +45,7 @@ module suite_index_mod
         'contact contact         ', &
         'contact multicontact    ', &
         'contact lowrank         ', &
+        'contact lowrankbits     ', &
         'contact implicit        ', &
         'contact accuracy        ', &
         'contact multiorder      ', &

@@ -22,6 +22,8 @@
 !> points of the tyre or of a Green's matrix file) and how the rows are laid out.
 module greenconv_scene_run_stream
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_c_binding, only: c_int, c_long
+    !$ use omp_lib, only: omp_get_max_threads, omp_in_parallel
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: sci_text, trimmed_real_text, int_text
@@ -342,22 +344,155 @@ contains
         integer(int64), intent(in) :: first
         integer, intent(in) :: m
 
-        character(len=:), allocatable :: why
-        integer(int64) :: start(2), target, j
+        integer(int64) :: start(2)
         real(dp) :: begin, finish
-        integer :: f
 
         call cpu_time(begin)
-        if (doubling%band_running) call advance_band_companion(doubling, run, first, m)
+        start = [doubling%coarse(1)%step(), doubling%coarse(2)%step()]
+        if (doubling%band_running) call step_band_companion(doubling, first, m)
+        call step_coarse_companions(doubling, first, m)
+        call add_differences(doubling, run, first, m, start)
+        call cpu_time(finish)
+        doubling%seconds = doubling%seconds + (finish - begin)
+    end subroutine advance_step_doubling
+
+    !> Whether `advance_together` steps a run and its companions at once: companions started,
+    !> at least two threads, and not inside a parallel region (a host's, or a sweep's).
+    logical function concurrent_companions(doubling)
+        type(step_doubling), intent(in) :: doubling
+
+        concurrent_companions = .false.
+        if (.not. doubling%active) return
+        !$ concurrent_companions = omp_get_max_threads() > 1
+        !$ if (concurrent_companions) concurrent_companions = .not. omp_in_parallel()
+    end function concurrent_companions
+
+    !> The run's block and its companions' (`advance_step_doubling`) stepped at once as three
+    !> OpenMP tasks on two threads: the run, the band's companion, the runs at 2*dt and 4*dt.
+    !> They are independent runs, each stepped by one thread alone (the loops inside a parallel
+    !> region stay serial), so every result is bit for bit that of one thread; the block's
+    !> differences are added afterwards, unless the run failed. `seconds` is the run's CPU
+    !> time and the companions' is added to theirs, each the CPU time of the thread that
+    !> stepped it.
+    subroutine advance_together(doubling, run, first, m, fault, seconds)
+        type(step_doubling), intent(inout) :: doubling
+        type(contact_run), intent(inout) :: run
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+        type(error_type), allocatable, intent(out) :: fault
+        !> CPU seconds [s] of the run's block.
+        real(dp), intent(out) :: seconds
+
+        integer(int64) :: start(2)
+        real(dp) :: band_seconds, coarse_seconds, begin
+
+        start = [doubling%coarse(1)%step(), doubling%coarse(2)%step()]
+        seconds = 0.0_dp
+        band_seconds = 0.0_dp
+        coarse_seconds = 0.0_dp
+        !$omp parallel num_threads(2) default(none) shared(doubling, run, first, m, fault, seconds, band_seconds, &
+        !$omp coarse_seconds) private(begin)
+        !$omp single
+        !$omp task
+        begin = thread_seconds()
+        call run%advance(fault)
+        seconds = thread_seconds() - begin
+        !$omp end task
+        !$omp task
+        begin = thread_seconds()
+        if (doubling%band_running) call step_band_companion(doubling, first, m)
+        band_seconds = thread_seconds() - begin
+        !$omp end task
+        !$omp task
+        begin = thread_seconds()
+        call step_coarse_companions(doubling, first, m)
+        coarse_seconds = thread_seconds() - begin
+        !$omp end task
+        !$omp end single
+        !$omp end parallel
+        doubling%seconds = doubling%seconds + band_seconds + coarse_seconds
+        if (.not. allocated(fault)) call add_differences(doubling, run, first, m, start)
+    end subroutine advance_together
+
+    !> CPU seconds [s] of the calling thread (Linux's CLOCK_THREAD_CPUTIME_ID); the process's
+    !> (`cpu_time`) where that clock does not answer.
+    real(dp) function thread_seconds()
+        type, bind(c) :: time_spec
+            integer(c_long) :: seconds, nanoseconds
+        end type time_spec
+        interface
+            integer(c_int) function clock_gettime(clock, time) bind(c, name='clock_gettime')
+                import :: c_int, time_spec
+                integer(c_int), value :: clock
+                type(time_spec), intent(out) :: time
+            end function clock_gettime
+        end interface
+        !> CLOCK_THREAD_CPUTIME_ID of Linux's <time.h>.
+        integer(c_int), parameter :: thread_clock = 3_c_int
+        type(time_spec) :: now
+
+        if (clock_gettime(thread_clock, now) == 0_c_int) then
+            thread_seconds = real(now%seconds, dp) + 1.0e-9_dp*real(now%nanoseconds, dp)
+        else
+            call cpu_time(thread_seconds)
+        end if
+    end function thread_seconds
+
+    !> Step the band's companion over the run's last block (steps first..first + m - 1).
+    subroutine step_band_companion(doubling, first, m)
+        type(step_doubling), intent(inout) :: doubling
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+
+        character(len=:), allocatable :: why
+
+        if (.not. doubling%band_running) return
+        call step_companion(doubling%band_run, doubling%band_scene, first, m, doubling%band_running, why)
+        if (.not. doubling%band_running) doubling%band_missing = 'modes above the band not estimated: the run with ' &
+            //'the modes up to '//sci_text(doubling%band_scene%f_modes)//' Hz failed ('//why//')'
+    end subroutine step_band_companion
+
+    !> Step the runs at 2*dt and 4*dt over the time of the run's last block (steps
+    !> first..first + m - 1).
+    subroutine step_coarse_companions(doubling, first, m)
+        type(step_doubling), intent(inout) :: doubling
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+
+        character(len=:), allocatable :: why
+        integer(int64) :: start, target
+        integer :: f
+
         do f = 1, 2
-            start(f) = doubling%coarse(f)%step()
+            start = doubling%coarse(f)%step()
             if (.not. doubling%running(f)) cycle
             target = min((first + m + 2**f - 1)/2**f, int(doubling%scenes(f)%n_steps, int64))
-            if (target <= start(f)) cycle
-            call step_companion(doubling%coarse(f), doubling%scenes(f), start(f), int(target - start(f)), &
+            if (target <= start) cycle
+            call step_companion(doubling%coarse(f), doubling%scenes(f), start, int(target - start), &
                                 doubling%running(f), why)
             if (f == 1 .and. .not. doubling%running(f)) doubling%missing = why
         end do
+    end subroutine step_coarse_companions
+
+    !> Add the differences of the run's last block (steps first..first + m - 1) and of its
+    !> companions' steps from `start` (their steps before the block) to the budget's sums.
+    subroutine add_differences(doubling, run, first, m, start)
+        type(step_doubling), intent(inout) :: doubling
+        type(contact_run), intent(in) :: run
+        integer(int64), intent(in) :: first
+        integer, intent(in) :: m
+        integer(int64), intent(in) :: start(2)
+
+        integer(int64) :: j
+
+        if (doubling%band_running) then
+            associate (u => run%response%force, wide => doubling%band_run%response%force, f0 => run%state%preload)
+                do j = 0, m - 1
+                    doubling%band_difference = doubling%band_difference + sum((u(j, :) - wide(j, :))**2)
+                    doubling%band_reference = doubling%band_reference + sum((wide(j, :) - f0)**2)
+                end do
+            end associate
+        end if
         if (doubling%running(1)) then
             associate (u => run%response%force, u2 => doubling%coarse(1)%response%force, f0 => run%state%preload, &
                        sums => doubling%sums)
@@ -375,9 +510,7 @@ contains
                 end if
             end associate
         end if
-        call cpu_time(finish)
-        doubling%seconds = doubling%seconds + (finish - begin)
-    end subroutine advance_step_doubling
+    end subroutine add_differences
 
     !> Step a companion run over `count` steps from `first`; a fault stops it (`running` false,
     !> its convolver released) with its message in `why`.
@@ -399,31 +532,6 @@ contains
         why = fault%message
         call companion%conv%release()
     end subroutine step_companion
-
-    !> Step the band's companion over the run's last block (steps first..first + m - 1) and add
-    !> the block's differences.
-    subroutine advance_band_companion(doubling, run, first, m)
-        type(step_doubling), intent(inout) :: doubling
-        type(contact_run), intent(in) :: run
-        integer(int64), intent(in) :: first
-        integer, intent(in) :: m
-
-        character(len=:), allocatable :: why
-        integer :: j
-
-        call step_companion(doubling%band_run, doubling%band_scene, first, m, doubling%band_running, why)
-        if (.not. doubling%band_running) then
-            doubling%band_missing = 'modes above the band not estimated: the run with the modes up to ' &
-                                    //sci_text(doubling%band_scene%f_modes)//' Hz failed ('//why//')'
-            return
-        end if
-        associate (u => run%response%force, wide => doubling%band_run%response%force, f0 => run%state%preload)
-            do j = 0, m - 1
-                doubling%band_difference = doubling%band_difference + sum((u(j, :) - wide(j, :))**2)
-                doubling%band_reference = doubling%band_reference + sum((wide(j, :) - f0)**2)
-            end do
-        end associate
-    end subroutine advance_band_companion
 
     !> The band's term of the run's relative error: ||F - F_wide||/||F_wide - F0|| from the band's
     !> companion (`start_band_companion`), times 1 when it holds every mode of the structure,
@@ -527,6 +635,7 @@ contains
         integer(int64) :: first
         real(dp) :: start, finish
         integer :: m, every, k, j
+        logical :: together
 
         seconds = 0.0_dp
         every = merge(sinks%every, scene%output_every, sinks%every > 0)
@@ -545,16 +654,23 @@ contains
         if (sinks%scene_spectra .and. allocated(sinks%totals_path)) call start_force_spectra(area_spectra, scene, &
                                                                                              area=.true.)
         allocate (no_points(0, 0))
+        together = .false.
+        if (present(doubling)) together = concurrent_companions(doubling)
         do while (run%step() < scene%n_steps)
             first = run%step()
             m = int(min(int(block, int64), scene%n_steps - first))
             call run%sample(scene, first, m)
-            call cpu_time(start)
-            call run%advance(fault)
-            call cpu_time(finish)
-            seconds = seconds + (finish - start)
-            if (present(doubling) .and. .not. allocated(fault)) then
-                if (doubling%active) call advance_step_doubling(doubling, run, first, m)
+            if (together) then
+                call advance_together(doubling, run, first, m, fault, finish)
+                seconds = seconds + finish
+            else
+                call cpu_time(start)
+                call run%advance(fault)
+                call cpu_time(finish)
+                seconds = seconds + (finish - start)
+                if (present(doubling) .and. .not. allocated(fault)) then
+                    if (doubling%active) call advance_step_doubling(doubling, run, first, m)
+                end if
             end if
             if (((spectra%active .or. area_spectra%active) .and. .not. allocated(fault)) .or. sinks%summarise .or. &
                 allocated(sinks%history)) call run%forces(total, points)
