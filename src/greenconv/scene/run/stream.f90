@@ -22,7 +22,7 @@
 !> points of the tyre or of a Green's matrix file) and how the rows are laid out.
 module greenconv_scene_run_stream
     use, intrinsic :: iso_fortran_env, only: int64
-    use, intrinsic :: iso_c_binding, only: c_int, c_long
+    use greenconv_ext_clock, only: thread_seconds
     !$ use omp_lib, only: omp_get_max_threads, omp_in_parallel
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
@@ -413,30 +413,6 @@ contains
         doubling%seconds = doubling%seconds + band_seconds + coarse_seconds
         if (.not. allocated(fault)) call add_differences(doubling, run, first, m, start)
     end subroutine advance_together
-
-    !> CPU seconds [s] of the calling thread (Linux's CLOCK_THREAD_CPUTIME_ID); the process's
-    !> (`cpu_time`) where that clock does not answer.
-    real(dp) function thread_seconds()
-        type, bind(c) :: time_spec
-            integer(c_long) :: seconds, nanoseconds
-        end type time_spec
-        interface
-            integer(c_int) function clock_gettime(clock, time) bind(c, name='clock_gettime')
-                import :: c_int, time_spec
-                integer(c_int), value :: clock
-                type(time_spec), intent(out) :: time
-            end function clock_gettime
-        end interface
-        !> CLOCK_THREAD_CPUTIME_ID of Linux's <time.h>.
-        integer(c_int), parameter :: thread_clock = 3_c_int
-        type(time_spec) :: now
-
-        if (clock_gettime(thread_clock, now) == 0_c_int) then
-            thread_seconds = real(now%seconds, dp) + 1.0e-9_dp*real(now%nanoseconds, dp)
-        else
-            call cpu_time(thread_seconds)
-        end if
-    end function thread_seconds
 
     !> Step the band's companion over the run's last block (steps first..first + m - 1).
     subroutine step_band_companion(doubling, first, m)
