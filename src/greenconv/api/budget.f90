@@ -38,8 +38,9 @@ module greenconv_api_budget
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
-    use greenconv_contact_single, only: contact_options, contact_response
-    use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, run_box, &
+    use greenconv_contact_single, only: contact_options, contact_response, run_contact, copy_histories
+    use greenconv_api_library, only: check_contact_law
+    use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, check_steps, &
                                     start_point_box, advance_point_box
     implicit none
     private
@@ -72,8 +73,9 @@ contains
         call stop_budget(box)
     end subroutine run_budget
 
-    !> A whole single-point contact run on a box (greenconv_api_handle's `run_box`) and its
-    !> budget; `error` (`stat_accuracy`) when the run is whole but outside the accuracy asked.
+    !> A whole single-point contact run on a box (its convolver reset first) and its budget:
+    !> the steps done, then zero after a fault, which `error` names (step and time); `error`
+    !> (`stat_accuracy`) when the run is whole but outside the accuracy asked.
     subroutine run_point_budget(caller, box, law, preload, road, options, displacement, force, compression, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
@@ -95,8 +97,22 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         class(contact_law), allocatable :: laws(:)
+        type(contact_response) :: response
 
-        call run_box(box, law, preload, road, options, displacement, force, compression, error)
+        box%stepping = .false.
+        call check_contact_law(law, preload, error)
+        if (.not. allocated(error)) then
+            call box%conv%reset()
+            call check_steps(box, 'a run of '//int_text(size(road))//' steps', int(size(road), int64), error)
+        end if
+        if (.not. allocated(error)) then
+            select type (matrix => box%conv)
+            type is (point_matrix)
+                call run_contact(matrix%point, law, road, preload, response, options, error)
+                matrix%step = matrix%point%step
+            end select
+        end if
+        call copy_histories(response, displacement, force, compression)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return

@@ -31,8 +31,7 @@ module greenconv_api_handle
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
     use greenconv_conv_methods, only: method_needs, needs_sampled_g
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
-                                        copy_histories, start_contact, contact_block
+    use greenconv_contact_single, only: contact_options, contact_response, start_contact, contact_block
     use greenconv_contact_multi, only: newton_options, multi_contact_state
     use greenconv_contact_budget, only: doubling_sums
     use greenconv_scene_facade, only: max_lsce_modes
@@ -42,7 +41,7 @@ module greenconv_api_handle
 
     public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: run_box, identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
+    public :: identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
     public :: reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
@@ -425,52 +424,6 @@ contains
         if (method_needs(lower_text(method), needs_sampled_g)) dt_g = dt
         call identify_receptance(frf, settings, dt_g, structure, error)
     end subroutine frf_file_structure
-
-    !> A whole contact run on a box's convolver (reset first) into arrays of the road's length:
-    !> the steps done, then zero after a fault, which `error` names (step and time).
-    subroutine run_box(box, law, preload, road, options, displacement, force, compression, error)
-        !> The box.
-        type(convolver_box), intent(inout) :: box
-        !> The contact law.
-        class(contact_law), intent(in) :: law
-        !> Static preload F0 [N], >= 0.
-        real(dp), intent(in) :: preload
-        !> Road heights u_r(t_n) [m], one per step.
-        real(dp), intent(in) :: road(:)
-        !> Scheme, divergence bound and Newton settings.
-        type(contact_options), intent(in) :: options
-        !> Body displacements u(t_n) [m]; zero after a fault.
-        real(dp), intent(out) :: displacement(:)
-        !> Contact forces F(t_n) [N]; zero after a fault.
-        real(dp), intent(out) :: force(:)
-        !> Compressions delta(t_n) [m]; zero after a fault.
-        real(dp), intent(out) :: compression(:)
-        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`).
-        type(error_type), allocatable, intent(out) :: error
-
-        type(contact_response) :: response
-
-        box%stepping = .false.
-        call check_contact_law(law, preload, error)
-        if (.not. allocated(error)) then
-            call box%conv%reset()
-            call check_steps(box, 'a run of '//int_text(size(road))//' steps', int(size(road), int64), error)
-            if (allocated(error)) then
-                displacement(:) = 0.0_dp
-                force(:) = 0.0_dp
-                compression(:) = 0.0_dp
-                return
-            end if
-        end if
-        if (.not. allocated(error)) then
-            select type (matrix => box%conv)
-            type is (point_matrix)
-                call run_contact(matrix%point, law, road, preload, response, options, error)
-                matrix%step = matrix%point%step
-            end select
-        end if
-        call copy_histories(response, displacement, force, compression)
-    end subroutine run_box
 
     !> One explicit step of the single-point contact loop on a box (the law and the kernel's
     !> validity checked first): u, F and delta of this step, the convolver advanced; all zero
