@@ -14,8 +14,9 @@
 !> A whole run (`run_budget`) feeds its arrays to the companions once; a run stepped one call
 !> at a time (`start_budget`, `feed_budget`) feeds each step, so that its terms are known at
 !> every step. Before a run has 8 steps the terms are what is known without one (`prior_terms`:
-!> the static share of a modes file's modes above the band for a method that leaves it out). Companions cost 1/2 + 1/4 of the run for a modal method (1/4 + 1/16 for
-!> `direct`), and the band's a run with the wider band. A companion at 2*dt that cannot be
+!> the static share of a modes file's modes above the band for a method that leaves it out).
+!> Companions cost 1/2 + 1/4 of the run for a modal method (1/4 + 1/16 for `direct`), and the
+!> band's a run with the wider band. A companion at 2*dt that cannot be
 !> built or fails makes the time-step term 1 (unknown); a run of fewer than 8 steps has none.
 !>
 !> `outside_accuracy` is the one check of every door against the accuracy the host asked:
@@ -38,9 +39,10 @@ module greenconv_api_budget
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
-    use greenconv_contact_single, only: contact_options, contact_response
-    use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, run_box, &
-                                    start_point_box, advance_point_box
+    use greenconv_contact_single, only: contact_options, contact_response, run_contact, copy_histories, &
+                                        start_contact, contact_block
+    use greenconv_api_library, only: check_contact_law
+    use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, check_steps
     implicit none
     private
 
@@ -72,8 +74,9 @@ contains
         call stop_budget(box)
     end subroutine run_budget
 
-    !> A whole single-point contact run on a box (greenconv_api_handle's `run_box`) and its
-    !> budget; `error` (`stat_accuracy`) when the run is whole but outside the accuracy asked.
+    !> A whole single-point contact run on a box (its convolver reset first) and its budget:
+    !> the steps done, then zero after a fault, which `error` names (step and time); `error`
+    !> (`stat_accuracy`) when the run is whole but outside the accuracy asked.
     subroutine run_point_budget(caller, box, law, preload, road, options, displacement, force, compression, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
@@ -95,8 +98,22 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         class(contact_law), allocatable :: laws(:)
+        type(contact_response) :: response
 
-        call run_box(box, law, preload, road, options, displacement, force, compression, error)
+        box%stepping = .false.
+        call check_contact_law(law, preload, error)
+        if (.not. allocated(error)) then
+            call box%conv%reset()
+            call check_steps(box, 'a run of '//int_text(size(road))//' steps', int(size(road), int64), error)
+        end if
+        if (.not. allocated(error)) then
+            select type (matrix => box%conv)
+            type is (point_matrix)
+                call run_contact(matrix%point, law, road, preload, response, options, error)
+                matrix%step = matrix%point%step
+            end select
+        end if
+        call copy_histories(response, displacement, force, compression)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
@@ -107,9 +124,9 @@ contains
         call outside_accuracy(caller, box, error)
     end subroutine run_point_budget
 
-    !> Start a single-point contact run stepped one call at a time (greenconv_api_handle's
-    !> `start_point_box`) and its budget; `error` (`stat_accuracy`) when the run started but
-    !> the model is already outside the accuracy asked.
+    !> Start a single-point contact run stepped one call at a time (`advance_point_budget`) and
+    !> its budget: the options checked against the convolver, the convolver reset; `error`
+    !> (`stat_accuracy`) when the run started but the model is already outside the accuracy asked.
     subroutine start_point_budget(caller, box, law, preload, options, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
@@ -127,7 +144,13 @@ contains
 
         class(contact_law), allocatable :: laws(:)
 
-        call start_point_box(box, law, preload, options, error)
+        box%stepping = .false.
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call start_contact(matrix%point, law, preload, box%contact, error, options)
+            matrix%step = matrix%point%step
+            box%stepping = .not. allocated(error)
+        end select
         if (allocated(error)) return
         box%point_options = options
         call replicate_law(law, 1, laws)
@@ -146,7 +169,11 @@ contains
         !> Set on a numerical fault (divergence, an implicit step that did not converge).
         type(error_type), allocatable, intent(out) :: error
 
-        call advance_point_box(box, road, response, error)
+        select type (matrix => box%conv)
+        type is (point_matrix)
+            call contact_block(matrix%point, box%contact, road, response, error)
+            matrix%step = matrix%point%step
+        end select
         if (allocated(error)) then
             call stop_budget(box)
             return

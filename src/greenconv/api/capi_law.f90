@@ -59,9 +59,11 @@ contains
     end subroutine door_name
 
     !> The laws of n points from a C array of n `gc_law *` (one law, parameters free per point),
-    !> an array of one dynamic type as the steppers take it; status 2 naming the point for a
-    !> NULL handle or a law other than the first point's.
-    subroutine laws_at(caller, handles, n, laws, error)
+    !> an array of one dynamic type as the steppers take it, and the name the door's messages
+    !> give; status 2 naming the point for a NULL handle or a law other than the first point's.
+    !> Power laws made for a (k_c, p) door (`greenconv_law_for_door`) stay unchecked, the door's
+    !> own check of each point's law then speaking as the (k_c, p) door always has.
+    subroutine laws_at(caller, handles, n, laws, name, error)
         !> Name of the door, first word of a message.
         character(len=*), intent(in) :: caller
         !> The C array `const gc_law *const *laws` (checked not NULL by the caller).
@@ -70,17 +72,20 @@ contains
         integer, intent(in) :: n
         !> The laws; unallocated on error.
         class(contact_law), allocatable, intent(out) :: laws(:)
+        !> The name the door's messages give: the (k_c, p) door the laws were made for, else `caller`.
+        character(len=:), allocatable, intent(out) :: name
         !> Set for a NULL handle or mixed laws.
         type(error_type), allocatable, intent(out) :: error
 
         type(c_ptr), pointer :: addresses(:)
         type(law_box), pointer :: box
-        character(len=:), allocatable :: name
+        character(len=:), allocatable :: law_name
         real(dp), allocatable :: values(:, :)
         real(dp), allocatable :: point_values(:)
         integer :: i
 
-        name = ''
+        name = caller
+        law_name = ''
         call c_f_pointer(handles, addresses, [n])
         do i = 1, n
             box => law_at(addresses(i))
@@ -90,18 +95,23 @@ contains
                 return
             end if
             if (i == 1) then
-                name = trim(box%law%name())
+                call door_name(box, caller, name)
+                law_name = trim(box%law%name())
                 point_values = box%law%parameters()
                 allocate (values(size(point_values), n))
-            else if (box%law%name() /= name) then
+            else if (box%law%name() /= law_name) then
                 call fatal_error(error, caller//': laws['//int_text(i - 1)//"] is a law '"//trim(box%law%name()) &
-                                 //"', laws[0] a law '"//name//"': give every point the same law (its parameters " &
-                                 //'may differ)')
+                                 //"', laws[0] a law '"//law_name//"': give every point the same law (its " &
+                                 //'parameters may differ)')
                 return
             end if
             values(:, i) = box%law%parameters()
         end do
-        call new_laws(name, values, laws, error)
+        if (name /= caller) then
+            allocate (laws, source=contact_law(values(1, :), values(2, :)))
+            return
+        end if
+        call new_laws(law_name, values, laws, error)
         if (allocated(error)) error%message = caller//': '//error%message
     end subroutine laws_at
 
@@ -184,13 +194,7 @@ contains
         type(c_ptr), value, intent(in) :: force
         integer(c_int) :: status
 
-        type(law_box), pointer :: box
-
-        box => law_at(law)
-        status = stat_input
-        if (.not. (associated(box) .and. c_associated(force))) return
-        call put(force, box%law%force(real(compression, dp)))
-        status = 0
+        status = evaluate(law, compression, force, .false.)
     end function gc_law_force
 
     !> int gc_law_compression(const gc_law *law, double force, double *compression): the
@@ -205,14 +209,35 @@ contains
         type(c_ptr), value, intent(in) :: compression
         integer(c_int) :: status
 
+        status = evaluate(law, force, compression, .true.)
+    end function gc_law_compression
+
+    !> A law's force at a compression, or (`inverse`) its compression under a force >= 0, stored
+    !> at a C `double *`: 0, or 2 for a NULL law or output or a negative force.
+    function evaluate(law, given, result_address, inverse) result(status)
+        !> The law, a `const gc_law *`.
+        type(c_ptr), intent(in) :: law
+        !> The compression delta [m], or (`inverse`) the force F [N].
+        real(c_double), intent(in) :: given
+        !> Where F [N], or (`inverse`) delta [m], goes.
+        type(c_ptr), intent(in) :: result_address
+        !> Whether the law is inverted: delta(F) instead of F(delta).
+        logical, intent(in) :: inverse
+        integer(c_int) :: status
+
         type(law_box), pointer :: box
 
         box => law_at(law)
         status = stat_input
-        if (.not. (associated(box) .and. c_associated(compression) .and. force >= 0.0_c_double)) return
-        call put(compression, box%law%compression(real(force, dp)))
+        if (.not. (associated(box) .and. c_associated(result_address))) return
+        if (inverse) then
+            if (.not. (given >= 0.0_c_double)) return
+            call put(result_address, box%law%compression(real(given, dp)))
+        else
+            call put(result_address, box%law%force(real(given, dp)))
+        end if
         status = 0
-    end function gc_law_compression
+    end function evaluate
 
     !> int greenconv_law_for_door(const char *door, double k_c, double p, gc_law **law): the
     !> power law (k_c, p), unchecked, whose contact door names itself `door` in its messages:

@@ -4,10 +4,12 @@
 !> - `gc_multi_new_modes_file`: the file's nodes the contact points, its modes up to a band
 !>   stepped, as a scene's `&structure model = 'modes_file'`, then stepped from the
 !>   host's loop with the other `gc_multi_*` functions;
-!> - `gc_multi_estimate`, `gc_convolver_estimate`: the method's own estimate of its relative
-!>   error, the contact run's time-step and band terms included (greenconv_api_budget);
-!> - `gc_multi_set_accuracy`, `gc_convolver_set_accuracy`: the accuracy the host asks; beyond
-!>   it, the calls that run contact return GC_ACCURACY (4, "ran, but outside the accuracy asked");
+!> - `gc_multi_estimate`, `gc_convolver_estimate` (one body, `greenconv_estimate_door`, behind
+!>   their aliases in capi_aliases.c): the method's own estimate of its relative error, the
+!>   contact run's time-step and band terms included (greenconv_api_budget);
+!> - `gc_multi_set_accuracy`, `gc_convolver_set_accuracy` (`greenconv_accuracy_door`): the
+!>   accuracy the host asks; beyond it, the calls that run contact return GC_ACCURACY (4, "ran,
+!>   but outside the accuracy asked");
 !> - `gc_identify_ml_file`: the modes of a receptance file by maximum likelihood, with their
 !>   standard deviations and whether the data determine each.
 !>
@@ -27,8 +29,7 @@ module greenconv_capi_modes
     implicit none
     private
 
-    public :: gc_multi_new_modes_file, gc_multi_estimate, gc_multi_set_accuracy, gc_identify_ml_file
-    public :: gc_convolver_estimate, gc_convolver_set_accuracy
+    public :: gc_multi_new_modes_file, gc_identify_ml_file, greenconv_estimate_door, greenconv_accuracy_door
 
     !> What the single-point doors say of a null handle.
     character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
@@ -79,10 +80,15 @@ contains
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_modes_file
 
-    !> int gc_multi_estimate(const gc_multi_convolver *conv, double *estimate, char *errmsg,
-    !> size_t errmsg_len): the method's own estimate of the relative error of its contact forces
-    !> (the model's terms, plus the time-step and band terms of the contact run going on or last run).
-    function gc_multi_estimate(conv, estimate, errmsg, errmsg_len) bind(c, name='gc_multi_estimate') result(status)
+    !> int greenconv_estimate_door(int single, const gc_multi_convolver *conv, double *estimate,
+    !> char *errmsg, size_t errmsg_len): gc_multi_estimate (single = 0) and gc_convolver_estimate
+    !> (single not 0) of capi_aliases.c, the method's own estimate of the relative error of its
+    !> contact forces (the model's terms, plus the time-step and band terms of the contact run
+    !> going on or last run) into *estimate, the messages naming the door. Not in the header.
+    function greenconv_estimate_door(single, conv, estimate, errmsg, errmsg_len) &
+        bind(c, name='greenconv_estimate_door') result(status)
+        !> Not 0 for the single-point door.
+        integer(c_int), value, intent(in) :: single
         !> The convolver.
         type(c_ptr), value, intent(in) :: conv
         !> Where the estimate goes [-].
@@ -91,102 +97,80 @@ contains
         type(c_ptr), value, intent(in) :: errmsg
         !> Size of the message buffer [bytes].
         integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = estimate_door('gc_multi_estimate', null_handle, conv, estimate, errmsg, errmsg_len)
-    end function gc_multi_estimate
-
-    !> int gc_convolver_estimate(const gc_convolver *conv, double *estimate, char *errmsg,
-    !> size_t errmsg_len): the single-point twin of gc_multi_estimate.
-    function gc_convolver_estimate(conv, estimate, errmsg, errmsg_len) bind(c, name='gc_convolver_estimate') &
-        result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Where the estimate goes [-].
-        type(c_ptr), value, intent(in) :: estimate
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = estimate_door('gc_convolver_estimate', point_null_handle, conv, estimate, errmsg, errmsg_len)
-    end function gc_convolver_estimate
-
-    !> int gc_multi_set_accuracy(gc_multi_convolver *conv, double accuracy, char *errmsg,
-    !> size_t errmsg_len): the relative accuracy the host asks (0: none); GC_ACCURACY at once
-    !> when the method's own estimate exceeds it, and from gc_multi_contact_start and
-    !> gc_multi_run_contact afterwards.
-    function gc_multi_set_accuracy(conv, accuracy, errmsg, errmsg_len) bind(c, name='gc_multi_set_accuracy') &
-        result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
-        real(c_double), value, intent(in) :: accuracy
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = accuracy_door('gc_multi_set_accuracy', null_handle, conv, accuracy, errmsg, errmsg_len)
-    end function gc_multi_set_accuracy
-
-    !> int gc_convolver_set_accuracy(gc_convolver *conv, double accuracy, char *errmsg,
-    !> size_t errmsg_len): the single-point twin of gc_multi_set_accuracy (GC_ACCURACY from
-    !> gc_run_contact, gc_run_contact_opts and gc_contact_start).
-    function gc_convolver_set_accuracy(conv, accuracy, errmsg, errmsg_len) &
-        bind(c, name='gc_convolver_set_accuracy') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
-        real(c_double), value, intent(in) :: accuracy
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        status = accuracy_door('gc_convolver_set_accuracy', point_null_handle, conv, accuracy, errmsg, errmsg_len)
-    end function gc_convolver_set_accuracy
-
-    !> The estimate doors: the model's terms plus the run's, into *estimate.
-    function estimate_door(caller, missing, conv, estimate, errmsg, errmsg_len) result(status)
-        character(len=*), intent(in) :: caller, missing
-        type(c_ptr), intent(in) :: conv, estimate, errmsg
-        integer(c_size_t), intent(in) :: errmsg_len
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         real(c_double), pointer :: value_out
 
-        box => box_at(conv)
-        call check_box(caller, missing, box, error=error)
-        call need_pointer(caller, estimate, 'estimate', 'pass the address of a double', error)
+        box => checked_box(single, 'gc_multi_estimate', 'gc_convolver_estimate', conv, error)
+        call need_pointer(door(single, 'gc_multi_estimate', 'gc_convolver_estimate'), estimate, 'estimate', &
+                          'pass the address of a double', error)
         if (.not. allocated(error)) then
             call c_f_pointer(estimate, value_out)
             value_out = box%estimate + box%run_terms
         end if
         status = finish(error, errmsg, errmsg_len)
-    end function estimate_door
+    end function greenconv_estimate_door
 
-    !> The accuracy doors: the accuracy asked kept, GC_ACCURACY when already outside it.
-    function accuracy_door(caller, missing, conv, accuracy, errmsg, errmsg_len) result(status)
-        character(len=*), intent(in) :: caller, missing
-        type(c_ptr), intent(in) :: conv, errmsg
-        real(c_double), intent(in) :: accuracy
-        integer(c_size_t), intent(in) :: errmsg_len
+    !> int greenconv_accuracy_door(int single, gc_multi_convolver *conv, double accuracy,
+    !> char *errmsg, size_t errmsg_len): gc_multi_set_accuracy (single = 0) and
+    !> gc_convolver_set_accuracy (single not 0) of capi_aliases.c, the relative accuracy the host
+    !> asks (0: none) kept, GC_ACCURACY at once when the method's own estimate exceeds it and
+    !> from the doors that run contact afterwards, the messages naming the door. Not in the header.
+    function greenconv_accuracy_door(single, conv, accuracy, errmsg, errmsg_len) &
+        bind(c, name='greenconv_accuracy_door') result(status)
+        !> Not 0 for the single-point door.
+        integer(c_int), value, intent(in) :: single
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(c_double), value, intent(in) :: accuracy
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
         integer(c_int) :: status
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        box => box_at(conv)
-        call check_box(caller, missing, box, error=error)
-        if (.not. allocated(error)) call set_box_accuracy(caller, box, accuracy, error)
+        box => checked_box(single, 'gc_multi_set_accuracy', 'gc_convolver_set_accuracy', conv, error)
+        if (.not. allocated(error)) then
+            call set_box_accuracy(door(single, 'gc_multi_set_accuracy', 'gc_convolver_set_accuracy'), box, &
+                                  accuracy, error)
+        end if
         status = finish(error, errmsg, errmsg_len)
-    end function accuracy_door
+    end function greenconv_accuracy_door
+
+    !> The door's name: its multi-point one, or its single-point one when `single` is not 0.
+    pure function door(single, multi_name, point_name) result(name)
+        integer(c_int), intent(in) :: single
+        character(len=*), intent(in) :: multi_name, point_name
+        character(len=merge(len(point_name), len(multi_name), single /= 0)) :: name
+
+        if (single /= 0) then
+            name = point_name
+        else
+            name = multi_name
+        end if
+    end function door
+
+    !> The box behind a handle, refused (status 2) when NULL with the words of the door's family.
+    function checked_box(single, multi_name, point_name, conv, error) result(box)
+        integer(c_int), intent(in) :: single
+        character(len=*), intent(in) :: multi_name, point_name
+        type(c_ptr), intent(in) :: conv
+        type(error_type), allocatable, intent(out) :: error
+        type(convolver_box), pointer :: box
+
+        box => box_at(conv)
+        if (single /= 0) then
+            call check_box(point_name, point_null_handle, box, error=error)
+        else
+            call check_box(multi_name, null_handle, box, error=error)
+        end if
+    end function checked_box
 
     !> int gc_identify_ml_file(const char *path, const char *noise_model, int max_order, int capacity,
     !> int *n_modes, int *n_determined, double *pole_re, double *pole_im, double *residue_re,

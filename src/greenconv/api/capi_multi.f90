@@ -31,9 +31,9 @@ module greenconv_capi_multi
 
     public :: gc_multi_new_modes, gc_multi_new_samples, gc_multi_plate_patch
     public :: gc_multi_n_points, gc_multi_history, gc_multi_push, gc_multi_instant_matrix, gc_multi_reset
-    public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_start, gc_multi_contact_step
-    public :: gc_multi_run_contact, gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
-    public :: gc_multi_contact_start_law, gc_multi_run_contact_law
+    public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_step
+    public :: gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
+    public :: gc_multi_contact_start_law, gc_multi_run_contact_law, greenconv_multi_check_for_door
     public :: made, tolerance_of, null_handle
 
     !> What a NULL handle's message says.
@@ -606,43 +606,6 @@ contains
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_set_newton
 
-    !> int gc_multi_contact_start(gc_multi_convolver *conv, int n_points, const double *k_c,
-    !> const double *p, const double *preload, char *errmsg, size_t errmsg_len): reset the
-    !> convolver and start a run stepped by gc_multi_contact_step.
-    function gc_multi_contact_start(conv, n_points, k_c, p, preload, errmsg, errmsg_len) &
-        bind(c, name='gc_multi_contact_start') result(status)
-        !> The convolver; reset here.
-        type(c_ptr), value, intent(in) :: conv
-        !> Number of points (the convolver's N_c).
-        integer(c_int), value, intent(in) :: n_points
-        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
-        type(c_ptr), value, intent(in) :: k_c
-        !> Contact exponent p_i of each point, > 0.
-        type(c_ptr), value, intent(in) :: p
-        !> Static preload F0_i [N] of each point, >= 0.
-        type(c_ptr), value, intent(in) :: preload
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        type(error_type), allocatable :: error
-        type(convolver_box), pointer :: box
-        real(c_double), pointer :: stiffness(:), exponent(:), load(:)
-
-        box => checked('gc_multi_contact_start', conv, n_points, [k_c, p, preload], 'k_c, p and preload', error)
-        if (.not. allocated(error)) then
-            call c_f_pointer(k_c, stiffness, [n_points])
-            call c_f_pointer(p, exponent, [n_points])
-            call c_f_pointer(preload, load, [n_points])
-            call start_multi_box('gc_multi_contact_start', box, contact_law(stiffness, exponent), load, error)
-        else if (associated(box)) then
-            box%stepping = .false.
-        end if
-        status = finish(error, errmsg, errmsg_len)
-    end function gc_multi_contact_start
-
     !> int gc_multi_contact_step(gc_multi_convolver *conv, int n_points, const double *road,
     !> double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len):
     !> the next step of the run gc_multi_contact_start began, all forces solved together.
@@ -687,55 +650,6 @@ contains
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_contact_step
 
-    !> int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps,
-    !> const double *k_c, const double *p, const double *preload, const double *road,
-    !> double *displacement, double *force, double *compression, char *errmsg, size_t errmsg_len):
-    !> a whole run (the convolver reset first); arrays road[i*n_steps + n].
-    function gc_multi_run_contact(conv, n_points, n_steps, k_c, p, preload, road, displacement, force, compression, &
-                                  errmsg, errmsg_len) bind(c, name='gc_multi_run_contact') result(status)
-        !> The convolver.
-        type(c_ptr), value, intent(in) :: conv
-        !> Number of points (the convolver's N_c).
-        integer(c_int), value, intent(in) :: n_points
-        !> Number of steps N_t, >= 1.
-        integer(c_int), value, intent(in) :: n_steps
-        !> Contact stiffness k_c,i [N/m^p_i] of each point, > 0.
-        type(c_ptr), value, intent(in) :: k_c
-        !> Contact exponent p_i of each point, > 0.
-        type(c_ptr), value, intent(in) :: p
-        !> Static preload F0_i [N] of each point, >= 0.
-        type(c_ptr), value, intent(in) :: preload
-        !> Road heights road[i*n_steps + n] = u_r,i(t_n) [m].
-        type(c_ptr), value, intent(in) :: road
-        !> Displacements u_i(t_n) [m], same layout (0 from a fault on).
-        type(c_ptr), value, intent(in) :: displacement
-        !> Forces F_i(t_n) [N], same layout (0 from a fault on).
-        type(c_ptr), value, intent(in) :: force
-        !> Compressions delta_i(t_n) [m], same layout (0 from a fault on), or NULL.
-        type(c_ptr), value, intent(in) :: compression
-        !> Message buffer, or NULL.
-        type(c_ptr), value, intent(in) :: errmsg
-        !> Size of the message buffer [bytes].
-        integer(c_size_t), value, intent(in) :: errmsg_len
-        integer(c_int) :: status
-
-        character(len=*), parameter :: caller = 'gc_multi_run_contact'
-        type(error_type), allocatable :: error
-        type(convolver_box), pointer :: box
-        real(c_double), pointer :: stiffness(:), exponent(:)
-
-        box => checked(caller, conv, n_points, [k_c, p, preload, road, displacement, force], &
-                       'k_c, p, preload, road, displacement and force', error)
-        call need_count(caller, 'n_steps', int(n_steps), 1, 'step', error)
-        if (.not. allocated(error)) then
-            call c_f_pointer(k_c, stiffness, [n_points])
-            call c_f_pointer(p, exponent, [n_points])
-            call run_on_laws(caller, box, contact_law(stiffness, exponent), n_points, n_steps, preload, road, &
-                             displacement, force, compression, error)
-        end if
-        status = finish(error, errmsg, errmsg_len)
-    end function gc_multi_run_contact
-
     !> int gc_multi_contact_start_law(gc_multi_convolver *conv, int n_points,
     !> const gc_law *const *laws, const double *preload, char *errmsg, size_t errmsg_len): reset
     !> the convolver and start a run stepped by gc_multi_contact_step, laws[i] the law of point i
@@ -760,13 +674,14 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         class(contact_law), allocatable :: springs(:)
+        character(len=:), allocatable :: door
         real(c_double), pointer :: load(:)
 
         box => checked(caller, conv, n_points, [laws, preload], 'laws and preload', error)
-        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, error)
+        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, door, error)
         if (.not. allocated(error)) then
             call c_f_pointer(preload, load, [n_points])
-            call start_multi_box(caller, box, springs, load, error)
+            call start_multi_box(door, box, springs, load, error)
         else if (associated(box)) then
             box%stepping = .false.
         end if
@@ -809,46 +724,73 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
         class(contact_law), allocatable :: springs(:)
+        character(len=:), allocatable :: door
+        real(c_double), pointer :: load(:), heights(:, :), u(:, :), f(:, :), delta_out(:, :)
+        real(dp), allocatable :: delta(:, :)
 
         box => checked(caller, conv, n_points, [laws, preload, road, displacement, force], &
                        'laws, preload, road, displacement and force', error)
         call need_count(caller, 'n_steps', int(n_steps), 1, 'step', error)
-        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, error)
+        if (.not. allocated(error)) call laws_at(caller, laws, int(n_points), springs, door, error)
         if (.not. allocated(error)) then
-            call run_on_laws(caller, box, springs, n_points, n_steps, preload, road, displacement, force, &
-                             compression, error)
+            allocate (delta(n_steps, n_points))
+            call c_f_pointer(preload, load, [n_points])
+            call c_f_pointer(road, heights, [n_steps, n_points])
+            call c_f_pointer(displacement, u, [n_steps, n_points])
+            call c_f_pointer(force, f, [n_steps, n_points])
+            call run_multi_box(door, box, springs, load, heights, u, f, delta, error)
+            if (c_associated(compression)) then
+                call c_f_pointer(compression, delta_out, [n_steps, n_points])
+                delta_out(:, :) = delta
+            end if
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_run_contact_law
 
+    !> int greenconv_multi_check_for_door(const char *door, gc_multi_convolver *conv,
+    !> int n_points, int n_steps, int n_arrays, const void *const *arrays, const char *names,
+    !> int starts, char *errmsg, size_t errmsg_len): the checks a multi-point (k_c, p) door of
+    !> capi_aliases.c makes before it reads k_c[i] and p[i] (the handle, n_points against its
+    !> points, its arrays not NULL, n_steps >= 1), its messages naming `door`; a failed check
+    !> of a door that starts a stepped run (`starts` not 0) ends the run going on. Not in the header.
+    function greenconv_multi_check_for_door(door, conv, n_points, n_steps, n_arrays, arrays, names, starts, &
+                                            errmsg, errmsg_len) bind(c, name='greenconv_multi_check_for_door') &
+        result(status)
+        !> The (k_c, p) door's name, NUL-terminated.
+        type(c_ptr), value, intent(in) :: door
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Number of points (the convolver's N_c).
+        integer(c_int), value, intent(in) :: n_points
+        !> Number of steps N_t, >= 1 (1 for a door that starts a stepped run).
+        integer(c_int), value, intent(in) :: n_steps
+        !> Number of arrays.
+        integer(c_int), value, intent(in) :: n_arrays
+        !> The door's arrays, n_arrays addresses.
+        type(c_ptr), value, intent(in) :: arrays
+        !> Their names as the message lists them, NUL-terminated.
+        type(c_ptr), value, intent(in) :: names
+        !> Not 0 for a door that starts a stepped run.
+        integer(c_int), value, intent(in) :: starts
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+        type(c_ptr), pointer :: addresses(:)
+
+        call c_f_pointer(arrays, addresses, [n_arrays])
+        box => checked(from_c(door), conv, n_points, addresses, from_c(names), error)
+        call need_count(from_c(door), 'n_steps', int(n_steps), 1, 'step', error)
+        if (allocated(error) .and. associated(box) .and. starts /= 0) box%stepping = .false.
+        status = finish(error, errmsg, errmsg_len)
+    end function greenconv_multi_check_for_door
+
     ! ---- conversions -------------------------------------------------------------------------
 
-
-    !> A whole multi-point run on checked C arrays (`run_multi_box`): the laws of the points,
-    !> then preloads, road and outputs in the C layout [i*n_steps + n].
-    subroutine run_on_laws(caller, box, laws, n_points, n_steps, preload, road, displacement, force, compression, &
-                           error)
-        character(len=*), intent(in) :: caller
-        type(convolver_box), pointer, intent(in) :: box
-        class(contact_law), intent(in) :: laws(:)
-        integer(c_int), intent(in) :: n_points, n_steps
-        type(c_ptr), intent(in) :: preload, road, displacement, force, compression
-        type(error_type), allocatable, intent(out) :: error
-
-        real(c_double), pointer :: load(:), heights(:, :), u(:, :), f(:, :), delta_out(:, :)
-        real(dp), allocatable :: delta(:, :)
-
-        allocate (delta(n_steps, n_points))
-        call c_f_pointer(preload, load, [n_points])
-        call c_f_pointer(road, heights, [n_steps, n_points])
-        call c_f_pointer(displacement, u, [n_steps, n_points])
-        call c_f_pointer(force, f, [n_steps, n_points])
-        call run_multi_box(caller, box, laws, load, heights, u, f, delta, error)
-        if (c_associated(compression)) then
-            call c_f_pointer(compression, delta_out, [n_steps, n_points])
-            delta_out(:, :) = delta
-        end if
-    end subroutine run_on_laws
 
     !> The box behind a handle, checked with its count of points and the arrays it needs.
     function checked(caller, conv, n_points, arrays, names, error) result(box)

@@ -31,8 +31,7 @@ module greenconv_api_handle
     use greenconv_conv_point_matrix, only: point_matrix, wrap_point
     use greenconv_conv_methods, only: method_needs, needs_sampled_g
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_single, only: contact_options, contact_response, run_contact, &
-                                        copy_histories, start_contact, contact_block
+    use greenconv_contact_single, only: contact_options
     use greenconv_contact_multi, only: newton_options, multi_contact_state
     use greenconv_contact_budget, only: doubling_sums
     use greenconv_scene_facade, only: max_lsce_modes
@@ -42,7 +41,7 @@ module greenconv_api_handle
 
     public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: run_box, identify_file, identify_file_ml, check_steps, step_box, start_point_box, advance_point_box
+    public :: identify_file, identify_file_ml, check_steps, step_box
     public :: reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
@@ -426,52 +425,6 @@ contains
         call identify_receptance(frf, settings, dt_g, structure, error)
     end subroutine frf_file_structure
 
-    !> A whole contact run on a box's convolver (reset first) into arrays of the road's length:
-    !> the steps done, then zero after a fault, which `error` names (step and time).
-    subroutine run_box(box, law, preload, road, options, displacement, force, compression, error)
-        !> The box.
-        type(convolver_box), intent(inout) :: box
-        !> The contact law.
-        class(contact_law), intent(in) :: law
-        !> Static preload F0 [N], >= 0.
-        real(dp), intent(in) :: preload
-        !> Road heights u_r(t_n) [m], one per step.
-        real(dp), intent(in) :: road(:)
-        !> Scheme, divergence bound and Newton settings.
-        type(contact_options), intent(in) :: options
-        !> Body displacements u(t_n) [m]; zero after a fault.
-        real(dp), intent(out) :: displacement(:)
-        !> Contact forces F(t_n) [N]; zero after a fault.
-        real(dp), intent(out) :: force(:)
-        !> Compressions delta(t_n) [m]; zero after a fault.
-        real(dp), intent(out) :: compression(:)
-        !> Set on bad input (`stat_input`) or a fault of the run (`stat_numerical`).
-        type(error_type), allocatable, intent(out) :: error
-
-        type(contact_response) :: response
-
-        box%stepping = .false.
-        call check_contact_law(law, preload, error)
-        if (.not. allocated(error)) then
-            call box%conv%reset()
-            call check_steps(box, 'a run of '//int_text(size(road))//' steps', int(size(road), int64), error)
-            if (allocated(error)) then
-                displacement(:) = 0.0_dp
-                force(:) = 0.0_dp
-                compression(:) = 0.0_dp
-                return
-            end if
-        end if
-        if (.not. allocated(error)) then
-            select type (matrix => box%conv)
-            type is (point_matrix)
-                call run_contact(matrix%point, law, road, preload, response, options, error)
-                matrix%step = matrix%point%step
-            end select
-        end if
-        call copy_histories(response, displacement, force, compression)
-    end subroutine run_box
-
     !> One explicit step of the single-point contact loop on a box (the law and the kernel's
     !> validity checked first): u, F and delta of this step, the convolver advanced; all zero
     !> and the convolver untouched on bad input.
@@ -507,47 +460,6 @@ contains
             matrix%step = matrix%point%step
         end select
     end subroutine step_box
-
-    !> Start a single-point contact run stepped one call at a time (`advance_point_box`): the
-    !> options checked against the convolver, the convolver reset.
-    subroutine start_point_box(box, law, preload, options, error)
-        !> The box of a single-point structure.
-        type(convolver_box), intent(inout) :: box
-        !> The contact law (checked by the caller).
-        class(contact_law), intent(in) :: law
-        !> Static preload F0 [N], >= 0.
-        real(dp), intent(in) :: preload
-        !> Scheme, divergence bound and Newton settings.
-        type(contact_options), intent(in) :: options
-        !> Set (`stat_input`) when the options are unusable with this convolver.
-        type(error_type), allocatable, intent(out) :: error
-
-        box%stepping = .false.
-        select type (matrix => box%conv)
-        type is (point_matrix)
-            call start_contact(matrix%point, law, preload, box%contact, error, options)
-            matrix%step = matrix%point%step
-            box%stepping = .not. allocated(error)
-        end select
-    end subroutine start_point_box
-
-    !> The next steps of the run `start_point_box` began, as `run_contact` takes them.
-    subroutine advance_point_box(box, road, response, error)
-        !> The box of a single-point structure.
-        type(convolver_box), intent(inout) :: box
-        !> Road heights u_r(t_n) [m] of these steps.
-        real(dp), intent(in) :: road(:)
-        !> Histories of these steps, shortened to those done when a fault stops the run.
-        type(contact_response), intent(out) :: response
-        !> Set on a numerical fault (divergence, an implicit step that did not converge).
-        type(error_type), allocatable, intent(out) :: error
-
-        select type (matrix => box%conv)
-        type is (point_matrix)
-            call contact_block(matrix%point, box%contact, road, response, error)
-            matrix%step = matrix%point%step
-        end select
-    end subroutine advance_point_box
 
     !> Modes identified by LSCE from a receptance file, lowest natural frequency first.
     subroutine identify_file(path, tol_e, max_modes, modes, e, error)

@@ -52,8 +52,8 @@
 !> The step itself is greenconv_contact_step's and the loop greenconv_contact_multi's: a
 !> single-point run is the multi-point run of N_c = 1 (the implicit step then solved by the
 !> scalar Newton iteration above), its convolver lent to that loop as a 1 x 1 Green's matrix
-!> for the length of a call (`lent_point`). The procedures here only convert the arguments and
-!> the histories, so that a single-point run and the same structure run as one point of a
+!> for the length of a call (`lent_point` of greenconv_conv_point_matrix). The procedures here
+!> only convert the arguments and the histories, so that a single-point run and the same structure run as one point of a
 !> multi-point run agree bit for bit.
 !>
 !> Long runs. `run_contact` takes the whole road and returns the whole history. A run too long
@@ -66,7 +66,7 @@ module greenconv_contact_single
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_conv_convolver, only: convolver
-    use greenconv_conv_multipoint, only: multipoint_convolver
+    use greenconv_conv_point_matrix, only: lent_point, lend_point
     use greenconv_contact_laws, only: contact_law, replicate_law
     use greenconv_contact_step, only: contact_options, contact_state
     use greenconv_contact_multi, only: multi_contact_response, start_multi_contact, multi_contact_block
@@ -94,18 +94,6 @@ module greenconv_contact_single
         !> Compression delta(t_n) [m] of the contact spring (negative: no contact).
         real(dp), allocatable :: compression(:)
     end type contact_response
-
-    !> A single-point convolver lent to the multi-point loop as the 1 x 1 Green's matrix
-    !> W0 = [w0] for one call: the engine does the arithmetic and keeps its own step, as in
-    !> greenconv_conv_point_matrix, which owns the engine it wraps where this one borrows it.
-    type, extends(multipoint_convolver) :: lent_point
-        !> The caller's engine.
-        class(convolver), pointer :: point => null()
-    contains
-        procedure :: history => lent_history
-        procedure :: push => lent_push
-        procedure :: clear => lent_clear
-    end type lent_point
 
 contains
 
@@ -196,7 +184,7 @@ contains
         class(contact_law), allocatable :: laws(:)
 
         if (present(options)) settings = options
-        call lend(conv, matrix)
+        call lend_point(conv, matrix)
         call replicate_law(law, 1, laws)
         call start_multi_contact(matrix, laws, [preload], state, error, settings=settings)
     end subroutine start_contact
@@ -222,7 +210,7 @@ contains
         type(lent_point) :: matrix
         type(multi_contact_response) :: block
 
-        call lend(conv, matrix)
+        call lend_point(conv, matrix)
         call multi_contact_block(matrix, state, reshape(road, [size(road), 1]), block, error)
         call point_histories(block, response)
     end subroutine contact_block
@@ -245,48 +233,5 @@ contains
         response%force(:) = block%force(:, 1)
         response%compression(:) = block%compression(:, 1)
     end subroutine point_histories
-
-    !> Lend a convolver to `matrix`: its name, step, dt, valid steps and W0 = [w0].
-    subroutine lend(point, matrix)
-        class(convolver), intent(in), target :: point
-        type(lent_point), intent(out) :: matrix
-
-        character(len=:), allocatable :: label
-        integer :: n
-
-        call point%model_size(n, label)
-        call matrix%set_model(point%name, point%dt, n, label)
-        matrix%step = point%step
-        matrix%valid_steps = point%valid_steps
-        call matrix%set_instant_matrix(reshape([point%instant_weight()], [1, 1]))
-        matrix%point => point
-    end subroutine lend
-
-    !> u_h(n) [m] of the engine, at the one point.
-    subroutine lent_history(self, u)
-        class(lent_point), intent(in) :: self
-        real(dp), intent(out) :: u(:)
-
-        u(1) = self%point%history()
-    end subroutine lent_history
-
-    !> Push the force [N] of the one point (halved at step 0) and advance.
-    subroutine lent_push(self, forces)
-        class(lent_point), intent(inout) :: self
-        real(dp), intent(in) :: forces(:)
-
-        real(dp) :: load(1)
-
-        load = self%recorded_load(forces(1:1))
-        call self%point%push(load(1))
-        self%step = self%point%step
-    end subroutine lent_push
-
-    !> The engine back to step 0.
-    subroutine lent_clear(self)
-        class(lent_point), intent(inout) :: self
-
-        call self%point%reset()
-    end subroutine lent_clear
 
 end module greenconv_contact_single
