@@ -8,6 +8,7 @@
 !>     greenconv-bench --output [ANCHOR]
 !>     greenconv-bench --ident
 !>     greenconv-bench --scale
+!>     greenconv-bench --instant
 !>     greenconv-bench --direct [SDOF_SCENE]
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
@@ -19,7 +20,9 @@
 !> `anchor_program`, the compiled bench/anchor/printf_rows.c, skipped when it does not exist);
 !> `--ident` only the identification's cost (bench_ident_mod); `--scale` only the multi-point
 !> cost against N_c up to 4,000 points (bench_scale_mod, out/bench/scale_cost.dat); `--direct` only
-!> `direct` against a plain compiled loop of the same sum (bench_direct_mod).
+!> `direct` against a plain compiled loop of the same sum (bench_direct_mod); `--instant` only
+!> the implicit step's W0*x on a plate's patch, W0's low-rank factors against the separable
+!> shapes' (bench_instant_mod).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -35,10 +38,13 @@ program greenconv_bench
     use bench_ident_mod, only: identification_table
     use bench_scale_mod, only: scale_cost_table
     use bench_direct_mod, only: direct_loop_table
+    use bench_instant_mod, only: instant_product_table
     implicit none
 
     type(error_type), allocatable :: error
     character(len=:), allocatable :: sdof_file, mdof_file
+    !> Whether one part of the benchmark was asked for alone (`--ident`, `--direct`, ...).
+    logical :: one_part = .false.
     integer :: n_passed, n_failed
     !> Where the benchmark's column files go (plot/bench_*.gp read them there).
     character(len=*), parameter :: output_dir = 'out/bench'
@@ -57,28 +63,20 @@ program greenconv_bench
     case ('--ident')
         ! The identification's cost alone.
         call identification_table(output_unit, error)
-        if (allocated(error)) then
-            write (error_unit, '(a)') 'greenconv-bench: '//error%message
-            stop 2, quiet=.true.
-        end if
-        stop
+        one_part = .true.
     case ('--direct')
         ! direct against a plain compiled loop of the same sum alone.
         call direct_loop_table(output_unit, argument(2, 'data/sdof_sine.nml'), error)
-        if (allocated(error)) then
-            write (error_unit, '(a)') 'greenconv-bench: '//error%message
-            stop 2, quiet=.true.
-        end if
-        stop
+        one_part = .true.
+    case ('--instant')
+        ! The implicit step's W0*x on a plate's patch: low-rank against separable factors.
+        call instant_product_table(output_unit, error)
+        one_part = .true.
     case ('--scale')
         ! The multi-point cost at a patch's scale alone (exact and modal against N_c).
         call make_directory(output_dir, error)
         if (.not. allocated(error)) call scale_cost_table(output_unit, output_dir, error)
-        if (allocated(error)) then
-            write (error_unit, '(a)') 'greenconv-bench: '//error%message
-            stop 2, quiet=.true.
-        end if
-        stop
+        one_part = .true.
     case ('--fft', '--output')
         ! One part alone: the multi-point fft (cost table, tyre scene) or the output benchmark.
         call make_directory(output_dir, error)
@@ -88,12 +86,15 @@ program greenconv_bench
         else if (.not. allocated(error)) then
             call output_table(output_unit, output_dir, error, anchor=anchor(argument(2, '')))
         end if
+        one_part = .true.
+    end select
+    if (one_part) then
         if (allocated(error)) then
             write (error_unit, '(a)') 'greenconv-bench: '//error%message
             stop 2, quiet=.true.
         end if
         stop
-    end select
+    end if
     sdof_file = argument(1, 'data/sdof_sine.nml')
     mdof_file = argument(2, 'data/mdof_random.nml')
     call make_directory(output_dir, error)

@@ -1,8 +1,9 @@
 !> The plate's separable mode shapes on a grid of points (greenconv_model_point_modes's
 !> `separable_shapes`, set by greenconv_model_plate's `plate_modes`): the factors against the
 !> dense shapes, the two products Phi*a and Phi^T*q against MATMUL on the dense shapes, W0 and a
-!> modal convolver's steps against the dense path, and the shipped tyre_patch scene's contact
-!> run on the factors against the same run on the dense shapes.
+!> modal convolver's steps against the dense path, its product W0*x on the factors against
+!> MATMUL on the dense W0, and the shipped tyre_patch scene's contact run on the factors against
+!> the same run on the dense shapes (whose implicit step takes W0's low-rank factors).
 module test_separable_mod
     use, intrinsic :: iso_fortran_env, only: dp => real64, int64
     use testsuite_mod, only: test_error, unittest_type, new_unittest, check, note
@@ -40,6 +41,8 @@ contains
                                   test_products), &
                      new_unittest('modal convolver: W0 and 60 steps on the factors against the dense shapes', &
                                   test_convolver), &
+                     new_unittest('instant product: W0*x on the factors against MATMUL(W0, x), random loads', &
+                                  test_instant), &
                      new_unittest('tyre_patch, 1,000 points, 200 steps: totals on the factors against dense', &
                                   test_tyre_patch)]
     end subroutine collect_separable
@@ -201,11 +204,56 @@ contains
                    'W0 or the histories on the factors miss the dense ones by more than 1e-13')
     end subroutine test_convolver
 
+    !> `apply_instant` of the `exact` convolver on the factors, Phi*(w o Phi^T*x), against
+    !> MATMUL(W0, x) on the dense convolver's W0 (made from the dense shapes), random loads in
+    !> [-1, 1], relative to sum_j |W0_ij|*|x_j| at the worst point: within 1e-13. Only the
+    !> convolver on the factors offers its product as the cheaper one (`fast_instant`); the dense
+    !> one's and the explicit one's (W0 = 0) are MATMUL on their W0.
+    subroutine test_instant(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(point_modes) :: description, dense
+        type(modal_green_matrix) :: on_factors, on_shapes, explicit
+        type(error_type), allocatable :: fail
+        type(random_stream) :: stream
+        real(dp) :: x(35), y(35), y_dense(35), worst
+        integer :: i, trial
+
+        call grid_modes(.true., x, y, description, error)
+        if (allocated(error)) return
+        dense = description
+        deallocate (dense%separable)
+        call new_modal_green_matrix(description, 2.0e-5_dp, 'exact', on_factors, fail)
+        if (.not. allocated(fail)) call new_modal_green_matrix(dense, 2.0e-5_dp, 'exact', on_shapes, fail)
+        if (.not. allocated(fail)) call new_modal_green_matrix(description, 2.0e-5_dp, 'modal', explicit, fail)
+        call check(error, .not. allocated(fail), 'the convolvers: '//message_of(fail))
+        if (allocated(error)) return
+        call check(error, on_factors%fast_instant() .and. .not. on_shapes%fast_instant() .and. &
+                   .not. explicit%fast_instant(), 'only the implicit convolver on the factors has the cheaper W0*x')
+        if (allocated(error)) return
+        stream = random_stream(41)
+        worst = 0.0_dp
+        do trial = 1, 10
+            x = [(stream%between(-1.0_dp, 1.0_dp), i=1, 35)]
+            call on_factors%apply_instant(x, y)
+            call on_shapes%apply_instant(x, y_dense)
+            call check(error, all(y_dense == matmul(on_shapes%weight0, x)), 'the dense product is MATMUL(W0, x)')
+            if (allocated(error)) return
+            worst = max(worst, maxval(abs(y - y_dense)/matmul(abs(on_shapes%weight0), abs(x))))
+        end do
+        call explicit%apply_instant(x, y)
+        call note('max rel. |W0*x on the factors - MATMUL(W0, x)|', worst)
+        call check(error, worst <= product_tol .and. all(y == 0.0_dp), &
+                   'W0*x on the factors misses MATMUL(W0, x) by more than 1e-13, or W0*x /= 0 when explicit')
+    end subroutine test_instant
+
     !> data/tyre_patch.nml (50 x 20 points, 441 modes, linear tread) for 200 steps, `exact`
     !> (Newton with W0's low rank) and `modal` (explicit), run as the scene runs them, on the
     !> factors and again on the dense shapes: the total contact forces agree to 1e-12 of their
     !> peak, the Newton solver's tolerance on the compressions (1e-12 of their scale) carried
-    !> to forces by the linear law.
+    !> to forces by the linear law, and the points in contact are the same at every step. The
+    !> implicit step's products W0*x are made on the separable factors in the first run and by
+    !> W0's low-rank factors U*V^T in the second: two ways to round-off.
     subroutine test_tyre_patch(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -216,6 +264,7 @@ contains
         type(error_type), allocatable :: fail
         character(len=:), allocatable :: summary
         real(dp), allocatable :: heights(:, :), on_factors(:), on_shapes(:)
+        logical, allocatable :: touching(:, :), touching_dense(:, :)
         real(dp) :: difference
         integer :: m
 
@@ -235,29 +284,34 @@ contains
             if (.not. allocated(points%modes%separable)) call model%find_points(scene, points, summary, fail)
             call check(error, .not. allocated(fail), 'the points again: '//message_of(fail))
             if (allocated(error)) return
-            call total_force(points, scene, trim(methods(m)), heights, on_factors, error)
+            call total_force(points, scene, trim(methods(m)), heights, on_factors, touching, error)
             if (allocated(error)) return
             deallocate (points%modes%separable)
-            call total_force(points, scene, trim(methods(m)), heights, on_shapes, error)
+            call total_force(points, scene, trim(methods(m)), heights, on_shapes, touching_dense, error)
             if (allocated(error)) return
             difference = maxval(abs(on_factors - on_shapes))/maxval(abs(on_shapes))
             call note(trim(methods(m))//': steps', real(size(on_shapes), dp))
             call note(trim(methods(m))//': peak total force [N]', maxval(on_shapes))
             call note(trim(methods(m))//': max|F_factors - F_dense|/peak', difference)
+            call note(trim(methods(m))//': point-steps in contact', real(count(touching_dense), dp))
             call check(error, difference <= 1.0e-12_dp .and. maxval(on_shapes) > 0.0_dp, &
                        trim(methods(m))//': the totals on the factors differ from the dense path''s')
+            if (allocated(error)) return
+            call check(error, all(touching .eqv. touching_dense), &
+                       trim(methods(m))//': the points in contact on the factors differ from the dense path''s')
             if (allocated(error)) return
         end do
     end subroutine test_tyre_patch
 
     !> The total contact force [N] of each step of a scene's method on its points, as the
-    !> runner steps it (preload shared evenly).
-    subroutine total_force(points, scene, method, heights, total, error)
+    !> runner steps it (preload shared evenly), and which points touch (F_i > 0) at each step.
+    subroutine total_force(points, scene, method, heights, total, touching, error)
         type(scene_points), intent(in) :: points
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: method
         real(dp), intent(in) :: heights(:, :)
         real(dp), allocatable, intent(out) :: total(:)
+        logical, allocatable, intent(out) :: touching(:, :)
         type(test_error), allocatable, intent(out) :: error
 
         class(multipoint_convolver), allocatable :: conv
@@ -275,6 +329,7 @@ contains
         call check(error, .not. allocated(fail), method//': the run: '//message_of(fail))
         if (allocated(error)) return
         total = response%total_force
+        touching = response%force > 0.0_dp
     end subroutine total_force
 
 end module test_separable_mod

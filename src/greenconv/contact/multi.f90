@@ -191,7 +191,7 @@ contains
         do j = 0, n_t - 1
             call conv%history(u_h)
             call step_contact(state, conv%weight0, u_h, road(j, :), response%force(j, :), &
-                              response%displacement(j, :), response%iterations(j), error)
+                              response%displacement(j, :), response%iterations(j), error, conv)
             if (allocated(error)) then
                 call keep_all(j, response%time, response%total_force)
                 call keep_first(response%iterations, j)
@@ -241,7 +241,7 @@ contains
         state%delta(:) = delta
         state%step = conv%step
         call conv%history(u_h)
-        call step_contact(state, conv%weight0, u_h, road, force, displacement, iterations, error)
+        call step_contact(state, conv%weight0, u_h, road, force, displacement, iterations, error, conv)
         delta(:) = state%delta
         if (.not. allocated(error)) call conv%push(force - preload)
     end subroutine multi_contact_step

@@ -48,6 +48,7 @@ module greenconv_contact_step
     use greenconv_contact_law, only: contact_law
     use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
                                                newton_solve, woodbury_step
+    use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
 
@@ -145,7 +146,7 @@ contains
     !> compressions (into state%delta) and displacements of the step, state%step advanced.
     !> The caller then pushes force - state%preload. On a fault nothing in `state` that a
     !> later step reads is trusted: the run must end, its steps before n kept.
-    subroutine step_contact(state, weight0, u_h, road, force, displacement, iterations, fault)
+    subroutine step_contact(state, weight0, u_h, road, force, displacement, iterations, fault, conv)
         !> The run; advanced by one step unless a fault.
         type(contact_state), intent(inout) :: state
         !> The convolver's instant compliance W0 [m/N] (N_c x N_c).
@@ -162,6 +163,9 @@ contains
         integer, intent(out) :: iterations
         !> Set (`stat_numerical`) when the step does not converge or the run diverges.
         type(error_type), allocatable, intent(out) :: fault
+        !> The convolver whose W0 this is: its own product W0*x serves the implicit step when it
+        !> is cheaper than W0's low-rank factors (`fast_instant`).
+        class(multipoint_convolver), intent(in), optional :: conv
 
         real(dp) :: free(size(u_h)), residual
         integer :: point
@@ -179,7 +183,8 @@ contains
         else if (.not. state%coupled) then
             state%delta(:) = free
         else
-            call solve_compressions(weight0, state, free, force, displacement, iterations, residual, point, fault)
+            call solve_compressions(weight0, state, free, force, displacement, iterations, residual, point, fault, &
+                                    conv)
             if (allocated(fault)) then
                 if (all(ieee_is_finite(road))) then
                     fault%message = fault%message//' '//where(state, 0)
@@ -201,7 +206,7 @@ contains
             ! W0*(F - F0) of these forces is the last residual's coupling, left in displacement
             displacement(:) = u_h + displacement
         else if (state%coupled) then
-            displacement(:) = u_h + apply_compliance(state%compliance, weight0, force - state%preload)
+            displacement(:) = u_h + instant_product(state%compliance, weight0, force - state%preload, conv)
         else
             displacement(:) = u_h
         end if
@@ -316,7 +321,7 @@ contains
     !> residual's own product (the step's displacements less the history: no product more).
     !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
     !> at `point`. `error` is set only when a Newton system cannot be solved.
-    subroutine solve_compressions(weight0, state, free, load, coupling, iterations, largest, point, error)
+    subroutine solve_compressions(weight0, state, free, load, coupling, iterations, largest, point, error, conv)
         real(dp), intent(in) :: weight0(:, :)
         type(contact_state), intent(inout) :: state
         real(dp), intent(in) :: free(:)
@@ -324,6 +329,7 @@ contains
         integer, intent(out) :: iterations, point
         real(dp), intent(out) :: largest
         type(error_type), allocatable, intent(out) :: error
+        class(multipoint_convolver), intent(in), optional :: conv
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
         real(dp) :: coupling_trial(size(free)), alpha, scale
@@ -341,7 +347,7 @@ contains
             else
                 call law_forces(laws, delta, load)
                 load(:) = load - state%preload
-                delta(:) = free - apply_compliance(compliance, weight0, load)
+                delta(:) = free - instant_product(compliance, weight0, load, conv)
             end if
             step(:) = slope(laws, delta)
             call law_forces(laws, delta, load)
@@ -349,7 +355,7 @@ contains
             call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
             if (allocated(error)) return
             if (taken) then
-                call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, scale)
+                call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, scale, conv)
                 if (maxval(abs(r_trial)) <= options%tolerance*max(scale, maxval(state%delta0))) then
                     delta(:) = trial
                     state%coupling = coupling
@@ -357,7 +363,7 @@ contains
                     return
                 end if
             end if
-            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale)
+            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale, conv)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
                 if (maxval(abs(r)) <= options%tolerance*scale) then
@@ -371,7 +377,7 @@ contains
                 do halvings = 0, max_halvings
                     trial(:) = delta + alpha*step
                     call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling_trial, &
-                                  scale)
+                                  scale, conv)
                     if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
                     alpha = alpha/2
                 end do
@@ -388,21 +394,40 @@ contains
 
     !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], and the
     !> size of its terms [m].
-    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, scale)
+    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, scale, conv)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
         class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
         real(dp), intent(out) :: r(:), coupling(:), scale
+        class(multipoint_convolver), intent(in), optional :: conv
 
         real(dp) :: load(size(delta))
 
         call law_forces(laws, delta, load)
         load(:) = load - preload
-        coupling(:) = apply_compliance(compliance, weight0, load)
+        coupling(:) = instant_product(compliance, weight0, load, conv)
         r(:) = delta - free + coupling
         scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
     end subroutine residual
+
+    !> W0*x [m] for loads x [N]: the convolver's own product when it is the cheaper
+    !> (`fast_instant`, as on a plate's separable mode shapes), else by W0's low-rank factors or
+    !> densely (greenconv_contact_lowrank_solve's `apply_compliance`). Both are W0*x to round-off.
+    function instant_product(compliance, weight0, x, conv) result(y)
+        type(lowrank_compliance), intent(in) :: compliance
+        real(dp), intent(in) :: weight0(:, :), x(:)
+        class(multipoint_convolver), intent(in), optional :: conv
+        real(dp) :: y(size(x))
+
+        if (present(conv)) then
+            if (conv%fast_instant()) then
+                call conv%apply_instant(x, y)
+                return
+            end if
+        end if
+        y(:) = apply_compliance(compliance, weight0, x)
+    end function instant_product
 
     !> The forces F_i(delta_i) [N] of the points' laws: one point's `force`, or the laws' `forces`
     !> at several (one call through the type's table for all points).

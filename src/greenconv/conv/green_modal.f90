@@ -66,6 +66,8 @@ module greenconv_conv_green_modal
         procedure :: history => modal_history
         procedure :: push => modal_push
         procedure :: clear => modal_clear
+        procedure :: fast_instant => separable_instant
+        procedure :: apply_instant => modal_instant
     end type modal_green_matrix
 
 contains
@@ -198,6 +200,41 @@ contains
         end do
         !$omp end parallel do
     end subroutine separable_weight0
+
+    !> Whether W0*x is made on the separable factors (`modal_instant`): 2*n_col*(N_m + n_row*N_y)
+    !> multiplications on factors that stay in the caches, against 2*N_c*r streamed for a
+    !> product by W0's low-rank factors U*V^T (r about N_m).
+    pure logical function separable_instant(self)
+        !> The convolver.
+        class(modal_green_matrix), intent(in) :: self
+
+        separable_instant = allocated(self%separable) .and. .not. self%explicit
+    end function separable_instant
+
+    !> y = W0*x [m] for loads x [N]: Phi*(w o (Phi^T*x)) on the separable factors, the form
+    !> W0's columns are made in (`separable_weight0`); the dense product otherwise. Its sums
+    !> are taken in a fixed order, so one and two threads give the same bits.
+    subroutine modal_instant(self, x, y)
+        !> The convolver.
+        class(modal_green_matrix), intent(in) :: self
+        !> Loads [N] at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> W0*x [m] (N_c).
+        real(dp), intent(out) :: y(:)
+
+        real(dp) :: modal(size(self%engine%mode_weight))
+        logical :: share
+
+        if (.not. allocated(self%separable)) then
+            y(:) = matmul(self%weight0, x)
+            return
+        end if
+        share = separable_work(self%separable) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        call separable_modal_forces(self%separable, x, modal, share)
+        modal(:) = self%engine%mode_weight*modal
+        call separable_displacements(self%separable, modal, y, share)
+    end subroutine modal_instant
 
     !> u_h,i(n) = sum_k phi_ik*Re(p_k(n)) [m].
     subroutine modal_history(self, u)

@@ -67,6 +67,11 @@ module greenconv_conv_multipoint
         procedure :: set_instant_matrix
         !> The loads [N] a push records: the forces, halved at step 0 (for the engines' `push`).
         procedure :: recorded_load
+        !> Whether `apply_instant` is cheaper than a product by low-rank factors of W0, so that
+        !> an implicit step should call it for its products W0*x.
+        procedure :: fast_instant
+        !> y = W0*x [m] for loads x [N]: the dense product, or an engine's own factors.
+        procedure :: apply_instant
     end type multipoint_convolver
 
     abstract interface
@@ -131,6 +136,29 @@ contains
         load(:) = forces
         if (self%step == 0) load(:) = 0.5_dp*forces
     end function recorded_load
+
+    !> Whether `apply_instant` costs less than the O(N_c*r) of W0's low-rank factors: not for
+    !> the dense product; an engine that holds cheaper factors of W0 says so.
+    pure logical function fast_instant(self)
+        !> The convolver.
+        class(multipoint_convolver), intent(in) :: self
+
+        associate (unused => self%step)
+        end associate
+        fast_instant = .false.
+    end function fast_instant
+
+    !> y = W0*x [m] for loads x [N] (N_c), by the dense W0 (N_c^2 multiply-adds).
+    subroutine apply_instant(self, x, y)
+        !> The convolver.
+        class(multipoint_convolver), intent(in) :: self
+        !> Loads [N] at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> W0*x [m] (N_c).
+        real(dp), intent(out) :: y(:)
+
+        y(:) = matmul(self%weight0, x)
+    end subroutine apply_instant
 
     !> Check a table kernel(m, i, j) = g_ij(m*dt) of a sampled Green's matrix: samples
     !> m = 0..N_g with N_g >= 1 of an N_c x N_c matrix, N_c >= 1.
