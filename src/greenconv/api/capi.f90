@@ -28,15 +28,16 @@ module greenconv_capi
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_options, contact_response
+    use greenconv_contact_single, only: contact_options
     use greenconv_capi_law, only: law_box, law_at, door_name
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    step_box, describe_box
-    use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
-    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door, &
-                                   need_capacity, modes_to_c
+                                    step_box, describe_box, single_point_only
+    use greenconv_api_budget, only: run_point_budget, start_point_budget
+    use greenconv_api_multi_handle, only: advance_multi_box
+    use greenconv_api_doors, only: finish, from_c, to_c, put, put_if, need_pointer, need_pointers, need_count, &
+                                   start_door, need_capacity, modes_to_c
     implicit none
     private
 
@@ -302,7 +303,6 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
-        integer(c_int), pointer :: size_out
         character(len=:), allocatable :: label
         integer :: n
 
@@ -310,8 +310,7 @@ contains
         status = stat_input
         if (.not. (associated(box) .and. c_associated(size))) return
         call box%conv%model_size(n, label)
-        call c_f_pointer(size, size_out)
-        size_out = int(n, c_int)
+        call put_if(size, n)
         status = 0
     end function gc_convolver_model_size
 
@@ -363,10 +362,12 @@ contains
     ! ---- dynamic contact --------------------------------------------------------------------
 
     !> int gc_contact_step_law(gc_convolver *conv, const gc_law *law, double preload, double road,
-    !> double *displacement, double *force, double *compression): one explicit step.
+    !> double *displacement, double *force, double *compression): one explicit step; status 3,
+    !> the outputs 0 and the convolver not advanced, when u, F or delta of the step is not finite
+    !> (a road height that is NaN or infinite, a step that diverged), as gc_multi_contact_step.
     function gc_contact_step_law(conv, law, preload, road, displacement, force, compression) &
         bind(c, name='gc_contact_step_law') result(status)
-        !> The convolver, advanced by one step.
+        !> The convolver, advanced by one step (not on a fault).
         type(c_ptr), value, intent(in) :: conv
         !> The contact law (gc_law_new).
         type(c_ptr), value, intent(in) :: law
@@ -374,11 +375,11 @@ contains
         real(c_double), value, intent(in) :: preload
         !> Road height u_r(t_n) [m].
         real(c_double), value, intent(in) :: road
-        !> Where the body displacement u(t_n) [m] goes.
+        !> Where the body displacement u(t_n) [m] goes (0 on a fault).
         type(c_ptr), value, intent(in) :: displacement
-        !> Where the contact force F(t_n) [N] goes.
+        !> Where the contact force F(t_n) [N] goes (0 on a fault).
         type(c_ptr), value, intent(in) :: force
-        !> Where the compression delta(t_n) [m] goes, or NULL.
+        !> Where the compression delta(t_n) [m] goes (0 on a fault), or NULL.
         type(c_ptr), value, intent(in) :: compression
         integer(c_int) :: status
 
@@ -395,11 +396,12 @@ contains
                    c_associated(force))) return
         call door_name(spring, 'gc_contact_step_law', caller)
         call step_box(caller, box, spring%law, preload, road, u, f, delta, error)
-        if (allocated(error)) return
+        status = 0
+        if (allocated(error)) status = int(error%stat, c_int)
+        if (status == stat_input) return
         call put(displacement, u)
         call put(force, f)
-        if (c_associated(compression)) call put(compression, delta)
-        status = 0
+        call put_if(compression, delta)
     end function gc_contact_step_law
 
     !> int gc_contact_options_init(gc_contact_options *options): the library's defaults (the
@@ -457,7 +459,7 @@ contains
         character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         type(contact_options) :: settings
-        real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
+        real(c_double), pointer :: heights(:), u(:), f(:)
         real(dp), allocatable :: delta(:)
         integer :: n
 
@@ -488,10 +490,7 @@ contains
                 call run_point_budget(caller, box, spring%law, preload, heights, settings, u, f, delta, error)
             end if
         end if
-        if (c_associated(compression) .and. n > 0) then
-            call c_f_pointer(compression, delta_out, [n])
-            delta_out(:) = delta
-        end if
+        call put_if(compression, delta)
         status = finish(error, errmsg, errmsg_len)
     end function gc_run_contact_law
 
@@ -560,8 +559,7 @@ contains
 
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
-        type(contact_response) :: response
-        real(dp) :: u, f, delta
+        real(dp) :: u(1), f(1), delta(1)
 
         box => box_at(conv)
         u = 0.0_dp
@@ -574,22 +572,19 @@ contains
         else if (.not. box%stepping) then
             call fatal_error(error, 'gc_contact_advance: no contact run is going on with this convolver: call ' &
                              //'gc_contact_start first (a fault or a reset ends a run)')
+        else if (box%conv%n_points() /= 1) then
+            call fatal_error(error, 'gc_contact_advance: '//single_point_only(box))
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
-            if (.not. allocated(error)) call advance_point_budget(box, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
-                if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &
-                                                                                    //error%message
             else
-                u = response%displacement(0)
-                f = response%force(0)
-                delta = response%compression(0)
+                call advance_multi_box('gc_contact_advance', box, [real(road, dp)], u, f, delta, error)
             end if
         end if
-        if (c_associated(displacement)) call put(displacement, u)
-        if (c_associated(force)) call put(force, f)
-        if (c_associated(compression)) call put(compression, delta)
+        call put_if(displacement, u(1))
+        call put_if(force, f(1))
+        call put_if(compression, delta(1))
         status = finish(error, errmsg, errmsg_len)
     end function gc_contact_advance
 
@@ -630,8 +625,6 @@ contains
         character(len=*), parameter :: caller = 'gc_identify_frf_file'
         type(error_type), allocatable :: error
         type(modal_set) :: modes
-        integer(c_int), pointer :: count
-        real(c_double), pointer :: e_out
         real(dp) :: e_value
 
         call check_outputs(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, error_e], &
@@ -643,12 +636,10 @@ contains
             status = finish(error, errmsg, errmsg_len)
             return
         end if
-        call c_f_pointer(n_modes, count)
-        call c_f_pointer(error_e, e_out)
-        count = 0
+        call put_if(n_modes, 0)
         call identify_file(from_c(path), tol_e, int(max_modes), modes, e_value, error)
-        e_out = e_value
-        if (.not. allocated(error)) count = int(modes%n_modes(), c_int)
+        call put(error_e, e_value)
+        if (.not. allocated(error)) call put_if(n_modes, modes%n_modes())
         call modes_to_c(caller, modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
         status = finish(error, errmsg, errmsg_len)
     end function gc_identify_frf_file
