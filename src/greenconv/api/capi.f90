@@ -48,10 +48,13 @@ module greenconv_capi
     public :: gc_convolver_warnings
     public :: gc_contact_step_law, gc_contact_options_init, gc_run_contact_law
     public :: gc_contact_start_law, gc_contact_advance
-    public :: gc_identify_frf_file, gc_run_scene
+    public :: gc_identify_frf_file, gc_run_scene, point_null_handle
     !> The message and string conversions of greenconv_api_doors, named here too for the
     !> callers that took them from this module.
     public :: finish, from_c, to_c
+
+    !> What the single-point doors say of a NULL handle.
+    character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
     integer(c_int), parameter :: gc_scheme_explicit = 0
@@ -463,16 +466,12 @@ contains
         real(dp), allocatable :: delta(:)
         integer :: n
 
-        box => box_at(conv)
-        spring => law_at(law)
-        call door_name(spring, 'gc_run_contact_law', caller)
+        call point_and_law(conv, law, 'gc_run_contact_law', box, spring, caller, error)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
-        if (.not. associated(box)) then
-            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
-        else if (.not. associated(spring)) then
-            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
+        if (allocated(error)) then
+            continue
         else if (n_steps < 1) then
             call fatal_error(error, caller//': n_steps = '//int_text(int(n_steps))//': give at least 1 step')
         else if (.not. (c_associated(road) .and. c_associated(displacement) .and. c_associated(force))) then
@@ -519,16 +518,9 @@ contains
         type(error_type), allocatable :: error
         type(contact_options) :: settings
 
-        box => box_at(conv)
-        spring => law_at(law)
-        call door_name(spring, 'gc_contact_start_law', caller)
-        if (.not. associated(box)) then
-            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
-        else if (.not. associated(spring)) then
-            box%stepping = .false.
-            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
-        else
-            box%stepping = .false.
+        call point_and_law(conv, law, 'gc_contact_start_law', box, spring, caller, error)
+        if (associated(box)) box%stepping = .false.
+        if (.not. allocated(error)) then
             call check_contact_law(spring%law, preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
             if (.not. allocated(error)) call start_point_budget(caller, box, spring%law, preload, settings, error)
@@ -566,7 +558,7 @@ contains
         f = 0.0_dp
         delta = 0.0_dp
         if (.not. associated(box)) then
-            call fatal_error(error, 'gc_contact_advance: conv is NULL: make a convolver with gc_convolver_new_*')
+            call fatal_error(error, 'gc_contact_advance: '//point_null_handle)
         else if (.not. (c_associated(displacement) .and. c_associated(force))) then
             call fatal_error(error, 'gc_contact_advance: displacement and force must not be NULL')
         else if (.not. box%stepping) then
@@ -662,6 +654,33 @@ contains
     end function gc_run_scene
 
     ! ---- conversions -------------------------------------------------------------------------
+
+    !> The box and the law behind the handles of a single-point door that takes a law, and the
+    !> name its messages give (that of the (k_c, p) door for a law it made); a NULL handle
+    !> refused (status 2), the convolver's first.
+    subroutine point_and_law(conv, law, door, box, spring, caller, error)
+        !> The `gc_convolver *` and the `const gc_law *`.
+        type(c_ptr), intent(in) :: conv, law
+        !> The door's own name.
+        character(len=*), intent(in) :: door
+        !> The box behind conv, or null.
+        type(convolver_box), pointer, intent(out) :: box
+        !> The law behind law, or null.
+        type(law_box), pointer, intent(out) :: spring
+        !> The name the door's messages give.
+        character(len=:), allocatable, intent(out) :: caller
+        !> Set (`stat_input`) for a NULL handle.
+        type(error_type), allocatable, intent(out) :: error
+
+        box => box_at(conv)
+        spring => law_at(law)
+        call door_name(spring, door, caller)
+        if (.not. associated(box)) then
+            call fatal_error(error, caller//': '//point_null_handle)
+        else if (.not. associated(spring)) then
+            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
+        end if
+    end subroutine point_and_law
 
     !> Build the convolver `method` for a structure into *conv, unless `error` is already set;
     !> the status, with the message copied to the caller's buffer.

@@ -27,13 +27,11 @@ module greenconv_capi_modes
                                    modes_to_c
     use greenconv_api_handle, only: convolver_box, box_at
     use greenconv_capi_multi, only: made, tolerance_of, null_handle
+    use greenconv_capi, only: point_null_handle
     implicit none
     private
 
     public :: gc_multi_new_modes_file, gc_identify_ml_file, greenconv_estimate_door, greenconv_accuracy_door
-
-    !> What the single-point doors say of a null handle.
-    character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
 
 contains
 
