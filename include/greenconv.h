@@ -310,7 +310,9 @@ int gc_contact_start_law(gc_convolver *conv, const gc_law *law, double preload,
 /**
  * One contact step: road height `road` [m] at this step in; displacement u [m], contact force
  * F [N] and (unless compression is NULL) compression delta [m] out; the convolver advanced.
- * Start from a new or reset convolver.
+ * Start from a new or reset convolver. A step whose u, F or delta is not finite (a road height
+ * that is NaN or infinite, a step that diverged) is a fault, as in gc_multi_contact_step:
+ * GC_ERROR_NUMERICAL, the outputs 0, the convolver not advanced.
  */
 int gc_contact_step(gc_convolver *conv, double k_c, double p, double preload, double road,
                     double *displacement, double *force, double *compression);

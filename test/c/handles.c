@@ -3,7 +3,8 @@
  * of NULL does nothing; gc_convolver_delete (and gc_multi_delete) frees once and then finds
  * NULL, however often it is called, and every call on the deleted handle is refused; two
  * convolvers are independent. A single-point door is the multi-point door of one point: on a
- * one-point multi-point handle it steps the same box, a handle of more points it refuses.
+ * one-point multi-point handle it steps the same box, a handle of more points it refuses (the
+ * contact step doors too, a multi-point run going on left as it was).
  */
 #include "greenconv.h"
 #include "check.h"
@@ -111,6 +112,18 @@ int main(void)
               "two points: gc_convolver_push refuses the handle (status 2)", NULL);
         check(gc_convolver_instant_weight((const gc_convolver *)multi, &w_point) == GC_ERROR_INPUT,
               "two points: gc_convolver_instant_weight refuses the handle (status 2)", NULL);
+        check(gc_contact_step((gc_convolver *)multi, 1e6, 1.5, 10.0, 0.0, &u_point, &w_point, NULL) ==
+              GC_ERROR_INPUT, "two points: gc_contact_step refuses the handle (status 2)", NULL);
+        {
+            const double k_c[2] = {1e6, 1e6}, p[2] = {1.5, 1.5}, preload[2] = {10.0, 10.0};
+            status = gc_multi_contact_start(multi, 2, k_c, p, preload, msg, sizeof msg);
+            check_status(status, GC_OK, msg, NULL, "two points: a multi-point run started");
+            status = gc_contact_advance((gc_convolver *)multi, 0.0, &u_point, &w_point, NULL, msg, sizeof msg);
+            check_status(status, GC_ERROR_INPUT, msg, "single-point",
+                         "two points: gc_contact_advance on the multi-point run refuses the handle (status 2)");
+            status = gc_multi_contact_step(multi, 2, (const double[]){0.0, 0.0}, q, q, NULL, msg, sizeof msg);
+            check_status(status, GC_OK, msg, NULL, "  the multi-point run goes on");
+        }
         gc_multi_delete(&multi);
     }
     return check_exit();

@@ -40,14 +40,14 @@ module greenconv_api_budget
     use greenconv_contact_budget, only: doubling_sums, step_doubling_error
     use greenconv_conv_methods, only: method_order
     use greenconv_contact_single, only: contact_options, contact_response, run_contact, copy_histories, &
-                                        start_contact, contact_block
+                                        start_contact
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, door_budget, companion_run, release_companions, check_steps
     implicit none
     private
 
     public :: run_budget, start_budget, feed_budget, stop_budget
-    public :: run_point_budget, start_point_budget, advance_point_budget
+    public :: run_point_budget, start_point_budget
     public :: set_box_accuracy, outside_accuracy
 
     !> Runs shorter than this have no time-step term (too few steps at 4*dt).
@@ -124,9 +124,10 @@ contains
         call outside_accuracy(caller, box, error)
     end subroutine run_point_budget
 
-    !> Start a single-point contact run stepped one call at a time (`advance_point_budget`) and
-    !> its budget: the options checked against the convolver, the convolver reset; `error`
-    !> (`stat_accuracy`) when the run started but the model is already outside the accuracy asked.
+    !> Start a single-point contact run stepped one call at a time (the N_c = 1 case of
+    !> greenconv_api_multi_handle's `advance_multi_box`) and its budget: the options checked
+    !> against the convolver, the convolver reset; `error` (`stat_accuracy`) when the run
+    !> started but the model is already outside the accuracy asked.
     subroutine start_point_budget(caller, box, law, preload, options, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
@@ -157,29 +158,6 @@ contains
         call start_budget(box, laws, [preload], box%n_steps)
         call outside_accuracy(caller, box, error)
     end subroutine start_point_budget
-
-    !> The next steps of the run `start_point_budget` began, its companions fed.
-    subroutine advance_point_budget(box, road, response, error)
-        !> The box of a single-point structure.
-        type(convolver_box), intent(inout) :: box
-        !> Road heights u_r(t_n) [m] of these steps.
-        real(dp), intent(in) :: road(:)
-        !> Histories of these steps, shortened to those done when a fault stops the run.
-        type(contact_response), intent(out) :: response
-        !> Set on a numerical fault (divergence, an implicit step that did not converge).
-        type(error_type), allocatable, intent(out) :: error
-
-        select type (matrix => box%conv)
-        type is (point_matrix)
-            call contact_block(matrix%point, box%contact, road, response, error)
-            matrix%step = matrix%point%step
-        end select
-        if (allocated(error)) then
-            call stop_budget(box)
-            return
-        end if
-        call feed_budget(box, reshape(road, [size(road), 1]), reshape(response%force, [size(road), 1]))
-    end subroutine advance_point_budget
 
     !> Build and start the companions of a contact run on a box (module comment); `run_terms`
     !> back to 0. The single-point scheme is `box%point_options` when `box%structure` is held.

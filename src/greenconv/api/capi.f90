@@ -28,15 +28,16 @@ module greenconv_capi
     use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_options, contact_response
+    use greenconv_contact_single, only: contact_options
     use greenconv_capi_law, only: law_box, law_at, door_name
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    step_box, describe_box
-    use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
-    use greenconv_api_doors, only: finish, from_c, to_c, put, need_pointer, need_pointers, need_count, start_door, &
-                                   need_capacity, modes_to_c
+                                    step_box, describe_box, single_point_only
+    use greenconv_api_budget, only: run_point_budget, start_point_budget
+    use greenconv_api_multi_handle, only: advance_multi_box
+    use greenconv_api_doors, only: finish, from_c, to_c, put, put_if, need_pointer, need_pointers, need_count, &
+                                   start_door, need_capacity, modes_to_c
     implicit none
     private
 
@@ -47,10 +48,13 @@ module greenconv_capi
     public :: gc_convolver_warnings
     public :: gc_contact_step_law, gc_contact_options_init, gc_run_contact_law
     public :: gc_contact_start_law, gc_contact_advance
-    public :: gc_identify_frf_file, gc_run_scene
+    public :: gc_identify_frf_file, gc_run_scene, point_null_handle
     !> The message and string conversions of greenconv_api_doors, named here too for the
     !> callers that took them from this module.
     public :: finish, from_c, to_c
+
+    !> What the single-point doors say of a NULL handle.
+    character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
 
     !> `GC_SCHEME_EXPLICIT`: the paper's explicit contact step (`contact_options%scheme = 'explicit'`).
     integer(c_int), parameter :: gc_scheme_explicit = 0
@@ -302,7 +306,6 @@ contains
         integer(c_int) :: status
 
         type(convolver_box), pointer :: box
-        integer(c_int), pointer :: size_out
         character(len=:), allocatable :: label
         integer :: n
 
@@ -310,8 +313,7 @@ contains
         status = stat_input
         if (.not. (associated(box) .and. c_associated(size))) return
         call box%conv%model_size(n, label)
-        call c_f_pointer(size, size_out)
-        size_out = int(n, c_int)
+        call put_if(size, n)
         status = 0
     end function gc_convolver_model_size
 
@@ -363,10 +365,12 @@ contains
     ! ---- dynamic contact --------------------------------------------------------------------
 
     !> int gc_contact_step_law(gc_convolver *conv, const gc_law *law, double preload, double road,
-    !> double *displacement, double *force, double *compression): one explicit step.
+    !> double *displacement, double *force, double *compression): one explicit step; status 3,
+    !> the outputs 0 and the convolver not advanced, when u, F or delta of the step is not finite
+    !> (a road height that is NaN or infinite, a step that diverged), as gc_multi_contact_step.
     function gc_contact_step_law(conv, law, preload, road, displacement, force, compression) &
         bind(c, name='gc_contact_step_law') result(status)
-        !> The convolver, advanced by one step.
+        !> The convolver, advanced by one step (not on a fault).
         type(c_ptr), value, intent(in) :: conv
         !> The contact law (gc_law_new).
         type(c_ptr), value, intent(in) :: law
@@ -374,11 +378,11 @@ contains
         real(c_double), value, intent(in) :: preload
         !> Road height u_r(t_n) [m].
         real(c_double), value, intent(in) :: road
-        !> Where the body displacement u(t_n) [m] goes.
+        !> Where the body displacement u(t_n) [m] goes (0 on a fault).
         type(c_ptr), value, intent(in) :: displacement
-        !> Where the contact force F(t_n) [N] goes.
+        !> Where the contact force F(t_n) [N] goes (0 on a fault).
         type(c_ptr), value, intent(in) :: force
-        !> Where the compression delta(t_n) [m] goes, or NULL.
+        !> Where the compression delta(t_n) [m] goes (0 on a fault), or NULL.
         type(c_ptr), value, intent(in) :: compression
         integer(c_int) :: status
 
@@ -395,11 +399,12 @@ contains
                    c_associated(force))) return
         call door_name(spring, 'gc_contact_step_law', caller)
         call step_box(caller, box, spring%law, preload, road, u, f, delta, error)
-        if (allocated(error)) return
+        status = 0
+        if (allocated(error)) status = int(error%stat, c_int)
+        if (status == stat_input) return
         call put(displacement, u)
         call put(force, f)
-        if (c_associated(compression)) call put(compression, delta)
-        status = 0
+        call put_if(compression, delta)
     end function gc_contact_step_law
 
     !> int gc_contact_options_init(gc_contact_options *options): the library's defaults (the
@@ -457,20 +462,16 @@ contains
         character(len=:), allocatable :: caller
         type(error_type), allocatable :: error
         type(contact_options) :: settings
-        real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
+        real(c_double), pointer :: heights(:), u(:), f(:)
         real(dp), allocatable :: delta(:)
         integer :: n
 
-        box => box_at(conv)
-        spring => law_at(law)
-        call door_name(spring, 'gc_run_contact_law', caller)
+        call point_and_law(conv, law, 'gc_run_contact_law', box, spring, caller, error)
         n = max(int(n_steps), 0)
         allocate (delta(n))
         delta(:) = 0.0_dp
-        if (.not. associated(box)) then
-            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
-        else if (.not. associated(spring)) then
-            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
+        if (allocated(error)) then
+            continue
         else if (n_steps < 1) then
             call fatal_error(error, caller//': n_steps = '//int_text(int(n_steps))//': give at least 1 step')
         else if (.not. (c_associated(road) .and. c_associated(displacement) .and. c_associated(force))) then
@@ -488,10 +489,7 @@ contains
                 call run_point_budget(caller, box, spring%law, preload, heights, settings, u, f, delta, error)
             end if
         end if
-        if (c_associated(compression) .and. n > 0) then
-            call c_f_pointer(compression, delta_out, [n])
-            delta_out(:) = delta
-        end if
+        call put_if(compression, delta)
         status = finish(error, errmsg, errmsg_len)
     end function gc_run_contact_law
 
@@ -520,16 +518,9 @@ contains
         type(error_type), allocatable :: error
         type(contact_options) :: settings
 
-        box => box_at(conv)
-        spring => law_at(law)
-        call door_name(spring, 'gc_contact_start_law', caller)
-        if (.not. associated(box)) then
-            call fatal_error(error, caller//': conv is NULL: make a convolver with gc_convolver_new_*')
-        else if (.not. associated(spring)) then
-            box%stepping = .false.
-            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
-        else
-            box%stepping = .false.
+        call point_and_law(conv, law, 'gc_contact_start_law', box, spring, caller, error)
+        if (associated(box)) box%stepping = .false.
+        if (.not. allocated(error)) then
             call check_contact_law(spring%law, preload, error)
             if (.not. allocated(error)) call options_from_c(options, settings, error)
             if (.not. allocated(error)) call start_point_budget(caller, box, spring%law, preload, settings, error)
@@ -560,36 +551,32 @@ contains
 
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
-        type(contact_response) :: response
-        real(dp) :: u, f, delta
+        real(dp) :: u(1), f(1), delta(1)
 
         box => box_at(conv)
         u = 0.0_dp
         f = 0.0_dp
         delta = 0.0_dp
         if (.not. associated(box)) then
-            call fatal_error(error, 'gc_contact_advance: conv is NULL: make a convolver with gc_convolver_new_*')
+            call fatal_error(error, 'gc_contact_advance: '//point_null_handle)
         else if (.not. (c_associated(displacement) .and. c_associated(force))) then
             call fatal_error(error, 'gc_contact_advance: displacement and force must not be NULL')
         else if (.not. box%stepping) then
             call fatal_error(error, 'gc_contact_advance: no contact run is going on with this convolver: call ' &
                              //'gc_contact_start first (a fault or a reset ends a run)')
+        else if (box%conv%n_points() /= 1) then
+            call fatal_error(error, 'gc_contact_advance: '//single_point_only(box))
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
-            if (.not. allocated(error)) call advance_point_budget(box, [real(road, dp)], response, error)
             if (allocated(error)) then
                 box%stepping = .false.
-                if (index(error%message, 'gc_contact_advance: ') /= 1) error%message = 'gc_contact_advance: ' &
-                                                                                    //error%message
             else
-                u = response%displacement(0)
-                f = response%force(0)
-                delta = response%compression(0)
+                call advance_multi_box('gc_contact_advance', box, [real(road, dp)], u, f, delta, error)
             end if
         end if
-        if (c_associated(displacement)) call put(displacement, u)
-        if (c_associated(force)) call put(force, f)
-        if (c_associated(compression)) call put(compression, delta)
+        call put_if(displacement, u(1))
+        call put_if(force, f(1))
+        call put_if(compression, delta(1))
         status = finish(error, errmsg, errmsg_len)
     end function gc_contact_advance
 
@@ -630,8 +617,6 @@ contains
         character(len=*), parameter :: caller = 'gc_identify_frf_file'
         type(error_type), allocatable :: error
         type(modal_set) :: modes
-        integer(c_int), pointer :: count
-        real(c_double), pointer :: e_out
         real(dp) :: e_value
 
         call check_outputs(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, error_e], &
@@ -643,12 +628,10 @@ contains
             status = finish(error, errmsg, errmsg_len)
             return
         end if
-        call c_f_pointer(n_modes, count)
-        call c_f_pointer(error_e, e_out)
-        count = 0
+        call put_if(n_modes, 0)
         call identify_file(from_c(path), tol_e, int(max_modes), modes, e_value, error)
-        e_out = e_value
-        if (.not. allocated(error)) count = int(modes%n_modes(), c_int)
+        call put(error_e, e_value)
+        if (.not. allocated(error)) call put_if(n_modes, modes%n_modes())
         call modes_to_c(caller, modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
         status = finish(error, errmsg, errmsg_len)
     end function gc_identify_frf_file
@@ -671,6 +654,33 @@ contains
     end function gc_run_scene
 
     ! ---- conversions -------------------------------------------------------------------------
+
+    !> The box and the law behind the handles of a single-point door that takes a law, and the
+    !> name its messages give (that of the (k_c, p) door for a law it made); a NULL handle
+    !> refused (status 2), the convolver's first.
+    subroutine point_and_law(conv, law, door, box, spring, caller, error)
+        !> The `gc_convolver *` and the `const gc_law *`.
+        type(c_ptr), intent(in) :: conv, law
+        !> The door's own name.
+        character(len=*), intent(in) :: door
+        !> The box behind conv, or null.
+        type(convolver_box), pointer, intent(out) :: box
+        !> The law behind law, or null.
+        type(law_box), pointer, intent(out) :: spring
+        !> The name the door's messages give.
+        character(len=:), allocatable, intent(out) :: caller
+        !> Set (`stat_input`) for a NULL handle.
+        type(error_type), allocatable, intent(out) :: error
+
+        box => box_at(conv)
+        spring => law_at(law)
+        call door_name(spring, door, caller)
+        if (.not. associated(box)) then
+            call fatal_error(error, caller//': '//point_null_handle)
+        else if (.not. associated(spring)) then
+            call fatal_error(error, caller//': law is NULL: make a law with gc_law_new')
+        end if
+    end subroutine point_and_law
 
     !> Build the convolver `method` for a structure into *conv, unless `error` is already set;
     !> the status, with the message copied to the caller's buffer.

@@ -23,16 +23,15 @@ module greenconv_capi_modes
     use greenconv_api_handle, only: identify_file_ml
     use greenconv_api_multi_handle, only: modes_file_box, check_box
     use greenconv_api_budget, only: set_box_accuracy
-    use greenconv_api_doors, only: finish, from_c, start_door, need_pointer, need_pointers, need_capacity, modes_to_c
+    use greenconv_api_doors, only: finish, from_c, put_if, start_door, need_pointer, need_pointers, need_capacity, &
+                                   modes_to_c
     use greenconv_api_handle, only: convolver_box, box_at
     use greenconv_capi_multi, only: made, tolerance_of, null_handle
+    use greenconv_capi, only: point_null_handle
     implicit none
     private
 
     public :: gc_multi_new_modes_file, gc_identify_ml_file, greenconv_estimate_door, greenconv_accuracy_door
-
-    !> What the single-point doors say of a null handle.
-    character(len=*), parameter :: point_null_handle = 'conv is NULL: make a convolver with gc_convolver_new_*'
 
 contains
 
@@ -217,10 +216,7 @@ contains
         character(len=*), parameter :: caller = 'gc_identify_ml_file'
         type(error_type), allocatable :: error
         type(ml_result) :: result
-        integer(c_int), pointer :: found, flags(:)
-        real(c_double), pointer :: out(:)
         character(len=:), allocatable :: model
-        integer :: n
 
         call need_pointer(caller, path, 'path', 'pass the name of a receptance file', error)
         call need_pointers(caller, [n_modes, n_determined, pole_re, pole_im, residue_re, residue_im, sigma_f, &
@@ -231,25 +227,19 @@ contains
             status = finish(error, errmsg, errmsg_len)
             return
         end if
-        call c_f_pointer(n_modes, found)
-        found = 0
-        call c_f_pointer(n_determined, flags, [1])
-        flags(1) = 0
+        call put_if(n_modes, 0)
+        call put_if(n_determined, 0)
         model = 'auto'
         if (c_associated(noise_model)) model = from_c(noise_model)
         call identify_file_ml(from_c(path), model, int(max_order), result, error)
         if (.not. allocated(error)) then
-            n = result%modes%n_modes()
-            found = int(n, c_int)
-            flags(1) = int(count(result%determined_modes()), c_int)
+            call put_if(n_modes, result%modes%n_modes())
+            call put_if(n_determined, count(result%determined_modes()))
             call modes_to_c(caller, result%modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
             if (.not. allocated(error)) then
-                call c_f_pointer(sigma_f, out, [n])
-                out = result%sigma_frequency
-                call c_f_pointer(sigma_xi, out, [n])
-                out = result%sigma_damping
-                call c_f_pointer(determined, flags, [n])
-                flags = int(merge(1, 0, result%determined_modes()), c_int)
+                call put_if(sigma_f, result%sigma_frequency)
+                call put_if(sigma_xi, result%sigma_damping)
+                call put_if(determined, merge(1, 0, result%determined_modes()))
             end if
         end if
         status = finish(error, errmsg, errmsg_len)

@@ -24,7 +24,7 @@ module greenconv_capi_multi
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes, box_points, file_summary
     use greenconv_capi, only: gc_build_options
-    use greenconv_api_doors, only: finish, from_c, to_c, start_door, need_pointer, need_pointers, need_count
+    use greenconv_api_doors, only: finish, from_c, to_c, put_if, start_door, need_pointer, need_pointers, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
     implicit none
     private
@@ -192,8 +192,7 @@ contains
         type(error_type), allocatable :: error
         type(point_modes) :: modes
         real(dp), allocatable :: x_points(:), y_points(:)
-        integer(c_int), pointer :: count
-        real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :), out(:)
+        real(c_double), pointer :: p_re(:), p_im(:), r_re(:), r_im(:), phi(:, :)
         integer :: n_m, n_c
 
         call need_pointers(caller, [n_modes, pole_re, pole_im, residue_re, residue_im, shape], &
@@ -205,8 +204,7 @@ contains
         if (.not. allocated(error)) then
             n_m = modes%modes%n_modes()
             n_c = modes%n_points()
-            call c_f_pointer(n_modes, count)
-            count = int(n_m, c_int)
+            call put_if(n_modes, n_m)
             if (n_m > capacity) then
                 call fatal_error(error, caller//': capacity = '//int_text(int(capacity))//': the plate has ' &
                                  //int_text(n_m)//' modes below f_max: give arrays of that many modes')
@@ -221,14 +219,8 @@ contains
                 r_re(:) = modes%modes%residue%re
                 r_im(:) = modes%modes%residue%im
                 phi(:, :) = modes%shape
-                if (c_associated(x)) then
-                    call c_f_pointer(x, out, [n_c])
-                    out(:) = x_points
-                end if
-                if (c_associated(y)) then
-                    call c_f_pointer(y, out, [n_c])
-                    out(:) = y_points
-                end if
+                call put_if(x, x_points)
+                call put_if(y, y_points)
             end if
         end if
         status = finish(error, errmsg, errmsg_len)
@@ -337,8 +329,6 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        integer(c_int), pointer :: labels(:)
-        real(c_double), pointer :: out(:)
         integer, allocatable :: nodes(:)
         real(dp), allocatable :: x_points(:), y_points(:)
 
@@ -346,18 +336,9 @@ contains
         call check_box('gc_multi_points', null_handle, box, int(n_points), error)
         if (.not. allocated(error)) call box_points('gc_multi_points', box, nodes, x_points, y_points, error)
         if (.not. allocated(error)) then
-            if (c_associated(node)) then
-                call c_f_pointer(node, labels, [n_points])
-                labels(:) = int(nodes, c_int)
-            end if
-            if (c_associated(x)) then
-                call c_f_pointer(x, out, [n_points])
-                out(:) = x_points
-            end if
-            if (c_associated(y)) then
-                call c_f_pointer(y, out, [n_points])
-                out(:) = y_points
-            end if
+            call put_if(node, nodes)
+            call put_if(x, x_points)
+            call put_if(y, y_points)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_points
@@ -385,8 +366,6 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        real(c_double), pointer :: value_out
-        integer(c_int), pointer :: count_out
         character(len=:), allocatable :: summary
         real(dp) :: worst, mean
         integer :: poles
@@ -397,18 +376,9 @@ contains
         status = finish(error, text, text_len)
         if (allocated(error)) return
         call file_e_modes(box%green, worst, mean, poles)
-        if (c_associated(e_worst)) then
-            call c_f_pointer(e_worst, value_out)
-            value_out = worst
-        end if
-        if (c_associated(e_mean)) then
-            call c_f_pointer(e_mean, value_out)
-            value_out = mean
-        end if
-        if (c_associated(n_poles)) then
-            call c_f_pointer(n_poles, count_out)
-            count_out = int(poles, c_int)
-        end if
+        call put_if(e_worst, worst)
+        call put_if(e_mean, mean)
+        call put_if(n_poles, poles)
         call file_summary(box, summary)
         call to_c(summary, text, text_len)
     end function gc_multi_file_summary
@@ -427,15 +397,11 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        integer(c_int), pointer :: count
 
         box => box_at(conv)
         call check_box('gc_multi_n_points', null_handle, box, error=error)
         call need_pointer('gc_multi_n_points', n_points, 'n_points', 'pass the address of an int', error)
-        if (.not. allocated(error)) then
-            call c_f_pointer(n_points, count)
-            count = int(box%conv%n_points(), c_int)
-        end if
+        if (.not. allocated(error)) call put_if(n_points, box%conv%n_points())
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_n_points
 
@@ -562,7 +528,6 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        integer(c_int), pointer :: size_out
         character(len=:), allocatable :: description
         integer :: n
 
@@ -572,10 +537,7 @@ contains
         if (allocated(error)) return
         call describe_box(box, description, n)
         call to_c(description, text, text_len)
-        if (c_associated(model_size)) then
-            call c_f_pointer(model_size, size_out)
-            size_out = int(n, c_int)
-        end if
+        call put_if(model_size, n)
     end function gc_multi_describe
 
     !> int gc_multi_set_newton(gc_multi_convolver *conv, double tolerance, int max_iterations,
@@ -631,7 +593,7 @@ contains
 
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
-        real(c_double), pointer :: heights(:), u(:), f(:), delta_out(:)
+        real(c_double), pointer :: heights(:), u(:), f(:)
         real(dp), allocatable :: delta(:)
 
         box => checked('gc_multi_contact_step', conv, n_points, [road, displacement, force], &
@@ -642,10 +604,7 @@ contains
             call c_f_pointer(displacement, u, [n_points])
             call c_f_pointer(force, f, [n_points])
             call advance_multi_box('gc_multi_contact_step', box, heights, u, f, delta, error)
-            if (c_associated(compression)) then
-                call c_f_pointer(compression, delta_out, [n_points])
-                delta_out(:) = delta
-            end if
+            call put_if(compression, delta)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_contact_step
@@ -725,7 +684,7 @@ contains
         type(convolver_box), pointer :: box
         class(contact_law), allocatable :: springs(:)
         character(len=:), allocatable :: door
-        real(c_double), pointer :: load(:), heights(:, :), u(:, :), f(:, :), delta_out(:, :)
+        real(c_double), pointer :: load(:), heights(:, :), u(:, :), f(:, :)
         real(dp), allocatable :: delta(:, :)
 
         box => checked(caller, conv, n_points, [laws, preload, road, displacement, force], &
@@ -739,10 +698,7 @@ contains
             call c_f_pointer(displacement, u, [n_steps, n_points])
             call c_f_pointer(force, f, [n_steps, n_points])
             call run_multi_box(door, box, springs, load, heights, u, f, delta, error)
-            if (c_associated(compression)) then
-                call c_f_pointer(compression, delta_out, [n_steps, n_points])
-                delta_out(:, :) = delta
-            end if
+            call put_if(compression, delta)
         end if
         status = finish(error, errmsg, errmsg_len)
     end function gc_multi_run_contact_law

@@ -18,7 +18,7 @@ module greenconv_api_doors
     implicit none
     private
 
-    public :: finish, from_c, to_c, put, report, handle_address, address_handle
+    public :: finish, from_c, to_c, put, put_if, report, handle_address, address_handle
     public :: need_pointer, need_pointers, need_count, need_method, need_capacity, start_door, modes_to_c
 
     interface
@@ -30,6 +30,13 @@ module greenconv_api_doors
             integer(c_size_t) :: length
         end function c_strlen
     end interface
+
+    !> Store values at a C address the caller may leave NULL (an output it does not want):
+    !> nothing for NULL, else a double, an int, or an array of them laid out as Fortran stores
+    !> the values (the first index fastest).
+    interface put_if
+        module procedure put_real_if, put_reals_if, put_table_if, put_int_if, put_ints_if
+    end interface put_if
 
 contains
 
@@ -116,6 +123,72 @@ contains
         call c_f_pointer(address, target_value)
         target_value = value
     end subroutine put
+
+    !> A double at a C `double *`, or nothing for NULL.
+    subroutine put_real_if(address, value)
+        !> The C address of a double, or NULL.
+        type(c_ptr), intent(in) :: address
+        !> The value, in the unit the caller documents.
+        real(dp), intent(in) :: value
+
+        if (c_associated(address)) call put(address, value)
+    end subroutine put_real_if
+
+    !> size(values) doubles at a C `double *`, or nothing for NULL.
+    subroutine put_reals_if(address, values)
+        !> The C address of the first double, or NULL.
+        type(c_ptr), intent(in) :: address
+        !> The values, in the unit the caller documents.
+        real(dp), intent(in) :: values(:)
+
+        real(c_double), pointer :: out(:)
+
+        if (.not. c_associated(address)) return
+        call c_f_pointer(address, out, [size(values)])
+        out(:) = values
+    end subroutine put_reals_if
+
+    !> A table of doubles at a C `double *`, the first index fastest, or nothing for NULL.
+    subroutine put_table_if(address, values)
+        !> The C address of the first double, or NULL.
+        type(c_ptr), intent(in) :: address
+        !> The values, in the unit the caller documents.
+        real(dp), intent(in) :: values(:, :)
+
+        real(c_double), pointer :: out(:, :)
+
+        if (.not. c_associated(address)) return
+        call c_f_pointer(address, out, shape(values))
+        out(:, :) = values
+    end subroutine put_table_if
+
+    !> An int at a C `int *`, or nothing for NULL.
+    subroutine put_int_if(address, value)
+        !> The C address of an int, or NULL.
+        type(c_ptr), intent(in) :: address
+        !> The value (a count or a label, no unit).
+        integer, intent(in) :: value
+
+        integer(c_int), pointer :: out
+
+        if (.not. c_associated(address)) return
+        call c_f_pointer(address, out)
+        out = int(value, c_int)
+    end subroutine put_int_if
+
+    !> size(values) ints at a C `int *`, or nothing for NULL.
+    subroutine put_ints_if(address, values)
+        !> The C address of the first int, or NULL.
+        type(c_ptr), intent(in) :: address
+        !> The values (counts or labels, no unit).
+        integer, intent(in) :: values(:)
+
+        integer(c_int), pointer :: out(:)
+
+        if (.not. c_associated(address)) return
+        call c_f_pointer(address, out, [size(values)])
+        out(:) = int(values, c_int)
+    end subroutine put_ints_if
 
     !> Fortran 77 status and message of an error, or 0 and a blank message when there is none.
     subroutine report(error, ierr, errmsg)

@@ -41,7 +41,7 @@ module greenconv_api_handle
 
     public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: identify_file, identify_file_ml, check_steps, step_box
+    public :: identify_file, identify_file_ml, check_steps, step_box, single_point_only
     public :: reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
@@ -439,13 +439,15 @@ contains
         real(dp), intent(in) :: preload
         !> u_r(t_n) [m] under the contact at this step.
         real(dp), intent(in) :: road
-        !> u(t_n) [m] of this step (0 on bad input).
+        !> u(t_n) [m] of this step (0 on bad input or a fault).
         real(dp), intent(out) :: displacement
-        !> F(t_n) [N] of this step (0 on bad input).
+        !> F(t_n) [N] of this step (0 on bad input or a fault).
         real(dp), intent(out) :: force
-        !> delta(t_n) [m] of this step (0 on bad input).
+        !> delta(t_n) [m] of this step (0 on bad input or a fault).
         real(dp), intent(out) :: compression
-        !> Set (`stat_input`) for a bad law or a step past the kernel.
+        !> Set (`stat_input`) for a bad law or a step past the kernel; (`stat_numerical`, the
+        !> caller and the step named) when u, F or delta of the step is not finite (a road height
+        !> that is NaN or infinite, a step that diverged), the convolver then not advanced.
         type(error_type), allocatable, intent(out) :: error
 
         displacement = 0.0_dp
@@ -456,10 +458,29 @@ contains
         if (allocated(error)) return
         select type (matrix => box%conv)
         type is (point_matrix)
-            call contact_step(matrix%point, law, road, preload, displacement, force, compression)
+            call contact_step(matrix%point, law, road, preload, displacement, force, compression, error)
             matrix%step = matrix%point%step
+        class default
+            call fatal_error(error, caller//': '//single_point_only(box))
+            return
         end select
+        if (.not. allocated(error)) return
+        error%message = caller//': '//error%message
+        displacement = 0.0_dp
+        force = 0.0_dp
+        compression = 0.0_dp
     end subroutine step_box
+
+    !> What a single-point step door says of a box of several points (a multi-point handle cast).
+    function single_point_only(box) result(message)
+        !> The box.
+        type(convolver_box), intent(in) :: box
+        !> The message, without the door's name.
+        character(len=:), allocatable :: message
+
+        message = 'the convolver has '//int_text(box%conv%n_points())//' points: this door steps a ' &
+                  //'single-point convolver (step a multi-point one with the multi-point doors)'
+    end function single_point_only
 
     !> Modes identified by LSCE from a receptance file, lowest natural frequency first.
     subroutine identify_file(path, tol_e, max_modes, modes, e, error)

@@ -368,7 +368,7 @@ contains
         real(dp), intent(out) :: f
         !> The spring's compression delta(t_n) [m] (<= 0: no contact); 0 on failure.
         real(dp), intent(out) :: delta
-        !> Status: 0 success, 2 null handle or bad contact law.
+        !> Status: 0 success, 2 null handle, bad contact law or a multi-point handle, 3 a step not finite.
         integer, intent(out) :: ierr
 
         type(convolver_box), pointer :: box
