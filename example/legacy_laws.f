@@ -12,8 +12,8 @@ C        TO 1E-12 OF THE COLUMN'S LARGEST MAGNITUDE (IT PRINTS 16
 C        DIGITS), AND THE BODY LIFTS OFF AND LANDS AGAIN.
 C     2. THE POWER LAW BY NAME EQUALS THE (K_C, P) DOORS BIT FOR BIT:
 C        GCLCON = GCCONT, GCLSTP = GCSTEP, GCMLRN = GCMRUN (A LAW A
-C        POINT AND ONE LAW FOR EVERY POINT), GCMLBG + GCMSTP = GCMBEG +
-C        GCMSTP.
+C        POINT AND ONE LAW FOR EVERY POINT), GCMLBG + GCMSTP AND GCMBEG +
+C        GCMSTP = GCMRUN.
 C     3. A BAD NAME, COUNT OR PARAMETER: IERR = 2 AND A MESSAGE NAMING
 C        THE DOOR, THE LAW, THE PARAMETER WITH ITS UNIT, ITS RANGE AND
 C        THE VALUE FOUND.
@@ -34,8 +34,8 @@ C     ONE LINE PER CHECK, 'ok: ...' OR 'FAIL: ...'; STOP 1 ON A FAILURE.
       DOUBLE PRECISION POLRE(1), POLIM(1), RESRE(1), RESIM(1)
       DOUBLE PRECISION SHAPE(NC, 1), KCS(NC), PS(NC), F0S(NC)
       DOUBLE PRECISION ROADM(NT, NC), UM(NT, NC, 2), FM(NT, NC, 2)
-      DOUBLE PRECISION DM(NT, NC, 2), R(NC), US(NC, 2), FS(NC, 2)
-      DOUBLE PRECISION DS(NC, 2), DEV, DU, DF, DD, ZERO
+      DOUBLE PRECISION DM(NT, NC, 2), R(NC), US(NC), FS(NC), DS(NC)
+      DOUBLE PRECISION DEV, DU, DF, DD, ZERO
       INTEGER*8 HANDLE, HM, HNULL
       INTEGER IERR, IERR2, N, I, NBAD, NLIFT, NDIFF
       CHARACTER*300 MSG
@@ -137,6 +137,7 @@ C     SEVERAL POINTS: ONE MODE OF UNIT MODAL MASS AT 1000 RAD/S.
          F0S(I) = 3.0D0
          PPTS(1, I) = KCS(I)
          PPTS(2, I) = PS(I)
+         R(I) = 0.0D0
          DO 60 N = 1, NT
             ROADM(N, I) = 5.0D-5*SIN(200.0D0*DBLE(N - 1)*DT + DBLE(I))
    60    CONTINUE
@@ -165,33 +166,15 @@ C     SEVERAL POINTS: ONE MODE OF UNIT MODAL MASS AT 1000 RAD/S.
      &   'GCMLRN equals GCMRUN, one power law for every point, bit for'
      &   //' bit', MSG, NBAD)
       CALL GCMBEG(HM, NC, KCS, PS, F0S, IERR, MSG)
-      NDIFF = 0
-      DO 100 N = 1, NT
-         DO 90 I = 1, NC
-            R(I) = ROADM(N, I)
-   90    CONTINUE
-         CALL GCMSTP(HM, NC, R, US(1, 1), FS(1, 1), DS(1, 1), IERR2,
-     &      MSG)
-         DO 95 I = 1, NC
-            IF (US(I, 1) .NE. UM(N, I, 1) .OR. FS(I, 1) .NE. FM(N, I, 1)
-     &         .OR. DS(I, 1) .NE. DM(N, I, 1)) NDIFF = NDIFF + 1
-   95    CONTINUE
-  100 CONTINUE
+      IF (IERR .EQ. 0) CALL STEPM(HM, NT, NC, ROADM, UM, FM, DM, NDIFF,
+     &   IERR, MSG)
+      CALL OKIF(IERR .EQ. 0 .AND. NDIFF .EQ. 0,
+     &   'GCMBEG + GCMSTP equals the whole run bit for bit', MSG, NBAD)
       CALL GCMLBG(HM, NC, 'power', 2, 1, PPOW, F0S, IERR, MSG)
-      DO 120 N = 1, NT
-         DO 110 I = 1, NC
-            R(I) = ROADM(N, I)
-  110    CONTINUE
-         CALL GCMSTP(HM, NC, R, US(1, 2), FS(1, 2), DS(1, 2), IERR2,
-     &      MSG)
-         DO 115 I = 1, NC
-            IF (US(I, 2) .NE. UM(N, I, 1) .OR. FS(I, 2) .NE. FM(N, I, 1)
-     &         .OR. DS(I, 2) .NE. DM(N, I, 1)) NDIFF = NDIFF + 1
-  115    CONTINUE
-  120 CONTINUE
-      CALL OKIF(IERR .EQ. 0 .AND. IERR2 .EQ. 0 .AND. NDIFF .EQ. 0,
-     &   'GCMLBG + GCMSTP equals GCMBEG + GCMSTP and the whole run bit'
-     &   //' for bit', MSG, NBAD)
+      IF (IERR .EQ. 0) CALL STEPM(HM, NT, NC, ROADM, UM, FM, DM, NDIFF,
+     &   IERR, MSG)
+      CALL OKIF(IERR .EQ. 0 .AND. NDIFF .EQ. 0,
+     &   'GCMLBG + GCMSTP equals the whole run bit for bit', MSG, NBAD)
       CALL GCMLRN(HM, NC, NT, 'exponential', 2, 1, PEXP, F0S, ROADM,
      &   UM(1, 1, 2), FM(1, 1, 2), DM(1, 1, 2), IERR, MSG)
       CALL OKIF(IERR .EQ. 0 .AND. FM(NT, 1, 2) .GE. 0.0D0,
@@ -291,6 +274,31 @@ C     ONE IS NOT LOOKED FOR).
      &   //'message', MSG, NBAD)
       IF (IERR .EQ. 2 .AND. FOUND) WRITE (*, '(2A)') '    ',
      &   MSG(1:LEN_TRIM(MSG))
+      END
+C
+C     A RUN STEPPED BY GCMSTP FROM THE START GCMBEG OR GCMLBG MADE: NDIFF
+C     COUNTS THE STEPS WHOSE U, F OR DELTA DIFFER IN ANY BIT FROM THE
+C     WHOLE RUN IN UM, FM, DM(..., 1); IERR THE FIRST FAULT.
+      SUBROUTINE STEPM(HM, NT, NC, ROADM, UM, FM, DM, NDIFF, IERR, MSG)
+      USE GREENCONV_LEGACY_MULTI
+      IMPLICIT NONE
+      INTEGER*8 HM
+      INTEGER NT, NC, NDIFF, IERR, N, I
+      DOUBLE PRECISION ROADM(NT, NC), UM(NT, NC, 2), FM(NT, NC, 2)
+      DOUBLE PRECISION DM(NT, NC, 2), R(NC), U(NC), F(NC), D(NC)
+      CHARACTER*(*) MSG
+      NDIFF = 0
+      DO 20 N = 1, NT
+         DO 10 I = 1, NC
+            R(I) = ROADM(N, I)
+   10    CONTINUE
+         CALL GCMSTP(HM, NC, R, U, F, D, IERR, MSG)
+         IF (IERR .NE. 0) RETURN
+         DO 15 I = 1, NC
+            IF (U(I) .NE. UM(N, I, 1) .OR. F(I) .NE. FM(N, I, 1) .OR.
+     &         D(I) .NE. DM(N, I, 1)) NDIFF = NDIFF + 1
+   15    CONTINUE
+   20 CONTINUE
       END
 C
 C     NDIFF: HOW MANY OF THE N VALUES OF U, F AND D (..., 1) DIFFER
