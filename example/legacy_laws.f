@@ -206,6 +206,11 @@ C     3. BAD NAME, COUNT OR PARAMETER: IERR = 2 AND WHAT IS WRONG.
       CALL CHKMSG('one value for two', IERR, MSG, 'gclcon: ',
      &   'expected 2 parameters', '(F_s [N], delta_s [m]), found 1',
      &   NBAD)
+      CALL GCLCON(HANDLE, 'power', 1000000, PPOW, F0, NSTEP, ROAD, U,
+     &   F, DELTA, IERR, MSG)
+      CALL CHKMSG('NPAR = 1000000 (not read)', IERR, MSG,
+     &   'gclcon: NPAR = 1000000: give 0 to 3 parameter values', ' ',
+     &   ' ', NBAD)
       PBAD(1) = 5.0D0
       PBAD(2) = -2.0D-4
       CALL GCLCON(HANDLE, 'exponential', 2, PBAD, F0, NSTEP, ROAD, U,

@@ -19,7 +19,7 @@ module greenconv_legacy_multi
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: int_text, lower_text
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_contact_laws, only: contact_law, new_law, new_laws, replicate_law
+    use greenconv_contact_laws, only: contact_law, new_law, new_laws, replicate_law, max_law_parameters
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
@@ -844,8 +844,10 @@ contains
             call fatal_error(error, caller//': no contact law given')
             return
         end if
-        call need_count(caller, 'NPAR', npar, 0, 'parameter values', error)
-        if (.not. allocated(error) .and. nlaw /= 1 .and. nlaw /= nc) then
+        if (npar < 0 .or. npar > max_law_parameters) then
+            call fatal_error(error, caller//': NPAR = '//int_text(npar)//': give 0 to ' &
+                             //int_text(max_law_parameters)//' parameter values')
+        else if (nlaw /= 1 .and. nlaw /= nc) then
             call fatal_error(error, caller//': NLAW = '//int_text(nlaw)//': give 1 (the same parameters at every ' &
                              //'point) or NC = '//int_text(nc)//' (one set a point)')
         end if
