@@ -13,7 +13,9 @@
 #                   example/c_patch.c and example/legacy_patch.f (a 2D multi-point patch),
 #                   example/c_patch_file.c and example/legacy_patch_file.f (the shipped patch
 #                   from data/patch_green.uff, against the driver's run of data/patch_road.nml)
-#                   and example/legacy_modes_file.f (a patch from a modes file, the accuracy asked)
+#                   example/legacy_modes_file.f (a patch from a modes file, the accuracy asked)
+#                   and example/legacy_laws.f (the contact law by name: the exponential law
+#                   against the driver, the power law against the (k_c, p) doors, refusals)
 #   make install    install the driver, both libraries, include/greenconv.h, the .mod files
 #                   and greenconv.pc (pkg-config) under PREFIX (default /usr/local; DESTDIR too)
 #   make doc        API documentation with FORD (installed with pip when missing) into
@@ -139,7 +141,7 @@ BIN     := $(BUILD)/greenconv
 DEPFILE := $(BUILD)/deps.mk
 EXDIR   := $(BUILD)/examples
 EXAMPLES := $(EXDIR)/c_contact $(EXDIR)/legacy_f77 $(EXDIR)/c_patch $(EXDIR)/legacy_patch $(EXDIR)/c_patch_file \
-            $(EXDIR)/legacy_patch_file $(EXDIR)/legacy_modes_file $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
+            $(EXDIR)/legacy_patch_file $(EXDIR)/legacy_modes_file $(EXDIR)/legacy_laws $(if $(OMPFLAGS),$(EXDIR)/omp_threads) \
             $(if $(shell command -v $(CXX) 2>/dev/null),$(EXDIR)/cxx_header)
 
 # Every Fortran source under src/ (subfolders too, as fpm does); objects mirror the tree.
@@ -249,6 +251,10 @@ $(EXDIR)/legacy_patch_file: example/legacy_patch_file.f $(LIB)
 	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 
 $(EXDIR)/legacy_modes_file: example/legacy_modes_file.f $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
+
+$(EXDIR)/legacy_laws: example/legacy_laws.f $(LIB)
 	@mkdir -p $(@D)
 	$(FC) $(LEGACY_FFLAGS) $(OMPFLAGS) -I$(MODDIR) -J$(@D) -o $@ $< $(LIB) $(LDLIBS)
 

@@ -27,16 +27,18 @@ module greenconv_legacy
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input
+    use greenconv_core_text, only: int_text
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_law, contact_options
-    use greenconv_api_library, only: run_scene_file
+    use greenconv_contact_single, only: contact_law, contact_options, contact_response
+    use greenconv_conv_point_matrix, only: point_matrix
+    use greenconv_api_library, only: run_scene_file, check_contact_law
     use greenconv_api_handle, only: convolver_box, new_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, identify_file_ml, step_box, &
-                                    describe_box
-    use greenconv_legacy_multi, only: gcmfre, gcmhis, gcmpsh, gcmw0, gcmrst
-    use greenconv_api_budget, only: run_point_budget
+                                    describe_box, check_steps
+    use greenconv_legacy_multi, only: gcmfre, gcmhis, gcmpsh, gcmw0, gcmrst, door_laws
+    use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
     use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
     implicit none
@@ -45,6 +47,7 @@ module greenconv_legacy
     public :: gcsdof, gcmode, gcsamp, gcfrf, gcfrfi, gcfree
     public :: gchist, gcpush, gcw0, gcrset, gcsize, gcdesc, gcwarn
     public :: gcstep, gccont, gcid, gcidml, gcscen
+    public :: gclstp, gclcon, gclbeg, gcladv
     public :: gcvers
 
     !> Status of a call that succeeded.
@@ -351,6 +354,7 @@ contains
     !> One explicit step of the contact loop (eqs. 20-24), as the driver takes it: from the
     !> road height, the contact force and the body displacement of this step, the convolver
     !> advanced. Start from a new or reset convolver (the body at rest under the preload).
+    !> GCLSTP with the law 'power' of (KC, P), without its message.
     subroutine gcstep(handle, kc, p, f0, road, u, f, delta, ierr)
         !> The convolver's handle.
         integer(int64), intent(in) :: handle
@@ -371,20 +375,154 @@ contains
         !> Status: 0 success, 2 null handle, bad contact law or a multi-point handle, 3 a step not finite.
         integer, intent(out) :: ierr
 
+        character(len=1) :: message
+
+        call step_point('gcstep', handle, f0, road, u, f, delta, ierr, message, kc=[kc], p=[p])
+    end subroutine gcstep
+
+    !> One explicit step of the contact loop as GCSTEP takes it, on the contact law NAME of the
+    !> registry ('power': k_c [N/m^p], p; 'exponential': F_s [N], delta_s [m]; any case) of
+    !> the NPAR parameter values PAR.
+    subroutine gclstp(handle, name, npar, par, f0, road, u, f, delta, ierr, errmsg)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> The law's name, e.g. 'power' or 'exponential' (any case, trailing blanks ignored).
+        character(len=*), intent(in) :: name
+        !> Number of parameter values (the law's: 2 for both laws).
+        integer, intent(in) :: npar
+        !> Parameter values in the registry's order and SI units (NPAR).
+        real(dp), intent(in) :: par(*)
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: f0
+        !> Road height u_r(t_n) [m].
+        real(dp), intent(in) :: road
+        !> The body's displacement u(t_n) [m] from static equilibrium; 0 on failure.
+        real(dp), intent(out) :: u
+        !> The contact force F(t_n) [N], >= 0; 0 on failure.
+        real(dp), intent(out) :: f
+        !> The spring's compression delta(t_n) [m] (<= 0: no contact); 0 on failure.
+        real(dp), intent(out) :: delta
+        !> Status: 0 success, 2 null handle, bad preload or a law's name, count or parameter
+        !> refused (the message names the door, the law, the parameter with its unit, its range
+        !> and the value found).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call step_point('gclstp', handle, f0, road, u, f, delta, ierr, errmsg, name=name, npar=npar, par=par)
+    end subroutine gclstp
+
+    !> What GCSTEP and GCLSTP do: the handle checked, the law made (`door_laws`), the step.
+    subroutine step_point(caller, handle, f0, road, u, f, delta, ierr, errmsg, kc, p, name, npar, par)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        real(dp), intent(in) :: f0, road
+        real(dp), intent(out) :: u, f, delta
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: kc(*), p(*), par(*)
+        character(len=*), intent(in), optional :: name
+        integer, intent(in), optional :: npar
+
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
+        class(contact_law), allocatable :: laws(:)
 
         u = 0.0_dp
         f = 0.0_dp
         delta = 0.0_dp
-        box => checked_box(handle, ierr)
-        if (.not. associated(box)) return
-        call step_box('gcstep', box, contact_law(kc, p), f0, road, u, f, delta, error)
-        if (allocated(error)) ierr = error%stat
-    end subroutine gcstep
+        box => point_box(caller, handle, error)
+        call door_laws(caller, 1, laws, error, kc, p, name, npar, 1, par)
+        if (.not. allocated(error)) then
+            call step_box(caller, box, laws(1), f0, road, u, f, delta, error)
+        end if
+        call named(caller, error)
+        call report(error, ierr, errmsg)
+    end subroutine step_point
+
+    !> Start a contact run stepped by GCLADV (the convolver reset; the driver's explicit scheme,
+    !> as GCCONT runs it) on the contact law NAME of the registry of the NPAR parameter values
+    !> PAR, as GCLSTP takes it; a start refused ends the run going on.
+    subroutine gclbeg(handle, name, npar, par, f0, ierr, errmsg)
+        !> The convolver's handle (a single-point convolver).
+        integer(int64), intent(in) :: handle
+        !> The law's name, e.g. 'power' or 'exponential' (any case, trailing blanks ignored).
+        character(len=*), intent(in) :: name
+        !> Number of parameter values (the law's: 2 for both laws).
+        integer, intent(in) :: npar
+        !> Parameter values in the registry's order and SI units (NPAR).
+        real(dp), intent(in) :: par(*)
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: f0
+        !> Status: 0 success, 2 null or multi-point handle, bad preload or a law's name, count or
+        !> parameter refused (the message names the door, the law, the parameter with its unit,
+        !> its range and the value found), 4 outside the accuracy asked with GCACC (the run started).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        character(len=*), parameter :: caller = 'gclbeg'
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        class(contact_law), allocatable :: laws(:)
+
+        box => stepped_box(caller, handle, error)
+        if (associated(box)) box%stepping = .false.
+        call door_laws(caller, 1, laws, error, name=name, npar=npar, nlaw=1, par=par)
+        if (.not. allocated(error)) call check_contact_law(laws(1), f0, error)
+        if (.not. allocated(error)) call start_point_budget(caller, box, laws(1), f0, contact_options(), error)
+        call named(caller, error)
+        call report(error, ierr, errmsg)
+    end subroutine gclbeg
+
+    !> The next step of the run GCLBEG began: u, F and delta at this step's road height (a
+    !> fault or GCRSET ends the run).
+    subroutine gcladv(handle, road, u, f, delta, ierr, errmsg)
+        !> The convolver's handle (a single-point convolver).
+        integer(int64), intent(in) :: handle
+        !> Road height u_r(t_n) [m].
+        real(dp), intent(in) :: road
+        !> The body's displacement u(t_n) [m] from static equilibrium; 0 on failure.
+        real(dp), intent(out) :: u
+        !> The contact force F(t_n) [N], >= 0; 0 on failure.
+        real(dp), intent(out) :: f
+        !> The spring's compression delta(t_n) [m] (<= 0: no contact); 0 on failure.
+        real(dp), intent(out) :: delta
+        !> Status: 0 success, 2 null or multi-point handle, no run going on or a step past a cut
+        !> kernel's validity, 3 a step that diverged (the run ends).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        character(len=*), parameter :: caller = 'gcladv'
+        type(convolver_box), pointer :: box
+        type(error_type), allocatable :: error
+        type(contact_response) :: response
+
+        u = 0.0_dp
+        f = 0.0_dp
+        delta = 0.0_dp
+        box => stepped_box(caller, handle, error)
+        if (.not. allocated(error)) then
+            if (.not. box%stepping) call fatal_error(error, caller//': no contact run is going on with this ' &
+                                                     //'convolver: call GCLBEG first (a fault or a reset ends a run)')
+        end if
+        if (.not. allocated(error)) call check_steps(box, caller, 1_int64, error)
+        if (.not. allocated(error)) call advance_point_budget(box, [road], response, error)
+        if (.not. allocated(error)) then
+            u = response%displacement(0)
+            f = response%force(0)
+            delta = response%compression(0)
+        else if (associated(box)) then
+            box%stepping = .false.
+        end if
+        call named(caller, error)
+        call report(error, ierr, errmsg)
+    end subroutine gcladv
 
     !> A whole contact run of nstep steps on a road profile (the convolver is reset first),
-    !> the same loop as the driver's: u, F and delta at t_n = n*dt, n = 0..nstep-1.
+    !> the same loop as the driver's: u, F and delta at t_n = n*dt, n = 0..nstep-1. GCLCON
+    !> with the law 'power' of (KC, P).
     subroutine gccont(handle, kc, p, f0, nstep, road, u, f, delta, ierr, errmsg)
         !> The convolver's handle.
         integer(int64), intent(in) :: handle
@@ -410,24 +548,80 @@ contains
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
 
+        call run_point('gccont', handle, f0, nstep, road, u, f, delta, ierr, errmsg, kc=[kc], p=[p])
+    end subroutine gccont
+
+    !> A whole contact run as GCCONT makes it, on the contact law NAME of the registry
+    !> ('power': k_c [N/m^p], p; 'exponential': F_s [N], delta_s [m]; any case) of the NPAR
+    !> parameter values PAR.
+    subroutine gclcon(handle, name, npar, par, f0, nstep, road, u, f, delta, ierr, errmsg)
+        !> The convolver's handle.
+        integer(int64), intent(in) :: handle
+        !> The law's name, e.g. 'power' or 'exponential' (any case, trailing blanks ignored).
+        character(len=*), intent(in) :: name
+        !> Number of parameter values (the law's: 2 for both laws).
+        integer, intent(in) :: npar
+        !> Parameter values in the registry's order and SI units (NPAR).
+        real(dp), intent(in) :: par(*)
+        !> Static preload F0 [N], >= 0.
+        real(dp), intent(in) :: f0
+        !> Number of steps N_t, >= 1.
+        integer, intent(in) :: nstep
+        !> Road heights u_r(t_n) [m].
+        real(dp), intent(in) :: road(nstep)
+        !> Body displacements u(t_n) [m] from static equilibrium.
+        real(dp), intent(out) :: u(nstep)
+        !> Contact forces F(t_n) [N], >= 0.
+        real(dp), intent(out) :: f(nstep)
+        !> Compressions delta(t_n) [m] of the contact spring (<= 0: no contact).
+        real(dp), intent(out) :: delta(nstep)
+        !> Status: 0 success, 2 bad input (a law's name, count or parameter: the message names the
+        !> door, the law, the parameter with its unit, its range and the value found), 3 the run
+        !> diverged (the message names the step and its time; u, F and delta are those of the
+        !> steps before it, then 0).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call run_point('gclcon', handle, f0, nstep, road, u, f, delta, ierr, errmsg, name=name, npar=npar, par=par)
+    end subroutine gclcon
+
+    !> What GCCONT and GCLCON do: the handle and NSTEP checked, the law made (`door_laws`), the
+    !> run with its error budget; u, F and delta 0 when the run did not start.
+    subroutine run_point(caller, handle, f0, nstep, road, u, f, delta, ierr, errmsg, kc, p, name, npar, par)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        real(dp), intent(in) :: f0
+        integer, intent(in) :: nstep
+        real(dp), intent(in) :: road(*)
+        real(dp), intent(out) :: u(*), f(*), delta(*)
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: kc(*), p(*), par(*)
+        character(len=*), intent(in), optional :: name
+        integer, intent(in), optional :: npar
+
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
+        class(contact_law), allocatable :: laws(:)
+        integer :: n
 
-        box => box_at(handle_address(handle))
-        if (.not. associated(box)) then
-            call fatal_error(error, 'gccont: null convolver handle: make one with GCSDOF, GCMODE, GCSAMP or GCFRF')
-        else if (nstep < 1) then
-            call fatal_error(error, 'gccont: the number of steps must be >= 1')
-        else
-            call run_point_budget('gccont', box, contact_law(kc, p), f0, road, contact_options(), u, f, delta, error)
+        n = max(nstep, 0)
+        box => point_box(caller, handle, error)
+        if (.not. allocated(error) .and. nstep < 1) then
+            call fatal_error(error, caller//': the number of steps must be >= 1')
         end if
-        if (.not. associated(box) .or. nstep < 1) then
-            u(1:max(nstep, 0)) = 0.0_dp
-            f(1:max(nstep, 0)) = 0.0_dp
-            delta(1:max(nstep, 0)) = 0.0_dp
+        call door_laws(caller, 1, laws, error, kc, p, name, npar, 1, par)
+        if (allocated(error)) then
+            u(1:n) = 0.0_dp
+            f(1:n) = 0.0_dp
+            delta(1:n) = 0.0_dp
+        else
+            call run_point_budget(caller, box, laws(1), f0, road(1:n), contact_options(), u(1:n), f(1:n), &
+                                  delta(1:n), error)
         end if
         call report(error, ierr, errmsg)
-    end subroutine gccont
+    end subroutine run_point
 
     !> Identify modes from a receptance file by LSCE: poles and residues of the smallest model
     !> whose E (eq. 7) meets tole, or the best up to maxmod modes, lowest frequency first.
@@ -563,5 +757,46 @@ contains
         ierr = stat_ok
         if (.not. associated(box)) ierr = stat_input
     end function checked_box
+
+    !> The object a single-point contact door's handle points to, or null with `error` set.
+    function point_box(caller, handle, error) result(box)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        type(error_type), allocatable, intent(out) :: error
+        type(convolver_box), pointer :: box
+
+        box => box_at(handle_address(handle))
+        if (.not. associated(box)) then
+            call fatal_error(error, caller//': null convolver handle: make one with GCSDOF, GCMODE, GCSAMP or GCFRF')
+        end if
+    end function point_box
+
+    !> The single-point convolver a stepped contact run's handle points to (GCLBEG, GCLADV), or
+    !> null with `error` set for handle 0 or a multi-point convolver.
+    function stepped_box(caller, handle, error) result(box)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        type(error_type), allocatable, intent(out) :: error
+        type(convolver_box), pointer :: box
+
+        box => point_box(caller, handle, error)
+        if (.not. associated(box)) return
+        select type (matrix => box%conv)
+        type is (point_matrix)
+        class default
+            call fatal_error(error, caller//': the handle is a convolver of '//int_text(box%conv%n_points()) &
+                             //' points: step its contact run with GCMBEG or GCMLBG and GCMSTP')
+            box => null()
+        end select
+    end function stepped_box
+
+    !> The door's name first in a message that does not begin with it.
+    subroutine named(caller, error)
+        character(len=*), intent(in) :: caller
+        type(error_type), allocatable, intent(inout) :: error
+
+        if (.not. allocated(error)) return
+        if (index(error%message, caller//': ') /= 1) error%message = caller//': '//error%message
+    end subroutine named
 
 end module greenconv_legacy

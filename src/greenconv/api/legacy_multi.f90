@@ -17,9 +17,9 @@ module greenconv_legacy_multi
     use, intrinsic :: iso_fortran_env, only: int64
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text
+    use greenconv_core_text, only: int_text, lower_text
     use greenconv_model_point_modes, only: point_modes
-    use greenconv_contact_laws, only: contact_law
+    use greenconv_contact_laws, only: contact_law, new_law, new_laws, replicate_law, max_law_parameters
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
@@ -34,6 +34,8 @@ module greenconv_legacy_multi
     public :: gcmmod, gcmsmp, gcmplt, gcmfre, gcmnpt, gcmhis, gcmpsh, gcmw0, gcmrst, gcmdsc
     public :: gcmopt, gcmbeg, gcmstp, gcmrun, gcmfil, gcmmth, gcmpts, gcmsum, gcmmfl, gcmest, gcmacc
     public :: gcest, gcacc
+    public :: gcmlbg, gcmlrn
+    public :: door_laws
 
     !> What a 0 handle's message says.
     character(len=*), parameter :: null_handle = 'the handle is 0: make a convolver with GCMMOD, GCMSMP, GCMFIL or GCMMFL'
@@ -602,7 +604,8 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcmopt
 
-    !> Start a contact run stepped by GCMSTP (the convolver reset): a law and a preload per point.
+    !> Start a contact run stepped by GCMSTP (the convolver reset): a power law and a preload per
+    !> point; GCMLBG with the law 'power' of (KC(I), P(I)) at point I.
     subroutine gcmbeg(handle, nc, kc, p, f0, ierr, errmsg)
         !> The handle.
         integer(int64), intent(in) :: handle
@@ -619,19 +622,65 @@ contains
         !> Message on failure, blank on success.
         character(len=*), intent(out) :: errmsg
 
+        call start_points('gcmbeg', handle, nc, f0, ierr, errmsg, kc=kc, p=p)
+    end subroutine gcmbeg
+
+    !> Start a contact run stepped by GCMSTP (the convolver reset) on the contact law NAME of the
+    !> registry ('power': k_c [N/m^p], p; 'exponential': F_s [N], delta_s [m]; any case), one
+    !> law for every point, its parameters PAR(1:NPAR, 1) at every point (NLAW = 1) or
+    !> PAR(1:NPAR, I) at point I (NLAW = NC), and a preload per point.
+    subroutine gcmlbg(handle, nc, name, npar, nlaw, par, f0, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> The law's name, e.g. 'power' or 'exponential' (any case, trailing blanks ignored).
+        character(len=*), intent(in) :: name
+        !> Number of parameters of each law (the law's: 2 for both laws).
+        integer, intent(in) :: npar
+        !> Number of parameter sets: 1 (every point the same) or NC (one a point).
+        integer, intent(in) :: nlaw
+        !> Parameter values in the registry's order and SI units (NPAR x NLAW).
+        real(dp), intent(in) :: par(*)
+        !> Static preload F0_i [N] (NC), >= 0.
+        real(dp), intent(in) :: f0(*)
+        !> Status: 0, or 2 for bad input (a law's name, count or parameter: the message names the
+        !> door, the law, the parameter with its unit, its range and the value found).
+        integer, intent(out) :: ierr
+        !> Message on failure, blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call start_points('gcmlbg', handle, nc, f0, ierr, errmsg, name=name, npar=npar, nlaw=nlaw, par=par)
+    end subroutine gcmlbg
+
+    !> What GCMBEG and GCMLBG do: the handle and NC checked, the laws made (`door_laws`), the run
+    !> started; a start refused ends the run going on.
+    subroutine start_points(caller, handle, nc, f0, ierr, errmsg, kc, p, name, npar, nlaw, par)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        integer, intent(in) :: nc
+        real(dp), intent(in) :: f0(*)
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: kc(*), p(*), par(*)
+        character(len=*), intent(in), optional :: name
+        integer, intent(in), optional :: npar, nlaw
+
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        class(contact_law), allocatable :: laws(:)
 
-        box => checked('gcmbeg', handle, nc, error)
+        box => checked(caller, handle, nc, error)
+        call door_laws(caller, nc, laws, error, kc, p, name, npar, nlaw, par)
         if (.not. allocated(error)) then
-            call start_multi_box('gcmbeg', box, contact_law(kc(1:nc), p(1:nc)), f0(1:nc), error)
+            call start_multi_box(caller, box, laws, f0(1:nc), error)
         else if (associated(box)) then
             box%stepping = .false.
         end if
         call report(error, ierr, errmsg)
-    end subroutine gcmbeg
+    end subroutine start_points
 
-    !> The next step of the run GCMBEG began: all forces of the step solved together.
+    !> The next step of the run GCMBEG or GCMLBG began: all forces of the step solved together.
     subroutine gcmstp(handle, nc, road, u, f, delta, ierr, errmsg)
         !> The handle.
         integer(int64), intent(in) :: handle
@@ -659,7 +708,8 @@ contains
         call report(error, ierr, errmsg)
     end subroutine gcmstp
 
-    !> A whole contact run (the convolver reset first): ROAD(N, I) = u_r,i(t_(N-1)).
+    !> A whole contact run (the convolver reset first): ROAD(N, I) = u_r,i(t_(N-1)); GCMLRN with
+    !> the law 'power' of (KC(I), P(I)) at point I.
     subroutine gcmrun(handle, nc, nstep, kc, p, f0, road, u, f, delta, ierr, errmsg)
         !> The handle.
         integer(int64), intent(in) :: handle
@@ -686,15 +736,130 @@ contains
         !> Message on failure (naming step and point), blank on success.
         character(len=*), intent(out) :: errmsg
 
+        call run_points('gcmrun', handle, nc, nstep, f0, road, u, f, delta, ierr, errmsg, kc=kc, p=p)
+    end subroutine gcmrun
+
+    !> A whole contact run (the convolver reset first) on the contact law NAME of the registry,
+    !> its parameters PAR(1:NPAR, 1) at every point (NLAW = 1) or PAR(1:NPAR, I) at point I
+    !> (NLAW = NC), as GCMLBG takes them: ROAD(N, I) = u_r,i(t_(N-1)).
+    subroutine gcmlrn(handle, nc, nstep, name, npar, nlaw, par, f0, road, u, f, delta, ierr, errmsg)
+        !> The handle.
+        integer(int64), intent(in) :: handle
+        !> Number of points (the convolver's).
+        integer, intent(in) :: nc
+        !> Number of steps N_t, >= 1.
+        integer, intent(in) :: nstep
+        !> The law's name, e.g. 'power' or 'exponential' (any case, trailing blanks ignored).
+        character(len=*), intent(in) :: name
+        !> Number of parameters of each law (the law's: 2 for both laws).
+        integer, intent(in) :: npar
+        !> Number of parameter sets: 1 (every point the same) or NC (one a point).
+        integer, intent(in) :: nlaw
+        !> Parameter values in the registry's order and SI units (NPAR x NLAW).
+        real(dp), intent(in) :: par(*)
+        !> Static preload F0_i [N] (NC), >= 0.
+        real(dp), intent(in) :: f0(*)
+        !> Road heights [m] (NSTEP x NC).
+        real(dp), intent(in) :: road(max(nstep, 0), *)
+        !> Displacements [m] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: u(max(nstep, 0), *)
+        !> Forces [N] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: f(max(nstep, 0), *)
+        !> Compressions [m] (NSTEP x NC); 0 from a fault on.
+        real(dp), intent(out) :: delta(max(nstep, 0), *)
+        !> Status: 0, 2 bad input (a law's name, count or parameter: the message names the door,
+        !> the law, the parameter with its unit, its range and the value found), 3 a step that
+        !> diverged or did not converge.
+        integer, intent(out) :: ierr
+        !> Message on failure (naming step and point), blank on success.
+        character(len=*), intent(out) :: errmsg
+
+        call run_points('gcmlrn', handle, nc, nstep, f0, road, u, f, delta, ierr, errmsg, name=name, npar=npar, &
+                        nlaw=nlaw, par=par)
+    end subroutine gcmlrn
+
+    !> What GCMRUN and GCMLRN do: the handle, NC and NSTEP checked, the laws made (`door_laws`),
+    !> the run.
+    subroutine run_points(caller, handle, nc, nstep, f0, road, u, f, delta, ierr, errmsg, kc, p, name, npar, nlaw, par)
+        character(len=*), intent(in) :: caller
+        integer(int64), intent(in) :: handle
+        integer, intent(in) :: nc, nstep
+        real(dp), intent(in) :: f0(*)
+        real(dp), intent(in) :: road(max(nstep, 0), *)
+        real(dp), intent(out) :: u(max(nstep, 0), *), f(max(nstep, 0), *), delta(max(nstep, 0), *)
+        integer, intent(out) :: ierr
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: kc(*), p(*), par(*)
+        character(len=*), intent(in), optional :: name
+        integer, intent(in), optional :: npar, nlaw
+
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
+        class(contact_law), allocatable :: laws(:)
 
-        box => checked('gcmrun', handle, nc, error)
-        call need_count('gcmrun', 'NSTEP', nstep, 1, 'step', error)
-        if (.not. allocated(error)) call run_multi_box('gcmrun', box, contact_law(kc(1:nc), p(1:nc)), f0(1:nc), &
-                                                       road(:, 1:nc), u(:, 1:nc), f(:, 1:nc), delta(:, 1:nc), error)
+        box => checked(caller, handle, nc, error)
+        call need_count(caller, 'NSTEP', nstep, 1, 'step', error)
+        call door_laws(caller, nc, laws, error, kc, p, name, npar, nlaw, par)
+        if (.not. allocated(error)) call run_multi_box(caller, box, laws, f0(1:nc), road(:, 1:nc), u(:, 1:nc), &
+                                                       f(:, 1:nc), delta(:, 1:nc), error)
         call report(error, ierr, errmsg)
-    end subroutine gcmrun
+    end subroutine run_points
+
+    !> The contact laws of NC points for a contact door, unless `error` is already set: the
+    !> power laws (KC(I), P(I)), unchecked (the contact run checks them and speaks as the
+    !> (k_c, p) doors always have), or the law NAME of the registry (any case) with the
+    !> parameters PAR(1:NPAR, 1) at every point (NLAW = 1) or PAR(1:NPAR, I) at point I
+    !> (NLAW = NC), checked by the registry: status 2, the message naming the door, the law,
+    !> the parameter with its unit, its range and the value found (and the point, for NLAW > 1).
+    subroutine door_laws(caller, nc, laws, error, kc, p, name, npar, nlaw, par)
+        !> Name of the door, first word of a message.
+        character(len=*), intent(in) :: caller
+        !> Number of points N_c, >= 1 (checked by the caller).
+        integer, intent(in) :: nc
+        !> The laws, one a point, of one dynamic type; unallocated on error.
+        class(contact_law), allocatable, intent(out) :: laws(:)
+        !> Set for a law refused; nothing is done when already set.
+        type(error_type), allocatable, intent(inout) :: error
+        !> Contact stiffness k_c,i [N/m^p] of the power law (NC), with `p`.
+        real(dp), intent(in), optional :: kc(*)
+        !> Contact exponent p_i of the power law (NC), with `kc`.
+        real(dp), intent(in), optional :: p(*)
+        !> The registry's name of the law, with `npar`, `nlaw` and `par` instead of `kc` and `p`.
+        character(len=*), intent(in), optional :: name
+        !> Number of parameters of each law.
+        integer, intent(in), optional :: npar
+        !> Number of parameter sets: 1 or NC.
+        integer, intent(in), optional :: nlaw
+        !> Parameter values (NPAR x NLAW), in the registry's order and SI units.
+        real(dp), intent(in), optional :: par(*)
+
+        class(contact_law), allocatable :: law
+
+        if (allocated(error)) return
+        if (present(kc) .and. present(p)) then
+            allocate (laws, source=contact_law(kc(1:nc), p(1:nc)))
+            return
+        end if
+        if (.not. (present(name) .and. present(npar) .and. present(nlaw) .and. present(par))) then
+            call fatal_error(error, caller//': no contact law given')
+            return
+        end if
+        if (npar < 0 .or. npar > max_law_parameters) then
+            call fatal_error(error, caller//': NPAR = '//int_text(npar)//': give 0 to ' &
+                             //int_text(max_law_parameters)//' parameter values')
+        else if (nlaw /= 1 .and. nlaw /= nc) then
+            call fatal_error(error, caller//': NLAW = '//int_text(nlaw)//': give 1 (the same parameters at every ' &
+                             //'point) or NC = '//int_text(nc)//' (one set a point)')
+        end if
+        if (allocated(error)) return
+        if (nlaw == 1) then
+            call new_law(lower_text(name), par(1:npar), law, error)
+            if (.not. allocated(error)) call replicate_law(law, nc, laws)
+        else
+            call new_laws(lower_text(name), reshape(par(1:npar*nc), [npar, nc]), laws, error)
+        end if
+        if (allocated(error)) error%message = caller//': '//error%message
+    end subroutine door_laws
 
     ! ---- conversions -------------------------------------------------------------------------
 
