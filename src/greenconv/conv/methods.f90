@@ -235,9 +235,9 @@ contains
     !> Every method name for messages, "'direct', 'fft', ... or 'auto'".
     pure function method_list_all() result(text)
         !> The names.
-        character(len=quoted_list_length(registry_names, spread(.true., 1, n_methods))) :: text
+        character(len=quoted_list_length(registry_names)) :: text
 
-        text = quoted_list(registry_names, spread(.true., 1, n_methods))
+        text = quoted_list(registry_names)
     end function method_list_all
 
     !> The method names that serve single-point (`multi_point` false) or multi-point contact.

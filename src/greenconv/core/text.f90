@@ -20,6 +20,19 @@ module greenconv_core_text
         module procedure long_int_text
     end interface int_text
 
+    !> Names for a message, trimmed and quoted, in their order: "'a', 'b' or 'c'"; all of
+    !> them, or those a mask keeps (empty when none).
+    interface quoted_list
+        module procedure quoted_all
+        module procedure quoted_kept
+    end interface quoted_list
+
+    !> Length of `quoted_list` of the same arguments.
+    interface quoted_list_length
+        module procedure quoted_all_length
+        module procedure quoted_kept_length
+    end interface quoted_list_length
+
     !> Length of the buffers the numbers are formatted into.
     integer, parameter :: buffer_length = 48
 
@@ -215,9 +228,9 @@ contains
         text = sci_buffer(x, exact_digits(x) - 1)
     end function exact_text
 
-    !> Length of `quoted_list(names, keep)`: the trimmed names kept, each quoted, ", " between
+    !> Length of `quoted_kept(names, keep)`: the trimmed names kept, each quoted, ", " between
     !> them and " or " before the last.
-    pure integer function quoted_list_length(names, keep)
+    pure integer function quoted_kept_length(names, keep)
         !> The names (blank-padded).
         character(len=*), intent(in) :: names(:)
         !> Which names to list.
@@ -226,17 +239,17 @@ contains
         integer :: n
 
         n = count(keep)
-        quoted_list_length = sum(len_trim(names) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
-    end function quoted_list_length
+        quoted_kept_length = sum(len_trim(names) + 2, mask=keep) + 2*max(n - 2, 0) + merge(4, 0, n > 1)
+    end function quoted_kept_length
 
     !> The names kept, trimmed and quoted, in their order: "'a', 'b' or 'c'" (empty when none).
-    pure function quoted_list(names, keep) result(text)
+    pure function quoted_kept(names, keep) result(text)
         !> The names (blank-padded).
         character(len=*), intent(in) :: names(:)
         !> Which names to list.
         logical, intent(in) :: keep(size(names))
         !> The list.
-        character(len=quoted_list_length(names, keep)) :: text
+        character(len=quoted_kept_length(names, keep)) :: text
 
         integer :: i, k, n, at, width
 
@@ -257,6 +270,25 @@ contains
             text(at + 1:at + width) = "'"//trim(names(i))//"'"
             at = at + width
         end do
-    end function quoted_list
+    end function quoted_kept
+
+    !> Length of `quoted_all(names)`.
+    pure integer function quoted_all_length(names)
+        !> The names (blank-padded).
+        character(len=*), intent(in) :: names(:)
+
+        quoted_all_length = quoted_kept_length(names, spread(.true., 1, size(names)))
+    end function quoted_all_length
+
+    !> Every name, trimmed and quoted, in its order: "'a', 'b' or 'c'" (`quoted_kept` keeping
+    !> them all).
+    pure function quoted_all(names) result(text)
+        !> The names (blank-padded).
+        character(len=*), intent(in) :: names(:)
+        !> The list.
+        character(len=quoted_all_length(names)) :: text
+
+        text = quoted_kept(names, spread(.true., 1, size(names)))
+    end function quoted_all
 
 end module greenconv_core_text

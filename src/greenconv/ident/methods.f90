@@ -168,9 +168,9 @@ contains
     !> Every method name for messages, "'ml', 'lsce', 'poly_reference' or 'auto'".
     pure function ident_list_all() result(text)
         !> The names.
-        character(len=quoted_list_length(registry_names, spread(.true., 1, n_ident_methods))) :: text
+        character(len=quoted_list_length(registry_names)) :: text
 
-        text = quoted_list(registry_names, spread(.true., 1, n_ident_methods))
+        text = quoted_list(registry_names)
     end function ident_list_all
 
     !> The names of the methods that identify `what` (`ident_one_receptance`,

@@ -9,13 +9,13 @@ module greenconv_scene_models_facade
     use greenconv_scene_models_patch, only: point_share, sample_patch_road
     use greenconv_scene_models_point_set, only: scene_points
     use greenconv_scene_models_registry, only: contact_receptance, find_model, model_id, model_names, &
-                                               model_requires, multi_point_model, quoted_list, structure_kind
+                                               model_requires, multi_point_model, structure_kind
     use greenconv_scene_models_structure, only: build_structure
     implicit none
     private
 
     !> Re-exported from the modules of scene/models named above.
     public :: build_structure, contact_receptance, find_model, model_id, model_names, model_requires, &
-              multi_point_model, point_share, quoted_list, sample_patch_road, scene_points, structure_kind
+              multi_point_model, point_share, sample_patch_road, scene_points, structure_kind
 
 end module greenconv_scene_models_facade

@@ -14,6 +14,7 @@
 module greenconv_scene_models_registry
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
+    use greenconv_core_text, only: quoted_list, quoted_list_length
     use greenconv_ident_structure, only: structure_model
     use greenconv_ident_methods, only: ident_one_receptance, ident_green_matrix
     use greenconv_scene_settings, only: scene_type
@@ -27,7 +28,7 @@ module greenconv_scene_models_registry
     private
 
     public :: structure_kind, structure_models, find_model, model_id, model_names, model_requires
-    public :: multi_point_model, quoted_list
+    public :: multi_point_model
     public :: structure_builder, points_finder, decay_bound, file_check, contact_receptance, mode_counter
 
     abstract interface
@@ -261,14 +262,6 @@ contains
         kind_multi_point = associated(self%find_points)
     end function kind_multi_point
 
-    !> Length of `quoted_list(names)`.
-    pure integer function quoted_length(names)
-        !> The names (at least one).
-        character(len=*), intent(in) :: names(:)
-
-        quoted_length = sum(len_trim(names)) + 4*size(names) - 2 + merge(2, 0, size(names) > 1)
-    end function quoted_length
-
     !> The registry's model names, in its order.
     pure function model_name_list() result(names)
         !> The names, each padded to the registry's name length.
@@ -283,33 +276,10 @@ contains
     !> The model names for messages: `'sdof', 'random_modes', ..., 'green_file' or 'modes_file'`.
     function model_names() result(text)
         !> The quoted names, comma-separated, the last after `or`.
-        character(len=quoted_length(model_name_list())) :: text
+        character(len=quoted_list_length(model_name_list())) :: text
 
         text = quoted_list(model_name_list())
     end function model_names
-
-    !> "'a', 'b' or 'c'": names for a message, each quoted and trimmed, the last after `or`.
-    pure function quoted_list(names) result(text)
-        !> The names (at least one).
-        character(len=*), intent(in) :: names(:)
-        !> The list.
-        character(len=quoted_length(names)) :: text
-
-        integer :: i, n
-
-        text = "'"//trim(names(1))//"'"
-        n = len_trim(names(1)) + 2
-        do i = 2, size(names)
-            if (i < size(names)) then
-                text(n + 1:) = ", '"//trim(names(i))//"'"
-                n = n + 4
-            else
-                text(n + 1:) = " or '"//trim(names(i))//"'"
-                n = n + 6
-            end if
-            n = n + len_trim(names(i))
-        end do
-    end function quoted_list
 
     !> Whether a model requires a `&structure` variable.
     pure logical function model_requires(model, variable)

@@ -22,13 +22,13 @@
 !> when a namelist and the table disagree.
 module greenconv_scene_read_schema
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_core_text, only: int_text, lower_text, exact_text
+    use greenconv_core_text, only: int_text, lower_text, exact_text, quoted_list
     use greenconv_core_kinds, only: dp
     use greenconv_conv_methods, only: default_truncation_tol, default_accuracy
     use greenconv_contact_laws, only: law_names, law_choices, max_law_parameters
     use greenconv_scene_scan, only: namelist_variable, namelist_group, namelist_scan, scan_namelist, &
                                  value_real, value_integer, value_logical, value_text, value_text_list
-    use greenconv_scene_models_facade, only: structure_kind, find_model, model_names, model_requires, quoted_list
+    use greenconv_scene_models_facade, only: structure_kind, find_model, model_names, model_requires
     use greenconv_scene_limits, only: max_random_modes, max_freq_lines, max_lsce_modes, max_road_terms, &
                                       max_contact_points
     implicit none

@@ -37,12 +37,11 @@ module greenconv_scene_run_linear_reference
     use greenconv_core_error, only: error_type, stat_accuracy
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_io_files, only: write_columns, block_rows
-    use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, &
-                                    third_octave_bands, band_powers, nominal_frequency, segment_for_band, first_band, &
-                                    default_lines_per_band, set_welch_gains
+    use greenconv_io_spectra, only: welch_accumulator, start_welch, add_welch_samples, welch_average, set_welch_gains
     use greenconv_scene_settings, only: scene_type
     use greenconv_scene_models_facade, only: contact_receptance, scene_points, sample_patch_road
     use greenconv_scene_run_stream, only: force_summary
+    use greenconv_scene_run_spectra_output, only: spectra_segment_length, band_table
     use greenconv_model_linear_patch, only: modal_receptance_matrix, linear_patch_force
     implicit none
     private
@@ -80,7 +79,7 @@ contains
             if (error%stat /= stat_accuracy) return
         end if
         if (.not. scene%spectra .or. scene%task /= 'contact') return
-        n = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+        n = spectra_segment_length(scene)
         call start_welch(welch, n, 1)
         first = 0
         do while (first < scene%n_steps)
@@ -123,18 +122,9 @@ contains
         character(len=*), intent(inout) :: comments(:)
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: centre(:), lower(:), upper(:), table(:, :), power(:)
-        integer :: c
+        real(dp), allocatable :: table(:, :)
 
-        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
-        power = band_powers(force, df, lower, upper)
-        allocate (table(size(centre), 6))
-        table(:, 1) = [(nominal_frequency(centre(c)), c=1, size(centre))]
-        table(:, 2) = centre
-        table(:, 3) = lower
-        table(:, 4) = upper
-        table(:, 5) = power
-        table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+        call band_table(scene, force, df, 0, table)
         comments(size(comments) - 1) = 'units: Hz Hz Hz Hz N^2 dB_re_1N'
         comments(size(comments)) = 'f_nominal f_centre f_lower f_upper power level'
         call write_columns(base//'_spectra.dat', comments, table, error)
@@ -176,7 +166,7 @@ contains
             return
         end if
         k_h = [(scene%law%tangent(scene%law%compression(scene%preload/n_c)), k=1, n_c)]
-        n = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+        n = spectra_segment_length(scene)
         df = 1.0_dp/(n*scene%dt)
         allocate (gains(0:n/2, n_c), ones(n_c))
         ones(:) = (1.0_dp, 0.0_dp)

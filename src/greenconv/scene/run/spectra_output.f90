@@ -40,7 +40,7 @@ module greenconv_scene_run_spectra_output
     private
 
     public :: force_spectra, start_force_spectra, add_contact_forces, finish_force_spectra, spectra_path
-    public :: spectra_line
+    public :: spectra_line, spectra_segment_length, band_table
 
     !> The spectra of one method's run, built block by block.
     type :: force_spectra
@@ -96,7 +96,7 @@ contains
         line = ''
         if (.not. scene%spectra .or. scene%task /= 'contact') return
         call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
-        n = segment_length(scene)
+        n = spectra_segment_length(scene)
         line = 'force spectra '//compact_real(nominal_frequency(scene%spectra_f_low))//' Hz to ' &
                //compact_real(nominal_frequency(scene%spectra_f_high))//' Hz ('//int_text(size(centre)) &
                //' bands), '//int_text(segments(int(scene%n_steps, int64), n))//' Hann segment' &
@@ -118,7 +118,7 @@ contains
         if (present(area)) spectra%area = area
         spectra%per_point = scene%spectra_points .and. .not. spectra%area
         spectra%steps = 0
-        if (spectra%active) spectra%segment_length = segment_length(scene)
+        if (spectra%active) spectra%segment_length = spectra_segment_length(scene)
     end subroutine start_force_spectra
 
     !> Add a block's forces: the total contact force of each step and, for several points,
@@ -162,10 +162,10 @@ contains
         !> The run's error on entry (a fault, a failed write); a failed spectra file on return.
         type(error_type), allocatable, intent(inout) :: error
 
-        real(dp), allocatable :: psd(:, :), centre(:), lower(:), upper(:), table(:, :), power(:)
+        real(dp), allocatable :: psd(:, :), table(:, :), lower(:), upper(:)
         character(len=:), allocatable :: comments(:), path
         real(dp) :: df
-        integer :: c, n_bands, n_channels, unit, stat
+        integer :: c, n_channels, unit, stat
 
         if (.not. spectra%active) return
         call spectra_path(scene, method, path, spectra%area)
@@ -183,22 +183,12 @@ contains
             error%message = scene%file//': '//method//': '//error%message
             return
         end if
-        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
-        n_bands = size(centre)
         n_channels = size(psd, 2)
-        allocate (table(n_bands, 6 + n_channels))
-        table(:, 1) = [(nominal_frequency(centre(c)), c=1, n_bands)]
-        table(:, 2) = centre
-        table(:, 3) = lower
-        table(:, 4) = upper
-        do c = 1, n_channels
-            power = band_powers(psd(:, c), df, lower, upper)
-            if (c == 1) then
-                table(:, 5) = power
-                table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
-            else
-                table(:, 6 + c) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
-            end if
+        call band_table(scene, psd(:, 1), df, n_channels, table)
+        lower = table(:, 3)
+        upper = table(:, 4)
+        do c = 2, n_channels
+            table(:, 6 + c) = 10.0_dp*log10(max(band_powers(psd(:, c), df, lower, upper), tiny(1.0_dp)))
         end do
         table(:, 7) = level_spread(lower, upper, df, spectra%welch%n_segments)
         call spectra_header(scene, method, spectra, df, n_channels - 1, table(:, 7), comments)
@@ -289,12 +279,47 @@ contains
         call move_alloc(lines, comments)
     end subroutine spectra_header
 
-    !> Segment length of the scene's lowest band.
-    integer function segment_length(scene)
+    !> Segment length N [samples] of the Welch averages of a scene's spectra: the runs' and
+    !> their linear reference's (greenconv_scene_run_linear_reference), `default_lines_per_band`
+    !> lines in the scene's lowest band.
+    integer function spectra_segment_length(scene)
+        !> The scene (spectra_f_low, dt).
         type(scene_type), intent(in) :: scene
 
-        segment_length = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
-    end function segment_length
+        spectra_segment_length = segment_for_band(first_band(scene%spectra_f_low), scene%dt, default_lines_per_band)
+    end function spectra_segment_length
+
+    !> The columns a scene's spectra files begin with, in its 1/3-octave bands from
+    !> spectra_f_low to spectra_f_high: f_nominal, f_centre, f_lower, f_upper [Hz], the band
+    !> power of `psd` [u^2] and its level [dB re 1 u] (u: N for a force, m^2 for a contact
+    !> area); then `extra` columns set to zero, for the caller's. The runs' files and the
+    !> linear reference's share them.
+    subroutine band_table(scene, psd, df, extra, table)
+        !> The scene (the bands, dt).
+        type(scene_type), intent(in) :: scene
+        !> Power spectral density [u^2/Hz] on lines 0, df, 2*df, ...
+        real(dp), intent(in) :: psd(:)
+        !> Line spacing [Hz].
+        real(dp), intent(in) :: df
+        !> Number of columns after the six.
+        integer, intent(in) :: extra
+        !> The table, one row a band.
+        real(dp), allocatable, intent(out) :: table(:, :)
+
+        real(dp), allocatable :: centre(:), lower(:), upper(:), power(:)
+        integer :: c
+
+        call third_octave_bands(scene%spectra_f_low, scene%spectra_f_high, 0.5_dp/scene%dt, centre, lower, upper)
+        power = band_powers(psd, df, lower, upper)
+        allocate (table(size(centre), 6 + extra))
+        table(:, 1) = [(nominal_frequency(centre(c)), c=1, size(centre))]
+        table(:, 2) = centre
+        table(:, 3) = lower
+        table(:, 4) = upper
+        table(:, 5) = power
+        table(:, 6) = 10.0_dp*log10(max(power, tiny(1.0_dp)))
+        table(:, 7:) = 0.0_dp
+    end subroutine band_table
 
     !> Whole segments of n samples, overlapping by half, in a record of `steps` samples.
     pure integer function segments(steps, n)
