@@ -56,7 +56,7 @@ module test_lowrank_mod
     use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
                                        multi_contact_block
     use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
-                                               newton_solve
+                                               newton_solve, factor_modal_compliance
     use greenconv_contact_law_power, only: power_law
     implicit none
     private
@@ -82,7 +82,9 @@ contains
                      new_unittest('implicit plate patch on 1, 2 and two host threads: bit for bit', &
                                   test_implicit_threads), &
                      new_unittest('plate patch: factors in the modes'' span equal the dense factors and dgesv', &
-                                  test_modal_span)]
+                                  test_modal_span), &
+                     new_unittest('modes'' span refused: some w_k < 0, rank not below N_c/2, explicit', &
+                                  test_modal_span_refused)]
     end subroutine collect_lowrank
 
     !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
@@ -567,5 +569,52 @@ contains
         if (allocated(error)) return
         call check_against_dense('modes'' span', modal, dense, error)
     end subroutine test_modal_span
+
+    !> Where the factors cannot be made in the modes' span, `factor_modal_compliance` says so and
+    !> sets nothing (the step then eliminates the dense W0): one w_k < 0 (W0 indefinite), a
+    !> patch of 20 x 10 points under 441 modes (W0's numerical rank is not below N_c/2, as the
+    !> dense elimination finds too), and the explicit scheme offers no modes (W0 = 0).
+    subroutine test_modal_span_refused(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(point_modes) :: description
+        type(error_type), allocatable :: failure
+        type(modal_green_matrix) :: conv
+        type(lowrank_compliance) :: factors, dense
+        real(dp) :: x(500), y(500)
+        real(dp), allocatable :: weight(:)
+        logical :: done
+
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        conv = exact_matrix(description)
+        call check(error, allocated(conv%separable), 'the 25 x 20 patch''s convolver holds separable shapes')
+        if (allocated(error)) return
+        weight = conv%engine%mode_weight
+        call factor_modal_compliance(conv%separable, weight, factors, done)
+        call check(error, done .and. factors%rank > 0, 'w >= 0: factored in the span')
+        if (allocated(error)) return
+        weight(size(weight)/2) = -weight(size(weight)/2)
+        call factor_modal_compliance(conv%separable, weight, factors, done)
+        call check(error, .not. done .and. .not. factors%checked .and. .not. allocated(factors%shapes), &
+                   'one w_k < 0: refused, nothing set')
+        if (allocated(error)) return
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 20, 10, x(1:200), y(1:200))
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x(1:200), y(1:200), 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        conv = exact_matrix(description)
+        call check(error, allocated(conv%separable), 'the 20 x 10 patch''s convolver holds separable shapes')
+        if (allocated(error)) return
+        call factor_modal_compliance(conv%separable, conv%engine%mode_weight, factors, done)
+        call factor_compliance(conv%weight0, dense)
+        call note('20 x 10: rank of the dense elimination (0: dense)', real(dense%rank, dp))
+        call check(error, .not. done .and. .not. dense%low_rank, 'rank not below N_c/2: refused, as densely')
+        if (allocated(error)) return
+        call new_modal_green_matrix(description, dt, 'modal', conv, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        call conv%instant_modes(factors%shapes, weight, done)
+        call check(error, .not. done, 'the explicit scheme (W0 = 0) offers no modes')
+    end subroutine test_modal_span_refused
 
 end module test_lowrank_mod
