@@ -390,14 +390,16 @@ contains
         !> V^T*x (r).
         real(dp), intent(out) :: z(:)
 
-        real(dp) :: modal(size(compliance%modal_right_t, 2))
-
         if (.not. allocated(compliance%shapes)) then
             call transposed_product(compliance%right_t, x, z)
             return
         end if
-        call separable_modal_forces(compliance%shapes, x, modal, sharing(real(separable_work(compliance%shapes), dp)))
-        call transposed_product(compliance%modal_right_t, modal, z)
+        block
+            real(dp) :: modal(size(compliance%modal_right_t, 2))
+
+            call separable_modal_forces(compliance%shapes, x, modal, sharing(real(separable_work(compliance%shapes), dp)))
+            call transposed_product(compliance%modal_right_t, modal, z)
+        end block
     end subroutine right_product
 
     !> s = b - U*y (`subtract`) or s = U*y (N_c): by the stored U (`subtract_product`), or as
@@ -415,7 +417,6 @@ contains
         !> Whether U*y is subtracted from b.
         logical, intent(in) :: subtract
 
-        real(dp) :: modal(size(compliance%modal_left, 1))
         integer :: i
 
         if (.not. allocated(compliance%shapes)) then
@@ -428,8 +429,12 @@ contains
             end if
             return
         end if
-        call transposed_product(compliance%modal_left, y, modal)
-        call separable_displacements(compliance%shapes, modal, s, sharing(real(separable_work(compliance%shapes), dp)))
+        block
+            real(dp) :: modal(size(compliance%modal_left, 1))
+
+            call transposed_product(compliance%modal_left, y, modal)
+            call separable_displacements(compliance%shapes, modal, s, sharing(real(separable_work(compliance%shapes), dp)))
+        end block
         if (subtract) s(:) = b - s
     end subroutine left_product
 
