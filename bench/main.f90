@@ -9,6 +9,7 @@
 !>     greenconv-bench --ident
 !>     greenconv-bench --scale
 !>     greenconv-bench --instant
+!>     greenconv-bench --woodbury [N_STEPS]
 !>     greenconv-bench --direct [SDOF_SCENE]
 !>
 !> The scenes default to data/sdof_sine.nml and data/mdof_random.nml (run from the project
@@ -22,7 +23,9 @@
 !> cost against N_c up to 4,000 points (bench_scale_mod, out/bench/scale_cost.dat); `--direct` only
 !> `direct` against a plain compiled loop of the same sum (bench_direct_mod); `--instant` only
 !> the implicit step's W0*x on a plate's patch, W0's low-rank factors against the separable
-!> shapes' (bench_instant_mod).
+!> shapes' (bench_instant_mod); `--woodbury` only the implicit step on a plate's patch with W0's
+!> factors by dense elimination against factors in the modes' span, N_STEPS (100) a run
+!> (bench_woodbury_mod).
 program greenconv_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use greenconv_core_error, only: error_type
@@ -39,6 +42,7 @@ program greenconv_bench
     use bench_scale_mod, only: scale_cost_table
     use bench_direct_mod, only: direct_loop_table
     use bench_instant_mod, only: instant_product_table
+    use bench_woodbury_mod, only: woodbury_table
     implicit none
 
     type(error_type), allocatable :: error
@@ -71,6 +75,10 @@ program greenconv_bench
     case ('--instant')
         ! The implicit step's W0*x on a plate's patch: low-rank against separable factors.
         call instant_product_table(output_unit, error)
+        one_part = .true.
+    case ('--woodbury')
+        ! The implicit step on a plate's patch: factors by dense elimination or in the modes' span.
+        call woodbury_table(output_unit, error, steps_argument(argument(2, '100')))
         one_part = .true.
     case ('--scale')
         ! The multi-point cost at a patch's scale alone (exact and modal against N_c).
@@ -132,6 +140,16 @@ contains
     end function anchor
 
     !> Command-line argument i, or `default` when absent.
+    !> A positive number of steps from text, or 100.
+    integer function steps_argument(text)
+        character(len=*), intent(in) :: text
+
+        integer :: status
+
+        read (text, *, iostat=status) steps_argument
+        if (status /= 0 .or. steps_argument < 1) steps_argument = 100
+    end function steps_argument
+
     function argument(i, default) result(value)
         integer, intent(in) :: i
         character(len=*), intent(in) :: default

@@ -32,7 +32,14 @@
 !>   run on 1 thread, on 2, and twice at once on two host threads (where the library and
 !>   LAPACK stay serial): forces and displacements equal bit for bit (tolerance 0). The modes
 !>   to 3 kHz give r above 100, where OpenBLAS's OpenMP build threads an r x r LU by itself
-!>   (with other round-off) unless called from inside a parallel region.
+!>   (with other round-off) unless called from inside a parallel region;
+!> - factors in the modes' span (the plate patch's separable shapes, U = Phi*A, V = Phi*B, no
+!>   dense elimination): U*V^T within 1e-13 of max|W0| of W0, U and V within 1e-13 of
+!>   max(|Phi|*|A|) and max(|Phi|*|B|) of Phi*A and Phi*B (a sum of N_m products each; the late
+!>   columns, divided by small pivots, are cancellations, so a bound relative to max|V| would be
+!>   too tight); a 200-step run against the same run with the dense elimination's factors and
+!>   with dgesv: 1e-10 of the peak force, the Newton tolerance being 1e-12 of the compression
+!>   scale, and the same points in contact at every step.
 module test_lowrank_mod
     !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     use, intrinsic :: iso_fortran_env, only: dp => real64
@@ -49,7 +56,7 @@ module test_lowrank_mod
     use greenconv_contact_multi, only: multi_contact_state, multi_contact_response, start_multi_contact, &
                                        multi_contact_block
     use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
-                                               newton_solve
+                                               newton_solve, factor_modal_compliance
     use greenconv_contact_law_power, only: power_law
     implicit none
     private
@@ -73,7 +80,11 @@ contains
                      new_unittest('fewer points than modes: W0 stays dense', test_dense_fallback), &
                      new_unittest('modal step on 1, 2 threads and in a host region: bit for bit', test_threads), &
                      new_unittest('implicit plate patch on 1, 2 and two host threads: bit for bit', &
-                                  test_implicit_threads)]
+                                  test_implicit_threads), &
+                     new_unittest('plate patch: factors in the modes'' span equal the dense factors and dgesv', &
+                                  test_modal_span), &
+                     new_unittest('modes'' span refused: some w_k < 0, rank not below N_c/2, explicit', &
+                                  test_modal_span_refused)]
     end subroutine collect_lowrank
 
     !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
@@ -242,13 +253,16 @@ contains
 
     !> One implicit run of `description` over n_t steps (`set_up_run`), with the factors it
     !> used; `forced_dense`: W0 kept dense whatever its rank.
-    subroutine implicit_run(description, n_t, response, used, forced_dense, exponent)
+    !> `dense_factors`: W0's factors by eliminating the dense W0 even where the convolver
+    !> offers its separable modes.
+    subroutine implicit_run(description, n_t, response, used, forced_dense, exponent, dense_factors)
         type(point_modes), intent(in) :: description
         integer, intent(in) :: n_t
         type(multi_contact_response), intent(out) :: response
         type(lowrank_compliance), intent(out) :: used
         logical, intent(in), optional :: forced_dense
         real(dp), intent(in), optional :: exponent
+        logical, intent(in), optional :: dense_factors
 
         type(modal_green_matrix) :: conv
         type(multi_contact_state) :: state
@@ -259,6 +273,9 @@ contains
         call set_up_run(description, n_t, conv, laws, preloads, road, exponent)
         call start_multi_contact(conv, laws, preloads, state, failure)
         if (present(forced_dense)) state%compliance%checked = forced_dense
+        if (present(dense_factors)) then
+            if (dense_factors) call factor_compliance(conv%weight0, state%compliance)
+        end if
         if (.not. allocated(failure)) call multi_contact_block(conv, state, road, response, failure)
         if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
         used = state%compliance
@@ -483,5 +500,121 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_implicit_threads
+
+    !> The plate patch of `test_implicit_threads` (25 x 20 points, 441 modes to 3 kHz, Hertz
+    !> points losing and regaining contact): the factors made in the modes' span (U = Phi*A,
+    !> V = Phi*B, no dense elimination) against W0 and Phi*A, and the run against the same run
+    !> with the factors of the dense elimination and with dgesv on the dense W0. Bounds: U*V^T
+    !> within 1e-13 of max|W0| (the elimination stops at 1e-14), U within 1e-13 of max|U| of
+    !> Phi*A (a sum of N_m products); forces within 1e-10 of the peak force, the Newton
+    !> tolerance being 1e-12 of the compression scale, and the same points in contact at
+    !> every step.
+    subroutine test_modal_span(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_t = 200
+        type(point_modes) :: description
+        type(error_type), allocatable :: failure
+        type(multi_contact_response) :: modal, factors, dense
+        type(lowrank_compliance) :: used, used_dense, unused
+        type(modal_green_matrix) :: conv
+        real(dp) :: x(500), y(500), peak, scale
+
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        call implicit_run(description, n_t, modal, used)
+        call implicit_run(description, n_t, factors, used_dense, dense_factors=.true.)
+        call implicit_run(description, n_t, dense, unused, forced_dense=.true.)
+        call note('N_m', real(size(description%shape, 2), dp))
+        call note('rank in the modes'' span', real(used%rank, dp))
+        call note('rank of the dense elimination', real(used_dense%rank, dp))
+        call note('min points in contact', real(minval(count(modal%force > 0.0_dp, dim=2)), dp))
+        call note('max points in contact', real(maxval(count(modal%force > 0.0_dp, dim=2)), dp))
+        call note('Newton iterations', real(sum(modal%iterations), dp))
+        call check(error, used%low_rank .and. allocated(used%shapes) .and. .not. allocated(used_dense%shapes) &
+                   .and. used%rank >= 1 .and. used%rank <= size(description%shape, 2) &
+                   .and. .not. used%newton%on_active_set, &
+                   'the run used factors in the modes'' span, of rank at most N_m, and Woodbury''s M')
+        if (allocated(error)) return
+        conv = exact_matrix(description)
+        associate (w0 => conv%weight0, u => used%left, v => used%right)
+            call note('max|W0 - U V^T|/max|W0|', maxval(abs(w0 - matmul(u, transpose(v))))/maxval(abs(w0)))
+            call check(error, maxval(abs(w0 - matmul(u, transpose(v)))), 0.0_dp, 'U V^T against W0', &
+                       thr=1.0e-13_dp*maxval(abs(w0)))
+            if (allocated(error)) return
+            scale = maxval(matmul(abs(description%shape), abs(used%modal_left)))
+            call note('max|U - Phi A|/max(|Phi| |A|)', maxval(abs(u - matmul(description%shape, used%modal_left)))/scale)
+            call check(error, maxval(abs(u - matmul(description%shape, used%modal_left))), 0.0_dp, &
+                       'U against Phi*A', thr=1.0e-13_dp*scale)
+            if (allocated(error)) return
+            scale = maxval(matmul(abs(description%shape), abs(transpose(used%modal_right_t))))
+            call note('max|V - Phi B|/max(|Phi| |B|)', &
+                      maxval(abs(v - matmul(description%shape, transpose(used%modal_right_t))))/scale)
+            call check(error, maxval(abs(v - matmul(description%shape, transpose(used%modal_right_t)))), 0.0_dp, &
+                       'V against Phi*B', thr=1.0e-13_dp*scale)
+            if (allocated(error)) return
+        end associate
+        call check(error, any(dense%force <= 0.0_dp) .and. any(dense%force > 0.0_dp), &
+                   'some points lose contact, others keep it')
+        if (allocated(error)) return
+        call check(error, all((modal%force > 0.0_dp) .eqv. (dense%force > 0.0_dp)) .and. &
+                   all((modal%force > 0.0_dp) .eqv. (factors%force > 0.0_dp)), &
+                   'the same points in contact at every step')
+        if (allocated(error)) return
+        peak = maxval(abs(dense%force))
+        call note('max|F_span - F_dense factors|/max F', maxval(abs(modal%force - factors%force))/peak)
+        call check(error, maxval(abs(modal%force - factors%force)), 0.0_dp, &
+                   'forces: modes'' span against the dense factors', thr=1.0e-10_dp*peak)
+        if (allocated(error)) return
+        call check_against_dense('modes'' span', modal, dense, error)
+    end subroutine test_modal_span
+
+    !> Where the factors cannot be made in the modes' span, `factor_modal_compliance` says so and
+    !> sets nothing (the step then eliminates the dense W0): one w_k < 0 (W0 indefinite), a
+    !> patch of 20 x 10 points under 441 modes (W0's numerical rank is not below N_c/2, as the
+    !> dense elimination finds too), and the explicit scheme offers no modes (W0 = 0).
+    subroutine test_modal_span_refused(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        type(point_modes) :: description
+        type(error_type), allocatable :: failure
+        type(modal_green_matrix) :: conv
+        type(lowrank_compliance) :: factors, dense
+        real(dp) :: x(500), y(500)
+        real(dp), allocatable :: weight(:)
+        logical :: done
+
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        conv = exact_matrix(description)
+        call check(error, allocated(conv%separable), 'the 25 x 20 patch''s convolver holds separable shapes')
+        if (allocated(error)) return
+        weight = conv%engine%mode_weight
+        call factor_modal_compliance(conv%separable, weight, factors, done)
+        call check(error, done .and. factors%rank > 0, 'w >= 0: factored in the span')
+        if (allocated(error)) return
+        weight(size(weight)/2) = -weight(size(weight)/2)
+        call factor_modal_compliance(conv%separable, weight, factors, done)
+        call check(error, .not. done .and. .not. factors%checked .and. .not. allocated(factors%shapes), &
+                   'one w_k < 0: refused, nothing set')
+        if (allocated(error)) return
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 20, 10, x(1:200), y(1:200))
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x(1:200), y(1:200), 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        conv = exact_matrix(description)
+        call check(error, allocated(conv%separable), 'the 20 x 10 patch''s convolver holds separable shapes')
+        if (allocated(error)) return
+        call factor_modal_compliance(conv%separable, conv%engine%mode_weight, factors, done)
+        call factor_compliance(conv%weight0, dense)
+        call note('20 x 10: rank of the dense elimination (0: dense)', real(dense%rank, dp))
+        call check(error, .not. done .and. .not. dense%low_rank, 'rank not below N_c/2: refused, as densely')
+        if (allocated(error)) return
+        call new_modal_green_matrix(description, dt, 'modal', conv, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        call conv%instant_modes(factors%shapes, weight, done)
+        call check(error, .not. done, 'the explicit scheme (W0 = 0) offers no modes')
+    end subroutine test_modal_span_refused
 
 end module test_lowrank_mod

@@ -27,6 +27,15 @@
 !> residual, not on this matrix, so the inverse's round-off changes the number of iterations
 !> at most, never the tolerance the compressions meet.
 !>
+!> **In the modes' span.** When the convolver holds separable mode shapes Phi (a plate's patch on
+!> a grid, greenconv_model_point_modes) and W0 = Phi*diag(w)*Phi^T with w >= 0, every column of
+!> the elimination is Phi times a coefficient vector, so `factor_modal_compliance` makes
+!> U = Phi*A and V = Phi*B (A, B: N_m x r) by a pivoted Cholesky on the N_m x N_m coefficients,
+!> without forming or eliminating the N_c x N_c W0 (O(r*N_m^2) instead of O(N_c^2*r)). The
+!> products U*z and V^T*y of a step are then Phi*(A*z) and B^T*(Phi^T*y) on the separable factors
+!> (n_col*(N_m + n_row*N_y) + N_m*r multiply-adds each instead of N_c*r); U and V are kept too,
+!> for their rows u_i = phi_i*A and v_i = phi_i*B (M on the active set and its rank-one updates).
+!>
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
@@ -40,11 +49,14 @@ module greenconv_contact_lowrank_solve
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type
     use greenconv_ext_lapack, only: solve_linear, lu_factor, lu_solve
+    use greenconv_model_point_modes, only: separable_shapes, separable_displacements, separable_modal_forces, &
+                                           separable_work
     !$ use omp_lib, only: omp_in_parallel
     implicit none
     private
 
-    public :: lowrank_compliance, factor_compliance, apply_compliance, newton_solve, woodbury_step
+    public :: lowrank_compliance, factor_compliance, factor_modal_compliance, apply_compliance, newton_solve, &
+              woodbury_step
 
     !> The factored Newton matrix of the low-rank solve, kept for the slopes it was formed for.
     type :: newton_matrix
@@ -81,6 +93,13 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: right(:, :)
         !> V^T (r x N_c) [dimensionless], for the products V^T*x (contiguous in k).
         real(dp), allocatable :: right_t(:, :)
+        !> The separable mode shapes Phi (N_c x N_m) when the factors lie in their span
+        !> (`factor_modal_compliance`); unallocated for factors of a dense W0.
+        type(separable_shapes), allocatable :: shapes
+        !> A (N_m x r) [m*sqrt(kg)/N for shapes in 1/sqrt(kg)]: U = Phi*A.
+        real(dp), allocatable :: modal_left(:, :)
+        !> B^T (r x N_m) [sqrt(kg) for shapes in 1/sqrt(kg)]: V = Phi*B.
+        real(dp), allocatable :: modal_right_t(:, :)
         !> The last Newton matrix factored (low-rank case only).
         type(newton_matrix) :: newton
     end type lowrank_compliance
@@ -141,6 +160,107 @@ contains
         end do
     end subroutine factor_compliance
 
+    !> Factor W0 = Phi*diag(w)*Phi^T = U*V^T in the modes' span, U = Phi*A and V = Phi*B, without
+    !> forming W0: the elimination of `factor_compliance` with the pivots on the diagonal (W0 is
+    !> symmetric positive semi-definite for w >= 0, so its largest entry is a diagonal one and
+    !> complete pivoting is a pivoted Cholesky). The remainder is kept as Phi*C*Phi^T, C (N_m x N_m)
+    !> starting at diag(w); at pivot p, with phi_p the mode shapes at point p,
+    !>
+    !>     a = C*phi_p,   pivot = phi_p^T*a,   u = Phi*a (column p of the remainder),
+    !>     U(:, k) = u,   V(:, k) = u/pivot,   A(:, k) = a,   B(:, k) = a/pivot,
+    !>     C <- C - a*a^T/pivot,   d_i <- d_i - u_i^2/pivot,
+    !>
+    !> d the remainder's diagonal, whose largest entry is the next pivot. A step costs 2*N_m^2
+    !> and one product by the separable factors instead of the N_c^2 of an elimination step on
+    !> the dense W0, and no N_c x N_c array is made. It stops, as the dense elimination, when a
+    !> pivot is at most `rank_tolerance` of max|W0_ij| = max_i d_i; U and V are kept as well for
+    !> their rows (the Newton matrix M and its rank-one updates). `done` is false (nothing set)
+    !> when some w_k < 0 (W0 indefinite: the diagonal no longer bounds it), when W0 = 0, or when
+    !> the remainder is not round-off after min(N_m, (N_c - 1)/2) pivots: the caller then
+    !> factors the dense W0 (`factor_compliance`).
+    subroutine factor_modal_compliance(shapes, weight, compliance, done)
+        !> The mode shapes' factors Phi over the grid of points (N_c points, N_m modes).
+        type(separable_shapes), intent(in) :: shapes
+        !> w_k (N_m): W0_ij = sum_k phi_ik*w_k*phi_jk [m/N].
+        real(dp), intent(in) :: weight(:)
+        !> The factors, when `done`.
+        type(lowrank_compliance), intent(out) :: compliance
+        !> Whether W0 was factored here.
+        logical, intent(out) :: done
+
+        real(dp), allocatable :: remainder(:, :), left(:, :), coefficients(:, :), diagonal(:), pivots(:)
+        real(dp) :: phi(size(weight)), a(size(weight)), largest, pivot
+        integer :: n_c, n_m, max_rank, k, i, p
+
+        done = .false.
+        n_c = size(shapes%column)
+        n_m = size(weight)
+        max_rank = min(n_m, (n_c - 1)/2)
+        if (max_rank < 1 .or. any(.not. (weight >= 0.0_dp))) return
+        allocate (diagonal(n_c))
+        do i = 1, n_c
+            phi(:) = shape_row(shapes, i)
+            diagonal(i) = sum(weight*phi**2)
+        end do
+        largest = maxval(diagonal)
+        if (.not. (largest > 0.0_dp)) return
+        allocate (remainder(n_m, n_m), left(n_c, max_rank), coefficients(n_m, max_rank), pivots(max_rank))
+        remainder(:, :) = 0.0_dp
+        do k = 1, n_m
+            remainder(k, k) = weight(k)
+        end do
+        do k = 1, max_rank + 1
+            p = maxloc(diagonal, 1)
+            phi(:) = shape_row(shapes, p)
+            call ordered_product(remainder, phi, a)
+            pivot = dot_product(phi, a)
+            if (abs(pivot) <= rank_tolerance*largest) then
+                compliance%checked = .true.
+                compliance%low_rank = .true.
+                compliance%rank = k - 1
+                allocate (compliance%left(n_c, k - 1), compliance%right(n_c, k - 1), compliance%right_t(k - 1, n_c), &
+                          compliance%modal_left(n_m, k - 1), compliance%modal_right_t(k - 1, n_m))
+                compliance%left(:, :) = left(:, 1:k - 1)
+                compliance%modal_left(:, :) = coefficients(:, 1:k - 1)
+                do i = 1, k - 1
+                    compliance%right(:, i) = left(:, i)/pivots(i)
+                    compliance%modal_right_t(i, :) = coefficients(:, i)/pivots(i)
+                end do
+                compliance%right_t(:, :) = transpose(compliance%right)
+                compliance%shapes = shapes
+                done = .true.
+                return
+            end if
+            if (k > max_rank) return
+            call separable_displacements(shapes, a, left(:, k), .false.)
+            coefficients(:, k) = a
+            pivots(k) = pivot
+            diagonal(:) = diagonal - left(:, k)**2/pivot
+            call subtract_symmetric(remainder, a, pivot)
+        end do
+    end subroutine factor_modal_compliance
+
+    !> The mode shapes at point i, phi_ik = X_f(k)(x_col(i))*Y_n(k)(y_row(i)) (N_m).
+    pure function shape_row(shapes, i) result(phi)
+        type(separable_shapes), intent(in) :: shapes
+        integer, intent(in) :: i
+        real(dp) :: phi(size(shapes%mode_along))
+
+        phi(:) = shapes%along(shapes%column(i), shapes%mode_along)*shapes%across(shapes%row(i), shapes%mode_across)
+    end function shape_row
+
+    !> C = C - a*a^T/pivot for a symmetric C, column by column.
+    pure subroutine subtract_symmetric(c, a, pivot)
+        real(dp), intent(inout) :: c(:, :)
+        real(dp), intent(in) :: a(:), pivot
+
+        integer :: j
+
+        do j = 1, size(c, 2)
+            if (a(j) /= 0.0_dp) c(:, j) = c(:, j) - a*(a(j)/pivot)
+        end do
+    end subroutine subtract_symmetric
+
     !> The indices of the first largest |a_ij| in array element order, as maxloc(abs(a)) without
     !> its N_c x N_c temporary.
     pure function largest_entry(a) result(at)
@@ -187,7 +307,8 @@ contains
         end do
     end subroutine subtract_outer
 
-    !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors, else the dense product.
+    !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors (Phi*(A*(B^T*(Phi^T*x))) when they
+    !> lie in the modes' span), else the dense product.
     !>
     !> V^T*x is MATMUL on blocks of rows of the stored V^T (contiguous in k).
     !> Threads: V^T*x by fixed blocks of `column_block` rows of V^T, then U*z (or W0*x) by fixed
@@ -217,6 +338,11 @@ contains
             !$omp end parallel do
             return
         end if
+        if (allocated(compliance%shapes)) then
+            call right_product(compliance, x, z)
+            call left_product(compliance, z, x, y, subtract=.false.)
+            return
+        end if
         !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) shared(compliance, x, y, z) &
         !$omp private(last)
         !$omp do schedule(static)
@@ -235,24 +361,82 @@ contains
     end function apply_compliance
 
     !> z = V_A^T*x = V^T*x_s, V_A the rows `active` of V and x_s the values x at the active
-    !> points and zero elsewhere (no gathered copy of V), by fixed blocks of rows of V^T shared
-    !> among threads: each z_k is one MATMUL sum whoever computes it.
-    subroutine gathered_product(x, right_t, active, z)
+    !> points and zero elsewhere (no gathered copy of V), by `right_product`.
+    subroutine gathered_product(x, compliance, active, z)
         !> Values at the active points (N_a).
         real(dp), intent(in) :: x(:)
-        !> V^T (r x N_c).
-        real(dp), intent(in) :: right_t(:, :)
+        !> The factors.
+        type(lowrank_compliance), intent(in) :: compliance
         !> The active points (N_a).
         integer, intent(in) :: active(:)
         !> V_A^T*x (r).
         real(dp), intent(out) :: z(:)
 
-        real(dp) :: scattered(size(right_t, 2))
+        real(dp) :: scattered(size(compliance%right_t, 2))
 
         scattered(:) = 0.0_dp
         scattered(active) = x
-        call transposed_product(right_t, scattered, z)
+        call right_product(compliance, scattered, z)
     end subroutine gathered_product
+
+    !> z = V^T*x (r) for x at every point (N_c): by the stored V^T (`transposed_product`), or as
+    !> B^T*(Phi^T*x) when the factors lie in the modes' span (n_col*(N_m + n_row*N_y) + r*N_m
+    !> multiply-adds instead of N_c*r), each sum in a fixed order whatever the threads.
+    subroutine right_product(compliance, x, z)
+        !> The factors.
+        type(lowrank_compliance), intent(in) :: compliance
+        !> Values at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> V^T*x (r).
+        real(dp), intent(out) :: z(:)
+
+        if (.not. allocated(compliance%shapes)) then
+            call transposed_product(compliance%right_t, x, z)
+            return
+        end if
+        block
+            real(dp) :: modal(size(compliance%modal_right_t, 2))
+
+            call separable_modal_forces(compliance%shapes, x, modal, sharing(real(separable_work(compliance%shapes), dp)))
+            call transposed_product(compliance%modal_right_t, modal, z)
+        end block
+    end subroutine right_product
+
+    !> s = b - U*y (`subtract`) or s = U*y (N_c): by the stored U (`subtract_product`), or as
+    !> Phi*(A*y) when the factors lie in the modes' span, each sum in a fixed order whatever
+    !> the threads.
+    subroutine left_product(compliance, y, b, s, subtract)
+        !> The factors.
+        type(lowrank_compliance), intent(in) :: compliance
+        !> Coefficients (r).
+        real(dp), intent(in) :: y(:)
+        !> Values at the points (N_c), unused unless `subtract`.
+        real(dp), intent(in) :: b(:)
+        !> b - U*y or U*y (N_c).
+        real(dp), intent(out) :: s(:)
+        !> Whether U*y is subtracted from b.
+        logical, intent(in) :: subtract
+
+        integer :: i
+
+        if (.not. allocated(compliance%shapes)) then
+            if (subtract) then
+                call subtract_product(compliance%left, y, b, s)
+            else
+                ! 0 - U*y, negated: U*y exactly
+                call subtract_product(compliance%left, y, [(0.0_dp, i=1, size(s))], s)
+                s(:) = -s
+            end if
+            return
+        end if
+        block
+            real(dp) :: modal(size(compliance%modal_left, 1))
+
+            call transposed_product(compliance%modal_left, y, modal)
+            call separable_displacements(compliance%shapes, modal, s, sharing(real(separable_work(compliance%shapes), dp)))
+        end block
+        if (subtract) s(:) = b - s
+    end subroutine left_product
 
     !> z = V^T*x (r) for x at every point (N_c), by fixed blocks of `column_block` rows of V^T
     !> shared among threads: each z_k is one MATMUL sum whoever computes it.
@@ -344,8 +528,8 @@ contains
         if (active_set_cheaper(real(count(slopes /= 0.0_dp), dp), real(compliance%rank, dp))) return
         call form_newton_matrix(compliance, weight0, slopes, error)
         if (allocated(error)) return
-        call transposed_product(compliance%right_t, q, z)
-        call subtract_product(compliance%left, matmul(compliance%newton%inverse, z), free, next)
+        call right_product(compliance, q, z)
+        call left_product(compliance, matmul(compliance%newton%inverse, z), free, next, subtract=.true.)
         taken = .true.
     end subroutine woodbury_step
 
@@ -400,13 +584,13 @@ contains
                 call lu_solve(newton%factors, newton%pivot, b(newton%active), y, error)
                 if (allocated(error)) return
                 y(:) = slopes(newton%active)*y
-                call gathered_product(y, compliance%right_t, newton%active, z)
-                call subtract_product(compliance%left, z, b, s)
+                call gathered_product(y, compliance, newton%active, z)
+                call left_product(compliance, z, b, s, subtract=.true.)
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
-                call gathered_product(scaled_b, compliance%right_t, newton%active, z)
+                call gathered_product(scaled_b, compliance, newton%active, z)
                 y = matmul(newton%inverse, z)
-                call subtract_product(compliance%left, y, b, s)
+                call left_product(compliance, y, b, s, subtract=.true.)
             end if
         end associate
     end subroutine newton_solve

@@ -46,8 +46,9 @@ module greenconv_contact_step
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_contact_law, only: contact_law
-    use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, apply_compliance, &
-                                               newton_solve, woodbury_step
+    use greenconv_contact_lowrank_solve, only: lowrank_compliance, factor_compliance, factor_modal_compliance, &
+                                               apply_compliance, newton_solve, woodbury_step
+    use greenconv_model_point_modes, only: separable_shapes
     use greenconv_conv_multipoint, only: multipoint_convolver
     implicit none
     private
@@ -103,8 +104,8 @@ module greenconv_contact_step
         !> Index n of the next step (the number of steps done), 64 bits for runs past 2^31 steps.
         integer(int64) :: step = 0
         !> W0 as the implicit multi-point step uses it: factored U*V^T at the first such step
-        !> when its rank is below N_c/2 (a modal structure), dense otherwise
-        !> (greenconv_contact_lowrank_solve).
+        !> when its rank is below N_c/2 (a modal structure; in the span of the convolver's
+        !> separable modes when it offers them), dense otherwise (greenconv_contact_lowrank_solve).
         type(lowrank_compliance) :: compliance
     end type contact_state
 
@@ -338,7 +339,7 @@ contains
 
         largest = 0.0_dp
         point = 1
-        if (.not. state%compliance%checked) call factor_compliance(weight0, state%compliance)
+        if (.not. state%compliance%checked) call factor_instant(weight0, state%compliance, conv)
         associate (delta => state%delta, laws => state%laws, options => state%settings, &
                    compliance => state%compliance)
             if (allocated(state%coupling)) then
@@ -391,6 +392,27 @@ contains
         point = maxloc(abs(r), 1)
         largest = r(point)
     end subroutine solve_compressions
+
+    !> W0's low-rank factors, once per run: in the span of the convolver's separable modes when
+    !> it offers them (no N_c x N_c elimination), else by eliminating the dense W0; dense when
+    !> its rank is not below N_c/2.
+    subroutine factor_instant(weight0, compliance, conv)
+        real(dp), intent(in) :: weight0(:, :)
+        type(lowrank_compliance), intent(out) :: compliance
+        class(multipoint_convolver), intent(in), optional :: conv
+
+        type(separable_shapes), allocatable :: shapes
+        real(dp), allocatable :: weight(:)
+        logical :: offered, done
+
+        offered = .false.
+        if (present(conv)) call conv%instant_modes(shapes, weight, offered)
+        if (offered) then
+            call factor_modal_compliance(shapes, weight, compliance, done)
+            if (done) return
+        end if
+        call factor_compliance(weight0, compliance)
+    end subroutine factor_instant
 
     !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], and the
     !> size of its terms [m].

@@ -68,6 +68,7 @@ module greenconv_conv_green_modal
         procedure :: clear => modal_clear
         procedure :: fast_instant => separable_instant
         procedure :: apply_instant => modal_instant
+        procedure :: instant_modes => separable_instant_modes
     end type modal_green_matrix
 
 contains
@@ -235,6 +236,24 @@ contains
         modal(:) = self%engine%mode_weight*modal
         call separable_displacements(self%separable, modal, y, share)
     end subroutine modal_instant
+
+    !> W0 = Phi*diag(w)*Phi^T on the separable factors, when the convolver holds them and W0 /= 0:
+    !> the factors and the engine's per-mode shares w_k of W0.
+    subroutine separable_instant_modes(self, shapes, weight, offered)
+        !> The convolver.
+        class(modal_green_matrix), intent(in) :: self
+        !> The mode shapes' factors over the grid of points, when offered.
+        type(separable_shapes), allocatable, intent(out) :: shapes
+        !> w_k (N_m), when offered: W0_ij = sum_k phi_ik*w_k*phi_jk [m/N].
+        real(dp), allocatable, intent(out) :: weight(:)
+        !> Whether W0 = Phi*diag(w)*Phi^T is offered.
+        logical, intent(out) :: offered
+
+        offered = self%fast_instant()
+        if (.not. offered) return
+        shapes = self%separable
+        weight = self%engine%mode_weight
+    end subroutine separable_instant_modes
 
     !> u_h,i(n) = sum_k phi_ik*Re(p_k(n)) [m].
     subroutine modal_history(self, u)

@@ -40,7 +40,7 @@ module greenconv_conv_multipoint
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_conv_convolver, only: convolver_core
     use greenconv_model_modal_set, only: modal_set
-    use greenconv_model_point_modes, only: point_modes
+    use greenconv_model_point_modes, only: point_modes, separable_shapes
     use greenconv_conv_kernel, only: truncation_length
     implicit none
     private
@@ -72,6 +72,9 @@ module greenconv_conv_multipoint
         procedure :: fast_instant
         !> y = W0*x [m] for loads x [N]: the dense product, or an engine's own factors.
         procedure :: apply_instant
+        !> W0 = Phi*diag(w)*Phi^T on separable mode shapes Phi, when the engine holds them, so
+        !> that W0's low-rank factors can be made and applied in the modes' span.
+        procedure :: instant_modes
     end type multipoint_convolver
 
     abstract interface
@@ -159,6 +162,25 @@ contains
 
         y(:) = matmul(self%weight0, x)
     end subroutine apply_instant
+
+    !> The modal form W0 = Phi*diag(w)*Phi^T [m/N] of the instant compliance on separable mode
+    !> shapes: none for the dense W0 (`offered` false); an engine that steps separable modes
+    !> offers their factors and w_k.
+    subroutine instant_modes(self, shapes, weight, offered)
+        !> The convolver.
+        class(multipoint_convolver), intent(in) :: self
+        !> The mode shapes' factors Phi over the grid of points, when offered.
+        type(separable_shapes), allocatable, intent(out) :: shapes
+        !> The modal weights w_k (N_m), when offered: W0_ij = sum_k phi_ik*w_k*phi_jk [m/N]
+        !> (w_k in s^2 for unit-modal-mass shapes in 1/sqrt(kg)).
+        real(dp), allocatable, intent(out) :: weight(:)
+        !> Whether W0 = Phi*diag(w)*Phi^T is offered.
+        logical, intent(out) :: offered
+
+        associate (unused => self%step)
+        end associate
+        offered = .false.
+    end subroutine instant_modes
 
     !> Check a table kernel(m, i, j) = g_ij(m*dt) of a sampled Green's matrix: samples
     !> m = 0..N_g with N_g >= 1 of an N_c x N_c matrix, N_c >= 1.
