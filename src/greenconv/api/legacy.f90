@@ -31,14 +31,15 @@ module greenconv_legacy
     use greenconv_model_modal_set, only: modal_set
     use greenconv_ident_mlfit, only: ml_result
     use greenconv_ident_structure, only: structure_model
-    use greenconv_contact_single, only: contact_law, contact_options, contact_response
+    use greenconv_contact_single, only: contact_law, contact_options
     use greenconv_conv_point_matrix, only: point_matrix
     use greenconv_api_library, only: run_scene_file, check_contact_law
     use greenconv_api_handle, only: convolver_box, new_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, identify_file_ml, step_box, &
                                     describe_box, check_steps
     use greenconv_legacy_multi, only: gcmfre, gcmhis, gcmpsh, gcmw0, gcmrst, door_laws
-    use greenconv_api_budget, only: run_point_budget, start_point_budget, advance_point_budget
+    use greenconv_api_budget, only: run_point_budget, start_point_budget
+    use greenconv_api_multi_handle, only: advance_multi_box
     use greenconv_api_doors, only: report, handle_address, address_handle
     use greenconv_api_version, only: gcvers
     implicit none
@@ -497,7 +498,7 @@ contains
         character(len=*), parameter :: caller = 'gcladv'
         type(convolver_box), pointer :: box
         type(error_type), allocatable :: error
-        type(contact_response) :: response
+        real(dp) :: step_u(1), step_f(1), step_delta(1)
 
         u = 0.0_dp
         f = 0.0_dp
@@ -508,11 +509,11 @@ contains
                                                      //'convolver: call GCLBEG first (a fault or a reset ends a run)')
         end if
         if (.not. allocated(error)) call check_steps(box, caller, 1_int64, error)
-        if (.not. allocated(error)) call advance_point_budget(box, [road], response, error)
+        if (.not. allocated(error)) call advance_multi_box(caller, box, [road], step_u, step_f, step_delta, error)
         if (.not. allocated(error)) then
-            u = response%displacement(0)
-            f = response%force(0)
-            delta = response%compression(0)
+            u = step_u(1)
+            f = step_f(1)
+            delta = step_delta(1)
         else if (associated(box)) then
             box%stepping = .false.
         end if
