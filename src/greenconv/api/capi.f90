@@ -33,7 +33,7 @@ module greenconv_capi
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
                                     samples_structure, frf_file_structure, identify_file, check_steps, &
-                                    step_box, describe_box, single_point_only
+                                    step_box, describe_box, refuse_multi_point
     use greenconv_api_budget, only: run_point_budget, start_point_budget
     use greenconv_api_multi_handle, only: advance_multi_box
     use greenconv_api_doors, only: finish, from_c, to_c, put, put_if, need_pointer, need_pointers, need_count, &
@@ -565,7 +565,7 @@ contains
             call fatal_error(error, 'gc_contact_advance: no contact run is going on with this convolver: call ' &
                              //'gc_contact_start first (a fault or a reset ends a run)')
         else if (box%conv%n_points() /= 1) then
-            call fatal_error(error, 'gc_contact_advance: '//single_point_only(box))
+            call refuse_multi_point('gc_contact_advance', box, error)
         else
             call check_steps(box, 'gc_contact_advance', 1_int64, error)
             if (allocated(error)) then

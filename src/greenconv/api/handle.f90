@@ -41,7 +41,7 @@ module greenconv_api_handle
 
     public :: convolver_box, companion_run, door_budget, release_companions, new_box, free_box, box_at
     public :: sdof_structure, modes_structure, samples_structure, frf_file_structure
-    public :: identify_file, identify_file_ml, check_steps, step_box, single_point_only
+    public :: identify_file, identify_file_ml, check_steps, step_box, refuse_multi_point
     public :: reset_box, describe_box
 
     !> The mark of a live box (`convolver_box%mark`); `free_box` overwrites it before the box
@@ -461,7 +461,7 @@ contains
             call contact_step(matrix%point, law, road, preload, displacement, force, compression, error)
             matrix%step = matrix%point%step
         class default
-            call fatal_error(error, caller//': '//single_point_only(box))
+            call refuse_multi_point(caller, box, error)
             return
         end select
         if (.not. allocated(error)) return
@@ -471,16 +471,19 @@ contains
         compression = 0.0_dp
     end subroutine step_box
 
-    !> What a single-point step door says of a box of several points (a multi-point handle cast).
-    function single_point_only(box) result(message)
+    !> Refuse a box of several points at a single-point step door (a multi-point handle cast).
+    subroutine refuse_multi_point(caller, box, error)
+        !> Name of the front-door routine, first word of the message.
+        character(len=*), intent(in) :: caller
         !> The box.
         type(convolver_box), intent(in) :: box
-        !> The message, without the door's name.
-        character(len=:), allocatable :: message
+        !> Set (`stat_input`) naming the box's number of points.
+        type(error_type), allocatable, intent(out) :: error
 
-        message = 'the convolver has '//int_text(box%conv%n_points())//' points: this door steps a ' &
-                  //'single-point convolver (step a multi-point one with the multi-point doors)'
-    end function single_point_only
+        call fatal_error(error, caller//': the convolver has '//int_text(box%conv%n_points()) &
+                         //' points: this door steps a single-point convolver (step a multi-point one with ' &
+                         //'the multi-point doors)')
+    end subroutine refuse_multi_point
 
     !> Modes identified by LSCE from a receptance file, lowest natural frequency first.
     subroutine identify_file(path, tol_e, max_modes, modes, e, error)
