@@ -62,9 +62,10 @@
 #       Fails when valgrind reports an invalid access or memory "definitely lost"; the log of
 #       a failing run is kept and its path printed.
 #
-#   tools/make_helpers.sh sanitize CASES
-#       Two instrumented builds, each in its own build directory: AddressSanitizer with
-#       UndefinedBehaviorSanitizer (every finding fatal) and gfortran's -fcheck=all. Each runs
+#   tools/make_helpers.sh sanitize CASES [VARIANT...]
+#       Instrumented builds, each in its own build directory. VARIANTs (both when none is
+#       named): asan, AddressSanitizer with UndefinedBehaviorSanitizer (every finding fatal)
+#       and gfortran's -fcheck=all at -O1; check, -fcheck=all alone at -O0. Each runs
 #       the unit tests (`fpm test` with those flags: fpm keeps a build directory per set of
 #       flags), the C tests and CASES fuzz cases (the Makefile build in build/sanitize-*).
 #       ASan runs with quarantine_size_mb=0 (the 1e8-step memory test measures the resident
@@ -461,21 +462,25 @@ cmd_valgrind() {
 }
 
 cmd_sanitize() {
-    [ $# -eq 1 ] || die "usage: $0 sanitize CASES"
-    local cases=$1 variant fflags cflags lflags failed=0 started
+    [ $# -ge 1 ] || die "usage: $0 sanitize CASES [asan|check...]"
+    local cases=$1 variant fflags cflags lflags failed=0 started variants
+    shift
+    variants=${*:-asan check}
     local asan='-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer'
     export ASAN_OPTIONS=quarantine_size_mb=0:detect_leaks=0:abort_on_error=1
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-    for variant in asan check; do
+    for variant in $variants; do
         started=$SECONDS
         if [ "$variant" = asan ]; then
-            fflags="-g -O1 $asan"
+            fflags="-g -O1 -fcheck=all $asan"
             cflags="-g -O1 -std=c99 $asan"
             lflags=$asan
-        else
+        elif [ "$variant" = check ]; then
             fflags='-g -O0 -fcheck=all -fbacktrace'
             cflags='-g -O0 -std=c99'
             lflags=''
+        else
+            die "sanitize: unknown variant '$variant' (asan or check)"
         fi
         say "sanitize ($variant): fpm test with $fflags"
         if ! "$FPM" test --flag "$fflags" --c-flag "$cflags" ${lflags:+--link-flag "$lflags"}; then
