@@ -446,7 +446,10 @@ TEST_SANITIZE_FUZZ ?= 50
 # (ASan+UBSan with -fcheck=all at -O1, and -fcheck=all alone at -O0) with SANITIZE_FUZZ fuzz
 # cases each, then valgrind on every shipped scene, the examples and the C tests (valgrind takes
 # about an hour on two shared cores). CI (.ci/run) runs the first of them, which holds the
-# second's checks, with TEST_SANITIZE_FUZZ fuzz cases (`make sanitize-ci`) before `make test`.
+# second's checks, on the C tests (every door, the scenes through gc_run_scene) and
+# TEST_SANITIZE_FUZZ fuzz cases (`make sanitize-ci`, about 10 minutes) before `make test`; the
+# unit tests under it (an instrumented build of every test program, its longest part) are left
+# to `make sanitize`.
 sanitize:
 	@$(MAKE) sanitize-builds
 	@$(MAKE) valgrind
@@ -455,7 +458,7 @@ sanitize-builds:
 	@MAKE="$(MAKE)" $(HELPER) sanitize $(SANITIZE_FUZZ)
 
 sanitize-ci: deps
-	@MAKE="$(MAKE)" $(HELPER) sanitize $(TEST_SANITIZE_FUZZ) asan
+	@MAKE="$(MAKE)" $(HELPER) sanitize $(TEST_SANITIZE_FUZZ) --no-unit asan
 
 valgrind: $(BIN) $(EXAMPLES) $(CTESTS)
 	@$(HELPER) valgrind $(BIN) $(EXAMPLES) $(CTESTS)

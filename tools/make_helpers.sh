@@ -62,10 +62,11 @@
 #       Fails when valgrind reports an invalid access or memory "definitely lost"; the log of
 #       a failing run is kept and its path printed.
 #
-#   tools/make_helpers.sh sanitize CASES [VARIANT...]
+#   tools/make_helpers.sh sanitize CASES [--no-unit] [VARIANT...]
 #       Instrumented builds, each in its own build directory. VARIANTs (both when none is
 #       named): asan, AddressSanitizer with UndefinedBehaviorSanitizer (every finding fatal)
-#       and gfortran's -fcheck=all at -O1; check, -fcheck=all alone at -O0. Each runs
+#       and gfortran's -fcheck=all at -O1; check, -fcheck=all alone at -O0. --no-unit leaves
+#       out the unit tests (fpm test), the longest part (CI's `make sanitize-ci`). Each runs
 #       the unit tests (`fpm test` with those flags: fpm keeps a build directory per set of
 #       flags), the C tests and CASES fuzz cases (the Makefile build in build/sanitize-*).
 #       ASan runs with quarantine_size_mb=0 (the 1e8-step memory test measures the resident
@@ -462,9 +463,10 @@ cmd_valgrind() {
 }
 
 cmd_sanitize() {
-    [ $# -ge 1 ] || die "usage: $0 sanitize CASES [asan|check...]"
-    local cases=$1 variant fflags cflags lflags failed=0 started variants
+    [ $# -ge 1 ] || die "usage: $0 sanitize CASES [--no-unit] [asan|check...]"
+    local cases=$1 variant fflags cflags lflags failed=0 started variants unit=yes
     shift
+    if [ "${1:-}" = --no-unit ]; then unit=no; shift; fi
     variants=${*:-asan check}
     local asan='-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer'
     export ASAN_OPTIONS=quarantine_size_mb=0:detect_leaks=0:abort_on_error=1
@@ -482,10 +484,12 @@ cmd_sanitize() {
         else
             die "sanitize: unknown variant '$variant' (asan or check)"
         fi
-        say "sanitize ($variant): fpm test with $fflags"
-        if ! "$FPM" test --flag "$fflags" --c-flag "$cflags" ${lflags:+--link-flag "$lflags"}; then
-            say "FAIL: sanitize ($variant): fpm test"
-            failed=1
+        if [ "$unit" = yes ]; then
+            say "sanitize ($variant): fpm test with $fflags"
+            if ! "$FPM" test --flag "$fflags" --c-flag "$cflags" ${lflags:+--link-flag "$lflags"}; then
+                say "FAIL: sanitize ($variant): fpm test"
+                failed=1
+            fi
         fi
         say "sanitize ($variant): C tests and $cases fuzz cases (build/sanitize-$variant)"
         if ! "${MAKE:-make}" BUILD="build/sanitize-$variant" FFLAGS="$fflags -std=f2018 -fimplicit-none" \
