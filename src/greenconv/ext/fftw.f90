@@ -178,7 +178,7 @@ contains
 
         real(dp), allocatable :: copy(:)
 
-        copy = samples
+        allocate (copy, source=samples)
         call transform_once('forward_real_fft', .true., copy, spectrum, error)
     end subroutine forward_real_fft
 
@@ -194,7 +194,7 @@ contains
 
         complex(dp), allocatable :: copy(:)
 
-        copy = spectrum
+        allocate (copy, source=spectrum)
         call transform_once('inverse_real_fft', .false., samples, copy, error)
     end subroutine inverse_real_fft
 
