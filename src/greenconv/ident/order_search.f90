@@ -700,11 +700,18 @@ contains
     !> first); a removal is kept when the fully refitted model lowers the criterion. A
     !> singular information drops the mode `merged` names.
     subroutine drop_mode(data, model, result, removed, outlier, error)
+        !> The weighted data.
         type(data_type), intent(in) :: data
+        !> The model, without the mode when a removal is kept.
         type(model_type), intent(inout) :: model
+        !> The result: the mode removed and why (dropped_by_criterion, dropped_boundary,
+        !> dropped_degenerate), LM iterations.
         type(ml_result), intent(inout) :: result
+        !> Whether a mode was removed.
         logical, intent(out) :: removed
+        !> Index in data of the line a removed spike mode took up, 0 when none.
         integer, intent(out) :: outlier
+        !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
