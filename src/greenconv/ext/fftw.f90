@@ -176,16 +176,10 @@ contains
         !> Set on a size mismatch or when FFTW cannot plan the transform.
         type(error_type), allocatable, intent(out) :: error
 
-        real(c_double), allocatable, target :: input(:)
-        complex(c_double_complex), allocatable, target :: output(:)
-        type(plan_pair) :: plans
+        real(dp), allocatable :: copy(:)
 
-        call plan_once('forward_real_fft', size(samples), size(spectrum), input, output, plans, error)
-        if (allocated(error)) return
-        input(:) = samples
-        call fftw_execute_dft_r2c(plans%forward, input, output)
-        call destroy_pair(plans)
-        spectrum(:) = output
+        allocate (copy, source=samples)
+        call transform_once('forward_real_fft', .true., copy, spectrum, error)
     end subroutine forward_real_fft
 
     !> Unnormalized inverse real DFT: samples(j) = sum_k spectrum(k)*exp(+2*pi*i*j*k/n) over the
@@ -198,17 +192,39 @@ contains
         !> Set on a size mismatch or when FFTW cannot plan the transform.
         type(error_type), allocatable, intent(out) :: error
 
-        complex(c_double_complex), allocatable, target :: input(:)
-        real(c_double), allocatable, target :: output(:)
+        complex(dp), allocatable :: copy(:)
+
+        allocate (copy, source=spectrum)
+        call transform_once('inverse_real_fft', .false., samples, copy, error)
+    end subroutine inverse_real_fft
+
+    !> A one-shot transform (`name`, for messages): forward, `samples` into `spectrum`, or
+    !> inverse, `spectrum` into `samples`, on private contiguous copies (`plan_once`) with plans
+    !> made for them and destroyed; the other argument is left as it was.
+    subroutine transform_once(name, forward, samples, spectrum, error)
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: forward
+        real(dp), intent(inout) :: samples(:)
+        complex(dp), intent(inout) :: spectrum(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        real(c_double), allocatable, target :: real_array(:)
+        complex(c_double_complex), allocatable, target :: complex_array(:)
         type(plan_pair) :: plans
 
-        call plan_once('inverse_real_fft', size(samples), size(spectrum), output, input, plans, error)
+        call plan_once(name, size(samples), size(spectrum), real_array, complex_array, plans, error)
         if (allocated(error)) return
-        input(:) = spectrum
-        call fftw_execute_dft_c2r(plans%inverse, input, output)
+        if (forward) then
+            real_array(:) = samples
+            call fftw_execute_dft_r2c(plans%forward, real_array, complex_array)
+            spectrum(:) = complex_array
+        else
+            complex_array(:) = spectrum
+            call fftw_execute_dft_c2r(plans%inverse, complex_array, real_array)
+            samples(:) = real_array
+        end if
         call destroy_pair(plans)
-        samples(:) = output
-    end subroutine inverse_real_fft
+    end subroutine transform_once
 
     !> For a one-shot transform (`name`, for messages) of n real samples and m lines: check
     !> m = n/2 + 1, allocate the private contiguous copies `real_array` (n) and
@@ -248,10 +264,7 @@ contains
 
         integer :: i
 
-        i = 0
-        if (size(samples) >= 1 .and. size(spectrum) == size(samples)/2 + 1) then
-            i = plan_index(self, size(samples), offset_of(c_loc(samples)), offset_of(c_loc(spectrum)))
-        end if
+        i = plan_for(self, samples, spectrum)
         if (i == 0) then
             spectrum(:) = cmplx(ieee_value(0.0_dp, ieee_quiet_nan), ieee_value(0.0_dp, ieee_quiet_nan), dp)
             return
@@ -275,10 +288,7 @@ contains
 
         integer :: i
 
-        i = 0
-        if (size(samples) >= 1 .and. size(spectrum) == size(samples)/2 + 1) then
-            i = plan_index(self, size(samples), offset_of(c_loc(samples)), offset_of(c_loc(spectrum)))
-        end if
+        i = plan_for(self, samples, spectrum)
         if (i == 0) then
             samples(:) = ieee_value(0.0_dp, ieee_quiet_nan)
             return
@@ -330,6 +340,21 @@ contains
 
         address = transfer(c_loc(self%count), 0_c_intptr_t)
     end function address_of
+
+    !> Index in the set of the plans for transforms between these arrays (their sizes and
+    !> placement; only their addresses are looked at), planned and appended if missing; 0 on a
+    !> size mismatch or when FFTW cannot plan.
+    function plan_for(self, samples, spectrum) result(i)
+        class(fft_plan_set), target, intent(inout) :: self
+        real(dp), contiguous, target, intent(in) :: samples(:)
+        complex(dp), contiguous, target, intent(in) :: spectrum(:)
+        integer :: i
+
+        i = 0
+        if (size(samples) >= 1 .and. size(spectrum) == size(samples)/2 + 1) then
+            i = plan_index(self, size(samples), offset_of(c_loc(samples)), offset_of(c_loc(spectrum)))
+        end if
+    end function plan_for
 
     !> Index in the set of the plans of size n for arrays at these byte offsets, planned and
     !> appended if missing; 0 when FFTW cannot plan. Plans inherited by a copy are forgotten.

@@ -14,7 +14,7 @@
 !> says so: the data barely decide between the two orders. After the final refinement
 !> (new weights) `prune_final` removes, by the same price, the modes the likelihood no longer
 !> pays for (needles beside a mode under a rolled-off tail); a singular information in the
-!> search removes a mode only when MDL accepts it (`drop_degenerate`). Death moves, these two
+!> search removes a mode only when MDL accepts it (`degenerate_order`). Death moves, these two
 !> and the variable projection of the fits (data%projection) run only with
 !> ml_options%global_search.
 module greenconv_ident_order_search
@@ -165,10 +165,8 @@ contains
         !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
-        type(model_type) :: trial
-        real(dp) :: before, after
-        integer :: k, c, worst
+        real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), jac(:, :)
+        integer, allocatable :: order(:)
         logical :: ok
 
         removed = .false.
@@ -177,30 +175,10 @@ contains
         call information(data, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
         if (.not. ok) return
-        allocate (wald(size(model%pole)))
-        do k = 1, size(model%pole)
-            c = 4*(k - 1)
-            wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), [real(model%residue(k), dp), aimag(model%residue(k))])
-        end do
-        before = criterion(data, model, chi_square(data, model))
-        do
-            worst = minloc(wald, 1)
-            if (.not. (wald(worst) < death_wald*4.0_dp*data%penalty)) return
-            trial = model
-            trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
-            call fit(data, trial, result%iterations, error)
-            if (allocated(error)) return
-            after = criterion(data, trial, chi_square(data, trial))
-            wald(worst) = huge(1.0_dp)
-            if (simpler_wins(after, before)) then
-                call record_drop(result, [model%pole(worst)], dropped_by_criterion)
-                model = trial
-                call refine(data, model, result%iterations)
-                removed = .true.
-                return
-            end if
-            closest = min(closest, after - before)
-        end do
+        order = smallest_below(wald_statistics(model, cov), death_wald*4.0_dp*data%penalty, size(model%pole))
+        call first_removal(data, order, spread(dropped_by_criterion, 1, size(order)), model, result, removed, &
+                           error, closest)
+        if (removed) call refine(data, model, result%iterations)
     end subroutine death_move
 
     !> An outlier line (index in data) the search found: recorded, then either left out of the
@@ -341,7 +319,7 @@ contains
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
         type(model_type) :: trial
         real(dp) :: before
-        integer :: k, c, worst
+        integer :: worst
         logical :: ok, removed
 
         removed = .true.
@@ -350,21 +328,13 @@ contains
             call information(data, model, fisher, gradient, jac)
             call covariance(fisher, cov, ok)
             if (.not. ok) return
-            if (allocated(wald)) deallocate (wald)
-            allocate (wald(size(model%pole)))
-            do k = 1, size(model%pole)
-                c = 4*(k - 1)
-                wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), &
-                                    [real(model%residue(k), dp), aimag(model%residue(k))])
-            end do
+            wald = wald_statistics(model, cov)
             before = likelihood(data, result, chi_square(data, model))
             do
                 worst = minloc(wald, 1)
                 if (.not. (wald(worst) < death_wald*4.0_dp*data%penalty)) exit
                 wald(worst) = huge(1.0_dp)
-                trial = model
-                trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
-                call fit(data, trial, result%iterations, error)
+                call refit_without(data, model, worst, result%iterations, trial, error)
                 if (allocated(error)) return
                 if (.not. simpler_wins(likelihood(data, result, chi_square(data, trial)), &
                                        before + 4.0_dp*data%penalty)) cycle
@@ -730,18 +700,24 @@ contains
     !> first); a removal is kept when the fully refitted model lowers the criterion. A
     !> singular information drops the mode `merged` names.
     subroutine drop_mode(data, model, result, removed, outlier, error)
+        !> The weighted data.
         type(data_type), intent(in) :: data
+        !> The model, without the mode when a removal is kept.
         type(model_type), intent(inout) :: model
+        !> The result: the mode removed and why (dropped_by_criterion, dropped_boundary,
+        !> dropped_degenerate), LM iterations.
         type(ml_result), intent(inout) :: result
+        !> Whether a mode was removed.
         logical, intent(out) :: removed
+        !> Index in data of the line a removed spike mode took up, 0 when none.
         integer, intent(out) :: outlier
+        !> Set when a refit fails.
         type(error_type), allocatable, intent(out) :: error
 
         real(dp), allocatable :: fisher(:, :), gradient(:), cov(:, :), wald(:), jac(:, :)
-        real(dp) :: block2(2, 2), before
-        type(model_type) :: trial
+        integer, allocatable :: order(:), reason(:)
         logical :: ok
-        integer :: k, c, worst, try
+        integer :: j
 
         removed = .false.
         outlier = 0
@@ -754,87 +730,138 @@ contains
         end if
         call information(data, model, fisher, gradient, jac)
         call covariance(fisher, cov, ok)
-        allocate (wald(size(model%pole)))
         if (.not. ok) then
             if (data%projection) then
-                call drop_degenerate(data, model, result, removed, error)
+                order = degenerate_order(data, model)
+                call first_removal(data, order, spread(dropped_degenerate, 1, size(order)), model, result, &
+                                   removed, error)
                 return
             end if
             call drop_pole(data, merged(model), dropped_degenerate, model, result, error)
             removed = .true.
             return
         end if
-        do k = 1, size(model%pole)
-            c = 4*(k - 1)
-            block2 = cov(c + 3:c + 4, c + 3:c + 4)
-            wald(k) = quadratic(block2, [real(model%residue(k), dp), aimag(model%residue(k))])
-        end do
+        wald = wald_statistics(model, cov)
         ! Poles the fit pushed to the narrowest band go first, whatever their statistic.
         where (narrowest(model%pole, data%min_decay)) wald = -1.0_dp
-        do try = 1, tries_per_add
-            worst = minloc(wald, 1)
-            if (.not. (wald(worst) < 4.0_dp*data%penalty)) return
-            wald(worst) = huge(1.0_dp)
-            trial = model
-            trial%pole = [model%pole(:worst - 1), model%pole(worst + 1:)]
-            ! A full refit: with several noise poles the others move when one goes.
-            call fit(data, trial, result%iterations, error)
-            if (allocated(error)) return
-            before = criterion(data, model, chi_square(data, model))
-            if (simpler_wins(criterion(data, trial, chi_square(data, trial)), before)) then
-                call record_drop(result, [model%pole(worst)], &
-                                 merge(dropped_boundary, dropped_by_criterion, narrowest(model%pole(worst), &
-                                                                                         data%min_decay)))
-                model = trial
-                removed = .true.
-                return
-            end if
-        end do
+        order = smallest_below(wald, 4.0_dp*data%penalty, tries_per_add)
+        reason = [(merge(dropped_boundary, dropped_by_criterion, narrowest(model%pole(order(j)), data%min_decay)), &
+                   j=1, size(order))]
+        ! A full refit: with several noise poles the others move when one goes.
+        call first_removal(data, order, reason, model, result, removed, error)
     end subroutine drop_mode
 
-    !> A singular information in the search (global search): the mode `merged` names, then each
-    !> pole at the narrowest band, is removed and the rest refitted; the first removal that lowers
-    !> the MDL criterion is kept (a true duplicate adds nothing to the fit, so its removal saves
-    !> its price). Unjudged, the removal of `merged`'s choice repeated while the information
-    !> stayed singular (the null direction on another pole, a needle) took real modes one after
-    !> another: suite outofband's measured beam, FRF 2, lost all six (chi2/nu 9e6).
-    subroutine drop_degenerate(data, model, result, removed, error)
+    !> The removals tried on a singular information in the search (global search, by
+    !> `first_removal`): the mode `merged` names, then each pole at the narrowest band; the
+    !> first removal that lowers the MDL criterion is kept (a true duplicate adds nothing to the
+    !> fit, so its removal saves its price). Unjudged, the removal of `merged`'s choice repeated
+    !> while the information stayed singular (the null direction on another pole, a needle) took
+    !> real modes one after another: suite outofband's measured beam, FRF 2, lost all six
+    !> (chi2/nu 9e6).
+    pure function degenerate_order(data, model) result(order)
         !> The weighted data.
         type(data_type), intent(in) :: data
-        !> The model, without the mode when a removal is kept.
-        type(model_type), intent(inout) :: model
-        !> The result: the mode removed (dropped_degenerate), LM iterations.
-        type(ml_result), intent(inout) :: result
-        !> Whether a mode was removed.
-        logical, intent(out) :: removed
-        !> Set when a refit fails.
-        type(error_type), allocatable, intent(out) :: error
-
-        type(model_type) :: trial
+        !> The model.
+        type(model_type), intent(in) :: model
+        !> Indices in model of the modes to try, in turn.
         integer, allocatable :: order(:)
-        real(dp) :: before
-        integer :: k, j
 
-        removed = .false.
+        integer :: k
+
         order = [merged(model)]
         do k = 1, size(model%pole)
             if (narrowest(model%pole(k), data%min_decay) .and. k /= order(1)) order = [order, k]
         end do
+    end function degenerate_order
+
+    !> Remove the modes `order` names in turn, each from the same model with the rest refitted
+    !> (search iterations), and keep the first removal that lowers the MDL criterion, recorded
+    !> with its reason. `closest`, when present, is lowered to the least rise of the criterion
+    !> among the removals rejected (dimensionless).
+    subroutine first_removal(data, order, reason, model, result, removed, error, closest)
+        type(data_type), intent(in) :: data
+        !> Indices in model of the modes to try, in turn.
+        integer, intent(in) :: order(:)
+        !> Why each is dropped when kept (dropped_by_criterion, ...), one per entry of order.
+        integer, intent(in) :: reason(:)
+        type(model_type), intent(inout) :: model
+        type(ml_result), intent(inout) :: result
+        logical, intent(out) :: removed
+        type(error_type), allocatable, intent(out) :: error
+        real(dp), intent(inout), optional :: closest
+
+        type(model_type) :: trial
+        real(dp) :: before, after
+        integer :: j
+
+        removed = .false.
+        if (size(order) == 0) return
         before = criterion(data, model, chi_square(data, model))
         do j = 1, size(order)
-            k = order(j)
-            trial = model
-            trial%pole = [model%pole(:k - 1), model%pole(k + 1:)]
-            call fit(data, trial, result%iterations, error)
+            call refit_without(data, model, order(j), result%iterations, trial, error)
             if (allocated(error)) return
-            if (simpler_wins(criterion(data, trial, chi_square(data, trial)), before)) then
-                call record_drop(result, [model%pole(k)], dropped_degenerate)
+            after = criterion(data, trial, chi_square(data, trial))
+            if (simpler_wins(after, before)) then
+                call record_drop(result, [model%pole(order(j))], reason(j))
                 model = trial
                 removed = .true.
                 return
             end if
+            if (present(closest)) closest = min(closest, after - before)
         end do
-    end subroutine drop_degenerate
+    end subroutine first_removal
+
+    !> The model without mode k, the rest refitted by `fit`.
+    subroutine refit_without(data, model, k, lm_iterations, trial, error)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(in) :: model
+        !> Index of the mode in model.
+        integer, intent(in) :: k
+        !> Count of LM iterations, the fit's added.
+        integer, intent(inout) :: lm_iterations
+        type(model_type), intent(out) :: trial
+        type(error_type), allocatable, intent(out) :: error
+
+        trial = model
+        trial%pole = [model%pole(:k - 1), model%pole(k + 1:)]
+        call fit(data, trial, lm_iterations, error)
+    end subroutine refit_without
+
+    !> The Wald statistic for r_k = 0 of each mode of the model, from the covariance of its
+    !> parameters (four per mode, the residue's real and imaginary parts third and fourth).
+    pure function wald_statistics(model, cov) result(wald)
+        type(model_type), intent(in) :: model
+        real(dp), intent(in) :: cov(:, :)
+        real(dp) :: wald(size(model%pole))
+
+        integer :: k, c
+
+        do k = 1, size(model%pole)
+            c = 4*(k - 1)
+            wald(k) = quadratic(cov(c + 3:c + 4, c + 3:c + 4), [real(model%residue(k), dp), aimag(model%residue(k))])
+        end do
+    end function wald_statistics
+
+    !> Indices of the statistics below `limit`, smallest first (of equal ones the first), at
+    !> most `most` of them.
+    pure function smallest_below(statistic, limit, most) result(order)
+        real(dp), intent(in) :: statistic(:), limit
+        integer, intent(in) :: most
+        integer, allocatable :: order(:)
+
+        real(dp) :: left(size(statistic))
+        integer :: k
+
+        order = [integer ::]
+        if (size(statistic) == 0) return
+        left = statistic
+        do while (size(order) < most)
+            k = minloc(left, 1)
+            if (.not. (left(k) < limit)) exit
+            order = [order, k]
+            left(k) = huge(1.0_dp)
+        end do
+    end function smallest_below
 
     !> Whether a mode narrower than one line (2*xi*f < df) only takes up an outlier line: the
     !> model without it, refitted without the line of largest residual next to its frequency,

@@ -176,10 +176,16 @@ contains
     !> Identify G by the scene's method (`&identification method`), as the C and Fortran 77
     !> doors identify a receptance file (greenconv_ident_structure's `identify_receptance`).
     subroutine identify_scene(scene, frf, dt, structure, error)
+        !> The scene (`&identification`: method, max_order, order, tol_e, noise, search; its
+        !> methods and accuracy for `auto`).
         type(scene_type), intent(in) :: scene
+        !> The receptance G [m/N].
         type(frf_type), intent(in) :: frf
+        !> Time step [s] g is sampled at; 0 for the modes alone.
         real(dp), intent(in) :: dt
+        !> The identified structure.
         type(structure_model), intent(out) :: structure
+        !> Set when the identification fails or dt does not fit the grid.
         type(error_type), allocatable, intent(out) :: error
 
         type(receptance_identification) :: settings
