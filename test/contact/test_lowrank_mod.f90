@@ -41,8 +41,8 @@
 !>   with dgesv: 1e-10 of the peak force, the Newton tolerance being 1e-12 of the compression
 !>   scale, and the same points in contact at every step;
 !> - the plate patch with linear springs rolling over the rough road (points lifting off and
-!>   landing, several at once in a step, so that M^-1 takes Woodbury updates of rank k > 1, and
-!>   the push takes the modal loads kept by the step's last product W0*x) against the same run
+!>   landing, several at once in a step, so that M^-1 takes several rank-one updates in a step,
+!>   and the push takes the modal loads kept by the step's last product W0*x) against the same run
 !>   with dgesv on the dense W0 at every iteration: the same points in contact at every step,
 !>   forces within 1e-10 of the peak force (the Newton tolerance being 1e-12 of the
 !>   compression scale). The bound is shown to catch an iteration stopped early: with linear
@@ -94,7 +94,7 @@ contains
                                   test_modal_span), &
                      new_unittest('modes'' span refused: some w_k < 0, rank not below N_c/2, explicit', &
                                   test_modal_span_refused), &
-                     new_unittest('plate patch, linear springs: rank-k updates of M^-1 equal dgesv at every step', &
+                     new_unittest('plate patch, linear springs: updated M^-1, kept push equal dgesv at every step', &
                                   test_rank_k_updates)]
     end subroutine collect_lowrank
 
@@ -634,8 +634,8 @@ contains
     end subroutine test_modal_span_refused
 
     !> Linear springs on the plate patch of `test_modal_span` (25 x 20 points, 441 modes): the
-    !> active set changes by several points in some steps, so M^-1 follows it by updates of
-    !> rank k > 1, and the push reuses the modal loads of the step's last product W0*x. Against
+    !> active set changes by several points in some steps, so M^-1 follows it by several
+    !> rank-one updates a step, and the push reuses the modal loads of the step's last product W0*x. Against
     !> the same run with dgesv on the dense W0: the same points in contact at every step and
     !> forces within 1e-10 of the peak force. A Hertz run (p = 1.5) whose Newton iteration stops
     !> early (tolerance 1e-3) must miss that bound against the same run at the default tolerance.

@@ -670,100 +670,47 @@ contains
         end do
     end subroutine inverse_of_factors
 
-    !> M^-1 brought to the slopes `slopes` by one Woodbury update of rank k for the k changed
-    !> slopes: M' = M + V_K^T*Delta*U_K, Delta = diag(t_i' - t_i) over the changed points K,
-    !> V_K^T = [v_i] (r x k), U_K = [u_i^T] (k x r), and
-    !>
-    !>     M'^-1 = M^-1 - X*C^-1*Delta*Y,   X = M^-1*V_K^T,   Y = U_K*M^-1,   C = I_k + Delta*U_K*X,
-    !>
-    !> three passes over M^-1 (X, Y and the update, 3*k*r^2 multiply-adds) whatever k, where
-    !> k Sherman-Morrison updates made 3*k passes; for k = 1 it is Sherman-Morrison itself
-    !> (C = 1 + (t_i' - t_i)*u_i^T*M^-1*v_i). Not done (`updated` false, the kept matrix marked
-    !> stale) when too many slopes changed, after N_c updates since M was formed, or when C has
-    !> a pivot below `update_pivot` in magnitude (a nearly singular intermediate).
+    !> M^-1 brought to the slopes `slopes` by one Sherman-Morrison update per changed slope:
+    !> M' = M + (t_i' - t_i)*v_i*u_i^T, M'^-1 = M^-1 - c*x*y^T with x = M^-1*v_i,
+    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x). Not done (`updated`
+    !> false, the kept matrix marked stale) when too many slopes changed, after N_c updates
+    !> since M was formed, or at a pivot below `update_pivot`.
     subroutine update_inverse(compliance, slopes, updated)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: slopes(:)
         logical, intent(out) :: updated
 
-        integer, allocatable :: changed(:), pivot(:)
-        real(dp), allocatable :: x(:, :), y(:, :), capacitance(:, :), gain(:, :), unit(:), column(:), rows(:, :)
-        real(dp), allocatable :: change(:)
-        type(error_type), allocatable :: error
-        integer :: i, j, k, l, r
+        integer, allocatable :: changed(:)
+        real(dp) :: x(compliance%rank), y(compliance%rank), change, pivot
+        integer :: i, j, k, l
 
         updated = .false.
         associate (newton => compliance%newton, u => compliance%left, v_t => compliance%right_t)
             changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
             if (3*size(changed) > count(slopes /= 0.0_dp) .or. newton%updates + size(changed) > size(slopes)) return
             newton%ready = .false.
-            k = size(changed)
-            r = compliance%rank
-            change = slopes(changed) - newton%slopes(changed)
-            allocate (x(r, k), y(k, r), capacitance(k, k), gain(k, k), pivot(k), unit(k), column(k))
-            ! X = M^-1*V_K^T and Y = U_K*M^-1, each one pass over the columns of M^-1, and
-            ! C = I + Delta*U_K*X
-            allocate (rows(r, k))
-            do l = 1, k
-                rows(:, l) = u(changed(l), :)
-            end do
-            x(:, :) = 0.0_dp
-            do j = 1, r
-                do l = 1, k
-                    x(:, l) = x(:, l) + newton%inverse(:, j)*v_t(j, changed(l))
-                end do
-            end do
-            do j = 1, r
-                do l = 1, k
-                    y(l, j) = dot(rows(:, l), newton%inverse(:, j))
-                end do
-            end do
-            do j = 1, k
-                do l = 1, k
-                    capacitance(l, j) = change(l)*dot(rows(:, l), x(:, j))
-                end do
-                capacitance(j, j) = capacitance(j, j) + 1.0_dp
-            end do
-            call lu_factor(capacitance, pivot, error)
-            if (allocated(error)) return
-            do l = 1, k
-                if (.not. (abs(capacitance(l, l)) >= update_pivot)) return
-            end do
-            ! gain = C^-1*Delta, column by column
-            do j = 1, k
-                unit(:) = 0.0_dp
-                unit(j) = change(j)
-                call lu_solve(capacitance, pivot, unit, column, error)
-                if (allocated(error)) return
-                gain(:, j) = column
-            end do
-            ! M^-1 <- M^-1 - (X*gain)*Y, one pass over the columns of M^-1
-            x(:, :) = matmul(x, gain)
-            do j = 1, r
-                do l = 1, k
-                    newton%inverse(:, j) = newton%inverse(:, j) - x(:, l)*y(l, j)
+            do j = 1, size(changed)
+                i = changed(j)
+                change = slopes(i) - newton%slopes(i)
+                call ordered_product(newton%inverse, v_t(:, i), x)
+                y(:) = matmul(u(i, :), newton%inverse)
+                pivot = 1.0_dp + change*dot_product(u(i, :), x)
+                if (.not. (abs(pivot) >= update_pivot)) return
+                x(:) = (change/pivot)*x
+                do k = 1, size(y)
+                    !$omp simd
+                    do l = 1, size(x)
+                        newton%inverse(l, k) = newton%inverse(l, k) - x(l)*y(k)
+                    end do
                 end do
             end do
             newton%slopes = slopes
             newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
-            newton%updates = newton%updates + k
+            newton%updates = newton%updates + size(changed)
             newton%ready = .true.
             updated = .true.
         end associate
     end subroutine update_inverse
-
-    !> a^T*b, its terms added in SIMD lanes (an order fixed by the build, not by the threads).
-    pure real(dp) function dot(a, b)
-        real(dp), intent(in) :: a(:), b(:)
-
-        integer :: i
-
-        dot = 0.0_dp
-        !$omp simd reduction(+:dot)
-        do i = 1, size(a)
-            dot = dot + a(i)*b(i)
-        end do
-    end function dot
 
     !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
     !> points gathered from V (scaled by t) and U column by column, then column j of M as
