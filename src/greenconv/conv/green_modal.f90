@@ -228,6 +228,19 @@ contains
         real(dp), intent(out) :: y(:)
 
         real(dp) :: modal(size(self%engine%mode_weight))
+
+        call instant_in_modes(self, x, y, modal)
+    end subroutine modal_instant
+
+    !> y = W0*x [m] and the modal loads Phi^T*x it was made from (N_m) on the separable factors;
+    !> the dense product (`modal` untouched) without them.
+    subroutine instant_in_modes(self, x, y, modal)
+        class(modal_green_matrix), intent(in) :: self
+        real(dp), intent(in) :: x(:)
+        real(dp), intent(out) :: y(:)
+        real(dp), intent(inout) :: modal(:)
+
+        real(dp) :: weighted(size(modal))
         logical :: share
 
         if (.not. allocated(self%separable)) then
@@ -237,9 +250,9 @@ contains
         share = separable_work(self%separable) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
         call separable_modal_forces(self%separable, x, modal, share)
-        modal(:) = self%engine%mode_weight*modal
-        call separable_displacements(self%separable, modal, y, share)
-    end subroutine modal_instant
+        weighted(:) = self%engine%mode_weight*modal
+        call separable_displacements(self%separable, weighted, y, share)
+    end subroutine instant_in_modes
 
     !> y = W0*x [m] as `modal_instant`, its modal loads Phi^T*x kept with x: the next push, when
     !> its recorded loads equal x bit for bit (the implicit step's last residual is of the forces
@@ -253,19 +266,11 @@ contains
         real(dp), intent(out) :: y(:)
 
         real(dp) :: modal(size(self%engine%mode_weight))
-        logical :: share
 
-        if (.not. allocated(self%separable)) then
-            call self%apply_instant(x, y)
-            return
-        end if
-        share = separable_work(self%separable) >= threads_from
-        !$ share = share .and. .not. omp_in_parallel()
-        call separable_modal_forces(self%separable, x, modal, share)
+        call instant_in_modes(self, x, y, modal)
+        if (.not. allocated(self%separable)) return
         self%kept_load = x
         self%kept_modal = modal
-        modal(:) = self%engine%mode_weight*modal
-        call separable_displacements(self%separable, modal, y, share)
     end subroutine modal_instant_kept
 
     !> W0 = Phi*diag(w)*Phi^T on the separable factors, when the convolver holds them and W0 /= 0:

@@ -124,35 +124,30 @@ contains
         real(dp) :: by_column(size(factors%along, 1), size(factors%across, 2)), &
                     grid(size(factors%along, 1), size(factors%across, 1))
         integer :: i, k, n, r
+        logical :: spread
 
-        if (.not. shared_out(threaded)) then
+        spread = shared_out(threaded)
+        if (.not. spread) then
             by_column(:, :) = 0.0_dp
             do k = 1, size(factors%mode_along)
                 n = factors%mode_across(k)
                 by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
             end do
-            do r = 1, size(factors%across, 1)
-                grid(:, r) = 0.0_dp
-                do n = 1, size(factors%across, 2)
-                    grid(:, r) = grid(:, r) + by_column(:, n)*factors%across(r, n)
+        end if
+        !$omp parallel if (spread) default(none) shared(factors, amplitudes, u, by_column, grid, spread) &
+        !$omp private(i, k, n, r)
+        if (spread) then
+            !$omp do schedule(static)
+            do n = 1, size(factors%across, 2)
+                by_column(:, n) = 0.0_dp
+                do k = 1, size(factors%mode_along)
+                    if (factors%mode_across(k) == n) then
+                        by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
+                    end if
                 end do
             end do
-            do i = 1, size(u)
-                u(i) = grid(factors%column(i), factors%row(i))
-            end do
-            return
+            !$omp end do
         end if
-        !$omp parallel default(none) shared(factors, amplitudes, u, by_column, grid) private(i, k, n, r)
-        !$omp do schedule(static)
-        do n = 1, size(factors%across, 2)
-            by_column(:, n) = 0.0_dp
-            do k = 1, size(factors%mode_along)
-                if (factors%mode_across(k) == n) then
-                    by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
-                end if
-            end do
-        end do
-        !$omp end do
         !$omp do schedule(static)
         do r = 1, size(factors%across, 1)
             grid(:, r) = 0.0_dp
