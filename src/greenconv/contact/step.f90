@@ -165,8 +165,9 @@ contains
         !> Set (`stat_numerical`) when the step does not converge or the run diverges.
         type(error_type), allocatable, intent(out) :: fault
         !> The convolver whose W0 this is: its own product W0*x serves the implicit step when it
-        !> is cheaper than W0's low-rank factors (`fast_instant`).
-        class(multipoint_convolver), intent(in), optional :: conv
+        !> is cheaper than W0's low-rank factors (`fast_instant`), and keeps what the push of the
+        !> step's loads can reuse (`apply_instant_kept`).
+        class(multipoint_convolver), intent(inout), optional :: conv
 
         real(dp) :: free(size(u_h)), residual
         integer :: point
@@ -330,7 +331,7 @@ contains
         integer, intent(out) :: iterations, point
         real(dp), intent(out) :: largest
         type(error_type), allocatable, intent(out) :: error
-        class(multipoint_convolver), intent(in), optional :: conv
+        class(multipoint_convolver), intent(inout), optional :: conv
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
         real(dp) :: coupling_trial(size(free)), alpha, scale
@@ -399,7 +400,7 @@ contains
     subroutine factor_instant(weight0, compliance, conv)
         real(dp), intent(in) :: weight0(:, :)
         type(lowrank_compliance), intent(out) :: compliance
-        class(multipoint_convolver), intent(in), optional :: conv
+        class(multipoint_convolver), intent(inout), optional :: conv
 
         type(separable_shapes), allocatable :: shapes
         real(dp), allocatable :: weight(:)
@@ -422,7 +423,7 @@ contains
         class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
         real(dp), intent(out) :: r(:), coupling(:), scale
-        class(multipoint_convolver), intent(in), optional :: conv
+        class(multipoint_convolver), intent(inout), optional :: conv
 
         real(dp) :: load(size(delta))
 
@@ -436,15 +437,17 @@ contains
     !> W0*x [m] for loads x [N]: the convolver's own product when it is the cheaper
     !> (`fast_instant`, as on a plate's separable mode shapes), else by W0's low-rank factors or
     !> densely (greenconv_contact_lowrank_solve's `apply_compliance`). Both are W0*x to round-off.
+    !> The convolver keeps its modal loads of x (`apply_instant_kept`): the last product of a
+    !> step is that of the loads F - F0 it pushes, whose projection the push then reuses.
     function instant_product(compliance, weight0, x, conv) result(y)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :), x(:)
-        class(multipoint_convolver), intent(in), optional :: conv
+        class(multipoint_convolver), intent(inout), optional :: conv
         real(dp) :: y(size(x))
 
         if (present(conv)) then
             if (conv%fast_instant()) then
-                call conv%apply_instant(x, y)
+                call conv%apply_instant_kept(x, y)
                 return
             end if
         end if

@@ -62,12 +62,16 @@ module greenconv_conv_green_modal
         type(separable_shapes), allocatable :: separable
         !> Modal forces Q_k [N] of the last push (work space).
         real(dp), allocatable :: modal_force(:)
+        !> The loads x [N] (N_c) of the last `apply_instant_kept` on the separable factors and
+        !> their modal loads Phi^T*x (N_m), for a push of the same loads; unallocated when none.
+        real(dp), allocatable :: kept_load(:), kept_modal(:)
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
         procedure :: clear => modal_clear
         procedure :: fast_instant => separable_instant
         procedure :: apply_instant => modal_instant
+        procedure :: apply_instant_kept => modal_instant_kept
         procedure :: instant_modes => separable_instant_modes
     end type modal_green_matrix
 
@@ -224,6 +228,19 @@ contains
         real(dp), intent(out) :: y(:)
 
         real(dp) :: modal(size(self%engine%mode_weight))
+
+        call instant_in_modes(self, x, y, modal)
+    end subroutine modal_instant
+
+    !> y = W0*x [m] and the modal loads Phi^T*x it was made from (N_m) on the separable factors;
+    !> the dense product (`modal` untouched) without them.
+    subroutine instant_in_modes(self, x, y, modal)
+        class(modal_green_matrix), intent(in) :: self
+        real(dp), intent(in) :: x(:)
+        real(dp), intent(out) :: y(:)
+        real(dp), intent(inout) :: modal(:)
+
+        real(dp) :: weighted(size(modal))
         logical :: share
 
         if (.not. allocated(self%separable)) then
@@ -233,9 +250,28 @@ contains
         share = separable_work(self%separable) >= threads_from
         !$ share = share .and. .not. omp_in_parallel()
         call separable_modal_forces(self%separable, x, modal, share)
-        modal(:) = self%engine%mode_weight*modal
-        call separable_displacements(self%separable, modal, y, share)
-    end subroutine modal_instant
+        weighted(:) = self%engine%mode_weight*modal
+        call separable_displacements(self%separable, weighted, y, share)
+    end subroutine instant_in_modes
+
+    !> y = W0*x [m] as `modal_instant`, its modal loads Phi^T*x kept with x: the next push, when
+    !> its recorded loads equal x bit for bit (the implicit step's last residual is of the forces
+    !> it pushes), takes them instead of making them again, the same numbers.
+    subroutine modal_instant_kept(self, x, y)
+        !> The convolver.
+        class(modal_green_matrix), intent(inout) :: self
+        !> Loads [N] at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> W0*x [m] (N_c).
+        real(dp), intent(out) :: y(:)
+
+        real(dp) :: modal(size(self%engine%mode_weight))
+
+        call instant_in_modes(self, x, y, modal)
+        if (.not. allocated(self%separable)) return
+        self%kept_load = x
+        self%kept_modal = modal
+    end subroutine modal_instant_kept
 
     !> W0 = Phi*diag(w)*Phi^T on the separable factors, when the convolver holds them and W0 /= 0:
     !> the factors and the engine's per-mode shares w_k of W0.
@@ -299,7 +335,12 @@ contains
         if (allocated(self%separable)) then
             share = separable_work(self%separable) >= threads_from
             !$ share = share .and. .not. omp_in_parallel()
-            call separable_modal_forces(self%separable, load, self%modal_force, share)
+            if (kept_for(self, load)) then
+                self%modal_force(:) = self%kept_modal
+            else
+                call separable_modal_forces(self%separable, load, self%modal_force, share)
+            end if
+            if (allocated(self%kept_load)) deallocate (self%kept_load, self%kept_modal)
             do k = 1, size(self%modal_force)
                 call step_mode(self%engine, k, self%modal_force(k))
             end do
@@ -316,6 +357,18 @@ contains
         !$omp end parallel do
         self%step = self%step + 1
     end subroutine modal_push
+
+    !> Whether the modal loads kept by the last `modal_instant_kept` are those of `load`: the
+    !> same values bit for bit (a NaN never matches, so it is projected again).
+    pure logical function kept_for(self, load)
+        class(modal_green_matrix), intent(in) :: self
+        real(dp), intent(in) :: load(:)
+
+        kept_for = .false.
+        if (.not. allocated(self%kept_load)) return
+        if (size(self%kept_load) /= size(load)) return
+        kept_for = all(self%kept_load == load)
+    end function kept_for
 
     !> p_k <- z_k*p_k + c_k*Q_k for one mode k, Q_k [N] its modal force.
     pure subroutine step_mode(engine, k, force)
@@ -338,6 +391,7 @@ contains
 
         call self%engine%reset()
         self%modal_force(:) = 0.0_dp
+        if (allocated(self%kept_load)) deallocate (self%kept_load, self%kept_modal)
     end subroutine modal_clear
 
 end module greenconv_conv_green_modal

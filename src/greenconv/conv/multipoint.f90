@@ -72,6 +72,9 @@ module greenconv_conv_multipoint
         procedure :: fast_instant
         !> y = W0*x [m] for loads x [N]: the dense product, or an engine's own factors.
         procedure :: apply_instant
+        !> y = W0*x as `apply_instant`, the engine keeping what a push of the same loads x
+        !> can reuse (its modal loads): the implicit step's last product is of the loads it pushes.
+        procedure :: apply_instant_kept
         !> W0 = Phi*diag(w)*Phi^T on separable mode shapes Phi, when the engine holds them, so
         !> that W0's low-rank factors can be made and applied in the modes' span.
         procedure :: instant_modes
@@ -162,6 +165,19 @@ contains
 
         y(:) = matmul(self%weight0, x)
     end subroutine apply_instant
+
+    !> y = W0*x [m] for loads x [N] (N_c) by `apply_instant`, keeping nothing: an engine whose
+    !> push shares work with its product W0*x keeps that work for a push of the same loads.
+    subroutine apply_instant_kept(self, x, y)
+        !> The convolver.
+        class(multipoint_convolver), intent(inout) :: self
+        !> Loads [N] at the points (N_c).
+        real(dp), intent(in) :: x(:)
+        !> W0*x [m] (N_c).
+        real(dp), intent(out) :: y(:)
+
+        call self%apply_instant(x, y)
+    end subroutine apply_instant_kept
 
     !> The modal form W0 = Phi*diag(w)*Phi^T [m/N] of the instant compliance on separable mode
     !> shapes: none for the dense W0 (`offered` false); an engine that steps separable modes

@@ -22,6 +22,7 @@
 !> share the columns or the modes. The dense `shape` stays the reference: its columns are the
 !> products of the factors.
 module greenconv_model_point_modes
+    !$ use omp_lib, only: omp_get_max_threads
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text
@@ -107,7 +108,9 @@ contains
     !> u_i = sum_k phi_ik*a_k from the factors: B(:, n) = sum_k X_f(k)*a_k over the modes of
     !> each n in the order of k, then the grid's displacements sum_n B(:, n)*Y_n(y_r) in the
     !> order of n, read at each point's cell. The y functions, then the rows, then the points
-    !> are shared among threads when `threaded` (each sum is the serial one).
+    !> are shared among threads when `threaded` (each sum is the serial one). On one thread B
+    !> is made in one pass over the modes, each column B(:, n) still summed in the order of k:
+    !> the same sums, without a scan of the modes for each n.
     subroutine separable_displacements(factors, amplitudes, u, threaded)
         !> The factors.
         type(separable_shapes), intent(in) :: factors
@@ -118,22 +121,33 @@ contains
         !> Whether to share the work among the threads of a parallel region.
         logical, intent(in) :: threaded
 
-        real(dp), allocatable :: by_column(:, :), grid(:, :)
+        real(dp) :: by_column(size(factors%along, 1), size(factors%across, 2)), &
+                    grid(size(factors%along, 1), size(factors%across, 1))
         integer :: i, k, n, r
+        logical :: spread
 
-        allocate (by_column(size(factors%along, 1), size(factors%across, 2)), &
-                  grid(size(factors%along, 1), size(factors%across, 1)))
-        !$omp parallel if (threaded) default(none) shared(factors, amplitudes, u, by_column, grid) private(i, k, n, r)
-        !$omp do schedule(static)
-        do n = 1, size(factors%across, 2)
-            by_column(:, n) = 0.0_dp
+        spread = shared_out(threaded)
+        if (.not. spread) then
+            by_column(:, :) = 0.0_dp
             do k = 1, size(factors%mode_along)
-                if (factors%mode_across(k) == n) then
-                    by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
-                end if
+                n = factors%mode_across(k)
+                by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
             end do
-        end do
-        !$omp end do
+        end if
+        !$omp parallel if (spread) default(none) shared(factors, amplitudes, u, by_column, grid, spread) &
+        !$omp private(i, k, n, r)
+        if (spread) then
+            !$omp do schedule(static)
+            do n = 1, size(factors%across, 2)
+                by_column(:, n) = 0.0_dp
+                do k = 1, size(factors%mode_along)
+                    if (factors%mode_across(k) == n) then
+                        by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
+                    end if
+                end do
+            end do
+            !$omp end do
+        end if
         !$omp do schedule(static)
         do r = 1, size(factors%across, 1)
             grid(:, r) = 0.0_dp
@@ -152,7 +166,10 @@ contains
 
     !> Q_k = sum_i phi_ik*q_i from the factors: H(c, n) = sum_i q_i*Y_n(y_row(i)) over the points
     !> of column c in the order of i, then Q_k = sum_c X_f(k)(x_c)*H(c, n(k)) in the order of c.
-    !> The y functions, then the modes, are shared among threads when `threaded`.
+    !> The y functions, then the modes, are shared among threads when `threaded`. On one thread
+    !> H is made in one pass over the points (its transpose, the N_y values of a point
+    !> contiguous) and the Q_k are summed over c for all modes at once (the sums of the N_m
+    !> modes side by side instead of one after the other): each sum in the same order.
     subroutine separable_modal_forces(factors, loads, modal, threaded)
         !> The factors.
         type(separable_shapes), intent(in) :: factors
@@ -163,11 +180,14 @@ contains
         !> Whether to share the work among the threads of a parallel region.
         logical, intent(in) :: threaded
 
-        real(dp), allocatable :: by_column(:, :)
+        real(dp) :: by_column(size(factors%along, 1), size(factors%across, 2))
         integer :: c, i, k, n
 
-        allocate (by_column(size(factors%along, 1), size(factors%across, 2)))
-        !$omp parallel if (threaded) default(none) shared(factors, loads, modal, by_column) private(c, i, k, n)
+        if (.not. shared_out(threaded)) then
+            call modal_forces_serial(factors, loads, modal)
+            return
+        end if
+        !$omp parallel default(none) shared(factors, loads, modal, by_column) private(c, i, k, n)
         !$omp do schedule(static)
         do n = 1, size(factors%across, 2)
             by_column(:, n) = 0.0_dp
@@ -187,6 +207,41 @@ contains
         !$omp end do
         !$omp end parallel
     end subroutine separable_modal_forces
+
+    !> Whether a product asked to share its work among threads gets more than one: one thread
+    !> takes the serial loops, whose sums are the same.
+    logical function shared_out(threaded)
+        logical, intent(in) :: threaded
+
+        shared_out = .false.
+        !$ shared_out = threaded .and. omp_get_max_threads() > 1
+    end function shared_out
+
+    !> `separable_modal_forces` on the calling thread: H^T (N_y x n_col) by points, then the
+    !> Q_k by columns c, every sum in the order of the threaded loops.
+    pure subroutine modal_forces_serial(factors, loads, modal)
+        type(separable_shapes), intent(in) :: factors
+        real(dp), intent(in) :: loads(:)
+        real(dp), intent(out) :: modal(:)
+
+        real(dp) :: across_t(size(factors%across, 2), size(factors%across, 1)), &
+                    by_point(size(factors%across, 2), size(factors%along, 1)), &
+                    along_t(size(factors%along, 2), size(factors%along, 1))
+        integer :: c, i, k
+
+        across_t(:, :) = transpose(factors%across)
+        along_t(:, :) = transpose(factors%along)
+        by_point(:, :) = 0.0_dp
+        do i = 1, size(loads)
+            by_point(:, factors%column(i)) = by_point(:, factors%column(i)) + loads(i)*across_t(:, factors%row(i))
+        end do
+        modal(:) = 0.0_dp
+        do c = 1, size(factors%along, 1)
+            do k = 1, size(modal)
+                modal(k) = modal(k) + along_t(factors%mode_along(k), c)*by_point(factors%mode_across(k), c)
+            end do
+        end do
+    end subroutine modal_forces_serial
 
     !> An error unless every contact point lies on the belt of an analytic model in one
     !> coordinate, 0 <= value <= extent; the message names the model, the coordinate and
