@@ -59,6 +59,11 @@ int main(void)
     check_status(status, GC_ERROR_INPUT, msg, "k_c", "run_contact k_c = -1: names k_c");
     status = gc_run_contact(conv, 1e6, 1.5, -10.0, 4, &road, u, f, NULL, msg, sizeof msg);
     check_status(status, GC_ERROR_INPUT, msg, "preload", "run_contact preload = -10: names the preload");
+    status = gc_contact_start(conv, 1e6, 1.5, -10.0, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "preload", "contact_start preload = -10: names the preload");
+    check_status(status, GC_ERROR_INPUT, msg, "gc_contact_start: ", "contact_start preload = -10: names the door");
+    status = gc_run_contact(conv, 1e6, 1.5, -10.0, 4, &road, u, f, NULL, msg, sizeof msg);
+    check_status(status, GC_ERROR_INPUT, msg, "gc_run_contact: ", "run_contact preload = -10: names the door");
     status = gc_run_contact(conv, 1e6, 1.5, 10.0, 0, &road, u, f, NULL, msg, sizeof msg);
     check_status(status, GC_ERROR_INPUT, msg, "n_steps", "run_contact n_steps = 0: names n_steps");
     status = gc_run_contact(conv, 1e6, 1.5, 10.0, 4, NULL, u, f, NULL, msg, sizeof msg);

@@ -522,6 +522,7 @@ contains
         if (associated(box)) box%stepping = .false.
         if (.not. allocated(error)) then
             call check_contact_law(spring%law, preload, error)
+            if (allocated(error)) error%message = caller//': '//error%message
             if (.not. allocated(error)) call options_from_c(options, settings, error)
             if (.not. allocated(error)) call start_point_budget(caller, box, spring%law, preload, settings, error)
         end if
