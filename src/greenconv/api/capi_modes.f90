@@ -26,7 +26,7 @@ module greenconv_capi_modes
     use greenconv_api_doors, only: finish, from_c, put_if, start_door, need_pointer, need_pointers, need_capacity, &
                                    modes_to_c
     use greenconv_api_handle, only: convolver_box, box_at
-    use greenconv_capi_multi, only: made, tolerance_of, null_handle
+    use greenconv_capi_multi, only: made, request_of, null_handle
     use greenconv_capi, only: point_null_handle
     implicit none
     private
@@ -73,8 +73,8 @@ contains
         call start_door(caller, conv, 'gc_multi_convolver', method, error)
         call need_pointer(caller, path, 'path', 'pass the name of a universal file of normal modes', error)
         if (.not. allocated(error)) then
-            call modes_file_box(caller, from_c(path), int(direction), damping_ratio, f_band, from_c(method), dt, &
-                                tolerance_of(options), int(n_steps), box, error)
+            call modes_file_box(caller, from_c(path), int(direction), damping_ratio, f_band, &
+                                request_of(method, dt, n_steps, options), box, error)
         end if
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_modes_file

@@ -22,7 +22,7 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, box_points, file_summary
+                                          file_e_modes, box_points, file_summary, run_request
     use greenconv_capi, only: gc_build_options
     use greenconv_api_doors, only: finish, from_c, to_c, put_if, start_door, need_pointer, need_pointers, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
@@ -34,7 +34,7 @@ module greenconv_capi_multi
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_step
     public :: gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
     public :: gc_multi_contact_start_law, gc_multi_run_contact_law, greenconv_multi_check_for_door
-    public :: made, tolerance_of, null_handle
+    public :: made, request_of, null_handle
 
     !> What a NULL handle's message says.
     character(len=*), parameter :: null_handle = 'conv is NULL: make a convolver with gc_multi_new_modes, ' &
@@ -97,8 +97,8 @@ contains
             call c_f_pointer(residue_re, r_re, [n_modes])
             call c_f_pointer(residue_im, r_im, [n_modes])
             call c_f_pointer(shape, phi, [n_points, n_modes])
-            call modes_multi_box(caller, from_c(method), p_re, p_im, r_re, r_im, phi, dt, tolerance_of(options), &
-                                 int(n_steps), box, error)
+            call modes_multi_box(caller, p_re, p_im, r_re, r_im, phi, request_of(method, dt, n_steps, options), box, &
+                                 error)
         end if
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_modes
@@ -142,8 +142,7 @@ contains
         call need_pointer(caller, g, 'g', 'pass n_points*n_points*n_samples samples', error)
         if (.not. allocated(error)) then
             call c_f_pointer(g, samples, [n_samples, n_points, n_points])
-            call samples_multi_box(caller, from_c(method), samples, dt, tolerance_of(options), int(n_steps), box, &
-                                   error)
+            call samples_multi_box(caller, samples, request_of(method, dt, n_steps, options), box, error)
         end if
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_samples
@@ -260,8 +259,8 @@ contains
         call start_door(caller, conv, 'gc_multi_convolver', method, error)
         call need_pointer(caller, path, 'path', 'pass the name of a universal file', error)
         if (.not. allocated(error)) then
-            call file_multi_box(caller, from_c(path), from_c(method), dt, tolerance_of(options), int(n_steps), &
-                                int(max_order), box, error)
+            call file_multi_box(caller, from_c(path), request_of(method, dt, n_steps, options), int(max_order), box, &
+                                error)
         end if
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_file
@@ -299,8 +298,8 @@ contains
         if (.not. allocated(error)) then
             from => box_at(source)
             call check_box(caller, 'source is NULL: pass a convolver made by gc_multi_new_file', from, error=error)
-            if (.not. allocated(error)) call method_multi_box(caller, from, from_c(method), dt, &
-                                                              tolerance_of(options), int(n_steps), box, error)
+            if (.not. allocated(error)) call method_multi_box(caller, from, request_of(method, dt, n_steps, options), &
+                                                              box, error)
         end if
         status = made(box, conv, error, errmsg, errmsg_len)
     end function gc_multi_new_method
@@ -761,20 +760,30 @@ contains
         call need_pointers(caller, arrays, names, 'pass arrays of n_points values', error)
     end function checked
 
-    !> The truncation fraction of C build options (the library's default for NULL).
-    function tolerance_of(options) result(tol)
+    !> What a multi-point constructor door builds: its method, time step and run length, and the
+    !> truncation fraction of its C build options (the library's default for NULL).
+    function request_of(method, dt, n_steps, options) result(request)
+        !> The method's name, a NUL-terminated string (checked not NULL by the door).
+        type(c_ptr), intent(in) :: method
+        !> Time step dt [s].
+        real(c_double), intent(in) :: dt
+        !> Number of steps N_t of the run.
+        integer(c_int), intent(in) :: n_steps
         !> A `const gc_build_options *`, or NULL.
         type(c_ptr), intent(in) :: options
-        !> Its truncation fraction of max |g_ij|.
-        real(dp) :: tol
+        !> The request, unchecked.
+        type(run_request) :: request
 
         type(gc_build_options), pointer :: settings
 
-        tol = default_truncation_tol
+        request%method = from_c(method)
+        request%dt = dt
+        request%n_steps = int(n_steps)
+        request%truncation_tol = default_truncation_tol
         if (.not. c_associated(options)) return
         call c_f_pointer(options, settings)
-        tol = settings%truncation_tol
-    end function tolerance_of
+        request%truncation_tol = settings%truncation_tol
+    end function request_of
 
     !> Store a new box at *conv (when made) and return the status with the message.
     function made(box, conv, error, errmsg, errmsg_len) result(status)

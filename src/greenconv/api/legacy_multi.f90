@@ -24,7 +24,7 @@ module greenconv_legacy_multi
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
                                           file_e_modes, modes_file_box, box_points, &
-                                          file_summary
+                                          file_summary, run_request
     use greenconv_api_doors, only: report, handle_address, address_handle, need_count
     use greenconv_api_handle, only: convolver_box, box_at, free_box, reset_box, describe_box, check_steps
     use greenconv_api_budget, only: set_box_accuracy
@@ -85,8 +85,8 @@ contains
         n_m = max(nmode, 0)
         call need_count('gcmmod', 'NC', nc, 1, 'point', error)
         if (.not. allocated(error)) then
-            call modes_multi_box('gcmmod', method, polre(1:n_m), polim(1:n_m), resre(1:n_m), resim(1:n_m), &
-                                 shape(:, 1:n_m), dt, tol, nstep, box, error)
+            call modes_multi_box('gcmmod', polre(1:n_m), polim(1:n_m), resre(1:n_m), resim(1:n_m), shape(:, 1:n_m), &
+                                 run_request(method, dt, tol, nstep), box, error)
         end if
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmmod
@@ -120,7 +120,7 @@ contains
         box => null()
         call need_count('gcmsmp', 'NC', nc, 1, 'point', error)
         if (.not. allocated(error)) then
-            call samples_multi_box('gcmsmp', method, g(:, :, 1:nc), dt, tol, nstep, box, error)
+            call samples_multi_box('gcmsmp', g(:, :, 1:nc), run_request(method, dt, tol, nstep), box, error)
         end if
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmsmp
@@ -150,7 +150,7 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        call file_multi_box('gcmfil', trim(path), trim(method), dt, tol, nstep, maxord, box, error)
+        call file_multi_box('gcmfil', trim(path), run_request(trim(method), dt, tol, nstep), maxord, box, error)
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmfil
 
@@ -185,7 +185,8 @@ contains
         type(error_type), allocatable :: error
         type(convolver_box), pointer :: box
 
-        call modes_file_box('gcmmfl', trim(path), idir, xi, fband, trim(method), dt, tol, nstep, box, error)
+        call modes_file_box('gcmmfl', trim(path), idir, xi, fband, run_request(trim(method), dt, tol, nstep), box, &
+                            error)
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmmfl
 
@@ -309,7 +310,8 @@ contains
 
         box => null()
         from => checked('gcmmth', hfrom, error=error)
-        if (.not. allocated(error)) call method_multi_box('gcmmth', from, trim(method), dt, tol, nstep, box, error)
+        if (.not. allocated(error)) call method_multi_box('gcmmth', from, run_request(trim(method), dt, tol, nstep), &
+                                                          box, error)
         call new_handle(box, handle, error, ierr, errmsg)
     end subroutine gcmmth
 

@@ -53,17 +53,30 @@ module greenconv_api_multi_handle
     public :: method_multi_box, check_file_box, file_e_modes, modes_file_box, box_points
     public :: file_summary
     public :: check_box, set_multi_options, start_multi_box, advance_multi_box, run_multi_box
+    public :: run_request
+
+    !> What every multi-point constructor builds its convolver for, as a door gives it: the
+    !> method, the time step, the truncation and the run length, checked by name in the box's
+    !> constructor and kept in the box for the error budget's companions.
+    type :: run_request
+        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case (the constructor
+        !> of samples takes `direct` and `fft` alone).
+        character(len=:), allocatable :: method
+        !> Time step dt [s], > 0.
+        real(dp) :: dt = 0.0_dp
+        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
+        real(dp) :: truncation_tol = 0.0_dp
+        !> Number of steps N_t of the run, >= 1.
+        integer :: n_steps = 0
+    end type run_request
 
 contains
 
     !> A new box for modes shared by the points (poles, residues, mode shapes), the arrays
     !> checked by name; null on failure.
-    subroutine modes_multi_box(caller, method, pole_re, pole_im, residue_re, residue_im, shape, dt, truncation_tol, &
-                               n_steps, box, error)
+    subroutine modes_multi_box(caller, pole_re, pole_im, residue_re, residue_im, shape, request, box, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
-        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
-        character(len=*), intent(in) :: method
         !> Real parts of the poles lambda_k [rad/s], < 0 (N_m).
         real(dp), intent(in) :: pole_re(:)
         !> Imaginary parts of the poles [rad/s], > 0 (N_m).
@@ -74,12 +87,8 @@ contains
         real(dp), intent(in) :: residue_im(:)
         !> Mode shapes shape(i, k) = phi_ik at the points (N_c x N_m), phi_ik*phi_jk*r_k in m/(N*s).
         real(dp), intent(in) :: shape(:, :)
-        !> Time step dt [s], > 0.
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
-        real(dp), intent(in) :: truncation_tol
-        !> Number of steps N_t of the run, >= 1.
-        integer, intent(in) :: n_steps
+        !> Method (`modal` (= `recursive`), `exact`, `direct` or `fft`), dt, truncation and N_t.
+        type(run_request), intent(in) :: request
         !> The new box; null when `error` is set.
         type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) naming the argument out of range.
@@ -101,22 +110,21 @@ contains
         else if (.not. all(ieee_is_finite(shape))) then
             call fatal_error(error, caller//': shape: give finite mode shapes phi_ik')
         else
-            call check_run(caller, dt, truncation_tol, n_steps, error)
+            call check_run(caller, request, error)
         end if
         if (allocated(error)) return
         description%modes%pole = cmplx(pole_re, pole_im, dp)
         description%modes%residue = cmplx(residue_re, residue_im, dp)
         description%shape = shape
-        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error)
+        call modes_box(caller, description, request, box, error)
     end subroutine modes_multi_box
 
     !> A new box for checked modes at the points: the kernel's size checked against the cap,
     !> the convolver and its own error estimate made; null on failure.
-    subroutine modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error, residual)
-        character(len=*), intent(in) :: caller, method
+    subroutine modes_box(caller, description, request, box, error, residual)
+        character(len=*), intent(in) :: caller
         type(point_modes), intent(in) :: description
-        real(dp), intent(in) :: dt, truncation_tol
-        integer, intent(in) :: n_steps
+        type(run_request), intent(in) :: request
         type(convolver_box), pointer, intent(out) :: box
         type(error_type), allocatable, intent(out) :: error
         !> Static compliance [m/N] of modes left out of `description` (a modes file's above its
@@ -124,18 +132,19 @@ contains
         real(dp), allocatable, intent(in), optional :: residual(:, :)
 
         box => null()
-        if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(method), &
-            description%modes%slowest_decay(), dt, truncation_tol, n_steps, description%n_points(), error)
+        if (description%modes%n_modes() > 0) call check_kernel_values(lower_text(request%method), &
+            description%modes%slowest_decay(), request%dt, request%truncation_tol, request%n_steps, &
+            description%n_points(), error)
         if (allocated(error)) then
             error%message = caller//': '//error%message
             return
         end if
         allocate (box)
-        call make_multipoint_convolver(lower_text(method), description, dt, truncation_tol, n_steps, box%conv, &
-                                       box%description, error, box%estimate, residual)
+        call make_multipoint_convolver(lower_text(request%method), description, request%dt, request%truncation_tol, &
+                                       request%n_steps, box%conv, box%description, error, box%estimate, residual)
         call keep_or_drop(caller, box, error)
         if (.not. associated(box)) return
-        call keep_recipe(box, method, dt, truncation_tol, n_steps)
+        call keep_recipe(box, request)
         box%source_modes = description
         if (present(residual)) then
             if (allocated(residual)) box%source_residual = residual
@@ -143,16 +152,14 @@ contains
     end subroutine modes_box
 
     !> Keep what the error budget's companions of a box's whole runs are built with.
-    subroutine keep_recipe(box, method, dt, truncation_tol, n_steps)
+    subroutine keep_recipe(box, request)
         type(convolver_box), intent(inout) :: box
-        character(len=*), intent(in) :: method
-        real(dp), intent(in) :: dt, truncation_tol
-        integer, intent(in) :: n_steps
+        type(run_request), intent(in) :: request
 
-        box%method = lower_text(method)
-        box%dt = dt
-        box%truncation_tol = truncation_tol
-        box%n_steps = n_steps
+        box%method = lower_text(request%method)
+        box%dt = request%dt
+        box%truncation_tol = request%truncation_tol
+        box%n_steps = request%n_steps
     end subroutine keep_recipe
 
     !> A new box on a universal file of normal modes (greenconv_model_modes_file): every node of
@@ -161,8 +168,7 @@ contains
     !> `split_band`, added to W0 by greenconv_conv_builder) and reported in the description as
     !> a scene's summary reports them: the same convolver as a scene with `&structure model =
     !> 'modes_file'` makes on those nodes. Null on failure.
-    subroutine modes_file_box(caller, path, direction, damping_ratio, f_band, method, dt, truncation_tol, n_steps, &
-                              box, error)
+    subroutine modes_file_box(caller, path, direction, damping_ratio, f_band, request, box, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The universal file (nodes in dataset 15 or 2411, one dataset 55 per mode).
@@ -173,14 +179,8 @@ contains
         real(dp), intent(in) :: damping_ratio
         !> Highest natural frequency stepped [Hz], > 0; 0 for the Nyquist frequency 1/(2*dt).
         real(dp), intent(in) :: f_band
-        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
-        character(len=*), intent(in) :: method
-        !> Time step dt [s], > 0.
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1).
-        real(dp), intent(in) :: truncation_tol
-        !> Number of steps N_t of the run, >= 1.
-        integer, intent(in) :: n_steps
+        !> Method (`modal` (= `recursive`), `exact`, `direct` or `fft`), dt, truncation and N_t.
+        type(run_request), intent(in) :: request
         !> The new box; null when `error` is set.
         type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) for a bad argument or file, with the reader's message.
@@ -195,7 +195,7 @@ contains
         integer :: i
 
         box => null()
-        call check_run(caller, dt, truncation_tol, n_steps, error)
+        call check_run(caller, request, error)
         if (allocated(error)) return
         if (all(abs(direction) /= [1, 2, 3])) then
             call fatal_error(error, caller//': direction = '//int_text(direction)//': give 1, 2 or 3 (X, Y, Z), ' &
@@ -206,10 +206,10 @@ contains
             call fatal_error(error, caller//': f_band = '//sci_text(f_band)//' Hz: give a finite band >= 0 Hz ' &
                              //'(0: the Nyquist frequency 1/(2*dt))')
         end if
-        call need_method(caller, method, .true., .true., error)
+        call need_method(caller, request%method, .true., .true., error)
         if (allocated(error)) return
         band = f_band
-        if (band <= 0.0_dp) band = 0.5_dp/dt
+        if (band <= 0.0_dp) band = 0.5_dp/request%dt
         call read_file_modes(path, direction, damping_ratio, modes, error)
         ! every node is a point: sized before the N_c x N_c matrices are made (nested: Fortran's
         ! .and. may look at both sides, and modes is unset after a failed read)
@@ -226,7 +226,7 @@ contains
             error%message = caller//': '//error%message
             return
         end if
-        call modes_box(caller, method, description, dt, truncation_tol, n_steps, box, error, residual)
+        call modes_box(caller, description, request, box, error, residual)
         if (allocated(error)) return
         box%node = modes%label
         box%node_x = modes%x
@@ -237,7 +237,7 @@ contains
             ! Before a run: the static flexibility the band leaves out, for a method that does
             ! not hold it in W0 (an upper bound of the static share of the forces' error); a
             ! run's band companion then measures the band's whole term.
-            engine = engine_of(lower_text(method))
+            engine = engine_of(lower_text(request%method))
             if (.not. (engine%samples_g() .or. engine%instant_part)) box%prior_terms = share
             box%run_terms = box%prior_terms
         end if
@@ -247,19 +247,13 @@ contains
     !> A new box convolving with samples g(m, i, j) = g_ij(m*dt) (`direct` or `fft`), the
     !> table truncated by the paper's rule over max_ij |g_ij(t_m)| and never beyond the run;
     !> null on failure.
-    subroutine samples_multi_box(caller, method, g, dt, truncation_tol, n_steps, box, error)
+    subroutine samples_multi_box(caller, g, request, box, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
-        !> Method: `direct` or `fft`, any case.
-        character(len=*), intent(in) :: method
         !> Samples g(m, i, j) = g_ij(m*dt) [m/(N*s)], m = 0..N_s-1 (N_s >= 2), N_c x N_c.
         real(dp), intent(in) :: g(0:, :, :)
-        !> Time step dt [s] of the samples and of the run, > 0.
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
-        real(dp), intent(in) :: truncation_tol
-        !> Number of steps N_t of the run, >= 1.
-        integer, intent(in) :: n_steps
+        !> Method (`direct` or `fft`), the time step dt of the samples and of the run, truncation and N_t.
+        type(run_request), intent(in) :: request
         !> The new box; null when `error` is set.
         type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) naming the argument out of range.
@@ -273,34 +267,29 @@ contains
         else if (.not. all(ieee_is_finite(g))) then
             call fatal_error(error, caller//': g: give finite samples [m/(N*s)]')
         else
-            call check_run(caller, dt, truncation_tol, n_steps, error)
+            call check_run(caller, request, error)
         end if
-        call need_method(caller, method, .true., .false., error)
+        call need_method(caller, request%method, .true., .false., error)
         if (allocated(error)) return
         allocate (box)
-        call table_convolver(lower_text(method), g, dt, truncation_tol, n_steps, box%conv, box%description, error)
+        call table_convolver(lower_text(request%method), g, request%dt, request%truncation_tol, request%n_steps, &
+                             box%conv, box%description, error)
         call keep_or_drop(caller, box, error)
         if (.not. associated(box)) return
-        call keep_recipe(box, method, dt, truncation_tol, n_steps)
+        call keep_recipe(box, request)
         box%source_g = g
     end subroutine samples_multi_box
 
     !> A new box on a universal file of a Green's matrix (greenconv_conv_green_file): the file
     !> read, its receptances identified with shared poles (up to `max_order` modes in the
     !> stabilisation diagram), and `method` built on it; null on failure.
-    subroutine file_multi_box(caller, path, method, dt, truncation_tol, n_steps, max_order, box, error)
+    subroutine file_multi_box(caller, path, request, max_order, box, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> The universal file (nodes in dataset 15 or 2411, datasets 58 of receptances or impulse responses).
         character(len=*), intent(in) :: path
-        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
-        character(len=*), intent(in) :: method
-        !> Time step dt [s], > 0.
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1) (0 keeps the whole run).
-        real(dp), intent(in) :: truncation_tol
-        !> Number of steps N_t of the run, >= 1.
-        integer, intent(in) :: n_steps
+        !> Method (`modal` (= `recursive`), `exact`, `direct` or `fft`), dt, truncation and N_t.
+        type(run_request), intent(in) :: request
         !> Largest order of the pole fit's stabilisation diagram, >= 1, or 0 for the library's default.
         integer, intent(in) :: max_order
         !> The new box; null when `error` is set.
@@ -312,7 +301,7 @@ contains
         type(green_options) :: options
 
         box => null()
-        call check_run(caller, dt, truncation_tol, n_steps, error)
+        call check_run(caller, request, error)
         if (.not. allocated(error) .and. (max_order < 0 .or. max_order > max_lsce_modes)) then
             call fatal_error(error, caller//': max_order = '//int_text(max_order) &
                              //': give the largest order of the pole fit (1 to '//int_text(max_lsce_modes) &
@@ -320,38 +309,31 @@ contains
         end if
         if (allocated(error)) return
         ! A method no file serves is refused before the identification, which takes seconds.
-        call need_method(caller, method, .true., .true., error)
+        call need_method(caller, request%method, .true., .true., error)
         if (allocated(error)) return
         if (max_order > 0) options%fit%max_order = max_order
         allocate (box)
         allocate (box%green)
         call read_green_structure(path, options, box%green, error)
-        if (.not. allocated(error)) call build_on_file(lower_text(method), dt, truncation_tol, n_steps, box, error)
-        call keep_or_drop(caller, box, error)
+        call build_on_file(caller, request, box, error)
     end subroutine file_multi_box
 
     !> A new box for another method, time step or run length on the file a box made by
     !> `file_multi_box` read and identified (no second identification); null on failure.
-    subroutine method_multi_box(caller, source, method, dt, truncation_tol, n_steps, box, error)
+    subroutine method_multi_box(caller, source, request, box, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
         !> A box made by `file_multi_box`.
         type(convolver_box), intent(in) :: source
-        !> Method: `modal` (= `recursive`), `exact`, `direct` or `fft`, any case.
-        character(len=*), intent(in) :: method
-        !> Time step dt [s], > 0.
-        real(dp), intent(in) :: dt
-        !> Truncation fraction of max |g_ij| for `direct` and `fft`, in [0, 1).
-        real(dp), intent(in) :: truncation_tol
-        !> Number of steps N_t of the run, >= 1.
-        integer, intent(in) :: n_steps
+        !> Method (`modal` (= `recursive`), `exact`, `direct` or `fft`), dt, truncation and N_t.
+        type(run_request), intent(in) :: request
         !> The new box; null when `error` is set.
         type(convolver_box), pointer, intent(out) :: box
         !> Set (`stat_input`) for a bad argument or a source not made from a file.
         type(error_type), allocatable, intent(out) :: error
 
         box => null()
-        call check_run(caller, dt, truncation_tol, n_steps, error)
+        call check_run(caller, request, error)
         if (allocated(error)) return
         if (.not. allocated(source%green)) then
             call fatal_error(error, caller//': the source convolver was not made from a file: make it with ' &
@@ -360,8 +342,7 @@ contains
         end if
         allocate (box)
         allocate (box%green, source=source%green)
-        call build_on_file(lower_text(method), dt, truncation_tol, n_steps, box, error)
-        call keep_or_drop(caller, box, error)
+        call build_on_file(caller, request, box, error)
     end subroutine method_multi_box
 
     !> Check that a box was made from a file (after `check_box`).
@@ -439,17 +420,20 @@ contains
         n_poles = size(green%fit%pole)
     end subroutine file_e_modes
 
-    !> The convolver of a box whose file is read, and its description.
-    subroutine build_on_file(method, dt, truncation_tol, n_steps, box, error)
-        character(len=*), intent(in) :: method
-        real(dp), intent(in) :: dt, truncation_tol
-        integer, intent(in) :: n_steps
-        type(convolver_box), intent(inout) :: box
-        type(error_type), allocatable, intent(out) :: error
+    !> The convolver of a box whose file is read (unless `error` is set), and its description;
+    !> the box freed on failure.
+    subroutine build_on_file(caller, request, box, error)
+        character(len=*), intent(in) :: caller
+        type(run_request), intent(in) :: request
+        type(convolver_box), pointer, intent(inout) :: box
+        type(error_type), allocatable, intent(inout) :: error
 
-        call green_file_convolver(box%green, method, dt, truncation_tol, n_steps, box%conv, box%description, error, &
-                                  box%estimate)
-        call keep_recipe(box, method, dt, truncation_tol, n_steps)
+        if (.not. allocated(error)) then
+            call green_file_convolver(box%green, lower_text(request%method), request%dt, request%truncation_tol, &
+                                      request%n_steps, box%conv, box%description, error, box%estimate)
+        end if
+        call keep_recipe(box, request)
+        call keep_or_drop(caller, box, error)
     end subroutine build_on_file
 
     !> The modes of the library's tyre belt (greenconv_model_plate's default `tyre_plate`) up
@@ -680,20 +664,19 @@ contains
         end do
     end subroutine check_laws
 
-    !> Time step, truncation and run length checked by name.
-    subroutine check_run(caller, dt, truncation_tol, n_steps, error)
+    !> A request's time step, truncation and run length checked by name.
+    subroutine check_run(caller, request, error)
         character(len=*), intent(in) :: caller
-        real(dp), intent(in) :: dt, truncation_tol
-        integer, intent(in) :: n_steps
+        type(run_request), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
 
-        if (.not. (dt > 0.0_dp .and. ieee_is_finite(dt))) then
-            call fatal_error(error, caller//': dt = '//sci_text(dt)//' s: give a finite time step > 0 s')
-        else if (.not. (truncation_tol >= 0.0_dp .and. truncation_tol < 1.0_dp)) then
-            call fatal_error(error, caller//': truncation_tol = '//sci_text(truncation_tol) &
+        if (.not. (request%dt > 0.0_dp .and. ieee_is_finite(request%dt))) then
+            call fatal_error(error, caller//': dt = '//sci_text(request%dt)//' s: give a finite time step > 0 s')
+        else if (.not. (request%truncation_tol >= 0.0_dp .and. request%truncation_tol < 1.0_dp)) then
+            call fatal_error(error, caller//': truncation_tol = '//sci_text(request%truncation_tol) &
                              //': give a fraction of max|g_ij| in [0, 1)')
         end if
-        call need_count(caller, 'n_steps', n_steps, 1, 'step', error)
+        call need_count(caller, 'n_steps', request%n_steps, 1, 'step', error)
     end subroutine check_run
 
     !> Keep a box whose convolver was made; otherwise free it and put the caller's name in front.
