@@ -683,6 +683,39 @@ contains
         if (allocated(error)) return
         call check(error, maxval(abs(early%force - hertz%force)) > 1.0e-10_dp*maxval(abs(hertz%force)), &
                    'an iteration stopped early misses the bound')
+        if (allocated(error)) return
+        call check_kept_inverse(used, error)
     end subroutine test_rank_k_updates
+
+    !> The symmetric factors of the modes' span (V = U) and the M^-1 a run left after its
+    !> rank-one updates: symmetric to the bit, and the inverse of M = I + U^T*diag(t)*U formed
+    !> anew from the kept slopes by plain loops, ||M*M^-1 - I||_max within 1e-10 (the updates'
+    !> round-off; a wrong update leaves O(1)).
+    subroutine check_kept_inverse(used, error)
+        type(lowrank_compliance), intent(in) :: used
+        type(test_error), allocatable, intent(out) :: error
+
+        real(dp), allocatable :: m(:, :), product(:, :)
+        integer :: k
+
+        call check(error, used%symmetric .and. all(used%right == used%left), 'the factors are symmetric, V = U')
+        if (allocated(error)) return
+        call check(error, used%newton%ready .and. allocated(used%newton%inverse) .and. used%newton%updates > 0, &
+                   'the run left an updated M^-1')
+        if (allocated(error)) return
+        call check(error, all(used%newton%inverse == transpose(used%newton%inverse)), 'M^-1 symmetric to the bit')
+        if (allocated(error)) return
+        m = matmul(transpose(used%left), spread(used%newton%slopes, 2, used%rank)*used%left)
+        do k = 1, used%rank
+            m(k, k) = m(k, k) + 1.0_dp
+        end do
+        product = matmul(m, used%newton%inverse)
+        do k = 1, used%rank
+            product(k, k) = product(k, k) - 1.0_dp
+        end do
+        call note('rank-one updates kept', real(used%newton%updates, dp))
+        call note('max|M M^-1 - I| after the updates', maxval(abs(product)))
+        call check(error, maxval(abs(product)), 0.0_dp, 'M^-1 after the updates against M formed anew', thr=1.0e-10_dp)
+    end subroutine check_kept_inverse
 
 end module test_lowrank_mod

@@ -87,6 +87,9 @@ module greenconv_contact_lowrank_solve
         logical :: low_rank = .false.
         !> Rank r of the factors (0 when dense).
         integer :: rank = 0
+        !> Whether V = U (W0 = U*U^T, `factor_modal_compliance`): M is then symmetric and so is
+        !> M^-1, whose rank-one updates take one product by it instead of two.
+        logical :: symmetric = .false.
         !> U (N_c x r) [m/N].
         real(dp), allocatable :: left(:, :)
         !> V (N_c x r) [dimensionless]: W0 = U*V^T.
@@ -96,9 +99,9 @@ module greenconv_contact_lowrank_solve
         !> The separable mode shapes Phi (N_c x N_m) when the factors lie in their span
         !> (`factor_modal_compliance`); unallocated for factors of a dense W0.
         type(separable_shapes), allocatable :: shapes
-        !> A (N_m x r) [m*sqrt(kg)/N for shapes in 1/sqrt(kg)]: U = Phi*A.
+        !> A (N_m x r) [sqrt(m/N) for shapes in 1/sqrt(kg), W0 in m/N]: U = Phi*A.
         real(dp), allocatable :: modal_left(:, :)
-        !> B^T (r x N_m) [sqrt(kg) for shapes in 1/sqrt(kg)]: V = Phi*B.
+        !> B^T (r x N_m) [as A]: V = Phi*B.
         real(dp), allocatable :: modal_right_t(:, :)
         !> The last Newton matrix factored (low-rank case only).
         type(newton_matrix) :: newton
@@ -167,10 +170,11 @@ contains
     !> starting at diag(w); at pivot p, with phi_p the mode shapes at point p,
     !>
     !>     a = C*phi_p,   pivot = phi_p^T*a,   u = Phi*a (column p of the remainder),
-    !>     U(:, k) = u,   V(:, k) = u/pivot,   A(:, k) = a,   B(:, k) = a/pivot,
+    !>     U(:, k) = u/sqrt(pivot),   A(:, k) = a/sqrt(pivot),
     !>     C <- C - a*a^T/pivot,   d_i <- d_i - u_i^2/pivot,
     !>
-    !> d the remainder's diagonal, whose largest entry is the next pivot. A step costs 2*N_m^2
+    !> d the remainder's diagonal, whose largest entry is the next pivot; V = U and B = A
+    !> (W0 = U*U^T, the pivots positive), so that M = I_r + U_A^T*diag(t_A)*U_A is symmetric. A step costs 2*N_m^2
     !> and one product by the separable factors instead of the N_c^2 of an elimination step on
     !> the dense W0, and no N_c x N_c array is made. It stops, as the dense elimination, when a
     !> pivot is at most `rank_tolerance` of max|W0_ij| = max_i d_i; U and V are kept as well for
@@ -220,12 +224,13 @@ contains
                 compliance%rank = k - 1
                 allocate (compliance%left(n_c, k - 1), compliance%right(n_c, k - 1), compliance%right_t(k - 1, n_c), &
                           compliance%modal_left(n_m, k - 1), compliance%modal_right_t(k - 1, n_m))
-                compliance%left(:, :) = left(:, 1:k - 1)
-                compliance%modal_left(:, :) = coefficients(:, 1:k - 1)
+                compliance%symmetric = .true.
                 do i = 1, k - 1
-                    compliance%right(:, i) = left(:, i)/pivots(i)
-                    compliance%modal_right_t(i, :) = coefficients(:, i)/pivots(i)
+                    compliance%left(:, i) = left(:, i)/sqrt(pivots(i))
+                    compliance%modal_left(:, i) = coefficients(:, i)/sqrt(pivots(i))
+                    compliance%modal_right_t(i, :) = compliance%modal_left(:, i)
                 end do
+                compliance%right(:, :) = compliance%left
                 compliance%right_t(:, :) = transpose(compliance%right)
                 compliance%shapes = shapes
                 done = .true.
@@ -637,6 +642,8 @@ contains
             if (.not. newton%on_active_set) then
                 call inverse_of_factors(newton%factors, newton%pivot, newton%inverse, error)
                 if (allocated(error)) return
+                ! M symmetric: its inverse made so to the bit, for the updates' y = x
+                if (compliance%symmetric) newton%inverse = (newton%inverse + transpose(newton%inverse))/2
                 newton%updates = 0
             end if
             newton%ready = .true.
@@ -672,7 +679,9 @@ contains
 
     !> M^-1 brought to the slopes `slopes` by one Sherman-Morrison update per changed slope:
     !> M' = M + (t_i' - t_i)*v_i*u_i^T, M'^-1 = M^-1 - c*x*y^T with x = M^-1*v_i,
-    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x). Not done (`updated`
+    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x); y = x when the factors
+    !> are symmetric (u_i = v_i, M^-1 symmetric), one product by M^-1 instead of two, and the
+    !> update x*x^T keeps M^-1 symmetric to the bit. Not done (`updated`
     !> false, the kept matrix marked stale) when too many slopes changed, after N_c updates
     !> since M was formed, or at a pivot below `update_pivot`.
     subroutine update_inverse(compliance, slopes, updated)
@@ -693,9 +702,25 @@ contains
                 i = changed(j)
                 change = slopes(i) - newton%slopes(i)
                 call ordered_product(newton%inverse, v_t(:, i), x)
-                y(:) = matmul(u(i, :), newton%inverse)
-                pivot = 1.0_dp + change*dot_product(u(i, :), x)
+                if (compliance%symmetric) then
+                    y(:) = x
+                    pivot = 1.0_dp + change*dot_product(v_t(:, i), x)
+                else
+                    y(:) = matmul(u(i, :), newton%inverse)
+                    pivot = 1.0_dp + change*dot_product(u(i, :), x)
+                end if
                 if (.not. (abs(pivot) >= update_pivot)) return
+                if (compliance%symmetric) then
+                    ! c*(x_l*x_k): the same bits in (l, k) and (k, l)
+                    change = change/pivot
+                    do k = 1, size(y)
+                        !$omp simd
+                        do l = 1, size(x)
+                            newton%inverse(l, k) = newton%inverse(l, k) - change*(x(l)*y(k))
+                        end do
+                    end do
+                    cycle
+                end if
                 x(:) = (change/pivot)*x
                 do k = 1, size(y)
                     !$omp simd
