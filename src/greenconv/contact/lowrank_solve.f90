@@ -20,7 +20,8 @@
 !> Newton matrix to the next (points entering or leaving the contact, as from one time step to
 !> the next), each change t_i -> t_i' is the rank-one term (t_i' - t_i)*v_i*u_i^T of M
 !> (u_i, v_i the rows i of U and V), and M^-1 is updated by the Sherman-Morrison formula in
-!> 3*r^2 operations instead of being formed and factored again in N_a*r^2 + r^3. M is formed
+!> 3*r^2 operations (2*r^2 when V = U, below) instead of being formed and factored again in
+!> N_a*r^2 + r^3. M is formed
 !> anew when more than N_a/3 slopes change at once, after N_c updates (round-off of the
 !> updates does not accumulate further) and when an update's pivot 1 + (t_i' - t_i)*u_i^T*M^-1*v_i
 !> is below `update_pivot` (a nearly singular intermediate). The Newton iteration stops on its
@@ -30,7 +31,8 @@
 !> **In the modes' span.** When the convolver holds separable mode shapes Phi (a plate's patch on
 !> a grid, greenconv_model_point_modes) and W0 = Phi*diag(w)*Phi^T with w >= 0, every column of
 !> the elimination is Phi times a coefficient vector, so `factor_modal_compliance` makes
-!> U = Phi*A and V = Phi*B (A, B: N_m x r) by a pivoted Cholesky on the N_m x N_m coefficients,
+!> U = V = Phi*A (A: N_m x r; W0 = U*U^T, M symmetric) by a pivoted Cholesky on the N_m x N_m
+!> coefficients,
 !> without forming or eliminating the N_c x N_c W0 (O(r*N_m^2) instead of O(N_c^2*r)). The
 !> products U*z and V^T*y of a step are then Phi*(A*z) and B^T*(Phi^T*y) on the separable factors
 !> (n_col*(N_m + n_row*N_y) + N_m*r multiply-adds each instead of N_c*r); U and V are kept too,
@@ -39,6 +41,10 @@
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
+!>
+!> The products by U, V^T, A, B^T and M^-1 and the updates of M^-1 are ordered_kernel.c's: each
+!> sum in MATMUL's order, at the CPU's vector width (SSE2, AVX2 or AVX-512) and never fused,
+!> so every CPU gives the same bits.
 !>
 !> Threads (a build with OpenMP): W0*x, the Woodbury products and the Newton matrix are shared
 !> out by fixed blocks of rows or columns, each sum done by one thread in the serial order, and
@@ -52,8 +58,44 @@ module greenconv_contact_lowrank_solve
     use greenconv_model_point_modes, only: separable_shapes, separable_displacements, separable_modal_forces, &
                                            separable_work
     !$ use omp_lib, only: omp_in_parallel
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc
     implicit none
     private
+
+    interface
+        !> y = A*x for m rows of a column-major matrix, each sum in the order of the columns
+        !> from zero, never fused (ordered_kernel.c).
+        pure subroutine ordered_rows(m, n, lda, a, x, y) bind(c, name='greenconv_contact_ordered_rows')
+            import :: c_int, c_double, c_ptr
+            !> Rows taken.
+            integer(c_int), value :: m
+            !> Columns.
+            integer(c_int), value :: n
+            !> Leading dimension of A (>= m).
+            integer(c_int), value :: lda
+            !> A's first row taken, column-major (lda x n), not written.
+            type(c_ptr), value :: a
+            !> x (n).
+            real(c_double), intent(in) :: x(n)
+            !> A*x (m).
+            real(c_double), intent(out) :: y(m)
+        end subroutine ordered_rows
+
+        !> inv <- inv - c*(x*x^T), each entry inv_lk - c*(x_l*x_k) (ordered_kernel.c).
+        pure subroutine symmetric_update(r, ld, inverse, x, c) bind(c, name='greenconv_contact_symmetric_update')
+            import :: c_int, c_double
+            !> Order r of the matrix.
+            integer(c_int), value :: r
+            !> Its leading dimension (>= r).
+            integer(c_int), value :: ld
+            !> The matrix (ld x r), updated.
+            real(c_double), intent(inout) :: inverse(ld, r)
+            !> x (r).
+            real(c_double), intent(in) :: x(r)
+            !> c.
+            real(c_double), value :: c
+        end subroutine symmetric_update
+    end interface
 
     public :: lowrank_compliance, factor_compliance, factor_modal_compliance, apply_compliance, newton_solve, &
               woodbury_step
@@ -216,7 +258,7 @@ contains
         do k = 1, max_rank + 1
             p = maxloc(diagonal, 1)
             phi(:) = shape_row(shapes, p)
-            call ordered_product(remainder, phi, a)
+            call ordered_product(remainder, 1, phi, a)
             pivot = dot_product(phi, a)
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%checked = .true.
@@ -330,7 +372,7 @@ contains
         real(dp), intent(in) :: x(:)
         real(dp) :: y(size(x))
 
-        real(dp) :: z(compliance%rank)
+        real(dp) :: z(compliance%rank), loads(size(x)), product(size(x))
         integer :: first, last
 
         if (.not. compliance%low_rank) then
@@ -348,21 +390,24 @@ contains
             call left_product(compliance, z, x, y, subtract=.false.)
             return
         end if
-        !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) shared(compliance, x, y, z) &
-        !$omp private(last)
+        ! the loads side by side (x may be a row of the caller's array) for the kernel
+        loads(:) = x
+        !$omp parallel if (sharing(real(size(compliance%left), dp))) default(none) &
+        !$omp shared(compliance, loads, product, z) private(last)
         !$omp do schedule(static)
         do first = 1, compliance%rank, column_block
             last = min(first + column_block - 1, compliance%rank)
-            call ordered_product(compliance%right_t(first:last, :), x, z(first:last))
+            call ordered_product(compliance%right_t, first, loads, z(first:last))
         end do
         !$omp end do
         !$omp do schedule(static)
-        do first = 1, size(x), row_block
-            last = min(first + row_block - 1, size(x))
-            call ordered_product(compliance%left(first:last, :), z, y(first:last))
+        do first = 1, size(loads), row_block
+            last = min(first + row_block - 1, size(loads))
+            call ordered_product(compliance%left, first, z, product(first:last))
         end do
         !$omp end do
         !$omp end parallel
+        y(:) = product
     end function apply_compliance
 
     !> z = V_A^T*x = V^T*x_s, V_A the rows `active` of V and x_s the values x at the active
@@ -396,7 +441,8 @@ contains
         real(dp), intent(out) :: z(:)
 
         if (.not. allocated(compliance%shapes)) then
-            call transposed_product(compliance%right_t, x, z)
+            ! x side by side for the kernel (it may be a row of the caller's array)
+            call transposed_product(compliance%right_t, [x], z)
             return
         end if
         block
@@ -447,7 +493,7 @@ contains
     !> shared among threads: each z_k is one MATMUL sum whoever computes it.
     subroutine transposed_product(right_t, x, z)
         !> V^T (r x N_c).
-        real(dp), intent(in) :: right_t(:, :)
+        real(dp), intent(in), contiguous :: right_t(:, :)
         !> Values at the points (N_c).
         real(dp), intent(in) :: x(:)
         !> V^T*x (r).
@@ -459,43 +505,30 @@ contains
         !$omp shared(x, right_t, z) private(last) schedule(static)
         do first = 1, size(right_t, 1), column_block
             last = min(first + column_block - 1, size(right_t, 1))
-            call ordered_product(right_t(first:last, :), x, z(first:last))
+            call ordered_product(right_t, first, x, z(first:last))
         end do
         !$omp end parallel do
     end subroutine transposed_product
 
-    !> y = A*x with y_i = sum_j a_ij*x_j added in the order of j from zero, the sum MATMUL takes,
-    !> the rows in SIMD lanes (each lane one y_i) and four columns a pass, the partial sum held
-    !> in the lane meanwhile: the bits of MATMUL, vectorised in every build, with a quarter of
-    !> the loads and stores of y.
-    pure subroutine ordered_product(a, x, y)
-        !> A (m x n), contiguous in i along a column or a section of one.
-        real(dp), intent(in) :: a(:, :)
+    !> y = A(first:first + m - 1, :)*x (m = size(y)) with y_i = sum_j a_ij*x_j added in the order
+    !> of j from zero, the sum MATMUL takes: ordered_kernel.c, the rows in SIMD lanes at the
+    !> CPU's width, never fused, so the bits are MATMUL's on every CPU.
+    pure subroutine ordered_product(a, first, x, y)
+        !> A (N x n), contiguous.
+        real(dp), intent(in), contiguous, target :: a(:, :)
+        !> The first row of A taken.
+        integer, intent(in) :: first
         !> x (n).
         real(dp), intent(in) :: x(:)
-        !> A*x (m).
+        !> The rows' products (m).
         real(dp), intent(out) :: y(:)
 
-        real(dp) :: partial
-        integer :: i, j, n4
-
-        y(:) = 0.0_dp
-        n4 = size(a, 2) - mod(size(a, 2), 4)
-        do j = 1, n4, 4
-            !$omp simd private(partial)
-            do i = 1, size(a, 1)
-                partial = y(i) + a(i, j)*x(j)
-                partial = partial + a(i, j + 1)*x(j + 1)
-                partial = partial + a(i, j + 2)*x(j + 2)
-                y(i) = partial + a(i, j + 3)*x(j + 3)
-            end do
-        end do
-        do j = n4 + 1, size(a, 2)
-            !$omp simd
-            do i = 1, size(a, 1)
-                y(i) = y(i) + a(i, j)*x(j)
-            end do
-        end do
+        if (size(y) == 0) return
+        if (size(x) == 0) then
+            y(:) = 0.0_dp
+            return
+        end if
+        call ordered_rows(int(size(y), c_int), int(size(x), c_int), int(size(a, 1), c_int), c_loc(a(first, 1)), x, y)
     end subroutine ordered_product
 
     !> The full Newton step of R(delta) = delta - a + W0*(F(delta) - F0) from a compression
@@ -526,7 +559,7 @@ contains
         !> Set when the Newton matrix is singular.
         type(error_type), allocatable, intent(out) :: error
 
-        real(dp) :: z(compliance%rank)
+        real(dp) :: z(compliance%rank), y(compliance%rank)
 
         taken = .false.
         if (.not. compliance%low_rank .or. compliance%rank == 0 .or. all(slopes == 0.0_dp)) return
@@ -534,7 +567,8 @@ contains
         call form_newton_matrix(compliance, weight0, slopes, error)
         if (allocated(error)) return
         call right_product(compliance, q, z)
-        call left_product(compliance, matmul(compliance%newton%inverse, z), free, next, subtract=.true.)
+        call ordered_product(compliance%newton%inverse, 1, z, y)
+        call left_product(compliance, y, free, next, subtract=.true.)
         taken = .true.
     end subroutine woodbury_step
 
@@ -594,7 +628,8 @@ contains
             else
                 scaled_b = slopes(newton%active)*b(newton%active)
                 call gathered_product(scaled_b, compliance, newton%active, z)
-                y = matmul(newton%inverse, z)
+                allocate (y(r))
+                call ordered_product(newton%inverse, 1, z, y)
                 call left_product(compliance, y, b, s, subtract=.true.)
             end if
         end associate
@@ -701,7 +736,7 @@ contains
             do j = 1, size(changed)
                 i = changed(j)
                 change = slopes(i) - newton%slopes(i)
-                call ordered_product(newton%inverse, v_t(:, i), x)
+                call ordered_product(newton%inverse, 1, v_t(:, i), x)
                 if (compliance%symmetric) then
                     y(:) = x
                     pivot = 1.0_dp + change*dot_product(v_t(:, i), x)
@@ -712,13 +747,8 @@ contains
                 if (.not. (abs(pivot) >= update_pivot)) return
                 if (compliance%symmetric) then
                     ! c*(x_l*x_k): the same bits in (l, k) and (k, l)
-                    change = change/pivot
-                    do k = 1, size(y)
-                        !$omp simd
-                        do l = 1, size(x)
-                            newton%inverse(l, k) = newton%inverse(l, k) - change*(x(l)*y(k))
-                        end do
-                    end do
+                    call symmetric_update(int(size(x), c_int), int(size(newton%inverse, 1), c_int), &
+                                          newton%inverse, x, change/pivot)
                     cycle
                 end if
                 x(:) = (change/pivot)*x
@@ -738,9 +768,10 @@ contains
     end subroutine update_inverse
 
     !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
-    !> points gathered from V (scaled by t) and U column by column, then column j of M as
-    !> MATMUL(U_A(:, j), t_A*V_A), the columns shared among threads: every entry is one
-    !> thread's ordered sum, so the factors do not depend on the number of threads.
+    !> points gathered from V (scaled by t, transposed) and U column by column, then column j
+    !> of M as (t_A*V_A)^T*U_A(:, j) by `ordered_product`, the columns shared among threads:
+    !> every entry is one thread's ordered sum, so the factors depend neither on the number of
+    !> threads nor on the CPU.
     subroutine woodbury_matrix(left, right, slopes, active, m)
         !> U (N_c x r) [m/N].
         real(dp), intent(in) :: left(:, :)
@@ -753,24 +784,24 @@ contains
         !> M (r x r).
         real(dp), allocatable, intent(out) :: m(:, :)
 
-        real(dp), allocatable :: scaled(:, :), gathered(:, :)
+        real(dp), allocatable :: scaled_t(:, :), gathered(:, :)
         integer :: a, k, r
 
         r = size(left, 2)
-        allocate (m(r, r), scaled(size(active), r), gathered(size(active), r))
+        allocate (m(r, r), scaled_t(r, size(active)), gathered(size(active), r))
         !$omp parallel if (sharing(real(size(active), dp)*r**2)) default(none) &
-        !$omp shared(left, right, slopes, active, m, scaled, gathered, r) private(a)
+        !$omp shared(left, right, slopes, active, m, scaled_t, gathered, r) private(a)
         !$omp do schedule(static)
         do k = 1, r
             do a = 1, size(active)
-                scaled(a, k) = right(active(a), k)*slopes(active(a))
+                scaled_t(k, a) = right(active(a), k)*slopes(active(a))
                 gathered(a, k) = left(active(a), k)
             end do
         end do
         !$omp end do
         !$omp do schedule(static)
         do k = 1, r
-            m(:, k) = matmul(gathered(:, k), scaled)
+            call ordered_product(scaled_t, 1, gathered(:, k), m(:, k))
             m(k, k) = m(k, k) + 1.0_dp
         end do
         !$omp end do
@@ -779,7 +810,8 @@ contains
 
     !> s = b - u*y, by fixed blocks of rows shared among threads.
     subroutine subtract_product(u, y, b, s)
-        real(dp), intent(in) :: u(:, :), y(:), b(:)
+        real(dp), intent(in), contiguous :: u(:, :)
+        real(dp), intent(in) :: y(:), b(:)
         real(dp), intent(out) :: s(:)
 
         real(dp) :: product(row_block)
@@ -789,7 +821,7 @@ contains
         !$omp schedule(static)
         do first = 1, size(u, 1), row_block
             last = min(first + row_block - 1, size(u, 1))
-            call ordered_product(u(first:last, :), y, product(1:last - first + 1))
+            call ordered_product(u, first, y, product(1:last - first + 1))
             s(first:last) = b(first:last) - product(1:last - first + 1)
         end do
         !$omp end parallel do
