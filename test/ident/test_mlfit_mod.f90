@@ -866,7 +866,7 @@ contains
         type(ml_result) :: singular
         type(error_type), allocatable :: failure
         class(convolver), allocatable :: conv
-        character(len=:), allocatable :: accuracy, text
+        character(len=:), allocatable :: accuracy, text, summary
         character(len=1000) :: line
         integer :: unit, stat, i
         character(len=*), parameter :: methods(3) = [character(len=6) :: 'modal', 'auto', 'auto']
@@ -879,7 +879,8 @@ contains
         if (allocated(failure)) call check(error, .false., failure%message)
         if (allocated(error)) return
         open (newunit=unit, status='scratch', action='readwrite', iostat=stat)
-        write (unit, '(a)') identification_summary(built)
+        call identification_summary(built, summary)
+        write (unit, '(a)') summary
         rewind (unit)
         read (unit, '(a)', iostat=stat) line
         close (unit)

@@ -32,21 +32,9 @@ module greenconv_ident_dense
     private
 
     interface
-        !> The upper triangle of A^T A in a fixed order (gram_kernel.c).
-        pure subroutine gram_upper(m, n, a, product) bind(c, name='greenconv_ident_gram_upper')
-            import :: c_int, c_double
-            !> Rows of A.
-            integer(c_int), value :: m
-            !> Columns of A.
-            integer(c_int), value :: n
-            !> A (m x n, contiguous).
-            real(c_double), intent(in) :: a(m, n)
-            !> A^T A's upper triangle (n x n).
-            real(c_double), intent(inout) :: product(n, n)
-        end subroutine gram_upper
-
-        !> A^T b, each column's dot product in the order of `dot` (gram_kernel.c).
-        pure subroutine gram_projection(m, n, a, b, projection) bind(c, name='greenconv_ident_gram_projection')
+        !> The upper triangle of A^T A in a fixed order and A^T b, each column's dot product in
+        !> the order of `dot` (gram_kernel.c).
+        pure subroutine gram_kernel(m, n, a, b, product, projection) bind(c, name='greenconv_ident_gram')
             import :: c_int, c_double
             !> Rows of A.
             integer(c_int), value :: m
@@ -56,9 +44,11 @@ module greenconv_ident_dense
             real(c_double), intent(in) :: a(m, n)
             !> b (m).
             real(c_double), intent(in) :: b(m)
+            !> A^T A's upper triangle (n x n).
+            real(c_double), intent(inout) :: product(n, n)
             !> A^T b (n).
             real(c_double), intent(out) :: projection(n)
-        end subroutine gram_projection
+        end subroutine gram_kernel
     end interface
 
     public :: gram, spd_factor, spd_solve, spd_inverse, svd_solve, identity, dot, product_of, quadratic_form
@@ -120,8 +110,7 @@ contains
         n = size(a, 2)
         if (n == 0) return
         upper = 0.0_dp
-        call gram_upper(int(size(a, 1), c_int), int(n, c_int), a, upper)
-        call gram_projection(int(size(a, 1), c_int), int(n, c_int), a, b, along)
+        call gram_kernel(int(size(a, 1), c_int), int(n, c_int), a, b, upper, along)
         do j = 1, n
             do i = 1, j
                 product(i, j) = scale*upper(i, j)
@@ -216,11 +205,14 @@ contains
     end subroutine spd_inverse
 
     !> Minimum-norm least-squares solution x of A x = b, singular values below rcond times the
-    !> largest left out (LAPACK's dgelsd's rule). A tall A (m > n) is first reduced by
+    !> largest left out (LAPACK's dgelsd's rule), by Hestenes' one-sided Jacobi SVD: pairs of
+    !> columns of A rotated until every pair is orthogonal to within n*eps; the column norms are
+    !> then the singular values, the rotations V. Cost: a sweep is n^2/2 rotations of two columns
+    !> of m; a sweep count bounded by max_sweeps. A tall A (m > n) is first reduced by
     !> Householder reflections to R (n x n) and Q^T b, which have A's singular values and right
-    !> singular vectors (cost 2*m*n^2, as one Gram product); R then goes to `jacobi_solve`,
-    !> whose sweeps cost n^3 each instead of m*n^2.
-    pure subroutine svd_solve(a, b, x, rcond)
+    !> singular vectors (cost 2*m*n^2, as one Gram product), and R solved in its place, whose
+    !> sweeps cost n^3 each instead of m*n^2.
+    pure recursive subroutine svd_solve(a, b, x, rcond)
         !> The matrix A (m x n).
         real(dp), intent(in) :: a(:, :)
         !> Right-hand side b (m).
@@ -230,97 +222,85 @@ contains
         !> Relative threshold on the singular values.
         real(dp), intent(in) :: rcond
 
-        real(dp), allocatable :: r(:, :), c(:), v(:)
-        real(dp) :: norm, alpha, v_norm2, factor
-        integer :: k, j, m, n
+        integer :: m, n
 
         m = size(a, 1)
         n = size(a, 2)
-        if (m <= n) then
-            call jacobi_solve(a, b, x, rcond)
+        if (m > n) then
+            block
+                real(dp), allocatable :: r(:, :), c(:), v(:)
+                real(dp) :: norm, alpha, v_norm2, factor
+                integer :: k, j
+
+                r = a
+                c = b
+                do k = 1, n
+                    norm = sqrt(dot(r(k:, k), r(k:, k)))
+                    if (.not. (norm > 0.0_dp)) cycle
+                    alpha = -sign(norm, r(k, k))
+                    v = r(k:, k)
+                    v(1) = v(1) - alpha
+                    v_norm2 = dot(v, v)
+                    if (.not. (v_norm2 > 0.0_dp)) cycle
+                    r(k, k) = alpha
+                    r(k + 1:, k) = 0.0_dp
+                    do j = k + 1, n
+                        factor = 2.0_dp*dot(v, r(k:, j))/v_norm2
+                        r(k:, j) = r(k:, j) - factor*v
+                    end do
+                    factor = 2.0_dp*dot(v, c(k:))/v_norm2
+                    c(k:) = c(k:) - factor*v
+                end do
+                call svd_solve(r(1:n, 1:n), c(1:n), x, rcond)
+            end block
             return
         end if
-        r = a
-        c = b
-        do k = 1, n
-            norm = sqrt(dot(r(k:, k), r(k:, k)))
-            if (.not. (norm > 0.0_dp)) cycle
-            alpha = -sign(norm, r(k, k))
-            v = r(k:, k)
-            v(1) = v(1) - alpha
-            v_norm2 = dot(v, v)
-            if (.not. (v_norm2 > 0.0_dp)) cycle
-            r(k, k) = alpha
-            r(k + 1:, k) = 0.0_dp
-            do j = k + 1, n
-                factor = 2.0_dp*dot(v, r(k:, j))/v_norm2
-                r(k:, j) = r(k:, j) - factor*v
+        block
+            real(dp) :: u(m, n), v(n, n), s(n)
+            real(dp) :: alpha, beta, gamma, zeta, t, c, sn, tolerance, column(m), row(n)
+            integer :: i, j, sweep
+            logical :: rotated
+
+            u = a
+            v = 0.0_dp
+            do j = 1, n
+                v(j, j) = 1.0_dp
             end do
-            factor = 2.0_dp*dot(v, c(k:))/v_norm2
-            c(k:) = c(k:) - factor*v
-        end do
-        call jacobi_solve(r(1:n, 1:n), c(1:n), x, rcond)
-    end subroutine svd_solve
-
-    !> svd_solve's core, by Hestenes' one-sided Jacobi SVD: pairs of columns of A rotated until
-    !> every pair is orthogonal to within n*eps; the column norms are then the singular values,
-    !> the rotations V. Cost: a sweep is n^2/2 rotations of two columns of m; a sweep count
-    !> bounded by max_sweeps.
-    pure subroutine jacobi_solve(a, b, x, rcond)
-        !> The matrix A (m x n, m >= n).
-        real(dp), intent(in) :: a(:, :)
-        !> Right-hand side b (m).
-        real(dp), intent(in) :: b(:)
-        !> Solution x (n).
-        real(dp), intent(out) :: x(:)
-        !> Relative threshold on the singular values.
-        real(dp), intent(in) :: rcond
-
-        real(dp) :: u(size(a, 1), size(a, 2)), v(size(a, 2), size(a, 2)), s(size(a, 2))
-        real(dp) :: alpha, beta, gamma, zeta, t, c, sn, tolerance, column(size(a, 1)), row(size(a, 2))
-        integer :: i, j, sweep, n
-        logical :: rotated
-
-        n = size(a, 2)
-        u = a
-        v = 0.0_dp
-        do j = 1, n
-            v(j, j) = 1.0_dp
-        end do
-        tolerance = n*epsilon(1.0_dp)
-        do sweep = 1, max_sweeps
-            rotated = .false.
-            do j = 2, n
-                do i = 1, j - 1
-                    alpha = dot(u(:, i), u(:, i))
-                    beta = dot(u(:, j), u(:, j))
-                    gamma = dot(u(:, i), u(:, j))
-                    if (.not. (abs(gamma) > tolerance*sqrt(alpha*beta))) cycle
-                    rotated = .true.
-                    zeta = (beta - alpha)/(2.0_dp*gamma)
-                    t = sign(1.0_dp, zeta)/(abs(zeta) + sqrt(1.0_dp + zeta**2))
-                    c = 1.0_dp/sqrt(1.0_dp + t**2)
-                    sn = c*t
-                    column = u(:, i)
-                    u(:, i) = c*column - sn*u(:, j)
-                    u(:, j) = sn*column + c*u(:, j)
-                    row = v(:, i)
-                    v(:, i) = c*row - sn*v(:, j)
-                    v(:, j) = sn*row + c*v(:, j)
+            tolerance = n*epsilon(1.0_dp)
+            do sweep = 1, max_sweeps
+                rotated = .false.
+                do j = 2, n
+                    do i = 1, j - 1
+                        alpha = dot(u(:, i), u(:, i))
+                        beta = dot(u(:, j), u(:, j))
+                        gamma = dot(u(:, i), u(:, j))
+                        if (.not. (abs(gamma) > tolerance*sqrt(alpha*beta))) cycle
+                        rotated = .true.
+                        zeta = (beta - alpha)/(2.0_dp*gamma)
+                        t = sign(1.0_dp, zeta)/(abs(zeta) + sqrt(1.0_dp + zeta**2))
+                        c = 1.0_dp/sqrt(1.0_dp + t**2)
+                        sn = c*t
+                        column = u(:, i)
+                        u(:, i) = c*column - sn*u(:, j)
+                        u(:, j) = sn*column + c*u(:, j)
+                        row = v(:, i)
+                        v(:, i) = c*row - sn*v(:, j)
+                        v(:, j) = sn*row + c*v(:, j)
+                    end do
                 end do
+                if (.not. rotated) exit
             end do
-            if (.not. rotated) exit
-        end do
-        do j = 1, n
-            s(j) = sqrt(dot(u(:, j), u(:, j)))
-        end do
-        x = 0.0_dp
-        if (n == 0) return
-        do j = 1, n
-            if (.not. (s(j) > rcond*maxval(s))) cycle
-            x = x + v(:, j)*(dot(u(:, j), b)/s(j)**2)
-        end do
-    end subroutine jacobi_solve
+            do j = 1, n
+                s(j) = sqrt(dot(u(:, j), u(:, j)))
+            end do
+            x = 0.0_dp
+            if (n == 0) return
+            do j = 1, n
+                if (.not. (s(j) > rcond*maxval(s))) cycle
+                x = x + v(:, j)*(dot(u(:, j), b)/s(j)**2)
+            end do
+        end block
+    end subroutine svd_solve
 
     !> Identity matrix of order n.
     pure function identity(n) result(m)

@@ -146,7 +146,7 @@ GC_GRAM_VECTOR_KERNEL(gc_gram_vector512, gc_v8, 8, GC_GRAM_AVX512)
 
 /* The upper triangle (i <= j) of A^T A for a column-major m x n matrix a, written into the
  * column-major n x n matrix product; the strict lower triangle is not touched. */
-void greenconv_ident_gram_upper(int m, int n, const double *a, double *product)
+static void greenconv_ident_gram_upper(int m, int n, const double *a, double *product)
 {
     if (n <= 0) return;
 #if GC_GRAM_HAS_VECTOR
@@ -161,7 +161,7 @@ void greenconv_ident_gram_upper(int m, int n, const double *a, double *product)
  * (SSE2, in every x86-64 build; the same sums in any build), added as (s0 + s1) + (s2 + s3),
  * then the rows after the last multiple of four one by one: dense.f90's `dot`. */
 GC_GRAM_OPTIMIZE
-void greenconv_ident_gram_projection(int m, int n, const double *a, const double *b, double *projection)
+static void greenconv_ident_gram_projection(int m, int n, const double *a, const double *b, double *projection)
 {
     typedef double gc_v2 __attribute__((vector_size(16)));
     int body = m - m % 4;
@@ -181,4 +181,12 @@ void greenconv_ident_gram_projection(int m, int n, const double *a, const double
         for (int r = body; r < m; r++) sum += x[r] * b[r];
         projection[j] = sum;
     }
+}
+
+/* dense.f90's `gram`: the upper triangle of A^T A into product (n x n, the strict lower
+ * triangle not touched) and A^T b into projection (n), for a column-major m x n matrix a. */
+void greenconv_ident_gram(int m, int n, const double *a, const double *b, double *product, double *projection)
+{
+    greenconv_ident_gram_upper(m, n, a, product);
+    greenconv_ident_gram_projection(m, n, a, b, projection);
 }

@@ -284,7 +284,7 @@ contains
         type(model_type), intent(in) :: model
         real(dp), intent(out) :: a(:, :)
 
-        integer :: col, n
+        integer :: n
 
         n = size(data%omega)
         ! Per pole and line, with direct = 1/(i*omega - pole), mirror = 1/(i*omega - conjg(pole))
@@ -293,16 +293,7 @@ contains
         if (size(model%pole) > 0 .and. n > 0) &
             call modal_linear(int(n, c_int), int(size(model%pole), c_int), data%omega, data%weight, model%pole, &
                               a(:, 1:2*size(model%pole)))
-        col = 2*size(model%pole)
-        if (model%upper) then
-            col = col + 1
-            a(1:n, col) = data%weight
-            a(n + 1:, col) = 0.0_dp
-        end if
-        if (model%lower) then
-            a(1:n, col + 1) = -data%weight/data%omega**2
-            a(n + 1:, col + 1) = 0.0_dp
-        end if
+        call residual_columns(data, model, a, 2*size(model%pole))
     end subroutine linear_matrix
 
     !> Weighted Jacobian of G_model, columns per mode (Re lambda, Im lambda, Re r, Im r), then
@@ -312,7 +303,7 @@ contains
         type(model_type), intent(in) :: model
         real(dp), intent(inout) :: jac(:, :)
 
-        integer :: col, n
+        integer :: n
 
         n = size(data%omega)
         ! Per pole and line, with direct and mirror the reciprocals at the pole and its
@@ -322,23 +313,32 @@ contains
         if (size(model%pole) > 0 .and. n > 0) &
             call modal_jacobian(int(n, c_int), int(size(model%pole), c_int), data%omega, data%weight, model%pole, &
                                 model%residue, jac(:, 1:4*size(model%pole)))
-        col = 4*size(model%pole)
-        if (model%upper) then
-            col = col + 1
-            call put(jac, col, cmplx(data%weight, 0.0_dp, dp))
-        end if
-        if (model%lower) call put(jac, col + 1, cmplx(-data%weight/data%omega**2, 0.0_dp, dp))
+        call residual_columns(data, model, jac, 4*size(model%pole))
     end subroutine jacobian
 
-    !> Column c of a stacked real matrix from complex values: [Re z; Im z].
-    pure subroutine put(jac, c, z)
-        real(dp), intent(inout) :: jac(:, :)
-        integer, intent(in) :: c
-        complex(dp), intent(in) :: z(:)
+    !> The columns of the residuals after column `last` of a stacked matrix laid out as in
+    !> `linear_matrix` and `jacobian`, each when the model has it: R_u's w, then R_l's
+    !> -w/omega^2, in rows 1..L, and zero imaginary parts below.
+    pure subroutine residual_columns(data, model, a, last)
+        type(data_type), intent(in) :: data
+        type(model_type), intent(in) :: model
+        real(dp), intent(inout) :: a(:, :)
+        integer, intent(in) :: last
 
-        jac(1:size(z), c) = real(z, dp)
-        jac(size(z) + 1:, c) = aimag(z)
-    end subroutine put
+        integer :: col, n
+
+        n = size(data%omega)
+        col = last
+        if (model%upper) then
+            col = col + 1
+            a(1:n, col) = data%weight
+            a(n + 1:, col) = 0.0_dp
+        end if
+        if (model%lower) then
+            a(1:n, col + 1) = -data%weight/data%omega**2
+            a(n + 1:, col + 1) = 0.0_dp
+        end if
+    end subroutine residual_columns
 
     !> A model plus a parameter step laid out as in `jacobian`.
     pure function stepped(model, step) result(trial)

@@ -24,9 +24,13 @@ module greenconv_scene_run_report
 
 contains
 
-    !> The lines of `identification_summary`, built in a deferred-length text.
-    pure subroutine summary_lines(structure, text)
+    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
+    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
+    !> CPU time, dropped poles, warnings.
+    pure subroutine identification_summary(structure, text)
+        !> The identified structure.
         type(structure_model), intent(in) :: structure
+        !> The lines.
         character(len=:), allocatable, intent(out) :: text
 
         character(len=400) :: buffer
@@ -51,32 +55,7 @@ contains
                 if (len(fit%warning) > 0) call add_line(text, '# warning: '//fit%warning)
             end if
         end associate
-    end subroutine summary_lines
-
-    !> Length of `identification_summary(structure)`.
-    pure integer function summary_length(structure)
-        type(structure_model), intent(in) :: structure
-
-        character(len=:), allocatable :: lines
-
-        call summary_lines(structure, lines)
-        summary_length = len(lines)
-    end function summary_length
-
-    !> The identification in a few `#` lines (separated by new_line('a')), for the caller to
-    !> print: where G came from (a universal file), the order, noise, worst uncertainty, E and
-    !> CPU time, dropped poles, warnings.
-    function identification_summary(structure) result(text)
-        !> The identified structure.
-        type(structure_model), intent(in) :: structure
-        !> The lines.
-        character(len=summary_length(structure)) :: text
-
-        character(len=:), allocatable :: lines
-
-        call summary_lines(structure, lines)
-        text = lines
-    end function identification_summary
+    end subroutine identification_summary
 
     !> Append a line to a text of lines.
     pure subroutine add_line(text, line)

@@ -99,7 +99,8 @@ contains
             call make_directory(scene%output_dir, error)
             if (allocated(error)) return
             if (structure%identified) then
-                write (unit, '(a)') identification_summary(structure)
+                call identification_summary(structure, summary)
+                write (unit, '(a)') summary
                 call write_identification(scene, structure, error)
                 if (allocated(error)) return
             end if
