@@ -27,8 +27,50 @@ module greenconv_model_point_modes
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_text, only: real_text
     use greenconv_model_modal_set, only: modal_set
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
     implicit none
     private
+
+    interface
+        !> u = Phi*a on one thread, each sum in the order of `separable_displacements`'s loops
+        !> (separable_kernel.c); by_column and grid are work space.
+        pure subroutine displacements_kernel(n_col, n_y, n_row, n_m, n_c, along, mode_along, mode_across, across, &
+                                             amplitudes, column, row, by_column, grid, u) &
+            bind(c, name='greenconv_model_separable_displacements')
+            import :: c_int, c_double
+            !> Columns, y functions, rows, modes and points.
+            integer(c_int), value :: n_col, n_y, n_row, n_m, n_c
+            !> X_f(x_c) (n_col x N_x) and Y_n(y_r) (n_row x N_y).
+            real(c_double), intent(in) :: along(n_col, *), across(n_row, n_y)
+            !> f(k) and n(k) of each mode (N_m), col(i) and row(i) of each point (N_c).
+            integer(c_int), intent(in) :: mode_along(n_m), mode_across(n_m), column(n_c), row(n_c)
+            !> Modal amplitudes a_k (N_m).
+            real(c_double), intent(in) :: amplitudes(n_m)
+            !> Work space: B (n_col x N_y) and the grid's displacements (n_col x n_row).
+            real(c_double), intent(out) :: by_column(n_col, n_y), grid(n_col, n_row)
+            !> u_i (N_c).
+            real(c_double), intent(out) :: u(n_c)
+        end subroutine displacements_kernel
+
+        !> Q = Phi^T*q on one thread, each sum in the order of `modal_forces_serial`'s loops
+        !> (separable_kernel.c); by_point is work space.
+        pure subroutine forces_kernel(n_col, n_y, n_x, n_m, n_c, along_t, mode_along, mode_across, across_t, loads, &
+                                      column, row, by_point, modal) bind(c, name='greenconv_model_separable_forces')
+            import :: c_int, c_double
+            !> Columns, y functions, x functions, modes and points.
+            integer(c_int), value :: n_col, n_y, n_x, n_m, n_c
+            !> X_f(x_c) transposed (N_x x n_col) and Y_n(y_r) transposed (N_y x n_row).
+            real(c_double), intent(in) :: along_t(n_x, n_col), across_t(n_y, *)
+            !> f(k) and n(k) of each mode (N_m), col(i) and row(i) of each point (N_c).
+            integer(c_int), intent(in) :: mode_along(n_m), mode_across(n_m), column(n_c), row(n_c)
+            !> Loads q_i (N_c).
+            real(c_double), intent(in) :: loads(n_c)
+            !> Work space: H transposed (N_y x n_col).
+            real(c_double), intent(out) :: by_point(n_y, n_col)
+            !> Q_k (N_m).
+            real(c_double), intent(out) :: modal(n_m)
+        end subroutine forces_kernel
+    end interface
 
     public :: point_modes, separable_shapes, check_on_belt
     public :: separable_displacements, separable_modal_forces, separable_work
@@ -128,26 +170,32 @@ contains
 
         spread = shared_out(threaded)
         if (.not. spread) then
-            by_column(:, :) = 0.0_dp
+            ! the amplitudes and displacements side by side for the kernel (either may be a
+            ! section of the caller's array)
+            block
+                real(dp) :: packed(size(amplitudes)), points(size(u))
+
+                packed(:) = amplitudes
+                call displacements_kernel(size(factors%along, 1, c_int), size(factors%across, 2, c_int), &
+                                          size(factors%across, 1, c_int), size(amplitudes, kind=c_int), &
+                                          size(u, kind=c_int), factors%along, factors%mode_along, &
+                                          factors%mode_across, factors%across, packed, factors%column, factors%row, &
+                                          by_column, grid, points)
+                u(:) = points
+            end block
+            return
+        end if
+        !$omp parallel default(none) shared(factors, amplitudes, u, by_column, grid) private(i, k, n, r)
+        !$omp do schedule(static)
+        do n = 1, size(factors%across, 2)
+            by_column(:, n) = 0.0_dp
             do k = 1, size(factors%mode_along)
-                n = factors%mode_across(k)
-                by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
+                if (factors%mode_across(k) == n) then
+                    by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
+                end if
             end do
-        end if
-        !$omp parallel if (spread) default(none) shared(factors, amplitudes, u, by_column, grid, spread) &
-        !$omp private(i, k, n, r)
-        if (spread) then
-            !$omp do schedule(static)
-            do n = 1, size(factors%across, 2)
-                by_column(:, n) = 0.0_dp
-                do k = 1, size(factors%mode_along)
-                    if (factors%mode_across(k) == n) then
-                        by_column(:, n) = by_column(:, n) + factors%along(:, factors%mode_along(k))*amplitudes(k)
-                    end if
-                end do
-            end do
-            !$omp end do
-        end if
+        end do
+        !$omp end do
         !$omp do schedule(static)
         do r = 1, size(factors%across, 1)
             grid(:, r) = 0.0_dp
@@ -218,7 +266,7 @@ contains
     end function shared_out
 
     !> `separable_modal_forces` on the calling thread: H^T (N_y x n_col) by points, then the
-    !> Q_k by columns c, every sum in the order of the threaded loops.
+    !> Q_k by columns c, every sum in the order of the threaded loops (separable_kernel.c).
     pure subroutine modal_forces_serial(factors, loads, modal)
         type(separable_shapes), intent(in) :: factors
         real(dp), intent(in) :: loads(:)
@@ -226,21 +274,18 @@ contains
 
         real(dp) :: across_t(size(factors%across, 2), size(factors%across, 1)), &
                     by_point(size(factors%across, 2), size(factors%along, 1)), &
-                    along_t(size(factors%along, 2), size(factors%along, 1))
-        integer :: c, i, k
+                    along_t(size(factors%along, 2), size(factors%along, 1)), packed(size(loads)), &
+                    sums(size(modal))
 
         across_t(:, :) = transpose(factors%across)
         along_t(:, :) = transpose(factors%along)
-        by_point(:, :) = 0.0_dp
-        do i = 1, size(loads)
-            by_point(:, factors%column(i)) = by_point(:, factors%column(i)) + loads(i)*across_t(:, factors%row(i))
-        end do
-        modal(:) = 0.0_dp
-        do c = 1, size(factors%along, 1)
-            do k = 1, size(modal)
-                modal(k) = modal(k) + along_t(factors%mode_along(k), c)*by_point(factors%mode_across(k), c)
-            end do
-        end do
+        ! the loads and modal loads side by side for the kernel (sections of the caller's arrays)
+        packed(:) = loads
+        call forces_kernel(size(factors%along, 1, c_int), size(factors%across, 2, c_int), &
+                           size(factors%along, 2, c_int), size(modal, kind=c_int), size(loads, kind=c_int), along_t, &
+                           factors%mode_along, factors%mode_across, across_t, packed, factors%column, factors%row, &
+                           by_point, sums)
+        modal(:) = sums
     end subroutine modal_forces_serial
 
     !> An error unless every contact point lies on the belt of an analytic model in one
