@@ -107,7 +107,12 @@ contains
         !> Compression [m], > 0.
         real(dp), intent(in) :: delta
 
-        power_tangent = self%exponent*self%stiffness*delta**(self%exponent - 1.0_dp)
+        ! a linear spring without the pow call (delta^0 = 1: the same value to the bit)
+        if (abs(self%exponent - 1.0_dp) < epsilon(1.0_dp)) then
+            power_tangent = self%exponent*self%stiffness
+        else
+            power_tangent = self%exponent*self%stiffness*delta**(self%exponent - 1.0_dp)
+        end if
     end function power_tangent
 
     !> Refuse a law whose parameters make no spring: k_c > 0 and p > 0, both finite; the

@@ -201,7 +201,9 @@ contains
             call step_fault(state, road, point, message, fault)
             return
         end if
-        call law_forces(state%laws, state%delta, force)
+        ! the implicit multi-point iteration leaves the forces of its compressions in `force`
+        if (.not. (size(u_h) > 1 .and. state%coupled .and. state%settings%scheme == 'implicit')) &
+            call law_forces(state%laws, state%delta, force)
         if (size(u_h) == 1) then
             displacement(1) = u_h(1) + weight0(1, 1)*(force(1) - state%preload(1))
         else if (state%coupled .and. state%settings%scheme == 'implicit') then
@@ -320,7 +322,8 @@ contains
     !> `woodbury_step`) and kept when it meets the tolerance; otherwise the damped iteration
     !> runs from the guess as if that step had not been tried.
     !> `coupling` is W0*(F(delta) - F0) [m] of the compressions left in state%delta, the
-    !> residual's own product (the step's displacements less the history: no product more).
+    !> residual's own product (the step's displacements less the history: no product more), and
+    !> `load` their forces F(delta) [N] (no law evaluated again).
     !> Not converged: `iterations` = max_iterations + 1, `largest` [m] the largest |R_i| left,
     !> at `point`. `error` is set only when a Newton system cannot be solved.
     subroutine solve_compressions(weight0, state, free, load, coupling, iterations, largest, point, error, conv)
@@ -334,7 +337,7 @@ contains
         class(multipoint_convolver), intent(inout), optional :: conv
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
-        real(dp) :: coupling_trial(size(free)), alpha, scale
+        real(dp) :: coupling_trial(size(free)), force_trial(size(free)), alpha, scale
         integer :: halvings
         logical :: taken
 
@@ -357,15 +360,17 @@ contains
             call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
             if (allocated(error)) return
             if (taken) then
-                call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, scale, conv)
+                call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, force_trial, &
+                              scale, conv)
                 if (maxval(abs(r_trial)) <= options%tolerance*max(scale, maxval(state%delta0))) then
                     delta(:) = trial
+                    load(:) = force_trial
                     state%coupling = coupling
                     iterations = 1
                     return
                 end if
             end if
-            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, scale, conv)
+            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, load, scale, conv)
             scale = max(scale, maxval(state%delta0))
             do iterations = 0, options%max_iterations
                 if (maxval(abs(r)) <= options%tolerance*scale) then
@@ -379,13 +384,14 @@ contains
                 do halvings = 0, max_halvings
                     trial(:) = delta + alpha*step
                     call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling_trial, &
-                                  scale, conv)
+                                  force_trial, scale, conv)
                     if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
                     alpha = alpha/2
                 end do
                 delta(:) = trial
                 r(:) = r_trial
                 coupling(:) = coupling_trial
+                load(:) = force_trial
                 scale = max(scale, maxval(state%delta0))
             end do
         end associate
@@ -415,21 +421,18 @@ contains
         call factor_compliance(weight0, compliance)
     end subroutine factor_instant
 
-    !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], and the
-    !> size of its terms [m].
-    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, scale, conv)
+    !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], the forces
+    !> F(delta) [N] and the size of its terms [m].
+    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, force, scale, conv)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
         class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
-        real(dp), intent(out) :: r(:), coupling(:), scale
+        real(dp), intent(out) :: r(:), coupling(:), force(:), scale
         class(multipoint_convolver), intent(inout), optional :: conv
 
-        real(dp) :: load(size(delta))
-
-        call law_forces(laws, delta, load)
-        load(:) = load - preload
-        coupling(:) = instant_product(compliance, weight0, load, conv)
+        call law_forces(laws, delta, force)
+        coupling(:) = instant_product(compliance, weight0, force - preload, conv)
         r(:) = delta - free + coupling
         scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
     end subroutine residual
