@@ -33,11 +33,14 @@
 !>   LAPACK stay serial): forces and displacements equal bit for bit (tolerance 0). The modes
 !>   to 3 kHz give r above 100, where OpenBLAS's OpenMP build threads an r x r LU by itself
 !>   (with other round-off) unless called from inside a parallel region;
-!> - factors in the modes' span (the plate patch's separable shapes, U = Phi*A, V = Phi*B, no
-!>   dense elimination): U*V^T within 1e-13 of max|W0| of W0, U and V within 1e-13 of
-!>   max(|Phi|*|A|) and max(|Phi|*|B|) of Phi*A and Phi*B (a sum of N_m products each; the late
-!>   columns, divided by small pivots, are cancellations, so a bound relative to max|V| would be
-!>   too tight); a 200-step run against the same run with the dense elimination's factors and
+!> - factors in the modes' span (the plate patch's separable shapes compressed to an orthonormal
+!>   basis Psi of fewer columns than modes, U = Psi*A, V = Psi*B, no dense elimination): the
+!>   basis factors orthonormal within 1e-13, U*V^T within 1e-13 of max|W0| of W0 (the
+!>   compression and the elimination each stop at 1e-14), U and V within 1e-13 of
+!>   max(|Psi|*|A|) and max(|Psi|*|B|) of Psi*A and Psi*B formed here entry by entry (a sum of S
+!>   products each; the late columns, divided by small pivots, are cancellations, so a bound
+!>   relative to max|V| would be too tight); a 200-step run against the same run with the dense
+!>   elimination's factors and
 !>   with dgesv: 1e-10 of the peak force, the Newton tolerance being 1e-12 of the compression
 !>   scale, and the same points in contact at every step;
 !> - the plate patch with linear springs rolling over the rough road (points lifting off and
@@ -48,7 +51,12 @@
 !>   compression scale). The bound is shown to catch an iteration stopped early: with linear
 !>   springs one Newton step on the right active set is the root, so the control is the patch's
 !>   Hertz run (p = 1.5, a few iterations a step), whose forces with a Newton tolerance of 1e-3
-!>   must miss 1e-10 of the peak against the same run at the default 1e-12.
+!>   must miss 1e-10 of the peak against the same run at the default 1e-12;
+!> - the same linear springs over 1,200 steps, more rank-one updates than points, so that the
+!>   kept M^-1 is checked (M*(M^-1*1) against 1 to 1e-12) instead of formed anew: the check
+!>   kept it at least once, and the M^-1 left at the end against M formed anew by plain loops,
+!>   ||M*M^-1 - I||_max within 1e-10; forces against the same run with the dense
+!>   elimination's factors (other factors, other updates) within 1e-10 of the peak force.
 module test_lowrank_mod
     !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     use, intrinsic :: iso_fortran_env, only: dp => real64
@@ -95,7 +103,9 @@ contains
                      new_unittest('modes'' span refused: some w_k < 0, rank not below N_c/2, explicit', &
                                   test_modal_span_refused), &
                      new_unittest('plate patch, linear springs: updated M^-1, kept push equal dgesv at every step', &
-                                  test_rank_k_updates)]
+                                  test_rank_k_updates), &
+                     new_unittest('plate patch, 1,200 steps: M^-1 checked and kept past N_c updates', &
+                                  test_inverse_kept)]
     end subroutine collect_lowrank
 
     !> The default tyre up to f_max [Hz] at n points over a 0.12 m patch centred at 0.5 m on the belt.
@@ -535,6 +545,7 @@ contains
         type(lowrank_compliance) :: used, used_dense, unused
         type(modal_green_matrix) :: conv
         real(dp) :: x(500), y(500), peak, scale
+        real(dp), allocatable :: psi(:, :)
 
         call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
         call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
@@ -559,16 +570,26 @@ contains
             call check(error, maxval(abs(w0 - matmul(u, transpose(v)))), 0.0_dp, 'U V^T against W0', &
                        thr=1.0e-13_dp*maxval(abs(w0)))
             if (allocated(error)) return
-            scale = maxval(matmul(abs(description%shape), abs(used%modal_left)))
-            call note('max|U - Phi A|/max(|Phi| |A|)', maxval(abs(u - matmul(description%shape, used%modal_left)))/scale)
-            call check(error, maxval(abs(u - matmul(description%shape, used%modal_left))), 0.0_dp, &
-                       'U against Phi*A', thr=1.0e-13_dp*scale)
+            psi = basis_matrix(used)
+            call note('basis columns S', real(size(psi, 2), dp))
+            call check(error, allocated(used%along_q) .and. size(psi, 2) < size(description%shape, 2), &
+                       'the compressed basis has fewer columns than the modes')
             if (allocated(error)) return
-            scale = maxval(matmul(abs(description%shape), abs(transpose(used%modal_right_t))))
-            call note('max|V - Phi B|/max(|Phi| |B|)', &
-                      maxval(abs(v - matmul(description%shape, transpose(used%modal_right_t))))/scale)
-            call check(error, maxval(abs(v - matmul(description%shape, transpose(used%modal_right_t)))), 0.0_dp, &
-                       'V against Phi*B', thr=1.0e-13_dp*scale)
+            call note('max|Q_x^T Q_x - I|', orthonormality(used%along_q))
+            call note('max|Q_y^T Q_y - I|', orthonormality(used%across_q))
+            call check(error, max(orthonormality(used%along_q), orthonormality(used%across_q)), 0.0_dp, &
+                       'the basis factors are orthonormal', thr=1.0e-13_dp)
+            if (allocated(error)) return
+            scale = maxval(matmul(abs(psi), abs(used%modal_left)))
+            call note('max|U - Psi A|/max(|Psi| |A|)', maxval(abs(u - matmul(psi, used%modal_left)))/scale)
+            call check(error, maxval(abs(u - matmul(psi, used%modal_left))), 0.0_dp, &
+                       'U against Psi*A', thr=1.0e-13_dp*scale)
+            if (allocated(error)) return
+            scale = maxval(matmul(abs(psi), abs(transpose(used%modal_right_t))))
+            call note('max|V - Psi B|/max(|Psi| |B|)', &
+                      maxval(abs(v - matmul(psi, transpose(used%modal_right_t))))/scale)
+            call check(error, maxval(abs(v - matmul(psi, transpose(used%modal_right_t)))), 0.0_dp, &
+                       'V against Psi*B', thr=1.0e-13_dp*scale)
             if (allocated(error)) return
         end associate
         call check(error, any(dense%force <= 0.0_dp) .and. any(dense%force > 0.0_dp), &
@@ -687,6 +708,37 @@ contains
         call check_kept_inverse(used, error)
     end subroutine test_rank_k_updates
 
+    !> More rank-one updates than points: the kept M^-1 checked and kept (`inverse_accurate`), and
+    !> still the inverse of M at the end; the forces against the dense elimination's factors.
+    subroutine test_inverse_kept(error)
+        type(test_error), allocatable, intent(out) :: error
+
+        integer, parameter :: n_t = 1200
+        type(point_modes) :: description
+        type(error_type), allocatable :: failure
+        type(multi_contact_response) :: modal, factors
+        type(lowrank_compliance) :: used, used_dense
+        real(dp) :: x(500), y(500), peak
+
+        call patch_points([0.6_dp, 0.08_dp], [0.15_dp, 0.16_dp], 25, 20, x, y)
+        call plate_modes(tyre_plate(damping_ratio=0.05_dp), x, y, 3000.0_dp, description, failure)
+        if (allocated(failure)) error stop 'test_lowrank_mod: '//failure%message
+        call implicit_run(description, n_t, modal, used, exponent=1.0_dp)
+        call implicit_run(description, n_t, factors, used_dense, exponent=1.0_dp, dense_factors=.true.)
+        call note('checks that kept M^-1', real(used%newton%kept, dp))
+        call check(error, used%newton%kept >= 1, 'the kept M^-1 was checked and kept past N_c updates')
+        if (allocated(error)) return
+        peak = maxval(abs(factors%force))
+        call note('max|F - F_dense factors|/max F', maxval(abs(modal%force - factors%force))/peak)
+        call check(error, all((modal%force > 0.0_dp) .eqv. (factors%force > 0.0_dp)), &
+                   'the same points in contact at every step')
+        if (allocated(error)) return
+        call check(error, maxval(abs(modal%force - factors%force)), 0.0_dp, 'forces against the dense factors', &
+                   thr=1.0e-10_dp*peak)
+        if (allocated(error)) return
+        call check_kept_inverse(used, error)
+    end subroutine test_inverse_kept
+
     !> The symmetric factors of the modes' span (V = U) and the M^-1 a run left after its
     !> rank-one updates: symmetric to the bit, and the inverse of M = I + U^T*diag(t)*U formed
     !> anew from the kept slopes by plain loops, ||M*M^-1 - I||_max within 1e-10 (the updates'
@@ -717,5 +769,38 @@ contains
         call note('max|M M^-1 - I| after the updates', maxval(abs(product)))
         call check(error, maxval(abs(product)), 0.0_dp, 'M^-1 after the updates against M formed anew', thr=1.0e-10_dp)
     end subroutine check_kept_inverse
+
+    !> The basis Psi (N_c x S) of factors made in the modes' span, psi_ik = Q_x(col(i), a(k))*
+    !> Q_y(row(i), b(k)), formed here entry by entry from the kept separable description.
+    function basis_matrix(used) result(psi)
+        type(lowrank_compliance), intent(in) :: used
+        real(dp), allocatable :: psi(:, :)
+
+        integer :: i, k
+
+        associate (shapes => used%shapes)
+            allocate (psi(size(shapes%column), size(shapes%mode_along)))
+            do k = 1, size(shapes%mode_along)
+                do i = 1, size(shapes%column)
+                    psi(i, k) = shapes%along(shapes%column(i), shapes%mode_along(k)) &
+                                *shapes%across(shapes%row(i), shapes%mode_across(k))
+                end do
+            end do
+        end associate
+    end function basis_matrix
+
+    !> max|Q^T*Q - I| of the columns of q.
+    real(dp) function orthonormality(q)
+        real(dp), intent(in) :: q(:, :)
+
+        real(dp), allocatable :: gram(:, :)
+        integer :: k
+
+        gram = matmul(transpose(q), q)
+        do k = 1, size(q, 2)
+            gram(k, k) = gram(k, k) - 1.0_dp
+        end do
+        orthonormality = maxval(abs(gram))
+    end function orthonormality
 
 end module test_lowrank_mod

@@ -21,28 +21,32 @@
 !> the next), each change t_i -> t_i' is the rank-one term (t_i' - t_i)*v_i*u_i^T of M
 !> (u_i, v_i the rows i of U and V), and M^-1 is updated by the Sherman-Morrison formula in
 !> 3*r^2 operations (2*r^2 when V = U, below) instead of being formed and factored again in
-!> N_a*r^2 + r^3. M is formed
-!> anew when more than N_a/3 slopes change at once, after N_c updates (round-off of the
-!> updates does not accumulate further) and when an update's pivot 1 + (t_i' - t_i)*u_i^T*M^-1*v_i
-!> is below `update_pivot` (a nearly singular intermediate). The Newton iteration stops on its
+!> N_a*r^2 + r^3. M is formed anew when more than N_a/3 slopes change at once, when M^-1*1 no
+!> longer solves M to 1e-12 (asked after every N_c updates: their round-off grows slowly), and
+!> when an update's pivot 1 + (t_i' - t_i)*u_i^T*M^-1*v_i is below `update_pivot` (a nearly
+!> singular intermediate). The Newton iteration stops on its
 !> residual, not on this matrix, so the inverse's round-off changes the number of iterations
 !> at most, never the tolerance the compressions meet.
 !>
 !> **In the modes' span.** When the convolver holds separable mode shapes Phi (a plate's patch on
-!> a grid, greenconv_model_point_modes) and W0 = Phi*diag(w)*Phi^T with w >= 0, every column of
-!> the elimination is Phi times a coefficient vector, so `factor_modal_compliance` makes
-!> U = V = Phi*A (A: N_m x r; W0 = U*U^T, M symmetric) by a pivoted Cholesky on the N_m x N_m
-!> coefficients,
-!> without forming or eliminating the N_c x N_c W0 (O(r*N_m^2) instead of O(N_c^2*r)). The
-!> products U*z and V^T*y of a step are then Phi*(A*z) and B^T*(Phi^T*y) on the separable factors
-!> (n_col*(N_m + n_row*N_y) + N_m*r multiply-adds each instead of N_c*r); U and V are kept too,
-!> for their rows u_i = phi_i*A and v_i = phi_i*B (M on the active set and its rank-one updates).
+!> a grid, greenconv_model_point_modes) and W0 = Phi*diag(w)*Phi^T with w >= 0, W0 is first
+!> written in a smaller orthonormal basis of the modes' span on the grid, W0 = Psi*C*Psi^T
+!> (`compressed_span`: Psi the products of orthonormal bases of the shapes' x and y factors, S
+!> columns, 207 against 441 modes on the shipped tyre patch), and every column of the
+!> elimination is then Psi times a coefficient vector, so `factor_modal_compliance` makes
+!> U = V = Psi*A (A: S x r; W0 = U*U^T, M symmetric) by a pivoted Cholesky on the S x S
+!> coefficients, without forming or eliminating the N_c x N_c W0 (O(r*S^2) instead of
+!> O(N_c^2*r)). The products U*z and V^T*y of a step are then Psi*(A*z) and A^T*(Psi^T*y), the
+!> products by Psi small dense ones on the grid (n_col*n_row*rho_y + n_col*rho_x*rho_y
+!> multiply-adds) and those by A S*r, instead of N_c*r; U and V are kept too, for their rows
+!> u_i = psi_i*A (M on the active set and its rank-one updates). When S would not be below N_m
+!> the basis is Phi itself (C = diag(w)) and its products those of the separable factors.
 !>
 !> The factors are used only when the rank found is below N_c/2; otherwise (a structure that
 !> is not modal, N_m >= N_c, or a full upper residual added to W0) everything stays dense and
 !> the results are those of the dense solve bit for bit.
 !>
-!> The products by U, V^T, A, B^T and M^-1 and the updates of M^-1 are ordered_kernel.c's: each
+!> The products by U, V^T, A, B^T, Psi and M^-1 and the updates of M^-1 are ordered_kernel.c's: each
 !> sum in MATMUL's order, at the CPU's vector width (SSE2, AVX2 or AVX-512) and never fused,
 !> so every CPU gives the same bits.
 !>
@@ -81,8 +85,34 @@ module greenconv_contact_lowrank_solve
             real(c_double), intent(out) :: y(m)
         end subroutine ordered_rows
 
-        !> inv <- inv - c*(x*x^T), each entry inv_lk - c*(x_l*x_k) (ordered_kernel.c).
-        pure subroutine symmetric_update(r, ld, inverse, x, c) bind(c, name='greenconv_contact_symmetric_update')
+        !> Y(:, v) = A*X(:, v) for nv vectors, each sum that of `ordered_rows` (ordered_kernel.c).
+        pure subroutine ordered_rows_many(m, n, lda, a, nv, ldx, x, ldy, y) &
+            bind(c, name='greenconv_contact_ordered_rows_many')
+            import :: c_int, c_double
+            !> Rows.
+            integer(c_int), value :: m
+            !> Columns.
+            integer(c_int), value :: n
+            !> Leading dimension of A (>= m).
+            integer(c_int), value :: lda
+            !> A, column-major (lda x n).
+            real(c_double), intent(in) :: a(lda, n)
+            !> Number of vectors.
+            integer(c_int), value :: nv
+            !> Leading dimension of X (>= n).
+            integer(c_int), value :: ldx
+            !> The vectors X (ldx x nv).
+            real(c_double), intent(in) :: x(ldx, nv)
+            !> Leading dimension of Y (>= m).
+            integer(c_int), value :: ldy
+            !> A*X (ldy x nv).
+            real(c_double), intent(out) :: y(ldy, nv)
+        end subroutine ordered_rows_many
+
+        !> inv <- inv - sum_p c_p*(x_p*x_p^T), p = 1..d in order, each entry the same roundings
+        !> as d rank-one updates one after the other (ordered_kernel.c).
+        pure subroutine symmetric_updates(r, ld, inverse, d, ldx, x, c) &
+            bind(c, name='greenconv_contact_symmetric_updates')
             import :: c_int, c_double
             !> Order r of the matrix.
             integer(c_int), value :: r
@@ -90,11 +120,16 @@ module greenconv_contact_lowrank_solve
             integer(c_int), value :: ld
             !> The matrix (ld x r), updated.
             real(c_double), intent(inout) :: inverse(ld, r)
-            !> x (r).
-            real(c_double), intent(in) :: x(r)
-            !> c.
-            real(c_double), value :: c
-        end subroutine symmetric_update
+            !> Number of updates d.
+            integer(c_int), value :: d
+            !> Leading dimension of x (>= r).
+            integer(c_int), value :: ldx
+            !> x_p, the columns of x (ldx x d).
+            real(c_double), intent(in) :: x(ldx, d)
+            !> c_p (d).
+            real(c_double), intent(in) :: c(d)
+        end subroutine symmetric_updates
+
     end interface
 
     public :: lowrank_compliance, factor_compliance, factor_modal_compliance, apply_compliance, newton_solve, &
@@ -117,8 +152,10 @@ module greenconv_contact_lowrank_solve
         integer, allocatable :: pivot(:)
         !> M^-1 (r x r) [dimensionless], for Woodbury.
         real(dp), allocatable :: inverse(:, :)
-        !> Rank-one updates of `inverse` since M was last formed.
+        !> Rank-one updates of `inverse` since M was last formed or its inverse last checked.
         integer :: updates = 0
+        !> Times the inverse was checked after N_c updates and kept (`inverse_accurate`).
+        integer :: kept = 0
     end type newton_matrix
 
     !> W0 [m/N] of a run as the step uses it: dense, or U*V^T.
@@ -138,13 +175,19 @@ module greenconv_contact_lowrank_solve
         real(dp), allocatable :: right(:, :)
         !> V^T (r x N_c) [dimensionless], for the products V^T*x (contiguous in k).
         real(dp), allocatable :: right_t(:, :)
-        !> The separable mode shapes Phi (N_c x N_m) when the factors lie in their span
-        !> (`factor_modal_compliance`); unallocated for factors of a dense W0.
+        !> The basis Psi (N_c x S) of the modes' span when the factors lie in it
+        !> (`factor_modal_compliance`: the compressed basis, or the modes' shapes Phi themselves);
+        !> unallocated for factors of a dense W0.
         type(separable_shapes), allocatable :: shapes
-        !> A (N_m x r) [sqrt(m/N) for shapes in 1/sqrt(kg), W0 in m/N]: U = Phi*A.
+        !> A (S x r) [sqrt(m/N) for an orthonormal basis, W0 in m/N]: U = Psi*A.
         real(dp), allocatable :: modal_left(:, :)
-        !> B^T (r x N_m) [as A]: V = Phi*B.
+        !> B^T (r x S) [as A]: V = Psi*B.
         real(dp), allocatable :: modal_right_t(:, :)
+        !> When Psi is the compressed basis, every product of the columns of Q_x (n_col x rho_x)
+        !> and Q_y (n_row x rho_y), dimensionless (`compressed_span`): Q_x, Q_x^T, Q_y and Q_y^T,
+        !> for the products by Psi and Psi^T as small dense products on the grid (`grid_loads`,
+        !> `grid_values`); unallocated otherwise.
+        real(dp), allocatable :: along_q(:, :), along_q_t(:, :), across_q(:, :), across_q_t(:, :)
         !> The last Newton matrix factored (low-rank case only).
         type(newton_matrix) :: newton
     end type lowrank_compliance
@@ -161,6 +204,11 @@ module greenconv_contact_lowrank_solve
     !> Smallest |1 + (t_i' - t_i)*u_i^T*M^-1*v_i| a rank-one update of M^-1 accepts; M is formed
     !> anew below it.
     real(dp), parameter :: update_pivot = 1.0e-6_dp
+    !> Largest |M*(M^-1*1) - 1| of a kept M^-1 after its rank-one updates (`inverse_accurate`);
+    !> M is formed anew above it. A freshly inverted M of the shipped patch is at about 1e-15.
+    real(dp), parameter :: inverse_drift = 1.0e-12_dp
+    !> Changed slopes whose rank-one updates of M^-1 are made together (`symmetric_group`).
+    integer, parameter :: update_group = 8
 
 contains
 
@@ -184,7 +232,10 @@ contains
         if (.not. (largest > 0.0_dp)) return
         allocate (remainder(n_c, n_c), left(n_c, max_rank), right(n_c, max_rank))
         remainder(:, :) = weight0
-        at = largest_entry(remainder)
+        ! the first pivot: the scan of `subtract_outer` with nothing subtracted
+        left(:, 1) = 0.0_dp
+        right(:, 1) = 0.0_dp
+        call subtract_outer(remainder, left(:, 1), right(:, 1), at)
         do k = 1, max_rank + 1
             pivot = remainder(at(1), at(2))
             if (abs(pivot) <= rank_tolerance*largest) then
@@ -205,25 +256,28 @@ contains
         end do
     end subroutine factor_compliance
 
-    !> Factor W0 = Phi*diag(w)*Phi^T = U*V^T in the modes' span, U = Phi*A and V = Phi*B, without
-    !> forming W0: the elimination of `factor_compliance` with the pivots on the diagonal (W0 is
-    !> symmetric positive semi-definite for w >= 0, so its largest entry is a diagonal one and
-    !> complete pivoting is a pivoted Cholesky). The remainder is kept as Phi*C*Phi^T, C (N_m x N_m)
-    !> starting at diag(w); at pivot p, with phi_p the mode shapes at point p,
+    !> Factor W0 = Phi*diag(w)*Phi^T = U*V^T in the modes' span, U = Psi*A and V = Psi*B, without
+    !> forming W0. Psi (N_c x S) is the span's orthonormal basis on the grid (`compressed_span`):
+    !> W0 = Psi*C*Psi^T to round-off, C (S x S) symmetric positive semi-definite, S often well
+    !> below N_m (a short patch resolves fewer shapes than the modes have). Then the elimination of
+    !> `factor_compliance` with the pivots on the diagonal (W0 is symmetric positive
+    !> semi-definite for w >= 0, so its largest entry is a diagonal one and complete pivoting is a
+    !> pivoted Cholesky). The remainder is kept as Psi*R*Psi^T, R (S x S) starting at C; at pivot
+    !> p, with psi_p the basis at point p,
     !>
-    !>     a = C*phi_p,   pivot = phi_p^T*a,   u = Phi*a (column p of the remainder),
+    !>     a = R*psi_p,   pivot = psi_p^T*a,   u = Psi*a (column p of the remainder),
     !>     U(:, k) = u/sqrt(pivot),   A(:, k) = a/sqrt(pivot),
-    !>     C <- C - a*a^T/pivot,   d_i <- d_i - u_i^2/pivot,
+    !>     R <- R - a*a^T/pivot,   d_i <- d_i - u_i^2/pivot,
     !>
     !> d the remainder's diagonal, whose largest entry is the next pivot; V = U and B = A
-    !> (W0 = U*U^T, the pivots positive), so that M = I_r + U_A^T*diag(t_A)*U_A is symmetric. A step costs 2*N_m^2
-    !> and one product by the separable factors instead of the N_c^2 of an elimination step on
-    !> the dense W0, and no N_c x N_c array is made. It stops, as the dense elimination, when a
-    !> pivot is at most `rank_tolerance` of max|W0_ij| = max_i d_i; U and V are kept as well for
-    !> their rows (the Newton matrix M and its rank-one updates). `done` is false (nothing set)
-    !> when some w_k < 0 (W0 indefinite: the diagonal no longer bounds it), when W0 = 0, or when
-    !> the remainder is not round-off after min(N_m, (N_c - 1)/2) pivots: the caller then
-    !> factors the dense W0 (`factor_compliance`).
+    !> (W0 = U*U^T, the pivots positive), so that M = I_r + U_A^T*diag(t_A)*U_A is symmetric. A
+    !> step costs 2*S^2 and one product by the separable factors instead of the N_c^2 of an
+    !> elimination step on the dense W0, and no N_c x N_c array is made. It stops, as the dense
+    !> elimination, when a pivot is at most `rank_tolerance` of max|W0_ij| = max_i d_i; U and V
+    !> are kept as well for their rows (the Newton matrix M and its rank-one updates). `done` is
+    !> false (nothing set) when some w_k < 0 (W0 indefinite: the diagonal no longer bounds it),
+    !> when W0 = 0, or when the remainder is not round-off after min(S, (N_c - 1)/2) pivots: the
+    !> caller then factors the dense W0 (`factor_compliance`).
     subroutine factor_modal_compliance(shapes, weight, compliance, done)
         !> The mode shapes' factors Phi over the grid of points (N_c points, N_m modes).
         type(separable_shapes), intent(in) :: shapes
@@ -234,38 +288,40 @@ contains
         !> Whether W0 was factored here.
         logical, intent(out) :: done
 
+        type(separable_shapes) :: basis
         real(dp), allocatable :: remainder(:, :), left(:, :), coefficients(:, :), diagonal(:), pivots(:)
-        real(dp) :: phi(size(weight)), a(size(weight)), largest, pivot
-        integer :: n_c, n_m, max_rank, k, i, p
+        real(dp), allocatable :: along(:, :), across(:, :)
+        real(dp), allocatable :: psi(:), a(:)
+        real(dp) :: largest, pivot
+        integer :: n_c, n_s, max_rank, k, i, p
 
         done = .false.
-        n_c = size(shapes%column)
-        n_m = size(weight)
-        max_rank = min(n_m, (n_c - 1)/2)
-        if (max_rank < 1 .or. any(.not. (weight >= 0.0_dp))) return
-        allocate (diagonal(n_c))
+        if (any(.not. (weight >= 0.0_dp))) return
+        call compressed_span(shapes, weight, basis, remainder, along, across)
+        n_c = size(basis%column)
+        n_s = size(remainder, 1)
+        max_rank = min(n_s, (n_c - 1)/2)
+        if (max_rank < 1) return
+        allocate (diagonal(n_c), psi(n_s), a(n_s))
         do i = 1, n_c
-            phi(:) = shape_row(shapes, i)
-            diagonal(i) = sum(weight*phi**2)
+            psi(:) = shape_row(basis, i)
+            call ordered_product(remainder, 1, psi, a)
+            diagonal(i) = dot_product(psi, a)
         end do
         largest = maxval(diagonal)
         if (.not. (largest > 0.0_dp)) return
-        allocate (remainder(n_m, n_m), left(n_c, max_rank), coefficients(n_m, max_rank), pivots(max_rank))
-        remainder(:, :) = 0.0_dp
-        do k = 1, n_m
-            remainder(k, k) = weight(k)
-        end do
+        allocate (left(n_c, max_rank), coefficients(n_s, max_rank), pivots(max_rank))
         do k = 1, max_rank + 1
             p = maxloc(diagonal, 1)
-            phi(:) = shape_row(shapes, p)
-            call ordered_product(remainder, 1, phi, a)
-            pivot = dot_product(phi, a)
+            psi(:) = shape_row(basis, p)
+            call ordered_product(remainder, 1, psi, a)
+            pivot = dot_product(psi, a)
             if (abs(pivot) <= rank_tolerance*largest) then
                 compliance%checked = .true.
                 compliance%low_rank = .true.
                 compliance%rank = k - 1
                 allocate (compliance%left(n_c, k - 1), compliance%right(n_c, k - 1), compliance%right_t(k - 1, n_c), &
-                          compliance%modal_left(n_m, k - 1), compliance%modal_right_t(k - 1, n_m))
+                          compliance%modal_left(n_s, k - 1), compliance%modal_right_t(k - 1, n_s))
                 compliance%symmetric = .true.
                 do i = 1, k - 1
                     compliance%left(:, i) = left(:, i)/sqrt(pivots(i))
@@ -274,18 +330,141 @@ contains
                 end do
                 compliance%right(:, :) = compliance%left
                 compliance%right_t(:, :) = transpose(compliance%right)
-                compliance%shapes = shapes
+                compliance%shapes = basis
+                if (allocated(along)) then
+                    compliance%along_q = along
+                    compliance%along_q_t = transpose(along)
+                    compliance%across_q = across
+                    compliance%across_q_t = transpose(across)
+                end if
                 done = .true.
                 return
             end if
             if (k > max_rank) return
-            call separable_displacements(shapes, a, left(:, k), .false.)
+            call separable_displacements(basis, a, left(:, k), .false.)
             coefficients(:, k) = a
             pivots(k) = pivot
             diagonal(:) = diagonal - left(:, k)**2/pivot
             call subtract_symmetric(remainder, a, pivot)
         end do
     end subroutine factor_modal_compliance
+
+    !> W0 = Phi*diag(w)*Phi^T in fewer coordinates: Psi*C*Psi^T to round-off. With the shapes
+    !> phi_ik = X_f(k)(x_col(i))*Y_n(k)(y_row(i)), the functions X at the grid's columns
+    !> (n_col x N_x) span a space of some dimension rho_x <= min(n_col, N_x) to round-off, and
+    !> the functions Y at its rows one of rho_y (`orthonormal_range`: X = Q_x*R_x, Y = Q_y*R_y).
+    !> The basis Psi is every product Q_x(:, a)*Q_y(:, b) (S = rho_x*rho_y separable columns,
+    !> orthonormal on the grid), mode k is Psi*p_k with p_k = R_x(:, f(k)) (x) R_y(:, n(k)), and
+    !> C = sum_k w_k*p_k*p_k^T. On a short patch the modes' x functions are smooth and many,
+    !> so S is well below N_m (441 modes of the shipped tyre patch: S = 207), and the
+    !> factors' products cost S*r instead of N_m*r. When S is not below N_m the basis is the
+    !> modes themselves and C = diag(w).
+    subroutine compressed_span(shapes, weight, basis, core, along, across)
+        !> The mode shapes' factors Phi (N_c points, N_m modes).
+        type(separable_shapes), intent(in) :: shapes
+        !> w_k [m/N] (N_m).
+        real(dp), intent(in) :: weight(:)
+        !> Psi (N_c points, S columns).
+        type(separable_shapes), intent(out) :: basis
+        !> C (S x S) [m/N].
+        real(dp), allocatable, intent(out) :: core(:, :)
+        !> Q_x and Q_y when the basis is compressed (unallocated when it is the modes').
+        real(dp), allocatable, intent(out) :: along(:, :), across(:, :)
+
+        real(dp), allocatable :: along_r(:, :), across_r(:, :), p(:)
+        integer :: n_along, n_across, n_s, a, b, k, l
+
+        call orthonormal_range(shapes%along, along)
+        call orthonormal_range(shapes%across, across)
+        n_along = size(along, 2)
+        n_across = size(across, 2)
+        n_s = n_along*n_across
+        if (n_s >= size(weight)) then
+            deallocate (along, across)
+            basis = shapes
+            allocate (core(size(weight), size(weight)))
+            core(:, :) = 0.0_dp
+            do k = 1, size(weight)
+                core(k, k) = weight(k)
+            end do
+            return
+        end if
+        basis%along = along
+        basis%across = across
+        basis%mode_along = [((a, a=1, n_along), b=1, n_across)]
+        basis%mode_across = [((b, a=1, n_along), b=1, n_across)]
+        basis%column = shapes%column
+        basis%row = shapes%row
+        ! R_x = Q_x^T*X and R_y = Q_y^T*Y, the modes' coordinates in the basis
+        along_r = coordinates(along, shapes%along)
+        across_r = coordinates(across, shapes%across)
+        allocate (core(n_s, n_s), p(n_s))
+        core(:, :) = 0.0_dp
+        do k = 1, size(weight)
+            p(:) = [((along_r(a, shapes%mode_along(k))*across_r(b, shapes%mode_across(k)), a=1, n_along), &
+                     b=1, n_across)]
+            do l = 1, n_s
+                if (p(l) /= 0.0_dp) core(:, l) = core(:, l) + p*(weight(k)*p(l))
+            end do
+        end do
+    end subroutine compressed_span
+
+    !> Q^T*F (rho x m) for Q (n x rho) and F (n x m), each entry a dot product in the order of
+    !> the rows (no library product whose sums depend on the CPU).
+    pure function coordinates(q, f) result(r)
+        real(dp), intent(in) :: q(:, :), f(:, :)
+        real(dp) :: r(size(q, 2), size(f, 2))
+
+        integer :: a, j
+
+        do j = 1, size(f, 2)
+            do a = 1, size(q, 2)
+                r(a, j) = dot_product(q(:, a), f(:, j))
+            end do
+        end do
+    end function coordinates
+
+    !> An orthonormal basis Q (n x rho) of the range of F (n x m) to round-off, by Gram-Schmidt
+    !> with column pivoting: the column of the remainder with the largest norm is taken next,
+    !> orthogonalised twice against Q, and removed from the remainder; it stops when no column's
+    !> remainder exceeds `rank_tolerance` of F's largest column norm.
+    pure subroutine orthonormal_range(f, q)
+        !> F (n x m).
+        real(dp), intent(in) :: f(:, :)
+        !> Q (n x rho), Q^T*Q = I to round-off.
+        real(dp), allocatable, intent(out) :: q(:, :)
+
+        real(dp), allocatable :: rest(:, :), found(:, :)
+        real(dp) :: norms(size(f, 2)), v(size(f, 1)), largest
+        integer :: rank, j, l, pass
+
+        rest = f
+        allocate (found(size(f, 1), min(size(f, 1), size(f, 2))))
+        do j = 1, size(f, 2)
+            norms(j) = norm2(f(:, j))
+        end do
+        largest = maxval(norms, 1)
+        rank = 0
+        do while (rank < size(found, 2) .and. largest > 0.0_dp)
+            do j = 1, size(f, 2)
+                norms(j) = norm2(rest(:, j))
+            end do
+            j = maxloc(norms, 1)
+            if (norms(j) <= rank_tolerance*largest) exit
+            v(:) = rest(:, j)/norms(j)
+            do pass = 1, 2
+                do l = 1, rank
+                    v(:) = v - dot_product(found(:, l), v)*found(:, l)
+                end do
+            end do
+            rank = rank + 1
+            found(:, rank) = v/norm2(v)
+            do l = 1, size(f, 2)
+                rest(:, l) = rest(:, l) - dot_product(found(:, rank), rest(:, l))*found(:, rank)
+            end do
+        end do
+        q = found(:, 1:rank)
+    end subroutine orthonormal_range
 
     !> The mode shapes at point i, phi_ik = X_f(k)(x_col(i))*Y_n(k)(y_row(i)) (N_m).
     pure function shape_row(shapes, i) result(phi)
@@ -308,30 +487,10 @@ contains
         end do
     end subroutine subtract_symmetric
 
-    !> The indices of the first largest |a_ij| in array element order, as maxloc(abs(a)) without
-    !> its N_c x N_c temporary.
-    pure function largest_entry(a) result(at)
-        real(dp), intent(in) :: a(:, :)
-        integer :: at(2)
-
-        real(dp) :: largest
-        integer :: i, j
-
-        at = [1, 1]
-        largest = abs(a(1, 1))
-        do j = 1, size(a, 2)
-            do i = 1, size(a, 1)
-                if (abs(a(i, j)) > largest) then
-                    largest = abs(a(i, j))
-                    at = [i, j]
-                end if
-            end do
-        end do
-    end function largest_entry
-
-    !> A = A - x*y^T, and the indices of the first largest |a_ij| of the result in array
-    !> element order (as `largest_entry`), found in the same pass over A: an elimination step
-    !> then reads the N_c x N_c remainder once instead of twice.
+    !> A = A - x*y^T (columns with y_j = 0 untouched), and the indices of the first largest
+    !> |a_ij| of the result in array element order (as maxloc(abs(a)), without its N_c x N_c
+    !> temporary), found in the same pass over A: an elimination step then reads the N_c x N_c
+    !> remainder once instead of twice.
     pure subroutine subtract_outer(a, x, y, at)
         real(dp), intent(inout) :: a(:, :)
         real(dp), intent(in) :: x(:), y(:)
@@ -354,7 +513,7 @@ contains
         end do
     end subroutine subtract_outer
 
-    !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors (Phi*(A*(B^T*(Phi^T*x))) when they
+    !> W0*x [m] for loads x [N]: U*(V^T*x) with the factors (Psi*(A*(B^T*(Psi^T*x))) when they
     !> lie in the modes' span), else the dense product.
     !>
     !> V^T*x is MATMUL on blocks of rows of the stored V^T (contiguous in k).
@@ -430,8 +589,8 @@ contains
     end subroutine gathered_product
 
     !> z = V^T*x (r) for x at every point (N_c): by the stored V^T (`transposed_product`), or as
-    !> B^T*(Phi^T*x) when the factors lie in the modes' span (n_col*(N_m + n_row*N_y) + r*N_m
-    !> multiply-adds instead of N_c*r), each sum in a fixed order whatever the threads.
+    !> B^T*(Psi^T*x) when the factors lie in the modes' span (S*r multiply-adds and the small
+    !> products on the grid instead of N_c*r), each sum in a fixed order whatever the threads.
     subroutine right_product(compliance, x, z)
         !> The factors.
         type(lowrank_compliance), intent(in) :: compliance
@@ -448,13 +607,17 @@ contains
         block
             real(dp) :: modal(size(compliance%modal_right_t, 2))
 
-            call separable_modal_forces(compliance%shapes, x, modal, sharing(real(separable_work(compliance%shapes), dp)))
+            if (allocated(compliance%along_q)) then
+                call grid_loads(compliance, x, modal)
+            else
+                call separable_modal_forces(compliance%shapes, x, modal, shapes_threaded(compliance))
+            end if
             call transposed_product(compliance%modal_right_t, modal, z)
         end block
     end subroutine right_product
 
     !> s = b - U*y (`subtract`) or s = U*y (N_c): by the stored U (`subtract_product`), or as
-    !> Phi*(A*y) when the factors lie in the modes' span, each sum in a fixed order whatever
+    !> Psi*(A*y) when the factors lie in the modes' span, each sum in a fixed order whatever
     !> the threads.
     subroutine left_product(compliance, y, b, s, subtract)
         !> The factors.
@@ -484,10 +647,95 @@ contains
             real(dp) :: modal(size(compliance%modal_left, 1))
 
             call transposed_product(compliance%modal_left, y, modal)
-            call separable_displacements(compliance%shapes, modal, s, sharing(real(separable_work(compliance%shapes), dp)))
+            if (allocated(compliance%along_q)) then
+                call grid_values(compliance, modal, s)
+            else
+                call separable_displacements(compliance%shapes, modal, s, shapes_threaded(compliance))
+            end if
         end block
         if (subtract) s(:) = b - s
     end subroutine left_product
+
+    !> Whether the products by the modes' shapes Phi share their work among threads (`sharing`).
+    logical function shapes_threaded(compliance)
+        type(lowrank_compliance), intent(in) :: compliance
+
+        shapes_threaded = sharing(real(separable_work(compliance%shapes), dp))
+    end function shapes_threaded
+
+    !> Psi^T*q (S) on the compressed basis: the loads on the grid G (n_col x n_row), then
+    !> T = G*Q_y (n_col x rho_y) and Q_x^T*T (rho_x x rho_y, the basis' order: a first), each
+    !> sum in the order of the grid's rows, then of its columns (`rows_product`).
+    subroutine grid_loads(compliance, q, modal)
+        !> The factors, with the compressed basis.
+        type(lowrank_compliance), intent(in) :: compliance
+        !> Loads at the points (N_c).
+        real(dp), intent(in) :: q(:)
+        !> Psi^T*q (S).
+        real(dp), intent(out) :: modal(:)
+
+        real(dp) :: grid(size(compliance%along_q, 1), size(compliance%across_q, 1)), &
+                    by_column(size(compliance%along_q, 1), size(compliance%across_q, 2))
+        integer :: i
+
+        grid(:, :) = 0.0_dp
+        do i = 1, size(q)
+            grid(compliance%shapes%column(i), compliance%shapes%row(i)) = &
+                grid(compliance%shapes%column(i), compliance%shapes%row(i)) + q(i)
+        end do
+        call rows_product(size(grid, 1), size(grid, 2), size(by_column, 2), grid, compliance%across_q, by_column)
+        call rows_product(size(compliance%along_q, 2), size(grid, 1), size(by_column, 2), compliance%along_q_t, &
+                          by_column, modal)
+    end subroutine grid_loads
+
+    !> Psi*y (N_c) on the compressed basis: Z = Q_x*Y (n_col x rho_y, Y the rho_x x rho_y
+    !> coefficients), the grid Z*Q_y^T (n_col x n_row), read at the points' cells; each sum in
+    !> the order of the coefficients (`rows_product`).
+    subroutine grid_values(compliance, modal, s)
+        !> The factors, with the compressed basis.
+        type(lowrank_compliance), intent(in) :: compliance
+        !> The coefficients y (S).
+        real(dp), intent(in) :: modal(:)
+        !> Psi*y at the points (N_c).
+        real(dp), intent(out) :: s(:)
+
+        real(dp) :: by_column(size(compliance%along_q, 1), size(compliance%across_q, 2)), &
+                    grid(size(compliance%along_q, 1), size(compliance%across_q, 1))
+
+        call rows_product(size(by_column, 1), size(compliance%along_q, 2), size(by_column, 2), compliance%along_q, &
+                          modal, by_column)
+        call rows_product(size(grid, 1), size(by_column, 2), size(grid, 2), by_column, compliance%across_q_t, grid)
+        s(:) = grid_at_points(grid, compliance%shapes%column, compliance%shapes%row)
+    end subroutine grid_values
+
+    !> The grid's values at the points' cells (N_c).
+    pure function grid_at_points(grid, column, row) result(values)
+        real(dp), intent(in) :: grid(:, :)
+        integer, intent(in) :: column(:), row(:)
+        real(dp) :: values(size(column))
+
+        integer :: i
+
+        do i = 1, size(column)
+            values(i) = grid(column(i), row(i))
+        end do
+    end function grid_at_points
+
+    !> Y(:, v) = A*X(:, v) for v = 1..nv, A (m x n), each sum in the order of A's columns
+    !> (`ordered_rows_many`; X and Y may be any arrays of n*nv and m*nv values).
+    subroutine rows_product(m, n, nv, a, x, y)
+        !> Rows m, columns n of A and number of vectors nv.
+        integer, intent(in) :: m, n, nv
+        !> A.
+        real(dp), intent(in) :: a(m, n)
+        !> X.
+        real(dp), intent(in) :: x(n, nv)
+        !> A*X.
+        real(dp), intent(out) :: y(m, nv)
+
+        call ordered_rows_many(int(m, c_int), int(n, c_int), int(m, c_int), a, int(nv, c_int), int(n, c_int), x, &
+                               int(m, c_int), y)
+    end subroutine rows_product
 
     !> z = V^T*x (r) for x at every point (N_c), by fixed blocks of `column_block` rows of V^T
     !> shared among threads: each z_k is one MATMUL sum whoever computes it.
@@ -714,11 +962,14 @@ contains
 
     !> M^-1 brought to the slopes `slopes` by one Sherman-Morrison update per changed slope:
     !> M' = M + (t_i' - t_i)*v_i*u_i^T, M'^-1 = M^-1 - c*x*y^T with x = M^-1*v_i,
-    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x); y = x when the factors
-    !> are symmetric (u_i = v_i, M^-1 symmetric), one product by M^-1 instead of two, and the
-    !> update x*x^T keeps M^-1 symmetric to the bit. Not done (`updated`
-    !> false, the kept matrix marked stale) when too many slopes changed, after N_c updates
-    !> since M was formed, or at a pivot below `update_pivot`.
+    !> y^T = u_i^T*M^-1 and c = (t_i' - t_i)/(1 + (t_i' - t_i)*u_i^T*x). Not done (`updated`
+    !> false, the kept matrix marked stale) when too many slopes changed, when after N_c updates
+    !> since M was formed or last checked M^-1 no longer inverts M to `inverse_drift`
+    !> (`inverse_accurate`), or at a pivot below `update_pivot`.
+    !>
+    !> Symmetric factors (u_i = v_i, M^-1 symmetric): y = x, and the changes are made in groups
+    !> of up to `update_group` (`symmetric_group`), two passes over M^-1 a group instead of two
+    !> a change.
     subroutine update_inverse(compliance, slopes, updated)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: slopes(:)
@@ -726,39 +977,44 @@ contains
 
         integer, allocatable :: changed(:)
         real(dp) :: x(compliance%rank), y(compliance%rank), change, pivot
-        integer :: i, j, k, l
+        integer :: i, j, k, l, r, first, last
+        logical :: done
 
         updated = .false.
         associate (newton => compliance%newton, u => compliance%left, v_t => compliance%right_t)
             changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
-            if (3*size(changed) > count(slopes /= 0.0_dp) .or. newton%updates + size(changed) > size(slopes)) return
+            if (3*size(changed) > count(slopes /= 0.0_dp)) return
+            if (newton%updates + size(changed) > size(slopes)) then
+                if (.not. inverse_accurate(compliance)) return
+                newton%updates = 0
+                newton%kept = newton%kept + 1
+            end if
             newton%ready = .false.
-            do j = 1, size(changed)
-                i = changed(j)
-                change = slopes(i) - newton%slopes(i)
-                call ordered_product(newton%inverse, 1, v_t(:, i), x)
-                if (compliance%symmetric) then
-                    y(:) = x
-                    pivot = 1.0_dp + change*dot_product(v_t(:, i), x)
-                else
+            if (compliance%symmetric) then
+                r = compliance%rank
+                do first = 1, size(changed), update_group
+                    last = min(first + update_group - 1, size(changed))
+                    call symmetric_group(newton%inverse, r, v_t, changed(first:last), &
+                                         slopes(changed(first:last)) - newton%slopes(changed(first:last)), done)
+                    if (.not. done) return
+                end do
+            else
+                do j = 1, size(changed)
+                    i = changed(j)
+                    change = slopes(i) - newton%slopes(i)
+                    call ordered_product(newton%inverse, 1, v_t(:, i), x)
                     y(:) = matmul(u(i, :), newton%inverse)
                     pivot = 1.0_dp + change*dot_product(u(i, :), x)
-                end if
-                if (.not. (abs(pivot) >= update_pivot)) return
-                if (compliance%symmetric) then
-                    ! c*(x_l*x_k): the same bits in (l, k) and (k, l)
-                    call symmetric_update(int(size(x), c_int), int(size(newton%inverse, 1), c_int), &
-                                          newton%inverse, x, change/pivot)
-                    cycle
-                end if
-                x(:) = (change/pivot)*x
-                do k = 1, size(y)
-                    !$omp simd
-                    do l = 1, size(x)
-                        newton%inverse(l, k) = newton%inverse(l, k) - x(l)*y(k)
+                    if (.not. (abs(pivot) >= update_pivot)) return
+                    x(:) = (change/pivot)*x
+                    do k = 1, size(y)
+                        !$omp simd
+                        do l = 1, size(x)
+                            newton%inverse(l, k) = newton%inverse(l, k) - x(l)*y(k)
+                        end do
                     end do
                 end do
-            end do
+            end if
             newton%slopes = slopes
             newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
             newton%updates = newton%updates + size(changed)
@@ -766,6 +1022,89 @@ contains
             updated = .true.
         end associate
     end subroutine update_inverse
+
+    !> Whether the kept M^-1 still inverts M = I_r + V_A^T*diag(t_A)*U_A of its slopes to
+    !> `inverse_drift`: w = M^-1*1 by the kept inverse, then |M*w - 1|_max from the rows of the
+    !> factors at the active points (2*N_a*r + r^2 operations against the N_a*r^2 + r^3 of
+    !> forming and inverting M anew). Asked after every N_c rank-one updates: the updates'
+    !> round-off grows slowly, and M is formed anew only once it shows.
+    logical function inverse_accurate(compliance)
+        type(lowrank_compliance), intent(in) :: compliance
+
+        real(dp) :: ones(compliance%rank), w(compliance%rank), product(compliance%rank)
+        integer :: j, a
+
+        ones(:) = 1.0_dp
+        call ordered_product(compliance%newton%inverse, 1, ones, w)
+        product(:) = w
+        do j = 1, size(compliance%newton%active)
+            a = compliance%newton%active(j)
+            product(:) = product + (compliance%newton%slopes(a)*dot_product(compliance%left(a, :), w)) &
+                         *compliance%right_t(:, a)
+        end do
+        inverse_accurate = maxval(abs(product - 1.0_dp)) <= inverse_drift
+    end function inverse_accurate
+
+    !> The rank-one updates of a symmetric M^-1 for d changed slopes at once (d small): with
+    !> M_p^-1 the inverse after the first p - 1 of them, x_p = M_p^-1*v_p =
+    !> M^-1*v_p - sum_{q<p} c_q*x_q*(x_q^T*v_p). The products M^-1*v_p in one pass (four
+    !> vectors a reading of M^-1), the corrections in O(d^2*r), every pivot
+    !> 1 + (t_p' - t_p)*v_p^T*x_p checked before anything changes, then the d updates
+    !> c_p*(x_p*x_p^T) in one pass, each entry the same roundings as d updates one after the
+    !> other, so M^-1 stays symmetric to the bit. `done` false (M^-1 untouched) at a pivot below
+    !> `update_pivot`.
+    subroutine symmetric_group(inverse, r, right_t, points, changes, done)
+        !> M^-1 (r x r), updated when `done`.
+        real(dp), intent(inout) :: inverse(:, :)
+        !> Its order r.
+        integer, intent(in) :: r
+        !> V^T (r x N_c).
+        real(dp), intent(in) :: right_t(:, :)
+        !> The points whose slopes changed (d).
+        integer, intent(in) :: points(:)
+        !> t_p' - t_p [N/m] (d).
+        real(dp), intent(in) :: changes(:)
+        !> Whether the updates were made.
+        logical, intent(out) :: done
+
+        real(dp) :: rows(r, size(points)), products(r, size(points)), factors(size(points)), pivot
+        integer :: p, q
+
+        done = .false.
+        rows(:, :) = right_t(:, points)
+        call rows_product(r, r, size(points), inverse, rows, products)
+        do p = 1, size(points)
+            do q = 1, p - 1
+                products(:, p) = products(:, p) - (factors(q)*four_way_dot(products(:, q), rows(:, p)))*products(:, q)
+            end do
+            pivot = 1.0_dp + changes(p)*four_way_dot(rows(:, p), products(:, p))
+            if (.not. (abs(pivot) >= update_pivot)) return
+            factors(p) = changes(p)/pivot
+        end do
+        ! c*(x_l*x_k): the same bits in (l, k) and (k, l)
+        call symmetric_updates(int(r, c_int), int(size(inverse, 1), c_int), inverse, int(size(points), c_int), &
+                               int(r, c_int), products, factors)
+        done = .true.
+    end subroutine symmetric_group
+
+    !> x^T*y in four running sums (terms 1, 5, 9, ...; 2, 6, ...; ...) added at the end: a fixed
+    !> order, four additions in flight instead of one.
+    pure real(dp) function four_way_dot(x, y)
+        real(dp), intent(in) :: x(:), y(:)
+
+        real(dp) :: sums(4)
+        integer :: i, body
+
+        sums(:) = 0.0_dp
+        body = size(x) - mod(size(x), 4)
+        do i = 1, body, 4
+            sums(:) = sums + x(i:i + 3)*y(i:i + 3)
+        end do
+        do i = body + 1, size(x)
+            sums(1) = sums(1) + x(i)*y(i)
+        end do
+        four_way_dot = (sums(1) + sums(2)) + (sums(3) + sums(4))
+    end function four_way_dot
 
     !> M = I_r + V_A^T*diag(t_A)*U_A (r x r) in one parallel region: the rows of the active
     !> points gathered from V (scaled by t, transposed) and U column by column, then column j

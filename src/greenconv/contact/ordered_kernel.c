@@ -8,8 +8,12 @@
  * contracts a*b + c into a fused multiply-add only when told it may; the functions ask for
  * fp-contract=off, so no build contracts, and a CPU with FMA gives the bits of one without.
  *
- * greenconv_contact_symmetric_update: M^-1 <- M^-1 - c*(x*x^T), each entry as
- * inv_lk - c*(x_l*x_k), so that (l, k) and (k, l) get the same bits (x_l*x_k = x_k*x_l).
+ * greenconv_contact_ordered_rows_many: the same products for several vectors x, the matrix read
+ * once for four of them (the sums are those of greenconv_contact_ordered_rows, vector by vector).
+ *
+ * greenconv_contact_symmetric_updates: M^-1 <- M^-1 - sum_p c_p*(x_p*x_p^T), p = 1..d, in one
+ * pass over M^-1, each entry ((inv_lk - c_1*(x_l1*x_k1)) - c_2*(x_l2*x_k2)) - ..., the bits of d
+ * rank-one updates one after the other; (l, k) and (k, l) get the same bits (x_l*x_k = x_k*x_l).
  *
  * The vector kernels are compiled for AVX2 (four doubles per instruction) and AVX-512 (eight)
  * and taken when the CPU has them; otherwise SSE2's two doubles (every x86-64), and on other
@@ -58,13 +62,20 @@ GC_ORDERED_OPTIMIZE static void gc_rows_scalar(int m, int n, int lda, const doub
     }
 }
 
-/* inv -= c*(x*x^T) by plain loops, column by column. */
-GC_ORDERED_OPTIMIZE static void gc_update_scalar(int r, int ld, double *restrict inv, const double *restrict x,
-                                                 double c)
+/* inv -= sum_p c_p*(x_p*x_p^T), p = 1..d in order, by plain loops, column by column. */
+GC_ORDERED_OPTIMIZE static void gc_updates_scalar(int r, int ld, double *restrict inv, int d, int ldx,
+                                                  const double *restrict x, const double *restrict c)
 {
     for (int k = 0; k < r; k++) {
         double *column = inv + (size_t)k * (size_t)ld;
-        for (int l = 0; l < r; l++) column[l] = column[l] - c * (x[l] * x[k]);
+        for (int l = 0; l < r; l++) {
+            double entry = column[l];
+            for (int p = 0; p < d; p++) {
+                const double *xp = x + (size_t)p * (size_t)ldx;
+                entry = entry - c[p] * (xp[l] * xp[k]);
+            }
+            column[l] = entry;
+        }
     }
 }
 
@@ -108,23 +119,57 @@ GC_ORDERED_OPTIMIZE static void gc_update_scalar(int r, int ld, double *restrict
         if (i < m) gc_rows_scalar(m - i, n, lda, a + i, x, y + i);                                  \
     }
 
-/* inv -= c*(x*x^T), LANES entries of a column a vector, each c*(x_l*x_k). */
-#define GC_ORDERED_UPDATE_KERNEL(NAME, VECTOR, LANES, TARGET)                                       \
-    GC_ORDERED_OPTIMIZE TARGET static void NAME(int r, int ld, double *restrict inv,                \
-                                               const double *restrict x, double c)                 \
+/* y_v = A*x_v for four vectors at once, LANES rows a vector register: each column of A is read
+ * once for the four sums; the rows after the last multiple of LANES by the plain loop. */
+#define GC_ORDERED_ROWS_FOUR_KERNEL(NAME, VECTOR, LANES, TARGET)                                    \
+    GC_ORDERED_OPTIMIZE TARGET static void NAME(int m, int n, int lda, const double *restrict a,   \
+                                               const double *restrict x, int ldx, double *restrict y, \
+                                               int ldy)                                             \
+    {                                                                                               \
+        size_t ld = (size_t)lda, sx = (size_t)ldx, sy = (size_t)ldy;                                \
+        int i = 0;                                                                                  \
+        for (; i + (LANES) <= m; i += (LANES)) {                                                    \
+            VECTOR s0 = {0.0}, s1 = {0.0}, s2 = {0.0}, s3 = {0.0}, column;                          \
+            for (int j = 0; j < n; j++) {                                                           \
+                memcpy(&column, a + (size_t)i + (size_t)j * ld, sizeof column);                     \
+                s0 = s0 + column * x[j];                                                            \
+                s1 = s1 + column * x[sx + (size_t)j];                                               \
+                s2 = s2 + column * x[2 * sx + (size_t)j];                                           \
+                s3 = s3 + column * x[3 * sx + (size_t)j];                                           \
+            }                                                                                       \
+            memcpy(y + i, &s0, sizeof s0);                                                          \
+            memcpy(y + sy + i, &s1, sizeof s1);                                                     \
+            memcpy(y + 2 * sy + i, &s2, sizeof s2);                                                 \
+            memcpy(y + 3 * sy + i, &s3, sizeof s3);                                                 \
+        }                                                                                           \
+        if (i < m)                                                                                  \
+            for (int v = 0; v < 4; v++) gc_rows_scalar(m - i, n, lda, a + i, x + v * sx, y + v * sy + i); \
+    }
+
+/* inv -= sum_p c_p*(x_p*x_p^T) in one pass, LANES entries of a column a vector. */
+#define GC_ORDERED_UPDATES_KERNEL(NAME, VECTOR, LANES, TARGET)                                      \
+    GC_ORDERED_OPTIMIZE TARGET static void NAME(int r, int ld, double *restrict inv, int d, int ldx, \
+                                               const double *restrict x, const double *restrict c) \
     {                                                                                               \
         int body = r - r % (LANES);                                                                 \
+        size_t sx = (size_t)ldx;                                                                    \
         for (int k = 0; k < r; k++) {                                                               \
             double *column = inv + (size_t)k * (size_t)ld;                                          \
-            double xk = x[k];                                                                       \
             VECTOR entries, values;                                                                 \
             for (int l = 0; l < body; l += (LANES)) {                                               \
                 memcpy(&entries, column + l, sizeof entries);                                       \
-                memcpy(&values, x + l, sizeof values);                                              \
-                entries = entries - c * (values * xk);                                              \
+                for (int p = 0; p < d; p++) {                                                       \
+                    memcpy(&values, x + (size_t)p * sx + (size_t)l, sizeof values);                 \
+                    entries = entries - c[p] * (values * x[(size_t)p * sx + (size_t)k]);            \
+                }                                                                                   \
                 memcpy(column + l, &entries, sizeof entries);                                       \
             }                                                                                       \
-            for (int l = body; l < r; l++) column[l] = column[l] - c * (x[l] * xk);                 \
+            for (int l = body; l < r; l++) {                                                        \
+                double entry = column[l];                                                           \
+                for (int p = 0; p < d; p++)                                                         \
+                    entry = entry - c[p] * (x[(size_t)p * sx + (size_t)l] * x[(size_t)p * sx + (size_t)k]); \
+                column[l] = entry;                                                                  \
+            }                                                                                       \
         }                                                                                           \
     }
 
@@ -134,11 +179,14 @@ typedef double gc_ordered_v4 __attribute__((vector_size(32)));
 typedef double gc_ordered_v8 __attribute__((vector_size(64)));
 
 GC_ORDERED_ROWS_KERNEL(gc_rows_sse2, gc_ordered_v2, 2, )
-GC_ORDERED_UPDATE_KERNEL(gc_update_sse2, gc_ordered_v2, 2, )
 GC_ORDERED_ROWS_KERNEL(gc_rows_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
 GC_ORDERED_ROWS_KERNEL(gc_rows_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
-GC_ORDERED_UPDATE_KERNEL(gc_update_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
-GC_ORDERED_UPDATE_KERNEL(gc_update_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_sse2, gc_ordered_v2, 2, )
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
+GC_ORDERED_UPDATES_KERNEL(gc_updates_sse2, gc_ordered_v2, 2, )
+GC_ORDERED_UPDATES_KERNEL(gc_updates_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
+GC_ORDERED_UPDATES_KERNEL(gc_updates_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
 #endif
 
 /* The widest kernel the CPU runs: 2 AVX-512, 1 AVX2, 0 neither. */
@@ -165,16 +213,40 @@ void greenconv_contact_ordered_rows(int m, int n, int lda, const double *a, cons
     gc_rows_scalar(m, n, lda, a, x, y);
 }
 
-/* inv -= c*(x*x^T) for the r x r matrix at inv (column-major, leading dimension ld >= r). */
-void greenconv_contact_symmetric_update(int r, int ld, double *inv, const double *x, double c)
+/* y(:, v) = A*x(:, v) for v = 1..nv: x (n x nv, leading dimension ldx), y (m x nv, leading
+ * dimension ldy); four vectors a pass over A, the others one by one. */
+void greenconv_contact_ordered_rows_many(int m, int n, int lda, const double *a, int nv, int ldx, const double *x,
+                                         int ldy, double *y)
 {
-    if (r <= 0) return;
+    if (m <= 0) return;
+    int v = 0;
 #if GC_ORDERED_HAS_VECTOR
-    switch (gc_ordered_width()) {
-    case 2: gc_update_avx512(r, ld, inv, x, c); return;
-    case 1: gc_update_avx2(r, ld, inv, x, c); return;
-    default: gc_update_sse2(r, ld, inv, x, c); return;
+    int width = gc_ordered_width();
+    for (; v + 4 <= nv; v += 4) {
+        const double *xv = x + (size_t)v * (size_t)ldx;
+        double *yv = y + (size_t)v * (size_t)ldy;
+        switch (width) {
+        case 2: gc_rows_four_avx512(m, n, lda, a, xv, ldx, yv, ldy); break;
+        case 1: gc_rows_four_avx2(m, n, lda, a, xv, ldx, yv, ldy); break;
+        default: gc_rows_four_sse2(m, n, lda, a, xv, ldx, yv, ldy); break;
+        }
     }
 #endif
-    gc_update_scalar(r, ld, inv, x, c);
+    for (; v < nv; v++)
+        greenconv_contact_ordered_rows(m, n, lda, a, x + (size_t)v * (size_t)ldx, y + (size_t)v * (size_t)ldy);
+}
+
+/* inv -= sum_p c_p*(x_p*x_p^T), p = 1..d in order, for the r x r matrix at inv (leading
+ * dimension ld >= r); x_p the columns of x (r x d, leading dimension ldx). */
+void greenconv_contact_symmetric_updates(int r, int ld, double *inv, int d, int ldx, const double *x, const double *c)
+{
+    if (r <= 0 || d <= 0) return;
+#if GC_ORDERED_HAS_VECTOR
+    switch (gc_ordered_width()) {
+    case 2: gc_updates_avx512(r, ld, inv, d, ldx, x, c); return;
+    case 1: gc_updates_avx2(r, ld, inv, d, ldx, x, c); return;
+    default: gc_updates_sse2(r, ld, inv, d, ldx, x, c); return;
+    }
+#endif
+    gc_updates_scalar(r, ld, inv, d, ldx, x, c);
 }
