@@ -399,20 +399,11 @@ contains
         end if
     end function entry_of
 
-    !> Index of `name` in the registry, 0 when unknown.
+    !> Index of `name` in the registry, 0 when unknown (trailing blanks ignored).
     elemental integer function find(name)
         character(len=*), intent(in) :: name
 
-        integer :: i
-
-        find = 0
-        if (len_trim(name) > method_name_length) return
-        do i = 1, n_methods
-            if (registry(i)%name == name) then
-                find = i
-                return
-            end if
-        end do
+        find = findloc(registry_names, name, dim=1)
     end function find
 
     !> The methods that need g alone, "'direct' or 'fft'".

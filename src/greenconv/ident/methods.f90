@@ -268,16 +268,7 @@ contains
     elemental integer function find(name)
         character(len=*), intent(in) :: name
 
-        integer :: i
-
-        find = 0
-        if (len_trim(name) == 0 .or. len_trim(name) > ident_name_length) return
-        do i = 1, n_ident_methods
-            if (registry(i)%name == name) then
-                find = i
-                return
-            end if
-        end do
+        find = findloc(registry_names, name, dim=1)
     end function find
 
 end module greenconv_ident_methods
