@@ -204,11 +204,12 @@ contains
                    'W0 or the histories on the factors miss the dense ones by more than 1e-13')
     end subroutine test_convolver
 
-    !> `apply_instant` of the `exact` convolver on the factors, Phi*(w o Phi^T*x), against
+    !> `apply_instant_kept` of the `exact` convolver on the factors, Phi*(w o Phi^T*x), against
     !> MATMUL(W0, x) on the dense convolver's W0 (made from the dense shapes), random loads in
     !> [-1, 1], relative to sum_j |W0_ij|*|x_j| at the worst point: within 1e-13. Only the
     !> convolver on the factors offers its product as the cheaper one (`fast_instant`); the dense
-    !> one's and the explicit one's (W0 = 0) are MATMUL on their W0.
+    !> one's `apply_instant` is MATMUL on its W0, the explicit one's (W0 = 0) product on the
+    !> factors zero.
     subroutine test_instant(error)
         type(test_error), allocatable, intent(out) :: error
 
@@ -235,13 +236,13 @@ contains
         worst = 0.0_dp
         do trial = 1, 10
             x = [(stream%between(-1.0_dp, 1.0_dp), i=1, 35)]
-            call on_factors%apply_instant(x, y)
+            call on_factors%apply_instant_kept(x, y)
             call on_shapes%apply_instant(x, y_dense)
             call check(error, all(y_dense == matmul(on_shapes%weight0, x)), 'the dense product is MATMUL(W0, x)')
             if (allocated(error)) return
             worst = max(worst, maxval(abs(y - y_dense)/matmul(abs(on_shapes%weight0), abs(x))))
         end do
-        call explicit%apply_instant(x, y)
+        call explicit%apply_instant_kept(x, y)
         call note('max rel. |W0*x on the factors - MATMUL(W0, x)|', worst)
         call check(error, worst <= product_tol .and. all(y == 0.0_dp), &
                    'W0*x on the factors misses MATMUL(W0, x) by more than 1e-13, or W0*x /= 0 when explicit')

@@ -70,7 +70,6 @@ module greenconv_conv_green_modal
         procedure :: push => modal_push
         procedure :: clear => modal_clear
         procedure :: fast_instant => separable_instant
-        procedure :: apply_instant => modal_instant
         procedure :: apply_instant_kept => modal_instant_kept
         procedure :: instant_modes => separable_instant_modes
     end type modal_green_matrix
@@ -206,7 +205,7 @@ contains
         !$omp end parallel do
     end subroutine separable_weight0
 
-    !> Whether W0*x is made on the separable factors (`modal_instant`): 2*n_col*(N_m + n_row*N_y)
+    !> Whether W0*x is made on the separable factors (`modal_instant_kept`): 2*n_col*(N_m + n_row*N_y)
     !> multiplications on factors that stay in the caches, against 2*N_c*r streamed for a
     !> product by W0's low-rank factors U*V^T (r about N_m).
     pure logical function separable_instant(self)
@@ -217,46 +216,11 @@ contains
     end function separable_instant
 
     !> y = W0*x [m] for loads x [N]: Phi*(w o (Phi^T*x)) on the separable factors, the form
-    !> W0's columns are made in (`separable_weight0`); the dense product otherwise. Its sums
-    !> are taken in a fixed order, so one and two threads give the same bits.
-    subroutine modal_instant(self, x, y)
-        !> The convolver.
-        class(modal_green_matrix), intent(in) :: self
-        !> Loads [N] at the points (N_c).
-        real(dp), intent(in) :: x(:)
-        !> W0*x [m] (N_c).
-        real(dp), intent(out) :: y(:)
-
-        real(dp) :: modal(size(self%engine%mode_weight))
-
-        call instant_in_modes(self, x, y, modal)
-    end subroutine modal_instant
-
-    !> y = W0*x [m] and the modal loads Phi^T*x it was made from (N_m) on the separable factors;
-    !> the dense product (`modal` untouched) without them.
-    subroutine instant_in_modes(self, x, y, modal)
-        class(modal_green_matrix), intent(in) :: self
-        real(dp), intent(in) :: x(:)
-        real(dp), intent(out) :: y(:)
-        real(dp), intent(inout) :: modal(:)
-
-        real(dp) :: weighted(size(modal))
-        logical :: share
-
-        if (.not. allocated(self%separable)) then
-            y(:) = matmul(self%weight0, x)
-            return
-        end if
-        share = separable_work(self%separable) >= threads_from
-        !$ share = share .and. .not. omp_in_parallel()
-        call separable_modal_forces(self%separable, x, modal, share)
-        weighted(:) = self%engine%mode_weight*modal
-        call separable_displacements(self%separable, weighted, y, share)
-    end subroutine instant_in_modes
-
-    !> y = W0*x [m] as `modal_instant`, its modal loads Phi^T*x kept with x: the next push, when
-    !> its recorded loads equal x bit for bit (the implicit step's last residual is of the forces
-    !> it pushes), takes them instead of making them again, the same numbers.
+    !> W0's columns are made in (`separable_weight0`), its modal loads Phi^T*x kept with x: the
+    !> next push, when its recorded loads equal x bit for bit (the implicit step's last residual
+    !> is of the forces it pushes), takes them instead of making them again, the same numbers.
+    !> Its sums are taken in a fixed order, so one and two threads give the same bits. Without
+    !> the factors, the dense product (`apply_instant`), keeping nothing.
     subroutine modal_instant_kept(self, x, y)
         !> The convolver.
         class(modal_green_matrix), intent(inout) :: self
@@ -265,10 +229,18 @@ contains
         !> W0*x [m] (N_c).
         real(dp), intent(out) :: y(:)
 
-        real(dp) :: modal(size(self%engine%mode_weight))
+        real(dp) :: modal(size(self%engine%mode_weight)), weighted(size(self%engine%mode_weight))
+        logical :: share
 
-        call instant_in_modes(self, x, y, modal)
-        if (.not. allocated(self%separable)) return
+        if (.not. allocated(self%separable)) then
+            call self%apply_instant(x, y)
+            return
+        end if
+        share = separable_work(self%separable) >= threads_from
+        !$ share = share .and. .not. omp_in_parallel()
+        call separable_modal_forces(self%separable, x, modal, share)
+        weighted(:) = self%engine%mode_weight*modal
+        call separable_displacements(self%separable, weighted, y, share)
         self%kept_load = x
         self%kept_modal = modal
     end subroutine modal_instant_kept

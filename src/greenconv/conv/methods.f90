@@ -211,7 +211,7 @@ contains
         !> A method name.
         character(len=*), intent(in) :: name
 
-        is_method = find(name) > 0
+        is_method = findloc(registry_names, name, dim=1) > 0
     end function is_method
 
     !> The method a name runs: the method itself, or the one it is an alias of (`modal`
@@ -281,7 +281,7 @@ contains
         integer :: i
 
         method_scheme = scheme_none
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i > 0) method_scheme = registry(i)%scheme
     end function method_scheme
 
@@ -293,7 +293,7 @@ contains
         integer :: i
 
         method_order = 2
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i > 0) method_order = registry(i)%order
     end function method_order
 
@@ -363,7 +363,7 @@ contains
         type(method_entry) :: method
         integer :: i
 
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i == 0) then
             call fatal_error(error, "unknown convolution method '"//trim(name)//"': expected "//method_list())
             return
@@ -391,29 +391,13 @@ contains
 
         integer :: i
 
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i > 0) then
             entry = registry(i)
         else
             entry = method_entry('', '', '', scheme_none, .false., .false., .false., .false., 2, '', cost_model())
         end if
     end function entry_of
-
-    !> Index of `name` in the registry, 0 when unknown.
-    elemental integer function find(name)
-        character(len=*), intent(in) :: name
-
-        integer :: i
-
-        find = 0
-        if (len_trim(name) > method_name_length) return
-        do i = 1, n_methods
-            if (registry(i)%name == name) then
-                find = i
-                return
-            end if
-        end do
-    end function find
 
     !> The methods that need g alone, "'direct' or 'fft'".
     pure function g_only_list() result(text)

@@ -67,13 +67,14 @@ module greenconv_conv_multipoint
         procedure :: set_instant_matrix
         !> The loads [N] a push records: the forces, halved at step 0 (for the engines' `push`).
         procedure :: recorded_load
-        !> Whether `apply_instant` is cheaper than a product by low-rank factors of W0, so that
-        !> an implicit step should call it for its products W0*x.
+        !> Whether `apply_instant_kept` is cheaper than a product by low-rank factors of W0, so
+        !> that an implicit step should call it for its products W0*x.
         procedure :: fast_instant
-        !> y = W0*x [m] for loads x [N]: the dense product, or an engine's own factors.
+        !> y = W0*x [m] for loads x [N]: the dense product.
         procedure :: apply_instant
-        !> y = W0*x as `apply_instant`, the engine keeping what a push of the same loads x
-        !> can reuse (its modal loads): the implicit step's last product is of the loads it pushes.
+        !> y = W0*x as `apply_instant`, or on an engine's own factors, the engine keeping what a
+        !> push of the same loads x can reuse (its modal loads): the implicit step's last product
+        !> is of the loads it pushes.
         procedure :: apply_instant_kept
         !> W0 = Phi*diag(w)*Phi^T on separable mode shapes Phi, when the engine holds them, so
         !> that W0's low-rank factors can be made and applied in the modes' span.
@@ -143,7 +144,7 @@ contains
         if (self%step == 0) load(:) = 0.5_dp*forces
     end function recorded_load
 
-    !> Whether `apply_instant` costs less than the O(N_c*r) of W0's low-rank factors: not for
+    !> Whether `apply_instant_kept` costs less than the O(N_c*r) of W0's low-rank factors: not for
     !> the dense product; an engine that holds cheaper factors of W0 says so.
     pure logical function fast_instant(self)
         !> The convolver.
@@ -166,8 +167,9 @@ contains
         y(:) = matmul(self%weight0, x)
     end subroutine apply_instant
 
-    !> y = W0*x [m] for loads x [N] (N_c) by `apply_instant`, keeping nothing: an engine whose
-    !> push shares work with its product W0*x keeps that work for a push of the same loads.
+    !> y = W0*x [m] for loads x [N] (N_c) by `apply_instant`, keeping nothing: an engine that
+    !> holds cheaper factors of W0 makes the product on them, and keeps what its push shares
+    !> with it for a push of the same loads.
     subroutine apply_instant_kept(self, x, y)
         !> The convolver.
         class(multipoint_convolver), intent(inout) :: self

@@ -112,7 +112,7 @@ contains
         integer :: i
 
         entry = ident_entry('', ident_none, .false., .false., .false., .false., .false., .false., '', '')
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i > 0) entry = registry(i)
     end function entry_of
 
@@ -121,7 +121,7 @@ contains
         !> A method name.
         character(len=*), intent(in) :: name
 
-        is_ident_method = find(name) > 0
+        is_ident_method = findloc(registry_names, name, dim=1) > 0
     end function is_ident_method
 
     !> The scheme of a method (`ident_ml`, ...); `ident_none` for an unknown name.
@@ -237,7 +237,7 @@ contains
         integer :: i
 
         variable = ''
-        i = find(name)
+        i = findloc(registry_names, name, dim=1)
         if (i == 0) then
             variable = 'method'
             call fatal_error(error, ident_list())
@@ -263,21 +263,5 @@ contains
 
         text = quoted_list(registry_names, registry%fixed_order)
     end function fixed_order_list
-
-    !> Index of `name` in the registry, 0 when unknown (trailing blanks ignored).
-    elemental integer function find(name)
-        character(len=*), intent(in) :: name
-
-        integer :: i
-
-        find = 0
-        if (len_trim(name) == 0 .or. len_trim(name) > ident_name_length) return
-        do i = 1, n_ident_methods
-            if (registry(i)%name == name) then
-                find = i
-                return
-            end if
-        end do
-    end function find
 
 end module greenconv_ident_methods
