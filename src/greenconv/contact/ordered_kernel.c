@@ -62,6 +62,13 @@ GC_ORDERED_OPTIMIZE static void gc_rows_scalar(int m, int n, int lda, const doub
     }
 }
 
+/* The four vectors' products by plain loops, one after the other. */
+GC_ORDERED_OPTIMIZE static void gc_rows_four_scalar(int m, int n, int lda, const double *restrict a,
+                                                    const double *restrict x, int ldx, double *restrict y, int ldy)
+{
+    for (int v = 0; v < 4; v++) gc_rows_scalar(m, n, lda, a, x + (size_t)v * (size_t)ldx, y + (size_t)v * (size_t)ldy);
+}
+
 /* inv -= sum_p c_p*(x_p*x_p^T), p = 1..d in order, by plain loops, column by column. */
 GC_ORDERED_OPTIMIZE static void gc_updates_scalar(int r, int ld, double *restrict inv, int d, int ldx,
                                                   const double *restrict x, const double *restrict c)
@@ -82,8 +89,9 @@ GC_ORDERED_OPTIMIZE static void gc_updates_scalar(int r, int ld, double *restric
 #if GC_ORDERED_HAS_VECTOR
 /* The same sums with LANES rows in the lanes of one vector: four vectors of rows at a time
  * (four independent sums in flight), then one, each block's sums held in registers over all
- * the columns; the rows after the last multiple of LANES by the plain loop. */
-#define GC_ORDERED_ROWS_KERNEL(NAME, VECTOR, LANES, TARGET)                                         \
+ * the columns; the rows after the last multiple of LANES by the next narrower kernel (TAIL),
+ * down to the plain loop. */
+#define GC_ORDERED_ROWS_KERNEL(NAME, VECTOR, LANES, TARGET, TAIL)                                   \
     GC_ORDERED_OPTIMIZE TARGET static void NAME(int m, int n, int lda, const double *restrict a,   \
                                                const double *restrict x, double *restrict y)       \
     {                                                                                               \
@@ -116,12 +124,13 @@ GC_ORDERED_OPTIMIZE static void gc_updates_scalar(int r, int ld, double *restric
             }                                                                                       \
             memcpy(y + i, &sum, sizeof sum);                                                        \
         }                                                                                           \
-        if (i < m) gc_rows_scalar(m - i, n, lda, a + i, x, y + i);                                  \
+        if (i < m) TAIL(m - i, n, lda, a + i, x, y + i);                                            \
     }
 
 /* y_v = A*x_v for four vectors at once, LANES rows a vector register: each column of A is read
- * once for the four sums; the rows after the last multiple of LANES by the plain loop. */
-#define GC_ORDERED_ROWS_FOUR_KERNEL(NAME, VECTOR, LANES, TARGET)                                    \
+ * once for the four sums; the rows after the last multiple of LANES by the next narrower
+ * kernel (TAIL), down to the plain loops. */
+#define GC_ORDERED_ROWS_FOUR_KERNEL(NAME, VECTOR, LANES, TARGET, TAIL)                              \
     GC_ORDERED_OPTIMIZE TARGET static void NAME(int m, int n, int lda, const double *restrict a,   \
                                                const double *restrict x, int ldx, double *restrict y, \
                                                int ldy)                                             \
@@ -142,8 +151,7 @@ GC_ORDERED_OPTIMIZE static void gc_updates_scalar(int r, int ld, double *restric
             memcpy(y + 2 * sy + i, &s2, sizeof s2);                                                 \
             memcpy(y + 3 * sy + i, &s3, sizeof s3);                                                 \
         }                                                                                           \
-        if (i < m)                                                                                  \
-            for (int v = 0; v < 4; v++) gc_rows_scalar(m - i, n, lda, a + i, x + v * sx, y + v * sy + i); \
+        if (i < m) TAIL(m - i, n, lda, a + i, x, ldx, y + i, ldy);                                  \
     }
 
 /* inv -= sum_p c_p*(x_p*x_p^T) in one pass, LANES entries of a column a vector. */
@@ -178,12 +186,12 @@ typedef double gc_ordered_v2 __attribute__((vector_size(16)));
 typedef double gc_ordered_v4 __attribute__((vector_size(32)));
 typedef double gc_ordered_v8 __attribute__((vector_size(64)));
 
-GC_ORDERED_ROWS_KERNEL(gc_rows_sse2, gc_ordered_v2, 2, )
-GC_ORDERED_ROWS_KERNEL(gc_rows_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
-GC_ORDERED_ROWS_KERNEL(gc_rows_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
-GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_sse2, gc_ordered_v2, 2, )
-GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
-GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
+GC_ORDERED_ROWS_KERNEL(gc_rows_sse2, gc_ordered_v2, 2, , gc_rows_scalar)
+GC_ORDERED_ROWS_KERNEL(gc_rows_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2, gc_rows_sse2)
+GC_ORDERED_ROWS_KERNEL(gc_rows_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512, gc_rows_avx2)
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_sse2, gc_ordered_v2, 2, , gc_rows_four_scalar)
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2, gc_rows_four_sse2)
+GC_ORDERED_ROWS_FOUR_KERNEL(gc_rows_four_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512, gc_rows_four_avx2)
 GC_ORDERED_UPDATES_KERNEL(gc_updates_sse2, gc_ordered_v2, 2, )
 GC_ORDERED_UPDATES_KERNEL(gc_updates_avx2, gc_ordered_v4, 4, GC_ORDERED_AVX2)
 GC_ORDERED_UPDATES_KERNEL(gc_updates_avx512, gc_ordered_v8, 8, GC_ORDERED_AVX512)
