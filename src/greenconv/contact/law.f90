@@ -14,7 +14,7 @@ module greenconv_contact_law
     implicit none
     private
 
-    public :: contact_law
+    public :: contact_law, point_forces
 
     !> Length of a law's name (`name`), blank-padded.
     integer, parameter, public :: law_name_length = 16
@@ -35,9 +35,10 @@ module greenconv_contact_law
         !> The law's parameters in the order of its registry row, in their SI units.
         procedure(law_parameters), deferred :: parameters
         !> Forces F_i(delta_i) [N] of the points' laws, an array of this law's dynamic type
-        !> (`call laws(1)%forces(laws, delta, force)`): the steppers' call on every point at
-        !> once. By default each point's `force`; a law may override it with a loop the compiler
-        !> inlines (the power law does).
+        !> (`call laws(1)%forces(laws, delta, force)`), and with `slope` their slopes
+        !> dF_i/ddelta_i [N/m] (the `tangent` in compression, zero otherwise): the steppers' call
+        !> on every point at once. By default each point's `force` and `tangent`; a law may
+        !> override it with a loop the compiler inlines (the power law does).
         procedure, nopass :: forces => point_forces
     end type contact_law
 
@@ -102,15 +103,24 @@ module greenconv_contact_law
 contains
 
     !> F_i = laws(i)%force(delta(i)) [N] for every point.
-    subroutine point_forces(laws, delta, force)
+    subroutine point_forces(laws, delta, force, slope)
         !> The points' laws (N_c), of one dynamic type.
         class(contact_law), intent(in) :: laws(:)
         !> Compressions delta_i [m] (N_c).
         real(dp), intent(in) :: delta(:)
         !> Forces F_i [N] (N_c).
         real(dp), intent(out) :: force(:)
+        !> Slopes dF_i/ddelta_i [N/m] (N_c), zero where delta_i <= 0, when present.
+        real(dp), intent(out), optional :: slope(:)
+
+        integer :: i
 
         force(:) = laws%force(delta)
+        if (.not. present(slope)) return
+        do i = 1, size(laws)
+            slope(i) = 0.0_dp
+            if (delta(i) > 0.0_dp) slope(i) = laws(i)%tangent(delta(i))
+        end do
     end subroutine point_forces
 
 end module greenconv_contact_law

@@ -5,7 +5,7 @@ module greenconv_contact_law_power
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
-    use greenconv_contact_law, only: contact_law, law_name_length
+    use greenconv_contact_law, only: contact_law, law_name_length, point_forces
     implicit none
     private
 
@@ -68,25 +68,36 @@ contains
         end if
     end function power_force
 
-    !> F_i = k_c,i*delta_i^p_i [N] for every point (zero where delta_i <= 0): `power_force` in a
-    !> loop the compiler inlines, no call through the type's table per point.
-    subroutine power_forces(laws, delta, force)
+    !> F_i = k_c,i*delta_i^p_i [N] for every point (zero where delta_i <= 0), and with `slope`
+    !> the slopes p_i*k_c,i*delta_i^(p_i-1) [N/m] (zero where delta_i <= 0): `power_force` and
+    !> `power_tangent` in a loop the compiler inlines, no call through the type's table per point.
+    subroutine power_forces(laws, delta, force, slope)
         !> The points' laws (N_c), all power laws.
         class(contact_law), intent(in) :: laws(:)
         !> Compressions delta_i [m] (N_c).
         real(dp), intent(in) :: delta(:)
         !> Forces F_i [N] (N_c).
         real(dp), intent(out) :: force(:)
+        !> Slopes dF_i/ddelta_i [N/m] (N_c), when present.
+        real(dp), intent(out), optional :: slope(:)
 
         integer :: i
 
         select type (laws)
         type is (power_law)
-            do i = 1, size(laws)
-                force(i) = power_force(laws(i), delta(i))
-            end do
+            if (present(slope)) then
+                do i = 1, size(laws)
+                    force(i) = power_force(laws(i), delta(i))
+                    slope(i) = 0.0_dp
+                    if (delta(i) > 0.0_dp) slope(i) = power_tangent(laws(i), delta(i))
+                end do
+            else
+                do i = 1, size(laws)
+                    force(i) = power_force(laws(i), delta(i))
+                end do
+            end if
         class default
-            force(:) = laws%force(delta)
+            call point_forces(laws, delta, force, slope)
         end select
     end subroutine power_forces
 

@@ -808,11 +808,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: z(compliance%rank), y(compliance%rank)
+        integer :: n_active
 
         taken = .false.
-        if (.not. compliance%low_rank .or. compliance%rank == 0 .or. all(slopes == 0.0_dp)) return
-        if (active_set_cheaper(real(count(slopes /= 0.0_dp), dp), real(compliance%rank, dp))) return
-        call form_newton_matrix(compliance, weight0, slopes, error)
+        if (.not. compliance%low_rank .or. compliance%rank == 0) return
+        n_active = count(slopes /= 0.0_dp)
+        if (n_active == 0) return
+        if (active_set_cheaper(real(n_active, dp), real(compliance%rank, dp))) return
+        call form_newton_matrix(compliance, weight0, slopes, n_active, error)
         if (allocated(error)) return
         call right_product(compliance, q, z)
         call ordered_product(compliance%newton%inverse, 1, z, y)
@@ -863,7 +866,7 @@ contains
             s(:) = b
             return
         end if
-        call form_newton_matrix(compliance, weight0, slopes, error)
+        call form_newton_matrix(compliance, weight0, slopes, count(slopes /= 0.0_dp), error)
         if (allocated(error)) return
         associate (newton => compliance%newton, r => compliance%rank)
             if (newton%on_active_set) then
@@ -886,28 +889,37 @@ contains
     !> Factor the Newton matrix of `slopes` unless it is the one kept: on the active set
     !> (N_a^3/3 operations) or M = I_r + V_A^T*diag(t_A)*U_A (N_a*r^2 + r^3/3), the cheaper;
     !> M^-1 is updated instead when few slopes changed (`update_inverse`).
-    subroutine form_newton_matrix(compliance, weight0, slopes, error)
+    subroutine form_newton_matrix(compliance, weight0, slopes, n_active, error)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: weight0(:, :), slopes(:)
+        !> Number of nonzero slopes.
+        integer, intent(in) :: n_active
         type(error_type), allocatable, intent(out) :: error
 
         real(dp) :: rank
-        integer :: i, j
+        integer :: changed(size(slopes)), n_changed, i, j
         logical :: on_active_set, updated
 
         associate (newton => compliance%newton)
             rank = real(compliance%rank, dp)
-            on_active_set = active_set_cheaper(real(count(slopes /= 0.0_dp), dp), rank)
+            on_active_set = active_set_cheaper(real(n_active, dp), rank)
             if (newton%ready) then
-                if (all(newton%slopes == slopes)) return
+                n_changed = 0
+                do i = 1, size(slopes)
+                    if (slopes(i) /= newton%slopes(i)) then
+                        n_changed = n_changed + 1
+                        changed(n_changed) = i
+                    end if
+                end do
+                if (n_changed == 0) return
                 if (.not. (on_active_set .or. newton%on_active_set)) then
-                    call update_inverse(compliance, slopes, updated)
+                    call update_inverse(compliance, slopes, changed(1:n_changed), n_active, updated)
                     if (updated) return
                 end if
             end if
             newton%ready = .false.
             newton%slopes = slopes
-            newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
+            call set_active(slopes, n_active, newton%active)
             newton%on_active_set = on_active_set
             if (newton%on_active_set) then
                 newton%factors = weight0(newton%active, newton%active)
@@ -970,20 +982,22 @@ contains
     !> Symmetric factors (u_i = v_i, M^-1 symmetric): y = x, and the changes are made in groups
     !> of up to `update_group` (`symmetric_group`), two passes over M^-1 a group instead of two
     !> a change.
-    subroutine update_inverse(compliance, slopes, updated)
+    subroutine update_inverse(compliance, slopes, changed, n_active, updated)
         type(lowrank_compliance), intent(inout) :: compliance
         real(dp), intent(in) :: slopes(:)
+        !> The points whose slopes differ from those of the kept M^-1, in increasing order.
+        integer, intent(in) :: changed(:)
+        !> Number of nonzero slopes.
+        integer, intent(in) :: n_active
         logical, intent(out) :: updated
 
-        integer, allocatable :: changed(:)
         real(dp) :: x(compliance%rank), y(compliance%rank), change, pivot
         integer :: i, j, k, l, r, first, last
         logical :: done
 
         updated = .false.
         associate (newton => compliance%newton, u => compliance%left, v_t => compliance%right_t)
-            changed = pack([(i, i=1, size(slopes))], slopes /= newton%slopes)
-            if (3*size(changed) > count(slopes /= 0.0_dp)) return
+            if (3*size(changed) > n_active) return
             if (newton%updates + size(changed) > size(slopes)) then
                 if (.not. inverse_accurate(compliance)) return
                 newton%updates = 0
@@ -1015,13 +1029,38 @@ contains
                     end do
                 end do
             end if
-            newton%slopes = slopes
-            newton%active = pack([(i, i=1, size(slopes))], slopes /= 0.0_dp)
+            newton%slopes(:) = slopes
+            call set_active(slopes, n_active, newton%active)
             newton%updates = newton%updates + size(changed)
             newton%ready = .true.
             updated = .true.
         end associate
     end subroutine update_inverse
+
+    !> The indices of the nonzero slopes in increasing order (`active` reallocated only when
+    !> their number changes).
+    pure subroutine set_active(slopes, n_active, active)
+        !> Slopes t [N/m] (N_c).
+        real(dp), intent(in) :: slopes(:)
+        !> Number of nonzero slopes.
+        integer, intent(in) :: n_active
+        !> The active points (n_active).
+        integer, allocatable, intent(inout) :: active(:)
+
+        integer :: i, k
+
+        if (allocated(active)) then
+            if (size(active) /= n_active) deallocate (active)
+        end if
+        if (.not. allocated(active)) allocate (active(n_active))
+        k = 0
+        do i = 1, size(slopes)
+            if (slopes(i) /= 0.0_dp) then
+                k = k + 1
+                active(k) = i
+            end if
+        end do
+    end subroutine set_active
 
     !> Whether the kept M^-1 still inverts M = I_r + V_A^T*diag(t_A)*U_A of its slopes to
     !> `inverse_drift`: w = M^-1*1 by the kept inverse, then |M*w - 1|_max from the rows of the

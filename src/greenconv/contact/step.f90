@@ -41,7 +41,7 @@
 !> reference changes.
 module greenconv_contact_step
     use, intrinsic :: iso_fortran_env, only: int64
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error, stat_input, stat_numerical
     use greenconv_core_text, only: int_text, sci_text
@@ -92,9 +92,13 @@ module greenconv_contact_step
         !> the next implicit step.
         real(dp), allocatable :: delta(:)
         !> W0*(F(delta) - F0) [m] of the compressions in `delta` when the last step solved them
-        !> by the implicit multi-point iteration (unallocated otherwise): the next step's first
-        !> guess without a product by W0.
+        !> by the implicit multi-point iteration (`coupling_kept`): the next step's first guess
+        !> without a product by W0. Allocated at the first such step and kept.
         real(dp), allocatable :: coupling(:)
+        !> Whether `coupling` holds the last step's.
+        logical :: coupling_kept = .false.
+        !> max_i delta0_i [m], a floor of the implicit iteration's scale.
+        real(dp) :: delta0_max = 0.0_dp
         !> Scheme, divergence bound and Newton settings.
         type(contact_options) :: settings
         !> Whether W0 /= 0 (some step's own force reaches the body within the step).
@@ -137,6 +141,7 @@ contains
         state%preload = preload
         state%delta0 = laws%compression(preload)
         state%delta = state%delta0
+        state%delta0_max = maxval(state%delta0)
         state%settings = options
         state%coupled = .not. (maxval(abs(weight0)) <= 0.0_dp)
         state%dt = dt
@@ -337,7 +342,7 @@ contains
         class(multipoint_convolver), intent(inout), optional :: conv
 
         real(dp) :: r(size(free)), trial(size(free)), r_trial(size(free)), step(size(free))
-        real(dp) :: coupling_trial(size(free)), force_trial(size(free)), alpha, scale
+        real(dp) :: coupling_trial(size(free)), force_trial(size(free)), alpha, scale, largest_trial
         integer :: halvings
         logical :: taken
 
@@ -346,35 +351,36 @@ contains
         if (.not. state%compliance%checked) call factor_instant(weight0, state%compliance, conv)
         associate (delta => state%delta, laws => state%laws, options => state%settings, &
                    compliance => state%compliance)
-            if (allocated(state%coupling)) then
+            if (state%coupling_kept) then
                 delta(:) = free - state%coupling
-                deallocate (state%coupling)
+                state%coupling_kept = .false.
             else
                 call law_forces(laws, delta, load)
                 load(:) = load - state%preload
                 delta(:) = free - instant_product(compliance, weight0, load, conv)
             end if
-            step(:) = slope(laws, delta)
-            call law_forces(laws, delta, load)
+            call laws(1)%forces(laws, delta, load, step)
             load(:) = load - state%preload - step*(delta - free)
             call woodbury_step(compliance, weight0, step, load, free, trial, taken, error)
             if (allocated(error)) return
             if (taken) then
                 call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling, force_trial, &
-                              scale, conv)
-                if (maxval(abs(r_trial)) <= options%tolerance*max(scale, maxval(state%delta0))) then
+                              scale, largest, conv)
+                if (largest <= options%tolerance*max(scale, state%delta0_max)) then
                     delta(:) = trial
                     load(:) = force_trial
-                    state%coupling = coupling
+                    call keep_coupling(state, coupling)
                     iterations = 1
+                    largest = 0.0_dp
                     return
                 end if
             end if
-            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, load, scale, conv)
-            scale = max(scale, maxval(state%delta0))
+            call residual(compliance, weight0, laws, state%preload, free, delta, r, coupling, load, scale, largest, conv)
+            scale = max(scale, state%delta0_max)
             do iterations = 0, options%max_iterations
-                if (maxval(abs(r)) <= options%tolerance*scale) then
-                    state%coupling = coupling
+                if (largest <= options%tolerance*scale) then
+                    call keep_coupling(state, coupling)
+                    largest = 0.0_dp
                     return
                 end if
                 if (iterations == options%max_iterations) exit
@@ -384,7 +390,7 @@ contains
                 do halvings = 0, max_halvings
                     trial(:) = delta + alpha*step
                     call residual(compliance, weight0, laws, state%preload, free, trial, r_trial, coupling_trial, &
-                                  force_trial, scale, conv)
+                                  force_trial, scale, largest_trial, conv)
                     if (norm2(r_trial) <= (1.0_dp - 1.0e-4_dp*alpha)*norm2(r)) exit
                     alpha = alpha/2
                 end do
@@ -392,13 +398,24 @@ contains
                 r(:) = r_trial
                 coupling(:) = coupling_trial
                 load(:) = force_trial
-                scale = max(scale, maxval(state%delta0))
+                largest = largest_trial
+                scale = max(scale, state%delta0_max)
             end do
         end associate
         iterations = state%settings%max_iterations + 1
         point = maxloc(abs(r), 1)
         largest = r(point)
     end subroutine solve_compressions
+
+    !> Keep W0*(F(delta) - F0) [m] of the step's compressions for the next step's first guess.
+    subroutine keep_coupling(state, coupling)
+        type(contact_state), intent(inout) :: state
+        real(dp), intent(in) :: coupling(:)
+
+        if (.not. allocated(state%coupling)) allocate (state%coupling(size(coupling)))
+        state%coupling(:) = coupling
+        state%coupling_kept = .true.
+    end subroutine keep_coupling
 
     !> W0's low-rank factors, once per run: in the span of the convolver's separable modes when
     !> it offers them (no N_c x N_c elimination), else by eliminating the dense W0; dense when
@@ -422,19 +439,36 @@ contains
     end subroutine factor_instant
 
     !> R = delta - a + W0*(F(delta) - F0) [m], its coupling W0*(F(delta) - F0) [m], the forces
-    !> F(delta) [N] and the size of its terms [m].
-    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, force, scale, conv)
+    !> F(delta) [N], the size of its terms [m] (the largest |a_i|, |delta_i|, |coupling_i|, at
+    !> least tiny) and max_i |R_i| [m]; the maxima over the numbers that are not NaN, as MAXVAL.
+    subroutine residual(compliance, weight0, laws, preload, free, delta, r, coupling, force, scale, largest, conv)
         type(lowrank_compliance), intent(in) :: compliance
         real(dp), intent(in) :: weight0(:, :)
         class(contact_law), intent(in) :: laws(:)
         real(dp), intent(in) :: preload(:), free(:), delta(:)
-        real(dp), intent(out) :: r(:), coupling(:), force(:), scale
+        real(dp), intent(out) :: r(:), coupling(:), force(:), scale, largest
         class(multipoint_convolver), intent(inout), optional :: conv
+
+        integer :: i
+        logical :: number
 
         call law_forces(laws, delta, force)
         coupling(:) = instant_product(compliance, weight0, force - preload, conv)
-        r(:) = delta - free + coupling
-        scale = max(maxval(abs(free)), maxval(abs(delta)), maxval(abs(coupling)), tiny(1.0_dp))
+        scale = tiny(1.0_dp)
+        largest = -huge(1.0_dp)
+        number = .false.
+        do i = 1, size(r)
+            r(i) = delta(i) - free(i) + coupling(i)
+            if (abs(free(i)) > scale) scale = abs(free(i))
+            if (abs(delta(i)) > scale) scale = abs(delta(i))
+            if (abs(coupling(i)) > scale) scale = abs(coupling(i))
+            if (abs(r(i)) >= largest) then
+                largest = abs(r(i))
+                number = .true.
+            end if
+        end do
+        ! every R_i NaN: no convergence (MAXVAL's NaN)
+        if (.not. number) largest = ieee_value(largest, ieee_quiet_nan)
     end subroutine residual
 
     !> W0*x [m] for loads x [N]: the convolver's own product when it is the cheaper

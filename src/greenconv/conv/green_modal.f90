@@ -63,8 +63,11 @@ module greenconv_conv_green_modal
         !> Modal forces Q_k [N] of the last push (work space).
         real(dp), allocatable :: modal_force(:)
         !> The loads x [N] (N_c) of the last `apply_instant_kept` on the separable factors and
-        !> their modal loads Phi^T*x (N_m), for a push of the same loads; unallocated when none.
+        !> their modal loads Phi^T*x (N_m), for a push of the same loads (allocated at the first
+        !> such product and kept; `kept` says whether they are current).
         real(dp), allocatable :: kept_load(:), kept_modal(:)
+        !> Whether `kept_load` and `kept_modal` are those of the last product, not yet pushed.
+        logical :: kept = .false.
     contains
         procedure :: history => modal_history
         procedure :: push => modal_push
@@ -241,8 +244,13 @@ contains
         call separable_modal_forces(self%separable, x, modal, share)
         weighted(:) = self%engine%mode_weight*modal
         call separable_displacements(self%separable, weighted, y, share)
-        self%kept_load = x
-        self%kept_modal = modal
+        if (allocated(self%kept_load)) then
+            if (size(self%kept_load) /= size(x)) deallocate (self%kept_load, self%kept_modal)
+        end if
+        if (.not. allocated(self%kept_load)) allocate (self%kept_load(size(x)), self%kept_modal(size(modal)))
+        self%kept_load(:) = x
+        self%kept_modal(:) = modal
+        self%kept = .true.
     end subroutine modal_instant_kept
 
     !> W0 = Phi*diag(w)*Phi^T on the separable factors, when the convolver holds them and W0 /= 0:
@@ -312,7 +320,7 @@ contains
             else
                 call separable_modal_forces(self%separable, load, self%modal_force, share)
             end if
-            if (allocated(self%kept_load)) deallocate (self%kept_load, self%kept_modal)
+            self%kept = .false.
             do k = 1, size(self%modal_force)
                 call step_mode(self%engine, k, self%modal_force(k))
             end do
@@ -337,7 +345,7 @@ contains
         real(dp), intent(in) :: load(:)
 
         kept_for = .false.
-        if (.not. allocated(self%kept_load)) return
+        if (.not. self%kept) return
         if (size(self%kept_load) /= size(load)) return
         kept_for = all(self%kept_load == load)
     end function kept_for
@@ -363,7 +371,7 @@ contains
 
         call self%engine%reset()
         self%modal_force(:) = 0.0_dp
-        if (allocated(self%kept_load)) deallocate (self%kept_load, self%kept_modal)
+        self%kept = .false.
     end subroutine modal_clear
 
 end module greenconv_conv_green_modal
