@@ -21,15 +21,16 @@
 #   make doc        API documentation with FORD (installed with pip when missing) into
 #                   build/doc/index.html, after checking that every public entity has a
 #                   `!>` comment (make doc-check)
-#   make run        deps, build, run every data/*.nml scene, then the benchmark (`make bench`),
-#                   then draw every plot/*.gp into out/figures/
+#   make run        deps, build, run every data/*.nml scene, then the benchmark's tables and
+#                   charts (`make bench-data`), then draw every plot/*.gp into out/figures/
 #   make bench      deps, build, run the benchmark example greenconv-bench: Tabs. 2-3 and the
 #                   targets measured in one run, printed and saved in out/bench/tables.txt, the
 #                   data of the speed/accuracy and stability charts in out/bench/, the driver's whole-process
 #                   time on Tab. 2's largest case (text, binary) against the C printf anchor
 #                   (bench/driver_output.sh, out/bench/driver_output.txt), the implicit patch
 #                   against the explicit one on 1 and 2 threads and at 5,000 points (`make
-#                   bench-patch`, out/bench/patch_cost.txt), then the figures
+#                   bench-patch`, out/bench/patch_cost.txt), the identification and sweep
+#                   rows, then the benchmark's figures (the plot/*.gp that read out/bench/)
 #   make bench-patch  per-step costs of exact and modal on data/tyre_patch.nml and their ratio,
 #                   rounds interleaved, 1 and 2 OpenMP threads, the 5,000-point grid measured
 #                   and projected (bench/patch_cost.sh on the plain build's driver)
@@ -152,11 +153,13 @@ OBJS := $(patsubst %,$(BUILD)/%.o,$(basename $(SRCS))) $(patsubst %.c,$(BUILD)/%
 
 SCENES  := $(wildcard data/*.nml)
 PLOTS   := $(wildcard plot/*.gp)
+# the figures drawn from the benchmark's data alone (out/bench/), which `make bench` draws
+BENCH_PLOTS := $(shell grep -l 'out/bench' $(PLOTS))
 FIGDIR  := out/figures
 # Scenes whose Makefile-built output is compared with the fpm-built one in `make test`.
 CHECK_SCENES ?= data/sdof_sine.nml
 
-.PHONY: all lib deps build run bench bench-data bench-smoke figures test layers links clean examples install doc doc-check \
+.PHONY: all lib deps build run bench bench-data bench-smoke figures bench-figures test layers links clean examples install doc doc-check \
         fuzz valgrind sanitize sanitize-builds sanitize-ci plot-test thread-test thread-stress thread-helgrind thread-readers thread-ident thread-check \
         statics-check
 
@@ -495,7 +498,7 @@ bench: build
 	@$(MAKE) bench-patch
 	@$(MAKE) bench-ident
 	@$(MAKE) sweep-bench
-	@$(MAKE) figures
+	@$(MAKE) bench-figures
 
 # The tables go to a temporary file renamed when complete, like every other output.
 bench-data:
@@ -532,9 +535,13 @@ bench-ident: lib
 	@mv out/bench/ident_peer.md.part out/bench/ident_peer.md
 	@cat out/bench/ident_peer.md
 
-figures:
+# `make figures` draws every plot/*.gp (the scenes' after `make run`), `make bench-figures` those
+# of the benchmark's data.
+figures: DRAW = $(PLOTS)
+bench-figures: DRAW = $(BENCH_PLOTS)
+figures bench-figures:
 	@mkdir -p $(FIGDIR)
-	@for script in $(PLOTS); do \
+	@for script in $(DRAW); do \
 	    echo "greenconv: plotting $$script"; \
 	    $(GNUPLOT) -e "figdir='$(FIGDIR)'" "$$script"; \
 	done
