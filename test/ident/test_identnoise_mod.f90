@@ -24,7 +24,7 @@ module test_identnoise_mod
     use greenconv_scene_models_structure, only: build_structure
     use greenconv_scene_run_report, only: write_identification
     use greenconv_ident_structure, only: structure_model
-    use greenconv_capi_modes, only: gc_identify_ml_file
+    use greenconv_capi, only: gc_identify_ml_file
     use greenconv_legacy, only: gcidml
     use scene_text_mod, only: read_scene_text
     use test_mlfit_mod, only: cramer_rao, structure

@@ -31,8 +31,9 @@ module greenconv_capi
     use greenconv_contact_single, only: contact_options
     use greenconv_capi_law, only: law_box, law_at, door_name
     use greenconv_api_library, only: check_contact_law, run_scene_file, default_truncation_tol, default_accuracy
+    use greenconv_ident_mlfit, only: ml_result
     use greenconv_api_handle, only: convolver_box, new_box, free_box, box_at, sdof_structure, modes_structure, &
-                                    samples_structure, frf_file_structure, identify_file, check_steps, &
+                                    samples_structure, frf_file_structure, identify_file, identify_file_ml, check_steps, &
                                     step_box, describe_box, refuse_multi_point
     use greenconv_api_budget, only: run_point_budget, start_point_budget
     use greenconv_api_multi_handle, only: advance_multi_box
@@ -48,7 +49,7 @@ module greenconv_capi
     public :: gc_convolver_warnings
     public :: gc_contact_step_law, gc_contact_options_init, gc_run_contact_law
     public :: gc_contact_start_law, gc_contact_advance
-    public :: gc_identify_frf_file, gc_run_scene, point_null_handle
+    public :: gc_identify_frf_file, gc_identify_ml_file, gc_run_scene, point_null_handle
     !> The message and string conversions of greenconv_api_doors, named here too for the
     !> callers that took them from this module.
     public :: finish, from_c, to_c
@@ -755,5 +756,79 @@ contains
         settings%tolerance = given%tolerance
     end subroutine options_from_c
 
+
+    !> int gc_identify_ml_file(const char *path, const char *noise_model, int max_order, int capacity,
+    !> int *n_modes, int *n_determined, double *pole_re, double *pole_im, double *residue_re,
+    !> double *residue_im, double *sigma_f, double *sigma_xi, int *determined, char *errmsg,
+    !> size_t errmsg_len): the modes of a receptance file by maximum likelihood (order by MDL,
+    !> noise model "auto" from the data), lowest natural frequency first, each with its standard
+    !> deviations and determined[k] = 1 when the data determine it, 0 for a pole of the fitted
+    !> receptance they do not (as the column `determined` of a scene's modes file).
+    function gc_identify_ml_file(path, noise_model, max_order, capacity, n_modes, n_determined, pole_re, pole_im, &
+                                 residue_re, residue_im, sigma_f, sigma_xi, determined, errmsg, errmsg_len) &
+        bind(c, name='gc_identify_ml_file') result(status)
+        !> Path of the receptance file (columns or a universal file), NUL-terminated.
+        type(c_ptr), value, intent(in) :: path
+        !> "auto", "relative", "absolute", "floor" or "band", NUL-terminated; NULL for "auto".
+        type(c_ptr), value, intent(in) :: noise_model
+        !> Highest order of the stabilisation diagram (modes), 1 to 200 (30 is usual).
+        integer(c_int), value, intent(in) :: max_order
+        !> Capacity of the seven output arrays, >= 0.
+        integer(c_int), value, intent(in) :: capacity
+        !> Where the number of modes found goes (an int; set also when it exceeds capacity).
+        type(c_ptr), value, intent(in) :: n_modes
+        !> Where the number of modes the data determine goes (an int).
+        type(c_ptr), value, intent(in) :: n_determined
+        !> Where the real parts of the poles [rad/s] go (capacity values).
+        type(c_ptr), value, intent(in) :: pole_re
+        !> Where the imaginary parts of the poles [rad/s] go.
+        type(c_ptr), value, intent(in) :: pole_im
+        !> Where the real parts of the residues [m/(N*s)] go.
+        type(c_ptr), value, intent(in) :: residue_re
+        !> Where the imaginary parts of the residues [m/(N*s)] go.
+        type(c_ptr), value, intent(in) :: residue_im
+        !> Where the standard deviations of the natural frequencies [Hz] go.
+        type(c_ptr), value, intent(in) :: sigma_f
+        !> Where the standard deviations of the damping ratios go.
+        type(c_ptr), value, intent(in) :: sigma_xi
+        !> Where the flags go (ints): 1 determined by the data, 0 not.
+        type(c_ptr), value, intent(in) :: determined
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_identify_ml_file'
+        type(error_type), allocatable :: error
+        type(ml_result) :: result
+        character(len=:), allocatable :: model
+
+        call need_pointer(caller, path, 'path', 'pass the name of a receptance file', error)
+        call need_pointers(caller, [n_modes, n_determined, pole_re, pole_im, residue_re, residue_im, sigma_f, &
+                                    sigma_xi, determined], 'n_modes, n_determined, pole_re, pole_im, residue_re, ' &
+                           //'residue_im, sigma_f, sigma_xi and determined', 'pass where they should go', error)
+        call need_capacity(caller, int(capacity), error)
+        if (allocated(error)) then
+            status = finish(error, errmsg, errmsg_len)
+            return
+        end if
+        call put_if(n_modes, 0)
+        call put_if(n_determined, 0)
+        model = 'auto'
+        if (c_associated(noise_model)) model = from_c(noise_model)
+        call identify_file_ml(from_c(path), model, int(max_order), result, error)
+        if (.not. allocated(error)) then
+            call put_if(n_modes, result%modes%n_modes())
+            call put_if(n_determined, count(result%determined_modes()))
+            call modes_to_c(caller, result%modes, int(capacity), pole_re, pole_im, residue_re, residue_im, error)
+            if (.not. allocated(error)) then
+                call put_if(sigma_f, result%sigma_frequency)
+                call put_if(sigma_xi, result%sigma_damping)
+                call put_if(determined, merge(1, 0, result%determined_modes()))
+            end if
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function gc_identify_ml_file
 
 end module greenconv_capi

@@ -1,5 +1,5 @@
 /* The C doors that are another door with a fixed argument: each is a line or a few, so that
- * one body (src/greenconv/api/capi.f90, capi_multi.f90, capi_modes.f90) serves both names and the header
+ * one body (src/greenconv/api/capi.f90, capi_multi.f90) serves both names and the header
  * (include/greenconv.h) keeps every name it has declared.
  *
  * - The constructors and the whole run without build or contact options are their `_opts`
@@ -175,7 +175,7 @@ int gc_multi_run_contact(gc_multi_convolver *conv, int n_points, int n_steps, co
     return status;
 }
 
-/* The estimate and accuracy doors of both handle types (src/greenconv/api/capi_modes.f90):
+/* The estimate and accuracy doors of both handle types (src/greenconv/api/capi_multi.f90):
  * single not 0 for the single-point door, whose name its messages give. */
 int greenconv_estimate_door(int single, const gc_multi_convolver *conv, double *estimate, char *errmsg,
                             size_t errmsg_len);

@@ -8,6 +8,17 @@
 !> always NUL-terminated, "" on success). Arrays are C arrays laid out as Fortran stores them
 !> (the first index fastest): shape[k*n_points + i] = phi_ik, g[(j*n_points + i)*n_samples + m]
 !> = g_ij(m*dt), road[i*n_steps + n] = u_r,i(t_n), W0[j*n_points + i] = W0_ij. SI units.
+!>
+!> Here too, for both handle types (the same box behind them):
+!> - `gc_multi_new_modes_file`: the nodes of a universal file of normal modes the contact
+!>   points, its modes up to a band stepped, as a scene's `&structure model = 'modes_file'`;
+!> - `gc_multi_estimate` and `gc_convolver_estimate` (one body, `greenconv_estimate_door`,
+!>   behind their aliases in capi_aliases.c): the method's own estimate of the relative error
+!>   of the contact forces, the contact run's time-step and band terms included
+!>   (greenconv_api_budget);
+!> - `gc_multi_set_accuracy` and `gc_convolver_set_accuracy` (`greenconv_accuracy_door`): the
+!>   accuracy the host asks; beyond it, the calls that run contact return GC_ACCURACY (4, "ran,
+!>   but outside the accuracy asked").
 module greenconv_capi_multi
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_size_t, c_ptr, c_associated, &
                                            c_f_pointer, c_loc
@@ -22,8 +33,9 @@ module greenconv_capi_multi
     use greenconv_api_multi_handle, only: modes_multi_box, samples_multi_box, patch_modes, &
                                           check_box, set_multi_options, start_multi_box, advance_multi_box, &
                                           run_multi_box, file_multi_box, method_multi_box, check_file_box, &
-                                          file_e_modes, box_points, file_summary, run_request
-    use greenconv_capi, only: gc_build_options
+                                          file_e_modes, box_points, file_summary, run_request, modes_file_box
+    use greenconv_api_budget, only: set_box_accuracy
+    use greenconv_capi, only: gc_build_options, point_null_handle
     use greenconv_api_doors, only: finish, from_c, to_c, put_if, start_door, need_pointer, need_pointers, need_count
     use greenconv_api_handle, only: convolver_box, box_at, reset_box, describe_box, check_steps
     implicit none
@@ -34,6 +46,7 @@ module greenconv_capi_multi
     public :: gc_multi_describe, gc_multi_set_newton, gc_multi_contact_step
     public :: gc_multi_new_file, gc_multi_new_method, gc_multi_points, gc_multi_file_summary
     public :: gc_multi_contact_start_law, gc_multi_run_contact_law, greenconv_multi_check_for_door
+    public :: gc_multi_new_modes_file, greenconv_estimate_door, greenconv_accuracy_door
     public :: made, request_of, null_handle
 
     !> What a NULL handle's message says.
@@ -806,5 +819,141 @@ contains
         end if
         status = finish(error, errmsg, errmsg_len)
     end function made
+
+    !> int gc_multi_new_modes_file(const char *path, int direction, double damping_ratio,
+    !> double f_band, const char *method, double dt, int n_steps, const gc_build_options *options,
+    !> gc_multi_convolver **conv, char *errmsg, size_t errmsg_len): a convolver on a universal
+    !> file of normal modes (datasets 15/2411 and 55), every node a contact point.
+    function gc_multi_new_modes_file(path, direction, damping_ratio, f_band, method, dt, n_steps, options, conv, &
+                                     errmsg, errmsg_len) bind(c, name='gc_multi_new_modes_file') result(status)
+        !> Path of the universal file (NUL-terminated).
+        type(c_ptr), value, intent(in) :: path
+        !> Direction of the shapes at the contact: 1, 2, 3 for X, Y, Z, negative for the opposite sense.
+        integer(c_int), value, intent(in) :: direction
+        !> Viscous damping ratio of the modes the file gives none, in [0, 1).
+        real(c_double), value, intent(in) :: damping_ratio
+        !> Highest natural frequency stepped [Hz], or 0 for the Nyquist frequency 1/(2*dt).
+        real(c_double), value, intent(in) :: f_band
+        !> Method: "modal" (= "recursive"), "exact", "direct" or "fft".
+        type(c_ptr), value, intent(in) :: method
+        !> Time step dt [s], > 0.
+        real(c_double), value, intent(in) :: dt
+        !> Number of steps N_t of the run, >= 1.
+        integer(c_int), value, intent(in) :: n_steps
+        !> Build options (truncation_tol; accuracy is not used), or NULL for the defaults.
+        type(c_ptr), value, intent(in) :: options
+        !> Where the new convolver goes (NULL there on failure).
+        type(c_ptr), value, intent(in) :: conv
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        character(len=*), parameter :: caller = 'gc_multi_new_modes_file'
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        box => null()
+        call start_door(caller, conv, 'gc_multi_convolver', method, error)
+        call need_pointer(caller, path, 'path', 'pass the name of a universal file of normal modes', error)
+        if (.not. allocated(error)) then
+            call modes_file_box(caller, from_c(path), int(direction), damping_ratio, f_band, &
+                                request_of(method, dt, n_steps, options), box, error)
+        end if
+        status = made(box, conv, error, errmsg, errmsg_len)
+    end function gc_multi_new_modes_file
+
+    !> int greenconv_estimate_door(int single, const gc_multi_convolver *conv, double *estimate,
+    !> char *errmsg, size_t errmsg_len): gc_multi_estimate (single = 0) and gc_convolver_estimate
+    !> (single not 0) of capi_aliases.c, the method's own estimate of the relative error of its
+    !> contact forces (the model's terms, plus the time-step and band terms of the contact run
+    !> going on or last run) into *estimate, the messages naming the door. Not in the header.
+    function greenconv_estimate_door(single, conv, estimate, errmsg, errmsg_len) &
+        bind(c, name='greenconv_estimate_door') result(status)
+        !> Not 0 for the single-point door.
+        integer(c_int), value, intent(in) :: single
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Where the estimate goes [-].
+        type(c_ptr), value, intent(in) :: estimate
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+        real(c_double), pointer :: value_out
+
+        box => checked_box(single, 'gc_multi_estimate', 'gc_convolver_estimate', conv, error)
+        call need_pointer(door(single, 'gc_multi_estimate', 'gc_convolver_estimate'), estimate, 'estimate', &
+                          'pass the address of a double', error)
+        if (.not. allocated(error)) then
+            call c_f_pointer(estimate, value_out)
+            value_out = box%estimate + box%run_terms
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function greenconv_estimate_door
+
+    !> int greenconv_accuracy_door(int single, gc_multi_convolver *conv, double accuracy,
+    !> char *errmsg, size_t errmsg_len): gc_multi_set_accuracy (single = 0) and
+    !> gc_convolver_set_accuracy (single not 0) of capi_aliases.c, the relative accuracy the host
+    !> asks (0: none) kept, GC_ACCURACY at once when the method's own estimate exceeds it and
+    !> from the doors that run contact afterwards, the messages naming the door. Not in the header.
+    function greenconv_accuracy_door(single, conv, accuracy, errmsg, errmsg_len) &
+        bind(c, name='greenconv_accuracy_door') result(status)
+        !> Not 0 for the single-point door.
+        integer(c_int), value, intent(in) :: single
+        !> The convolver.
+        type(c_ptr), value, intent(in) :: conv
+        !> Relative accuracy asked (the largest error estimate accepted), > 0, or 0 for none.
+        real(c_double), value, intent(in) :: accuracy
+        !> Message buffer, or NULL.
+        type(c_ptr), value, intent(in) :: errmsg
+        !> Size of the message buffer [bytes].
+        integer(c_size_t), value, intent(in) :: errmsg_len
+        integer(c_int) :: status
+
+        type(error_type), allocatable :: error
+        type(convolver_box), pointer :: box
+
+        box => checked_box(single, 'gc_multi_set_accuracy', 'gc_convolver_set_accuracy', conv, error)
+        if (.not. allocated(error)) then
+            call set_box_accuracy(door(single, 'gc_multi_set_accuracy', 'gc_convolver_set_accuracy'), box, &
+                                  accuracy, error)
+        end if
+        status = finish(error, errmsg, errmsg_len)
+    end function greenconv_accuracy_door
+
+    !> The door's name: its multi-point one, or its single-point one when `single` is not 0.
+    pure function door(single, multi_name, point_name) result(name)
+        integer(c_int), intent(in) :: single
+        character(len=*), intent(in) :: multi_name, point_name
+        character(len=merge(len(point_name), len(multi_name), single /= 0)) :: name
+
+        if (single /= 0) then
+            name = point_name
+        else
+            name = multi_name
+        end if
+    end function door
+
+    !> The box behind a handle, refused (status 2) when NULL with the words of the door's family.
+    function checked_box(single, multi_name, point_name, conv, error) result(box)
+        integer(c_int), intent(in) :: single
+        character(len=*), intent(in) :: multi_name, point_name
+        type(c_ptr), intent(in) :: conv
+        type(error_type), allocatable, intent(out) :: error
+        type(convolver_box), pointer :: box
+
+        box => box_at(conv)
+        if (single /= 0) then
+            call check_box(point_name, point_null_handle, box, error=error)
+        else
+            call check_box(multi_name, null_handle, box, error=error)
+        end if
+    end function checked_box
 
 end module greenconv_capi_multi
