@@ -62,6 +62,7 @@ module greenconv_conv_fft
     use greenconv_core_kinds, only: dp
     use greenconv_conv_convolver, only: convolver
     use greenconv_ext_fftw, only: fft_plan_set
+    use greenconv_ident_dense, only: dot
     implicit none
     private
 
@@ -318,8 +319,8 @@ contains
         end do
     end subroutine build_level
 
-    !> History displacement u_h(n) [m]: the head's dot product plus the levels' pending sum;
-    !> NaN from step `valid_steps` on.
+    !> History displacement u_h(n) [m]: the head's dot product (`dot` of greenconv_ident_dense,
+    !> one fixed order of sums) plus the levels' pending sum; NaN from step `valid_steps` on.
     function fft_history(self) result(u)
         class(fft_convolver), intent(in) :: self
         real(dp) :: u
@@ -332,37 +333,10 @@ contains
         end if
         h = size(self%head_weight)
         associate (r => self%rings)
-            u = dot4(self%head_weight, r%head_past(r%head_position:r%head_position + h - 1, 1)) &
+            u = dot(self%head_weight, r%head_past(r%head_position:r%head_position + h - 1, 1)) &
                 + r%pending(r%pending_position, 1)
         end associate
     end function fft_history
-
-    !> sum_i a(i)*b(i) in four interleaved partial sums: four multiply-adds in flight instead
-    !> of one dependent chain, without -ffast-math (2.5 times faster than dot_product for
-    !> the 64-tap head at -O2).
-    pure function dot4(a, b) result(total)
-        real(dp), contiguous, intent(in) :: a(:), b(:)
-        real(dp) :: total
-
-        real(dp) :: s1, s2, s3, s4
-        integer :: i, n4
-
-        n4 = size(a) - mod(size(a), 4)
-        s1 = 0.0_dp
-        s2 = 0.0_dp
-        s3 = 0.0_dp
-        s4 = 0.0_dp
-        do i = 1, n4, 4
-            s1 = s1 + a(i)*b(i)
-            s2 = s2 + a(i + 1)*b(i + 1)
-            s3 = s3 + a(i + 2)*b(i + 2)
-            s4 = s4 + a(i + 3)*b(i + 3)
-        end do
-        do i = n4 + 1, size(a)
-            s1 = s1 + a(i)*b(i)
-        end do
-        total = (s1 + s2) + (s3 + s4)
-    end function dot4
 
     !> Store the force of step n, retire output n, advance, and run every level whose
     !> block has just been completed.

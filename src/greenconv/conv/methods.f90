@@ -169,11 +169,10 @@ module greenconv_conv_methods
     character(len=method_name_length), parameter :: registry_names(n_methods) = registry%name
 
 
-    !> The method names for messages, "'direct', 'fft', ... or 'auto'": all of them
-    !> (`method_list()`), those for one kind of contact (`method_list(multi_point)`) or those
-    !> one engine steps (`method_list(engine=...)`).
+    !> The method names for messages, "'direct', 'fft' or 'exact'": those for one kind of
+    !> contact (`method_list(multi_point)`) or those one engine steps (`method_list(engine=...)`);
+    !> all of them are `quoted_list(method_names())`.
     interface method_list
-        module procedure method_list_all
         module procedure method_list_for
         module procedure method_list_of
     end interface method_list
@@ -231,14 +230,6 @@ contains
 
         names(:) = registry_names
     end function method_names
-
-    !> Every method name for messages, "'direct', 'fft', ... or 'auto'".
-    pure function method_list_all() result(text)
-        !> The names.
-        character(len=quoted_list_length(registry_names)) :: text
-
-        text = quoted_list(registry_names)
-    end function method_list_all
 
     !> The method names that serve single-point (`multi_point` false) or multi-point contact.
     pure function method_list_for(multi_point) result(text)
@@ -365,7 +356,7 @@ contains
 
         i = findloc(registry_names, name, dim=1)
         if (i == 0) then
-            call fatal_error(error, "unknown convolution method '"//trim(name)//"': expected "//method_list())
+            call fatal_error(error, "unknown convolution method '"//trim(name)//"': expected "//quoted_list(registry_names))
             return
         end if
         method = registry(i)

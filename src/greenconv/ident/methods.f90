@@ -85,14 +85,6 @@ module greenconv_ident_methods
     !> Length of `ident_summary`'s line.
     integer, parameter :: summary_length = len(registry%summary) + len(registry%procedure) + 3
 
-    !> The method names for messages, "'ml', 'lsce', 'poly_reference' or 'auto'": all of them
-    !> (`ident_list()`) or those that identify `what` (`ident_list(what)`: `ident_one_receptance`,
-    !> `ident_green_matrix`).
-    interface ident_list
-        module procedure ident_list_all
-        module procedure ident_list_of
-    end interface ident_list
-
 contains
 
     !> Whether a method identifies `what`.
@@ -165,24 +157,16 @@ contains
         if (entry%scheme /= ident_none) text = trim(entry%summary)//' ('//trim(entry%procedure)//')'
     end function ident_summary
 
-    !> Every method name for messages, "'ml', 'lsce', 'poly_reference' or 'auto'".
-    pure function ident_list_all() result(text)
-        !> The names.
-        character(len=quoted_list_length(registry_names)) :: text
-
-        text = quoted_list(registry_names)
-    end function ident_list_all
-
     !> The names of the methods that identify `what` (`ident_one_receptance`,
-    !> `ident_green_matrix`), "'ml' or 'lsce'".
-    pure function ident_list_of(what) result(text)
+    !> `ident_green_matrix`) for messages, "'ml' or 'lsce'".
+    pure function ident_list(what) result(text)
         !> Keep only the methods that identify this.
         integer, intent(in) :: what
         !> The names.
         character(len=quoted_list_length(registry_names, serves(registry, what))) :: text
 
         text = quoted_list(registry_names, serves(registry, what))
-    end function ident_list_of
+    end function ident_list
 
     !> The method a structure gets when its scene names none: `what` is `ident_green_matrix`
     !> for a Green's matrix file, else `ident_one_receptance` with `measured` true for a
@@ -240,7 +224,7 @@ contains
         i = findloc(registry_names, name, dim=1)
         if (i == 0) then
             variable = 'method'
-            call fatal_error(error, ident_list())
+            call fatal_error(error, quoted_list(registry_names))
         else if (.not. serves(registry(i), what)) then
             variable = 'method'
             if (what == ident_green_matrix) then

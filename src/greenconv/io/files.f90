@@ -82,31 +82,6 @@ module greenconv_io_files
             integer(c_int) :: stat
         end function c_rename
 
-        !> C library unlink(2).
-        function c_unlink(path) bind(c, name='unlink') result(stat)
-            import :: c_char, c_int
-            implicit none
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int) :: stat
-        end function c_unlink
-
-        !> C library mkdir(2).
-        function c_mkdir(path, mode) bind(c, name='mkdir') result(stat)
-            import :: c_char, c_int
-            implicit none
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int), value :: mode
-            integer(c_int) :: stat
-        end function c_mkdir
-
-        !> C library access(2).
-        function c_access(path, mode) bind(c, name='access') result(stat)
-            import :: c_char, c_int
-            implicit none
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int), value :: mode
-            integer(c_int) :: stat
-        end function c_access
 
         !> C library realpath(3).
         function c_realpath(path, resolved) bind(c, name='realpath') result(answer)
@@ -123,28 +98,14 @@ module greenconv_io_files
             integer(c_int) :: pid
         end function c_getpid
 
-        !> Record a temporary file to delete on SIGINT/SIGTERM (io/signals.c); its slot or -1.
-        function c_part_register(path) bind(c, name='gc_part_register') result(slot)
-            import :: c_char, c_int
-            implicit none
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int) :: slot
-        end function c_part_register
 
-        !> Forget a slot of `c_part_register` (io/signals.c).
+        !> Forget a slot of `c_part_register` (io/part_files.c).
         subroutine c_part_release(slot) bind(c, name='gc_part_release')
             import :: c_int
             implicit none
             integer(c_int), value :: slot
         end subroutine c_part_release
 
-        !> Create a file exclusively (io/part_files.c): a descriptor, or -errno.
-        function c_part_create(path) bind(c, name='gc_part_create') result(fd)
-            import :: c_char, c_int
-            implicit none
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int) :: fd
-        end function c_part_create
 
         !> Whether a result of `c_part_create` says that the name exists (io/part_files.c): 1 or 0.
         function c_part_name_taken(result) bind(c, name='gc_part_name_taken') result(taken)
@@ -189,13 +150,43 @@ module greenconv_io_files
             integer(c_size_t), value :: length
         end subroutine c_part_strerror
 
-        !> Install the SIGINT/SIGTERM handler (io/signals.c); 0 or -1.
+        !> Install the SIGINT/SIGTERM handler (io/part_files.c); 0 or -1.
         function c_part_remove_on_signals() bind(c, name='gc_part_remove_on_signals') result(stat)
             import :: c_int
             implicit none
             integer(c_int) :: stat
         end function c_part_remove_on_signals
     end interface
+
+    abstract interface
+        !> A C call on a NUL-terminated path alone, returning an int.
+        function path_call(path) bind(c) result(stat)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: stat
+        end function path_call
+
+        !> A C library call on a path and an int: mkdir(2) (the mode) and access(2) (the test).
+        function path_and_flag_call(path, flag) bind(c) result(stat)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int), value :: flag
+            integer(c_int) :: stat
+        end function path_and_flag_call
+    end interface
+
+    !> C library unlink(2).
+    procedure(path_call), bind(c, name='unlink') :: c_unlink
+    !> Record a temporary file to delete on SIGINT/SIGTERM (io/part_files.c); its slot or -1.
+    procedure(path_call), bind(c, name='gc_part_register') :: c_part_register
+    !> Create a file exclusively (io/part_files.c): a descriptor, or -errno.
+    procedure(path_call), bind(c, name='gc_part_create') :: c_part_create
+    !> C library mkdir(2).
+    procedure(path_and_flag_call), bind(c, name='mkdir') :: c_mkdir
+    !> C library access(2).
+    procedure(path_and_flag_call), bind(c, name='access') :: c_access
 
 contains
 

@@ -12,7 +12,7 @@ module greenconv_scene_read_input
     use greenconv_core_kinds, only: dp
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_constants, only: two_pi
-    use greenconv_core_text, only: real_text, int_text, sci_text
+    use greenconv_core_text, only: real_text, int_text, sci_text, quoted_list
     use greenconv_model_road, only: road_profile, sine_road, new_random_road
     use greenconv_contact_single, only: contact_options
     use greenconv_contact_laws, only: law_kind, find_law, new_law, parameter_list, parameter_text, &
@@ -33,7 +33,7 @@ module greenconv_scene_read_input
     use greenconv_scene_models_facade, only: structure_kind, find_model, model_id, model_names, model_requires, &
                                              multi_point_model
     use greenconv_core_number_text, only: compact_real
-    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_list, &
+    use greenconv_conv_methods, only: default_truncation_tol, default_accuracy, is_method, method_names, &
                                       check_method
     use greenconv_scene_limits, only: max_spectrum_values, max_contact_points
     use greenconv_ident_methods, only: check_ident_method, default_ident_method, ident_scheme
@@ -945,7 +945,7 @@ contains
         if (group_failed(this, 'convolution', source, stat, message, error)) return
         do i = 1, max_methods
             if (methods(i) == '' .or. is_method(methods(i))) cycle
-            call expect(error, this, 'convolution', 'methods', method_list(), methods(i))
+            call expect(error, this, 'convolution', 'methods', quoted_list(method_names()), methods(i))
             return
         end do
         call check_value(this, 'convolution', 'truncation_tol', truncation_tol, error)
