@@ -8,7 +8,7 @@ module test_wheelrail_mod
     use greenconv_core_error, only: error_type
     use greenconv_model_rail, only: rail_track, wheel_mass, wheel_from_modes, hertz_constant, hertz_tangent, &
                                    wheel_rail_frf
-    use greenconv_model_frf, only: frf_type
+    use greenconv_model_frf, only: frf_type, frf_grid
     use greenconv_ident_lsce, only: impulse_from_frf
     use greenconv_ident_structure, only: structure_model, structure_from_samples
     use greenconv_conv_convolver, only: convolver
@@ -241,7 +241,7 @@ contains
 
         track = rail_track(bending=ei, mass=m_rail, pad_stiffness=s_pad, pad_damping=2.0_dp*c_pad)
         wheel = wheel_mass(mass=600.0_dp, stiffness=1.0e6_dp, damping=2.0e4_dp)
-        frf = wheel_rail_frf(track, wheel, 0.5_dp/dt, 50001)
+        frf = wheel_rail_frf(track, wheel, frf_grid(0.5_dp/dt, 50001))
         call impulse_from_frf(frf, g, dt_g, fault)
         call check(error, .not. allocated(fault) .and. abs(dt_g - dt) < 1.0e-12_dp*dt, 'g from G at dt')
         if (allocated(error)) return

@@ -11,13 +11,13 @@
 !>   twice the band: the band's term is the relative difference of the two runs, doubled
 !>   unless the wider run holds every mode.
 !>
-!> A whole run (`run_budget`) feeds its arrays to the companions once; a run stepped one call
-!> at a time (`start_budget`, `feed_budget`) feeds each step, so that its terms are known at
-!> every step. Before a run has 8 steps the terms are what is known without one (`prior_terms`:
-!> the static share of a modes file's modes above the band for a method that leaves it out).
-!> Companions cost 1/2 + 1/4 of the run for a modal method (1/4 + 1/16 for `direct`), and the
-!> band's a run with the wider band. A companion at 2*dt that cannot be
-!> built or fails makes the time-step term 1 (unknown); a run of fewer than 8 steps has none.
+!> A whole run (`start_budget` given its road and forces) feeds its arrays to the companions
+!> once; a run stepped one call at a time (`start_budget`, `feed_budget`) feeds each step, so
+!> that its terms are known at every step. Before a run has 8 steps the terms are what is known
+!> without one (`prior_terms`: the static share of a modes file's modes above the band for a
+!> method that leaves it out). Companions cost 1/2 + 1/4 of the run for a modal method (1/4 +
+!> 1/16 for `direct`), and the band's a run with the wider band. A companion at 2*dt that cannot
+!> be built or fails makes the time-step term 1 (unknown); a run of fewer than 8 steps has none.
 !>
 !> `outside_accuracy` is the one check of every door against the accuracy the host asked:
 !> status 4 (`stat_accuracy`) when the model's estimate plus the run's terms exceed it.
@@ -46,7 +46,7 @@ module greenconv_api_budget
     implicit none
     private
 
-    public :: run_budget, start_budget, feed_budget, stop_budget
+    public :: start_budget, feed_budget, stop_budget
     public :: run_point_budget, start_point_budget
     public :: set_box_accuracy, outside_accuracy
 
@@ -54,25 +54,6 @@ module greenconv_api_budget
     integer, parameter :: min_budget_steps = 8
 
 contains
-
-    !> The time-step and band terms of a whole run (`box%run_terms`): its companions started,
-    !> fed the run's road and forces, and stopped.
-    subroutine run_budget(box, laws, preload, road, force)
-        !> The box, its convolver run.
-        type(convolver_box), intent(inout) :: box
-        !> The contact laws of the run.
-        class(contact_law), intent(in) :: laws(:)
-        !> Static preloads F0_i [N] of the run.
-        real(dp), intent(in) :: preload(:)
-        !> Road heights road(n, i) [m] and the run's forces force(n, i) [N].
-        real(dp), intent(in) :: road(0:, :), force(0:, :)
-
-        box%run_terms = box%prior_terms
-        if (size(force, 1) < min_budget_steps) return
-        call start_budget(box, laws, preload, size(force, 1))
-        call feed_budget(box, road, force)
-        call stop_budget(box)
-    end subroutine run_budget
 
     !> A whole single-point contact run on a box (its convolver reset first) and its budget:
     !> the steps done, then zero after a fault, which `error` names (step and time); `error`
@@ -120,7 +101,8 @@ contains
         end if
         box%point_options = options
         call replicate_law(law, 1, laws)
-        call run_budget(box, laws, [preload], reshape(road, [size(road), 1]), reshape(force, [size(force), 1]))
+        call start_budget(box, laws, [preload], size(road), reshape(road, [size(road), 1]), &
+                          reshape(force, [size(force), 1]))
         call outside_accuracy(caller, box, error)
     end subroutine run_point_budget
 
@@ -161,8 +143,10 @@ contains
 
     !> Build and start the companions of a contact run on a box (module comment); `run_terms`
     !> back to 0. The single-point scheme is `box%point_options` when `box%structure` is held.
-    subroutine start_budget(box, laws, preload, n_steps)
-        !> The box, its run starting.
+    !> Given the `road` and `force` of a whole run already done, the companions are also fed
+    !> them and stopped: `run_terms` is then that run's.
+    subroutine start_budget(box, laws, preload, n_steps, road, force)
+        !> The box, its run starting (or done, with `road` and `force`).
         type(convolver_box), intent(inout) :: box
         !> The contact laws of the run.
         class(contact_law), intent(in) :: laws(:)
@@ -170,6 +154,10 @@ contains
         real(dp), intent(in) :: preload(:)
         !> Number of steps N_t the run will take at most.
         integer, intent(in) :: n_steps
+        !> Road heights road(n, i) [m] of a whole run done, n = 0 to n_steps - 1.
+        real(dp), intent(in), optional :: road(0:, :)
+        !> The forces force(n, i) [N] of that run.
+        real(dp), intent(in), optional :: force(0:, :)
 
         type(error_type), allocatable :: fault
         type(point_modes) :: description
@@ -182,21 +170,27 @@ contains
         box%budget = door_budget()
         box%budget%single = allocated(box%structure)
         box%budget%preload = preload
-        if (.not. allocated(box%method) .or. n_steps < min_budget_steps) return
-        box%budget%order = method_order(box%method)
-        do f = 1, 2
-            call companion_convolver(box, 2**f, (n_steps + 2**f - 1)/2**f, box%budget%run(f)%conv, fault)
-            if (.not. allocated(fault)) call start_companion(box, box%budget%run(f), laws, preload, fault)
-            if (f == 1) box%budget%step_missing = allocated(fault)
-            if (allocated(fault)) deallocate (fault)
-        end do
-        if (.not. allocated(box%source_file)) return
-        call split_band(box%source_file, 2.0_dp*box%band, [(i, i=1, size(box%source_file%x))], 0.0_dp, &
-                        description, residual, text, fault)
-        if (.not. allocated(fault)) call make_multipoint_convolver(box%method, description, box%dt, &
-            box%truncation_tol, n_steps, box%budget%run(3)%conv, text, fault, residual=residual)
-        if (.not. allocated(fault)) call start_companion(box, box%budget%run(3), laws, preload, fault)
-        box%budget%band_doubled = allocated(residual)
+        if (allocated(box%method) .and. n_steps >= min_budget_steps) then
+            box%budget%order = method_order(box%method)
+            do f = 1, 2
+                call companion_convolver(box, 2**f, (n_steps + 2**f - 1)/2**f, box%budget%run(f)%conv, fault)
+                if (.not. allocated(fault)) call start_companion(box, box%budget%run(f), laws, preload, fault)
+                if (f == 1) box%budget%step_missing = allocated(fault)
+                if (allocated(fault)) deallocate (fault)
+            end do
+            if (allocated(box%source_file)) then
+                call split_band(box%source_file, 2.0_dp*box%band, [(i, i=1, size(box%source_file%x))], 0.0_dp, &
+                                description, residual, text, fault)
+                if (.not. allocated(fault)) call make_multipoint_convolver(box%method, description, box%dt, &
+                    box%truncation_tol, n_steps, box%budget%run(3)%conv, text, fault, residual=residual)
+                if (.not. allocated(fault)) call start_companion(box, box%budget%run(3), laws, preload, fault)
+                box%budget%band_doubled = allocated(residual)
+            end if
+        end if
+        if (present(road) .and. present(force) .and. n_steps >= min_budget_steps) then
+            call feed_budget(box, road, force)
+            call stop_budget(box)
+        end if
     end subroutine start_budget
 
     !> Feed the companions the next steps of the run (road heights and the run's forces, rows

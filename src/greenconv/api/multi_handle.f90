@@ -45,7 +45,7 @@ module greenconv_api_multi_handle
     use greenconv_scene_facade, only: max_lsce_modes, max_contact_points
     use greenconv_api_library, only: check_contact_law
     use greenconv_api_handle, only: convolver_box, free_box
-    use greenconv_api_budget, only: run_budget, start_budget, feed_budget, stop_budget, outside_accuracy
+    use greenconv_api_budget, only: start_budget, feed_budget, stop_budget, outside_accuracy
     implicit none
     private
 
@@ -538,7 +538,7 @@ contains
     subroutine start_multi_box(caller, box, laws, preload, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
-        !> The box.
+        !> The box: its convolver reset, its stepped run and the run's budget started.
         type(convolver_box), intent(inout) :: box
         !> Contact law of each point (N_c, of one dynamic type), checked here.
         class(contact_law), intent(in) :: laws(:)
@@ -606,7 +606,7 @@ contains
     subroutine run_multi_box(caller, box, laws, preload, road, displacement, force, compression, error)
         !> Name of the front-door routine, first word of a message.
         character(len=*), intent(in) :: caller
-        !> The box.
+        !> The box: its convolver reset and run over the whole road, the run's budget taken.
         type(convolver_box), intent(inout) :: box
         !> Contact law of each point (N_c, of one dynamic type), checked here.
         class(contact_law), intent(in) :: laws(:)
@@ -642,7 +642,7 @@ contains
         force(0:n_done - 1, :) = response%force
         compression(0:n_done - 1, :) = response%compression
         if (allocated(error)) return
-        call run_budget(box, laws, preload, road, response%force)
+        call start_budget(box, laws, preload, size(response%force, 1), road, response%force)
         call outside_accuracy(caller, box, error)
     end subroutine run_multi_box
 

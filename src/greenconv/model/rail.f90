@@ -53,7 +53,7 @@ module greenconv_model_rail
     use greenconv_core_error, only: error_type, fatal_error
     use greenconv_core_constants, only: two_pi
     use greenconv_core_text, only: sci_text, int_text
-    use greenconv_model_frf, only: frf_type, frf_grid
+    use greenconv_model_frf, only: frf_type
     use greenconv_model_modes_file, only: file_modes, read_file_modes
     implicit none
     private
@@ -307,21 +307,19 @@ contains
                                                       'a damping >= 0 N s/m', error)
     end subroutine wheel_check
 
-    !> The receptance the contact sees, alpha_w + alpha_r [m/N], on n_freq lines from 0 to
-    !> f_max [Hz] (the uniform grid from 0 Hz of greenconv_model_frf).
-    pure function wheel_rail_frf(track, wheel, f_max, n_freq) result(frf)
+    !> The receptance the contact sees, alpha_w + alpha_r [m/N], on the lines `frequency` (for
+    !> an identification, greenconv_model_frf's uniform grid from 0 Hz, `frf_grid`).
+    pure function wheel_rail_frf(track, wheel, frequency) result(frf)
         !> The track.
         type(rail_track), intent(in) :: track
         !> The wheel.
         type(wheel_mass), intent(in) :: wheel
-        !> Highest frequency [Hz], > 0.
-        real(dp), intent(in) :: f_max
-        !> Number of lines, >= 2.
-        integer, intent(in) :: n_freq
+        !> The lines [Hz], >= 0.
+        real(dp), intent(in) :: frequency(:)
         type(frf_type) :: frf
 
-        frf%frequency = frf_grid(f_max, n_freq)
-        frf%receptance = wheel%receptance(two_pi*frf%frequency) + track%receptance(two_pi*frf%frequency)
+        frf%frequency = frequency
+        frf%receptance = wheel%receptance(two_pi*frequency) + track%receptance(two_pi*frequency)
         frf%source = 'wheel on rail, closed form'
     end function wheel_rail_frf
 

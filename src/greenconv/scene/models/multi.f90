@@ -182,9 +182,10 @@ contains
         type(scene_type), intent(in) :: scene
         !> The check's line, extended with the file's points and grid.
         character(len=:), allocatable, intent(inout) :: line
-        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        !> Number of contact points N_c: every point of the file (unchanged when it cannot be read).
         integer, intent(inout) :: n_points
-        !> Set for a bad file or a road that does not cover the run.
+        !> Set for a bad file, a road that does not cover the run, or a method the file cannot
+        !> serve (a modal method on impulse responses, g_ij off the file's step).
         type(error_type), allocatable, intent(out) :: error
 
         type(green_structure) :: green
@@ -224,18 +225,20 @@ contains
         end associate
     end subroutine check_green_file
 
-    !> The points of a `modes_file` scene: the file's nodes at their x, y, placed on the road,
+    !> The points of a `modes_file` scene: the file's nodes (those inside the scene's patch when
+    !> it gives `modes_patch_length` x `modes_patch_width`) at their x, y, placed on the road,
     !> with the file's modes up to the band (`f_modes`, else 1/(2*dt)); the modes above it are
     !> kept as their static compliance between the nodes (`points%static`), counted in the
     !> summary with their share of the static flexibility at the nodes.
     subroutine modes_file_points(scene, points, summary, error)
         !> The scene (model 'modes_file', task 'contact').
         type(scene_type), intent(in) :: scene
-        !> The points and the modes at them.
+        !> The points (the nodes the patch keeps) and the modes at them.
         type(scene_points), intent(out) :: points
         !> The scene's summary line.
         character(len=:), allocatable, intent(out) :: summary
-        !> Set for a bad file, no mode in the band or a road that does not cover the run.
+        !> Set for a bad file, a patch that keeps no node or more than `max_contact_points`, no
+        !> mode in the band, or a road that does not cover the run.
         type(error_type), allocatable, intent(out) :: error
 
         type(file_modes) :: modes
@@ -269,9 +272,11 @@ contains
         type(scene_type), intent(in) :: scene
         !> The check's line, extended with the file's nodes and modes.
         character(len=:), allocatable, intent(inout) :: line
-        !> Number of contact points N_c of the file (unchanged when it cannot be read).
+        !> Number of contact points N_c: the file's nodes the scene's patch keeps (unchanged when
+        !> the file cannot be read).
         integer, intent(inout) :: n_points
-        !> Set for a bad file or a road that does not cover the run.
+        !> Set for a bad file, a patch that keeps no node or more than `max_contact_points`, or a
+        !> road that does not cover the run.
         type(error_type), allocatable, intent(out) :: error
 
         type(file_modes) :: modes

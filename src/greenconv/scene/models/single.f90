@@ -15,7 +15,7 @@ module greenconv_scene_models_single
     use greenconv_core_text, only: int_text, sci_text
     use greenconv_model_modal_set, only: modal_set, random_modes
     use greenconv_model_sdof, only: sdof_modes
-    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf
+    use greenconv_model_frf, only: frf_type, frf_from_modes, read_frf, frf_grid
     use greenconv_model_rail, only: wheel_rail_frf, band_tail
     use greenconv_ident_structure, only: structure_model, structure_from_modes, structure_from_receptance, &
                                          receptance_identification, identify_receptance
@@ -108,16 +108,17 @@ contains
     subroutine wheel_rail_structure(scene, structure, error)
         !> The scene (track, wheel, f_max, n_freq, the identification's settings).
         type(scene_type), intent(in) :: scene
-        !> The structure.
+        !> The structure: g sampled at dt, the modes when a method or the task needs them.
         type(structure_model), intent(out) :: structure
-        !> Set when the identification fails or dt does not fit the grid.
+        !> Set, placed at `&identification` f_max and n_freq, when the modes cannot be fitted
+        !> or dt is not a whole multiple of the grid's 1/(2*f_max).
         type(error_type), allocatable, intent(out) :: error
 
         type(frf_type) :: frf
         logical :: modal
         integer :: i
 
-        frf = wheel_rail_frf(scene%track, scene%wheel, scene%f_max, scene%n_freq)
+        frf = wheel_rail_frf(scene%track, scene%wheel, frf_grid(scene%f_max, scene%n_freq))
         modal = scene%task /= 'contact'
         if (allocated(scene%methods)) then
             do i = 1, size(scene%methods)
