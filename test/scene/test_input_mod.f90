@@ -710,7 +710,8 @@ contains
         call check(error, index(refused%message, "method = 'lsce'") > 0, 'order message: '//refused%message)
         if (allocated(error)) return
         call check_ident_method('mle', ident_one_receptance, 'frf_file', 0, variable, refused)
-        call check(error, allocated(refused) .and. variable == 'method' .and. refused%message == "'ml', 'lsce', 'poly_reference' or 'auto'", &
+        call check(error, allocated(refused) .and. variable == 'method' .and. &
+                   refused%message == "'ml', 'lsce', 'poly_reference' or 'auto'", &
                    'an unknown name refused with the list of every name')
     end subroutine test_ident_registry
 
